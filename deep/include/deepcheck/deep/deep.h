@@ -1,0 +1,98 @@
+#pragma once
+// DEEP: Dual-space Expansion for Estimating Penetration depth between convex polytopes
+// (Y. J. Kim, M. C. Lin, D. Manocha, ICRA 2002).
+//
+// Penetration depth of overlapping convex polytopes A and B is the distance from the origin to the
+// boundary of the Minkowski difference M = B - A: PD = min over facets F of M of d_F, the offset
+// of F's plane, attained at a facet whose normal u is a vertex of the overlay of the Gauss maps of
+// B and -A. Such a vertex is a face normal of B inside a vertex region of -A (VF), a face normal
+// of -A inside a vertex region of B (FV), or the crossing of an edge arc of each (EE).
+//
+// The algorithm, as in the paper:
+//  1. Start from a vertex hub pair (a, b): the vertices of A and B extreme in -u0 and u0 for an
+//     initial direction u0 (centroid difference, or the previous answer: warm start). b - a is a
+//     vertex of M; its Gauss region is N_B(b) ∩ -N_A(a).
+//  2. Local Gauss maps: the region of b is a convex spherical polygon whose corners are the normals
+//     of b's faces; the region of -a is bounded by the planes orthogonal to a's edges. Their
+//     intersection is computed by clipping the first by the second (Sutherland-Hodgman on
+//     homogeneous direction vectors: interpolating two directions and renormalizing is exactly the
+//     central projection onto a plane, without choosing the plane). Its corners are the candidate
+//     facets of M around b - a, labelled VF / FV / EE by the two arcs meeting there. Each
+//     candidate's depth is u . (b - a).
+//  3. Walk to the best candidate's facet and on to an adjacent hub pair; stop when nothing improves.
+//
+// Where this implementation departs from the paper, and why:
+//  - The stopping test is exact: the walk stops at a facet F that contains its foot point d_F * u_F
+//    (the KKT condition of min d over the boundary of M). If the foot lies outside F, beyond an
+//    edge, the facet across that edge has a strictly smaller offset, so the walk moves to the hub
+//    pair at that edge's end nearest the foot. This is the paper's "move to an adjacent vertex
+//    pair" with the choice made deterministic, and it yields the witness points.
+//  - Degenerate facets (parallel faces or edges, e.g. stacked boxes) are handled by computing the
+//    facet as the Minkowski difference of the supporting features of A and B within
+//    kFeatureRelative, instead of assuming general position.
+//  - Local minima are real (DESIGN.md measured 8 % to 52 % on random hulls), so a query runs
+//    several walks: the warm start, the centroid difference and its opposite, and both signs of
+//    the principal axes of A and B. Walks that reach an already visited hub pair stop early, so
+//    the extra starts cost little when they lead to the same facet.
+//  - Points and segments (sphere and capsule cores) have no Gauss regions of positive area; their
+//    Minkowski differences with a polytope have O(F + E) facets, enumerated directly.
+
+#include "deepcheck/deep/pair_frame.h"
+
+namespace deepcheck::deep {
+
+struct DeepOptions {
+  /// Use the warm start of the cache when it is valid.
+  bool warmStart = true;
+  /// Run the restart directions (centroid difference, its opposite, principal axes). Without
+  /// restarts a cold query runs one walk from the centroid difference: faster, can miss.
+  bool restarts = true;
+  /// Starts used in addition to the warm start when one is available; extra starts beyond the
+  /// warm one are what guard against local minima after the shapes moved a lot.
+  int warmExtraStarts = 1;
+  /// Cap on hub pairs evaluated per walk.
+  int maxHubsPerWalk = 256;
+};
+
+/// Warm-start state of one pair (the caller owns it, one per pair and per thread).
+struct DeepCache {
+  bool valid = false;
+  int hubA = 0;  ///< vertex of A of the last answer's hub pair
+  int hubB = 0;  ///< vertex of B of the last answer's hub pair
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();  ///< last outward facet normal of M, in B's... frame P
+};
+
+struct DeepStats {
+  int starts = 0;           ///< walks started
+  int hubs = 0;             ///< hub pairs evaluated (local Gauss map intersections)
+  int steps = 0;            ///< facet-to-facet moves over all walks
+  int localMinima = 0;      ///< walks that ended at a facet deeper than the final answer
+  bool warm = false;        ///< the warm start was used
+};
+
+enum class DeepStatus {
+  Converged,     ///< the best facet contains its foot point (a KKT point of the depth)
+  NotConverged,  ///< a walk hit maxHubsPerWalk; the answer is still a valid separating translation
+};
+
+struct DeepResult {
+  DeepStatus status = DeepStatus::NotConverged;
+  double depth = 0.0;  ///< penetration depth (>= 0 when the origin is inside M), frame P units
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, from A towards B, in frame P
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero();   ///< witness on A, frame P
+  Eigen::Vector3d pointB = Eigen::Vector3d::Zero();   ///< witness on B, frame P (pointA - pointB = depth * normal)
+  enum class FacetType { VF, FV, EE } type = FacetType::VF;
+  int featureA = 0;   ///< VF: vertex of A; FV: face of A; EE: first vertex of A's edge
+  int featureA2 = -1; ///< EE: second vertex of A's edge
+  int featureB = 0;   ///< VF: face of B; FV: vertex of B; EE: first vertex of B's edge
+  int featureB2 = -1; ///< EE: second vertex of B's edge
+  DeepStats stats;
+};
+
+/// Penetration depth of A and B (cores, no radii) in the pair frame. Meaningful when they overlap
+/// (the caller checks with GJK first); for separated shapes the result is the smallest offset of
+/// a facet reached, possibly negative. `cache` may be null.
+DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                           DeepCache* cache = nullptr, const DeepOptions& options = {});
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,44 @@
+#pragma once
+// The pair-local frame in which every pair query is computed.
+//
+// Naming follows Drake: X_WA is the pose of frame A in the world W, p_AB the position of B's
+// origin in A, R_AB the orientation of B in A. For a pair (A, B) we work in "frame P": A's own
+// frame translated to A's centroid. Coordinates there are of the size of the shapes, never of the
+// size of the world, so a pair 1e4 m from the origin loses no digits beyond those of the pose
+// difference itself. B's vertices (relative to B's centroid) map into P by x_P = R * x + t.
+
+#include "deepcheck/deep/polytope.h"
+
+#include <Eigen/Geometry>
+
+namespace deepcheck::deep {
+
+struct PairFrame {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< orientation of B's centroid frame in P
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();      ///< position of B's centroid in P
+
+  /// Builds the frame for A at X_WA and B at X_WB. Throws std::invalid_argument for a pose with
+  /// NaN/infinite entries or a rotation that is not orthonormal (message names which pose).
+  static PairFrame make(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
+                        const ConvexPolytope& B, const Eigen::Isometry3d& X_WB);
+
+  /// Pose of P in the world, to map results back: x_W = X_WP * x_P.
+  Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
+
+  /// A's vertex v in P.
+  static Eigen::Vector3d vertexA(const ConvexPolytope& A, int v) { return A.vertex(v) - A.center(); }
+  /// B's vertex v in P.
+  Eigen::Vector3d vertexB(const ConvexPolytope& B, int v) const {
+    return R * (B.vertex(v) - B.center()) + t;
+  }
+  /// A direction of P expressed in B's frame.
+  Eigen::Vector3d toB(const Eigen::Vector3d& dir_P) const { return R.transpose() * dir_P; }
+  /// A direction of B's frame expressed in P.
+  Eigen::Vector3d fromB(const Eigen::Vector3d& dir_B) const { return R * dir_B; }
+};
+
+/// Throws std::invalid_argument unless X has finite entries and an orthonormal rotation
+/// (|R^T R - I| < 1e-6); `what` names the pose in the message.
+void checkPose(const Eigen::Isometry3d& X, const char* what);
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,119 @@
+#pragma once
+// Convex polytopes built from point sets (Qhull, reentrant API).
+//
+// A ConvexPolytope is the convex hull of the points it was built from, of one of four kinds:
+//   Point       one vertex, no faces (the core of a sphere);
+//   Segment     two vertices, no faces (the core of a capsule);
+//   Polygon     a flat convex polygon: k >= 3 vertices in counter-clockwise order about
+//               faceNormal(0), and two faces, 0 (normal +n) and 1 (normal -n);
+//   Polyhedron  a solid: faces are the hull facets with coplanar ones merged into polygons.
+//
+// Frames: vertices are stored in the polytope's own frame (the frame its points were given in).
+// center() is the centroid of the vertices; algorithms work relative to it so that large
+// coordinates in the input do not cost digits.
+//
+// Adjacency (Polyhedron): every vertex v has its neighbours nbr_0..nbr_{k-1} in counter-clockwise
+// order seen from outside the polytope, and its face ring: ring face j contains the edges
+// (v, nbr_j) and (v, nbr_{j+1 mod k}). The face ring, read as unit normals, is the vertex's region
+// of the Gauss map (a convex spherical polygon), and the arc from ring normal j-1 to ring normal j
+// is the Gauss image of edge (v, nbr_j). Faces list their vertices counter-clockwise seen from
+// outside. For a Polygon, a vertex's neighbours are (next, previous) along the boundary and its
+// face ring is (0, 1). For a Segment each vertex has the other as its only neighbour.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace deepcheck::deep {
+
+enum class PolytopeKind {
+  Point,       ///< a single point
+  Segment,     ///< two distinct points
+  Polygon,     ///< flat, at least three vertices
+  Polyhedron,  ///< a solid
+};
+
+const char* toString(PolytopeKind kind);
+
+/// A read-only view of a contiguous run of indices.
+struct IndexRange {
+  const int* first = nullptr;
+  const int* last = nullptr;
+  const int* begin() const { return first; }
+  const int* end() const { return last; }
+  int size() const { return static_cast<int>(last - first); }
+  int operator[](int i) const { return first[i]; }
+};
+
+class ConvexPolytope {
+ public:
+  /// Builds the convex hull of `points` (in the polytope's own frame).
+  /// Throws std::invalid_argument when the list is empty or a coordinate is NaN or infinite; the
+  /// message names the offending point index and value. `name` is used in messages only.
+  static ConvexPolytope fromPoints(const std::vector<Eigen::Vector3d>& points,
+                                   const std::string& name = "points");
+
+  /// An axis-aligned box centred at the origin with the given half extents (all > 0).
+  static ConvexPolytope box(const Eigen::Vector3d& halfExtents);
+
+  PolytopeKind kind() const { return kind_; }
+  int numVertices() const { return static_cast<int>(vertices_.size()); }
+  int numFaces() const { return static_cast<int>(faceNormals_.size()); }
+  int numEdges() const;
+
+  const Eigen::Vector3d& vertex(int v) const { return vertices_[v]; }
+  const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }
+
+  /// Unit outward normal n and offset d of face f: the face lies in {x : n.x = d}.
+  const Eigen::Vector3d& faceNormal(int f) const { return faceNormals_[f]; }
+  double faceOffset(int f) const { return faceOffsets_[f]; }
+  /// Vertices of face f, counter-clockwise seen from outside.
+  IndexRange faceVertices(int f) const;
+
+  /// Neighbours of vertex v, counter-clockwise seen from outside (see the header comment).
+  IndexRange neighbors(int v) const;
+  /// Face ring of vertex v: ring face j lies between edges (v, nbr_j) and (v, nbr_{j+1}).
+  IndexRange vertexFaces(int v) const;
+
+  /// Centroid of the vertices, and the largest distance from it to a vertex (>= 0).
+  const Eigen::Vector3d& center() const { return center_; }
+  double boundingRadius() const { return radius_; }
+  /// Length scale used to scale tolerances: max(boundingRadius, tiny) — never zero.
+  double lengthScale() const { return lengthScale_; }
+  /// Unit principal axes of the vertex distribution (columns, largest extent first).
+  const Eigen::Matrix3d& principalAxes() const { return axes_; }
+
+  /// Index of a vertex maximizing dir.x. Hill climbing over the vertex adjacency from `hint`
+  /// (any vertex index; out-of-range hints start at vertex 0); brute force on small hulls.
+  int support(const Eigen::Vector3d& dir, int hint = 0) const;
+  /// Brute-force support, for tests.
+  int supportBruteForce(const Eigen::Vector3d& dir) const;
+
+  /// Checks the internal invariants (Euler characteristic, ring order, convexity within
+  /// tolerance). Returns an empty string when they hold, else a description. For tests.
+  std::string validate() const;
+
+ private:
+  ConvexPolytope() = default;
+  void finish();  // computes center, radius, axes, adjacency offsets
+
+  friend class PolytopeBuilder;
+
+  PolytopeKind kind_ = PolytopeKind::Point;
+  std::vector<Eigen::Vector3d> vertices_;
+  std::vector<Eigen::Vector3d> faceNormals_;
+  std::vector<double> faceOffsets_;
+  std::vector<int> faceStart_;    // face f's vertices are faceVerts_[faceStart_[f] .. faceStart_[f+1])
+  std::vector<int> faceVerts_;
+  std::vector<int> adjStart_;     // vertex v's neighbours/ring are at [adjStart_[v] .. adjStart_[v+1])
+  std::vector<int> adjVerts_;
+  std::vector<int> adjFaces_;
+  Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
+  double radius_ = 0.0;
+  double lengthScale_ = 1.0;
+  Eigen::Matrix3d axes_ = Eigen::Matrix3d::Identity();
+};
+
+}  // namespace deepcheck::deep

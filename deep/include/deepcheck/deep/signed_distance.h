@@ -1,0 +1,79 @@
+#pragma once
+// One signed-distance call per pair: GJK distance when apart, DEEP penetration depth when overlapping.
+//
+// Contract (DESIGN.md): for convex shapes A and B,
+//   distance > 0  is their Euclidean distance;
+//   distance < 0  means they overlap, and -distance is the penetration depth: the length of the
+//                 shortest translation that separates them;
+//   normal        unit, points from A towards B: translating B by -distance * normal makes the
+//                 two shapes touch, for both signs;
+//   pointA/B      witness points on A and on B (world frame) with pointB - pointA = distance * normal.
+// The function is continuous through contact.
+//
+// A shape is a convex core (a ConvexPolytope: point, segment, polygon or polyhedron) plus a
+// radius >= 0: a sphere is a point core with a radius, a capsule a segment core with a radius.
+// The radius is handled exactly: sd(A, B) = sd(coreA, coreB) - radiusA - radiusB.
+
+#include "deepcheck/deep/deep.h"
+#include "deepcheck/deep/gjk.h"
+
+namespace deepcheck::deep {
+
+/// A convex shape: a core polytope (not owned; must outlive the shape) and a radius.
+struct ConvexShape {
+  const ConvexPolytope* core = nullptr;
+  double radius = 0.0;
+};
+
+enum class SignedDistanceStatus {
+  Separated,       ///< distance > 0 from GJK, converged
+  Penetrating,     ///< distance <= 0 from DEEP, the walk ended at a facet containing its foot point
+  NotConverged,    ///< an iteration cap was hit; the answer is still a valid separating
+                   ///< translation (an upper bound on the depth) or a distance upper bound
+};
+
+const char* toString(SignedDistanceStatus s);
+
+/// Which feature of a polytope a witness point lies on.
+struct Feature {
+  enum class Type { Vertex, Edge, Face } type = Type::Vertex;
+  int index = 0;    ///< vertex index, first edge vertex, or face index
+  int index2 = -1;  ///< second edge vertex (edges only)
+};
+
+struct SignedDistanceResult {
+  SignedDistanceStatus status = SignedDistanceStatus::NotConverged;
+  double distance = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero();
+  Eigen::Vector3d pointB = Eigen::Vector3d::Zero();
+  Feature featureA;
+  Feature featureB;
+  DeepStats deep;  ///< walk statistics when DEEP ran (zero otherwise)
+};
+
+/// Warm-start state for one pair of shapes, owned by the caller (one per pair and thread).
+/// Reusing it for consecutive queries of the same pair makes them cheap; it never changes the
+/// answer's validity, only how fast it is found. reset() makes the next query cold.
+struct PairCache {
+  GjkCache gjk;
+  DeepCache deep;
+  void reset() { *this = PairCache{}; }
+};
+
+/// Signed distance between two posed shapes. Throws std::invalid_argument for a null core, a
+/// negative or non-finite radius, or a non-finite / non-orthonormal pose.
+SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3d& X_WA,
+                                    const ConvexShape& B, const Eigen::Isometry3d& X_WB,
+                                    PairCache* cache = nullptr, const DeepOptions& options = {});
+
+/// Same, for polytopes without radius.
+SignedDistanceResult signedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
+                                    const ConvexPolytope& B, const Eigen::Isometry3d& X_WB,
+                                    PairCache* cache = nullptr, const DeepOptions& options = {});
+
+/// Boolean overlap of two posed shapes (GJK only, early exit). Touching counts as overlap.
+bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
+              const Eigen::Isometry3d& X_WB, PairCache* cache = nullptr);
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,46 @@
+#pragma once
+// All numerical tolerances of deepcheck::deep, in one place.
+//
+// Every tolerance is relative: it is multiplied by a length scale L of the shapes involved
+// (for a single hull, its bounding radius about its centroid; for a pair, the larger of the two
+// bounding radii plus the distance between their centres), so results do not change when
+// a scene is expressed in millimetres instead of metres. Absolute values are never used.
+
+namespace deepcheck::deep::tol {
+
+/// Thickness of a point set, relative to its size, below which it is treated as lower-dimensional:
+/// a set whose points all lie within kFlatRelative * L of a plane is a polygon, of a line a
+/// segment, of a point a point. Chosen far above double round-off (1e-16) so that rotated exactly
+/// flat inputs are recognized, far below any real geometric feature of a robot mesh.
+constexpr double kFlatRelative = 1e-10;
+
+/// Two hull facets whose normals differ by less than this angle (radians) and whose vertices all
+/// lie within kFlatRelative * L of the common plane are merged into one polygonal face, so Gauss
+/// maps have no zero-length arcs.
+constexpr double kCoplanarAngle = 1e-10;
+
+/// Tolerance for "a vertex supports this direction too" when collecting supporting features
+/// (the face, edge or vertex of a hull touching a supporting plane): kFeatureRelative * L.
+constexpr double kFeatureRelative = 1e-11;
+
+/// Convergence of GJK distance: stop when the lower and upper bounds on the squared distance
+/// agree to this relative precision.
+constexpr double kGjkRelative = 1e-14;
+
+/// A DEEP step must improve the depth by more than kImproveRelative * L to be taken; smaller
+/// changes are round-off, and accepting them could cycle.
+constexpr double kImproveRelative = 1e-14;
+
+/// The foot point of the origin on a Minkowski-difference facet may lie outside the facet by at
+/// most kInsideRelative * L for the facet to count as a local minimum (KKT point).
+constexpr double kInsideRelative = 1e-12;
+
+/// Edge directions whose cross product is shorter than kParallelSine * |e1| * |e2| are treated as
+/// parallel: they span no edge-edge facet of the Minkowski difference.
+constexpr double kParallelSine = 1e-9;
+
+/// Shapes whose GJK distance is below kContactRelative * L are treated as touching and handed to
+/// DEEP, whose depth is then ~0: this keeps the signed distance continuous through contact.
+constexpr double kContactRelative = 1e-12;
+
+}  // namespace deepcheck::deep::tol
