@@ -1,0 +1,84 @@
+#pragma once
+// The convex pieces of each link, as the collision checker consumes them.
+//
+// A piece is a convex core (a deep::ConvexPolytope: point, segment, polygon or polyhedron) plus a
+// radius, placed in its link's frame by X_LP. The checker poses it at X_WL * X_LP. Pieces are
+// shared (shared_ptr to const): the same mesh used twice (the Panda's two fingers) is loaded and
+// decomposed once per call.
+//
+// Primitives stay primitive (no mesh is made):
+//   box       ConvexPolytope::box(size / 2): 8 vertices, exact.
+//   sphere    a Point core with the sphere's radius: exact.
+//   cylinder  a circumscribed prism: a regular N-gon whose edges are tangent to the circle of
+//             radius r (apothem r, so its corners are at r / cos(pi / N)), extruded over the full
+//             length. The prism CONTAINS the cylinder (a missed collision is worse than a false
+//             alarm) and sticks out of it by at most r * (1 / cos(pi / N) - 1) (at the corners;
+//             zero at the caps and along the tangent lines). N is the smallest number of sides
+//             that keeps this within `cylinderMaxDeviation` (default tol::kCylinderMaxDeviation
+//             = 1 mm), clamped to [tol::kCylinderMinSides, tol::kCylinderMaxSides].
+//             Why not exact: a cylinder is not a core plus a radius (a segment plus a radius is a
+//             capsule, which overshoots by r at both ends: 5 cm on a 5 cm-radius part, far worse
+//             than a prism), and the deep library's shapes are polytope cores with a radius.
+// Meshes: the mesh is loaded (mesh_loader.h: URDF scale applied, degenerate triangles dropped) and
+// handed to a MeshDecomposer, which returns convex polytopes in the mesh's frame G. The default,
+// convexHullDecomposer, returns the single convex hull of the vertices; the convex decomposition
+// (decomposition.h) plugs in here.
+//
+// Frames: L the link, G the collision element (URDF <collision><origin>), P the piece; for every
+// piece built here P = G, so X_LP = CollisionElement::X_LG. Metres.
+
+#include "deepcheck/robots/mesh.h"
+#include "deepcheck/robots/robot_model.h"
+#include "deepcheck/robots/tolerances.h"
+
+#include "deepcheck/deep/polytope.h"
+
+#include <Eigen/Geometry>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace deepcheck::robots {
+
+struct CollisionPiece {
+  std::shared_ptr<const deep::ConvexPolytope> core;
+  double radius = 0.0;                                     ///< >= 0, metres
+  Eigen::Isometry3d X_LP = Eigen::Isometry3d::Identity();  ///< pose of the piece in its link
+  /// Where it comes from, for messages and reports, e.g.
+  /// "link panda_link3 collision 0 mesh link3.stl piece 2" or "link ee_link collision 0 box".
+  std::string origin;
+};
+
+/// Turns a collision mesh (in its frame G, metres) into convex polytopes in G whose union
+/// contains it. Throws std::invalid_argument on failure.
+using MeshDecomposer = std::function<std::vector<deep::ConvexPolytope>(const TriangleMesh& mesh)>;
+
+/// The default decomposer: one piece, the convex hull of the mesh's vertices.
+std::vector<deep::ConvexPolytope> convexHullDecomposer(const TriangleMesh& mesh);
+
+struct CollisionGeometryOptions {
+  /// Largest distance the prism of a cylinder may stick out of it, metres (> 0).
+  double cylinderMaxDeviation = tol::kCylinderMaxDeviation;
+  /// How meshes become pieces; empty means convexHullDecomposer.
+  MeshDecomposer decomposer;
+};
+
+/// Number of sides of the circumscribed prism of a cylinder of radius `radius` (see above).
+int cylinderSides(double radius, double maxDeviation);
+
+/// The circumscribed prism of a cylinder along z, centred at the origin (see above).
+deep::ConvexPolytope cylinderPrism(double radius, double length, double maxDeviation);
+
+/// Pieces of one link (empty for a link without collision geometry).
+std::vector<CollisionPiece> linkCollisionPieces(const RobotModel& model, int link,
+                                                const CollisionGeometryOptions& options = {});
+
+/// Pieces of every link: result[link]. Each mesh (path and scale) is loaded and decomposed once.
+/// Errors (unreadable meshes, decomposer failures) are std::invalid_argument naming the URDF,
+/// link and collision element.
+std::vector<std::vector<CollisionPiece>> collisionPieces(
+    const RobotModel& model, const CollisionGeometryOptions& options = {});
+
+}  // namespace deepcheck::robots
