@@ -1,0 +1,431 @@
+// Penetration-depth benchmark: speed against error of DEEP and its peers on the same pairs.
+//
+// For every family (pd_families.h) and method (pd_methods.h, pd_peers.h) it measures:
+//   time per query   each query is run `reps` times, interleaved across methods (so that load
+//                    from other processes hits all methods alike); a query's time is the median
+//                    of its repetitions, minus the calibrated cost of reading the clock; the
+//                    table gives the median and the 90th percentile over the family's queries;
+//   error            against the exact reference (exactSignedDistance, computed once per query):
+//                    relative |sd - sd_exact| / max(|sd_exact|, 1e-3 L), L the larger bounding
+//                    radius (as tests/deep/test_deep.cpp), and absolute |sd - sd_exact|;
+//                    median, 99th percentile and maximum over the scored queries;
+//   counts           wrong sign (sd and sd_exact of opposite signs), missing (a penetration-only
+//                    method reports no contact while the pair overlaps: scored as sd = 0), NaN,
+//                    failed (the method reported failure or threw, or was skipped because the
+//                    call would abort the process: not timed), and the share of scored
+//                    queries within 1e-12 relative;
+//   DEEP walks       local-minimum rate (walks that ended deeper than the final answer / walks
+//                    started), mean starts, hub pairs and steps per query, not-converged count.
+// Penetration-only methods on separated pairs: a "no contact" answer is right and not scored.
+// The project's GJK runs on separated pairs only.
+//
+// Usage: pd_bench [--quick] [--families a,b,...] [--reps N] [--out DIR] [--shared DIR]
+// Writes DIR/pd_bench.csv and, for DEEP answers off by more than 1e-9 relative (or NaN,
+// failed, thrown), reproducers DIR/repro_<family>_<query>_<method>.txt in the input format of
+// `deepcheck pd` (DESIGN.md).
+
+#include "pd_families.h"
+#include "pd_methods.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#ifndef DEEPCHECK_SHARED_DIR
+#define DEEPCHECK_SHARED_DIR ""
+#endif
+#ifndef DEEPCHECK_BENCH_RESULTS_DIR
+#define DEEPCHECK_BENCH_RESULTS_DIR "results"
+#endif
+
+using namespace deepcheck::bench;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+/// Relative error above which a DEEP answer is saved as a reproducer.
+constexpr double kReproRelative = 1e-9;
+/// Relative error counted as exact in the "exact share" column (the target).
+constexpr double kExactRelative = 1e-12;
+constexpr int kMaxReprosPerRow = 5;
+
+struct Options {
+  bool quick = false;
+  std::vector<std::string> families;
+  int reps = 0;  // 0: default for the mode
+  std::string out = DEEPCHECK_BENCH_RESULTS_DIR;
+  std::string shared = DEEPCHECK_SHARED_DIR;
+};
+
+/// Queries per family: full run, quick run. Large hulls get fewer pairs: the exact reference
+/// is the hull of nA * nB points (9 million at 3,000 vertices).
+std::pair<int, int> pairCounts(const std::string& family) {
+  static const std::map<std::string, std::pair<int, int>> counts = {
+      {"verts_300", {300, 60}}, {"verts_1000", {60, 12}}, {"verts_3000", {12, 3}},
+      {"motion", {2000, 400}},  {"robots", {500, 100}}};
+  const auto it = counts.find(family);
+  return it != counts.end() ? it->second : std::pair<int, int>{1000, 150};
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
+}
+
+double median(std::vector<double> v) { return percentile(std::move(v), 0.5); }
+
+/// Median cost of an empty steady_clock::now() pair, subtracted from every timing.
+double clockOverheadMicros() {
+  std::vector<double> d;
+  for (int i = 0; i < 20000; ++i) {
+    const auto t0 = Clock::now();
+    const auto t1 = Clock::now();
+    d.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+  }
+  return median(d);
+}
+
+struct Row {
+  std::string family, method;
+  int queries = 0, overlapping = 0, separated = 0;
+  double meanVertices = 0;
+  double tMed = NAN, tP90 = NAN;
+  int scored = 0;
+  double relMed = NAN, relP99 = NAN, relMax = NAN, absMed = NAN, absP99 = NAN, absMax = NAN;
+  double exactShare = NAN;
+  int wrongSign = 0, missing = 0, nan = 0, failed = 0;
+  // DEEP only
+  bool walks = false;
+  double localMinRate = NAN, startsMean = NAN, hubsMean = NAN, stepsMean = NAN, warmShare = NAN;
+  int notConverged = 0;
+};
+
+/// Per-method accumulation over one family.
+struct Tally {
+  std::vector<double> times, rel, abs;
+  int ran = 0, wrongSign = 0, missing = 0, nan = 0, failed = 0, withinExact = 0;
+  long starts = 0, hubs = 0, steps = 0, localMinima = 0, warm = 0, walkQueries = 0;
+  int notConverged = 0, repros = 0;
+};
+
+std::string fmt(double x, const char* f = "%.3g") {
+  if (std::isnan(x)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, x);
+  return buf;
+}
+
+void writePose(std::ostream& out, const Pose& p) {
+  out << p.t.x() << ' ' << p.t.y() << ' ' << p.t.z() << ' ' << p.q.w() << ' ' << p.q.x() << ' '
+      << p.q.y() << ' ' << p.q.z();
+}
+
+/// Writes a `deepcheck pd` input reproducing query qi of the family for `method`.
+void writeRepro(const Options& opt, const Family& f, int qi, const std::string& method, double sd, double exact,
+                double rel) {
+  const Query& q = f.queries[qi];
+  const std::string path = opt.out + "/repro_" + f.name + "_" + std::to_string(qi) + "_" + method + ".txt";
+  std::ofstream out(path);
+  out.precision(17);
+  out << "# deepcheck pd reproducer from bench/pd_bench: family " << f.name << ", query " << qi << ", method "
+      << method << "\n# got sd = " << sd << ", exact sd = " << exact << ", relative error " << rel << "\n";
+  const bool warm = method == "deep_warm";
+  if (warm) {
+    out << (f.sequence ? "# warm: the queries before the last are the trajectory's earlier steps (run without --cold)\n"
+                       : "# warm: the first query primes the cache, the second is the one that fails (run without --cold)\n");
+  } else {
+    out << "# cold: run with --cold\n";
+  }
+  const int ids[2] = {q.a, q.b};
+  for (int k = 0; k < 2; ++k) {
+    const auto& pts = f.points[ids[k]];
+    out << "shape " << k << ' ' << pts.size() << '\n';
+    for (const auto& p : pts) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+  }
+  auto query = [&](const Pose& A, const Pose& B) {
+    out << "query 0 ";
+    writePose(out, A);
+    out << " 1 ";
+    writePose(out, B);
+    out << '\n';
+  };
+  if (warm && f.sequence) {
+    int first = qi;
+    while (first > 0 && f.queries[first - 1].a == q.a && f.queries[first - 1].b == q.b) --first;
+    for (int i = first; i < qi; ++i) query(f.queries[i].poseA, f.queries[i].poseB);
+  } else if (warm && q.primeB) {
+    query(q.poseA, *q.primeB);
+  }
+  query(q.poseA, q.poseB);
+  std::cerr << "  wrote reproducer " << path << "\n";
+}
+
+Row summarize(const Family& f, const std::string& method, const Tally& t, int overlapping, int separated,
+              double meanVertices) {
+  Row r;
+  r.family = f.name;
+  r.method = method;
+  r.queries = t.ran;
+  r.overlapping = overlapping;
+  r.separated = separated;
+  r.meanVertices = meanVertices;
+  r.tMed = median(t.times);
+  r.tP90 = percentile(t.times, 0.9);
+  r.scored = static_cast<int>(t.rel.size());
+  if (!t.rel.empty()) {
+    r.relMed = median(t.rel);
+    r.relP99 = percentile(t.rel, 0.99);
+    r.relMax = *std::max_element(t.rel.begin(), t.rel.end());
+    r.absMed = median(t.abs);
+    r.absP99 = percentile(t.abs, 0.99);
+    r.absMax = *std::max_element(t.abs.begin(), t.abs.end());
+    r.exactShare = static_cast<double>(t.withinExact) / static_cast<double>(t.rel.size());
+  }
+  r.wrongSign = t.wrongSign;
+  r.missing = t.missing;
+  r.nan = t.nan;
+  r.failed = t.failed;
+  if (t.walkQueries > 0) {
+    r.walks = true;
+    r.localMinRate = t.starts > 0 ? static_cast<double>(t.localMinima) / static_cast<double>(t.starts) : 0.0;
+    r.startsMean = static_cast<double>(t.starts) / static_cast<double>(t.walkQueries);
+    r.hubsMean = static_cast<double>(t.hubs) / static_cast<double>(t.walkQueries);
+    r.stepsMean = static_cast<double>(t.steps) / static_cast<double>(t.walkQueries);
+    r.warmShare = static_cast<double>(t.warm) / static_cast<double>(t.walkQueries);
+    r.notConverged = t.notConverged;
+  }
+  return r;
+}
+
+void printHeader() {
+  std::printf("%-12s %-19s %5s %9s %9s %9s %9s %9s %9s %8s %5s %5s %5s %5s %6s %6s\n", "family", "method", "n",
+              "t_med_us", "t_p90_us", "rel_med", "rel_p99", "rel_max", "abs_p99", "exact%", "wrong", "miss", "nan",
+              "fail", "lmin%", "hubs");
+}
+
+void printRow(const Row& r) {
+  std::printf("%-12s %-19s %5d %9s %9s %9s %9s %9s %9s %8s %5d %5d %5d %5d %6s %6s\n", r.family.c_str(),
+              r.method.c_str(), r.queries, fmt(r.tMed, "%.3g").c_str(), fmt(r.tP90, "%.3g").c_str(),
+              fmt(r.relMed, "%.1e").c_str(), fmt(r.relP99, "%.1e").c_str(), fmt(r.relMax, "%.1e").c_str(),
+              fmt(r.absP99, "%.1e").c_str(), fmt(100.0 * r.exactShare, "%.2f").c_str(), r.wrongSign, r.missing, r.nan,
+              r.failed, fmt(100.0 * r.localMinRate, "%.1f").c_str(), fmt(r.hubsMean, "%.1f").c_str());
+  std::fflush(stdout);
+}
+
+void writeCsv(const std::string& path, const std::vector<Row>& rows) {
+  std::ofstream out(path);
+  out << "family,method,queries,overlapping,separated,mean_vertices,t_med_us,t_p90_us,scored,rel_med,rel_p99,"
+         "rel_max,abs_med,abs_p99,abs_max,exact_share,wrong_sign,missing,nan,failed,local_min_rate,starts_mean,"
+         "hubs_mean,steps_mean,warm_share,not_converged\n";
+  auto num = [](double x) { return std::isnan(x) ? std::string("") : fmt(x, "%.6g"); };
+  for (const Row& r : rows) {
+    out << r.family << ',' << r.method << ',' << r.queries << ',' << r.overlapping << ',' << r.separated << ','
+        << num(r.meanVertices) << ',' << num(r.tMed) << ',' << num(r.tP90) << ',' << r.scored << ','
+        << num(r.relMed) << ',' << num(r.relP99) << ',' << num(r.relMax) << ',' << num(r.absMed) << ','
+        << num(r.absP99) << ',' << num(r.absMax) << ',' << num(r.exactShare) << ',' << r.wrongSign << ','
+        << r.missing << ',' << r.nan << ',' << r.failed << ',' << (r.walks ? num(r.localMinRate) : "") << ','
+        << (r.walks ? num(r.startsMean) : "") << ',' << (r.walks ? num(r.hubsMean) : "") << ','
+        << (r.walks ? num(r.stepsMean) : "") << ',' << (r.walks ? num(r.warmShare) : "") << ','
+        << (r.walks ? std::to_string(r.notConverged) : "") << '\n';
+  }
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument("option " + a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--quick") {
+      o.quick = true;
+    } else if (a == "--families") {
+      std::stringstream ss(value());
+      std::string name;
+      while (std::getline(ss, name, ',')) o.families.push_back(name);
+    } else if (a == "--reps") {
+      o.reps = std::stoi(value());
+    } else if (a == "--out") {
+      o.out = value();
+    } else if (a == "--shared") {
+      o.shared = value();
+    } else if (a == "--help" || a == "-h") {
+      std::cout << "usage: pd_bench [--quick] [--families a,b,...] [--reps N] [--out DIR] [--shared DIR]\n"
+                   "families:";
+      for (const auto& f : familyNames()) std::cout << ' ' << f;
+      std::cout << "\n";
+      std::exit(0);
+    } else {
+      throw std::invalid_argument("unknown option " + a + " (try --help)");
+    }
+  }
+  if (o.families.empty()) o.families = familyNames();
+  if (o.reps <= 0) o.reps = o.quick ? 3 : 7;
+  return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  try {
+    opt = parse(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "pd_bench: " << e.what() << "\n";
+    return 2;
+  }
+  std::filesystem::create_directories(opt.out);
+  const double overhead = clockOverheadMicros();
+  std::cerr << "pd_bench: " << (opt.quick ? "quick" : "full") << " run, " << opt.reps
+            << " repetitions per query, clock overhead " << fmt(overhead * 1e3, "%.1f") << " ns (subtracted)\n";
+
+  std::vector<std::unique_ptr<Method>> methods = makeMethods();
+  std::vector<Row> rows;
+  printHeader();
+  const auto runStart = Clock::now();
+  for (const std::string& name : opt.families) {
+    const auto [full, quick] = pairCounts(name);
+    const auto t0 = Clock::now();
+    std::optional<Family> fam;
+    try {
+      fam = makeFamily(name, opt.quick ? quick : full, opt.shared);
+    } catch (const std::exception& e) {
+      std::cerr << name << ": cannot build the family: " << e.what() << "\n";
+      continue;
+    }
+    if (!fam) continue;
+    Family& f = *fam;
+    const auto t1 = Clock::now();
+    // Exact answers first: they decide where GJK runs and score everything.
+    int overlapping = 0, separated = 0;
+    double vertices = 0;
+    for (Query& q : f.queries) {
+      const double sd = exactOf(f, q).distance;
+      overlapping += sd < 0;
+      separated += sd > 0;
+      vertices += 0.5 * (f.shapes[q.a].numVertices() + f.shapes[q.b].numVertices());
+    }
+    const double meanVertices = vertices / static_cast<double>(f.queries.size());
+    const auto t2 = Clock::now();
+    std::cerr << f.name << ": " << f.queries.size() << " queries (" << overlapping << " overlapping, " << separated
+              << " separated), " << f.description << "; built in "
+              << fmt(std::chrono::duration<double>(t1 - t0).count(), "%.1f") << " s, exact answers in "
+              << fmt(std::chrono::duration<double>(t2 - t1).count(), "%.1f") << " s\n";
+
+    for (auto& m : methods) m->beginFamily(f);
+    const int nm = static_cast<int>(methods.size());
+    std::vector<Tally> tally(nm);
+    std::vector<std::vector<double>> perRep(nm, std::vector<double>(opt.reps));
+    for (int qi = 0; qi < static_cast<int>(f.queries.size()); ++qi) {
+      const Query& q = f.queries[qi];
+      const double exact = q.exact->distance;
+      const double L = f.pairScale(q);
+      std::vector<Answer> answers(nm);
+      std::vector<WalkStats> walks(nm);
+      std::vector<bool> threw(nm, false);
+      for (int rep = 0; rep < opt.reps; ++rep) {
+        for (int k = 0; k < nm; ++k) {
+          const int mi = (k + rep) % nm;  // rotate the order between repetitions
+          Method& m = *methods[mi];
+          if (m.separatedOnly() && !(exact > 0)) continue;
+          m.beforeRun(f, qi);
+          Answer a;
+          bool failed = false;
+          const auto s0 = Clock::now();
+          try {
+            a = m.run(f, qi);
+          } catch (const std::exception& e) {
+            failed = true;
+            if (rep == 0) std::cerr << "  " << m.name() << " threw on query " << qi << ": " << e.what() << "\n";
+          }
+          const auto s1 = Clock::now();
+          perRep[mi][rep] = std::chrono::duration<double, std::micro>(s1 - s0).count() - overhead;
+          if (rep == 0) {
+            answers[mi] = a;
+            threw[mi] = failed;
+            walks[mi] = m.lastWalk();
+          }
+        }
+      }
+      for (int mi = 0; mi < nm; ++mi) {
+        Method& m = *methods[mi];
+        if (m.separatedOnly() && !(exact > 0)) continue;
+        Tally& t = tally[mi];
+        ++t.ran;
+        const Answer& a = answers[mi];
+        if (a.kind != Answer::Kind::Skipped) t.times.push_back(std::max(0.0, median(perRep[mi])));
+        const bool isDeep = walks[mi].valid;
+        double sd = NAN;
+        bool scored = false;
+        if (threw[mi] || a.kind == Answer::Kind::Failed || a.kind == Answer::Kind::Skipped) {
+          ++t.failed;
+        } else if (a.kind == Answer::Kind::NoContact) {
+          if (exact < 0) {
+            ++t.missing;
+            sd = 0.0;
+            scored = true;
+          }
+        } else if (!std::isfinite(a.sd)) {
+          ++t.nan;
+        } else {
+          sd = a.sd;
+          scored = true;
+          if ((exact < 0 && sd > 0) || (exact > 0 && sd < 0)) ++t.wrongSign;
+        }
+        double rel = NAN;
+        if (scored) {
+          rel = std::abs(sd - exact) / std::max(std::abs(exact), 1e-3 * L);
+          t.rel.push_back(rel);
+          t.abs.push_back(std::abs(sd - exact));
+          t.withinExact += rel <= kExactRelative;
+        }
+        if (isDeep) {
+          const WalkStats& w = walks[mi];
+          ++t.walkQueries;
+          t.starts += w.starts;
+          t.hubs += w.hubs;
+          t.steps += w.steps;
+          t.localMinima += w.localMinima;
+          t.warm += w.warm;
+          t.notConverged += w.notConverged;
+          const bool bad = !scored || !(rel <= kReproRelative);
+          if (bad && t.repros < kMaxReprosPerRow) {
+            ++t.repros;
+            writeRepro(opt, f, qi, m.name(), threw[mi] ? NAN : a.sd, exact, rel);
+          }
+        }
+      }
+    }
+    std::vector<double> exactTimes;
+    for (const Query& q : f.queries) exactTimes.push_back(q.exactMicros);
+    for (int mi = 0; mi < nm; ++mi) {
+      rows.push_back(summarize(f, methods[mi]->name(), tally[mi], overlapping, separated, meanVertices));
+      printRow(rows.back());
+    }
+    Tally exactTally;
+    exactTally.times = exactTimes;
+    exactTally.ran = static_cast<int>(exactTimes.size());
+    rows.push_back(summarize(f, "exact", exactTally, overlapping, separated, meanVertices));
+    printRow(rows.back());
+    for (auto& m : methods) m->endFamily();
+    std::cerr << f.name << ": timed in "
+              << fmt(std::chrono::duration<double>(Clock::now() - t2).count(), "%.1f") << " s\n";
+    writeCsv(opt.out + "/pd_bench.csv", rows);  // after every family, so a partial run leaves data
+  }
+  std::cerr << "pd_bench: done in " << fmt(std::chrono::duration<double>(Clock::now() - runStart).count(), "%.0f")
+            << " s; wrote " << opt.out << "/pd_bench.csv\n";
+  return 0;
+}

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Penetration-depth benchmark in one command: configure, build, run, plot.
+#
+#   bench/run_pd_bench.sh            full run (~10 min on 2 cores), results in bench/results/
+#   bench/run_pd_bench.sh --quick    fewer pairs and repetitions (~2 min), results in
+#                                    <build dir>/pd_quick/ (the committed results stay as they are)
+# Options: --build-dir DIR (default: build-bench beside bench/), --out DIR, --jobs N (default 2);
+# anything after `--` goes to pd_bench (e.g. -- --families verts_100,motion --reps 9).
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(dirname "$here")"
+build="$root/build-bench"
+jobs=2
+quick=0
+out=""
+extra=()
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --quick) quick=1 ;;
+    --build-dir) build="$2"; shift ;;
+    --out) out="$2"; shift ;;
+    --jobs) jobs="$2"; shift ;;
+    --) shift; extra=("$@"); break ;;
+    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
+    *) echo "run_pd_bench.sh: unknown option $1 (try --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+if [[ -z "$out" ]]; then
+  if [[ $quick -eq 1 ]]; then out="$build/pd_quick"; else out="$here/results"; fi
+fi
+
+generator=()
+if [[ ! -f "$build/CMakeCache.txt" ]] && command -v ninja >/dev/null; then generator=(-G Ninja); fi
+cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DDEEPCHECK_BUILD_BENCH=ON >/dev/null
+cmake --build "$build" --target pd_bench -j "$jobs"
+
+mkdir -p "$out"
+rm -f "$out"/repro_*.txt
+{
+  echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"
+  echo "commit: $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "cpu: $(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)"
+  echo "cores: $(nproc)"
+  echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+} > "$out/machine.txt"
+
+args=()
+[[ $quick -eq 1 ]] && args+=(--quick)
+"$build/bench/pd_bench" "${args[@]}" --out "$out" "${extra[@]}" | tee "$out/pd_bench.txt"
+echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/machine.txt"
+
+if command -v gnuplot >/dev/null; then
+  gnuplot -e "csv='$out/pd_bench.csv'; outdir='$out'" "$here/pd_plots.gp"
+  echo "plots: $out/speed_vs_error.png $out/speed_vs_error_verts_100.png $out/scaling.png"
+else
+  echo "gnuplot not found: plots skipped (apt-get install gnuplot-nox)"
+fi
