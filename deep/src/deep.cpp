@@ -44,6 +44,7 @@ struct Candidate {
   DeepResult::FacetType type = DeepResult::FacetType::VF;
   int fa = 0, fa2 = -1, fb = 0, fb2 = -1;
   int hubA = 0, hubB = 0;
+  bool featuresKnown = true;  // fa..fb2 name the facet's features (false: find them by flooding)
   bool valid() const { return std::isfinite(d); }
 };
 
@@ -53,12 +54,70 @@ struct FacetPoint {
   int ia, ib;
 };
 
+/// Hub pairs evaluated in this query: their best candidate, and whether a walk moved through
+/// them. Open addressing with generation stamps, so clearing costs nothing.
+struct HubMemo {
+  static constexpr int kSize = 1024;  // power of two
+  struct Entry {
+    std::uint64_t key = 0;
+    std::uint32_t gen = 0;
+    bool evaluated = false;
+    bool valid = false;    // the hub has a Gauss region (a best candidate)
+    bool visited = false;  // a walk adopted this hub's best candidate
+    Candidate best;
+  };
+  std::vector<Entry> table = std::vector<Entry>(kSize);
+  std::uint32_t gen = 1;
+  int used = 0;
+
+  void clear() {
+    ++gen;
+    used = 0;
+  }
+  static std::uint64_t slot(std::uint64_t key) { return (key * 0x9E3779B97F4A7C15ull) >> 54; }
+  static constexpr int kMaxProbe = 32;
+  /// The entry for key, or null when it is not in the table.
+  Entry* lookup(std::uint64_t key) {
+    std::uint64_t h = slot(key);
+    for (int probe = 0; probe < kMaxProbe; ++probe, h = (h + 1) & (kSize - 1)) {
+      Entry& e = table[h];
+      if (e.gen != gen) return nullptr;
+      if (e.key == key) return &e;
+    }
+    return nullptr;
+  }
+  /// The entry for key, created (unevaluated, unvisited) if absent; null when the table is too
+  /// full, in which case nothing more is memoized in this query.
+  Entry* insert(std::uint64_t key) {
+    std::uint64_t h = slot(key);
+    for (int probe = 0; probe < kMaxProbe; ++probe, h = (h + 1) & (kSize - 1)) {
+      Entry& e = table[h];
+      if (e.gen != gen) {
+        if (used >= kSize / 2) return nullptr;
+        ++used;
+        e.gen = gen;
+        e.key = key;
+        e.evaluated = false;
+        e.valid = false;
+        e.visited = false;
+        return &e;
+      }
+      if (e.key == key) return &e;
+    }
+    return nullptr;
+  }
+};
+
 /// Per-thread scratch space, grown on demand and never shrunk: a warm query does not allocate.
 struct Scratch {
   std::vector<Corner> poly, clipped;
   std::vector<int> featA, featB;
   std::vector<FacetPoint> pts, hull;
-  std::vector<std::uint64_t> visited;
+  HubMemo memo;
+  // B's vertices and face normals in frame P, transformed on first use in a query.
+  std::vector<Vec3> bVertex, bNormal;
+  std::vector<std::uint32_t> bVertexGen, bNormalGen;
+  std::uint32_t gen = 0;
 };
 
 Scratch& scratch() {
@@ -71,6 +130,20 @@ class Walker {
  public:
   Walker(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F)
       : A_(A), B_(B), F_(F), s_(scratch()) {
+    if (++s_.gen == 0) {  // wrapped: invalidate every stamp
+      std::fill(s_.bVertexGen.begin(), s_.bVertexGen.end(), 0);
+      std::fill(s_.bNormalGen.begin(), s_.bNormalGen.end(), 0);
+      s_.gen = 1;
+    }
+    if (static_cast<int>(s_.bVertexGen.size()) < B.numVertices()) {
+      s_.bVertex.resize(B.numVertices());
+      s_.bVertexGen.resize(B.numVertices(), 0);
+    }
+    if (static_cast<int>(s_.bNormalGen.size()) < B.numFaces()) {
+      s_.bNormal.resize(B.numFaces());
+      s_.bNormalGen.resize(B.numFaces(), 0);
+    }
+    s_.memo.clear();
     L_ = std::max(A.lengthScale(), B.lengthScale()) + F.t.norm();
     tolFeature_ = tol::kFeatureRelative * L_;
     tolImprove_ = tol::kImproveRelative * L_;
@@ -78,9 +151,21 @@ class Walker {
   }
 
   Vec3 va(int i) const { return A_.vertex(i) - A_.center(); }
-  Vec3 vb(int j) const { return F_.vertexB(B_, j); }
-  Vec3 na(int f) const { return A_.faceNormal(f); }
-  Vec3 nb(int f) const { return F_.R * B_.faceNormal(f); }
+  const Vec3& vb(int j) const {
+    if (s_.bVertexGen[j] != s_.gen) {
+      s_.bVertex[j] = F_.vertexB(B_, j);
+      s_.bVertexGen[j] = s_.gen;
+    }
+    return s_.bVertex[j];
+  }
+  const Vec3& na(int f) const { return A_.faceNormal(f); }
+  const Vec3& nb(int f) const {
+    if (s_.bNormalGen[f] != s_.gen) {
+      s_.bNormal[f] = F_.R * B_.faceNormal(f);
+      s_.bNormalGen[f] = s_.gen;
+    }
+    return s_.bNormal[f];
+  }
 
   /// Hub pair extreme in direction u: b maximizes u.b, a minimizes u.a.
   void hubFor(const Vec3& u, int& ia, int& ib, int hintA, int hintB) const {
@@ -94,14 +179,43 @@ class Walker {
   /// beyond (nearest first; second may be -1).
   bool footInFacet(const Candidate& c, Vec3& pA, Vec3& pB, int next[4]);
 
-  bool markVisited(int ia, int ib) {
-    const std::uint64_t key = (static_cast<std::uint64_t>(ia) << 32) | static_cast<std::uint32_t>(ib);
-    for (std::uint64_t k : s_.visited)
-      if (k == key) return false;
-    s_.visited.push_back(key);
-    return true;
+  /// Best candidate of hub pair (ia, ib), memoized for the query. Returns false when the hub
+  /// pair has no Gauss region (b - a is not a vertex of M).
+  bool hub(int ia, int ib, Candidate& best, DeepStats& stats) {
+    HubMemo::Entry* e = s_.memo.insert(key(ia, ib));
+    if (e && e->evaluated) {
+      if (e->valid) best = e->best;
+      return e->valid;
+    }
+    ++stats.hubs;
+    Candidate c;
+    const bool ok = evaluateHub(ia, ib, c);
+    if (e) {
+      e->evaluated = true;
+      e->valid = ok;
+      e->best = c;
+    }
+    if (ok) best = c;
+    return ok;
   }
-  void clearVisited() { s_.visited.clear(); }
+  /// Hub pairs a walk moved through (adopted the best candidate of). A later walk reaching one
+  /// follows the same path from there, so it stops.
+  static std::uint64_t key(int ia, int ib) {
+    return (static_cast<std::uint64_t>(ia) << 32) | static_cast<std::uint32_t>(ib);
+  }
+  bool isVisited(int ia, int ib) {
+    const HubMemo::Entry* e = s_.memo.lookup(key(ia, ib));
+    return e && e->visited;
+  }
+  void markVisited(int ia, int ib) {
+    if (HubMemo::Entry* e = s_.memo.insert(key(ia, ib))) e->visited = true;
+  }
+  /// Corners of the facet last examined by footInFacet (hub pairs of M's vertices on it).
+  int numFacetCorners() const { return static_cast<int>(s_.hull.size()); }
+  void facetCorner(int k, int& ia, int& ib) const {
+    ia = s_.hull[k].ia;
+    ib = s_.hull[k].ib;
+  }
   double lengthScale() const { return L_; }
   double tolImprove() const { return tolImprove_; }
 
@@ -109,6 +223,9 @@ class Walker {
   void gaussPolygonB(int ib, const Vec3& b);
   void clip(const Vec3& h, int label);
   void supportFeature(const ConvexPolytope& P, bool isB, int start, const Vec3& u, std::vector<int>& out) const;
+  void facetFeatures(const Candidate& c);
+  bool aloneOnPlaneA(int v, const Vec3& u, int except) const;
+  bool aloneOnPlaneB(int v, const Vec3& u, int except) const;
 
   const ConvexPolytope& A_;
   const ConvexPolytope& B_;
@@ -158,17 +275,17 @@ void Walker::clip(const Vec3& h, int label) {
   out.clear();
   const int n = static_cast<int>(in.size());
   if (n == 0) return;
-  const double hn = h.norm();
-  // Directions within this angle of the plane count as on it: keeps boundary corners of
-  // degenerate overlays (parallel faces) instead of letting round-off decide.
+  // Corners are unit directions. Those within this angle of the plane count as on it: keeps
+  // boundary corners of degenerate overlays (parallel faces) instead of letting round-off decide.
   constexpr double kOnPlane = 1e-13;
+  const double onPlane = -kOnPlane * h.norm();
   for (int i = 0; i < n; ++i) {
     const Corner& P = in[i];
     const Corner& Q = in[(i + 1) % n];
     const double sP = P.u.dot(h);
     const double sQ = Q.u.dot(h);
-    const bool inP = sP >= -kOnPlane * hn * P.u.norm();
-    const bool inQ = sQ >= -kOnPlane * hn * Q.u.norm();
+    const bool inP = sP >= onPlane;
+    const bool inQ = sQ >= onPlane;
     if (inP) {
       out.push_back(P);
       if (!inQ) {
@@ -285,12 +402,68 @@ void Walker::supportFeature(const ConvexPolytope& P, bool isB, int start, const 
   }
 }
 
+// True when every neighbour of A's vertex v (but `except`) lies strictly above the plane through v
+// with normal -u, i.e. v is alone on A's supporting plane apart from `except`.
+bool Walker::aloneOnPlaneA(int v, const Vec3& u, int except) const {
+  const double top = u.dot(va(v));
+  for (int w : A_.neighbors(v))
+    if (w != except && u.dot(va(w)) < top + tolFeature_) return false;
+  return true;
+}
+
+bool Walker::aloneOnPlaneB(int v, const Vec3& u, int except) const {
+  const double top = u.dot(vb(v));
+  for (int w : B_.neighbors(v))
+    if (w != except && u.dot(vb(w)) > top - tolFeature_) return false;
+  return true;
+}
+
+// The supporting features of A and B for facet c. In general position they are known from the
+// facet's type (a face and a vertex, or two edges) and only need confirming; parallel features
+// (stacked boxes, parallel edges) fall back to flooding the vertex graph.
+void Walker::facetFeatures(const Candidate& c) {
+  auto& fa = s_.featA;
+  auto& fb = s_.featB;
+  fa.clear();
+  fb.clear();
+  bool generic = false;
+  if (c.featuresKnown) switch (c.type) {
+    case DeepResult::FacetType::VF:
+      if (aloneOnPlaneA(c.fa, c.u, -1)) {
+        fa.push_back(c.fa);
+        for (int v : B_.faceVertices(c.fb)) fb.push_back(v);
+        generic = true;
+      }
+      break;
+    case DeepResult::FacetType::FV:
+      if (aloneOnPlaneB(c.fb, c.u, -1)) {
+        fb.push_back(c.fb);
+        for (int v : A_.faceVertices(c.fa)) fa.push_back(v);
+        generic = true;
+      }
+      break;
+    case DeepResult::FacetType::EE:
+      if (aloneOnPlaneA(c.fa, c.u, c.fa2) && aloneOnPlaneA(c.fa2, c.u, c.fa) &&
+          aloneOnPlaneB(c.fb, c.u, c.fb2) && aloneOnPlaneB(c.fb2, c.u, c.fb)) {
+        fa.push_back(c.fa);
+        fa.push_back(c.fa2);
+        fb.push_back(c.fb);
+        fb.push_back(c.fb2);
+        generic = true;
+      }
+      break;
+  }
+  if (!generic) {
+    supportFeature(B_, true, c.hubB, c.u, fb);
+    supportFeature(A_, false, c.hubA, c.u, fa);
+  }
+}
+
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 bool Walker::footInFacet(const Candidate& c, Vec3& pA, Vec3& pB, int next[4]) {
   next[0] = next[1] = next[2] = next[3] = -1;
-  supportFeature(B_, true, c.hubB, c.u, s_.featB);
-  supportFeature(A_, false, c.hubA, c.u, s_.featA);
+  facetFeatures(c);
 
   // In-plane basis; the foot point d*u has in-plane coordinates (0, 0).
   Vec3 e1 = std::abs(c.u.x()) < 0.6 ? Vec3::UnitX().cross(c.u) : Vec3::UnitY().cross(c.u);
@@ -428,30 +601,54 @@ WalkEnd walk(Walker& w, Candidate start, int maxHubs, DeepStats& stats) {
   WalkEnd end;
   end.facet = start;
   int next[4];
-  for (int hubs = 0; hubs < maxHubs; ++hubs) {
+  // Hub pairs at the corners of the current facet, copied out of the scratch space.
+  constexpr int kMaxCorners = 64;
+  int cornerA[kMaxCorners], cornerB[kMaxCorners];
+  for (int hubs = 0; hubs < maxHubs;) {
     if (w.footInFacet(end.facet, end.pA, end.pB, next)) {
-      end.converged = true;
+      // The foot is in the facet (a KKT point). A facet sharing one of its corners may still lie
+      // closer to the origin; only when none does is this a local minimum of the walk.
       end.witnessed = true;
+      const int nc = std::min(w.numFacetCorners(), kMaxCorners);
+      for (int k = 0; k < nc; ++k) w.facetCorner(k, cornerA[k], cornerB[k]);
+      Candidate bestNear;
+      for (int k = 0; k < nc; ++k) {
+        if (w.isVisited(cornerA[k], cornerB[k])) continue;
+        Candidate c;
+        ++hubs;
+        if (w.hub(cornerA[k], cornerB[k], c, stats) && c.d < bestNear.d) bestNear = c;
+      }
+      if (bestNear.valid() && bestNear.d < end.facet.d - w.tolImprove()) {
+        w.markVisited(bestNear.hubA, bestNear.hubB);
+        end.facet = bestNear;
+        end.witnessed = false;
+        ++stats.steps;
+        continue;
+      }
+      end.converged = true;
       return end;
     }
+    end.witnessed = false;
     bool moved = false;
     for (int option = 0; option < 2 && !moved; ++option) {
       const int ia = next[2 * option], ib = next[2 * option + 1];
       if (ia < 0) continue;
-      if (!w.markVisited(ia, ib)) {
+      if (w.isVisited(ia, ib)) {
+        // An earlier walk moved through this hub pair: from here on it follows the same path.
         end.joined = true;
         return end;
       }
       Candidate c;
-      ++stats.hubs;
-      if (w.evaluateHub(ia, ib, c) && c.d < end.facet.d - w.tolImprove()) {
+      ++hubs;
+      if (w.hub(ia, ib, c, stats) && c.d < end.facet.d - w.tolImprove()) {
+        w.markVisited(ia, ib);
         end.facet = c;
         ++stats.steps;
         moved = true;
       }
     }
     if (!moved) {
-      // The facet does not contain its foot, yet no neighbour improves by more than round-off:
+      // The foot lies outside the facet, yet no neighbour improves by more than round-off:
       // a numerically flat spot. The facet is still a valid separating direction.
       end.converged = true;
       return end;
@@ -482,6 +679,7 @@ Candidate lowDimFacets(const ConvexPolytope& X, VertexFn xVertex, NormalFn xNorm
       best.d = d;
       best.u = u;
       best.type = type;
+      best.featuresKnown = false;
     }
   };
   for (int f = 0; f < X.numFaces(); ++f) consider(xNormal(f), xVertex(X.faceVertices(f)[0]), DeepResult::FacetType::VF);
@@ -598,46 +796,45 @@ DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, con
   }
 
   // General case: walks on the Minkowski difference.
-  w.clearVisited();
   DeepStats& stats = result.stats;
   WalkEnd best;
   best.facet.d = std::numeric_limits<double>::infinity();
-  // Offsets at which walks ended, to count those that stopped in a worse local minimum.
+  // Where walks ended: to count those that stopped in a worse local minimum, and to remember
+  // the best distinct ones as basins for the next warm query.
   constexpr int kMaxEnds = 32;
-  double ends[kMaxEnds];
+  Candidate ends[kMaxEnds];
   int ended = 0;
 
   auto runFrom = [&](int ia, int ib) {
-    if (!w.markVisited(ia, ib)) return;
+    if (w.isVisited(ia, ib)) return;
+    w.markVisited(ia, ib);
     Candidate c;
-    ++stats.hubs;
-    if (!w.evaluateHub(ia, ib, c)) return;
+    if (!w.hub(ia, ib, c, stats)) return;
     ++stats.starts;
     WalkEnd e = walk(w, c, options.maxHubsPerWalk, stats);
-    if (!e.joined && ended < kMaxEnds) ends[ended++] = e.facet.d;
+    if (!e.joined && ended < kMaxEnds) ends[ended++] = e.facet;
     if (e.facet.d < best.facet.d || (e.facet.d == best.facet.d && e.witnessed && !best.witnessed)) best = e;
   };
 
-  int hintA = 0, hintB = 0;
-  const bool warm = options.warmStart && cache && cache->valid && cache->hubA >= 0 &&
-                    cache->hubA < A.numVertices() && cache->hubB >= 0 && cache->hubB < B.numVertices();
   const Vec3 centroidDir = frame.t.norm() > 0 ? Vec3(-frame.t.normalized()) : Vec3(Vec3::UnitZ());
+  const bool warm = options.warmStart && cache && cache->valid && cache->count > 0 &&
+                    (options.refreshEvery <= 0 || cache->warmQueries < options.refreshEvery);
+  int ia = 0, ib = 0;
   if (warm) {
     stats.warm = true;
-    int ia, ib;
-    w.hubFor(cache->u, ia, ib, cache->hubA, cache->hubB);
-    hintA = ia;
-    hintB = ib;
-    runFrom(ia, ib);
-    for (int k = 0; k < options.warmExtraStarts; ++k) {
-      const Vec3 dir = k == 0 ? centroidDir : Vec3(-centroidDir);
-      w.hubFor(dir, ia, ib, hintA, hintB);
+    for (int k = 0; k < cache->count; ++k) {
+      const int hintA = std::clamp(cache->hubA[k], 0, A.numVertices() - 1);
+      const int hintB = std::clamp(cache->hubB[k], 0, B.numVertices() - 1);
+      w.hubFor(cache->u[k], ia, ib, hintA, hintB);
+      runFrom(ia, ib);
+    }
+    if (options.warmCentroidStart) {
+      w.hubFor(centroidDir, ia, ib, ia, ib);
       runFrom(ia, ib);
     }
   } else {
-    int ia, ib;
     // The origin lies off M's centre by -t: the nearest boundary is most likely that way.
-    w.hubFor(centroidDir, ia, ib, hintA, hintB);
+    w.hubFor(centroidDir, ia, ib, 0, 0);
     runFrom(ia, ib);
     if (options.restarts) {
       w.hubFor(-centroidDir, ia, ib, ia, ib);
@@ -667,7 +864,7 @@ DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, con
     best.converged = false;
   }
   for (int k = 0; k < ended; ++k)
-    if (ends[k] > best.facet.d + w.tolImprove()) ++stats.localMinima;
+    if (ends[k].d > best.facet.d + w.tolImprove()) ++stats.localMinima;
 
   const Candidate& f = best.facet;
   result.status = best.converged ? DeepStatus::Converged : DeepStatus::NotConverged;
@@ -693,10 +890,22 @@ DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, con
     }
   }
   if (cache) {
+    // Basins for the next warm query: the answer first, then the best other distinct ends.
     cache->valid = true;
-    cache->hubA = f.hubA;
-    cache->hubB = f.hubB;
-    cache->u = f.u;
+    cache->warmQueries = warm ? cache->warmQueries + 1 : 0;
+    cache->count = 0;
+    auto remember = [&](const Candidate& c) {
+      for (int k = 0; k < cache->count; ++k)
+        if (cache->hubA[k] == c.hubA && cache->hubB[k] == c.hubB) return;
+      if (cache->count == DeepCache::kBasins) return;
+      cache->hubA[cache->count] = c.hubA;
+      cache->hubB[cache->count] = c.hubB;
+      cache->u[cache->count] = c.u;
+      ++cache->count;
+    };
+    remember(f);
+    std::sort(ends, ends + ended, [](const Candidate& x, const Candidate& y) { return x.d < y.d; });
+    for (int k = 0; k < ended; ++k) remember(ends[k]);
   }
   return result;
 }

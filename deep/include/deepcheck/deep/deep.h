@@ -47,19 +47,28 @@ struct DeepOptions {
   /// Run the restart directions (centroid difference, its opposite, principal axes). Without
   /// restarts a cold query runs one walk from the centroid difference: faster, can miss.
   bool restarts = true;
-  /// Starts used in addition to the warm start when one is available; extra starts beyond the
-  /// warm one are what guard against local minima after the shapes moved a lot.
-  int warmExtraStarts = 1;
+  /// A warm query also walks from the centroid difference (one extra start): guards against a
+  /// basin that none of the cached ones leads to.
+  bool warmCentroidStart = true;
+  /// After this many consecutive warm queries the next query runs all cold starts again, to
+  /// refresh the cached basins (0 = never).
+  int refreshEvery = 32;
   /// Cap on hub pairs evaluated per walk.
   int maxHubsPerWalk = 256;
 };
 
 /// Warm-start state of one pair (the caller owns it, one per pair and per thread).
+/// It keeps the facets where the last query's walks ended (the best first): when the pair moves,
+/// the global minimum usually stays in its basin or switches to one of these competitors, so a
+/// warm query restarts from each of them instead of from all cold start directions.
 struct DeepCache {
+  static constexpr int kBasins = 4;
   bool valid = false;
-  int hubA = 0;  ///< vertex of A of the last answer's hub pair
-  int hubB = 0;  ///< vertex of B of the last answer's hub pair
-  Eigen::Vector3d u = Eigen::Vector3d::Zero();  ///< last outward facet normal of M, in B's... frame P
+  int count = 0;                 ///< basins stored (the first is the last answer)
+  int hubA[kBasins] = {};        ///< vertex of A of each basin's hub pair
+  int hubB[kBasins] = {};        ///< vertex of B of each basin's hub pair
+  Eigen::Vector3d u[kBasins];    ///< outward facet normal of M at each basin, frame P
+  int warmQueries = 0;           ///< warm queries since the last cold one
 };
 
 struct DeepStats {
