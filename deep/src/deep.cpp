@@ -837,32 +837,37 @@ DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, con
     w.hubFor(centroidDir, ia, ib, 0, 0);
     runFrom(ia, ib);
     if (options.restarts) {
-      w.hubFor(-centroidDir, ia, ib, ia, ib);
-      runFrom(ia, ib);
+      // The other starts: the opposite direction and both signs of each shape's principal axes.
+      constexpr int kStarts = 13;
+      Vec3 dirs[kStarts];
+      dirs[0] = -centroidDir;
       const Eigen::Matrix3d axesA = A.principalAxes();
       const Eigen::Matrix3d axesB = frame.R * B.principalAxes();
       for (int k = 0; k < 3; ++k) {
-        for (int sign = -1; sign <= 1; sign += 2) {
-          w.hubFor(sign * axesA.col(k), ia, ib, ia, ib);
-          runFrom(ia, ib);
-          w.hubFor(sign * axesB.col(k), ia, ib, ia, ib);
-          runFrom(ia, ib);
-        }
+        dirs[1 + 4 * k] = axesA.col(k);
+        dirs[2 + 4 * k] = -axesA.col(k);
+        dirs[3 + 4 * k] = axesB.col(k);
+        dirs[4 + 4 * k] = -axesB.col(k);
+      }
+      int hubsA[kStarts], hubsB[kStarts], order[kStarts];
+      double offset[kStarts];
+      for (int k = 0; k < kStarts; ++k) {
+        w.hubFor(dirs[k], hubsA[k], hubsB[k], ia, ib);
+        ia = hubsA[k];
+        ib = hubsB[k];
+        offset[k] = dirs[k].dot(w.vb(ib) - w.va(ia));
+        order[k] = k;
+      }
+      if (options.pruneRestarts)
+        std::sort(order, order + kStarts, [&](int x, int y) { return offset[x] < offset[y]; });
+      for (int j = 0; j < kStarts; ++j) {
+        const int k = order[j];
+        if (options.pruneRestarts && offset[k] >= best.facet.d - w.tolImprove()) break;
+        runFrom(hubsA[k], hubsB[k]);
       }
     }
   }
 
-  if (!best.facet.valid()) {
-    // No hub pair had a Gauss region (only possible for degenerate input): fall back to the
-    // supporting plane in the centroid direction, a valid separating direction.
-    int ia, ib;
-    w.hubFor(centroidDir, ia, ib, 0, 0);
-    best.facet.u = centroidDir;
-    best.facet.d = centroidDir.dot(w.vb(ib) - w.va(ia));
-    best.facet.hubA = ia;
-    best.facet.hubB = ib;
-    best.converged = false;
-  }
   for (int k = 0; k < ended; ++k)
     if (ends[k].d > best.facet.d + w.tolImprove()) ++stats.localMinima;
 

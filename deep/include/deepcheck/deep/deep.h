@@ -47,6 +47,10 @@ struct DeepOptions {
   /// Run the restart directions (centroid difference, its opposite, principal axes). Without
   /// restarts a cold query runs one walk from the centroid difference: faster, can miss.
   bool restarts = true;
+  /// Visit the restart directions in order of their supporting plane's offset h_M(u) and skip
+  /// those whose plane is no closer than the best facet found so far. Heuristic (a walk can
+  /// descend below its start), measured in tests/deep: see the README's accuracy table.
+  bool pruneRestarts = false;
   /// A warm query also walks from the centroid difference (one extra start): guards against a
   /// basin that none of the cached ones leads to.
   bool warmCentroidStart = true;
