@@ -11,6 +11,14 @@
 //   distance   >= 0, the Euclidean distance between the polytopes (0 when they overlap);
 //   pointA/B   closest points, pointB - pointA = distance * normal;
 //   normal     unit, from A towards B (undefined, zero, when overlapping).
+//
+// Tolerances scale with the pair length scale L = max(A.lengthScale(), B.lengthScale()) + |t|
+// (t: B's centre in P), as tolerances.h describes. Distances below kContactRelative * L are
+// contact: the status is then Touching or Overlapping and the distance 0. Overlapping is reported
+// only when the origin is certified to lie inside M: a tetrahedron of support points encloses it
+// with every face farther than kContactRelative * L, or else four probe points around it at
+// distance kFlatRelative * L are all enclosed. Otherwise (a penetration thinner than that, or a
+// flat overlap: coplanar polygons, crossing segments) the status is Touching.
 
 #include "deepcheck/deep/pair_frame.h"
 
@@ -20,8 +28,10 @@ namespace deepcheck::deep {
 
 enum class GjkStatus {
   Separated,        ///< distance > 0, converged to kGjkRelative
-  Overlapping,      ///< the simplex enclosed the origin: distance is 0
-  Touching,         ///< distance below kContactRelative * L: treated as contact
+  Overlapping,      ///< the origin is certified inside M (see above): distance 0, normal zero
+  Touching,         ///< distance below kContactRelative * L: treated as contact; distance is 0,
+                    ///< pointB - pointA is the residual (below tolerance) and normal its
+                    ///< direction when it is non-zero (else zero)
   MaxIterations,    ///< iteration cap hit; distance is an upper bound
 };
 
@@ -29,6 +39,9 @@ const char* toString(GjkStatus s);
 
 /// Warm-start state for one pair: the last separating direction and support vertices. The caller
 /// owns it (one per pair and per thread); a default-constructed cache means "cold".
+/// A query starts from `direction` when it is finite and non-zero, else from the centroid
+/// difference t, else from +x; on exit it stores there the last v (the current closest point of
+/// M, pointing from A towards B) whose support in -v was taken, and the last support vertices.
 struct GjkCache {
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< last search direction (frame P), zero = none
   int hintA = 0;
@@ -50,11 +63,13 @@ struct GjkResult {
 };
 
 /// Distance between A and B (cores only, no radii) in the pair frame. `cache` may be null.
+/// No heap allocation.
 GjkResult gjkDistance(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                       GjkCache* cache = nullptr);
 
 /// Fast boolean: true when A and B overlap or touch within kContactRelative * L. Stops as soon as
-/// a separating axis or an enclosing simplex is found.
+/// a separating axis or an enclosing simplex is found. Returns true (the safe answer) in the
+/// rare case the iteration cap is hit undecided.
 bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                 GjkCache* cache = nullptr);
 
