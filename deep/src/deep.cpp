@@ -111,6 +111,7 @@ struct HubMemo {
 /// Per-thread scratch space, grown on demand and never shrunk: a warm query does not allocate.
 struct Scratch {
   std::vector<Corner> poly, clipped;
+  std::vector<double> side;
   std::vector<int> featA, featB;
   std::vector<FacetPoint> pts, hull;
   HubMemo memo;
@@ -220,8 +221,8 @@ class Walker {
   double tolImprove() const { return tolImprove_; }
 
  private:
-  void gaussPolygonB(int ib, const Vec3& b);
-  void clip(const Vec3& h, int label);
+  int gaussPolygonB(int ib, const Vec3& b, Corner* poly);
+  int clip(const Corner* in, int n, Corner* out, double* side, const Vec3& h, int label);
   void supportFeature(const ConvexPolytope& P, bool isB, int start, const Vec3& u, std::vector<int>& out) const;
   void facetFeatures(const Candidate& c);
   bool aloneOnPlaneA(int v, const Vec3& u, int except) const;
@@ -242,15 +243,13 @@ class Walker {
 // edge (ib, nbr_{j+1}). Polygon: the region is a lune between the planes orthogonal to the two
 // boundary edges, through +N and -N; it is written with four corners (+N, m_next, -N, m_prev),
 // m being the in-plane outward edge normals, so that no arc reaches 180 degrees.
-void Walker::gaussPolygonB(int ib, const Vec3& b) {
-  auto& poly = s_.poly;
-  poly.clear();
+int Walker::gaussPolygonB(int ib, const Vec3& b, Corner* poly) {
   const IndexRange nbr = B_.neighbors(ib);
   if (B_.kind() == PolytopeKind::Polyhedron) {
     const IndexRange ring = B_.vertexFaces(ib);
     const int m = ring.size();
-    for (int j = 0; j < m; ++j) poly.push_back({nb(ring[j]), labelB((j + 1) % m)});
-    return;
+    for (int j = 0; j < m; ++j) poly[j] = {nb(ring[j]), labelB(j + 1 == m ? 0 : j + 1)};
+    return m;
   }
   // Polygon.
   const Vec3 N = nb(0);
@@ -260,56 +259,73 @@ void Walker::gaussPolygonB(int ib, const Vec3& b) {
   if (mq.dot(p) > 0) mq = -mq;
   Vec3 mp = N.cross(p).normalized();
   if (mp.dot(q) > 0) mp = -mp;
-  poly.push_back({N, labelB(0)});
-  poly.push_back({mq, labelB(0)});
-  poly.push_back({-N, labelB(1)});
-  poly.push_back({mp, labelB(1)});
+  poly[0] = {N, labelB(0)};
+  poly[1] = {mq, labelB(0)};
+  poly[2] = {-N, labelB(1)};
+  poly[3] = {mp, labelB(1)};
+  return 4;
 }
 
 // Sutherland-Hodgman clipping of the direction polygon by the half-space u.h >= 0. Interpolating
 // two directions linearly and renormalizing follows the great arc between them (central
 // projection), so the polygon stays exact on the sphere as long as every arc is below 180 degrees.
-void Walker::clip(const Vec3& h, int label) {
-  auto& in = s_.poly;
-  auto& out = s_.clipped;
-  out.clear();
-  const int n = static_cast<int>(in.size());
-  if (n == 0) return;
+// Writes at most n + 1 corners to `out`; returns their number.
+int Walker::clip(const Corner* in, int n, Corner* out, double* side, const Vec3& h, int label) {
   // Corners are unit directions. Those within this angle of the plane count as on it: keeps
   // boundary corners of degenerate overlays (parallel faces) instead of letting round-off decide.
   constexpr double kOnPlane = 1e-13;
   const double onPlane = -kOnPlane * h.norm();
+  bool allIn = true;
   for (int i = 0; i < n; ++i) {
+    side[i] = in[i].u.dot(h);
+    allIn = allIn && side[i] >= onPlane;
+  }
+  if (allIn) return -1;  // nothing to cut: the caller keeps `in`
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    const int j = i + 1 == n ? 0 : i + 1;
     const Corner& P = in[i];
-    const Corner& Q = in[(i + 1) % n];
-    const double sP = P.u.dot(h);
-    const double sQ = Q.u.dot(h);
+    const Corner& Q = in[j];
+    const double sP = side[i], sQ = side[j];
     const bool inP = sP >= onPlane;
     const bool inQ = sQ >= onPlane;
     if (inP) {
-      out.push_back(P);
+      out[m++] = P;
       if (!inQ) {
         const double t = std::clamp(sP / (sP - sQ), 0.0, 1.0);
-        out.push_back({(P.u + t * (Q.u - P.u)).normalized(), label});
+        out[m++] = {(P.u + t * (Q.u - P.u)).normalized(), label};
       }
     } else if (inQ) {
       const double t = std::clamp(sP / (sP - sQ), 0.0, 1.0);
-      out.push_back({(P.u + t * (Q.u - P.u)).normalized(), P.out});
+      out[m++] = {(P.u + t * (Q.u - P.u)).normalized(), P.out};
     }
   }
-  in.swap(out);
+  return m;
 }
 
 bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
   const Vec3 a = va(ia);
   const Vec3 b = vb(ib);
   const Vec3 ba = b - a;
-  gaussPolygonB(ib, b);
   const IndexRange nbrA = A_.neighbors(ia);
-  for (int k = 0; k < nbrA.size() && !s_.poly.empty(); ++k) clip(va(nbrA[k]) - a, labelA(k));
-  const auto& poly = s_.poly;
-  const int n = static_cast<int>(poly.size());
+  // Room for the ring plus one corner per clipping plane, in two buffers used alternately.
+  const std::size_t cap = B_.neighbors(ib).size() + nbrA.size() + 4;
+  if (s_.poly.size() < cap) {
+    s_.poly.resize(cap);
+    s_.clipped.resize(cap);
+    s_.side.resize(cap);
+  }
+  Corner* cur = s_.poly.data();
+  Corner* spare = s_.clipped.data();
+  int n = gaussPolygonB(ib, b, cur);
+  for (int k = 0; k < nbrA.size() && n > 0; ++k) {
+    const int m = clip(cur, n, spare, s_.side.data(), va(nbrA[k]) - a, labelA(k));
+    if (m < 0) continue;
+    std::swap(cur, spare);
+    n = m;
+  }
   if (n < 3) return false;
+  const Corner* poly = cur;
 
   const IndexRange nbrB = B_.neighbors(ib);
   const bool polyB = B_.kind() == PolytopeKind::Polyhedron;
@@ -320,65 +336,62 @@ bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
     const int out = poly[i].out;
     if (in == out) continue;  // a corner inside one arc (polygon lune), not a Gauss-map vertex
     const Vec3& approx = poly[i].u;
-    Candidate c;
-    c.hubA = ia;
-    c.hubB = ib;
+    DeepResult::FacetType type;
+    Vec3 u;
+    int fa = ia, fa2 = -1, fb = ib, fb2 = -1;
     if (!isA(in) && !isA(out)) {
       // Two arcs of B meet: a face normal of B inside -N_A(a): VF.
-      int face;
       if (polyB) {
         const int m = nbrB.size();
         const int kIn = labelIndex(in), kOut = labelIndex(out);
         if (kOut != (kIn + 1) % m) continue;
-        face = B_.vertexFaces(ib)[kIn];
+        fb = B_.vertexFaces(ib)[kIn];
       } else {
-        face = approx.dot(nb(0)) >= 0 ? 0 : 1;
+        fb = approx.dot(nb(0)) >= 0 ? 0 : 1;
       }
-      c.type = DeepResult::FacetType::VF;
-      c.u = nb(face);
-      c.fa = ia;
-      c.fb = face;
+      type = DeepResult::FacetType::VF;
+      u = nb(fb);
     } else if (isA(in) && isA(out)) {
       // Two clipping planes of A meet: minus a face normal of A inside N_B(b): FV.
-      int face = -1;
       if (polyA) {
         const int m = nbrA.size();
         const int k1 = labelIndex(in), k2 = labelIndex(out);
-        if (k2 == (k1 + 1) % m) face = A_.vertexFaces(ia)[k1];
-        else if (k1 == (k2 + 1) % m) face = A_.vertexFaces(ia)[k2];
+        if (k2 == (k1 + 1) % m) fa = A_.vertexFaces(ia)[k1];
+        else if (k1 == (k2 + 1) % m) fa = A_.vertexFaces(ia)[k2];
         else continue;
       } else {
-        face = approx.dot(na(0)) <= 0 ? 0 : 1;
+        fa = approx.dot(na(0)) <= 0 ? 0 : 1;
       }
-      c.type = DeepResult::FacetType::FV;
-      c.u = -na(face);
-      c.fa = face;
-      c.fb = ib;
+      type = DeepResult::FacetType::FV;
+      u = -na(fa);
     } else {
       // An arc of B crosses a plane of A: edge-edge.
-      const int kB = labelIndex(isA(in) ? out : in);
-      const int kA = labelIndex(isA(in) ? in : out);
-      const int wb = nbrB[kB];
-      const int wa = nbrA[kA];
-      const Vec3 eB = vb(wb) - b;
-      const Vec3 eA = va(wa) - a;
-      Vec3 u = eB.cross(eA);
-      const double len = u.norm();
+      fb2 = nbrB[labelIndex(isA(in) ? out : in)];
+      fa2 = nbrA[labelIndex(isA(in) ? in : out)];
+      const Vec3 eB = vb(fb2) - b;
+      const Vec3 eA = va(fa2) - a;
+      u = eB.cross(eA);
+      const double len2 = u.squaredNorm();
       // Parallel edges span no facet; the facet there is reported by its VF/FV corners.
-      if (len <= tol::kParallelSine * eB.norm() * eA.norm()) continue;
-      u /= len;
+      const double minSine = tol::kParallelSine;
+      if (len2 <= minSine * minSine * eB.squaredNorm() * eA.squaredNorm()) continue;
+      u /= std::sqrt(len2);
       if (u.dot(approx) < 0) u = -u;
-      c.type = DeepResult::FacetType::EE;
-      c.u = u;
-      c.fa = ia;
-      c.fa2 = wa;
-      c.fb = ib;
-      c.fb2 = wb;
+      type = DeepResult::FacetType::EE;
     }
     // The facet passes through the vertex b - a of M, so its offset is u . (b - a).
-    c.d = c.u.dot(ba);
-    if (c.d < best.d) {
-      best = c;
+    const double d = u.dot(ba);
+    if (d < best.d) {
+      best.d = d;
+      best.u = u;
+      best.type = type;
+      best.fa = fa;
+      best.fa2 = fa2;
+      best.fb = fb;
+      best.fb2 = fb2;
+      best.hubA = ia;
+      best.hubB = ib;
+      best.featuresKnown = true;
       found = true;
     }
   }
