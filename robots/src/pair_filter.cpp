@@ -1,0 +1,430 @@
+#include "deepcheck/robots/pair_filter.h"
+
+#include "deepcheck/robots/kinematics.h"
+
+#include "deepcheck/deep/signed_distance.h"
+
+#include <tinyxml.h>
+
+#include <algorithm>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace deepcheck::robots {
+
+const char* toString(DisableReason reason) {
+  switch (reason) {
+    case DisableReason::Adjacent: return "Adjacent";
+    case DisableReason::Default: return "Default";
+    case DisableReason::Always: return "Always";
+    case DisableReason::Never: return "Never";
+    case DisableReason::User: return "User";
+    case DisableReason::Unspecified: return "";
+  }
+  return "";
+}
+
+std::optional<DisableReason> parseDisableReason(const std::string& text) {
+  for (int r = 0; r < kNumDisableReasons; ++r) {
+    const auto reason = static_cast<DisableReason>(r);
+    if (text == toString(reason)) return reason;
+  }
+  return std::nullopt;
+}
+
+std::pair<std::string, std::string> pairKey(const std::string& a, const std::string& b) {
+  return a < b ? std::make_pair(a, b) : std::make_pair(b, a);
+}
+
+int PairFilterResult::count(DisableReason reason) const {
+  return static_cast<int>(std::count_if(disabled.begin(), disabled.end(),
+                                        [&](const DisabledPair& p) { return p.reason == reason; }));
+}
+
+int PairFilterResult::numEnabled() const {
+  return numPairs() - static_cast<int>(disabled.size());
+}
+
+namespace {
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+/// A piece posed in the world, with its bounding sphere for a cheap rejection test.
+struct PosedPiece {
+  deep::ConvexShape shape;
+  Eigen::Isometry3d X_WP;
+  Eigen::Vector3d centre_W;
+  double sphereRadius;
+};
+
+void posePieces(const std::vector<CollisionPiece>& pieces, const Eigen::Isometry3d& X_WL,
+                std::vector<PosedPiece>& out) {
+  out.clear();
+  for (const CollisionPiece& p : pieces) {
+    PosedPiece posed;
+    posed.shape = deep::ConvexShape{p.core.get(), p.radius};
+    posed.X_WP = X_WL * p.X_LP;
+    posed.centre_W = posed.X_WP * p.core->center();
+    posed.sphereRadius = p.core->boundingRadius() + p.radius;
+    out.push_back(posed);
+  }
+}
+
+bool posedOverlap(const std::vector<PosedPiece>& a, const std::vector<PosedPiece>& b) {
+  for (const PosedPiece& pa : a) {
+    for (const PosedPiece& pb : b) {
+      const double reach = pa.sphereRadius + pb.sphereRadius;
+      // Strictly farther apart than the two spheres: the pieces cannot touch. Compared squared;
+      // touching pieces (distance == reach) go on to the exact test.
+      if ((pa.centre_W - pb.centre_W).squaredNorm() > reach * reach) continue;
+      if (deep::overlaps(pa.shape, pa.X_WP, pb.shape, pb.X_WP)) return true;
+    }
+  }
+  return false;
+}
+
+/// Uniform in [0, 1) from the top 53 bits of one 64-bit draw: the same on every platform.
+double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+std::string robotContext(const RobotModel& model) {
+  return "robot " + quoted(model.name()) + " (" + model.source() + ")";
+}
+
+void checkPieces(const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces) {
+  if (static_cast<int>(pieces.size()) != model.numLinks()) {
+    throw std::invalid_argument(robotContext(model) + ": pair filter given pieces for " +
+                                std::to_string(pieces.size()) + " links, the robot has " +
+                                std::to_string(model.numLinks()));
+  }
+  for (int l = 0; l < model.numLinks(); ++l) {
+    for (const CollisionPiece& p : pieces[l]) {
+      if (!p.core) {
+        throw std::invalid_argument(robotContext(model) + ": link " +
+                                    quoted(model.link(l).name) + " has a piece without a core (" +
+                                    p.origin + ")");
+      }
+    }
+  }
+}
+
+std::vector<std::pair<int, int>> geometryPairs(const std::vector<std::vector<CollisionPiece>>& pieces) {
+  std::vector<std::pair<int, int>> pairs;
+  const int n = static_cast<int>(pieces.size());
+  for (int i = 0; i < n; ++i) {
+    if (pieces[i].empty()) continue;
+    for (int j = i + 1; j < n; ++j) {
+      if (!pieces[j].empty()) pairs.emplace_back(i, j);
+    }
+  }
+  return pairs;
+}
+
+std::string xmlEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Eigen::VectorXd pairFilterDefaultConfiguration(const RobotModel& model) {
+  Eigen::VectorXd q(model.numVariables());
+  for (int v = 0; v < q.size(); ++v) {
+    const double lo = model.lowerLimits()[v];
+    const double hi = model.upperLimits()[v];
+    q[v] = lo <= 0.0 && 0.0 <= hi ? 0.0 : 0.5 * (lo + hi);
+  }
+  return q;
+}
+
+std::vector<std::pair<int, int>> adjacentLinkPairs(
+    const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces) {
+  checkPieces(model, pieces);
+  const int n = model.numLinks();
+  // Undirected link graph through the joints.
+  std::vector<std::vector<int>> neighbours(n);
+  for (const Joint& j : model.joints()) {
+    neighbours[j.parentLink].push_back(j.childLink);
+    neighbours[j.childLink].push_back(j.parentLink);
+  }
+  std::set<std::pair<int, int>> adjacent;
+  std::vector<int> stack;
+  std::vector<char> seen(n);
+  for (int a = 0; a < n; ++a) {
+    if (pieces[a].empty()) continue;
+    // Walk from a through links without geometry; every link with geometry met is adjacent to a.
+    std::fill(seen.begin(), seen.end(), 0);
+    seen[a] = 1;
+    stack.assign(1, a);
+    while (!stack.empty()) {
+      const int l = stack.back();
+      stack.pop_back();
+      for (int m : neighbours[l]) {
+        if (seen[m]) continue;
+        seen[m] = 1;
+        if (pieces[m].empty()) {
+          stack.push_back(m);
+        } else {
+          adjacent.emplace(std::min(a, m), std::max(a, m));
+        }
+      }
+    }
+  }
+  return {adjacent.begin(), adjacent.end()};
+}
+
+bool piecesOverlap(const std::vector<CollisionPiece>& a, const Eigen::Isometry3d& X_WA,
+                   const std::vector<CollisionPiece>& b, const Eigen::Isometry3d& X_WB) {
+  std::vector<PosedPiece> pa, pb;
+  posePieces(a, X_WA, pa);
+  posePieces(b, X_WB, pb);
+  return posedOverlap(pa, pb);
+}
+
+std::vector<std::pair<int, int>> collidingLinkPairs(
+    const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces,
+    const std::vector<Eigen::Isometry3d>& X_WL) {
+  checkPieces(model, pieces);
+  if (static_cast<int>(X_WL.size()) != model.numLinks()) {
+    throw std::invalid_argument(robotContext(model) + ": " + std::to_string(X_WL.size()) +
+                                " link poses given, the robot has " +
+                                std::to_string(model.numLinks()) + " links");
+  }
+  std::vector<std::vector<PosedPiece>> posed(model.numLinks());
+  for (int l = 0; l < model.numLinks(); ++l) posePieces(pieces[l], X_WL[l], posed[l]);
+  std::vector<std::pair<int, int>> colliding;
+  for (const auto& [i, j] : geometryPairs(pieces)) {
+    if (posedOverlap(posed[i], posed[j])) colliding.emplace_back(i, j);
+  }
+  return colliding;
+}
+
+PairFilterResult computeDisabledPairs(const RobotModel& model,
+                                      const std::vector<std::vector<CollisionPiece>>& pieces,
+                                      const PairFilterOptions& options) {
+  checkPieces(model, pieces);
+  if (options.samples < 0) {
+    throw std::invalid_argument(robotContext(model) + ": pair filter sample count " +
+                                std::to_string(options.samples) + " is negative");
+  }
+  if (!(options.alwaysFraction > 0.0 && options.alwaysFraction <= 1.0)) {
+    std::ostringstream msg;
+    msg << robotContext(model) << ": pair filter alwaysFraction " << options.alwaysFraction
+        << " is not in (0, 1]";
+    throw std::invalid_argument(msg.str());
+  }
+  const Eigen::VectorXd q0 = options.defaultConfiguration.size() == 0
+                                 ? pairFilterDefaultConfiguration(model)
+                                 : options.defaultConfiguration;
+  if (options.checkDefault) {
+    try {
+      checkConfiguration(model, q0);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("pair filter default configuration: ") + e.what());
+    }
+  }
+
+  PairFilterResult result;
+  for (const auto& p : pieces) result.numGeometryLinks += p.empty() ? 0 : 1;
+  for (const auto& [i, j] : geometryPairs(pieces)) {
+    LinkPairReport r;
+    r.link1 = i;
+    r.link2 = j;
+    result.pairs.push_back(r);
+  }
+  auto find = [&](int i, int j) -> LinkPairReport& {
+    auto it = std::lower_bound(result.pairs.begin(), result.pairs.end(), std::make_pair(i, j),
+                               [](const LinkPairReport& r, const std::pair<int, int>& key) {
+                                 return std::make_pair(r.link1, r.link2) < key;
+                               });
+    return *it;  // every adjacent pair is a pair of links with geometry, so it is there
+  };
+  for (const auto& [i, j] : adjacentLinkPairs(model, pieces)) {
+    find(i, j).reason = DisableReason::Adjacent;
+  }
+
+  std::vector<std::vector<PosedPiece>> posed(model.numLinks());
+  std::vector<Eigen::Isometry3d> X_WL(model.numLinks());
+  auto poseAll = [&](const Eigen::VectorXd& q) {
+    forwardKinematics(model, q, X_WL);
+    for (int l = 0; l < model.numLinks(); ++l) posePieces(pieces[l], X_WL[l], posed[l]);
+  };
+
+  if (options.checkDefault) {
+    poseAll(q0);
+    for (LinkPairReport& r : result.pairs) {
+      if (!r.reason && posedOverlap(posed[r.link1], posed[r.link2])) {
+        r.reason = DisableReason::Default;
+      }
+    }
+  }
+
+  result.samples = options.samples;
+  if (options.samples > 0) {
+    // Default pairs are sampled too, for their count (a Default pair that rarely collides in
+    // the sample points at pieces that overlap at the default configuration by approximation).
+    std::vector<LinkPairReport*> sampled;
+    for (LinkPairReport& r : result.pairs) {
+      if (r.reason != DisableReason::Adjacent) sampled.push_back(&r);
+    }
+    std::mt19937_64 rng(options.seed);
+    const Eigen::VectorXd& lo = model.lowerLimits();
+    const Eigen::VectorXd& hi = model.upperLimits();
+    Eigen::VectorXd q(model.numVariables());
+    for (int s = 0; s < options.samples; ++s) {
+      for (int v = 0; v < q.size(); ++v) q[v] = lo[v] + uniform01(rng) * (hi[v] - lo[v]);
+      poseAll(q);
+      for (LinkPairReport* r : sampled) {
+        if (posedOverlap(posed[r->link1], posed[r->link2])) ++r->collisions;
+      }
+    }
+    for (LinkPairReport* r : sampled) {
+      if (r->reason) continue;
+      if (r->collisions == 0) {
+        r->reason = DisableReason::Never;
+      } else if (r->collisions >= options.alwaysFraction * options.samples) {
+        r->reason = DisableReason::Always;
+      }
+    }
+  }
+
+  for (const LinkPairReport& r : result.pairs) {
+    if (r.reason) {
+      result.disabled.push_back(
+          DisabledPair{model.link(r.link1).name, model.link(r.link2).name, *r.reason});
+    }
+  }
+  return result;
+}
+
+void checkDisabledPairs(const RobotModel& model, const std::vector<DisabledPair>& disabled,
+                        const std::string& source) {
+  for (const DisabledPair& p : disabled) {
+    const std::string entry = "<disable_collisions link1=" + quoted(p.link1) +
+                              " link2=" + quoted(p.link2) + ">";
+    for (const std::string* name : {&p.link1, &p.link2}) {
+      if (model.linkIndex(*name) < 0) {
+        throw std::invalid_argument(source + ": " + entry + ": link " + quoted(*name) +
+                                    " is not a link of " + robotContext(model));
+      }
+    }
+    if (p.link1 == p.link2) {
+      throw std::invalid_argument(source + ": " + entry + ": names the same link twice");
+    }
+  }
+}
+
+std::vector<std::pair<int, int>> enabledLinkPairs(
+    const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces,
+    const std::vector<DisabledPair>& disabled) {
+  checkPieces(model, pieces);
+  checkDisabledPairs(model, disabled, "disabled pairs");
+  std::set<std::pair<int, int>> off;
+  for (const DisabledPair& p : disabled) {
+    const int a = model.linkIndex(p.link1);
+    const int b = model.linkIndex(p.link2);
+    off.emplace(std::min(a, b), std::max(a, b));
+  }
+  std::vector<std::pair<int, int>> enabled;
+  for (const auto& pair : geometryPairs(pieces)) {
+    if (off.count(pair) == 0) enabled.push_back(pair);
+  }
+  return enabled;
+}
+
+std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml,
+                                                 const std::string& sourceName) {
+  const std::string context = "SRDF " + quoted(sourceName.empty() ? "<string>" : sourceName);
+  TiXmlDocument doc;
+  doc.Parse(xml.c_str(), nullptr, TIXML_ENCODING_UTF8);
+  if (doc.Error()) {
+    std::ostringstream msg;
+    msg << context << ": malformed XML at line " << doc.ErrorRow() << ", column "
+        << doc.ErrorCol() << ": " << doc.ErrorDesc();
+    throw std::invalid_argument(msg.str());
+  }
+  const TiXmlElement* robot = doc.RootElement();
+  if (robot == nullptr || std::string(robot->Value()) != "robot") {
+    throw std::invalid_argument(context + ": the root element is not <robot>");
+  }
+  std::vector<DisabledPair> pairs;
+  for (const TiXmlElement* e = robot->FirstChildElement("disable_collisions"); e != nullptr;
+       e = e->NextSiblingElement("disable_collisions")) {
+    const std::string where = context + ", line " + std::to_string(e->Row());
+    DisabledPair p;
+    for (const char* attr : {"link1", "link2"}) {
+      const char* value = e->Attribute(attr);
+      if (value == nullptr || *value == '\0') {
+        throw std::invalid_argument(where + ": <disable_collisions> without " + attr);
+      }
+      (std::string(attr) == "link1" ? p.link1 : p.link2) = value;
+    }
+    const char* reasonText = e->Attribute("reason");
+    const std::optional<DisableReason> reason =
+        parseDisableReason(reasonText == nullptr ? "" : reasonText);
+    if (!reason) {
+      throw std::invalid_argument(where + ": <disable_collisions link1=" + quoted(p.link1) +
+                                  " link2=" + quoted(p.link2) + ">: unknown reason " +
+                                  quoted(reasonText) +
+                                  " (expected Adjacent, Default, Always, Never or User)");
+    }
+    p.reason = *reason;
+    pairs.push_back(p);
+  }
+  return pairs;
+}
+
+std::vector<DisabledPair> readSrdfDisabledPairs(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot read the file");
+  return parseSrdfDisabledPairs(text.str(), path);
+}
+
+std::string srdfText(const std::string& robotName, const std::vector<DisabledPair>& pairs,
+                     const std::string& comment) {
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
+  if (!comment.empty()) {
+    // "--" may not appear inside an XML comment.
+    std::string safe = comment;
+    for (std::size_t k = safe.find("--"); k != std::string::npos; k = safe.find("--", k)) {
+      safe.replace(k, 2, "- -");
+    }
+    out << "<!-- " << safe << " -->\n";
+  }
+  out << "<robot name=\"" << xmlEscape(robotName) << "\">\n";
+  for (const DisabledPair& p : pairs) {
+    out << "  <disable_collisions link1=\"" << xmlEscape(p.link1) << "\" link2=\""
+        << xmlEscape(p.link2) << "\"";
+    if (p.reason != DisableReason::Unspecified) out << " reason=\"" << toString(p.reason) << "\"";
+    out << "/>\n";
+  }
+  out << "</robot>\n";
+  return out.str();
+}
+
+void writeSrdf(const std::string& path, const std::string& robotName,
+               const std::vector<DisabledPair>& pairs, const std::string& comment) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot open for writing");
+  out << srdfText(robotName, pairs, comment);
+  out.close();
+  if (!out) throw std::invalid_argument("SRDF " + quoted(path) + ": write failed");
+}
+
+}  // namespace deepcheck::robots
