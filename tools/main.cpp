@@ -16,6 +16,7 @@ using deepcheck::tools::Subcommand;
 
 const Subcommand* const kSubcommands[] = {
     &deepcheck::tools::kPdCommand,
+    &deepcheck::tools::kInfoCommand,
 };
 
 void printUsage(std::FILE* out) {

@@ -17,6 +17,7 @@ struct Subcommand {
   int (*run)(std::vector<std::string> args);
 };
 
-extern const Subcommand kPdCommand;  // pd.cpp
+extern const Subcommand kPdCommand;    // pd.cpp
+extern const Subcommand kInfoCommand;  // info.cpp
 
 }  // namespace deepcheck::tools

@@ -1,0 +1,167 @@
+// End-to-end tests of `deepcheck info` on the bundled arm (robots/data): the binary is run with
+// popen and its text output is read back.
+
+#include <boost/test/unit_test.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+const std::string kArm = kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
+
+struct InfoRun {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string shellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+fs::path scratchPath(const std::string& what) {
+  static int counter = 0;
+  return fs::temp_directory_path() / ("deepcheck_tool_info_" + std::to_string(::getpid()) + "_" +
+                                      std::to_string(counter++) + "_" + what);
+}
+
+InfoRun runInfo(const std::vector<std::string>& args) {
+  const fs::path err = scratchPath("err.txt");
+  std::string cmd = shellQuote(DEEPCHECK_TOOL) + " info";
+  for (const std::string& a : args) cmd += " " + shellQuote(a);
+  cmd += " < /dev/null 2> " + shellQuote(err.string());
+  InfoRun r;
+  if (FILE* pipe = ::popen(cmd.c_str(), "r")) {
+    char buf[4096];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+    const int status = ::pclose(pipe);
+    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::ifstream in(err);
+  std::stringstream s;
+  s << in.rdbuf();
+  r.err = s.str();
+  fs::remove(err);
+  return r;
+}
+
+/// The lines of `text` after the line equal to `heading`, up to the next blank line.
+std::vector<std::string> section(const std::string& text, const std::string& heading) {
+  std::istringstream in(text);
+  std::vector<std::string> lines;
+  std::string line;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (inside && line.empty()) break;
+    if (inside) lines.push_back(line);
+    if (line == heading) inside = true;
+  }
+  return lines;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(tool_info)
+
+BOOST_AUTO_TEST_CASE(bundled_arm) {
+  const InfoRun r = runInfo({kArm, "--package-path", kData, "--samples", "2000"});
+  BOOST_TEST_MESSAGE(r.out);
+  BOOST_REQUIRE_MESSAGE(r.status == 0, "exit " << r.status << ": " << r.err);
+  BOOST_TEST(r.out.find("robot 'deepcheck_arm'") != std::string::npos);
+  BOOST_TEST(r.out.find("12 links (11 with collision geometry), 11 joints, 7 variables") !=
+             std::string::npos);
+
+  // The 7 variables, in configuration order, with their limits.
+  const std::vector<std::string> vars = section(r.out, "variables (configuration order):");
+  BOOST_REQUIRE_EQUAL(vars.size(), 8u);  // a header and 7 rows
+  const std::regex row(R"(\s*(\d+)\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)\s*)");
+  for (int v = 0; v < 7; ++v) {
+    std::smatch m;
+    BOOST_REQUIRE_MESSAGE(std::regex_match(vars[v + 1], m, row), "bad row: " << vars[v + 1]);
+    BOOST_TEST(std::stoi(m[1]) == v);
+    BOOST_TEST(m[2].str() == "joint" + std::to_string(v + 1));
+    BOOST_TEST(m[3].str() == "revolute");
+    BOOST_TEST(std::stod(m[4]) == -std::stod(m[5]));
+    BOOST_TEST(std::stod(m[5]) > 2.0);
+  }
+
+  // Links with their element and piece counts; the flange has neither.
+  const std::vector<std::string> links = section(r.out, "links:");
+  BOOST_REQUIRE_EQUAL(links.size(), 13u);
+  BOOST_TEST(std::regex_match(links[9], std::regex(R"(\s*8\s+flange\s+link7\s+flange_joint\s+0\s+0\s*)")),
+             links[9]);
+  BOOST_TEST(std::regex_match(links[2], std::regex(R"(\s*1\s+link1\s+base_link\s+joint1\s+1\s+1\s*)")),
+             links[2]);
+
+  BOOST_TEST(section(r.out, "pieces:").size() == 11u);
+  BOOST_TEST(r.out.find("finger.stl") != std::string::npos);
+
+  // Pair counts: 55 pairs of the 11 links with geometry, 10 adjacent ones, the rest balanced.
+  std::smatch m;
+  BOOST_REQUIRE(std::regex_search(r.out, m, std::regex(R"(links with geometry: (\d+), link pairs: (\d+))")));
+  BOOST_TEST(m[1].str() == "11");
+  BOOST_TEST(m[2].str() == "55");
+  BOOST_REQUIRE(std::regex_search(
+      r.out, m,
+      std::regex(R"(disabled: (\d+) \(Adjacent (\d+), Default (\d+), Always (\d+), Never (\d+)\))")));
+  const int disabled = std::stoi(m[1]);
+  BOOST_TEST(std::stoi(m[2]) == 10);
+  BOOST_TEST(std::stoi(m[2]) + std::stoi(m[3]) + std::stoi(m[4]) + std::stoi(m[5]) == disabled);
+  BOOST_REQUIRE(std::regex_search(r.out, m, std::regex(R"(remaining \(checked\): (\d+))")));
+  BOOST_TEST(std::stoi(m[1]) + disabled == 55);
+  BOOST_TEST(std::stoi(m[1]) > 0);
+}
+
+BOOST_AUTO_TEST_CASE(writes_srdf) {
+  const fs::path srdf = scratchPath("arm.srdf");
+  const InfoRun r = runInfo({kArm, "--package-path=" + kData, "--samples", "500", "--seed", "3",
+                             "--write-srdf", srdf.string()});
+  BOOST_REQUIRE_MESSAGE(r.status == 0, "exit " << r.status << ": " << r.err);
+  std::ifstream in(srdf);
+  std::stringstream s;
+  s << in.rdbuf();
+  fs::remove(srdf);
+  const std::string text = s.str();
+  BOOST_TEST(text.find("<robot name=\"deepcheck_arm\">") != std::string::npos);
+  BOOST_TEST(text.find("<disable_collisions link1=\"base_link\" link2=\"link1\" reason=\"Adjacent\"/>") !=
+             std::string::npos);
+  BOOST_TEST(text.find("<disable_collisions link1=\"link7\" link2=\"hand\" reason=\"Adjacent\"/>") !=
+             std::string::npos);
+  BOOST_TEST(text.find("500 random samples, seed 3") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(bad_input) {
+  // A missing file: exit 1, one error line naming it.
+  const InfoRun missing = runInfo({kData + "/no_such_robot.urdf"});
+  BOOST_TEST(missing.status == 1);
+  BOOST_TEST(missing.err.find("deepcheck info:") == 0u);
+  BOOST_TEST(missing.err.find("no_such_robot.urdf") != std::string::npos);
+  // An unresolvable package: exit 1, naming the URI.
+  const InfoRun package = runInfo({kArm, "--samples", "0"});
+  if (package.status != 0) {  // unless ROS_PACKAGE_PATH happens to hold robots/data
+    BOOST_TEST(package.status == 1);
+    BOOST_TEST(package.err.find("package://deepcheck_arm/meshes/") != std::string::npos);
+  }
+  // Bad command lines: exit 2.
+  BOOST_TEST(runInfo({}).status == 2);
+  BOOST_TEST(runInfo({kArm, "--samples", "many"}).status == 2);
+  BOOST_TEST(runInfo({kArm, "--bogus"}).status == 2);
+  BOOST_TEST(runInfo({kArm, kArm}).status == 2);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,282 @@
+// `deepcheck info ROBOT.urdf`: what deepcheck makes of a robot (or scene) description: its links
+// with their collision elements and convex pieces, the joints in configuration order with their
+// limits, the meshes and how well their pieces fit them, and the self-collision pairs left after
+// the pair filter (robots/include/deepcheck/robots/pair_filter.h).
+//
+// Output (stdout, plain text, one section per heading):
+//   robot '<name>' (<file>)
+//   <summary line: links, links with geometry, joints, variables, collision elements, pieces>
+//   variables (configuration order):     one line per variable:
+//     <index> <joint name> <type> <lower> <upper> <velocity limit>
+//   mimic joints:                        "<joint> = <multiplier> * <variable> + <offset>" or none
+//   links:                               one line per link, in link order:
+//     <index> <link> <parent link> <parent joint> <collision elements> <pieces>
+//   pieces:                              one line per piece: <link> <kind> <vertices> <origin>
+//   meshes (...):                        one line per distinct mesh file and scale
+//   collision pairs (...):               the pair filter's counts
+// Units: metres, radians (limits of prismatic joints in metres), m/s or rad/s.
+
+#include "common.h"
+#include "subcommands.h"
+
+#include "deepcheck/robots/collision_geometry.h"
+#include "deepcheck/robots/mesh_loader.h"
+#include "deepcheck/robots/pair_filter.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace deepcheck::tools {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: deepcheck info ROBOT.urdf [--package-path DIR]... [--samples N] [--seed S]\n"
+    "                      [--write-srdf FILE]\n"
+    "\n"
+    "Describes a URDF robot or scene: links with their collision elements and convex pieces,\n"
+    "joints in configuration order with their limits, the collision meshes and how well their\n"
+    "pieces fit them, and the self-collision pairs left after the pair filter (adjacent links,\n"
+    "pairs colliding at the default configuration, always or never colliding in N random\n"
+    "configurations, as MoveIt's setup assistant does).\n"
+    "\n"
+    "options:\n"
+    "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"
+    "                      also read)\n"
+    "  --samples N         random configurations for the pair filter (default 10000; 0 skips the\n"
+    "                      'Always' and 'Never' tests)\n"
+    "  --seed S            seed of the random configurations (default 1)\n"
+    "  --write-srdf FILE   write the disabled pairs as an SRDF file\n";
+
+std::uint64_t parseCount(const std::string& option, const std::string& text, std::uint64_t max) {
+  std::size_t used = 0;
+  unsigned long long value = 0;
+  try {
+    value = std::stoull(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || text[0] == '-' || value > max) {
+    throw UsageError("option " + option + " needs a whole number from 0 to " +
+                     std::to_string(max) + ", got '" + text + "'");
+  }
+  return value;
+}
+
+/// Last value of an option given at most once.
+std::string singleOption(std::vector<std::string>& args, const std::string& name) {
+  const std::vector<std::string> values = takeOption(args, name);
+  if (values.size() > 1) throw UsageError("option " + name + " given more than once");
+  return values.empty() ? std::string() : values[0];
+}
+
+/// Volume enclosed by a closed, consistently wound mesh (divergence theorem); NaN otherwise.
+double closedMeshVolume(const robots::TriangleMesh& mesh) {
+  std::map<std::pair<int, int>, int> edges;
+  double volume6 = 0.0;
+  for (const auto& t : mesh.triangles) {
+    for (int e = 0; e < 3; ++e) ++edges[{t[e], t[(e + 1) % 3]}];
+    volume6 += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  }
+  for (const auto& [edge, count] : edges) {
+    const auto opposite = edges.find({edge.second, edge.first});
+    if (opposite == edges.end() || opposite->second != count) {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  return volume6 / 6.0;
+}
+
+/// Volume of a convex polytope from its faces (0 for points, segments and polygons).
+double polytopeVolume(const deep::ConvexPolytope& p) {
+  if (p.kind() != deep::PolytopeKind::Polyhedron) return 0.0;
+  double volume6 = 0.0;
+  const Eigen::Vector3d& c = p.center();
+  for (int f = 0; f < p.numFaces(); ++f) {
+    const deep::IndexRange face = p.faceVertices(f);
+    for (int k = 1; k + 1 < face.size(); ++k) {
+      const Eigen::Vector3d a = p.vertex(face[0]) - c;
+      const Eigen::Vector3d b = p.vertex(face[k]) - c;
+      const Eigen::Vector3d d = p.vertex(face[k + 1]) - c;
+      volume6 += a.dot(b.cross(d));
+    }
+  }
+  return volume6 / 6.0;
+}
+
+std::string fileName(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
+
+void printMeshes(const robots::RobotModel& model) {
+  // One line per distinct (file, scale), with the links that use it.
+  struct Use {
+    std::string path;
+    Eigen::Vector3d scale;
+    std::vector<std::string> links;
+  };
+  std::vector<Use> uses;
+  for (const robots::Link& link : model.links()) {
+    for (const robots::CollisionElement& c : link.collisions) {
+      if (c.geometry.type != robots::GeometryType::Mesh) continue;
+      bool found = false;
+      for (Use& u : uses) {
+        if (u.path == c.geometry.meshPath && u.scale == c.geometry.meshScale) {
+          if (u.links.empty() || u.links.back() != link.name) u.links.push_back(link.name);
+          found = true;
+        }
+      }
+      if (!found) uses.push_back({c.geometry.meshPath, c.geometry.meshScale, {link.name}});
+    }
+  }
+  std::printf("\nmeshes (pieces: the convex hull of each mesh, no decomposition):\n");
+  if (uses.empty()) {
+    std::printf("  none\n");
+    return;
+  }
+  std::printf("  %-22s %9s %8s %12s %12s %9s %8s  %s\n", "mesh", "triangles", "vertices",
+              "volume_m3", "hull_m3", "hull/mesh", "hull_vtx", "links");
+  for (const Use& u : uses) {
+    const robots::TriangleMesh mesh = robots::loadMesh(u.path, u.scale);
+    const deep::ConvexPolytope hull = deep::ConvexPolytope::fromPoints(mesh.vertices, u.path);
+    const double volume = closedMeshVolume(mesh);
+    const double hullVolume = polytopeVolume(hull);
+    std::string links;
+    for (const std::string& l : u.links) links += (links.empty() ? "" : ",") + l;
+    char ratio[32];
+    if (std::isfinite(volume) && volume > 0.0) {
+      std::snprintf(ratio, sizeof ratio, "%.3f", hullVolume / volume);
+    } else {
+      std::snprintf(ratio, sizeof ratio, "open");
+    }
+    std::printf("  %-22s %9zu %8zu %12.6g %12.6g %9s %8d  %s\n", fileName(u.path).c_str(),
+                mesh.triangles.size(), mesh.vertices.size(), volume, hullVolume, ratio,
+                hull.numVertices(), links.c_str());
+  }
+  std::printf("  (hull/mesh > 1: the piece is larger than the mesh by that volume factor; 'open':\n"
+              "  the mesh is not closed, so it has no volume)\n");
+}
+
+int runInfo(std::vector<std::string> args) {
+  const PackagePaths packagePaths = takePackagePaths(args);
+  const std::string samplesText = singleOption(args, "--samples");
+  const std::string seedText = singleOption(args, "--seed");
+  const std::string srdfPath = singleOption(args, "--write-srdf");
+  rejectUnknownOptions(args);
+  if (args.size() != 1) {
+    throw UsageError(args.empty() ? "missing ROBOT.urdf" : "expected one ROBOT.urdf, got " +
+                                                               std::to_string(args.size()) +
+                                                               " arguments");
+  }
+  robots::PairFilterOptions filter;
+  if (!samplesText.empty()) {
+    filter.samples = static_cast<int>(
+        parseCount("--samples", samplesText, std::numeric_limits<int>::max()));
+  }
+  if (!seedText.empty()) {
+    filter.seed = parseCount("--seed", seedText, std::numeric_limits<std::uint64_t>::max());
+  }
+
+  robots::LoadOptions load;
+  load.packageRoots = packagePaths.roots();
+  const robots::RobotModel model = robots::RobotModel::fromUrdfFile(args[0], load);
+  const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
+
+  int geometryLinks = 0;
+  int numPieces = 0;
+  for (const auto& p : pieces) {
+    geometryLinks += p.empty() ? 0 : 1;
+    numPieces += static_cast<int>(p.size());
+  }
+  std::printf("robot '%s' (%s)\n", model.name().c_str(), model.source().c_str());
+  std::printf("%d links (%d with collision geometry), %d joints, %d variables, %d collision "
+              "elements, %d convex pieces\n",
+              model.numLinks(), geometryLinks, model.numJoints(), model.numVariables(),
+              model.numCollisionElements(), numPieces);
+
+  std::printf("\nvariables (configuration order):\n");
+  std::printf("  %5s  %-24s %-10s %12s %12s %12s\n", "index", "joint", "type", "lower", "upper",
+              "velocity");
+  for (int v = 0; v < model.numVariables(); ++v) {
+    const robots::Joint& j = model.joint(model.variableJoint(v));
+    std::printf("  %5d  %-24s %-10s %12.6g %12.6g %12.6g\n", v, j.name.c_str(), toString(j.type),
+                model.lowerLimits()[v], model.upperLimits()[v], j.velocityLimit);
+  }
+  std::printf("\nmimic joints:\n");
+  bool anyMimic = false;
+  for (const robots::Joint& j : model.joints()) {
+    if (!j.isMimic()) continue;
+    anyMimic = true;
+    std::printf("  %s = %.6g * %s + %.6g\n", j.name.c_str(), j.multiplier,
+                model.variableNames()[j.variable].c_str(), j.offset);
+  }
+  if (!anyMimic) std::printf("  none\n");
+
+  std::printf("\nlinks:\n");
+  std::printf("  %5s  %-24s %-24s %-24s %8s %6s\n", "index", "link", "parent", "joint",
+              "elements", "pieces");
+  for (int l = 0; l < model.numLinks(); ++l) {
+    const robots::Link& link = model.link(l);
+    std::printf("  %5d  %-24s %-24s %-24s %8zu %6zu\n", l, link.name.c_str(),
+                link.parentLink < 0 ? "-" : model.link(link.parentLink).name.c_str(),
+                link.parentJoint < 0 ? "-" : model.joint(link.parentJoint).name.c_str(),
+                link.collisions.size(), pieces[l].size());
+  }
+
+  std::printf("\npieces:\n");
+  if (numPieces == 0) std::printf("  none\n");
+  for (int l = 0; l < model.numLinks(); ++l) {
+    for (const robots::CollisionPiece& p : pieces[l]) {
+      std::printf("  %-24s %-10s %4d vertices", model.link(l).name.c_str(),
+                  deep::toString(p.core->kind()), p.core->numVertices());
+      if (p.radius > 0.0) std::printf(", radius %.6g", p.radius);
+      std::printf("  (%s)\n", p.origin.c_str());
+    }
+  }
+
+  printMeshes(model);
+
+  const robots::PairFilterResult result = robots::computeDisabledPairs(model, pieces, filter);
+  std::printf("\ncollision pairs (pair filter: %d random samples, seed %llu):\n", result.samples,
+              static_cast<unsigned long long>(filter.seed));
+  std::printf("  links with geometry: %d, link pairs: %d\n", result.numGeometryLinks,
+              result.numPairs());
+  std::printf("  disabled: %zu (Adjacent %d, Default %d, Always %d, Never %d)\n",
+              result.disabled.size(), result.count(robots::DisableReason::Adjacent),
+              result.count(robots::DisableReason::Default),
+              result.count(robots::DisableReason::Always),
+              result.count(robots::DisableReason::Never));
+  std::printf("  remaining (checked): %d\n", result.numEnabled());
+  for (const robots::LinkPairReport& r : result.pairs) {
+    if (r.reason) continue;
+    std::printf("    %-24s %-24s collides in %d of %d samples\n",
+                model.link(r.link1).name.c_str(), model.link(r.link2).name.c_str(), r.collisions,
+                result.samples);
+  }
+
+  if (!srdfPath.empty()) {
+    const std::string comment =
+        "Disabled collision pairs of " + model.name() + ", written by `deepcheck info " +
+        fileName(args[0]) + "` (pair filter: robots/include/deepcheck/robots/pair_filter.h)\n" +
+        "     on the convex hull of each collision mesh, with " + std::to_string(result.samples) +
+        " random samples, seed " + std::to_string(filter.seed) + ".";
+    robots::writeSrdf(srdfPath, model.name(), result.disabled, comment);
+    std::printf("\nwrote %s (%zu disabled pairs)\n", srdfPath.c_str(), result.disabled.size());
+  }
+  return 0;
+}
+
+}  // namespace
+
+const Subcommand kInfoCommand = {"info",
+                                 "describe a URDF robot: links, joints, pieces, collision pairs",
+                                 kUsage, runInfo};
+
+}  // namespace deepcheck::tools
