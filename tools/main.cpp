@@ -17,6 +17,7 @@ using deepcheck::tools::Subcommand;
 const Subcommand* const kSubcommands[] = {
     &deepcheck::tools::kPdCommand,
     &deepcheck::tools::kInfoCommand,
+    &deepcheck::tools::kCheckCommand,
 };
 
 void printUsage(std::FILE* out) {

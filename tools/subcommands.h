@@ -19,5 +19,6 @@ struct Subcommand {
 
 extern const Subcommand kPdCommand;    // pd.cpp
 extern const Subcommand kInfoCommand;  // info.cpp
+extern const Subcommand kCheckCommand;  // check.cpp
 
 }  // namespace deepcheck::tools

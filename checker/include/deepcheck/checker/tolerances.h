@@ -1,0 +1,21 @@
+#pragma once
+// All numerical tolerances and defaults of deepcheck::checker, in one place.
+//
+// Lengths are in metres. Relative tolerances say what they are multiplied by.
+
+namespace deepcheck::checker::tol {
+
+/// Bounding volumes (spheres and boxes of pieces and links) are grown by this fraction of
+/// (their radius + the distance of their centre from the world origin), so that the round-off of
+/// posing them (a few ulps of those magnitudes) can never make a bounding volume miss a point of
+/// its piece. 1e-9 is far above double round-off and far below anything a robot could resolve
+/// (1 nm at 1 m).
+constexpr double kBoundingRelative = 1e-9;
+
+/// Default margin of the reachability filter, metres: a scene piece is dropped at load time when
+/// it is farther than this from every point any robot link can ever reach (the reach spheres of
+/// reach.h). Distances reported by the world are exact up to this margin; above it they are only
+/// guaranteed to be at least the margin (a dropped piece may be nearer than a kept one then).
+constexpr double kDefaultReachMargin = 0.05;
+
+}  // namespace deepcheck::checker::tol

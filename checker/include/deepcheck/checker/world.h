@@ -1,0 +1,312 @@
+#pragma once
+// The collision world: one robot, scenes and obstacles, as posed convex pieces; the queries a
+// planner makes for a configuration q of the robot.
+//
+// What is modeled.
+//   Robot     a robots::RobotModel; each link with collision geometry is a set of convex pieces
+//             (robots/collision_geometry.h; meshes are convex-decomposed, with an on-disk cache).
+//             Links without geometry take no part in any query.
+//   Scenes    RobotModels too (a URDF kitchen, a shelf), placed at their base pose with their
+//             joints fixed (at given values or their default configuration). Their pieces are
+//             posed once, at load, in world coordinates. A scene piece that no robot link can
+//             ever reach (farther than Options::reachMargin from every link's reach sphere,
+//             reach.h) is DROPPED at load and counted in summary().
+//   Obstacles boxes, spheres, cylinders and meshes added, moved and removed at run time by id.
+//             They are not subject to the reach filter.
+//
+// Pairs. Robot-world pairs: every robot link with geometry against every scene and obstacle
+// piece. Self pairs: every pair of robot links with geometry except the disabled ones: adjacent
+// links (robots/pair_filter.h), rigidly attached links (rigidLinkPairs) and the pairs listed in
+// WorldOptions::disabledPairs (typically an SRDF's <disable_collisions>, read with
+// robots::readSrdfDisabledPairs or computed by robots::computeDisabledPairs). A disabled pair
+// never reaches the narrow phase.
+//
+// Names. A robot link is named by its URDF name, a scene link "scene/<link>", an obstacle
+// "obstacle/<name>".
+//
+// Signed distance (DESIGN.md contract, per pair of convex pieces, minimized over pieces and
+// pairs). For a pair (A, B): A is always a robot link; B is a robot link (self pair, B's link
+// index > A's) or a world body. distance > 0 is the distance, < 0 minus the penetration depth;
+// normal is unit and points from A towards B; pointB - pointA = distance * normal (world frame).
+//
+// Gradient (TrajOpt, Schulman et al. 2014): with the witness points fixed on their links,
+//     d distance / dq = normal^T (J_B(pointB) - J_A(pointA)),
+// J_X(p) the 3 x nq translational Jacobian of the point p moving with link X (kinematics.h); for a
+// robot-world pair only A moves: -normal^T J_A(pointA). So moving q along +gradient increases
+// the distance (pulls out of a collision). It is the exact derivative where the distance is
+// differentiable (a unique closest pair and witness features that do not change); at contact
+// changes, between faces parallel to each other, or where two pairs tie, it is one of the
+// one-sided derivatives.
+//
+// Threads. Queries are const and may run concurrently on one World from any number of threads.
+// Each thread uses its own Context (warm-start caches for every pair, scratch poses, statistics):
+// either one made with makeContext() and passed explicitly (the fastest), or the thread's own,
+// used by the overloads without a Context (a thread_local table keyed by world, one lookup per
+// query). Contexts are never shared between threads; the hot path takes no lock.
+// Changes (obstacles, scenes, disabled pairs) may happen while queries run: a change builds a
+// new immutable snapshot of the world under a mutex and bumps a generation counter; each query
+// reads the counter once (an atomic load) and refreshes its context only when it changed. A query
+// that started before a change finishes on the snapshot it started with.
+//
+// Errors: std::invalid_argument naming the bad value (a configuration of the wrong size or with a
+// NaN, naming the variable; an unknown link, obstacle id or scene; a non-finite pose; a bad
+// obstacle shape).
+
+#include "deepcheck/checker/tolerances.h"
+#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/robots/collision_geometry.h"
+#include "deepcheck/robots/decomposition.h"
+#include "deepcheck/robots/pair_filter.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace deepcheck::checker {
+
+namespace detail {
+struct Snapshot;
+struct WorldState;
+}  // namespace detail
+
+/// Which broad phase finds the world pieces near a robot link (see aabb_tree.h).
+enum class BroadPhase {
+  AabbTree,  ///< the static AABB tree of aabb_tree.h (default: measured faster)
+  FclTree,   ///< FCL's DynamicAABBTreeCollisionManager over the same boxes
+  None,      ///< every world piece is a candidate (bounding-volume tests only): for tests
+};
+const char* toString(BroadPhase b);
+
+/// What a body of a pair is.
+struct BodyRef {
+  enum class Kind { RobotLink, SceneLink, Obstacle } kind = Kind::RobotLink;
+  int index = -1;  ///< RobotLink: link index; SceneLink: link index in its scene; Obstacle: id
+  int scene = -1;  ///< SceneLink: the scene's index (addScene order)
+  bool operator==(const BodyRef& o) const { return kind == o.kind && index == o.index && scene == o.scene; }
+  bool operator!=(const BodyRef& o) const { return !(*this == o); }
+};
+
+/// An obstacle: a primitive or a mesh at a pose X_WO in the world.
+struct Obstacle {
+  std::string name;  ///< reported as "obstacle/<name>"; must not be empty
+  /// Box (boxSize: full edge lengths), Sphere (radius), Cylinder (radius, length along z) or
+  /// Mesh (meshPath and meshScale, or `mesh` below), in the obstacle's frame O.
+  robots::Geometry geometry;
+  /// A mesh given in memory (geometry.type == Mesh with an empty meshPath), frame O, metres.
+  std::shared_ptr<const robots::TriangleMesh> mesh;
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+
+  static Obstacle box(const std::string& name, const Eigen::Vector3d& size, const Eigen::Isometry3d& X_WO);
+  static Obstacle sphere(const std::string& name, double radius, const Eigen::Isometry3d& X_WO);
+  static Obstacle cylinder(const std::string& name, double radius, double length,
+                           const Eigen::Isometry3d& X_WO);
+  static Obstacle meshFile(const std::string& name, const std::string& path, const Eigen::Isometry3d& X_WO,
+                           const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
+  static Obstacle fromMesh(const std::string& name, robots::TriangleMesh mesh, const Eigen::Isometry3d& X_WO);
+};
+
+/// One pair's signed distance (see the header comment for the conventions).
+struct Contact {
+  double distance = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, from A towards B, world frame
+  Eigen::Vector3d pointA = Eigen::Vector3d::Zero();   ///< witness on A, world frame
+  Eigen::Vector3d pointB = Eigen::Vector3d::Zero();   ///< witness on B, world frame
+  int linkA = -1;                                     ///< robot link of A
+  BodyRef bodyB;
+  std::string nameA;  ///< link name
+  std::string nameB;  ///< link name, "scene/<link>" or "obstacle/<name>"
+  deep::SignedDistanceStatus status = deep::SignedDistanceStatus::NotConverged;
+  /// d distance / dq (numVariables entries) when DistanceOptions::gradient, else empty.
+  Eigen::VectorXd gradient;
+};
+
+struct DistanceOptions {
+  /// Also compute the gradient of each reported distance with respect to q.
+  bool gradient = false;
+  /// Pairs whose bounding volumes are at least this far apart are not measured. With the default
+  /// (infinity) the minimum over all pairs is always found.
+  double maxDistance = std::numeric_limits<double>::infinity();
+  /// When finite, DistanceResult::contacts lists every body pair (robot link, other body) whose
+  /// signed distance is at most this (the minimum over their piece pairs), nearest first.
+  double contactMargin = -std::numeric_limits<double>::infinity();
+  /// Options of the penetration-depth walk.
+  deep::DeepOptions deep;
+};
+
+struct DistanceResult {
+  /// False when no pair was within maxDistance (or the world has no pair at all); `closest` is
+  /// then default (distance +infinity).
+  bool found = false;
+  Contact closest;
+  std::vector<Contact> contacts;  ///< see DistanceOptions::contactMargin
+};
+
+/// Counters of one Context (cumulative; reset with Context::resetStats()).
+struct QueryStats {
+  std::uint64_t queries = 0;
+  std::uint64_t linkCandidates = 0;   ///< (robot link, world piece or robot link) pairs from the
+                                      ///< broad phase
+  std::uint64_t pieceTests = 0;       ///< piece pairs whose bounding volumes were compared
+  std::uint64_t narrowPhase = 0;      ///< deep::overlaps / deep::signedDistance calls
+  std::uint64_t selfNarrowPhase = 0;  ///< the part of narrowPhase on self pairs
+};
+
+/// Sent to Context::onNarrowPhase (when set) before every narrow-phase call: for tests and tools.
+struct NarrowPhaseEvent {
+  int linkA = -1;
+  BodyRef bodyB;
+};
+
+/// How a World is built.
+struct WorldOptions {
+  /// Cylinder prisms and how meshes become pieces. An empty `geometry.decomposer` means the
+  /// default: convex decomposition (robots/decomposition.h) with `decomposition` parameters,
+  /// through the on-disk cache in `decompositionCacheDir` ("" = the default directory,
+  /// decomposition_cache.h), unless `decompose` is false (then one convex hull per mesh).
+  robots::CollisionGeometryOptions geometry;
+  bool decompose = true;
+  robots::DecompositionParams decomposition;
+  std::string decompositionCacheDir;
+  /// Disable self pairs of adjacent links (robots::adjacentLinkPairs: joined by a joint, or
+  /// through links without geometry only).
+  bool disableAdjacent = true;
+  /// Disable self pairs of rigidly attached links (rigidLinkPairs: joined by fixed joints only;
+  /// their relative pose never changes, so they are always or never in collision).
+  bool disableRigid = true;
+  /// More self pairs to disable, e.g. an SRDF's (robots::readSrdfDisabledPairs); the reasons are
+  /// not used. A pair naming a link the robot lacks is an error (robots::checkDisabledPairs).
+  std::vector<robots::DisabledPair> disabledPairs;
+  /// Scene pieces farther than this from every reach sphere are dropped (metres, >= 0; infinity
+  /// keeps everything).
+  double reachMargin = tol::kDefaultReachMargin;
+  BroadPhase broadPhase = BroadPhase::AabbTree;
+};
+
+/// Placement of a scene (World::addScene).
+struct SceneOptions {
+  /// Joint values of the scene (its numVariables()); empty: its default configuration.
+  Eigen::VectorXd q;
+  /// Used as the scene's base pose when overridePose; otherwise the model's own basePose().
+  bool overridePose = false;
+  Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
+};
+
+class World {
+ public:
+  using Options = WorldOptions;
+
+  /// Per-thread query state: warm-start caches (one deep::PairCache per piece pair), scratch
+  /// poses and statistics. Made by World::makeContext(); bound to that world; movable, not
+  /// copyable; must not be used by two threads at once.
+  class Context {
+   public:
+    Context(Context&&) noexcept;
+    Context& operator=(Context&&) noexcept;
+    ~Context();
+    const QueryStats& stats() const;
+    void resetStats();
+    /// Forget every warm start (the next queries are cold).
+    void resetCaches();
+    /// Called before every narrow-phase call when set (slows queries; for tests).
+    std::function<void(const NarrowPhaseEvent&)> onNarrowPhase;
+
+    struct Impl;  ///< opaque (world_queries.cpp)
+
+   private:
+    friend class World;
+    explicit Context(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+  };
+
+  /// A world with `robot` and nothing else. Meshes are loaded and decomposed here.
+  explicit World(robots::RobotModel robot, const WorldOptions& options = WorldOptions());
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  ~World();
+
+  /// Adds a scene; returns its index. Its pieces are posed and filtered by reach here.
+  int addScene(robots::RobotModel scene, const SceneOptions& options = SceneOptions());
+  int addScene(robots::RobotModel scene, const Eigen::Isometry3d& X_WS);
+
+  /// Adds an obstacle; returns its id (never reused).
+  int addObstacle(const Obstacle& obstacle);
+  /// Throws std::invalid_argument for an unknown id.
+  void removeObstacle(int id);
+  void setObstaclePose(int id, const Eigen::Isometry3d& X_WO);
+  /// Ids of the current obstacles, increasing.
+  std::vector<int> obstacleIds() const;
+
+  /// Disables one more self pair (by link names).
+  void disablePair(const std::string& linkA, const std::string& linkB);
+
+  // --- queries -----------------------------------------------------------------------------
+
+  Context makeContext() const;
+
+  /// True when no allowed pair overlaps (touching counts as overlap). Stops at the first overlap.
+  bool isFree(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context) const;
+  bool isFree(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+
+  /// The minimum signed distance over allowed pairs, its pair, witnesses, normal, optionally its
+  /// gradient and the contact list.
+  DistanceResult signedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context,
+                                const DistanceOptions& options = {}) const;
+  DistanceResult signedDistance(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                const DistanceOptions& options = {}) const;
+
+  // --- description -------------------------------------------------------------------------
+
+  const robots::RobotModel& robot() const;
+  int numScenes() const;
+  const robots::RobotModel& scene(int index) const;
+  /// The joint values the scene is fixed at.
+  const Eigen::VectorXd& sceneConfiguration(int index) const;
+  /// The obstacle as given (pose updated by setObstaclePose).
+  Obstacle obstacle(int id) const;
+
+  /// Self pairs checked, as (link, link) with the first index smaller.
+  std::vector<std::pair<int, int>> allowedSelfPairs() const;
+  /// The name of a body ("scene/<link>", "obstacle/<name>" or the link name).
+  std::string bodyName(const BodyRef& body) const;
+
+  struct Summary {
+    int robotLinks = 0;           ///< all links
+    int robotLinksWithGeometry = 0;
+    int robotPieces = 0;
+    int selfPairs = 0;            ///< link pairs checked
+    int selfPiecePairs = 0;
+    int disabledAdjacent = 0;     ///< link pairs with geometry disabled as adjacent
+    int disabledRigid = 0;        ///< ... as rigidly attached (and not adjacent)
+    int disabledByUser = 0;       ///< ... by WorldOptions::disabledPairs or disablePair()
+    int scenes = 0;
+    int sceneLinksWithGeometry = 0;
+    int scenePiecesKept = 0;
+    int scenePiecesDropped = 0;
+    int obstacles = 0;
+    int obstaclePieces = 0;
+    /// Largest amount by which a piece may stick out of the original geometry (cylinder prisms,
+    /// convex decomposition's concavity); NaN when a custom decomposer makes it unknown. Metres.
+    double geometryExcess = 0.0;
+  };
+  Summary summaryCounts() const;
+  /// Human-readable summary: links, pieces, scene pieces kept and dropped, pairs checked.
+  std::string summary() const;
+
+ private:
+  friend std::shared_ptr<const detail::Snapshot> snapshotOf(const World& world);
+  std::shared_ptr<detail::WorldState> state_;
+};
+
+/// Link pairs (i < j), both with geometry (`hasGeometry[link]`), joined by fixed joints only: their
+/// relative pose never changes.
+std::vector<std::pair<int, int>> rigidLinkPairs(const robots::RobotModel& model, const std::vector<bool>& hasGeometry);
+
+}  // namespace deepcheck::checker

@@ -1,0 +1,147 @@
+#pragma once
+// Helpers shared by the checker test files: small URDF robots with known geometry, the shared
+// data folder (Panda, kitchen), random configurations and exception-message checks.
+
+#include "deepcheck/checker/world.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace deepcheck::checker::test {
+
+/// The shared data folder (../shared of the source tree), or "" when it is absent.
+inline std::string sharedDir() {
+#ifdef DEEPCHECK_SHARED_DIR
+  std::error_code ec;
+  if (std::filesystem::is_directory(std::filesystem::path(DEEPCHECK_SHARED_DIR) / "robots", ec)) {
+    return DEEPCHECK_SHARED_DIR;
+  }
+#endif
+  return "";
+}
+
+/// True when ../shared is present; otherwise logs why the calling test is skipped.
+inline bool haveShared(const char* what) {
+  if (!sharedDir().empty()) return true;
+  BOOST_TEST_MESSAGE("skipped " << what << ": the shared data folder (../shared beside the source tree, with "
+                                   "robots/ and scenes/) is absent");
+  return false;
+}
+
+/// Decomposition cache of the test runs (in the build folder, so reruns are fast).
+inline std::string testCacheDir() {
+#ifdef DEEPCHECK_BINARY_DIR
+  return std::string(DEEPCHECK_BINARY_DIR) + "/checker_test_cache";
+#else
+  return "";
+#endif
+}
+
+inline WorldOptions testWorldOptions() {
+  WorldOptions o;
+  o.decompositionCacheDir = testCacheDir();
+  return o;
+}
+
+/// A slider: a cube of edge `edge` on a prismatic joint along x (variable "slide", limits
+/// [-2, 2]); its centre is at (q, 0, 0).
+inline robots::RobotModel sliderRobot(double edge) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", edge);  // std::to_string keeps 6 decimals only
+  const std::string e = buffer;
+  const std::string xml =
+      "<robot name='slider'>"
+      "<link name='base'/>"
+      "<link name='cube'><collision><geometry><box size='" + e + " " + e + " " + e + "'/></geometry></collision></link>"
+      "<joint name='slide' type='prismatic'><parent link='base'/><child link='cube'/>"
+      "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
+      "</robot>";
+  return robots::RobotModel::fromUrdfString(xml, ".", {}, "slider.urdf");
+}
+
+/// A 3-joint arm: base box; link1 (box) on a revolute z joint; link2 (box) on a revolute y joint;
+/// link3 (box) on a revolute y joint with a tool sphere rigidly attached by a fixed joint; and a
+/// link without geometry in between (link2 -> elbow (no geometry) -> link3).
+inline robots::RobotModel armRobot() {
+  const std::string xml = R"(
+<robot name='arm'>
+  <link name='base'><collision><origin xyz='0 0 0.05'/><geometry><box size='0.3 0.3 0.1'/></geometry></collision></link>
+  <link name='link1'><collision><origin xyz='0 0 0.2'/><geometry><box size='0.1 0.1 0.4'/></geometry></collision></link>
+  <joint name='j1' type='revolute'><parent link='base'/><child link='link1'/><origin xyz='0 0 0.1'/>
+    <axis xyz='0 0 1'/><limit lower='-3' upper='3' effort='1' velocity='1'/></joint>
+  <link name='link2'><collision><origin xyz='0 0 0.15'/><geometry><box size='0.08 0.08 0.3'/></geometry></collision></link>
+  <joint name='j2' type='revolute'><parent link='link1'/><child link='link2'/><origin xyz='0 0 0.4'/>
+    <axis xyz='0 1 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>
+  <link name='elbow'/>
+  <joint name='elbow_fixed' type='fixed'><parent link='link2'/><child link='elbow'/><origin xyz='0 0 0.3'/></joint>
+  <link name='link3'><collision><origin xyz='0 0 0.125'/><geometry><cylinder radius='0.03' length='0.25'/></geometry></collision></link>
+  <joint name='j3' type='revolute'><parent link='elbow'/><child link='link3'/>
+    <axis xyz='0 1 0'/><limit lower='-2.5' upper='2.5' effort='1' velocity='1'/></joint>
+  <link name='tool'><collision><geometry><sphere radius='0.05'/></geometry></collision></link>
+  <joint name='tool_fixed' type='fixed'><parent link='link3'/><child link='tool'/><origin xyz='0 0 0.3'/></joint>
+</robot>)";
+  return robots::RobotModel::fromUrdfString(xml, ".", {}, "arm.urdf");
+}
+
+/// A uniformly random configuration within the limits.
+inline Eigen::VectorXd randomConfiguration(const robots::RobotModel& model, std::mt19937& rng) {
+  Eigen::VectorXd q(model.numVariables());
+  for (int v = 0; v < q.size(); ++v) {
+    std::uniform_real_distribution<double> u(model.lowerLimits()[v], model.upperLimits()[v]);
+    q[v] = u(rng);
+  }
+  return q;
+}
+
+inline Eigen::Isometry3d translation(double x, double y, double z) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(x, y, z);
+  return X;
+}
+
+/// Checks that `f` throws std::invalid_argument whose message contains `needle`.
+inline void checkThrowsWith(const std::function<void()>& f, const std::string& needle) {
+  try {
+    f();
+    BOOST_ERROR("expected std::invalid_argument mentioning '" << needle << "'");
+  } catch (const std::invalid_argument& e) {
+    BOOST_TEST(std::string(e.what()).find(needle) != std::string::npos,
+               "message '" << e.what() << "' should mention '" << needle << "'");
+  }
+}
+
+inline std::string pandaUrdf() {
+  return sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf";
+}
+inline std::string pandaPackageRoot() { return sharedDir() + "/robots/panda"; }
+inline std::string kitchenUrdf() {
+  return sharedDir() + "/scenes/motion_bench_maker/configs/scenes/kitchen/kitchen.urdf";
+}
+inline std::string scenesPackageRoot() { return sharedDir() + "/scenes"; }
+
+inline robots::RobotModel loadPanda() {
+  robots::LoadOptions o;
+  o.packageRoots = {pandaPackageRoot()};
+  o.useRosPackagePath = false;
+  return robots::RobotModel::fromUrdfFile(pandaUrdf(), o);
+}
+
+/// The kitchen, placed so the Panda (at the origin) stands in front of the counter.
+inline robots::RobotModel loadKitchen() {
+  robots::LoadOptions o;
+  o.packageRoots = {scenesPackageRoot()};
+  o.useRosPackagePath = false;
+  return robots::RobotModel::fromUrdfFile(kitchenUrdf(), o);
+}
+
+}  // namespace deepcheck::checker::test

@@ -1,0 +1,115 @@
+// Agreement with the FCL reference backend (original meshes, exact primitives) on random
+// configurations: a configuration FCL finds colliding is never reported free; a false alarm
+// (ours colliding, FCL free) is allowed only within the geometry excess of the pieces (cylinder
+// prisms, decomposition concavity); on free configurations our distance is at most FCL's and at
+// least FCL's minus that excess. Both bodies of a pair may stick out of their original shapes,
+// so the tolerance of a pair is twice the world's largest excess.
+
+#include "checker_test_util.h"
+
+#include "deepcheck/checker/fcl_backend.h"
+#include "deepcheck/checker/world.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <random>
+
+using namespace deepcheck;
+using namespace deepcheck::checker;
+using namespace deepcheck::checker::test;
+
+namespace {
+
+/// FCL's distances between meshes and primitives come from its own GJK on triangles; they agree
+/// with exact distances to about this (metres).
+constexpr double kFclAccuracy = 1e-6;
+
+struct Agreement {
+  int samples = 0;
+  int fclColliding = 0;
+  int missed = 0;       ///< FCL colliding, ours free: must be 0
+  int falseAlarms = 0;  ///< ours colliding, FCL free
+  int falseAlarmsBeyondExcess = 0;
+  double worstFalseAlarm = 0.0;  ///< largest FCL distance of a false alarm
+  int distanceChecks = 0;
+};
+
+Agreement compare(const World& world, int samples, unsigned seed, bool distances) {
+  FclWorld fcl(world);
+  auto context = world.makeContext();
+  const double excess = 2 * world.summaryCounts().geometryExcess;  // both bodies of the pair
+  BOOST_TEST_REQUIRE(!std::isnan(excess));
+  std::mt19937 rng(seed);
+  Agreement a;
+  for (int i = 0; i < samples; ++i) {
+    const Eigen::VectorXd q = randomConfiguration(world.robot(), rng);
+    const bool ours = world.isFree(q, context);
+    const bool theirs = fcl.isFree(q);
+    ++a.samples;
+    a.fclColliding += !theirs;
+    if (!theirs && ours) {
+      ++a.missed;
+      BOOST_ERROR("FCL finds q = " << q.transpose() << " colliding; reported free");
+    }
+    if (!distances && theirs == ours) continue;
+    const FclDistanceResult reference = theirs ? fcl.distance(q) : FclDistanceResult{};
+    if (theirs && !ours) {
+      ++a.falseAlarms;
+      a.worstFalseAlarm = std::max(a.worstFalseAlarm, reference.distance);
+      if (reference.distance > excess + kFclAccuracy) ++a.falseAlarmsBeyondExcess;
+    }
+    if (distances && theirs) {
+      const DistanceResult r = world.signedDistance(q, context);
+      BOOST_TEST(r.closest.distance <= reference.distance + kFclAccuracy,
+                 "q " << q.transpose() << ": sd " << r.closest.distance << " (" << r.closest.nameA << " / "
+                      << r.closest.nameB << ") above FCL's " << reference.distance << " (" << reference.nameA
+                      << " / " << reference.nameB << ")");
+      BOOST_TEST(r.closest.distance >= reference.distance - excess - kFclAccuracy,
+                 "q " << q.transpose() << ": sd " << r.closest.distance << " below FCL's " << reference.distance
+                      << " by more than the excess " << excess);
+      ++a.distanceChecks;
+    }
+  }
+  BOOST_TEST_MESSAGE(a.samples << " configurations: FCL colliding " << a.fclColliding << ", missed " << a.missed
+                               << ", false alarms " << a.falseAlarms << " (worst FCL distance " << a.worstFalseAlarm
+                               << " m, tolerance " << excess << " m, beyond it " << a.falseAlarmsBeyondExcess << ")");
+  return a;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(checker_fcl)
+
+BOOST_AUTO_TEST_CASE(arm_with_primitives_and_a_mesh) {
+  World world(armRobot(), testWorldOptions());
+  Eigen::Isometry3d tilted = translation(0.35, 0.1, 0.55);
+  tilted.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  world.addObstacle(Obstacle::box("crate", Eigen::Vector3d(0.2, 0.3, 0.25), tilted));
+  world.addObstacle(Obstacle::sphere("ball", 0.12, translation(-0.3, -0.25, 0.7)));
+  world.addObstacle(Obstacle::cylinder("post", 0.05, 0.6, translation(0.0, 0.45, 0.4)));
+  robots::TriangleMesh tetra;
+  tetra.vertices = {{0, 0, 0}, {0.3, 0, 0}, {0, 0.3, 0}, {0, 0, 0.3}};
+  tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  world.addObstacle(Obstacle::fromMesh("tetra", tetra, translation(-0.4, 0.3, 0.2)));
+  const Agreement a = compare(world, 3000, 31, true);
+  BOOST_TEST(a.missed == 0);
+  BOOST_TEST(a.falseAlarmsBeyondExcess == 0);
+  BOOST_TEST(a.fclColliding > 300);               // both outcomes are well represented
+  BOOST_TEST(a.fclColliding < a.samples - 300);
+  BOOST_TEST(a.distanceChecks > 300);
+}
+
+BOOST_AUTO_TEST_CASE(panda_in_the_kitchen) {
+  if (!haveShared("panda_in_the_kitchen")) return;
+  World world(loadPanda(), testWorldOptions());
+  world.addScene(loadKitchen());
+  BOOST_TEST_MESSAGE(world.summary());
+  const Agreement a = compare(world, 2000, 32, true);
+  BOOST_TEST(a.missed == 0);
+  BOOST_TEST(a.falseAlarmsBeyondExcess == 0);
+  BOOST_TEST(a.fclColliding > 200);
+  BOOST_TEST(a.fclColliding < a.samples - 200);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

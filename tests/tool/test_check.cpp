@@ -1,0 +1,277 @@
+// End-to-end tests of `deepcheck check`: the binary is run with popen on URDF files and
+// configurations written to temporary files; answers are compared with distances known in closed
+// form (a cube on a slider against scene boxes), and the output format with the contract.
+
+#include <boost/test/unit_test.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// A folder of its own under the temporary directory, removed at the end.
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    static int counter = 0;
+    dir = fs::temp_directory_path() /
+          ("deepcheck_tool_check_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(dir);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir / name, std::ios::binary) << text;
+    return (dir / name).string();
+  }
+};
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Runs `deepcheck check <args>` with `input` on stdin. The decomposition cache goes to the
+/// scratch folder (XDG_CACHE_HOME) so the test never writes to the user's cache.
+Run runCheck(const Scratch& scratch, const std::string& args, const std::string& input) {
+  const std::string in = scratch.write("stdin.txt", input);
+  const fs::path err = scratch.dir / "stderr.txt";
+  const std::string cmd = "XDG_CACHE_HOME=" + quote((scratch.dir / "cache").string()) + " " + quote(DEEPCHECK_TOOL) +
+                          " check " + args + " < " + quote(in) + " 2> " + quote(err.string());
+  Run r;
+  if (FILE* pipe = ::popen(cmd.c_str(), "r")) {
+    char buf[4096];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+    const int status = ::pclose(pipe);
+    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  r.err = readFile(err);
+  return r;
+}
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  std::string line;
+  while (std::getline(in, line)) out.push_back(line);
+  return out;
+}
+
+std::vector<std::string> fields(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  std::string f;
+  while (in >> f) out.push_back(f);
+  return out;
+}
+
+std::string fmt(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+/// Parses a number printed with %.17g (and checks that it was).
+double number(const std::string& field) {
+  const double v = std::strtod(field.c_str(), nullptr);
+  BOOST_TEST(fmt(v) == field, "'" << field << "' is not printed with %.17g");
+  return v;
+}
+
+// A cube of edge 0.2 on a prismatic joint along x (centre at x = q) and a variable "lift" that
+// moves it along z; a scene with a wall (x from 0.6 to 0.8) and a floor (top at z = -0.35).
+const char* kRobot =
+    "<robot name='slider'><link name='base'/><link name='carriage'/>"
+    "<link name='cube'><collision><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+    "<joint name='slide' type='prismatic'><parent link='base'/><child link='carriage'/>"
+    "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
+    "<joint name='lift' type='prismatic'><parent link='carriage'/><child link='cube'/>"
+    "<axis xyz='0 0 1'/><limit lower='-1' upper='1' effort='1' velocity='1'/></joint></robot>";
+const char* kScene =
+    "<robot name='room'><link name='root'/>"
+    "<link name='wall'><collision><origin xyz='0.7 0 0'/><geometry><box size='0.2 2 2'/></geometry></collision></link>"
+    "<link name='floor'><collision><origin xyz='0 0 -0.45'/><geometry><box size='4 4 0.2'/></geometry></collision></link>"
+    "<joint name='w' type='fixed'><parent link='root'/><child link='wall'/></joint>"
+    "<joint name='f' type='fixed'><parent link='root'/><child link='floor'/></joint></robot>";
+
+constexpr double kExact = 1e-9;
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(tool_check)
+
+BOOST_AUTO_TEST_CASE(known_distances_and_gradients) {
+  Scratch s;
+  const std::string robot = s.write("slider.urdf", kRobot);
+  const std::string scene = s.write("room.urdf", kScene);
+  // (x, z): wall distance 0.5 - x, floor distance z + 0.25.
+  const std::vector<std::pair<double, double>> qs = {{0.0, 0.0}, {0.4, 0.1}, {-0.3, -0.2}, {0.55, 0.0}, {0.0, -0.3}};
+  std::string input = "# x z\n\n";
+  for (const auto& [x, z] : qs) input += fmt(x) + " " + fmt(z) + "\n";
+  const Run r = runCheck(s, "--robot " + robot + " --scene " + scene + " --gradient", input);
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const std::vector<std::string> out = lines(r.out);
+  BOOST_TEST_REQUIRE(out.size() == qs.size());
+  for (std::size_t i = 0; i < qs.size(); ++i) {
+    const auto [x, z] = qs[i];
+    const double wall = 0.5 - x;
+    const double floor = z + 0.25;
+    const std::vector<std::string> f = fields(out[i]);
+    BOOST_TEST_REQUIRE(f.size() == 5u, out[i]);
+    const double sd = number(f[0]);
+    BOOST_TEST(std::abs(sd - std::min(wall, floor)) < kExact, out[i]);
+    BOOST_TEST(f[1] == "cube");
+    BOOST_TEST(f[2] == (wall < floor ? "scene/wall" : "scene/floor"));
+    const double gx = number(f[3]);
+    const double gz = number(f[4]);
+    BOOST_TEST(std::abs(gx - (wall < floor ? -1.0 : 0.0)) < 1e-9, out[i]);
+    BOOST_TEST(std::abs(gz - (wall < floor ? 0.0 : 1.0)) < 1e-9, out[i]);
+  }
+  const std::vector<std::string> err = lines(r.err);
+  BOOST_TEST_REQUIRE(!err.empty());
+  BOOST_TEST(err.back().rfind("configurations 5 total_us ", 0) == 0u, err.back());
+  BOOST_TEST(r.err.find("robot 'slider'") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(scene_pose_and_no_gradient) {
+  Scratch s;
+  const std::string robot = s.write("slider.urdf", kRobot);
+  const std::string scene = s.write("room.urdf", kScene);
+  // The room turned half a turn about z and raised by 0.05: the wall is now at x -0.8 .. -0.6,
+  // the floor top at -0.30.
+  const Run r = runCheck(s, "--robot=" + robot + " --scene " + scene + " --scene-pose 0 0 0.05 0 0 3.141592653589793",
+                         "-0.2 0.3\n0.3 0\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const std::vector<std::string> out = lines(r.out);
+  BOOST_TEST_REQUIRE(out.size() == 2u);
+  std::vector<std::string> f = fields(out[0]);
+  BOOST_TEST_REQUIRE(f.size() == 3u);  // no gradient
+  BOOST_TEST(std::abs(number(f[0]) - 0.3) < kExact);  // wall: -0.3 - (-0.6)
+  BOOST_TEST(f[2] == "scene/wall");
+  f = fields(out[1]);
+  BOOST_TEST(std::abs(number(f[0]) - 0.2) < kExact);  // floor: -0.1 - (-0.3)
+  BOOST_TEST(f[2] == "scene/floor");
+}
+
+BOOST_AUTO_TEST_CASE(self_pairs_and_srdf) {
+  // Two cubes on one slider each; the SRDF disables their pair, leaving no pair at all.
+  Scratch s;
+  const std::string robot = s.write(
+      "pair.urdf",
+      "<robot name='pair'><link name='base'/>"
+      "<link name='a'><collision><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+      "<link name='b'><collision><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+      "<joint name='ja' type='prismatic'><parent link='base'/><child link='a'/><axis xyz='1 0 0'/>"
+      "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
+      "<joint name='jb' type='prismatic'><parent link='base'/><child link='b'/><origin xyz='0 0 0'/><axis xyz='1 0 0'/>"
+      "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
+  // Both hang from the base (geometry-less): adjacent through it, so disabled by default.
+  Run r = runCheck(s, "--robot " + robot, "0 1\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(lines(r.out).at(0) == "inf none none");
+  BOOST_TEST(r.err.find("0 link pairs checked") != std::string::npos, r.err);
+  // An SRDF for another robot's links is an error naming the link.
+  const std::string srdf = s.write("bad.srdf", "<robot name='pair'><disable_collisions link1='a' link2='zzz' reason='Never'/></robot>");
+  r = runCheck(s, "--robot " + robot + " --srdf " + srdf, "0 1\n");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("zzz") != std::string::npos, r.err);
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_and_command_lines) {
+  Scratch s;
+  const std::string robot = s.write("slider.urdf", kRobot);
+  const std::string scene = s.write("room.urdf", kScene);
+  // Wrong number of values: exit 1, the line named, nothing on stdout.
+  Run r = runCheck(s, "--robot " + robot, "0 0\n0.1\n");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.out.empty());
+  BOOST_TEST(r.err.find("line 2") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("2 variables") != std::string::npos, r.err);
+  r = runCheck(s, "--robot " + robot, "0 nan\n");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("line 1") != std::string::npos, r.err);
+  // Command-line errors: exit 2 with the usage.
+  for (const std::string& args : {std::string(""), "--robot " + robot + " --scene-pose 0 0 0 0 0 0",
+                                  "--robot " + robot + " --scene " + scene + " --scene-pose 0 0 0 0 0",
+                                  "--robot " + robot + " --scene " + scene + " --scene-pose 0 0 0 0 0 x",
+                                  "--robot " + robot + " --frobnicate", "--robot " + robot + " --robot " + robot}) {
+    r = runCheck(s, args, "");
+    BOOST_TEST(r.status == 2, "args '" << args << "': " << r.err);
+    BOOST_TEST(r.err.find("usage: deepcheck check") != std::string::npos);
+  }
+  // A missing file: exit 1 naming it.
+  r = runCheck(s, "--robot " + (s.dir / "none.urdf").string(), "");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("none.urdf") != std::string::npos, r.err);
+}
+
+BOOST_AUTO_TEST_CASE(bundled_arm_in_the_shelf) {
+  // The project's own arm and shelf: runs on a fresh clone.
+  Scratch s;
+  const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+  const std::string args = "--robot " + quote(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --srdf " +
+                           quote(data + "/deepcheck_arm/srdf/deepcheck_arm.srdf") + " --scene " +
+                           quote(data + "/scenes/shelf.urdf") + " --package-path " + quote(data) + " --gradient";
+  // The arm straight up (clear of the shelf), and bent forward into it.
+  const Run r = runCheck(s, args, "0 0 0 0 0 0 0\n0 1.2 0 0 0 0 0\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const std::vector<std::string> out = lines(r.out);
+  BOOST_TEST_REQUIRE(out.size() == 2u);
+  for (const std::string& line : out) BOOST_TEST(fields(line).size() == 3u + 7u, line);
+  BOOST_TEST(number(fields(out[0])[0]) > 0.0, out[0]);
+  BOOST_TEST(number(fields(out[1])[0]) < 0.0, out[1]);
+  BOOST_TEST(fields(out[1])[2] == "scene/shelf", out[1]);
+}
+
+BOOST_AUTO_TEST_CASE(panda_in_the_kitchen) {
+  const std::string shared = DEEPCHECK_SHARED_DIR;
+  if (!fs::is_directory(shared + "/robots")) {
+    BOOST_TEST_MESSAGE("skipped panda_in_the_kitchen: the shared data folder (../shared) is absent");
+    return;
+  }
+  Scratch s;
+  const std::string args =
+      "--robot " + quote(shared + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf") + " --srdf " +
+      quote(shared + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf") + " --scene " +
+      quote(shared + "/scenes/motion_bench_maker/configs/scenes/kitchen/kitchen.urdf") + " --package-path " +
+      quote(shared + "/robots/panda") + " --package-path " + quote(shared + "/scenes");
+  // The Panda's ready pose (clear), then its arm folded down into the counter.
+  const Run r = runCheck(s, args, "0 -0.785 0 -2.356 0 1.571 0.785 0.035\n1.0 1.2 0 -0.5 0 1.0 0 0.02\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const std::vector<std::string> out = lines(r.out);
+  BOOST_TEST_REQUIRE(out.size() == 2u);
+  BOOST_TEST(number(fields(out[0])[0]) > 0.0, out[0]);
+  BOOST_TEST(number(fields(out[1])[0]) < 0.0, out[1]);
+  BOOST_TEST(fields(out[1])[2].rfind("scene/", 0) == 0u, out[1]);
+  BOOST_TEST(r.err.find("scene 0 'kitchen'") != std::string::npos, r.err);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

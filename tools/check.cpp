@@ -1,0 +1,222 @@
+// `deepcheck check`: signed distance of a robot in its scenes for configurations read from stdin.
+//
+//   deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...
+//                   [--srdf FILE] [--package-path DIR]... [--gradient] < configs.txt
+//
+// Input: one configuration per line, the joint values in configuration order (the order
+// `deepcheck info` prints: RobotModel::variableNames()), separated by blanks; lines whose first
+// non-blank character is '#', and blank lines, are skipped.
+// Output: one line per configuration, "sd linkA linkB" (%.17g): the minimum signed distance over
+// the checked pairs (robot-scene and robot self-collision; < 0 is minus the penetration depth),
+// its robot link and the other body (a robot link, or "scene/<link>" for a scene link); with
+// --gradient, the nq components of d sd / dq follow. When the world has no pair at all the line
+// is "inf none none". On stderr: the world's summary, then a last line
+// "configurations N total_us T", T the time spent in the queries (loading excluded).
+//
+// The whole input is parsed before the first query, so a bad line produces no output on stdout,
+// one error line naming the line, and exit status 1.
+
+#include "common.h"
+#include "subcommands.h"
+
+#include "deepcheck/checker/world.h"
+#include "deepcheck/robots/pair_filter.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <Eigen/Geometry>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace deepcheck::tools {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
+    "                       [--srdf FILE] [--package-path DIR]... [--gradient] < configs.txt\n"
+    "\n"
+    "Minimum signed distance of the robot to its scenes and to itself, one configuration per\n"
+    "input line (joint values in the order `deepcheck info` prints; '#' comments and blank lines\n"
+    "are skipped). Output per line: 'sd linkA linkB' (%.17g; sd < 0 is minus the penetration\n"
+    "depth; scene links are named scene/<link>), and with --gradient the components of d sd/dq.\n"
+    "On stderr: the world's summary and a last line 'configurations N total_us T'.\n"
+    "\n"
+    "options:\n"
+    "  --robot FILE        the robot's URDF (required)\n"
+    "  --scene FILE        a scene URDF, its joints at their default values (repeatable)\n"
+    "  --scene-pose x y z roll pitch yaw\n"
+    "                      places the scene given just before (metres, radians; URDF rpy:\n"
+    "                      R = Rz(yaw) Ry(pitch) Rx(roll)); default: the identity\n"
+    "  --srdf FILE         disable the self-collision pairs of this SRDF\n"
+    "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"
+    "                      also read)\n"
+    "  --gradient          append the gradient of sd with respect to the joint values\n";
+
+struct SceneArg {
+  std::string path;
+  bool posed = false;
+  Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
+};
+
+double parseValue(const std::string& text, const std::string& what) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double value = std::strtod(begin, &end);
+  if (end == begin || *end != '\0' || !std::isfinite(value)) {
+    throw UsageError(what + " needs a finite number, got '" + text + "'");
+  }
+  return value;
+}
+
+/// Reads --robot, --scene (with --scene-pose after it) and --srdf in command-line order.
+void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::vector<SceneArg>& scenes,
+                      std::string& srdf) {
+  std::vector<std::string> rest;
+  auto valueOf = [&](std::size_t& i, const std::string& name) {
+    const std::string prefix = name + "=";
+    std::string value;
+    if (args[i] == name) {
+      if (i + 1 == args.size()) throw UsageError("option " + name + " needs a value");
+      value = args[++i];
+    } else {
+      value = args[i].substr(prefix.size());
+    }
+    if (value.empty()) throw UsageError("option " + name + " needs a non-empty value");
+    return value;
+  };
+  auto is = [&](const std::string& arg, const std::string& name) {
+    return arg == name || arg.compare(0, name.size() + 1, name + "=") == 0;
+  };
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (is(args[i], "--robot")) {
+      if (!robot.empty()) throw UsageError("option --robot given more than once");
+      robot = valueOf(i, "--robot");
+    } else if (is(args[i], "--srdf")) {
+      if (!srdf.empty()) throw UsageError("option --srdf given more than once");
+      srdf = valueOf(i, "--srdf");
+    } else if (is(args[i], "--scene")) {
+      scenes.push_back(SceneArg{valueOf(i, "--scene")});
+    } else if (args[i] == "--scene-pose") {
+      if (scenes.empty()) throw UsageError("--scene-pose must follow a --scene");
+      if (scenes.back().posed) throw UsageError("--scene-pose given twice for scene '" + scenes.back().path + "'");
+      if (i + 6 >= args.size()) throw UsageError("--scene-pose needs 6 numbers: x y z roll pitch yaw");
+      double v[6];
+      static const char* const names[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+      for (int k = 0; k < 6; ++k) v[k] = parseValue(args[i + 1 + k], std::string("--scene-pose ") + names[k]);
+      i += 6;
+      SceneArg& s = scenes.back();
+      s.posed = true;
+      s.X_WS.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+      s.X_WS.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
+                         Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
+                         Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
+                            .toRotationMatrix();
+    } else {
+      rest.push_back(args[i]);
+    }
+  }
+  args = std::move(rest);
+  if (robot.empty()) throw UsageError("option --robot is required");
+}
+
+/// The configurations of stdin; throws InputError naming the line.
+std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot) {
+  std::vector<Eigen::VectorXd> out;
+  std::string text;
+  int number = 0;
+  while (std::getline(in, text)) {
+    ++number;
+    const std::size_t first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos || text[first] == '#') continue;
+    std::istringstream tokens(text);
+    std::vector<double> values;
+    std::string token;
+    while (tokens >> token) {
+      const char* begin = token.c_str();
+      char* end = nullptr;
+      const double value = std::strtod(begin, &end);
+      if (end == begin || *end != '\0' || !std::isfinite(value)) {
+        throw InputError("line " + std::to_string(number) + " ('" + text + "'): '" + token +
+                         "' is not a finite number");
+      }
+      values.push_back(value);
+    }
+    if (static_cast<int>(values.size()) != robot.numVariables()) {
+      throw InputError("line " + std::to_string(number) + " ('" + text + "'): " + std::to_string(values.size()) +
+                       " values, robot '" + robot.name() + "' has " + std::to_string(robot.numVariables()) +
+                       " variables");
+    }
+    out.push_back(Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())));
+  }
+  return out;
+}
+
+int run(std::vector<std::string> args) {
+  const bool gradient = takeFlag(args, "--gradient");
+  const PackagePaths paths = takePackagePaths(args);
+  std::string robotPath;
+  std::string srdf;
+  std::vector<SceneArg> scenes;
+  takeWorldOptions(args, robotPath, scenes, srdf);
+  rejectUnknownOptions(args);
+  if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "'");
+
+  robots::LoadOptions load;
+  load.packageRoots = paths.roots();
+  load.useRosPackagePath = false;  // already in paths.roots()
+  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(robotPath, load);
+  checker::WorldOptions options;
+  if (!srdf.empty()) {
+    options.disabledPairs = robots::readSrdfDisabledPairs(srdf);
+    robots::checkDisabledPairs(robot, options.disabledPairs, srdf);
+  }
+  checker::World world(std::move(robot), options);
+  for (const SceneArg& s : scenes) {
+    robots::RobotModel scene = robots::RobotModel::fromUrdfFile(s.path, load);
+    if (s.posed) {
+      world.addScene(std::move(scene), s.X_WS);
+    } else {
+      world.addScene(std::move(scene));
+    }
+  }
+  const std::vector<Eigen::VectorXd> configurations = readConfigurations(std::cin, world.robot());
+  std::fputs(world.summary().c_str(), stderr);
+
+  checker::DistanceOptions query;
+  query.gradient = gradient;
+  auto context = world.makeContext();
+  std::vector<checker::DistanceResult> results;
+  results.reserve(configurations.size());
+  const auto start = std::chrono::steady_clock::now();
+  for (const Eigen::VectorXd& q : configurations) results.push_back(world.signedDistance(q, context, query));
+  const auto stop = std::chrono::steady_clock::now();
+  for (const checker::DistanceResult& r : results) {
+    if (!r.found) {
+      std::printf("inf none none");
+    } else {
+      std::printf("%.17g %s %s", r.closest.distance, r.closest.nameA.c_str(), r.closest.nameB.c_str());
+    }
+    if (gradient) {
+      for (int v = 0; v < world.robot().numVariables(); ++v) {
+        std::printf(" %.17g", r.found ? r.closest.gradient[v] : 0.0);
+      }
+    }
+    std::printf("\n");
+  }
+  std::fflush(stdout);
+  std::fprintf(stderr, "configurations %zu total_us %lld\n", configurations.size(),
+               static_cast<long long>(std::chrono::duration_cast<std::chrono::microseconds>(stop - start).count()));
+  return 0;
+}
+
+}  // namespace
+
+const Subcommand kCheckCommand = {"check", "signed distance of a robot in its scenes, per configuration", kUsage,
+                                  run};
+
+}  // namespace deepcheck::tools
