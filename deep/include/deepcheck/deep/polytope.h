@@ -18,7 +18,9 @@
 // of the Gauss map (a convex spherical polygon), and the arc from ring normal j-1 to ring normal j
 // is the Gauss image of edge (v, nbr_j). Faces list their vertices counter-clockwise seen from
 // outside. For a Polygon, a vertex's neighbours are (next, previous) along the boundary and its
-// face ring is (0, 1). For a Segment each vertex has the other as its only neighbour.
+// face ring is (0, 1); face 0 lists the vertices 0, 1, ..., k-1 and face 1 lists them reversed
+// (k-1, ..., 1, 0), so the polyhedron rule above holds for polygons too. For a Segment each vertex
+// has the other as its only neighbour. Points and segments have no faces and empty face rings.
 
 #include <Eigen/Core>
 
@@ -82,8 +84,20 @@ class ConvexPolytope {
   double boundingRadius() const { return radius_; }
   /// Length scale used to scale tolerances: max(boundingRadius, tiny) — never zero.
   double lengthScale() const { return lengthScale_; }
-  /// Unit principal axes of the vertex distribution (columns, largest extent first).
+  /// Unit principal axes of the vertex distribution (columns, largest extent first). A rotation:
+  /// right-handed, the largest-magnitude entry of the first two columns is positive.
   const Eigen::Matrix3d& principalAxes() const { return axes_; }
+  /// Absolute flatness tolerance the hull was built with: max(kFlatRelative * extent of the input,
+  /// kCoordinateRoundoff * largest |coordinate|). Points closer than this are one point, sets
+  /// thinner than this are flat, faces coplanar within it are merged.
+  double flatTolerance() const { return flatTol_; }
+  /// What the hull guarantees, absolute: every input point is inside every face plane, every
+  /// face's vertices are on its plane, within hullTolerance() = 8 * flatTolerance() (merging
+  /// coplanar facets within flatTolerance() and dropping vertices within it of the hull of their
+  /// neighbours add up to a few times it).
+  double hullTolerance() const { return 8.0 * flatTol_; }
+  /// Vertex v relative to center(), stored (support() works on these).
+  const Eigen::Vector3d& localVertex(int v) const { return local_[v]; }
 
   /// Index of a vertex maximizing dir.x. Hill climbing over the vertex adjacency from `hint`
   /// (any vertex index; out-of-range hints start at vertex 0); brute force on small hulls.
@@ -97,12 +111,15 @@ class ConvexPolytope {
 
  private:
   ConvexPolytope() = default;
-  void finish();  // computes center, radius, axes, adjacency offsets
+  void finish();  // computes center, local vertices, radius, axes, face offsets
+  // validate(); the O(V F) test of every vertex against every face plane only when asked.
+  std::string checkInvariants(bool globalConvexity) const;
 
   friend class PolytopeBuilder;
 
   PolytopeKind kind_ = PolytopeKind::Point;
   std::vector<Eigen::Vector3d> vertices_;
+  std::vector<Eigen::Vector3d> local_;  // vertices_[v] - center_, contiguous for support()
   std::vector<Eigen::Vector3d> faceNormals_;
   std::vector<double> faceOffsets_;
   std::vector<int> faceStart_;    // face f's vertices are faceVerts_[faceStart_[f] .. faceStart_[f+1])
@@ -114,6 +131,7 @@ class ConvexPolytope {
   double radius_ = 0.0;
   double lengthScale_ = 1.0;
   Eigen::Matrix3d axes_ = Eigen::Matrix3d::Identity();
+  double flatTol_ = 0.0;
 };
 
 }  // namespace deepcheck::deep

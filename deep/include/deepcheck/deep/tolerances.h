@@ -14,6 +14,13 @@ namespace deepcheck::deep::tol {
 /// flat inputs are recognized, far below any real geometric feature of a robot mesh.
 constexpr double kFlatRelative = 1e-10;
 
+/// Round-off carried by input coordinates, relative to their largest magnitude: the coordinates of
+/// a point set are only known to about kCoordinateRoundoff * max|x| (a few tens of ulps), so a
+/// thickness or a distance below that is noise, not geometry. Hull building uses
+/// max(kFlatRelative * L, kCoordinateRoundoff * max|x|) as its flatness tolerance; the floor only
+/// matters for small shapes given far from their frame's origin (1 mm at 10 km).
+constexpr double kCoordinateRoundoff = 1e-14;
+
 /// Two hull facets whose normals differ by less than this angle (radians) and whose vertices all
 /// lie within kFlatRelative * L of the common plane are merged into one polygonal face, so Gauss
 /// maps have no zero-length arcs.
@@ -42,5 +49,8 @@ constexpr double kParallelSine = 1e-9;
 /// Shapes whose GJK distance is below kContactRelative * L are treated as touching and handed to
 /// DEEP, whose depth is then ~0: this keeps the signed distance continuous through contact.
 constexpr double kContactRelative = 1e-12;
+
+/// A pose is rejected when its rotation R has max |(R^T R - I)_ij| at or above this (dimensionless).
+constexpr double kOrthonormal = 1e-6;
 
 }  // namespace deepcheck::deep::tol

@@ -1,0 +1,60 @@
+// The pair frame P (see pair_frame.h): A's frame translated to A's centroid.
+
+#include "deepcheck/deep/pair_frame.h"
+
+#include "deepcheck/deep/tolerances.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace deepcheck::deep {
+
+void checkPose(const Eigen::Isometry3d& X, const char* what) {
+  const Eigen::Matrix3d R = X.linear();
+  const Eigen::Vector3d p = X.translation();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      const double x = c < 3 ? R(r, c) : p[r];
+      if (!std::isfinite(x)) {
+        std::ostringstream msg;
+        msg << what << ": pose has a non-finite " << (c < 3 ? "rotation" : "translation")
+            << " entry (" << r << ", " << c << ") = " << x;
+        throw std::invalid_argument(msg.str());
+      }
+    }
+  }
+  const double error = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (!(error < tol::kOrthonormal)) {
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << what << ": rotation is not orthonormal (max |R^T R - I| = " << error << ")";
+    throw std::invalid_argument(msg.str());
+  }
+  const double det = R.determinant();
+  if (!(det > 0.0)) {
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << what << ": rotation is a reflection (det R = " << det << ")";
+    throw std::invalid_argument(msg.str());
+  }
+}
+
+PairFrame PairFrame::make(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
+                          const ConvexPolytope& B, const Eigen::Isometry3d& X_WB) {
+  checkPose(X_WA, "X_WA");
+  checkPose(X_WB, "X_WB");
+  const Eigen::Matrix3d R_WA = X_WA.linear();
+  const Eigen::Matrix3d R_WB = X_WB.linear();
+  PairFrame frame;
+  frame.R = R_WA.transpose() * R_WB;
+  // The difference of the (possibly large) world positions comes first: it is exact when the two
+  // are close, so a pair far from the world origin loses no digits beyond its poses' own.
+  const Eigen::Vector3d p_AB_W = X_WB.translation() - X_WA.translation();
+  frame.t = R_WA.transpose() * p_AB_W + (frame.R * B.center() - A.center());
+  frame.X_WP = X_WA * Eigen::Translation3d(A.center());
+  return frame;
+}
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,1358 @@
+// Convex polytopes: dimension classification, hulls, coplanar-face merging, adjacency, support.
+// Conventions (vertex neighbours and face rings, polygon faces) are documented in polytope.h.
+//
+// fromPoints, step by step:
+//  1. Validate the input; shift it to a local origin (the centre of its bounding box) so that the
+//     geometric predicates below work on coordinates of the size of the set, not of its position.
+//  2. Flatness tolerance h = max(kFlatRelative * D, kCoordinateRoundoff * max|x|), D the extent of
+//     the set (distance of a farthest-point pair found by two sweeps).
+//  3. Drop points within h of an earlier kept point (a hash grid of cell size h).
+//  4. Classify: the farthest-point pair spans a line, the point farthest from it a plane, the point
+//     farthest from that plane a thickness. Each is compared with h: Point, Segment, Polygon,
+//     Polyhedron. All four kinds are decided here, before Qhull, which fails on flat input.
+//  5. Polygon: Andrew's monotone chain on plane coordinates, dropping vertices within h of the line
+//     through their neighbours; the plane is refitted (Newell) and must hold every point within h,
+//     otherwise the set is treated as a solid after all.
+//  6. Polyhedron: Qhull with facet merging (C-0), then our own pass: adjacent faces coplanar
+//     within kCoplanarAngle and h are merged (the union's boundary becomes the new loop), vertices
+//     that lie on only two faces (inside an edge) are removed, normals are refitted (Newell's
+//     area vector, which is additive over merged faces), and vertex rings are built by walking
+//     around each vertex: from ring face F, the next neighbour is F's predecessor of v, and the
+//     next ring face is the face holding the half-edge from v to that neighbour.
+// Output vertices are always input points, bit for bit.
+
+#include "deepcheck/deep/polytope.h"
+
+#include "deepcheck/deep/tolerances.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <array>
+#include <iterator>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>  // TEMPDEBUG
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+#include <libqhull_r/qhull_ra.h>
+
+namespace deepcheck::deep {
+
+using Eigen::Vector3d;
+
+const char* toString(PolytopeKind kind) {
+  switch (kind) {
+    case PolytopeKind::Point:
+      return "Point";
+    case PolytopeKind::Segment:
+      return "Segment";
+    case PolytopeKind::Polygon:
+      return "Polygon";
+    case PolytopeKind::Polyhedron:
+      return "Polyhedron";
+  }
+  return "unknown";
+}
+
+namespace {
+
+/// support() scans all vertices up to this count; hill climbing only pays off beyond.
+constexpr int kBruteForceMaxVertices = 16;
+/// support() searches plateaus of vertices within hullTolerance * |dir| of the best value (the
+/// hull is convex within hullTolerance), up to kMaxPlateau vertices.
+constexpr int kMaxPlateau = 64;
+
+/// Classification factors, in units of the flatness tolerance h (not tolerances themselves):
+/// sets measured up to kFlatRetryFactor * h thick against the plane through three extreme points
+/// are tried as polygons (the refitted plane then has to hold them within h); solids thinner than
+/// kQhullMergeMinThickness * h are built without Qhull's tolerance-sized facet merging.
+constexpr double kFlatRetryFactor = 8.0;
+constexpr double kQhullMergeMinThickness = 1000.0;
+/// At most this many rounds of dropping redundant vertices and rebuilding (see makeSolid).
+constexpr int kMaxPruneRounds = 8;
+
+
+const char* axisName(int axis) { return axis == 0 ? "x" : (axis == 1 ? "y" : "z"); }
+
+std::string formatDouble(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+
+std::uint64_t edgeKey(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+/// Newell's area vector of a closed loop: twice the vector area, along the normal for which the
+/// loop is counter-clockwise. Computed relative to the first vertex to keep digits.
+template <class Loop, class Coord>
+Vector3d newellVector(const Loop& loop, const Coord& coord) {
+  Vector3d sum = Vector3d::Zero();
+  const int k = static_cast<int>(loop.size());
+  if (k < 3) return sum;
+  const Vector3d origin = coord(loop[0]);
+  for (int i = 1; i + 1 < k; ++i) {
+    sum += (coord(loop[i]) - origin).cross(coord(loop[i + 1]) - origin);
+  }
+  return sum;
+}
+
+/// A plane fitted to a set of points: unit normal, the thickness of the set along it (band) and
+/// the width of the set (largest distance from its longest chord: a sliver has a small width).
+struct PlaneFit {
+  Vector3d normal = Vector3d::Zero();
+  double band = std::numeric_limits<double>::infinity();
+  double width = 0.0;
+};
+
+/// Plane of a (nearly) planar set, well conditioned on slivers, unlike Newell's vector, whose
+/// round-off (eps * length^2) tilts a sliver's normal in any direction by eps * length / width:
+/// here the frame comes from the set's longest chord u (two farthest-point sweeps) and the point
+/// farthest from that chord, so the only poorly determined component is a rotation about u, which
+/// moves the points by at most width * angle = eps * length. The plane is then refined by least
+/// squares in that frame. The normal is oriented along `orient`; it is zero for collinear sets.
+template <class Verts, class Coord>
+PlaneFit fitPlane(const Verts& verts, const Coord& coord, const Vector3d& orient) {
+  PlaneFit fit;
+  const int k = static_cast<int>(verts.size());
+  if (k < 3) return fit;
+  auto farthest = [&](const Vector3d& from) {
+    int best = 0;
+    double bestD = -1.0;
+    for (int i = 0; i < k; ++i) {
+      const double d = (coord(verts[i]) - from).squaredNorm();
+      if (d > bestD) {
+        bestD = d;
+        best = i;
+      }
+    }
+    return best;
+  };
+  const Vector3d a = coord(verts[farthest(coord(verts[0]))]);
+  const Vector3d chord = coord(verts[farthest(a)]) - a;
+  if (!(chord.norm() > 0.0)) return fit;
+  const Vector3d u = chord.normalized();
+  Vector3d across = Vector3d::Zero();
+  for (int i = 0; i < k; ++i) {
+    const Vector3d x = coord(verts[i]) - a;
+    const Vector3d r = x - x.dot(u) * u;
+    if (r.squaredNorm() > across.squaredNorm()) across = r;
+  }
+  fit.width = across.norm();
+  if (!(fit.width > 0.0)) return fit;
+  const Vector3d w = across / fit.width;
+  Vector3d n = u.cross(w).normalized();
+  // Least squares z = alpha * s + beta * t + gamma in the frame (u, w, n) about a.
+  Vector3d mean = Vector3d::Zero();
+  for (int i = 0; i < k; ++i) {
+    const Vector3d x = coord(verts[i]) - a;
+    mean += Vector3d(x.dot(u), x.dot(w), x.dot(n));
+  }
+  mean /= static_cast<double>(k);
+  double ss = 0.0, st = 0.0, tt = 0.0, sz = 0.0, tz = 0.0;
+  for (int i = 0; i < k; ++i) {
+    const Vector3d x = coord(verts[i]) - a;
+    const Vector3d y = Vector3d(x.dot(u), x.dot(w), x.dot(n)) - mean;
+    ss += y.x() * y.x();
+    st += y.x() * y.y();
+    tt += y.y() * y.y();
+    sz += y.x() * y.z();
+    tz += y.y() * y.z();
+  }
+  const double det = ss * tt - st * st;
+  if (det > 0.0) {
+    const double alpha = (sz * tt - tz * st) / det;
+    const double beta = (ss * tz - st * sz) / det;
+    n = (n - alpha * u - beta * w).normalized();
+  }
+  if (orient.dot(n) < 0.0) n = -n;
+  fit.normal = n;
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (int i = 0; i < k; ++i) {
+    const double z = n.dot(coord(verts[i]) - a);
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  }
+  fit.band = hi - lo;
+  return fit;
+}
+
+/// Normal of a face loop, counter-clockwise about it (see fitPlane).
+template <class Loop, class Coord>
+Vector3d fitNormal(const Loop& loop, const Coord& coord) {
+  return fitPlane(loop, coord, newellVector(loop, coord)).normal;
+}
+
+struct Cell {
+  std::int64_t x, y, z;
+  bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+
+struct CellHash {
+  std::size_t operator()(const Cell& c) const {
+    std::uint64_t h = static_cast<std::uint64_t>(c.x) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<std::uint64_t>(c.y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= static_cast<std::uint64_t>(c.z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    return static_cast<std::size_t>(h ^ (h >> 31));
+  }
+};
+
+class UnionFind {
+ public:
+  explicit UnionFind(int n) : parent_(n) {
+    for (int i = 0; i < n; ++i) parent_[i] = i;
+  }
+  int find(int i) {
+    while (parent_[i] != i) {
+      parent_[i] = parent_[parent_[i]];
+      i = parent_[i];
+    }
+    return i;
+  }
+  void unite(int root, int other) { parent_[other] = root; }
+
+ private:
+  std::vector<int> parent_;
+};
+
+/// Result of running Qhull: facet loops (indices into the caller's point list) and outward normals.
+struct QhullFacets {
+  std::vector<std::vector<int>> loops;
+  std::vector<Vector3d> normals;
+};
+
+std::string readAll(FILE* file) {
+  std::string text;
+  if (file == nullptr) return text;
+  std::rewind(file);
+  char buffer[512];
+  std::size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0 && text.size() < 4000) {
+    text.append(buffer, got);
+  }
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
+/// Runs Qhull on the given points (3 coordinates each). Nothing is printed: the output file is
+/// null and diagnostics go to a temporary file whose text ends up in the exception on failure.
+QhullFacets runQhull(const std::vector<Vector3d>& pts, double mergeTol, const std::string& name) {
+  const int n = static_cast<int>(pts.size());
+  std::vector<coordT> coords(3 * static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) coords[3 * i + c] = pts[i][c];
+  }
+  QhullFacets out;
+  bool badId = false;
+  FILE* errFile = std::tmpfile();
+  qhT qhData;
+  qhT* qh = &qhData;
+  qh_zero(qh, errFile);
+  // Qs: search all points for the initial simplex (robust on thin sets). C-m: pre-merge facets
+  // whose centrum is within m of a neighbour's plane, so coplanar triangles come out as one
+  // polygonal facet and, with m our flatness tolerance, no sliver thinner than m survives (C-0,
+  // Qhull's default, merges at round-off level only: noisy coplanar input then leaves facets
+  // whose normals are set by the noise).
+  char options[64];
+  std::snprintf(options, sizeof options, "qhull Qs C-%.17g", mergeTol);
+  int exitCode = qh_new_qhull(qh, 3, n, coords.data(), False, options, nullptr, errFile);
+  if (exitCode == 0) {
+    // qh_facet3vertex may report an error through longjmp; only trivially destructible locals
+    // live between here and the calls below.
+    exitCode = setjmp(qh->errexit);
+    if (exitCode == 0) {
+      qh->NOerrexit = False;
+      facetT* facet;
+      vertexT* vertex;
+      vertexT** vertexp;
+      FORALLfacets {
+        setT* vertices = qh_facet3vertex(qh, facet);
+        out.loops.emplace_back();
+        FOREACHvertex_(vertices) {
+          const int id = qh_pointid(qh, vertex->point);
+          if (id < 0 || id >= n) badId = true;
+          out.loops.back().push_back(id);
+        }
+        qh_settempfree(qh, &vertices);
+        out.normals.emplace_back(facet->normal[0], facet->normal[1], facet->normal[2]);
+      }
+    }
+    qh->NOerrexit = True;
+  }
+  qh_freeqhull(qh, !qh_ALL);
+  int curLong = 0;
+  int totLong = 0;
+  qh_memfreeshort(qh, &curLong, &totLong);
+  const std::string message = exitCode != 0 ? readAll(errFile) : std::string();
+  if (errFile != nullptr) std::fclose(errFile);
+  if (exitCode != 0) {
+    throw std::runtime_error(name + ": Qhull failed (exit code " + std::to_string(exitCode) +
+                             "): " + message);
+  }
+  if (badId) throw std::runtime_error(name + ": Qhull returned an unknown point id");
+  return out;
+}
+
+}  // namespace
+
+/// Builds polytopes; a friend of ConvexPolytope. One builder per fromPoints call.
+class PolytopeBuilder {
+ public:
+  PolytopeBuilder(const std::vector<Vector3d>& points, const std::string& name)
+      : points_(points), name_(name) {}
+
+  ConvexPolytope build();
+
+ private:
+  ConvexPolytope makePoint(int i) const;
+  ConvexPolytope makeSegment(int a, int b) const;
+  bool makePolygon(const Vector3d& normal, ConvexPolytope* out) const;
+  struct SolidAttempt {
+    ConvexPolytope hull;
+    bool covers = false;  // holds every input point within hullTolerance()
+    bool clean = false;   // and has no redundant vertex left
+  };
+  ConvexPolytope makeSolid(double thickness) const;
+  SolidAttempt pruneRounds(bool merge) const;
+  ConvexPolytope makePolyhedron(const std::vector<int>& ids, double qhullMerge,
+                                std::vector<int>* vertexIds, std::vector<int>* redundant) const;
+  bool covers(const ConvexPolytope& p) const;
+  void dropNearDuplicates();
+  [[noreturn]] void topologyError(const std::string& what) const {
+    throw std::runtime_error(name_ + ": inconsistent hull topology (" + what + ")");
+  }
+
+  const std::vector<Vector3d>& points_;
+  const std::string& name_;
+  std::vector<Vector3d> q_;  // points relative to the local origin
+  std::vector<int> ids_;     // kept points (near-duplicates dropped), indices into points_
+  double h_ = 0.0;           // flatness tolerance (absolute)
+  Vector3d lineDir_ = Vector3d::UnitX();
+  Vector3d planeNormal_ = Vector3d::UnitZ();  // normal of the plane through three extreme points
+};
+
+ConvexPolytope PolytopeBuilder::build() {
+  const int n = static_cast<int>(points_.size());
+  Vector3d lo = points_[0];
+  Vector3d hi = points_[0];
+  double maxAbs = 0.0;
+  for (const Vector3d& p : points_) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+    maxAbs = std::max(maxAbs, p.cwiseAbs().maxCoeff());
+  }
+  const Vector3d origin = 0.5 * (lo + hi);
+  q_.resize(n);
+  for (int i = 0; i < n; ++i) q_[i] = points_[i] - origin;
+
+  auto farthestFrom = [&](const Vector3d& p, const std::vector<int>* subset) {
+    int best = subset ? (*subset)[0] : 0;
+    double bestD = -1.0;
+    const int m = subset ? static_cast<int>(subset->size()) : n;
+    for (int k = 0; k < m; ++k) {
+      const int i = subset ? (*subset)[k] : k;
+      const double d = (q_[i] - p).squaredNorm();
+      if (d > bestD) {
+        bestD = d;
+        best = i;
+      }
+    }
+    return best;
+  };
+
+  // Farthest-point sweeps: from point 0, then back from the point found.
+  const int b0 = farthestFrom(q_[0], nullptr);
+  const int a = farthestFrom(q_[b0], nullptr);
+  const int b = farthestFrom(q_[a], nullptr);
+  const double extent = (q_[b] - q_[a]).norm();
+  h_ = std::max(tol::kFlatRelative * extent, tol::kCoordinateRoundoff * maxAbs);
+  if (!(extent > h_)) return makePoint(0);
+
+  dropNearDuplicates();
+
+  // Line through the farthest pair; the point farthest from it.
+  lineDir_ = (q_[b] - q_[a]) / extent;
+  int c = a;
+  double lineDist = -1.0;
+  for (int i : ids_) {
+    const Vector3d r = q_[i] - q_[a];
+    const double d = (r - r.dot(lineDir_) * lineDir_).norm();
+    if (d > lineDist) {
+      lineDist = d;
+      c = i;
+    }
+  }
+  if (lineDist <= h_) {
+    int lo_i = ids_[0];
+    int hi_i = ids_[0];
+    for (int i : ids_) {
+      if (q_[i].dot(lineDir_) < q_[lo_i].dot(lineDir_)) lo_i = i;
+      if (q_[i].dot(lineDir_) > q_[hi_i].dot(lineDir_)) hi_i = i;
+    }
+    return makeSegment(lo_i, hi_i);
+  }
+
+  // Plane through a, b, c; the point farthest from it.
+  const Vector3d normal = lineDir_.cross(q_[c] - q_[a]).normalized();
+  planeNormal_ = normal;
+  double planeDist = 0.0;
+  for (int i : ids_) planeDist = std::max(planeDist, std::abs((q_[i] - q_[a]).dot(normal)));
+  // The plane through a, b, c can be tilted against the best-fitting one by a few times the
+  // thickness, so near-flat sets get the polygon test, whose refitted plane must hold every point
+  // within h_ itself.
+  if (planeDist <= kFlatRetryFactor * h_) {
+    ConvexPolytope polygon;
+    if (makePolygon(normal, &polygon)) return polygon;
+    if (polygon.numVertices() == 2) return polygon;  // collinear within h_ after all
+  }
+  return makeSolid(planeDist);
+}
+
+void PolytopeBuilder::dropNearDuplicates() {
+  // Two points within h_ are in the same or in adjacent cells of size h_; the first one seen is
+  // kept. Cell coordinates stay below about 1e11 since h_ >= kFlatRelative * extent.
+  std::unordered_map<Cell, std::vector<int>, CellHash> grid;
+  const int n = static_cast<int>(q_.size());
+  grid.reserve(2 * static_cast<std::size_t>(n));
+  ids_.clear();
+  const double h2 = h_ * h_;
+  for (int i = 0; i < n; ++i) {
+    const Cell cell{static_cast<std::int64_t>(std::floor(q_[i].x() / h_)),
+                    static_cast<std::int64_t>(std::floor(q_[i].y() / h_)),
+                    static_cast<std::int64_t>(std::floor(q_[i].z() / h_))};
+    bool duplicate = false;
+    for (int dx = -1; dx <= 1 && !duplicate; ++dx) {
+      for (int dy = -1; dy <= 1 && !duplicate; ++dy) {
+        for (int dz = -1; dz <= 1 && !duplicate; ++dz) {
+          const auto it = grid.find(Cell{cell.x + dx, cell.y + dy, cell.z + dz});
+          if (it == grid.end()) continue;
+          for (int j : it->second) {
+            if ((q_[i] - q_[j]).squaredNorm() <= h2) {
+              duplicate = true;
+              break;
+            }
+          }
+        }
+      }
+    }
+    if (!duplicate) {
+      grid[cell].push_back(i);
+      ids_.push_back(i);
+    }
+  }
+}
+
+ConvexPolytope PolytopeBuilder::makePoint(int i) const {
+  ConvexPolytope p;
+  p.kind_ = PolytopeKind::Point;
+  p.vertices_ = {points_[i]};
+  p.faceStart_ = {0};
+  p.adjStart_ = {0, 0};
+  p.flatTol_ = h_;
+  p.finish();
+  return p;
+}
+
+ConvexPolytope PolytopeBuilder::makeSegment(int a, int b) const {
+  ConvexPolytope p;
+  p.kind_ = PolytopeKind::Segment;
+  p.vertices_ = {points_[a], points_[b]};
+  p.faceStart_ = {0};
+  p.adjStart_ = {0, 1, 2};
+  p.adjVerts_ = {1, 0};
+  p.flatTol_ = h_;
+  p.finish();
+  return p;
+}
+
+// Returns true with *out set to the polygon; false when the set is not flat within h_ after the
+// refit (a solid), or, with *out set to a segment, when it is collinear within h_.
+bool PolytopeBuilder::makePolygon(const Vector3d& normal, ConvexPolytope* out) const {
+  // Plane coordinates (x, y) on the basis (e1, e2) with e1 x e2 = normal: counter-clockwise in
+  // (x, y) is counter-clockwise about the normal.
+  const Vector3d e1 = lineDir_;
+  const Vector3d e2 = normal.cross(e1);
+  struct P2 {
+    double x, y;
+    int id;
+  };
+  std::vector<P2> pts;
+  pts.reserve(ids_.size());
+  for (int i : ids_) pts.push_back({q_[i].dot(e1), q_[i].dot(e2), i});
+  std::sort(pts.begin(), pts.end(), [](const P2& l, const P2& r) {
+    return l.x < r.x || (l.x == r.x && (l.y < r.y || (l.y == r.y && l.id < r.id)));
+  });
+  // Is m strictly left of the line o -> e, by more than h_? (cross / |e - o| is the distance.)
+  auto leftTurn = [&](const P2& o, const P2& m, const P2& e) {
+    const double cross = (m.x - o.x) * (e.y - o.y) - (m.y - o.y) * (e.x - o.x);
+    return cross > h_ * std::hypot(e.x - o.x, e.y - o.y);
+  };
+  std::vector<P2> hull;
+  hull.reserve(2 * pts.size());
+  for (const P2& p : pts) {  // lower chain
+    while (hull.size() >= 2 && !leftTurn(hull[hull.size() - 2], hull.back(), p)) hull.pop_back();
+    hull.push_back(p);
+  }
+  const std::size_t lowerSize = hull.size();
+  for (auto it = pts.rbegin() + 1; it != pts.rend(); ++it) {  // upper chain
+    while (hull.size() > lowerSize && !leftTurn(hull[hull.size() - 2], hull.back(), *it)) {
+      hull.pop_back();
+    }
+    hull.push_back(*it);
+  }
+  hull.pop_back();  // the first point again
+  // The chain's end points are never tested; drop any vertex within h_ of its neighbours' line.
+  for (bool changed = true; changed && hull.size() >= 3;) {
+    changed = false;
+    for (std::size_t i = 0; i < hull.size() && hull.size() >= 3; ++i) {
+      const P2& prev = hull[(i + hull.size() - 1) % hull.size()];
+      const P2& next = hull[(i + 1) % hull.size()];
+      if (!leftTurn(prev, hull[i], next)) {
+        hull.erase(hull.begin() + static_cast<std::ptrdiff_t>(i));
+        changed = true;
+        break;
+      }
+    }
+  }
+  if (hull.size() < 3) {  // every point within h_ of a line: a segment between the extremes
+    *out = makeSegment(pts.front().id, pts.back().id);
+    return false;
+  }
+
+  std::vector<int> loop;
+  for (const P2& p : hull) loop.push_back(p.id);
+  const Vector3d n = fitNormal(loop, [&](int i) { return q_[i]; });
+  if (!(n.dot(normal) > 0.0)) return false;
+  double mean = 0.0;
+  for (int i : loop) mean += n.dot(q_[i]);
+  mean /= static_cast<double>(loop.size());
+  for (int i : ids_) {
+    if (std::abs(n.dot(q_[i]) - mean) > h_) return false;  // not flat after all: a solid
+  }
+
+  const int k = static_cast<int>(loop.size());
+  ConvexPolytope& p = *out;
+  p = ConvexPolytope();
+  p.kind_ = PolytopeKind::Polygon;
+  for (int i : loop) p.vertices_.push_back(points_[i]);
+  p.faceNormals_ = {n, -n};
+  p.faceStart_ = {0, k, 2 * k};
+  for (int i = 0; i < k; ++i) p.faceVerts_.push_back(i);
+  for (int i = k - 1; i >= 0; --i) p.faceVerts_.push_back(i);
+  for (int i = 0; i < k; ++i) {
+    p.adjStart_.push_back(2 * i);
+    p.adjVerts_.push_back((i + 1) % k);
+    p.adjVerts_.push_back((i + k - 1) % k);
+    p.adjFaces_.push_back(0);
+    p.adjFaces_.push_back(1);
+  }
+  p.adjStart_.push_back(2 * k);
+  p.flatTol_ = h_;
+  p.finish();
+  return true;
+}
+
+// The solid hull, in rounds. Qhull merging facets within h_ gives clean faces on noisy coplanar
+// input; on sets only tens of h_ thick its merge thresholds (several h_) reach across the whole
+// thickness and it can fail or collapse the rim, so thin sets, and sets where the merged hull
+// fails its check, are built with round-off-level merging (C-0) and our own merging only.
+// Merging within a tolerance can leave a vertex that is not an extreme point (it sits at a face
+// corner that is straight or reflex within h_: the remains of noise, or of a sliver along an
+// edge). Hill climbing can stop at such a vertex far from the maximum, and a sliver's normal is
+// arbitrary, so these vertices are dropped (an independent set at a time, so each one stays
+// within h_ of the hull of its kept neighbours) and the hull is rebuilt from the remaining
+// vertices, until none is left. The result is the last round's hull that holds all input points
+// within hullTolerance() and is locally convex (see covers).
+ConvexPolytope PolytopeBuilder::makeSolid(double thickness) const {
+  const bool merge = thickness >= kQhullMergeMinThickness * h_ && !std::getenv("DC_FORCE_C0");  // TEMPDEBUG
+  SolidAttempt attempt = pruneRounds(merge);
+  if (attempt.clean || !merge) return std::move(attempt.hull);
+  SolidAttempt conservative = pruneRounds(false);
+  if (conservative.clean || !attempt.covers) return std::move(conservative.hull);
+  return std::move(attempt.hull);
+}
+
+// Rounds of hull building and pruning, with or without Qhull's merging (see makeSolid). Clean
+// when the hull returned holds all points (covers) and has no redundant vertex left.
+PolytopeBuilder::SolidAttempt PolytopeBuilder::pruneRounds(bool merge) const {
+  std::vector<int> ids = ids_;
+  SolidAttempt best;  // the last hull that passed the check
+  SolidAttempt last;
+  for (int round = 0; round < kMaxPruneRounds; ++round) {
+    std::vector<int> vertexIds;
+    std::vector<int> redundant;
+    try {
+      last.hull = makePolyhedron(ids, merge ? h_ : 0.0, &vertexIds, &redundant);
+      last.covers = covers(last.hull);
+      last.clean = last.covers && redundant.empty() && last.hull.checkInvariants(false).empty();
+      if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG: round %d merge %d V=%d covers %d validate '%s'\n", round, (int)merge, last.hull.numVertices(), (int)last.covers, last.hull.validate().c_str());
+    } catch (const std::runtime_error& e) {
+      if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG: round %d threw %s\n", round, e.what());
+      if (round == 0 && !merge) throw;
+      break;  // Qhull's merging failed, or pruned down to a degenerate set
+    }
+    if (last.covers) best = last;
+    if (redundant.empty() || (merge && !last.covers)) break;
+    if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG: round %d prunes %zu\n", round, redundant.size());
+    std::sort(redundant.begin(), redundant.end());
+    ids.clear();
+    for (int i : vertexIds) {
+      if (!std::binary_search(redundant.begin(), redundant.end(), i)) ids.push_back(i);
+    }
+  }
+  return best.covers ? best : last;
+}
+
+// True when every input point is inside every face plane within hullTolerance() and the hull is
+// locally convex (every vertex's neighbours are inside its ring faces' planes within it): a closed,
+// locally convex surface is convex, so that and the point test make the hull correct.
+bool PolytopeBuilder::covers(const ConvexPolytope& p) const {
+  const double tol = p.hullTolerance();
+  const int nf = p.numFaces();
+  std::vector<double> localOffset(nf);
+  double inRadius = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < nf; ++f) {
+    localOffset[f] = p.faceOffset(f) - p.faceNormal(f).dot(p.center());
+    inRadius = std::min(inRadius, localOffset[f]);
+  }
+  for (int v = 0; v < p.numVertices(); ++v) {
+    for (int f : p.vertexFaces(v)) {
+      for (int u : p.neighbors(v)) {
+        if (p.faceNormal(f).dot(p.localVertex(u)) - localOffset[f] > tol) {
+          if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG covers: local convexity v%d u%d f%d by %g h\n", v, u, f, (p.faceNormal(f).dot(p.localVertex(u)) - localOffset[f]) / h_);
+          return false;
+        }
+      }
+    }
+  }
+  // Face planes of a thin hull are nearly parallel and cannot see a point missed in its plane:
+  // every point must also be inside the hull's shadow on the plane of the classification (the
+  // 2-d convex hull of the projected vertices), within tol.
+  const Vector3d e0 = lineDir_;
+  const Vector3d e1 = planeNormal_.cross(lineDir_);
+  std::vector<Eigen::Vector2d> shadow;
+  for (int v = 0; v < p.numVertices(); ++v) {
+    shadow.emplace_back(e0.dot(p.localVertex(v)), e1.dot(p.localVertex(v)));
+  }
+  std::sort(shadow.begin(), shadow.end(), [](const Eigen::Vector2d& l, const Eigen::Vector2d& r) {
+    return l.x() < r.x() || (l.x() == r.x() && l.y() < r.y());
+  });
+  auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> outline;
+  for (int pass = 0; pass < 2; ++pass) {  // lower chain, then upper chain (Andrew)
+    const std::size_t base = outline.size();
+    for (std::size_t i = 0; i < shadow.size(); ++i) {
+      const Eigen::Vector2d& x = pass == 0 ? shadow[i] : shadow[shadow.size() - 1 - i];
+      while (outline.size() >= base + 2 &&
+             turn(outline[outline.size() - 2], outline.back(), x) <= 0.0) {
+        outline.pop_back();
+      }
+      outline.push_back(x);
+    }
+    outline.pop_back();
+  }
+  for (const Vector3d& point : points_) {
+    const Vector3d x = point - p.center();
+    const Eigen::Vector2d y(e0.dot(x), e1.dot(x));
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+      const Eigen::Vector2d& a = outline[i];
+      const Eigen::Vector2d& b = outline[(i + 1) % outline.size()];
+      if (turn(a, b, y) < -tol * (b - a).norm()) {
+        if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG covers: shadow fail\n");
+        return false;
+      }
+    }
+  }
+  for (const Vector3d& point : points_) {
+    const Vector3d x = point - p.center();
+    if (x.norm() <= inRadius - tol) continue;  // inside the inscribed ball
+    for (int f = 0; f < nf; ++f) {
+      if (p.faceNormal(f).dot(x) - localOffset[f] > tol) {
+        if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG covers: point %d outside face %d by %g h\n", (int)(&point - points_.data()), f, (p.faceNormal(f).dot(x) - localOffset[f]) / h_);
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// The hull of the points `ids` (indices into points_); reports its vertices' indices and the
+// vertices found redundant (see makeSolid).
+ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, double qhullMerge,
+                                               std::vector<int>* vertexIds,
+                                               std::vector<int>* redundant) const {
+  // --- Qhull on the points; loops come back as indices into points_.
+  std::vector<Vector3d> kept;
+  kept.reserve(ids.size());
+  for (int i : ids) kept.push_back(q_[i]);
+  QhullFacets qf = runQhull(kept, qhullMerge, name_);
+  auto coord = [&](int i) { return q_[i]; };
+  std::vector<std::vector<int>>& loops = qf.loops;
+  const int numFacets = static_cast<int>(loops.size());
+  std::vector<Vector3d> area(numFacets);
+  for (int f = 0; f < numFacets; ++f) {
+    for (int& v : loops[f]) v = ids[v];
+    area[f] = newellVector(loops[f], coord);
+    if (area[f].dot(qf.normals[f]) < 0.0) {  // make the loop counter-clockwise seen from outside
+      std::reverse(loops[f].begin(), loops[f].end());
+      area[f] = -area[f];
+    }
+  }
+
+  // --- Half-edges: directed edge (a, b) of a counter-clockwise loop -> its facet.
+  std::unordered_map<std::uint64_t, int> edgeFacet;
+  edgeFacet.reserve(4 * static_cast<std::size_t>(numFacets));
+  for (int f = 0; f < numFacets; ++f) {
+    const auto& l = loops[f];
+    for (std::size_t i = 0; i < l.size(); ++i) {
+      if (!edgeFacet.emplace(edgeKey(l[i], l[(i + 1) % l.size()]), f).second) {
+        topologyError("a directed edge is used twice");
+      }
+    }
+  }
+  auto twinFacet = [&](int a, int b) {
+    const auto it = edgeFacet.find(edgeKey(b, a));
+    if (it == edgeFacet.end()) topologyError("an edge has one face only");
+    return it->second;
+  };
+
+  // --- Merge adjacent faces whose normals differ by less than kCoplanarAngle and whose union is
+  // planar within h_ (Qhull's merging catches most; this enforces our own criterion on the
+  // fitted planes). The merged normal must stay within kCoplanarAngle of every merged facet's,
+  // so chains of merges cannot drift. Passes repeat until nothing merges.
+  struct Group {
+    std::vector<int> verts;  // sorted, unique
+    std::vector<int> facets;
+    Vector3d area = Vector3d::Zero();
+    PlaneFit plane;
+  };
+  std::vector<Group> group(numFacets);
+  for (int f = 0; f < numFacets; ++f) {
+    group[f].facets = {f};
+    group[f].verts = loops[f];
+    std::sort(group[f].verts.begin(), group[f].verts.end());
+    group[f].area = area[f];
+    group[f].plane = fitPlane(group[f].verts, coord, area[f]);
+  }
+  auto angleBetween = [](const Vector3d& m, const Vector3d& n) {
+    return std::atan2(m.cross(n).norm(), m.dot(n));
+  };
+  std::vector<Vector3d> facetNormal(numFacets);
+  for (int f = 0; f < numFacets; ++f) facetNormal[f] = group[f].plane.normal;
+  UnionFind groups(numFacets);
+  for (bool merged = true; merged;) {
+    merged = false;
+    struct Candidate {
+      double score;  // angle between the normals: most coplanar first
+      int f, g;
+    };
+    std::vector<Candidate> candidates;
+    for (const auto& [key, f] : edgeFacet) {
+      const int a = static_cast<int>(key >> 32);
+      const int b = static_cast<int>(key & 0xffffffffu);
+      if (a > b) continue;  // each undirected edge once
+      const int rf = groups.find(f);
+      const int rg = groups.find(twinFacet(a, b));
+      if (rf == rg) continue;
+      const double angle = angleBetween(group[rf].plane.normal, group[rg].plane.normal);
+      if (angle < tol::kCoplanarAngle) candidates.push_back({angle, rf, rg});
+    }
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& l, const Candidate& r) {
+      return l.score < r.score || (l.score == r.score && (l.f < r.f || (l.f == r.f && l.g < r.g)));
+    });
+    for (const Candidate& c : candidates) {
+      const int rf = groups.find(c.f);
+      const int rg = groups.find(c.g);
+      if (rf == rg) continue;
+      if (!(angleBetween(group[rf].plane.normal, group[rg].plane.normal) < tol::kCoplanarAngle)) {
+        continue;
+      }
+      Group u;
+      std::merge(group[rf].verts.begin(), group[rf].verts.end(), group[rg].verts.begin(),
+                 group[rg].verts.end(), std::back_inserter(u.verts));
+      u.verts.erase(std::unique(u.verts.begin(), u.verts.end()), u.verts.end());
+      u.area = group[rf].area + group[rg].area;
+      u.plane = fitPlane(u.verts, coord, u.area);
+      if (!(u.plane.band <= h_)) continue;
+      u.facets = group[rf].facets;
+      u.facets.insert(u.facets.end(), group[rg].facets.begin(), group[rg].facets.end());
+      bool drift = false;
+      for (int f : u.facets) {
+        drift = drift || !(angleBetween(facetNormal[f], u.plane.normal) < tol::kCoplanarAngle);
+      }
+      if (drift) continue;
+      groups.unite(rf, rg);
+      group[rf] = std::move(u);
+      group[rg] = Group();
+      merged = true;
+    }
+  }
+
+  // --- Loops of merged faces: the boundary half-edges of the group, chained. A group whose
+  // boundary is not one simple loop (possible only at tolerance level) is left unmerged.
+  std::vector<std::vector<int>> members(numFacets);
+  for (int f = 0; f < numFacets; ++f) members[groups.find(f)].push_back(f);
+  std::vector<char> dissolved(numFacets, 0);
+  auto groupLoop = [&](int r) {
+    std::unordered_map<int, int> nextOf;
+    bool simple = true;
+    int start = std::numeric_limits<int>::max();
+    for (int f : members[r]) {
+      const auto& l = loops[f];
+      for (std::size_t i = 0; i < l.size(); ++i) {
+        const int a = l[i];
+        const int b = l[(i + 1) % l.size()];
+        if (groups.find(twinFacet(a, b)) == r) continue;  // interior edge
+        if (!nextOf.emplace(a, b).second) simple = false;
+        start = std::min(start, a);
+      }
+    }
+    std::vector<int> loop;
+    if (simple && !nextOf.empty()) {
+      int v = start;
+      do {
+        loop.push_back(v);
+        const auto it = nextOf.find(v);
+        if (it == nextOf.end()) break;
+        v = it->second;
+      } while (v != start && loop.size() <= nextOf.size());
+      simple = v == start && loop.size() == nextOf.size();
+    }
+    if (!(simple && loop.size() >= 3)) loop.clear();
+    return loop;
+  };
+  const int numPoints = static_cast<int>(points_.size());
+  std::vector<int> faceCount(numPoints, 0);
+  std::vector<std::vector<int>> faces;
+  std::vector<int> faceGroup;  // the merged group a face comes from, or -1
+  // A vertex left on two faces only must lie on the straight edge between its loop neighbours
+  // (within h_), else it is a real corner that a merge hid (thin sets): such merges are undone.
+  for (bool redo = true; redo;) {
+    redo = false;
+    faces.clear();
+    faceGroup.clear();
+    for (int r = 0; r < numFacets; ++r) {
+      if (members[r].empty()) continue;
+      std::vector<int> loop;
+      if (members[r].size() > 1 && !dissolved[r]) loop = groupLoop(r);
+      if (!loop.empty()) {
+        faces.push_back(std::move(loop));
+        faceGroup.push_back(r);
+      } else {
+        for (int f : members[r]) {
+          faces.push_back(loops[f]);
+          faceGroup.push_back(-1);
+        }
+      }
+    }
+    std::fill(faceCount.begin(), faceCount.end(), 0);
+    for (const auto& l : faces) {
+      for (int v : l) ++faceCount[v];
+    }
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const auto& l = faces[f];
+      const std::size_t k = l.size();
+      for (std::size_t i = 0; i < k; ++i) {
+        if (faceCount[l[i]] != 2) continue;
+        const Vector3d a = q_[l[(i + k - 1) % k]];
+        const Vector3d chord = q_[l[(i + 1) % k]] - a;
+        const Vector3d x = q_[l[i]] - a;
+        const double t = std::clamp(x.dot(chord) / chord.squaredNorm(), 0.0, 1.0);
+        if ((x - t * chord).norm() <= h_) continue;
+        for (std::size_t g = 0; g < faces.size(); ++g) {
+          if (faceGroup[g] >= 0 && std::find(faces[g].begin(), faces[g].end(), l[i]) != faces[g].end()) {
+            dissolved[faceGroup[g]] = 1;
+            redo = true;
+          }
+        }
+      }
+    }
+  }
+
+  // --- Remove vertices on only two faces (inside an edge: not extreme points); faces left with
+  // fewer than three vertices vanish (their two half-edges' twins then pair up).
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::fill(faceCount.begin(), faceCount.end(), 0);
+    for (const auto& l : faces) {
+      for (int v : l) ++faceCount[v];
+    }
+    if (std::getenv("DC_DEBUG")) { for (int v = 0; v < numPoints; ++v) if (faceCount[v] == 2) fprintf(stderr, "TEMPDEBUG deg2 %d\n", v); }
+    for (auto& l : faces) {
+      const std::size_t before = l.size();
+      l.erase(std::remove_if(l.begin(), l.end(), [&](int v) { return faceCount[v] == 2; }),
+              l.end());
+      changed = changed || l.size() != before;
+    }
+    const std::size_t before = faces.size();
+    faces.erase(std::remove_if(faces.begin(), faces.end(),
+                               [](const std::vector<int>& l) { return l.size() < 3; }),
+                faces.end());
+    changed = changed || faces.size() != before;
+  }
+
+  // --- Final numbering: vertices in input order.
+  std::vector<int> compact(numPoints, -1);
+  for (const auto& l : faces) {
+    for (int v : l) compact[v] = 0;
+  }
+  ConvexPolytope p;
+  p.kind_ = PolytopeKind::Polyhedron;
+  for (int i = 0; i < numPoints; ++i) {
+    if (compact[i] < 0) continue;
+    compact[i] = static_cast<int>(p.vertices_.size());
+    p.vertices_.push_back(points_[i]);
+    vertexIds->push_back(i);
+  }
+  const int numVerts = static_cast<int>(p.vertices_.size());
+  const int numFaces = static_cast<int>(faces.size());
+  if (numVerts < 4 || numFaces < 4) topologyError("fewer than four vertices or faces");
+  p.faceStart_.push_back(0);
+  for (const auto& l : faces) {
+    const Vector3d n = fitNormal(l, coord);
+    if (!(n.norm() > 0.0)) topologyError("a face has zero area");
+    p.faceNormals_.push_back(n);
+    for (int v : l) p.faceVerts_.push_back(compact[v]);
+    p.faceStart_.push_back(static_cast<int>(p.faceVerts_.size()));
+  }
+
+  // --- Vertex rings. For ring face F_j: nbr_j = F_j's successor of v, nbr_{j+1} = F_j's
+  // predecessor of v, and F_{j+1} is the face whose successor of v is nbr_{j+1}.
+  struct Incidence {
+    int face, next, prev;
+  };
+  std::vector<std::vector<Incidence>> around(numVerts);
+  for (int f = 0; f < numFaces; ++f) {
+    const int s = p.faceStart_[f];
+    const int k = p.faceStart_[f + 1] - s;
+    for (int i = 0; i < k; ++i) {
+      around[p.faceVerts_[s + i]].push_back(
+          {f, p.faceVerts_[s + (i + 1) % k], p.faceVerts_[s + (i + k - 1) % k]});
+    }
+  }
+  p.adjStart_.push_back(0);
+  for (int v = 0; v < numVerts; ++v) {
+    const auto& inc = around[v];
+    const int k = static_cast<int>(inc.size());
+    if (k < 3) topologyError("a vertex on fewer than three faces");
+    int cur = 0;
+    for (int j = 0; j < k; ++j) {
+      p.adjFaces_.push_back(inc[cur].face);
+      p.adjVerts_.push_back(inc[cur].next);
+      const int wanted = inc[cur].prev;
+      int found = -1;
+      for (int t = 0; t < k; ++t) {
+        if (inc[t].next == wanted) found = t;
+      }
+      if (found < 0) topologyError("an open vertex ring");
+      cur = found;
+    }
+    if (cur != 0) topologyError("a vertex ring that does not close");
+    p.adjStart_.push_back(static_cast<int>(p.adjVerts_.size()));
+  }
+
+  // --- Redundant vertices: at a face corner that sticks out of the chord of its two neighbours
+  // by no more than h_ (straight or reflex). Most redundant first, no two adjacent.
+  std::vector<std::pair<double, int>> candidates;
+  std::vector<double> stickOut(numVerts, std::numeric_limits<double>::infinity());
+  for (int f = 0; f < numFaces; ++f) {
+    const int s = p.faceStart_[f];
+    const int k = p.faceStart_[f + 1] - s;
+    const Vector3d& n = p.faceNormals_[f];
+    for (int i = 0; i < k; ++i) {
+      const int prev = p.faceVerts_[s + (i + k - 1) % k];
+      const int v = p.faceVerts_[s + i];
+      const int next = p.faceVerts_[s + (i + 1) % k];
+      const Vector3d a = q_[vertexIds->at(prev)];
+      const Vector3d chord = q_[vertexIds->at(next)] - a;
+      const Vector3d x = q_[vertexIds->at(v)] - a;
+      const double along = x.dot(chord) / chord.squaredNorm();
+      const double out = chord.cross(n).dot(x) / chord.norm();
+      // A corner within h_ of the chord line but beyond its ends is a spike (a sliver's end),
+      // which is extreme; a clearly reflex corner is never extreme in its face.
+      if (out >= -h_ && !(along >= 0.0 && along <= 1.0)) continue;
+      stickOut[v] = std::min(stickOut[v], out);
+    }
+  }
+  for (int v = 0; v < numVerts; ++v) {
+    if (std::getenv("DC_DEBUG") && stickOut[v] < 1e3 * h_) fprintf(stderr, "TEMPDEBUG v%d (id %d) stickOut %g h %g\n", v, vertexIds->at(v), stickOut[v], h_);
+    if (!(stickOut[v] > h_)) candidates.emplace_back(stickOut[v], v);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<char> blocked(numVerts, 0);
+  for (const auto& [out, v] : candidates) {
+    if (blocked[v]) continue;
+    redundant->push_back(vertexIds->at(v));
+    if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG prune id %d stickOut %g\n", vertexIds->at(v), out);
+    blocked[v] = 1;
+    for (int k = p.adjStart_[v]; k < p.adjStart_[v + 1]; ++k) blocked[p.adjVerts_[k]] = 1;
+  }
+
+  p.flatTol_ = h_;
+  p.finish();
+  return p;
+}
+
+ConvexPolytope ConvexPolytope::fromPoints(const std::vector<Vector3d>& points,
+                                          const std::string& name) {
+  if (points.empty()) throw std::invalid_argument(name + ": no points");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(points[i][c])) {
+        throw std::invalid_argument(name + ": point " + std::to_string(i) +
+                                    " has a non-finite coordinate " + axisName(c) + " = " +
+                                    formatDouble(points[i][c]));
+      }
+    }
+  }
+  return PolytopeBuilder(points, name).build();
+}
+
+ConvexPolytope ConvexPolytope::box(const Vector3d& halfExtents) {
+  for (int c = 0; c < 3; ++c) {
+    if (!(std::isfinite(halfExtents[c]) && halfExtents[c] > 0.0)) {
+      throw std::invalid_argument(std::string("box: half extent ") + std::to_string(c) + " (" +
+                                  axisName(c) + ") = " + formatDouble(halfExtents[c]) +
+                                  " must be positive and finite");
+    }
+  }
+  std::vector<Vector3d> corners;
+  for (int i = 0; i < 8; ++i) {
+    corners.emplace_back((i & 1) ? halfExtents.x() : -halfExtents.x(),
+                         (i & 2) ? halfExtents.y() : -halfExtents.y(),
+                         (i & 4) ? halfExtents.z() : -halfExtents.z());
+  }
+  return fromPoints(corners, "box");
+}
+
+int ConvexPolytope::numEdges() const {
+  switch (kind_) {
+    case PolytopeKind::Point:
+      return 0;
+    case PolytopeKind::Segment:
+      return 1;
+    default:
+      return static_cast<int>(adjVerts_.size() / 2);
+  }
+}
+
+IndexRange ConvexPolytope::faceVertices(int f) const {
+  const int* base = faceVerts_.data();
+  return {base + faceStart_[f], base + faceStart_[f + 1]};
+}
+
+IndexRange ConvexPolytope::neighbors(int v) const {
+  const int* base = adjVerts_.data();
+  return {base + adjStart_[v], base + adjStart_[v + 1]};
+}
+
+IndexRange ConvexPolytope::vertexFaces(int v) const {
+  if (adjFaces_.empty()) return {};  // points and segments have no faces
+  const int* base = adjFaces_.data();
+  return {base + adjStart_[v], base + adjStart_[v + 1]};
+}
+
+void ConvexPolytope::finish() {
+  const int n = numVertices();
+  // Centroid as base + mean offset: the offsets are small, so no digits are lost far from 0.
+  Vector3d sum = Vector3d::Zero();
+  for (const Vector3d& v : vertices_) sum += v - vertices_[0];
+  center_ = vertices_[0] + sum / static_cast<double>(n);
+  local_.resize(n);
+  radius_ = 0.0;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int v = 0; v < n; ++v) {
+    local_[v] = vertices_[v] - center_;
+    radius_ = std::max(radius_, local_[v].norm());
+    cov += local_[v] * local_[v].transpose();
+  }
+  // Never zero, so that tolerances scaled by it are well defined; for a Point it is the smallest
+  // normal double, which makes every relative tolerance of the point alone exact (zero in effect):
+  // a pair's tolerances take their size from the other shape and the distance.
+  lengthScale_ = std::max(radius_, std::numeric_limits<double>::min());
+
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov / static_cast<double>(n));
+  const Eigen::Matrix3d& ev = eig.eigenvectors();  // ascending eigenvalues
+  for (int c = 0; c < 2; ++c) {
+    Vector3d axis = ev.col(2 - c);
+    int big = 0;
+    axis.cwiseAbs().maxCoeff(&big);
+    if (axis[big] < 0.0) axis = -axis;
+    axes_.col(c) = axis.normalized();
+  }
+  axes_.col(2) = axes_.col(0).cross(axes_.col(1)).normalized();
+
+  faceOffsets_.resize(faceNormals_.size());
+  for (int f = 0; f < numFaces(); ++f) {
+    const Vector3d& nrm = faceNormals_[f];
+    double mean = 0.0;
+    for (int v : faceVertices(f)) mean += nrm.dot(local_[v]);
+    mean /= static_cast<double>(faceVertices(f).size());
+    faceOffsets_[f] = nrm.dot(center_) + mean;
+  }
+}
+
+int ConvexPolytope::supportBruteForce(const Vector3d& dir) const {
+  int best = 0;
+  double bestValue = dir.dot(local_[0]);
+  const int n = numVertices();
+  for (int v = 1; v < n; ++v) {
+    const double s = dir.dot(local_[v]);
+    if (s > bestValue) {
+      bestValue = s;
+      best = v;
+    }
+  }
+  return best;
+}
+
+int ConvexPolytope::support(const Vector3d& dir, int hint) const {
+  const int n = numVertices();
+  if (n <= kBruteForceMaxVertices) return supportBruteForce(dir);
+  // Steepest ascent over the vertex graph. On a convex polytope a vertex no neighbour of which
+  // is higher is a global maximum. Hulls are convex within a tolerance only, and at a very short
+  // edge that is enough to stop the climb far from the maximum (the edge's direction is set by
+  // the tolerance, not by the shape). So when neighbours are lower by less than the slack, the
+  // plateau they form is searched for a higher vertex before stopping. Every move raises the
+  // value strictly, so ties cannot cycle.
+  const double slack = hullTolerance() * dir.norm();
+  int v = (hint >= 0 && hint < n) ? hint : 0;
+  double value = dir.dot(local_[v]);
+  for (;;) {
+    int best = v;
+    double bestValue = value;
+    bool flat = false;
+    for (int k = adjStart_[v]; k < adjStart_[v + 1]; ++k) {
+      const double s = dir.dot(local_[adjVerts_[k]]);
+      if (s > bestValue) {
+        bestValue = s;
+        best = adjVerts_[k];
+      } else if (s >= value - slack) {
+        flat = true;
+      }
+    }
+    if (best == v && flat) {
+      std::array<int, kMaxPlateau> plateau;
+      int count = 0;
+      plateau[count++] = v;
+      for (int i = 0; i < count && best == v; ++i) {
+        for (int k = adjStart_[plateau[i]]; k < adjStart_[plateau[i] + 1]; ++k) {
+          const int u = adjVerts_[k];
+          const double s = dir.dot(local_[u]);
+          if (s > bestValue) {
+            bestValue = s;
+            best = u;
+          } else if (s >= value - slack && count < kMaxPlateau &&
+                     std::find(plateau.begin(), plateau.begin() + count, u) ==
+                         plateau.begin() + count) {
+            plateau[count++] = u;
+          }
+        }
+      }
+    }
+    if (best == v) return v;
+    v = best;
+    value = bestValue;
+  }
+}
+
+std::string ConvexPolytope::validate() const { return checkInvariants(true); }
+
+std::string ConvexPolytope::checkInvariants(bool globalConvexity) const {
+  std::ostringstream out;
+  auto fail = [&out](const auto&... parts) {
+    (out << ... << parts);
+    return out.str();
+  };
+  const int nv = numVertices();
+  const int nf = numFaces();
+  if (nv < 1) return fail("no vertices");
+  if (static_cast<int>(local_.size()) != nv || static_cast<int>(adjStart_.size()) != nv + 1 ||
+      static_cast<int>(faceStart_.size()) != nf + 1 ||
+      static_cast<int>(faceOffsets_.size()) != nf) {
+    return fail("array sizes do not match the counts");
+  }
+  if (adjStart_[nv] != static_cast<int>(adjVerts_.size())) return fail("adjacency size");
+  if (!adjFaces_.empty() && adjFaces_.size() != adjVerts_.size()) return fail("ring size");
+  for (int v = 0; v < nv; ++v) {
+    if (!vertices_[v].allFinite()) return fail("vertex ", v, " is not finite");
+  }
+  if (!(lengthScale_ > 0.0)) return fail("lengthScale is not positive");
+
+  switch (kind_) {
+    case PolytopeKind::Point:
+      if (nv != 1 || nf != 0 || !adjVerts_.empty()) return fail("a Point has 1 vertex, no faces");
+      return "";
+    case PolytopeKind::Segment:
+      if (nv != 2 || nf != 0) return fail("a Segment has 2 vertices, no faces");
+      if (vertices_[0] == vertices_[1]) return fail("Segment vertices coincide");
+      if (neighbors(0).size() != 1 || neighbors(0)[0] != 1 || neighbors(1).size() != 1 ||
+          neighbors(1)[0] != 0) {
+        return fail("Segment vertices must be each other's only neighbour");
+      }
+      return "";
+    case PolytopeKind::Polygon:
+      if (nv < 3 || nf != 2) return fail("a Polygon has >= 3 vertices and 2 faces");
+      if ((faceNormals_[0] + faceNormals_[1]).norm() > 1e-12) {
+        return fail("Polygon face normals are not opposite");
+      }
+      for (int i = 0; i < nv; ++i) {
+        if (faceVertices(0)[i] != i || faceVertices(1)[i] != nv - 1 - i) {
+          return fail("Polygon faces must list 0..k-1 and k-1..0");
+        }
+      }
+      break;
+    case PolytopeKind::Polyhedron:
+      if (nv < 4 || nf < 4) return fail("a Polyhedron has >= 4 vertices and faces");
+      break;
+  }
+
+  const double tol = hullTolerance();
+  const bool solid = kind_ == PolytopeKind::Polyhedron;
+  // Faces: size, unit normal, planarity, counter-clockwise loops, directed edges used once.
+  std::vector<double> localOffset(nf);
+  std::vector<double> normalUncertainty(nf);
+  const double roundoff = 16.0 * std::numeric_limits<double>::epsilon() * radius_;
+  std::unordered_map<std::uint64_t, int> edgeFace;    // directed edge -> face
+  std::unordered_map<std::uint64_t, int> facePos;     // (face, vertex) -> position in its loop
+  for (int f = 0; f < nf; ++f) {
+    const IndexRange fv = faceVertices(f);
+    const Vector3d& n = faceNormals_[f];
+    if (fv.size() < 3) return fail("face ", f, " has ", fv.size(), " vertices");
+    if (std::abs(n.norm() - 1.0) > 1e-12) return fail("face ", f, " normal is not unit");
+    localOffset[f] = faceOffsets_[f] - n.dot(center_);
+    for (int i = 0; i < fv.size(); ++i) {
+      const int v = fv[i];
+      if (v < 0 || v >= nv) return fail("face ", f, " has vertex index ", v, " out of range");
+      if (!facePos.emplace(edgeKey(f, v), i).second) {
+        return fail("face ", f, " lists vertex ", v, " twice");
+      }
+      const double off = n.dot(local_[v]) - localOffset[f];
+      if (std::abs(off) > tol) {
+        return fail("face ", f, " is not planar: vertex ", v, " is ", off, " off its plane");
+      }
+      if (!edgeFace.emplace(edgeKey(v, fv[(i + 1) % fv.size()]), f).second) {
+        return fail("directed edge (", v, ", ", fv[(i + 1) % fv.size()], ") is used twice");
+      }
+    }
+    const Vector3d area = newellVector(fv, [&](int v) { return local_[v]; });
+    if (!(area.dot(n) > 0.0)) return fail("face ", f, " is not counter-clockwise about its normal");
+    for (int i = 0; i < fv.size(); ++i) {  // a convex polygon: every corner turns left
+      const Vector3d& a = local_[fv[i]];
+      const Vector3d& b = local_[fv[(i + 1) % fv.size()]];
+      const Vector3d& c = local_[fv[(i + 2) % fv.size()]];
+      if (!((b - a).cross(c - b).dot(n) > 0.0)) {
+        return fail("face ", f, " is not convex at vertex ", fv[(i + 1) % fv.size()]);
+      }
+    }
+    // How far the normal can turn with its vertices moving by no more than their band, the
+    // flatness tolerance and round-off: (band + flatTolerance + round-off) / width, width the
+    // face's extent across its longest chord; plus kCoplanarAngle, by which the facets merged
+    // into one face may disagree. Rings may turn the wrong way by that much at nearly flat
+    // vertices (where merging and vertex removal within the tolerance decide the last digits).
+    const PlaneFit fit = fitPlane(fv, [&](int v) { return local_[v]; }, n);
+    normalUncertainty[f] = fit.width > 0.0 ? (fit.band + flatTol_ + roundoff) / fit.width +
+                                                 tol::kCoplanarAngle
+                                           : std::numeric_limits<double>::infinity();
+  }
+  for (const auto& [key, face] : edgeFace) {
+    const int a = static_cast<int>(key >> 32);
+    const int b = static_cast<int>(key & 0xffffffffu);
+    if (edgeFace.count(edgeKey(b, a)) == 0) {
+      return fail("edge (", a, ", ", b, ") of face ", face, " has no twin");
+    }
+  }
+  const int ne = static_cast<int>(edgeFace.size() / 2);
+  if (ne != numEdges()) return fail("numEdges() = ", numEdges(), " but faces have ", ne, " edges");
+  if (nv - ne + nf != 2) return fail("Euler characteristic V - E + F = ", nv - ne + nf);
+
+  // Convexity.
+  if (solid && globalConvexity) {
+    for (int f = 0; f < nf; ++f) {
+      for (int v = 0; v < nv; ++v) {
+        const double off = faceNormals_[f].dot(local_[v]) - localOffset[f];
+        if (off > tol) return fail("vertex ", v, " is ", off, " outside face ", f);
+      }
+    }
+  } else {
+    const Vector3d& n = faceNormals_[0];
+    for (int i = 0; i < nv; ++i) {
+      const Vector3d& a = local_[i];
+      const Vector3d& b = local_[(i + 1) % nv];
+      const Vector3d& c = local_[(i + 2) % nv];
+      if (!((b - a).cross(c - b).dot(n) > 0.0)) {
+        return fail("Polygon turns right or goes straight at vertex ", (i + 1) % nv);
+      }
+      const Vector3d out = (b - a).cross(n).normalized();
+      for (int v = 0; v < nv; ++v) {
+        if (out.dot(local_[v] - a) > tol) {
+          return fail("vertex ", v, " is outside edge (", i, ", ", (i + 1) % nv, ")");
+        }
+      }
+    }
+  }
+
+  // Rings: ring face j holds the edges (v, nbr_j) and (v, nbr_{j+1}), with v's successor nbr_j
+  // and predecessor nbr_{j+1} in that face's counter-clockwise loop.
+  auto posIn = [&](int f, int v) {
+    const auto it = facePos.find(edgeKey(f, v));
+    return it == facePos.end() ? -1 : it->second;
+  };
+  for (int v = 0; v < nv; ++v) {
+    const IndexRange nb = neighbors(v);
+    const IndexRange ring = vertexFaces(v);
+    const int k = nb.size();
+    if (ring.size() != k) return fail("vertex ", v, " has ", k, " neighbours but ", ring.size(), " ring faces");
+    if (k < (solid ? 3 : 2)) return fail("vertex ", v, " has only ", k, " neighbours");
+    for (int j = 0; j < k; ++j) {
+      const int u = nb[j];
+      if (u < 0 || u >= nv || u == v) return fail("vertex ", v, " has a bad neighbour ", u);
+      const IndexRange back = neighbors(u);
+      if (std::find(back.begin(), back.end(), v) == back.end()) {
+        return fail("neighbours are not symmetric: ", u, " of ", v);
+      }
+      const int f = ring[j];
+      if (f < 0 || f >= nf) return fail("vertex ", v, " has a bad ring face ", f);
+      const int i = posIn(f, v);
+      if (i < 0) return fail("ring face ", f, " of vertex ", v, " does not contain it");
+      const IndexRange fv = faceVertices(f);
+      const int m = fv.size();
+      if (fv[(i + 1) % m] != nb[j] || fv[(i + m - 1) % m] != nb[(j + 1) % k]) {
+        return fail("ring of vertex ", v, ": face ", f, " is not between neighbours ", nb[j],
+                    " and ", nb[(j + 1) % k]);
+      }
+      if (solid) {
+        for (int t = 0; t < j; ++t) {
+          if (ring[t] == f) return fail("vertex ", v, " has face ", f, " twice in its ring");
+          if (nb[t] == u) return fail("vertex ", v, " has neighbour ", u, " twice");
+        }
+        // The Gauss image of edge (v, nbr_j) runs from ring normal j-1 to ring normal j, counter-
+        // clockwise seen from outside, so n_{j-1} x n_j points along v - nbr_j. Allowed the
+        // other way by no more than the two normals' uncertainty.
+        const int prev = ring[(j + k - 1) % k];
+        const Vector3d turn = faceNormals_[prev].cross(faceNormals_[f]);
+        const Vector3d edge = (local_[u] - local_[v]).normalized();
+        if (!(turn.dot(edge) < normalUncertainty[prev] + normalUncertainty[f])) {
+          return fail("ring normals of vertex ", v, " are not counter-clockwise at edge to ", u,
+                      " (by ", turn.dot(edge), " rad)");
+        }
+      }
+    }
+  }
+  return "";
+}
+
+}  // namespace deepcheck::deep
