@@ -1,0 +1,162 @@
+#pragma once
+// Approximate convex decomposition of a triangle mesh (collision meshes of robot links and scenes).
+//
+// Ideas from V-HACD (Mamou, "Volumetric hierarchical approximate convex decomposition", Game
+// Engine Gems 3, 2016) and CoACD (Wei et al., "Approximate convex decomposition for 3D meshes
+// with collision-aware concavity and tree search", SIGGRAPH 2022): recursive splitting by planes,
+// scored by the concavity of the two parts, then merging of neighbours whose common hull stays
+// within the concavity target. Written here from the papers' ideas; no code is shared.
+//
+// Concavity of a piece: the largest distance from a point of its convex hull's surface to the
+// mesh (zero for points inside the mesh solid). It is estimated by sampling the hull surface; the
+// value reported is an upper bound on the distance from each sample to the mesh solid (a sample is
+// measured against the triangles of its own part, see decomposition.cpp).
+//
+// Steps (decomposition.cpp has the details):
+//   1. Weld identical vertices, drop degenerate triangles, fill simple holes (a missing quad of a
+//      wall is common in CAD exports), orient components outward, drop sealed inner voids.
+//   2. If the hull of the whole mesh has concavity <= target, it is the one piece ("already
+//      convex"); no decomposition.
+//   3. Otherwise, repeatedly take the part of largest concavity and cut it by the plane that
+//      minimizes the larger concavity of the two sides (ties: the smaller sum of hull volumes).
+//      Candidates: axis-aligned and principal-axis planes at several offsets, the same normals
+//      through the mesh point nearest to the part's worst hull sample, and a local refinement of
+//      the best offset. A cut triangle is clipped; each side keeps its clipped triangles, and the
+//      cross-section points belong to both sides, so the hull of each side contains its part.
+//      Each side is split again into its connected components. Stop when every part meets the
+//      target or there are maxPieces parts.
+//   4. Merge neighbouring pieces whose merged hull meets the target (cheapest first); if there
+//      are still more than maxPieces pieces, merge the cheapest pairs until there are not.
+//   5. Each hull is reduced to at most maxVerticesPerPiece vertices while keeping it CONTAINING
+//      the original hull (see below); the target applies to the reduced pieces, in steps 2-4.
+//
+// Coverage: every point of every triangle lies in the hull of the part it was assigned to (a cut
+// triangle's pieces go to both sides), merging only enlarges hulls, and the vertex reduction only
+// enlarges them too. So the union of the pieces contains the mesh surface (and, for a closed
+// mesh, its solid), up to the round-off of the hull computation (~1e-12 of the mesh size).
+//
+// Vertex reduction (maxVerticesPerPiece) keeps CONTAINMENT: a progressive hull (Sander et al.,
+// "Silhouette clipping", SIGGRAPH 2000) collapses hull edges (u, v) into a new vertex placed on or
+// outside the plane of every face around u and v, so each step's hull contains the previous one;
+// the collapse whose new vertex is nearest to the original hull goes first (the new vertex
+// minimizes the added volume). Each collapse is verified (u and v inside the new hull). Should it
+// fail to reach the budget, the fallback is an intersection of supporting half-spaces (at most
+// 2k - 4 vertices for k planes). The bound: every point of a reduced piece is within `excess` of
+// the unreduced hull, `excess` being the largest distance from a reduced vertex to that hull, so
+// concavity(reduced) <= concavity(hull) + excess. A hull is reduced only once it meets the target,
+// and the concavity that must meet the target is the reduced piece's: a part whose reduced hull
+// misses it is cut further (into sides with fewer hull vertices), and so are merges.
+//
+// Units: whatever the mesh is in (metres for URDF meshes); minConcavityAbs is in the same unit.
+
+#include "deepcheck/deep/polytope.h"
+#include "deepcheck/robots/mesh.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace deepcheck::robots {
+
+/// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
+constexpr int kDecompositionAlgorithmVersion = 1;
+
+struct DecompositionParams {
+  /// Concavity target as a fraction of the mesh's bounding-box diagonal, in (0, 1].
+  double maxConcavity = 0.01;
+  /// Absolute floor of the concavity target (mesh units, metres for URDF), >= 0 and finite:
+  /// target = max(maxConcavity * diagonal, minConcavityAbs).
+  double minConcavityAbs = 0.002;
+  /// Largest number of pieces, >= 1. When the target cannot be met within it, the report says so.
+  int maxPieces = 32;
+  /// Largest number of vertices of a piece, >= 4 (see the header comment for the bound).
+  int maxVerticesPerPiece = 64;
+  /// Merge neighbouring pieces whose merged hull still meets the target.
+  bool mergePieces = true;
+  /// Seed of the hull-surface sampling (the only randomness; the result is deterministic).
+  std::uint64_t seed = 20240611;
+
+  /// The absolute concavity target for a mesh of the given bounding-box diagonal.
+  double targetConcavity(double diagonal) const;
+  /// Throws std::invalid_argument naming the first parameter out of range and its value.
+  void validate() const;
+};
+
+/// One convex piece: its hull's vertices and triangulated faces.
+struct ConvexPiece {
+  std::vector<Eigen::Vector3d> vertices;      ///< in the mesh's frame
+  std::vector<std::array<int, 3>> triangles;  ///< hull faces, counter-clockwise seen from outside
+                                              ///< (empty for a flat or lower-dimensional piece)
+  double volume = 0.0;                        ///< hull volume (0 when flat)
+  double concavity = 0.0;                     ///< this piece's concavity (sampled, see above)
+};
+
+/// How the on-disk cache took part in a decomposition (see decomposition_cache.h).
+enum class CacheStatus {
+  NotUsed,      ///< no cache was used (none given, or caching disabled)
+  Hit,          ///< read from the cache: no decomposition ran
+  Stored,       ///< not in the cache: decomposed, then written to it
+  Replaced,     ///< the cache file was unreadable (truncated, corrupt, other version): decomposed,
+                ///< then rewritten
+  StoreFailed,  ///< decomposed, but writing the cache failed (report.cacheMessage says why)
+};
+
+const char* toString(CacheStatus status);
+
+/// Quality report of one decomposition. Lengths are in mesh units.
+struct DecompositionReport {
+  std::string source;          ///< the mesh's source (file name), "" when generated
+  int numTriangles = 0;        ///< triangles used (after welding and dropping degenerate ones)
+  int numVertices = 0;         ///< distinct vertices used
+  int numComponents = 0;       ///< connected components of the mesh
+  int numPieces = 0;
+  int maxPieceVertices = 0;    ///< the most vertices of a piece
+  double diagonal = 0.0;       ///< bounding-box diagonal of the mesh
+  double targetConcavity = 0.0;  ///< absolute target, params.targetConcavity(diagonal)
+  double concavity = 0.0;        ///< achieved: max over pieces (sampled, see the header comment)
+  double concavityRelative = 0.0;  ///< concavity / diagonal
+  bool targetMet = false;        ///< concavity <= targetConcavity
+  double hullConcavity = 0.0;    ///< concavity of the mesh's own hull (before vertex reduction)
+  bool alreadyConvex = false;    ///< the mesh's own hull, reduced to maxVerticesPerPiece, met the
+                                 ///< target: one piece, no cuts
+  int holesFilled = 0;           ///< simple holes (boundary loops) closed before decomposing
+  int voidsRemoved = 0;          ///< sealed inner cavities (inward-facing closed components inside
+                                 ///< others) ignored: they cannot be reached, covering them is free
+  bool meshClosed = false;       ///< every edge is shared by an even number (>= 2) of triangles,
+                                 ///< once the holes are filled
+  double meshVolume = 0.0;       ///< by the divergence theorem, once the holes are filled (voids
+                                 ///< count negative); NaN when not closed
+  double piecesVolume = 0.0;     ///< sum of the piece hull volumes (overlaps counted twice)
+  double volumeRatio = 0.0;      ///< piecesVolume / meshVolume; NaN when not closed
+  double decomposeMilliseconds = 0.0;  ///< wall time of the decomposition (as stored, on a hit)
+  double milliseconds = 0.0;     ///< wall time of this call (a cache read on a hit)
+  CacheStatus cache = CacheStatus::NotUsed;
+  std::string cacheMessage;      ///< why a cache file was replaced or could not be written
+};
+
+struct ConvexDecomposition {
+  std::vector<ConvexPiece> pieces;
+  DecompositionReport report;
+
+  /// The pieces as polytopes (ConvexPolytope::fromPoints of each piece's vertices).
+  std::vector<deep::ConvexPolytope> polytopes() const;
+};
+
+/// Decomposes `mesh` as described above. Throws std::invalid_argument, with a message naming the
+/// mesh's source and the bad input, when the mesh has no triangle, a vertex is NaN or infinite,
+/// a triangle index is out of range, all triangles are degenerate, or a parameter is out of range.
+ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const DecompositionParams& params = {});
+
+/// True when `point` is inside `piece` or within `tolerance` of it (uses the hull faces; a flat
+/// piece counts as a plate of thickness 2 * tolerance).
+bool pieceContains(const ConvexPiece& piece, const Eigen::Vector3d& point, double tolerance);
+
+/// Writes the pieces as a Wavefront OBJ text: one `o piece_<i>` object per piece with its
+/// vertices and hull faces (indices global, 1-based, as OBJ wants). Throws std::runtime_error
+/// naming the file when it cannot be written.
+void writePiecesObj(const std::string& path, const std::vector<ConvexPiece>& pieces);
+
+}  // namespace deepcheck::robots

@@ -1,0 +1,492 @@
+// Convex hulls for the convex decomposition: Qhull (reentrant) for the hull itself, our own
+// greedy vertex reduction on top of it (decomposition.h describes the bound).
+
+#include "decomposition_hull.h"
+
+#include "decomposition_bvh.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+extern "C" {
+#include <libqhull_r/qhull_ra.h>
+}
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+namespace deepcheck::robots::detail {
+
+using Eigen::Vector3d;
+
+namespace {
+
+/// Where Qhull's messages go: precision problems on nearly flat parts are expected and handled
+/// by the planar fallback, they must not reach the user's terminal.
+std::FILE* qhullErrorSink() {
+  thread_local std::FILE* sink = std::fopen("/dev/null", "w");
+  return sink != nullptr ? sink : stderr;
+}
+
+/// One Qhull run; frees its memory when it goes out of scope.
+class QhullRun {
+ public:
+  QhullRun(const std::vector<Vector3d>& points, const char* options) {
+    coords_.reserve(points.size() * 3);
+    for (const Vector3d& p : points) coords_.insert(coords_.end(), {p.x(), p.y(), p.z()});
+    qh_zero(qh, qhullErrorSink());
+    std::vector<char> flags(options, options + std::char_traits<char>::length(options) + 1);
+    exitCode_ = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords_.data(), False,
+                             flags.data(), nullptr, qhullErrorSink());
+  }
+  ~QhullRun() {
+    qh_freeqhull(qh, !qh_ALL);
+    int curlong = 0;
+    int totlong = 0;
+    qh_memfreeshort(qh, &curlong, &totlong);
+  }
+  QhullRun(const QhullRun&) = delete;
+  QhullRun& operator=(const QhullRun&) = delete;
+
+  bool ok() const { return exitCode_ == 0; }
+
+  qhT qhStorage_;
+  qhT* qh = &qhStorage_;
+
+ private:
+  std::vector<coordT> coords_;
+  int exitCode_ = 1;
+};
+
+/// Unit eigenvectors of the covariance of `points` (columns, largest variance first).
+Eigen::Matrix3d principalAxes(const std::vector<Vector3d>& points, const Vector3d& center) {
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vector3d& p : points) cov += (p - center) * (p - center).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+  Eigen::Matrix3d axes;
+  for (int i = 0; i < 3; ++i) axes.col(i) = solver.eigenvectors().col(2 - i);
+  return axes;
+}
+
+Vector3d centroid(const std::vector<Vector3d>& points) {
+  Vector3d c = Vector3d::Zero();
+  for (const Vector3d& p : points) c += p;
+  return c / static_cast<double>(std::max<std::size_t>(points.size(), 1));
+}
+
+/// Planar (or lower-dimensional) hull: the 2D hull of the points in their best-fit plane, fanned.
+/// Vertices are input points, unprojected.
+Hull flatHull(const std::vector<Vector3d>& points) {
+  Hull hull;
+  const Vector3d c = centroid(points);
+  const Eigen::Matrix3d axes = principalAxes(points, c);
+  const Vector3d u = axes.col(0);
+  const Vector3d v = axes.col(1);
+  const Vector3d n = u.cross(v).normalized();
+  std::vector<int> order(points.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<Eigen::Vector2d> q(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) q[i] = {u.dot(points[i] - c), v.dot(points[i] - c)};
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return q[a].x() < q[b].x() || (q[a].x() == q[b].x() && q[a].y() < q[b].y());
+  });
+  auto cross = [&](int o, int a, int b) {
+    return (q[a] - q[o]).x() * (q[b] - q[o]).y() - (q[a] - q[o]).y() * (q[b] - q[o]).x();
+  };
+  // Andrew's monotone chain, counter-clockwise about n.
+  std::vector<int> chain(2 * order.size() + 1);
+  int k = 0;
+  for (int i : order) {
+    while (k >= 2 && cross(chain[k - 2], chain[k - 1], i) <= 0) --k;
+    chain[k++] = i;
+  }
+  for (int j = static_cast<int>(order.size()) - 2, lower = k + 1; j >= 0; --j) {
+    const int i = order[j];
+    while (k >= lower && cross(chain[k - 2], chain[k - 1], i) <= 0) --k;
+    chain[k++] = i;
+  }
+  chain.resize(std::max(k - 1, 1));
+  for (int i : chain) hull.vertices.push_back(points[i]);
+  if (hull.vertices.size() < 3) {
+    // Collinear: keep the two extremes (or the single point).
+    if (points.size() >= 2) hull.vertices = {points[order.front()], points[order.back()]};
+    return hull;
+  }
+  const double offset = n.dot(c);
+  for (int i = 1; i + 1 < static_cast<int>(hull.vertices.size()); ++i) {
+    hull.triangles.push_back({0, i, i + 1});
+    hull.normals.push_back(n);
+    hull.offsets.push_back(offset);
+    hull.area += 0.5 * (hull.vertices[i] - hull.vertices[0])
+                           .cross(hull.vertices[i + 1] - hull.vertices[0])
+                           .norm();
+  }
+  return hull;
+}
+
+/// Vertices of the intersection of the half-spaces {x : n_i.x <= d_i}, which must contain
+/// `interior` strictly and be bounded: the facets of the hull of the polar points
+/// n_i / (d_i - n_i.interior) are the vertices. Empty on failure.
+std::vector<Vector3d> halfspaceIntersection(const std::vector<Vector3d>& normals,
+                                            const std::vector<double>& offsets,
+                                            const Vector3d& interior) {
+  std::vector<Vector3d> dual(normals.size());
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    const double h = offsets[i] - normals[i].dot(interior);
+    if (!(h > 0.0)) return {};
+    dual[i] = normals[i] / h;
+  }
+  QhullRun run(dual, "qhull Pp");
+  if (!run.ok()) return {};
+  qhT* qh = run.qh;
+  std::vector<Vector3d> corners;
+  facetT* facet;
+  FORALLfacets {
+    const Vector3d a(facet->normal[0], facet->normal[1], facet->normal[2]);
+    const double b = -facet->offset;  // facet plane: a.q = b, b > 0 when the polar set is bounded
+    if (!(b > 0.0)) return {};
+    corners.push_back(interior + a / b);
+  }
+  return corners;
+}
+
+}  // namespace
+
+Hull convexHull(const std::vector<Vector3d>& points) {
+  if (points.size() < 4) return flatHull(points);
+  QhullRun run(points, "qhull Qt Pp");
+  if (!run.ok()) return flatHull(points);
+  qhT* qh = run.qh;
+  Hull hull;
+  std::vector<int> index(points.size(), -1);
+  vertexT* vertex;
+  vertexT** vertexp;
+  facetT* facet;
+  FORALLvertices {
+    const int id = qh_pointid(qh, vertex->point);
+    index[id] = static_cast<int>(hull.vertices.size());
+    hull.vertices.push_back(points[id]);
+  }
+  FORALLfacets {
+    std::array<int, 3> tri{};
+    int k = 0;
+    FOREACHvertex_(facet->vertices) {
+      if (k < 3) tri[k] = index[qh_pointid(qh, vertex->point)];
+      ++k;
+    }
+    if (k != 3) continue;  // "Qt" triangulates every facet; anything else is not a triangle
+    const Vector3d n(facet->normal[0], facet->normal[1], facet->normal[2]);
+    const Vector3d& a = hull.vertices[tri[0]];
+    const Vector3d& b = hull.vertices[tri[1]];
+    const Vector3d& c = hull.vertices[tri[2]];
+    const Vector3d areaVector = (b - a).cross(c - a);
+    if (areaVector.dot(n) < 0.0) std::swap(tri[1], tri[2]);
+    hull.triangles.push_back(tri);
+    hull.normals.push_back(n);
+    hull.offsets.push_back(-facet->offset);
+    hull.area += 0.5 * areaVector.norm();
+  }
+  const Vector3d c = centroid(hull.vertices);
+  for (const auto& t : hull.triangles) {
+    hull.volume += (hull.vertices[t[0]] - c)
+                       .dot((hull.vertices[t[1]] - c).cross(hull.vertices[t[2]] - c)) /
+                   6.0;
+  }
+  if (!(hull.volume > 0.0)) return flatHull(points);
+  return hull;
+}
+
+namespace {
+
+/// Fallback reduction: the intersection of supporting half-spaces of the hull, starting from a
+/// box (or a tetrahedron) along its principal axes and adding, while the vertex budget allows, the
+/// facet plane of the hull that the worst corner violates most. An intersection of k half-spaces
+/// has at most 2k - 4 vertices, so this always fits the budget, but it is coarse (about k = V/2
+/// planes for V vertices).
+Hull circumscribedReduction(const Hull& hull, int maxVertices) {
+  const std::vector<Vector3d>& V = hull.vertices;
+  const Vector3d center = centroid(V);
+  const Eigen::Matrix3d axes = principalAxes(V, center);
+  std::vector<int> facetOf;  // one triangle per distinct facet plane
+  {
+    std::vector<int> order(hull.triangles.size());
+    std::iota(order.begin(), order.end(), 0);
+    auto key = [&](int t) {
+      return std::make_tuple(hull.normals[t].x(), hull.normals[t].y(), hull.normals[t].z(), hull.offsets[t]);
+    };
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      if (k == 0 || key(order[k]) != key(order[k - 1])) facetOf.push_back(order[k]);
+    }
+  }
+  auto support = [&](const Vector3d& dir) {
+    double best = -std::numeric_limits<double>::infinity();
+    for (const Vector3d& v : V) best = std::max(best, dir.dot(v));
+    return best;
+  };
+  std::vector<Vector3d> normals;
+  std::vector<double> offsets;
+  if (maxVertices >= 8) {
+    for (int i = 0; i < 3; ++i) {
+      for (const Vector3d& d : {Vector3d(axes.col(i)), Vector3d(-axes.col(i))}) {
+        normals.push_back(d);
+        offsets.push_back(support(d));
+      }
+    }
+  } else {
+    const double s = 1.0 / std::sqrt(3.0);
+    for (const Vector3d& d : {Vector3d(1, 1, 1), Vector3d(1, -1, -1), Vector3d(-1, 1, -1),
+                              Vector3d(-1, -1, 1)}) {
+      normals.push_back(axes * (s * d));
+      offsets.push_back(support(normals.back()));
+    }
+  }
+  std::vector<Vector3d> corners = halfspaceIntersection(normals, offsets, center);
+  if (corners.empty()) return hull;
+  std::vector<char> used(facetOf.size(), 0);
+  for (;;) {
+    std::vector<std::pair<double, int>> worst(corners.size(), {0.0, -1});
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      for (std::size_t f = 0; f < facetOf.size(); ++f) {
+        const int t = facetOf[f];
+        const double excess = hull.normals[t].dot(corners[i]) - hull.offsets[t];
+        if (excess > worst[i].first) worst[i] = {excess, static_cast<int>(f)};
+      }
+    }
+    std::sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    bool added = false;
+    constexpr int kTries = 8;  // planes tried per round (cutting the worst corners first)
+    for (int k = 0; k < std::min<int>(kTries, static_cast<int>(worst.size())); ++k) {
+      const int f = worst[k].second;
+      if (f < 0 || used[f]) continue;
+      used[f] = 1;  // tried once: accepted now, or over the budget and not tried again
+      const int t = facetOf[f];
+      normals.push_back(hull.normals[t]);
+      offsets.push_back(hull.offsets[t]);
+      std::vector<Vector3d> trial = halfspaceIntersection(normals, offsets, center);
+      if (!trial.empty() && static_cast<int>(trial.size()) <= maxVertices) {
+        corners = std::move(trial);
+        added = true;
+        break;
+      }
+      normals.pop_back();
+      offsets.pop_back();
+    }
+    if (!added) break;
+  }
+  Hull reduced = convexHull(corners);
+  if (static_cast<int>(reduced.vertices.size()) > maxVertices || !(reduced.volume > 0.0)) return hull;
+  return reduced;
+}
+
+/// Bit pattern of a position: identifies a vertex across hull recomputations.
+struct PositionKey {
+  std::uint64_t bits[3];
+  bool operator==(const PositionKey& o) const {
+    return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
+  }
+};
+struct PositionKeyHash {
+  std::size_t operator()(const PositionKey& k) const {
+    std::uint64_t h = 0x84222325cbf29ce4ULL;
+    for (std::uint64_t b : k.bits) h = (h ^ b) * 0x100000001b3ULL ^ (h >> 31);
+    return static_cast<std::size_t>(h);
+  }
+};
+PositionKey positionKey(const Vector3d& p) {
+  PositionKey key{};
+  for (int k = 0; k < 3; ++k) {
+    const double c = p[k] + 0.0;
+    std::memcpy(&key.bits[k], &c, sizeof c);
+  }
+  return key;
+}
+
+/// Progressive hull (after Sander et al., "Silhouette clipping", SIGGRAPH 2000): collapse hull
+/// edges (u, v) into one new vertex p placed on or outside the plane of every face around u and v
+/// (so the new hull contains the old one), p minimizing the added volume (a 3-variable linear
+/// program, solved by enumerating the vertices of its feasible region). The collapse whose p is
+/// nearest to the original hull goes first. Candidates are cached per edge and recomputed when the
+/// neighbourhood of either end changes. Each collapse is checked: u and v must be inside the new
+/// hull. Returns false when it could not reach the budget.
+bool progressiveReduction(const Hull& original, int maxVertices, Hull* out) {
+  constexpr int kMaxConstraints = 24;  // planes around an edge; more (a fan apex) is skipped
+  const double scale = [&] {
+    Eigen::AlignedBox3d box;
+    for (const Vector3d& v : original.vertices) box.extend(v);
+    return box.diagonal().norm();
+  }();
+  // p lies on the original hull's surface or outside it: its distance is a surface distance.
+  std::vector<Triangle> surface;
+  for (const auto& t : original.triangles) {
+    surface.push_back({original.vertices[t[0]], original.vertices[t[1]], original.vertices[t[2]]});
+  }
+  const TriangleBvh bvh(std::move(surface));
+
+  std::unordered_map<PositionKey, int, PositionKeyHash> ids;
+  auto idOf = [&](const Vector3d& p) {
+    return ids.emplace(positionKey(p), static_cast<int>(ids.size())).first->second;
+  };
+  struct Candidate {
+    std::uint64_t signature;  // neighbourhoods of both ends when computed
+    bool valid;
+    double key;
+    Vector3d p;
+  };
+  std::unordered_map<std::uint64_t, Candidate> cache;
+
+  Hull P = original;
+  while (static_cast<int>(P.vertices.size()) > maxVertices) {
+    const int n = static_cast<int>(P.vertices.size());
+    std::vector<int> id(n);
+    for (int i = 0; i < n; ++i) id[i] = idOf(P.vertices[i]);
+    std::vector<std::vector<int>> faces(n);
+    std::vector<std::vector<int>> neighbours(n);
+    for (int t = 0; t < static_cast<int>(P.triangles.size()); ++t) {
+      for (int e = 0; e < 3; ++e) {
+        faces[P.triangles[t][e]].push_back(t);
+        neighbours[P.triangles[t][e]].push_back(id[P.triangles[t][(e + 1) % 3]]);
+      }
+    }
+    std::vector<std::uint64_t> signature(n);
+    for (int i = 0; i < n; ++i) {
+      std::sort(neighbours[i].begin(), neighbours[i].end());
+      std::uint64_t h = 0xcbf29ce484222325ULL ^ static_cast<std::uint64_t>(id[i]);
+      for (int k : neighbours[i]) h = (h ^ static_cast<std::uint64_t>(k)) * 0x100000001b3ULL;
+      signature[i] = h;
+    }
+    auto solve = [&](int u, int v) {
+      Candidate c{0, false, std::numeric_limits<double>::infinity(), Vector3d::Zero()};
+      std::vector<std::pair<Vector3d, double>> planes;
+      Vector3d objective = Vector3d::Zero();  // area vector of the faces around the edge
+      for (int w : {u, v}) {
+        for (int f : faces[w]) {
+          const auto& t = P.triangles[f];
+          objective += (P.vertices[t[1]] - P.vertices[t[0]]).cross(P.vertices[t[2]] - P.vertices[t[0]]);
+          bool repeated = false;
+          for (const auto& q : planes) repeated = repeated || (q.first == P.normals[f] && q.second == P.offsets[f]);
+          if (!repeated) planes.emplace_back(P.normals[f], P.offsets[f]);
+        }
+      }
+      const int m = static_cast<int>(planes.size());
+      if (m < 3 || m > kMaxConstraints) return c;
+      const double slack = 1e-12 * scale;
+      double bestValue = std::numeric_limits<double>::infinity();
+      for (int a = 0; a < m; ++a) {
+        for (int b = a + 1; b < m; ++b) {
+          for (int d = b + 1; d < m; ++d) {
+            Eigen::Matrix3d A;
+            A.row(0) = planes[a].first;
+            A.row(1) = planes[b].first;
+            A.row(2) = planes[d].first;
+            const double det = A.determinant();
+            if (std::abs(det) < 1e-9) continue;  // unit normals: nearly parallel planes
+            const Vector3d p = A.inverse() * Vector3d(planes[a].second, planes[b].second, planes[d].second);
+            bool feasible = true;
+            for (const auto& q : planes) feasible = feasible && q.first.dot(p) >= q.second - slack;
+            if (!feasible) continue;
+            const double value = objective.dot(p);
+            if (value < bestValue) {
+              bestValue = value;
+              c.p = p;
+              c.valid = true;
+            }
+          }
+        }
+      }
+      if (c.valid) c.key = bvh.distance(c.p, nullptr, 0.0);
+      return c;
+    };
+
+    // Best cached-or-computed candidate over all edges.
+    struct Choice {
+      int u, v;
+      std::uint64_t cacheKey;
+    };
+    std::vector<std::pair<double, Choice>> ranked;
+    for (const auto& t : P.triangles) {
+      for (int e = 0; e < 3; ++e) {
+        int u = t[e];
+        int v = t[(e + 1) % 3];
+        if (id[u] > id[v]) continue;  // each undirected edge once
+        const std::uint64_t cacheKey = static_cast<std::uint64_t>(id[u]) << 32 | static_cast<std::uint32_t>(id[v]);
+        const std::uint64_t sig = signature[u] * 31 + signature[v];
+        auto it = cache.find(cacheKey);
+        if (it == cache.end() || it->second.signature != sig) {
+          Candidate c = solve(u, v);
+          c.signature = sig;
+          it = cache.insert_or_assign(cacheKey, c).first;
+        }
+        if (it->second.valid) ranked.push_back({it->second.key, {u, v, cacheKey}});
+      }
+    }
+    std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    bool collapsed = false;
+    for (const auto& [key, choice] : ranked) {
+      std::vector<Vector3d> points;
+      points.reserve(n);
+      for (int i = 0; i < n; ++i) {
+        if (i != choice.u && i != choice.v) points.push_back(P.vertices[i]);
+      }
+      points.push_back(cache[choice.cacheKey].p);
+      Hull Q = convexHull(points);
+      bool contains = Q.volume > 0.0 && static_cast<int>(Q.vertices.size()) < n;
+      for (int w : {choice.u, choice.v}) {
+        for (std::size_t f = 0; contains && f < Q.triangles.size(); ++f) {
+          contains = Q.normals[f].dot(P.vertices[w]) - Q.offsets[f] <= 1e-12 * scale;
+        }
+      }
+      if (!contains) {
+        cache[choice.cacheKey].valid = false;
+        continue;
+      }
+      P = std::move(Q);
+      collapsed = true;
+      break;
+    }
+    if (!collapsed) return false;
+  }
+  *out = std::move(P);
+  return true;
+}
+
+/// Largest distance from a vertex of `reduced` to `hull` (0 for vertices inside it).
+double excessOver(const Hull& reduced, const Hull& hull) {
+  double worst = 0.0;
+  for (const Vector3d& v : reduced.vertices) {
+    bool inside = true;
+    for (std::size_t f = 0; inside && f < hull.triangles.size(); ++f) {
+      inside = hull.normals[f].dot(v) - hull.offsets[f] <= 0.0;
+    }
+    if (inside) continue;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& t : hull.triangles) {
+      const Vector3d q = closestPointOnTriangle(v, hull.vertices[t[0]], hull.vertices[t[1]], hull.vertices[t[2]]);
+      best = std::min(best, (q - v).norm());
+    }
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+}  // namespace
+
+Hull reduceHullVertices(const Hull& hull, int maxVertices, double* excess) {
+  if (excess != nullptr) *excess = 0.0;
+  if (static_cast<int>(hull.vertices.size()) <= maxVertices || !(hull.volume > 0.0)) return hull;
+  Hull reduced;
+  if (!progressiveReduction(hull, maxVertices, &reduced)) reduced = circumscribedReduction(hull, maxVertices);
+  if (excess != nullptr) *excess = excessOver(reduced, hull);
+  return reduced;
+}
+
+}  // namespace deepcheck::robots::detail

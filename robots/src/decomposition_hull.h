@@ -1,0 +1,35 @@
+#pragma once
+// Convex hulls for the convex decomposition (internal): triangulated hulls through Qhull, and the
+// containment-preserving vertex reduction (see decomposition.h).
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+namespace deepcheck::robots::detail {
+
+/// A triangulated convex hull.
+struct Hull {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
+  /// Plane of the hull facet each triangle belongs to: unit outward normal and offset (n.x = d).
+  /// Triangles of one (merged, coplanar) facet share it exactly.
+  std::vector<Eigen::Vector3d> normals;
+  std::vector<double> offsets;
+  double volume = 0.0;
+  double area = 0.0;  ///< surface area (one side only for a flat hull)
+};
+
+/// The hull of `points` (any count, duplicates allowed). A flat input gives a polygon fanned into
+/// triangles with one normal and volume 0; fewer than three non-collinear points give the extreme
+/// points and no triangle.
+Hull convexHull(const std::vector<Eigen::Vector3d>& points);
+
+/// A convex polytope with at most `maxVertices` (>= 4) vertices that contains `hull`
+/// (decomposition.h describes the method). Returns `hull` itself when it is small enough or not
+/// solid. `excess` (if given) receives the largest distance from a vertex of the result to `hull`,
+/// which bounds the distance from any point of the result to `hull`.
+Hull reduceHullVertices(const Hull& hull, int maxVertices, double* excess = nullptr);
+
+}  // namespace deepcheck::robots::detail
