@@ -243,6 +243,7 @@ std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robo
       rp.X_LP = p.X_LP;
       rp.center_L = p.X_LP * p.core->center();
       rp.sphereRadius = detail::padRadius(p.core->boundingRadius() + p.radius, rp.center_L);
+      rp.obb_L = Obb::ofPiece(*p.core, p.radius).transformed(p.X_LP);
       rp.link = l;
       box.extend(Aabb::ofSphere(rp.center_L, rp.sphereRadius));
       robot->pieces.push_back(rp);
@@ -276,6 +277,7 @@ WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry
   const double pad = p.radius + tol::kBoundingRelative * (p.core->boundingRadius() + p.radius + w.center_W.norm());
   w.box.lo.array() -= pad;
   w.box.hi.array() += pad;
+  w.obb_W = Obb::ofPiece(*p.core, p.radius).transformed(w.X_WP);
   w.body = body;
   w.uid = uid;
   return w;
@@ -397,7 +399,8 @@ std::pair<int, int> linkPairByName(const robots::RobotModel& model, const std::s
 
 void checkFinitePose(const Eigen::Isometry3d& X, const std::string& what) {
   const Eigen::Matrix3d R = X.linear();
-  if (!X.matrix().allFinite() || ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6) ||
+  if (!X.matrix().allFinite() ||
+      ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > tol::kPoseOrthonormality) ||
       R.determinant() < 0) {
     std::ostringstream msg;
     msg << what << ": pose is not finite or its rotation is not orthonormal:\n" << X.matrix();
@@ -659,11 +662,5 @@ std::string World::summary() const {
       << " m\n";
   return out.str();
 }
-
-}  // namespace deepcheck::checker
-
-namespace deepcheck::checker {
-
-std::shared_ptr<const detail::Snapshot> snapshotOf(const World& world) { return world.state_->snapshot(); }
 
 }  // namespace deepcheck::checker

@@ -5,6 +5,7 @@
 // hold the snapshot they were last refreshed with, so a query never sees a half-made change.
 
 #include "deepcheck/checker/aabb_tree.h"
+#include "deepcheck/checker/obb.h"
 #include "deepcheck/checker/reach.h"
 #include "deepcheck/checker/world.h"
 
@@ -24,6 +25,7 @@ struct RobotPiece {
   Eigen::Isometry3d X_LP = Eigen::Isometry3d::Identity();
   Eigen::Vector3d center_L = Eigen::Vector3d::Zero();
   double sphereRadius = 0.0;
+  Obb obb_L;  // oriented box in the link frame
   int link = -1;
 };
 
@@ -45,13 +47,6 @@ struct SelfPair {
   int cacheOffset = 0;
 };
 
-/// The original (not decomposed) geometry of one body, for the FCL backend.
-struct SourceGeometry {
-  robots::Geometry geometry;
-  std::shared_ptr<const robots::TriangleMesh> mesh;  ///< in-memory meshes of obstacles
-  Eigen::Isometry3d X_BG = Eigen::Isometry3d::Identity();  ///< pose in the body frame
-};
-
 /// Everything about the robot: built once, shared by all snapshots.
 struct RobotData {
   robots::RobotModel model;
@@ -71,6 +66,7 @@ struct WorldPiece {
   Eigen::Vector3d center_W = Eigen::Vector3d::Zero();
   double sphereRadius = 0.0;
   Aabb box;
+  Obb obb_W;                // oriented box in the world
   int body = -1;            // index into PieceSet::bodies
   std::uint64_t uid = 0;    // stable across snapshots (obstacle id << 20 | piece), for caches
 };
@@ -156,8 +152,3 @@ inline double padRadius(double r, const Eigen::Vector3d& center) {
 }
 
 }  // namespace deepcheck::checker::detail
-
-namespace deepcheck::checker {
-/// Read access to a world's current snapshot (for the FCL backend).
-std::shared_ptr<const detail::Snapshot> snapshotOf(const World& world);
-}  // namespace deepcheck::checker

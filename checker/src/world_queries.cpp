@@ -76,6 +76,7 @@ struct World::Context::Impl {
   std::vector<Eigen::Isometry3d> X_WL;
   std::vector<Eigen::Isometry3d> X_WP;  // robot pieces, valid when pieceStamp == stamp
   std::vector<Eigen::Vector3d> pieceCenter;
+  std::vector<Obb> pieceObb;
   std::vector<std::uint32_t> pieceStamp;
   std::uint32_t stamp = 0;
   std::vector<Eigen::Vector3d> linkCenter;  // per LinkGeometry
@@ -129,6 +130,7 @@ void refresh(Impl& c) {
     c.X_WL.assign(robot.model.numLinks(), Eigen::Isometry3d::Identity());
     c.X_WP.assign(nRobot, Eigen::Isometry3d::Identity());
     c.pieceCenter.assign(nRobot, Eigen::Vector3d::Zero());
+    c.pieceObb.assign(nRobot, Obb{});
     c.pieceStamp.assign(nRobot, 0);
     c.linkCenter.assign(robot.links.size(), Eigen::Vector3d::Zero());
     c.J_A.resize(3, robot.model.numVariables());
@@ -194,6 +196,7 @@ inline void posePiece(Impl& c, const RobotData& robot, int i) {
   const RobotPiece& p = robot.pieces[i];
   c.X_WP[i] = c.X_WL[p.link] * p.X_LP;
   c.pieceCenter[i] = c.X_WL[p.link] * p.center_L;
+  c.pieceObb[i] = p.obb_L.transformed(c.X_WL[p.link]);
   c.pieceStamp[i] = c.stamp;
 }
 
@@ -303,6 +306,7 @@ bool linkHitsSet(World::Context& context, Impl& c, const Snapshot& s, const Piec
       posePiece(c, robot, i);
       ++c.stats.pieceTests;
       if (pieceWorldLowerBound(c, robot.pieces[i], i, w) > 0) continue;
+      if (separated(c.pieceObb[i], w.obb_W)) continue;
       if (overlapWorld(context, c, robot, set, caches, kind, i, wp)) return true;
     }
     return false;
@@ -322,6 +326,7 @@ bool selfPairHits(World::Context& context, Impl& c, const RobotData& robot, cons
       const RobotPiece& b = robot.pieces[j];
       ++c.stats.pieceTests;
       if ((c.pieceCenter[i] - c.pieceCenter[j]).norm() > a.sphereRadius + b.sphereRadius) continue;
+      if (separated(c.pieceObb[i], c.pieceObb[j])) continue;
       const int cache = sp.cacheOffset + (i - la.firstPiece) * lb.numPieces + (j - lb.firstPiece);
       if (overlapSelf(context, c, robot, i, j, cache)) return true;
     }
@@ -448,6 +453,23 @@ struct DistanceSearch {
   }
 
   /// Measures the pair (both pieces posed).
+  /// Signed distance of a pair. When the shapes overlap and the full DEEP (several walks) is
+  /// asked for, one walk runs first: its depth is a valid separating translation, an upper bound
+  /// on the depth, so its distance is a LOWER bound on the pair's signed distance; when that is
+  /// already at least bound(), the pair cannot matter and the restarts are skipped.
+  deep::SignedDistanceResult pairDistance(const deep::ConvexShape& A, const Eigen::Isometry3d& X_WA,
+                                          const deep::ConvexShape& B, const Eigen::Isometry3d& X_WB,
+                                          deep::PairCache& cache) {
+    if (!options.deep.restarts) return deep::signedDistance(A, X_WA, B, X_WB, &cache, options.deep);
+    deep::DeepOptions quick = options.deep;
+    quick.restarts = false;
+    deep::SignedDistanceResult r = deep::signedDistance(A, X_WA, B, X_WB, &cache, quick);
+    if (r.status == deep::SignedDistanceStatus::Separated || r.distance >= bound()) return r;
+    ++c.stats.fullDepth;
+    return deep::signedDistance(A, X_WA, B, X_WB, &cache, options.deep);
+  }
+
+  /// Measures the pair (both pieces posed).
   void measure(const PairKey& k) {
     const RobotData& robot = *s.robot;
     const RobotPiece& a = robot.pieces[k.robotPiece];
@@ -456,17 +478,17 @@ struct DistanceSearch {
       const RobotPiece& b = robot.pieces[k.other];
       ++c.stats.selfNarrowPhase;
       notify(context, a.link, robotBody(b.link));
-      const deep::SignedDistanceResult r = deep::signedDistance(shapeOf(a), c.X_WP[k.robotPiece], shapeOf(b),
-                                                                c.X_WP[k.other], &c.selfCaches[k.cache], options.deep);
+      const deep::SignedDistanceResult r =
+          pairDistance(shapeOf(a), c.X_WP[k.robotPiece], shapeOf(b), c.X_WP[k.other], c.selfCaches[k.cache]);
       record(k, a.link, 0, b.link, r);
       return;
     }
     const PieceSet& set = setOf(k.kind);
     const WorldPiece& w = set.pieces[k.other];
     notify(context, a.link, bodyOfWorldPiece(set, w));
-    const deep::SignedDistanceResult r = deep::signedDistance(
-        shapeOf(a), c.X_WP[k.robotPiece], shapeOf(w), w.X_WP,
-        &cachesOf(k.kind)[static_cast<std::size_t>(k.robotPiece) * set.pieces.size() + k.other], options.deep);
+    const deep::SignedDistanceResult r =
+        pairDistance(shapeOf(a), c.X_WP[k.robotPiece], shapeOf(w), w.X_WP,
+                     cachesOf(k.kind)[static_cast<std::size_t>(k.robotPiece) * set.pieces.size() + k.other]);
     record(k, a.link, k.kind == PairKey::Kind::Scene ? 1 : 2, w.body, r);
   }
 

@@ -12,6 +12,16 @@ namespace deepcheck::checker::tol {
 /// (1 nm at 1 m).
 constexpr double kBoundingRelative = 1e-9;
 
+/// Added to every |cosine| between box axes in the oriented-box separating-axis test (obb.h), so
+/// that nearly parallel edges, whose cross product is numerically meaningless, can never produce
+/// a false separating axis; it grows each box by this fraction of its half extents at most
+/// (dimensionless).
+constexpr double kObbParallel = 1e-9;
+
+/// An obstacle pose is rejected when its rotation R has max |(R^T R - I)_ij| above this
+/// (dimensionless): the same bound the narrow phase applies to every pose (deep::tol::kOrthonormal).
+constexpr double kPoseOrthonormality = 1e-6;
+
 /// Default margin of the reachability filter, metres: a scene piece is dropped at load time when
 /// it is farther than this from every point any robot link can ever reach (the reach spheres of
 /// reach.h). Distances reported by the world are exact up to this margin; above it they are only

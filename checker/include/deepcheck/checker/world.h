@@ -9,7 +9,7 @@
 //   Scenes    RobotModels too (a URDF kitchen, a shelf), placed at their base pose with their
 //             joints fixed (at given values or their default configuration). Their pieces are
 //             posed once, at load, in world coordinates. A scene piece that no robot link can
-//             ever reach (farther than Options::reachMargin from every link's reach sphere,
+//             ever reach (farther than WorldOptions::reachMargin from every link's reach sphere,
 //             reach.h) is DROPPED at load and counted in summary().
 //   Obstacles boxes, spheres, cylinders and meshes added, moved and removed at run time by id.
 //             They are not subject to the reach filter.
@@ -73,7 +73,6 @@
 namespace deepcheck::checker {
 
 namespace detail {
-struct Snapshot;
 struct WorldState;
 }  // namespace detail
 
@@ -157,6 +156,8 @@ struct QueryStats {
   std::uint64_t pieceTests = 0;       ///< piece pairs whose bounding volumes were compared
   std::uint64_t narrowPhase = 0;      ///< deep::overlaps / deep::signedDistance calls
   std::uint64_t selfNarrowPhase = 0;  ///< the part of narrowPhase on self pairs
+  std::uint64_t fullDepth = 0;        ///< signedDistance: overlapping pairs whose one-walk depth
+                                      ///< could beat the best, measured again with all restarts
 };
 
 /// Sent to Context::onNarrowPhase (when set) before every narrow-phase call: for tests and tools.
@@ -301,7 +302,6 @@ class World {
   std::string summary() const;
 
  private:
-  friend std::shared_ptr<const detail::Snapshot> snapshotOf(const World& world);
   std::shared_ptr<detail::WorldState> state_;
 };
 

@@ -1,0 +1,272 @@
+// checker_bench: speed and agreement of the collision world (deepcheck::checker) against the FCL
+// mesh backend (checker/fcl_backend.h) on the same worlds:
+//   - Panda (../shared) in the bundled shelf scene (robots/data/scenes/shelf.urdf),
+//   - Panda in the MotionBenchMaker kitchen (../shared/scenes),
+//   - the bundled arm in the bundled shelf (runs without ../shared).
+// Query sets: uniformly random configurations within the limits, and short motions (straight
+// segments of 0.3 rad total length cut into steps of 0.01 rad, what a motion validator checks).
+// Measured: isFree (ours, and FCL's boolean collide on the original meshes), signedDistance with
+// gradient (ours) and FCL's mesh distance, per-query medians; throughput with 1 and 2 threads;
+// the broad phases (static AABB tree, FCL's dynamic AABB tree, none); agreement with FCL on random
+// configurations (FCL colliding but reported free must be 0; false alarms counted with their FCL
+// distance against the pair tolerance, twice the world's geometry excess).
+//
+// Output: a table on stdout, the machine load (from /proc/loadavg) before and after, and
+// bench/results/checker_bench.csv. Usage: checker_bench [--quick] (fewer samples).
+
+#include "deepcheck/checker/fcl_backend.h"
+#include "deepcheck/checker/world.h"
+#include "deepcheck/robots/pair_filter.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <numeric>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace deepcheck;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+std::string loadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return a + " " + b + " " + c;
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(p * (v.size() - 1))];
+}
+
+double mean(const std::vector<double>& v) {
+  return v.empty() ? std::nan("") : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+}
+
+struct Row {
+  std::string world, query, set, backend;
+  double median = 0, p90 = 0, average = 0;
+  std::size_t count = 0;
+  std::string note;
+};
+
+std::vector<Row> rows;
+
+void addTimes(const std::string& world, const std::string& query, const std::string& set,
+              const std::string& backend, const std::vector<double>& us, const std::string& note = "") {
+  rows.push_back({world, query, set, backend, percentile(us, 0.5), percentile(us, 0.9), mean(us), us.size(), note});
+  std::printf("  %-10s %-8s %-22s median %8.2f us  p90 %8.2f us  mean %8.2f us  (%zu)%s%s\n", query.c_str(),
+              set.c_str(), backend.c_str(), rows.back().median, rows.back().p90, rows.back().average, us.size(),
+              note.empty() ? "" : "  ", note.c_str());
+}
+
+/// Per-call times in microseconds.
+template <class F>
+std::vector<double> timeEach(const std::vector<Eigen::VectorXd>& qs, F&& f) {
+  std::vector<double> us;
+  us.reserve(qs.size());
+  for (const Eigen::VectorXd& q : qs) {
+    const auto t0 = Clock::now();
+    f(q);
+    us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+  }
+  return us;
+}
+
+Eigen::VectorXd randomConfiguration(const robots::RobotModel& m, std::mt19937& rng) {
+  Eigen::VectorXd q(m.numVariables());
+  for (int v = 0; v < q.size(); ++v) {
+    q[v] = std::uniform_real_distribution<double>(m.lowerLimits()[v], m.upperLimits()[v])(rng);
+  }
+  return q;
+}
+
+/// Short motions: from a random start, a random direction, 30 steps of 0.01 rad (0.3 rad).
+std::vector<Eigen::VectorXd> shortMotions(const robots::RobotModel& m, int motions, std::mt19937& rng) {
+  std::vector<Eigen::VectorXd> out;
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int k = 0; k < motions; ++k) {
+    Eigen::VectorXd q = randomConfiguration(m, rng);
+    Eigen::VectorXd d(q.size());
+    for (int v = 0; v < d.size(); ++v) d[v] = n(rng);
+    d /= d.norm();
+    for (int s = 0; s <= 30; ++s) {
+      Eigen::VectorXd x = q + 0.01 * s * d;
+      x = x.cwiseMax(m.lowerLimits()).cwiseMin(m.upperLimits());
+      out.push_back(x);
+    }
+  }
+  return out;
+}
+
+struct WorldSpec {
+  std::string name;
+  std::string robot;
+  std::vector<std::string> packageRoots;
+  std::string srdf;
+  std::string scene;
+};
+
+/// Throughput (queries per second) of `perQuery` over `qs` split between `threads` threads, each
+/// with its own context.
+double throughput(const checker::World& world, const std::vector<Eigen::VectorXd>& qs, int threads,
+                  const std::function<void(const checker::World&, checker::World::Context&, const Eigen::VectorXd&)>& perQuery) {
+  std::vector<std::thread> pool;
+  const auto t0 = Clock::now();
+  for (int t = 0; t < threads; ++t) {
+    pool.emplace_back([&, t] {
+      auto context = world.makeContext();
+      for (std::size_t i = t; i < qs.size(); i += threads) perQuery(world, context, qs[i]);
+    });
+  }
+  for (std::thread& th : pool) th.join();
+  return qs.size() / std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void runWorld(const WorldSpec& spec, int samples, int motions) {
+  robots::LoadOptions load;
+  load.packageRoots = spec.packageRoots;
+  load.useRosPackagePath = false;
+  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(spec.robot, load);
+  checker::WorldOptions options;
+  if (!spec.srdf.empty()) options.disabledPairs = robots::readSrdfDisabledPairs(spec.srdf);
+  const auto tLoad = Clock::now();
+  checker::World world(robot, options);
+  world.addScene(robots::RobotModel::fromUrdfFile(spec.scene, load));
+  const double loadSeconds = std::chrono::duration<double>(Clock::now() - tLoad).count();
+  checker::FclWorld fcl(world);
+  std::printf("\n== %s  (world loaded in %.2f s, decomposition cache included)\n%s", spec.name.c_str(), loadSeconds,
+              world.summary().c_str());
+
+  std::mt19937 rng(2024);
+  std::vector<Eigen::VectorXd> random;
+  for (int i = 0; i < samples; ++i) random.push_back(randomConfiguration(world.robot(), rng));
+  const std::vector<Eigen::VectorXd> motion = shortMotions(world.robot(), motions, rng);
+
+  // isFree: ours (one context, warm starts across the set, as a planner thread has) and FCL's.
+  for (const auto& [setName, qs] : {std::pair<std::string, const std::vector<Eigen::VectorXd>*>{"random", &random},
+                                    {"motions", &motion}}) {
+    auto context = world.makeContext();
+    int freeCount = 0;
+    const std::vector<double> ours = timeEach(*qs, [&](const Eigen::VectorXd& q) { freeCount += world.isFree(q, context); });
+    const std::vector<double> theirs = timeEach(*qs, [&](const Eigen::VectorXd& q) { fcl.isFree(q); });
+    const double ratio = percentile(theirs, 0.5) / percentile(ours, 0.5);
+    char note[128];
+    std::snprintf(note, sizeof note, "free %.1f %%, FCL/ours %.1fx", 100.0 * freeCount / qs->size(), ratio);
+    addTimes(spec.name, "isFree", setName, "deepcheck", ours, note);
+    addTimes(spec.name, "isFree", setName, "fcl-mesh", theirs);
+  }
+  // signedDistance with gradient (ours), FCL distance (boolean, then distance when free).
+  checker::DistanceOptions withGradient;
+  withGradient.gradient = true;
+  for (const auto& [setName, qs] : {std::pair<std::string, const std::vector<Eigen::VectorXd>*>{"random", &random},
+                                    {"motions", &motion}}) {
+    auto context = world.makeContext();
+    const std::vector<double> ours =
+        timeEach(*qs, [&](const Eigen::VectorXd& q) { world.signedDistance(q, context, withGradient); });
+    addTimes(spec.name, "sd+grad", setName, "deepcheck", ours);
+    std::vector<Eigen::VectorXd> subset(qs->begin(), qs->begin() + std::min<std::size_t>(qs->size(), 2000));
+    const std::vector<double> theirs = timeEach(subset, [&](const Eigen::VectorXd& q) { fcl.distance(q); });
+    addTimes(spec.name, "distance", setName, "fcl-mesh (no depth)", theirs);
+  }
+  // Broad phases (isFree, random set).
+  for (checker::BroadPhase b : {checker::BroadPhase::AabbTree, checker::BroadPhase::FclTree, checker::BroadPhase::None}) {
+    checker::WorldOptions o = options;
+    o.broadPhase = b;
+    checker::World w(robot, o);
+    w.addScene(robots::RobotModel::fromUrdfFile(spec.scene, load));
+    auto context = w.makeContext();
+    addTimes(spec.name, "isFree", "random", std::string("broad phase ") + checker::toString(b),
+             timeEach(random, [&](const Eigen::VectorXd& q) { w.isFree(q, context); }));
+    auto sdContext = w.makeContext();
+    addTimes(spec.name, "sd+grad", "random", std::string("broad phase ") + checker::toString(b),
+             timeEach(random, [&](const Eigen::VectorXd& q) { w.signedDistance(q, sdContext, withGradient); }));
+  }
+  // Throughput, 1 and 2 threads.
+  for (int threads : {1, 2}) {
+    const double isFreeRate = throughput(world, random, threads, [](const checker::World& w, checker::World::Context& c,
+                                                                    const Eigen::VectorXd& q) { w.isFree(q, c); });
+    const double sdRate = throughput(world, random, threads, [&](const checker::World& w, checker::World::Context& c,
+                                                                 const Eigen::VectorXd& q) { w.signedDistance(q, c, withGradient); });
+    std::printf("  throughput %d thread%s: isFree %.0f /s, sd+grad %.0f /s\n", threads, threads > 1 ? "s" : " ",
+                isFreeRate, sdRate);
+    rows.push_back({spec.name, "isFree", "random", "throughput " + std::to_string(threads) + " thread(s)", 0, 0, 0,
+                    random.size(), std::to_string(static_cast<long long>(isFreeRate)) + " /s"});
+    rows.push_back({spec.name, "sd+grad", "random", "throughput " + std::to_string(threads) + " thread(s)", 0, 0, 0,
+                    random.size(), std::to_string(static_cast<long long>(sdRate)) + " /s"});
+  }
+  // Agreement with FCL on the random set.
+  const double tolerance = 2 * world.summaryCounts().geometryExcess;
+  auto context = world.makeContext();
+  int fclColliding = 0, missed = 0, falseAlarms = 0, beyond = 0;
+  double worst = 0.0;
+  for (const Eigen::VectorXd& q : random) {
+    const bool ours = world.isFree(q, context);
+    const bool theirs = fcl.isFree(q);
+    fclColliding += !theirs;
+    missed += !theirs && ours;
+    if (theirs && !ours) {
+      ++falseAlarms;
+      const double d = fcl.distance(q).distance;
+      worst = std::max(worst, d);
+      beyond += d > tolerance;
+    }
+  }
+  char note[256];
+  std::snprintf(note, sizeof note,
+                "FCL colliding %d; missed (FCL colliding, ours free) %d; false alarms %d (largest FCL distance "
+                "%.4g m, tolerance 2 x excess = %.4g m, beyond it %d)",
+                fclColliding, missed, falseAlarms, worst, tolerance, beyond);
+  std::printf("  agreement on %zu random configurations: %s\n", random.size(), note);
+  rows.push_back({spec.name, "agreement", "random", "deepcheck vs fcl-mesh", 0, 0, 0, random.size(), note});
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
+  const int samples = quick ? 1000 : 10000;
+  const int motions = quick ? 30 : 300;
+  const std::string shared = DEEPCHECK_SHARED_DIR;
+  const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+  std::printf("checker_bench: %d random configurations, %d short motions (31 states each); load average before: %s\n",
+              samples, motions, loadAverage().c_str());
+  std::vector<WorldSpec> worlds;
+  const bool haveShared = std::filesystem::is_directory(shared + "/robots/panda");
+  if (haveShared) {
+    const std::string panda = shared + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf";
+    const std::string srdf = shared + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf";
+    worlds.push_back({"panda-shelf", panda, {shared + "/robots/panda"}, srdf, data + "/scenes/shelf.urdf"});
+    worlds.push_back({"panda-kitchen", panda, {shared + "/robots/panda", shared + "/scenes"}, srdf,
+                      shared + "/scenes/motion_bench_maker/configs/scenes/kitchen/kitchen.urdf"});
+  } else {
+    std::printf("(../shared absent: the Panda worlds are skipped)\n");
+  }
+  worlds.push_back({"arm-shelf", data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", {data},
+                    data + "/deepcheck_arm/srdf/deepcheck_arm.srdf", data + "/scenes/shelf.urdf"});
+  for (const WorldSpec& w : worlds) runWorld(w, samples, motions);
+  std::printf("\nload average after: %s\n", loadAverage().c_str());
+
+  const std::string dir = DEEPCHECK_BENCH_RESULTS_DIR;
+  std::filesystem::create_directories(dir);
+  std::ofstream csv(dir + "/checker_bench.csv");
+  csv << "world,query,set,backend,median_us,p90_us,mean_us,count,note\n";
+  for (const Row& r : rows) {
+    csv << r.world << ',' << r.query << ',' << r.set << ',' << r.backend << ',' << r.median << ',' << r.p90 << ','
+        << r.average << ',' << r.count << ",\"" << r.note << "\"\n";
+  }
+  std::printf("wrote %s/checker_bench.csv\n", dir.c_str());
+  return 0;
+}
