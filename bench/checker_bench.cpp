@@ -9,13 +9,15 @@
 // gradient (ours) and FCL's mesh distance, per-query medians; throughput with 1 and 2 threads;
 // the broad phases (static AABB tree, FCL's dynamic AABB tree, none); agreement with FCL on random
 // configurations (FCL colliding but reported free must be 0; false alarms counted with their FCL
-// distance against the pair tolerance, twice the world's geometry excess).
+// distance against the pair tolerance, twice the world's geometry excess); forward kinematics
+// alone (a floor under both backends: each poses every link).
 //
 // Output: a table on stdout, the machine load (from /proc/loadavg) before and after, and
 // bench/results/checker_bench.csv. Usage: checker_bench [--quick] (fewer samples).
 
 #include "deepcheck/checker/fcl_backend.h"
 #include "deepcheck/checker/world.h"
+#include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
@@ -23,6 +25,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -119,20 +122,38 @@ struct WorldSpec {
   std::string scene;
 };
 
-/// Throughput (queries per second) of `perQuery` over `qs` split between `threads` threads, each
-/// with its own context.
-double throughput(const checker::World& world, const std::vector<Eigen::VectorXd>& qs, int threads,
-                  const std::function<void(const checker::World&, checker::World::Context&, const Eigen::VectorXd&)>& perQuery) {
+double threadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+struct Throughput {
+  double wall = 0.0;  ///< queries per second of wall-clock time
+  double cpu = 0.0;   ///< queries per second of CPU time, summed over the threads
+};
+
+/// Throughput of `perQuery` over `qs` split between `threads` threads, each with its own context.
+/// On a loaded machine the wall-clock rate cannot scale (the threads get no extra core); the rate
+/// per CPU-second shows whether the threads slow each other down (contention, false sharing).
+Throughput throughput(const checker::World& world, const std::vector<Eigen::VectorXd>& qs, int threads,
+                      const std::function<void(const checker::World&, checker::World::Context&, const Eigen::VectorXd&)>& perQuery) {
   std::vector<std::thread> pool;
+  std::vector<double> cpu(threads, 0.0);
   const auto t0 = Clock::now();
   for (int t = 0; t < threads; ++t) {
     pool.emplace_back([&, t] {
       auto context = world.makeContext();
+      const double c0 = threadCpuSeconds();
       for (std::size_t i = t; i < qs.size(); i += threads) perQuery(world, context, qs[i]);
+      cpu[t] = threadCpuSeconds() - c0;
     });
   }
   for (std::thread& th : pool) th.join();
-  return qs.size() / std::chrono::duration<double>(Clock::now() - t0).count();
+  Throughput r;
+  r.wall = qs.size() / std::chrono::duration<double>(Clock::now() - t0).count();
+  r.cpu = qs.size() / std::accumulate(cpu.begin(), cpu.end(), 0.0);
+  return r;
 }
 
 void runWorld(const WorldSpec& spec, int samples, int motions) {
@@ -155,6 +176,12 @@ void runWorld(const WorldSpec& spec, int samples, int motions) {
   for (int i = 0; i < samples; ++i) random.push_back(randomConfiguration(world.robot(), rng));
   const std::vector<Eigen::VectorXd> motion = shortMotions(world.robot(), motions, rng);
 
+  // Forward kinematics alone: a floor under both backends' isFree (both pose every link).
+  {
+    std::vector<Eigen::Isometry3d> X_WL;
+    addTimes(spec.name, "kinematics", "random", "robots::forwardKinematics",
+             timeEach(random, [&](const Eigen::VectorXd& q) { robots::forwardKinematics(world.robot(), q, X_WL); }));
+  }
   // isFree: ours (one context, warm starts across the set, as a planner thread has) and FCL's.
   for (const auto& [setName, qs] : {std::pair<std::string, const std::vector<Eigen::VectorXd>*>{"random", &random},
                                     {"motions", &motion}}) {
@@ -196,16 +223,18 @@ void runWorld(const WorldSpec& spec, int samples, int motions) {
   }
   // Throughput, 1 and 2 threads.
   for (int threads : {1, 2}) {
-    const double isFreeRate = throughput(world, random, threads, [](const checker::World& w, checker::World::Context& c,
-                                                                    const Eigen::VectorXd& q) { w.isFree(q, c); });
-    const double sdRate = throughput(world, random, threads, [&](const checker::World& w, checker::World::Context& c,
-                                                                 const Eigen::VectorXd& q) { w.signedDistance(q, c, withGradient); });
-    std::printf("  throughput %d thread%s: isFree %.0f /s, sd+grad %.0f /s\n", threads, threads > 1 ? "s" : " ",
-                isFreeRate, sdRate);
-    rows.push_back({spec.name, "isFree", "random", "throughput " + std::to_string(threads) + " thread(s)", 0, 0, 0,
-                    random.size(), std::to_string(static_cast<long long>(isFreeRate)) + " /s"});
-    rows.push_back({spec.name, "sd+grad", "random", "throughput " + std::to_string(threads) + " thread(s)", 0, 0, 0,
-                    random.size(), std::to_string(static_cast<long long>(sdRate)) + " /s"});
+    const Throughput isFreeRate = throughput(world, random, threads, [](const checker::World& w, checker::World::Context& c,
+                                                                        const Eigen::VectorXd& q) { w.isFree(q, c); });
+    const Throughput sdRate = throughput(world, random, threads, [&](const checker::World& w, checker::World::Context& c,
+                                                                     const Eigen::VectorXd& q) { w.signedDistance(q, c, withGradient); });
+    std::printf("  throughput %d thread%s: isFree %.0f /s (%.0f per CPU-second), sd+grad %.0f /s (%.0f per CPU-second)\n",
+                threads, threads > 1 ? "s" : " ", isFreeRate.wall, isFreeRate.cpu, sdRate.wall, sdRate.cpu);
+    for (const auto& [query, rate] : {std::pair<std::string, Throughput>{"isFree", isFreeRate}, {"sd+grad", sdRate}}) {
+      rows.push_back({spec.name, query, "random", "throughput " + std::to_string(threads) + " thread(s)", 0, 0, 0,
+                      random.size(),
+                      std::to_string(static_cast<long long>(rate.wall)) + " /s wall, " +
+                          std::to_string(static_cast<long long>(rate.cpu)) + " /s per CPU-second"});
+    }
   }
   // Agreement with FCL on the random set.
   const double tolerance = 2 * world.summaryCounts().geometryExcess;

@@ -120,6 +120,22 @@ inline void checkThrowsWith(const std::function<void()>& f, const std::string& n
   }
 }
 
+/// The project's own data (robots/data): the bundled arm, its SRDF and the scenes.
+inline std::string bundledDataDir() {
+#ifdef DEEPCHECK_SOURCE_DIR
+  return std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+#else
+  return "robots/data";
+#endif
+}
+
+inline robots::LoadOptions bundledLoadOptions() {
+  robots::LoadOptions o;
+  o.packageRoots = {bundledDataDir()};
+  o.useRosPackagePath = false;
+  return o;
+}
+
 inline std::string pandaUrdf() {
   return sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf";
 }
