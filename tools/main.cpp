@@ -18,6 +18,7 @@ const Subcommand* const kSubcommands[] = {
     &deepcheck::tools::kPdCommand,
     &deepcheck::tools::kInfoCommand,
     &deepcheck::tools::kCheckCommand,
+    &deepcheck::tools::kDecomposeCommand,
 };
 
 void printUsage(std::FILE* out) {

@@ -20,5 +20,6 @@ struct Subcommand {
 extern const Subcommand kPdCommand;    // pd.cpp
 extern const Subcommand kInfoCommand;  // info.cpp
 extern const Subcommand kCheckCommand;  // check.cpp
+extern const Subcommand kDecomposeCommand;  // decompose.cpp
 
 }  // namespace deepcheck::tools

@@ -40,6 +40,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <set>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -934,8 +935,13 @@ struct Piece {
 
 class Decomposer {
  public:
+  /// `target`: the absolute concavity target; decisions aim at kDecisionFraction of it.
   Decomposer(const CleanMesh& mesh, const DecompositionParams& params, double target)
-      : mesh_(mesh), params_(params), target_(target), diagonal_(mesh.diagonal) {
+      : mesh_(mesh),
+        params_(params),
+        target_(dt::kDecisionFraction * target),
+        reportTarget_(target),
+        diagonal_(mesh.diagonal) {
     std::vector<Triangle> triangles;
     triangles.reserve(mesh.triangles.size());
     for (const auto& t : mesh.triangles) triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
@@ -992,6 +998,7 @@ class Decomposer {
     int vertices;   ///< larger hull vertex count of the two sides
     bool throughWorst;
     double faceArea;  ///< area of the part's polygons lying in the plane (a wall cut along)
+    int direction;    ///< index of its normal among the part's cut directions (axes first)
   };
   /// Scores the candidate cuts of `part` (decomposition.h lists them); `quick`: fewer offsets and
   /// no refinement. Cuts scoring above `bound` are dropped early.
@@ -1011,9 +1018,11 @@ class Decomposer {
 
   const CleanMesh& mesh_;
   const DecompositionParams& params_;
-  const double target_;
+  const double target_;        ///< what decisions aim at
+  const double reportTarget_;  ///< what the report checks
   const double diagonal_;
   TriangleBvh meshBvh_;
+  std::set<std::pair<int, int>> forbidden_;  ///< parts whose merge failed the final check
   std::vector<std::unique_ptr<CutPlane>> planes_;
   std::vector<Part> parts_;
   std::uint64_t evaluations_ = 0;
@@ -1416,7 +1425,8 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
       }
       faceArea += 0.5 * area.norm();
     }
-    scored.push_back({{n, offset}, score, a.volume + b.volume, std::max(a.vertices, b.vertices), throughWorst, faceArea});
+    scored.push_back({{n, offset}, score, a.volume + b.volume, std::max(a.vertices, b.vertices), throughWorst,
+                      faceArea, dir});
     directionOf.push_back(dir);
   };
 
@@ -1552,7 +1562,6 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
   std::vector<Candidate> scored = scoreCuts(part, false, kInf, &bestScore);
   if (scored.empty()) return false;
   const Candidate* pick = pickBest(part, scored, bestScore);
-  if (std::getenv("DECOMP_DEBUG")) { std::vector<const Candidate*> v; for (auto& c : scored) v.push_back(&c); std::sort(v.begin(), v.end(), [](auto a, auto b) { return a->score < b->score; }); std::fprintf(stderr, "part conc %.5f polys %zu worst (%.3f %.3f %.3f): %zu cands, pick n=(%.2f %.2f %.2f) d=%.4f score %.5f area %.4f\n", part.concavity, part.polygons.size(), part.worstSample.x(), part.worstSample.y(), part.worstSample.z(), scored.size(), pick->cut.normal.x(), pick->cut.normal.y(), pick->cut.normal.z(), pick->cut.offset, pick->score, pick->faceArea); for (std::size_t k = 0; k < std::min<std::size_t>(8, v.size()); ++k) std::fprintf(stderr, "   n=(%.2f %.2f %.2f) d=%.4f score %.5f vol %.4f area %.4f\n", v[k]->cut.normal.x(), v[k]->cut.normal.y(), v[k]->cut.normal.z(), v[k]->cut.offset, v[k]->score, v[k]->volume, v[k]->faceArea); }  // TEMP-DEBUG
   *children = split(part, pick->cut);
   // The sides' concavities as the children measure them (more samples than the candidates had).
   double greedy = 0.0;
@@ -1570,8 +1579,11 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
   auto add = [&](const Candidate* c) {
     if (c != nullptr && std::find(order.begin(), order.end(), c) == order.end()) order.push_back(c);
   };
+  // Equal scores are common on a plateau: the axes and principal directions go first.
   auto byScore = [](const Candidate* a, const Candidate* b) {
-    return a->score < b->score || (a->score == b->score && a->volume < b->volume);
+    if (a->score != b->score) return a->score < b->score;
+    if (a->direction != b->direction) return a->direction < b->direction;
+    return a->volume < b->volume;
   };
   std::vector<const Candidate*> through;
   std::vector<const Candidate*> walls;
@@ -1635,7 +1647,7 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
   }
   // Still no progress two cuts deep (a frame around a pocket needs a cut along each of its
   // walls before any concavity drops): cut along the largest mesh face near the concavity.
-  if (bestAhead > dt::kPlateauFraction * part.concavity) {
+  if (bestAhead > dt::kStructuralFraction * part.concavity) {
     const Candidate* structural = nullptr;
     for (const Candidate& c : scored) {
       if (c.faceArea <= dt::kFaceAreaTie * diagonal_ * diagonal_ || c.score > part.concavity + tie) continue;
@@ -1685,6 +1697,11 @@ Target Decomposer::pieceTarget(const Piece& a, const Piece* b) const {
 }
 
 double Decomposer::mergeCost(const Piece& a, const Piece& b, double abortAbove) {
+  for (int x : a.parts) {
+    for (int y : b.parts) {
+      if (forbidden_.count({x, y}) != 0) return kInf;  // merged once, failed the final check
+    }
+  }
   const Hull hull = pieceHull(a, &b);
   const Target target = pieceTarget(a, &b);
   Concavity c = measureConcavity(hull, target, dt::kPartSamples, Extra::Centroids, nextSeed(), abortAbove,
@@ -1788,54 +1805,90 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
     for (auto& polygons : byGroup) addPart(makePart({}, std::move(polygons), {}));
   }
   // Rounds: cut the worst part until all meet the target or the budget is spent; then merge the
-  // neighbours that can be merged, which frees budget for more cuts.
-  for (int round = 0; round < dt::kMaxRounds && !report->alreadyConvex; ++round) {
-    while (static_cast<int>(pieces.size()) < params_.maxPieces) {
-      int worst = -1;
-      for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
-        if (pieces[i].parts.size() != 1 || pieces[i].concavity <= target_) continue;
-        if (parts_[pieces[i].parts.front()].unsplittable) continue;
-        if (worst < 0 || pieces[i].concavity > pieces[worst].concavity) worst = i;
+  // neighbours that can be merged, which frees budget for more cuts. Then verify: the final,
+  // denser estimate may find a piece above the target that the decisions' estimate missed (a small
+  // hole spanned by a hull): such a piece is cut further (or, if merged, split back into its
+  // parts) while the budget lasts.
+  std::vector<Concavity> final;
+  for (int verify = 0; verify <= dt::kVerifyRounds; ++verify) {
+    for (int round = 0; round < dt::kMaxRounds && !report->alreadyConvex; ++round) {
+      while (static_cast<int>(pieces.size()) < params_.maxPieces) {
+        int worst = -1;
+        for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
+          if (pieces[i].parts.size() != 1 || pieces[i].concavity <= target_) continue;
+          if (parts_[pieces[i].parts.front()].unsplittable) continue;
+          if (worst < 0 || pieces[i].concavity > pieces[worst].concavity) worst = i;
+        }
+        if (worst < 0) break;
+        const int index = pieces[worst].parts.front();
+        std::vector<Part> children;
+        if (!chooseSplit(parts_[index], &children) || children.empty()) {
+          parts_[index].unsplittable = true;
+          continue;
+        }
+        // A cut that only shaves a sliver off (a child with nearly the part's hull volume and its
+        // concavity) is no progress: the part is left as it is.
+        bool stuck = false;
+        for (const Part& child : children) {
+          stuck = stuck || (child.hull.volume >= dt::kSliverVolume * parts_[index].hull.volume &&
+                            child.concavity >= parts_[index].concavity - dt::kTieFraction * target_);
+        }
+        if (stuck) {
+          parts_[index].unsplittable = true;
+          continue;
+        }
+        pieces.erase(pieces.begin() + worst);
+        for (Part& child : children) addPart(std::move(child));
       }
-      if (worst < 0) break;
-      const int index = pieces[worst].parts.front();
-      std::vector<Part> children;
-      if (!chooseSplit(parts_[index], &children) || children.empty()) {
-        parts_[index].unsplittable = true;
-        continue;
-      }
-      // A cut that only shaves a sliver off (a child with nearly the part's hull volume and its
-      // concavity) is no progress: the part is left as it is.
-      bool stuck = false;
-      for (const Part& child : children) {
-        stuck = stuck || (child.hull.volume >= dt::kSliverVolume * parts_[index].hull.volume &&
-                          child.concavity >= parts_[index].concavity - dt::kTieFraction * target_);
-      }
-      if (stuck) {
-        parts_[index].unsplittable = true;
-        continue;
-      }
-      pieces.erase(pieces.begin() + worst);
-      for (Part& child : children) addPart(std::move(child));
+      bool over = false;
+      for (const Piece& piece : pieces) over = over || piece.concavity > target_;
+      if (!params_.mergePieces) break;
+      const std::size_t before = pieces.size();
+      pieces = merge(std::move(pieces), false);
+      if (!over || pieces.size() == before) break;
     }
-    bool over = false;
-    for (const Piece& piece : pieces) over = over || piece.concavity > target_;
-    if (!params_.mergePieces) break;
-    const std::size_t before = pieces.size();
-    pieces = merge(std::move(pieces), false);
-    if (!over || pieces.size() == before) break;
-  }
-  if (!report->alreadyConvex) pieces = merge(std::move(pieces), true);
+    if (!report->alreadyConvex) pieces = merge(std::move(pieces), true);
 
-  // The final, denser concavity estimate on what is returned.
+    // The final, denser concavity estimate on what is returned.
+    final.clear();
+    for (const Piece& piece : pieces) {
+      final.push_back(measureConcavity(piece.finalHull, pieceTarget(piece, nullptr), dt::kReportSamples,
+                                       Extra::Dense, nextSeed(), kInf, diagonal_));
+    }
+    if (verify == dt::kVerifyRounds || report->alreadyConvex) break;
+    std::vector<Piece> next;
+    bool changed = false;
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      Piece& piece = pieces[i];
+      if (final[i].value <= reportTarget_) {
+        next.push_back(std::move(piece));
+        continue;
+      }
+      changed = true;
+      if (piece.parts.size() == 1) {
+        Part& part = parts_[piece.parts.front()];
+        part.concavity = std::max(part.concavity, final[i].value);
+        part.hasWorst = final[i].hasWorst;
+        part.worstSample = final[i].worstSample;
+        part.worstNearest = final[i].worstNearest;
+        piece.concavity = part.concavity;
+        next.push_back(std::move(piece));
+      } else {
+        for (int a : piece.parts) {
+          for (int b : piece.parts) forbidden_.insert({a, b});
+          next.push_back({{a}, parts_[a].hull, parts_[a].finalHull, parts_[a].concavity});
+        }
+      }
+    }
+    pieces = std::move(next);
+    if (!changed) break;
+  }
   std::vector<ConvexPiece> out;
   report->concavity = 0.0;
-  for (const Piece& piece : pieces) {
-    const Hull& hull = piece.finalHull;
-    const Concavity c = measureConcavity(hull, pieceTarget(piece, nullptr), dt::kReportSamples, Extra::Dense,
-                                         nextSeed(), kInf, diagonal_);
-    report->concavity = std::max(report->concavity, c.value);
-    out.push_back({hull.vertices, hull.triangles, hull.volume, c.value});
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const Hull& hull = pieces[i].finalHull;
+    report->concavity = std::max(report->concavity, final[i].value);
+    out.push_back({hull.vertices, hull.triangles, hull.volume, final[i].value});
   }
   return out;
 }
@@ -1904,8 +1957,7 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
   report.meshClosed = clean.closed;
   report.meshVolume = clean.volume;
 
-  // The decisions aim a little below the target (kDecisionFraction): see there.
-  Decomposer decomposer(clean, params, dt::kDecisionFraction * report.targetConcavity);
+  Decomposer decomposer(clean, params, report.targetConcavity);
   result.pieces = decomposer.run(&report);
 
   report.numPieces = static_cast<int>(result.pieces.size());

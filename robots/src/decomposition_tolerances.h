@@ -31,6 +31,8 @@ constexpr double kTieFraction = 0.1;
 
 /// Rounds of cutting (until the budget is spent) and merging (which frees budget).
 constexpr int kMaxRounds = 4;
+/// Times the final estimate may send pieces back to be cut (see Decomposer::run).
+constexpr int kVerifyRounds = 2;
 
 /// Face areas of two cuts (mesh polygons lying in the plane) differing by less than
 /// kFaceAreaTie * D^2 are equal.
@@ -74,7 +76,10 @@ constexpr int kVoidProbes = 16;
 /// kPlateauFraction times the part's concavity: then the cuts through the worst sample, the
 /// nearest ones around it, and the kLookaheadBest best scored are compared by what the best
 /// second cut leaves.
-constexpr double kPlateauFraction = 0.75;
+constexpr double kPlateauFraction = 0.9;
+/// When even the lookahead leaves more than kStructuralFraction of the concavity, the cut along
+/// the largest mesh face (a wall of the pocket or frame being decomposed) is taken instead.
+constexpr double kStructuralFraction = 0.75;
 constexpr int kLookaheadBest = 2;
 constexpr int kLookaheadCuts = 8;  ///< at most, the greedy choice first
 

@@ -1,0 +1,413 @@
+// Convex decomposition (robots/decomposition.h) and its disk cache (decomposition_cache.h).
+//
+// Properties checked rather than stored numbers: the pieces cover the mesh (every vertex, and
+// points sampled on every triangle, inside a piece), the reported concavity meets the target, a
+// convex mesh stays one piece, the vertex budget holds, results are deterministic, the cache
+// round-trips and recovers from corrupt files, and bad input is rejected with a message.
+
+#include "deepcheck/robots/decomposition.h"
+#include "deepcheck/robots/decomposition_cache.h"
+#include "deepcheck/robots/mesh_loader.h"
+
+#include "robots_test_util.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <random>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace deepcheck::robots {
+namespace {
+
+using Eigen::Vector3d;
+using test::checkThrows;
+using test::TempDir;
+
+/// The boundary of a union of grid cells (cell size h, grid origin `origin`): two triangles per
+/// cell face between a filled and an empty cell, wound counter-clockwise seen from outside. The
+/// shapes used here have no cells touching along an edge only, so the mesh is closed and
+/// manifold. Sizes and offsets are not exact in binary on purpose.
+TriangleMesh voxelMesh(const std::vector<std::array<int, 3>>& cells, double h, const Vector3d& origin,
+                       const std::string& name) {
+  std::set<std::array<int, 3>> filled(cells.begin(), cells.end());
+  TriangleMesh mesh;
+  mesh.source = name;
+  std::map<std::array<int, 3>, int> index;
+  auto vertex = [&](const std::array<int, 3>& g) {
+    auto [it, inserted] = index.emplace(g, static_cast<int>(mesh.vertices.size()));
+    if (inserted) mesh.vertices.push_back(origin + h * Vector3d(g[0], g[1], g[2]));
+    return it->second;
+  };
+  for (const auto& c : cells) {
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int side : {0, 1}) {
+        std::array<int, 3> n = c;
+        n[axis] += side == 1 ? 1 : -1;
+        if (filled.count(n) != 0) continue;
+        // The face at c[axis] + side, spanned by the two other axes (u, v) so that u x v points
+        // along +axis; reversed for the lower face.
+        const int u = (axis + 1) % 3;
+        const int v = (axis + 2) % 3;
+        std::array<int, 3> p0 = c;
+        p0[axis] += side;
+        std::array<int, 3> p1 = p0;
+        p1[u] += 1;
+        std::array<int, 3> p2 = p1;
+        p2[v] += 1;
+        std::array<int, 3> p3 = p0;
+        p3[v] += 1;
+        std::array<int, 4> q = {vertex(p0), vertex(p1), vertex(p2), vertex(p3)};
+        if (side == 0) std::swap(q[1], q[3]);
+        mesh.triangles.push_back({q[0], q[1], q[2]});
+        mesh.triangles.push_back({q[0], q[2], q[3]});
+      }
+    }
+  }
+  return mesh;
+}
+
+/// An L: a 3x1 foot and a 1x2 stem on it (cells of 1/3), one cell thick.
+TriangleMesh lShape() {
+  return voxelMesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 2, 0}}, 1.0 / 3.0,
+                   Vector3d(0.1, -0.2, 0.3), "L shape");
+}
+
+/// A U: a 3x1 base with two 1x2 arms.
+TriangleMesh uShape() {
+  return voxelMesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 2, 0}, {2, 1, 0}, {2, 2, 0}},
+                   0.37, Vector3d(-0.41, 0.05, 0.0), "U shape");
+}
+
+/// A square ring (the torus of this grid): 3x3 cells around a missing centre.
+TriangleMesh ring() {
+  std::vector<std::array<int, 3>> cells;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (i != 1 || j != 1) cells.push_back({i, j, 0});
+    }
+  }
+  return voxelMesh(cells, 0.29, Vector3d(0.7, 0.7, -0.1), "ring");
+}
+
+/// A box of 3x2x1 cells: convex.
+TriangleMesh box() {
+  std::vector<std::array<int, 3>> cells;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 2; ++j) cells.push_back({i, j, 0});
+  }
+  return voxelMesh(cells, 0.23, Vector3d(0.01, 0.02, 0.03), "box");
+}
+
+/// A closed cylinder (a convex mesh with many vertices) of radius r, height h, n sides.
+TriangleMesh cylinder(int n, double r, double h) {
+  TriangleMesh mesh;
+  mesh.source = "cylinder";
+  for (int k = 0; k < n; ++k) {
+    const double a = 2.0 * M_PI * k / n;
+    mesh.vertices.emplace_back(r * std::cos(a), r * std::sin(a), 0.0);
+    mesh.vertices.emplace_back(r * std::cos(a), r * std::sin(a), h);
+  }
+  const int bottom = static_cast<int>(mesh.vertices.size());
+  mesh.vertices.emplace_back(0.0, 0.0, 0.0);
+  mesh.vertices.emplace_back(0.0, 0.0, h);
+  for (int k = 0; k < n; ++k) {
+    const int a0 = 2 * k;
+    const int a1 = 2 * k + 1;
+    const int b0 = 2 * ((k + 1) % n);
+    const int b1 = b0 + 1;
+    mesh.triangles.push_back({a0, b0, b1});
+    mesh.triangles.push_back({a0, b1, a1});
+    mesh.triangles.push_back({bottom, b0, a0});
+    mesh.triangles.push_back({bottom + 1, a1, b1});
+  }
+  return mesh;
+}
+
+double diagonalOf(const TriangleMesh& mesh) {
+  Vector3d lo = mesh.vertices.front();
+  Vector3d hi = lo;
+  for (const Vector3d& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return (hi - lo).norm();
+}
+
+/// Coverage: every vertex, and `perTriangle` random points on every triangle, inside some piece
+/// (within 1e-9 of the diagonal). Returns the number of points missed.
+int uncoveredPoints(const TriangleMesh& mesh, const std::vector<ConvexPiece>& pieces, int perTriangle) {
+  const double tolerance = 1e-9 * diagonalOf(mesh);
+  auto covered = [&](const Vector3d& p) {
+    for (const ConvexPiece& piece : pieces) {
+      if (pieceContains(piece, p, tolerance)) return true;
+    }
+    return false;
+  };
+  int missed = 0;
+  for (const Vector3d& v : mesh.vertices) missed += covered(v) ? 0 : 1;
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < perTriangle; ++k) {
+      double a = unit(rng);
+      double b = unit(rng);
+      if (a + b > 1.0) {
+        a = 1.0 - a;
+        b = 1.0 - b;
+      }
+      const Vector3d& p0 = mesh.vertices[t[0]];
+      missed += covered(p0 + a * (mesh.vertices[t[1]] - p0) + b * (mesh.vertices[t[2]] - p0)) ? 0 : 1;
+    }
+  }
+  return missed;
+}
+
+void checkDecomposition(const TriangleMesh& mesh, const ConvexDecomposition& d) {
+  const DecompositionReport& r = d.report;
+  BOOST_TEST_MESSAGE(mesh.source << ": " << r.numPieces << " pieces, concavity " << r.concavity
+                                 << " (" << 100.0 * r.concavityRelative << " % of the diagonal), target "
+                                 << r.targetConcavity << ", volume ratio " << r.volumeRatio);
+  BOOST_CHECK_EQUAL(r.numPieces, static_cast<int>(d.pieces.size()));
+  BOOST_CHECK(r.targetMet);
+  BOOST_CHECK_LE(r.concavity, r.targetConcavity);
+  for (const ConvexPiece& piece : d.pieces) BOOST_CHECK_LE(piece.concavity, r.concavity);
+  BOOST_CHECK_EQUAL(uncoveredPoints(mesh, d.pieces, 4), 0);
+  if (r.meshClosed) {
+    // The pieces cover the solid: their volumes add up to at least the mesh's.
+    BOOST_CHECK_GE(r.volumeRatio, 1.0 - 1e-9);
+  }
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(decomposition)
+
+BOOST_AUTO_TEST_CASE(l_u_and_ring_shapes_get_several_pieces_that_cover_them) {
+  // Each shape with its volume (cells times cell volume).
+  const std::vector<std::pair<TriangleMesh, double>> shapes = {
+      {lShape(), 5 * std::pow(1.0 / 3.0, 3)}, {uShape(), 7 * std::pow(0.37, 3)}, {ring(), 8 * std::pow(0.29, 3)}};
+  for (const auto& [mesh, volume] : shapes) {
+    const ConvexDecomposition d = decomposeConvex(mesh);
+    BOOST_CHECK_GE(d.report.numPieces, 2);
+    BOOST_CHECK(!d.report.alreadyConvex);
+    BOOST_CHECK(d.report.meshClosed);
+    BOOST_CHECK_CLOSE(d.report.meshVolume, volume, 1e-9);
+    checkDecomposition(mesh, d);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_convex_mesh_is_one_piece_without_decomposition) {
+  const TriangleMesh mesh = box();
+  const ConvexDecomposition d = decomposeConvex(mesh);
+  BOOST_CHECK_EQUAL(d.report.numPieces, 1);
+  BOOST_CHECK(d.report.alreadyConvex);
+  BOOST_CHECK_SMALL(d.report.concavity, 1e-12);
+  BOOST_CHECK_CLOSE(d.report.volumeRatio, 1.0, 1e-9);
+  checkDecomposition(mesh, d);
+}
+
+BOOST_AUTO_TEST_CASE(vertex_budget_holds_and_reduced_pieces_still_contain_the_mesh) {
+  // 96 sides: 194 hull vertices, far over the budget of 16.
+  const TriangleMesh mesh = cylinder(96, 0.31, 0.47);
+  DecompositionParams params;
+  params.maxVerticesPerPiece = 16;
+  params.maxConcavity = 0.05;
+  const ConvexDecomposition d = decomposeConvex(mesh, params);
+  for (const ConvexPiece& piece : d.pieces) BOOST_CHECK_LE(static_cast<int>(piece.vertices.size()), 16);
+  BOOST_CHECK_EQUAL(uncoveredPoints(mesh, d.pieces, 2), 0);
+  BOOST_CHECK(d.report.targetMet);
+}
+
+BOOST_AUTO_TEST_CASE(pieces_become_valid_polytopes) {
+  const ConvexDecomposition d = decomposeConvex(uShape());
+  const std::vector<deep::ConvexPolytope> polytopes = d.polytopes();
+  BOOST_REQUIRE_EQUAL(polytopes.size(), d.pieces.size());
+  for (const deep::ConvexPolytope& p : polytopes) {
+    BOOST_CHECK(p.kind() == deep::PolytopeKind::Polyhedron);
+    BOOST_CHECK_EQUAL(p.validate(), "");
+  }
+}
+
+BOOST_AUTO_TEST_CASE(results_are_deterministic) {
+  const TriangleMesh mesh = ring();
+  const ConvexDecomposition a = decomposeConvex(mesh);
+  const ConvexDecomposition b = decomposeConvex(mesh);
+  BOOST_REQUIRE_EQUAL(a.pieces.size(), b.pieces.size());
+  for (std::size_t i = 0; i < a.pieces.size(); ++i) {
+    BOOST_CHECK(a.pieces[i].vertices == b.pieces[i].vertices);
+    BOOST_CHECK(a.pieces[i].triangles == b.pieces[i].triangles);
+  }
+  BOOST_CHECK_EQUAL(a.report.concavity, b.report.concavity);
+}
+
+BOOST_AUTO_TEST_CASE(a_missing_quad_is_filled) {
+  // The L with one face (two triangles) removed: the hole is closed before decomposing.
+  TriangleMesh mesh = lShape();
+  mesh.triangles.pop_back();
+  mesh.triangles.pop_back();
+  const ConvexDecomposition d = decomposeConvex(mesh);
+  BOOST_CHECK_EQUAL(d.report.holesFilled, 1);
+  BOOST_CHECK(d.report.meshClosed);
+  checkDecomposition(mesh, d);
+}
+
+BOOST_AUTO_TEST_CASE(cache_round_trip_reads_the_second_time) {
+  TempDir dir;
+  const DecompositionCache cache(dir.path().string());
+  const TriangleMesh mesh = uShape();
+  const ConvexDecomposition first = decomposeConvexCached(mesh, {}, cache);
+  BOOST_CHECK(first.report.cache == CacheStatus::Stored);
+  const std::string path = cache.pathFor(DecompositionCache::key(mesh, {}));
+  BOOST_CHECK(std::filesystem::exists(path));
+  const ConvexDecomposition second = decomposeConvexCached(mesh, {}, cache);
+  BOOST_CHECK(second.report.cache == CacheStatus::Hit);
+  BOOST_CHECK_EQUAL(second.report.source, mesh.source);
+  BOOST_REQUIRE_EQUAL(second.pieces.size(), first.pieces.size());
+  for (std::size_t i = 0; i < first.pieces.size(); ++i) {
+    BOOST_CHECK(second.pieces[i].vertices == first.pieces[i].vertices);
+    BOOST_CHECK(second.pieces[i].triangles == first.pieces[i].triangles);
+    BOOST_CHECK_EQUAL(second.pieces[i].volume, first.pieces[i].volume);
+  }
+  BOOST_CHECK_EQUAL(second.report.concavity, first.report.concavity);
+  BOOST_CHECK_EQUAL(second.report.numPieces, first.report.numPieces);
+  BOOST_CHECK_EQUAL(second.report.decomposeMilliseconds, first.report.decomposeMilliseconds);
+  // No temporary file is left behind.
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    (void)entry;
+    ++files;
+  }
+  BOOST_CHECK_EQUAL(files, 1);
+}
+
+BOOST_AUTO_TEST_CASE(corrupt_or_truncated_cache_files_are_recomputed) {
+  TempDir dir;
+  const DecompositionCache cache(dir.path().string());
+  const TriangleMesh mesh = lShape();
+  const ConvexDecomposition reference = decomposeConvexCached(mesh, {}, cache);
+  const std::string path = cache.pathFor(DecompositionCache::key(mesh, {}));
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  BOOST_REQUIRE_GT(bytes.size(), 64u);
+  const std::vector<std::string> damaged = {
+      bytes.substr(0, bytes.size() / 2),                          // truncated
+      std::string(bytes).replace(bytes.size() / 2, 1, 1, '\x7f'),  // one byte flipped
+      "not a cache file at all",                                  // garbage
+      "",                                                         // empty
+  };
+  for (const std::string& content : damaged) {
+    {
+      std::ofstream out(path, std::ios::binary | std::ios::trunc);
+      out << content;
+    }
+    std::string problem;
+    BOOST_CHECK(!cache.load(DecompositionCache::key(mesh, {}), &problem));
+    BOOST_CHECK(!problem.empty());
+    const ConvexDecomposition again = decomposeConvexCached(mesh, {}, cache);
+    BOOST_CHECK(again.report.cache == CacheStatus::Replaced);
+    BOOST_CHECK(!again.report.cacheMessage.empty());
+    BOOST_CHECK_EQUAL(again.pieces.size(), reference.pieces.size());
+    BOOST_CHECK(decomposeConvexCached(mesh, {}, cache).report.cache == CacheStatus::Hit);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(parameters_and_content_change_the_key) {
+  const TriangleMesh mesh = lShape();
+  const DecompositionParams base;
+  const std::string key = DecompositionCache::key(mesh, base);
+  BOOST_CHECK_EQUAL(key.size(), 32u);
+  BOOST_CHECK_EQUAL(key, DecompositionCache::key(mesh, base));
+  std::vector<DecompositionParams> changed(6, base);
+  changed[0].maxConcavity = 0.02;
+  changed[1].minConcavityAbs = 0.001;
+  changed[2].maxPieces = 16;
+  changed[3].maxVerticesPerPiece = 32;
+  changed[4].mergePieces = false;
+  changed[5].seed = base.seed + 1;
+  std::set<std::string> keys = {key};
+  for (const DecompositionParams& p : changed) keys.insert(DecompositionCache::key(mesh, p));
+  BOOST_CHECK_EQUAL(keys.size(), changed.size() + 1);
+  TriangleMesh moved = mesh;
+  moved.vertices[0].x() += 1e-12;
+  BOOST_CHECK_NE(DecompositionCache::key(moved, base), key);
+  TriangleMesh renamed = mesh;
+  renamed.source = "another file";
+  BOOST_CHECK_EQUAL(DecompositionCache::key(renamed, base), key);  // the content is the key
+}
+
+BOOST_AUTO_TEST_CASE(a_disabled_cache_neither_reads_nor_writes) {
+  const DecompositionCache cache = DecompositionCache::disabled();
+  BOOST_CHECK(!cache.enabled());
+  const ConvexDecomposition d = decomposeConvexCached(box(), {}, cache);
+  BOOST_CHECK(d.report.cache == CacheStatus::NotUsed);
+  BOOST_CHECK_EQUAL(d.report.numPieces, 1);
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
+  TriangleMesh empty;
+  empty.source = "empty.stl";
+  checkThrows([&] { decomposeConvex(empty); }, {"empty.stl", "no triangles"});
+
+  TriangleMesh nan = lShape();
+  nan.vertices[3].y() = std::numeric_limits<double>::quiet_NaN();
+  checkThrows([&] { decomposeConvex(nan); }, {"L shape", "vertex 3", "not finite"});
+
+  TriangleMesh index = lShape();
+  index.triangles[2][1] = static_cast<int>(index.vertices.size());
+  checkThrows([&] { decomposeConvex(index); }, {"triangle 2", "out of range"});
+
+  TriangleMesh flat;
+  flat.vertices = {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(2, 0, 0)};
+  flat.triangles = {{0, 1, 2}};
+  checkThrows([&] { decomposeConvex(flat); }, {"degenerate"});
+
+  const TriangleMesh mesh = box();
+  DecompositionParams p;
+  p.maxConcavity = 0.0;
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"maxConcavity", "0"});
+  p = {};
+  p.maxConcavity = 1.5;
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"maxConcavity", "1.5"});
+  p = {};
+  p.minConcavityAbs = -1.0;
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"minConcavityAbs", "-1"});
+  p = {};
+  p.minConcavityAbs = std::numeric_limits<double>::infinity();
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"minConcavityAbs"});
+  p = {};
+  p.maxPieces = 0;
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"maxPieces", "0"});
+  p = {};
+  p.maxVerticesPerPiece = 3;
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"maxVerticesPerPiece", "3"});
+  // The cached entry point validates the parameters before looking at the cache.
+  checkThrows([&] { decomposeConvexCached(mesh, p, DecompositionCache::disabled()); },
+              {"maxVerticesPerPiece"});
+}
+
+BOOST_AUTO_TEST_CASE(panda_links_are_covered_and_meet_the_target) {
+  if (!test::haveShared("the Panda decomposition test")) return;
+  const std::string folder = test::sharedDir() + "/robots/panda/moveit_resources_panda_description/meshes/collision/";
+  for (const char* name : {"link0.stl", "hand.stl"}) {
+    const TriangleMesh mesh = loadMesh(folder + name);
+    const ConvexDecomposition d = decomposeConvex(mesh);
+    checkDecomposition(mesh, d);
+    for (const ConvexPiece& piece : d.pieces) BOOST_CHECK_LE(static_cast<int>(piece.vertices.size()), 64);
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+}  // namespace deepcheck::robots
