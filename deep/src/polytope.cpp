@@ -5,21 +5,32 @@
 //  1. Validate the input; shift it to a local origin (the centre of its bounding box) so that the
 //     geometric predicates below work on coordinates of the size of the set, not of its position.
 //  2. Flatness tolerance h = max(kFlatRelative * D, kCoordinateRoundoff * max|x|), D the extent of
-//     the set (distance of a farthest-point pair found by two sweeps).
+//     the set (distance of a farthest-point pair found by sweeps).
 //  3. Drop points within h of an earlier kept point (a hash grid of cell size h).
 //  4. Classify: the farthest-point pair spans a line, the point farthest from it a plane, the point
 //     farthest from that plane a thickness. Each is compared with h: Point, Segment, Polygon,
 //     Polyhedron. All four kinds are decided here, before Qhull, which fails on flat input.
 //  5. Polygon: Andrew's monotone chain on plane coordinates, dropping vertices within h of the line
-//     through their neighbours; the plane is refitted (Newell) and must hold every point within h,
+//     through their neighbours; the plane is refitted and must hold every point within h,
 //     otherwise the set is treated as a solid after all.
-//  6. Polyhedron: Qhull with facet merging (C-0), then our own pass: adjacent faces coplanar
-//     within kCoplanarAngle and h are merged (the union's boundary becomes the new loop), vertices
-//     that lie on only two faces (inside an edge) are removed, normals are refitted (Newell's
-//     area vector, which is additive over merged faces), and vertex rings are built by walking
+//  6. Polyhedron (makeSolid): Qhull, merging facets within h itself (C-h) unless the set is thin,
+//     then our own pass over its facets: adjacent faces coplanar within kCoplanarAngle and h are
+//     merged (the union's boundary becomes the new loop), vertices left on two faces only (inside
+//     an edge) are removed, normals are fitted (fitPlane), and vertex rings are built by walking
 //     around each vertex: from ring face F, the next neighbour is F's predecessor of v, and the
-//     next ring face is the face holding the half-edge from v to that neighbour.
+//     next ring face is the face holding the half-edge from v to that neighbour. Vertices that
+//     are not extreme within h (at a straight or reflex face corner) are pruned and the hull
+//     rebuilt, and the result is checked against every input point; when Qhull's merging leaves
+//     something unresolved, the hull is rebuilt without it (C-0).
 // Output vertices are always input points, bit for bit.
+//
+// Why all this: within a tolerance, noise in the input leaves slivers (facets whose three vertices
+// are nearly collinear: their normals are arbitrary) and faces that are convex only within the
+// tolerance. Both break what DEEP and hill climbing rely on, a vertex whose neighbours are all
+// lower is the maximum, by far more than the tolerance (a reflex corner hides a whole wedge of
+// directions). Inputs with noise from round-off up to 1e-7 of their size, points on the edges or
+// faces of boxes, near-duplicates, thin slabs and needles, far from the origin, were used to
+// tune it; the tests keep a sample of them.
 
 #include "deepcheck/deep/polytope.h"
 
@@ -33,12 +44,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>  // TEMPDEBUG
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 #include <libqhull_r/qhull_ra.h>
@@ -77,7 +86,6 @@ constexpr double kFlatRetryFactor = 8.0;
 constexpr double kQhullMergeMinThickness = 1000.0;
 /// At most this many rounds of dropping redundant vertices and rebuilding (see makeSolid).
 constexpr int kMaxPruneRounds = 8;
-
 
 const char* axisName(int axis) { return axis == 0 ? "x" : (axis == 1 ? "y" : "z"); }
 
@@ -327,7 +335,7 @@ class PolytopeBuilder {
   SolidAttempt pruneRounds(bool merge) const;
   ConvexPolytope makePolyhedron(const std::vector<int>& ids, double qhullMerge,
                                 std::vector<int>* vertexIds, std::vector<int>* redundant) const;
-  bool covers(const ConvexPolytope& p) const;
+  bool covers(const ConvexPolytope& p, const std::vector<int>& vertexIds) const;
   void dropNearDuplicates();
   [[noreturn]] void topologyError(const std::string& what) const {
     throw std::runtime_error(name_ + ": inconsistent hull topology (" + what + ")");
@@ -356,12 +364,10 @@ ConvexPolytope PolytopeBuilder::build() {
   q_.resize(n);
   for (int i = 0; i < n; ++i) q_[i] = points_[i] - origin;
 
-  auto farthestFrom = [&](const Vector3d& p, const std::vector<int>* subset) {
-    int best = subset ? (*subset)[0] : 0;
+  auto farthestFrom = [&](const Vector3d& p) {
+    int best = 0;
     double bestD = -1.0;
-    const int m = subset ? static_cast<int>(subset->size()) : n;
-    for (int k = 0; k < m; ++k) {
-      const int i = subset ? (*subset)[k] : k;
+    for (int i = 0; i < n; ++i) {
       const double d = (q_[i] - p).squaredNorm();
       if (d > bestD) {
         bestD = d;
@@ -371,10 +377,10 @@ ConvexPolytope PolytopeBuilder::build() {
     return best;
   };
 
-  // Farthest-point sweeps: from point 0, then back from the point found.
-  const int b0 = farthestFrom(q_[0], nullptr);
-  const int a = farthestFrom(q_[b0], nullptr);
-  const int b = farthestFrom(q_[a], nullptr);
+  // Farthest-point sweeps: from point 0, then back from the point found, twice.
+  const int b0 = farthestFrom(q_[0]);
+  const int a = farthestFrom(q_[b0]);
+  const int b = farthestFrom(q_[a]);
   const double extent = (q_[b] - q_[a]).norm();
   h_ = std::max(tol::kFlatRelative * extent, tol::kCoordinateRoundoff * maxAbs);
   if (!(extent > h_)) return makePoint(0);
@@ -575,7 +581,7 @@ bool PolytopeBuilder::makePolygon(const Vector3d& normal, ConvexPolytope* out) c
 // vertices, until none is left. The result is the last round's hull that holds all input points
 // within hullTolerance() and is locally convex (see covers).
 ConvexPolytope PolytopeBuilder::makeSolid(double thickness) const {
-  const bool merge = thickness >= kQhullMergeMinThickness * h_ && !std::getenv("DC_FORCE_C0");  // TEMPDEBUG
+  const bool merge = thickness >= kQhullMergeMinThickness * h_;
   SolidAttempt attempt = pruneRounds(merge);
   if (attempt.clean || !merge) return std::move(attempt.hull);
   SolidAttempt conservative = pruneRounds(false);
@@ -594,17 +600,14 @@ PolytopeBuilder::SolidAttempt PolytopeBuilder::pruneRounds(bool merge) const {
     std::vector<int> redundant;
     try {
       last.hull = makePolyhedron(ids, merge ? h_ : 0.0, &vertexIds, &redundant);
-      last.covers = covers(last.hull);
+      last.covers = covers(last.hull, vertexIds);
       last.clean = last.covers && redundant.empty() && last.hull.checkInvariants(false).empty();
-      if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG: round %d merge %d V=%d covers %d validate '%s'\n", round, (int)merge, last.hull.numVertices(), (int)last.covers, last.hull.validate().c_str());
-    } catch (const std::runtime_error& e) {
-      if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG: round %d threw %s\n", round, e.what());
+    } catch (const std::runtime_error&) {
       if (round == 0 && !merge) throw;
       break;  // Qhull's merging failed, or pruned down to a degenerate set
     }
     if (last.covers) best = last;
     if (redundant.empty() || (merge && !last.covers)) break;
-    if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG: round %d prunes %zu\n", round, redundant.size());
     std::sort(redundant.begin(), redundant.end());
     ids.clear();
     for (int i : vertexIds) {
@@ -614,10 +617,10 @@ PolytopeBuilder::SolidAttempt PolytopeBuilder::pruneRounds(bool merge) const {
   return best.covers ? best : last;
 }
 
-// True when every input point is inside every face plane within hullTolerance() and the hull is
-// locally convex (every vertex's neighbours are inside its ring faces' planes within it): a closed,
-// locally convex surface is convex, so that and the point test make the hull correct.
-bool PolytopeBuilder::covers(const ConvexPolytope& p) const {
+// True when the hull is locally convex (every vertex's neighbours are inside its ring faces'
+// planes) and every input point is inside every face plane, within hullTolerance(). A closed,
+// locally convex surface is convex, so the hull's own vertices (vertexIds) need no plane test.
+bool PolytopeBuilder::covers(const ConvexPolytope& p, const std::vector<int>& vertexIds) const {
   const double tol = p.hullTolerance();
   const int nf = p.numFaces();
   std::vector<double> localOffset(nf);
@@ -629,10 +632,7 @@ bool PolytopeBuilder::covers(const ConvexPolytope& p) const {
   for (int v = 0; v < p.numVertices(); ++v) {
     for (int f : p.vertexFaces(v)) {
       for (int u : p.neighbors(v)) {
-        if (p.faceNormal(f).dot(p.localVertex(u)) - localOffset[f] > tol) {
-          if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG covers: local convexity v%d u%d f%d by %g h\n", v, u, f, (p.faceNormal(f).dot(p.localVertex(u)) - localOffset[f]) / h_);
-          return false;
-        }
+        if (p.faceNormal(f).dot(p.localVertex(u)) - localOffset[f] > tol) return false;
       }
     }
   }
@@ -670,20 +670,16 @@ bool PolytopeBuilder::covers(const ConvexPolytope& p) const {
     for (std::size_t i = 0; i < outline.size(); ++i) {
       const Eigen::Vector2d& a = outline[i];
       const Eigen::Vector2d& b = outline[(i + 1) % outline.size()];
-      if (turn(a, b, y) < -tol * (b - a).norm()) {
-        if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG covers: shadow fail\n");
-        return false;
-      }
+      if (turn(a, b, y) < -tol * (b - a).norm()) return false;
     }
   }
-  for (const Vector3d& point : points_) {
-    const Vector3d x = point - p.center();
-    if (x.norm() <= inRadius - tol) continue;  // inside the inscribed ball
+  std::vector<char> isVertex(points_.size(), 0);
+  for (int i : vertexIds) isVertex[i] = 1;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const Vector3d x = points_[i] - p.center();
+    if (isVertex[i] || x.norm() <= inRadius - tol) continue;  // a vertex, or in the inscribed ball
     for (int f = 0; f < nf; ++f) {
-      if (p.faceNormal(f).dot(x) - localOffset[f] > tol) {
-        if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG covers: point %d outside face %d by %g h\n", (int)(&point - points_.data()), f, (p.faceNormal(f).dot(x) - localOffset[f]) / h_);
-        return false;
-      }
+      if (p.faceNormal(f).dot(x) - localOffset[f] > tol) return false;
     }
   }
   return true;
@@ -873,7 +869,8 @@ ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, doub
         const double t = std::clamp(x.dot(chord) / chord.squaredNorm(), 0.0, 1.0);
         if ((x - t * chord).norm() <= h_) continue;
         for (std::size_t g = 0; g < faces.size(); ++g) {
-          if (faceGroup[g] >= 0 && std::find(faces[g].begin(), faces[g].end(), l[i]) != faces[g].end()) {
+          if (faceGroup[g] >= 0 &&
+              std::find(faces[g].begin(), faces[g].end(), l[i]) != faces[g].end()) {
             dissolved[faceGroup[g]] = 1;
             redo = true;
           }
@@ -890,7 +887,6 @@ ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, doub
     for (const auto& l : faces) {
       for (int v : l) ++faceCount[v];
     }
-    if (std::getenv("DC_DEBUG")) { for (int v = 0; v < numPoints; ++v) if (faceCount[v] == 2) fprintf(stderr, "TEMPDEBUG deg2 %d\n", v); }
     for (auto& l : faces) {
       const std::size_t before = l.size();
       l.erase(std::remove_if(l.begin(), l.end(), [&](int v) { return faceCount[v] == 2; }),
@@ -988,7 +984,6 @@ ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, doub
     }
   }
   for (int v = 0; v < numVerts; ++v) {
-    if (std::getenv("DC_DEBUG") && stickOut[v] < 1e3 * h_) fprintf(stderr, "TEMPDEBUG v%d (id %d) stickOut %g h %g\n", v, vertexIds->at(v), stickOut[v], h_);
     if (!(stickOut[v] > h_)) candidates.emplace_back(stickOut[v], v);
   }
   std::sort(candidates.begin(), candidates.end());
@@ -996,7 +991,6 @@ ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, doub
   for (const auto& [out, v] : candidates) {
     if (blocked[v]) continue;
     redundant->push_back(vertexIds->at(v));
-    if (std::getenv("DC_DEBUG")) fprintf(stderr, "TEMPDEBUG prune id %d stickOut %g\n", vertexIds->at(v), out);
     blocked[v] = 1;
     for (int k = p.adjStart_[v]; k < p.adjStart_[v + 1]; ++k) blocked[p.adjVerts_[k]] = 1;
   }
@@ -1226,8 +1220,8 @@ std::string ConvexPolytope::checkInvariants(bool globalConvexity) const {
   std::vector<double> localOffset(nf);
   std::vector<double> normalUncertainty(nf);
   const double roundoff = 16.0 * std::numeric_limits<double>::epsilon() * radius_;
-  std::unordered_map<std::uint64_t, int> edgeFace;    // directed edge -> face
-  std::unordered_map<std::uint64_t, int> facePos;     // (face, vertex) -> position in its loop
+  std::unordered_map<std::uint64_t, int> edgeFace;  // directed edge -> face
+  std::unordered_map<std::uint64_t, int> facePos;   // (face, vertex) -> position in its loop
   for (int f = 0; f < nf; ++f) {
     const IndexRange fv = faceVertices(f);
     const Vector3d& n = faceNormals_[f];
@@ -1263,10 +1257,11 @@ std::string ConvexPolytope::checkInvariants(bool globalConvexity) const {
     // face's extent across its longest chord; plus kCoplanarAngle, by which the facets merged
     // into one face may disagree. Rings may turn the wrong way by that much at nearly flat
     // vertices (where merging and vertex removal within the tolerance decide the last digits).
-    const PlaneFit fit = fitPlane(fv, [&](int v) { return local_[v]; }, n);
-    normalUncertainty[f] = fit.width > 0.0 ? (fit.band + flatTol_ + roundoff) / fit.width +
-                                                 tol::kCoplanarAngle
-                                           : std::numeric_limits<double>::infinity();
+    const PlaneFit fit = fitPlane(
+        fv, [&](int v) { return local_[v]; }, n);
+    normalUncertainty[f] = fit.width > 0.0
+                               ? (fit.band + flatTol_ + roundoff) / fit.width + tol::kCoplanarAngle
+                               : std::numeric_limits<double>::infinity();
   }
   for (const auto& [key, face] : edgeFace) {
     const int a = static_cast<int>(key >> 32);
@@ -1279,9 +1274,10 @@ std::string ConvexPolytope::checkInvariants(bool globalConvexity) const {
   if (ne != numEdges()) return fail("numEdges() = ", numEdges(), " but faces have ", ne, " edges");
   if (nv - ne + nf != 2) return fail("Euler characteristic V - E + F = ", nv - ne + nf);
 
-  // Convexity.
-  if (solid && globalConvexity) {
-    for (int f = 0; f < nf; ++f) {
+  // Convexity: every vertex inside every face plane (solids; O(V F), only when asked), or
+  // inside every edge of the polygon.
+  if (solid) {
+    for (int f = 0; f < nf && globalConvexity; ++f) {
       for (int v = 0; v < nv; ++v) {
         const double off = faceNormals_[f].dot(local_[v]) - localOffset[f];
         if (off > tol) return fail("vertex ", v, " is ", off, " outside face ", f);
@@ -1315,7 +1311,8 @@ std::string ConvexPolytope::checkInvariants(bool globalConvexity) const {
     const IndexRange nb = neighbors(v);
     const IndexRange ring = vertexFaces(v);
     const int k = nb.size();
-    if (ring.size() != k) return fail("vertex ", v, " has ", k, " neighbours but ", ring.size(), " ring faces");
+    if (ring.size() != k)
+      return fail("vertex ", v, " has ", k, " neighbours but ", ring.size(), " ring faces");
     if (k < (solid ? 3 : 2)) return fail("vertex ", v, " has only ", k, " neighbours");
     for (int j = 0; j < k; ++j) {
       const int u = nb[j];

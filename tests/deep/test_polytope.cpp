@@ -98,7 +98,8 @@ void checkHull(const ConvexPolytope& poly, const std::vector<Vector3d>& input, s
     BOOST_TEST(foreign == 0);
 
     const Vector3d& c = poly.center();
-    const double tol = poly.hullTolerance() + 4.0 * std::numeric_limits<double>::epsilon() * poly.lengthScale();
+    const double tol =
+        poly.hullTolerance() + 4.0 * std::numeric_limits<double>::epsilon() * poly.lengthScale();
 
     // Every input point inside every face plane (solids).
     if (poly.kind() == PolytopeKind::Polyhedron) {
@@ -157,7 +158,9 @@ BOOST_AUTO_TEST_CASE(kind_names) {
 
 BOOST_AUTO_TEST_CASE(bad_input_messages) {
   BOOST_CHECK_EXCEPTION(ConvexPolytope::fromPoints({}, "link3"), std::invalid_argument,
-                        [](const std::exception& e) { return messageHas(e, {"link3", "no points"}); });
+                        [](const std::exception& e) {
+                          return messageHas(e, {"link3", "no points"});
+                        });
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<Vector3d> pts(5, Vector3d(1.0 / 3.0, 0.5, 0.25));
@@ -173,11 +176,17 @@ BOOST_AUTO_TEST_CASE(bad_input_messages) {
                           return messageHas(e, {"points", "point 4", "z", "-inf"});
                         });
   BOOST_CHECK_EXCEPTION(ConvexPolytope::box(Vector3d(1.0, -0.5, 1.0)), std::invalid_argument,
-                        [](const std::exception& e) { return messageHas(e, {"box", "y", "-0.5"}); });
+                        [](const std::exception& e) {
+                          return messageHas(e, {"box", "y", "-0.5"});
+                        });
   BOOST_CHECK_EXCEPTION(ConvexPolytope::box(Vector3d(1.0, 1.0, 0.0)), std::invalid_argument,
-                        [](const std::exception& e) { return messageHas(e, {"box", "z", "0"}); });
+                        [](const std::exception& e) {
+                          return messageHas(e, {"box", "z", "0"});
+                        });
   BOOST_CHECK_EXCEPTION(ConvexPolytope::box(Vector3d(inf, 1.0, 1.0)), std::invalid_argument,
-                        [](const std::exception& e) { return messageHas(e, {"box", "x", "inf"}); });
+                        [](const std::exception& e) {
+                          return messageHas(e, {"box", "x", "inf"});
+                        });
 }
 
 BOOST_AUTO_TEST_CASE(point_kind) {
@@ -221,9 +230,9 @@ BOOST_AUTO_TEST_CASE(segment_kind) {
       BOOST_TEST(poly.vertexFaces(1).size() == 0);
       // The two extreme input points along the line.
       auto along = [&](const Vector3d& p) { return dir.dot(p - base); };
-      const auto [lo, hi] = std::minmax_element(pts.begin(), pts.end(), [&](const Vector3d& a, const Vector3d& b) {
-        return along(a) < along(b);
-      });
+      const auto [lo, hi] = std::minmax_element(
+          pts.begin(), pts.end(),
+          [&](const Vector3d& a, const Vector3d& b) { return along(a) < along(b); });
       const bool ordered = poly.vertex(0) == *lo && poly.vertex(1) == *hi;
       const bool swapped = poly.vertex(0) == *hi && poly.vertex(1) == *lo;
       BOOST_TEST((ordered || swapped));
@@ -403,6 +412,65 @@ BOOST_AUTO_TEST_CASE(nearly_coplanar_noise_below_tolerance) {
   checkHull(poly, pts, rng, "noisy box surface");
 }
 
+// Inputs that leave features at or near the flatness tolerance: noise on coplanar and collinear
+// points, near-duplicates just above the tolerance, thin slabs and needles, float-rounded meshes,
+// all rotated and far from the origin. Every hull must be valid and correct.
+BOOST_AUTO_TEST_CASE(noisy_and_nearly_degenerate_inputs) {
+  std::mt19937 rng(25);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int solids = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const double scale = trial % 2 ? 1e-3 : 10.0;
+    const Vector3d t = (trial < 3 ? 1e4 : 1.0) * onSphere(rng);
+    const Eigen::Matrix3d R = randomRotation(rng);
+    auto place = [&](std::vector<Vector3d> pts) {
+      for (Vector3d& p : pts) p = t + scale * (R * p);
+      return pts;
+    };
+    for (double noise : {1e-13, 1e-11, 1e-9}) {
+      std::vector<Vector3d> surface = boxSurfacePoints(Vector3d(1.0, 0.7, 0.4), 60, rng);
+      for (Vector3d& p : surface) p += noise * gaussian(rng);
+      std::vector<Vector3d> edges;
+      for (int i = 0; i < 150; ++i) {
+        Vector3d p(u(rng) > 0 ? 1.0 : -1.0, u(rng) > 0 ? 1.0 : -1.0, u(rng));
+        std::swap(p[2], p[i % 3]);
+        edges.push_back(p + noise * gaussian(rng));
+      }
+      std::vector<Vector3d> clusters;
+      for (int i = 0; i < 60; ++i) {
+        const Vector3d c = gaussian(rng);
+        for (int k = 0; k < 3; ++k) clusters.push_back(c + 1e2 * noise * gaussian(rng));
+      }
+      for (const auto* set : {&surface, &edges, &clusters}) {
+        const std::vector<Vector3d> pts = place(*set);
+        const ConvexPolytope poly = ConvexPolytope::fromPoints(pts);
+        solids += poly.kind() == PolytopeKind::Polyhedron;
+        checkHull(poly, pts, rng, "noise " + std::to_string(noise));
+      }
+    }
+    for (double thickness : {3e-10, 1e-8, 1e-6}) {
+      std::vector<Vector3d> slab;
+      std::vector<Vector3d> needle;
+      for (int i = 0; i < 100; ++i) {
+        slab.emplace_back(u(rng), u(rng), thickness * (u(rng) > 0 ? 1.0 : -1.0));
+        needle.emplace_back(u(rng), thickness * u(rng), thickness * u(rng));
+      }
+      checkHull(ConvexPolytope::fromPoints(place(slab)), place(slab), rng, "slab");
+      checkHull(ConvexPolytope::fromPoints(place(needle)), place(needle), rng, "needle");
+    }
+    std::vector<Vector3d> cylinder;  // a mesh stored in single precision, posed in double
+    for (int i = 0; i < 48; ++i) {
+      const double a = 2.0 * M_PI * i / 48.0;
+      for (double z : {-1.0, -0.5, 0.0, 0.5, 1.0}) {
+        cylinder.push_back(Vector3d(std::cos(a), std::sin(a), z).cast<float>().cast<double>());
+      }
+    }
+    cylinder = place(cylinder);
+    checkHull(ConvexPolytope::fromPoints(cylinder), cylinder, rng, "float cylinder");
+  }
+  BOOST_TEST(solids == 6 * 9);
+}
+
 BOOST_AUTO_TEST_CASE(duplicates_and_near_duplicates) {
   std::mt19937 rng(19);
   std::uniform_real_distribution<double> jitter(-1e-14, 1e-14);
@@ -423,7 +491,8 @@ BOOST_AUTO_TEST_CASE(duplicates_and_near_duplicates) {
   std::vector<Vector3d> corners;
   const ConvexPolytope reference = ConvexPolytope::box(Vector3d(1, 2, 3));
   for (const Vector3d& c : reference.vertices()) {
-    for (int k = 0; k < 4; ++k) corners.push_back(c + Vector3d(jitter(rng), jitter(rng), jitter(rng)));
+    for (int k = 0; k < 4; ++k)
+      corners.push_back(c + Vector3d(jitter(rng), jitter(rng), jitter(rng)));
   }
   const ConvexPolytope box = ConvexPolytope::fromPoints(corners);
   BOOST_TEST(box.numVertices() == 8);
@@ -447,8 +516,10 @@ BOOST_AUTO_TEST_CASE(scales_and_offsets) {
     double scale;
     double offset;
   };
-  for (const Case& c : {Case{1e-3, 0.0}, Case{1e3, 0.0}, Case{1.0, 1e4}, Case{1e-3, 1e4}, Case{1e3, 1e4}}) {
-    const Vector3d t = c.offset * Vector3d(1.0, -1.0, 1.0) + Vector3d(1.0 / 3.0, 0.2, 0.1) * c.scale;
+  for (const Case& c :
+       {Case{1e-3, 0.0}, Case{1e3, 0.0}, Case{1.0, 1e4}, Case{1e-3, 1e4}, Case{1e3, 1e4}}) {
+    const Vector3d t =
+        c.offset * Vector3d(1.0, -1.0, 1.0) + Vector3d(1.0 / 3.0, 0.2, 0.1) * c.scale;
     const Eigen::Matrix3d R = randomRotation(rng);
     std::vector<Vector3d> pts;
     for (int i = 0; i < 300; ++i) pts.push_back(t + c.scale * inBall(rng));
@@ -471,7 +542,8 @@ BOOST_AUTO_TEST_CASE(large_inputs) {
   for (int i = 0; i < 10000; ++i) ball.push_back(inBall(rng));
   checkHull(ConvexPolytope::fromPoints(ball), ball, rng, "ball 10000");
   std::vector<Vector3d> sphere;
-  for (int i = 0; i < 10000; ++i) sphere.push_back(Vector3d(2.0, 1.0, 0.5).cwiseProduct(onSphere(rng)));
+  for (int i = 0; i < 10000; ++i)
+    sphere.push_back(Vector3d(2.0, 1.0, 0.5).cwiseProduct(onSphere(rng)));
   const ConvexPolytope ellipsoid = ConvexPolytope::fromPoints(sphere);
   BOOST_TEST(ellipsoid.numVertices() == 10000);
   // The principal axes of an axis-aligned ellipsoid's samples are close to x, y, z.
@@ -563,11 +635,15 @@ BOOST_AUTO_TEST_CASE(pair_frame_rejects_bad_poses) {
   Eigen::Isometry3d bad = Eigen::Isometry3d::Identity();
   bad.translation().y() = std::numeric_limits<double>::quiet_NaN();
   BOOST_CHECK_EXCEPTION(PairFrame::make(A, bad, A, good), std::invalid_argument,
-                        [](const std::exception& e) { return messageHas(e, {"X_WA", "nan"}); });
+                        [](const std::exception& e) {
+                          return messageHas(e, {"X_WA", "nan"});
+                        });
   bad = Eigen::Isometry3d::Identity();
   bad.linear()(0, 1) = std::numeric_limits<double>::infinity();
   BOOST_CHECK_EXCEPTION(PairFrame::make(A, good, A, bad), std::invalid_argument,
-                        [](const std::exception& e) { return messageHas(e, {"X_WB", "inf"}); });
+                        [](const std::exception& e) {
+                          return messageHas(e, {"X_WB", "inf"});
+                        });
   bad = Eigen::Isometry3d::Identity();
   bad.linear() *= 1.001;
   BOOST_CHECK_EXCEPTION(PairFrame::make(A, good, A, bad), std::invalid_argument,
@@ -577,7 +653,9 @@ BOOST_AUTO_TEST_CASE(pair_frame_rejects_bad_poses) {
   bad = Eigen::Isometry3d::Identity();
   bad.linear()(2, 2) = -1.0;
   BOOST_CHECK_EXCEPTION(deepcheck::deep::checkPose(bad, "link pose"), std::invalid_argument,
-                        [](const std::exception& e) { return messageHas(e, {"link pose", "reflection"}); });
+                        [](const std::exception& e) {
+                          return messageHas(e, {"link pose", "reflection"});
+                        });
   Eigen::Isometry3d slightly = Eigen::Isometry3d::Identity();
   slightly.linear() *= 1.0 + 1e-9;
   BOOST_CHECK_NO_THROW(deepcheck::deep::checkPose(slightly, "almost"));
