@@ -63,7 +63,8 @@ struct Family {
 /// The family names in the order they run.
 std::vector<std::string> familyNames();
 
-/// Builds family `name` with about `pairs` queries (the motion family: `pairs` steps in all).
+/// Builds family `name` with about `pairs` queries (the motion family: `pairs` steps in all,
+/// in trajectories of 500 steps, at least one).
 /// `sharedDir` is the folder holding robots/ (for the robot family); returns std::nullopt with
 /// a message on stderr when the family cannot be built (robot meshes absent).
 std::optional<Family> makeFamily(const std::string& name, int pairs, const std::string& sharedDir);

@@ -37,23 +37,23 @@ cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DDEEP
 cmake --build "$build" --target pd_bench -j "$jobs"
 
 mkdir -p "$out"
-rm -f "$out"/repro_*.txt
+rm -f "$out"/repro_pd_*.txt
 {
   echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"
   echo "commit: $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo "cpu: $(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)"
   echo "cores: $(nproc)"
   echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
-} > "$out/machine.txt"
+} > "$out/pd_machine.txt"
 
 args=()
 [[ $quick -eq 1 ]] && args+=(--quick)
 "$build/bench/pd_bench" "${args[@]}" --out "$out" "${extra[@]}" | tee "$out/pd_bench.txt"
-echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/machine.txt"
+echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/pd_machine.txt"
 
 if command -v gnuplot >/dev/null; then
   gnuplot -e "csv='$out/pd_bench.csv'; outdir='$out'" "$here/pd_plots.gp"
-  echo "plots: $out/speed_vs_error.png $out/speed_vs_error_verts_100.png $out/scaling.png"
+  echo "plots: $out/pd_speed_vs_error.png $out/pd_speed_vs_error_verts_100.png $out/pd_scaling.png"
 else
   echo "gnuplot not found: plots skipped (apt-get install gnuplot-nox)"
 fi
