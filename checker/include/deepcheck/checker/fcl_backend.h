@@ -12,11 +12,12 @@
 // Expected agreement. The World's pieces contain the original geometry (prisms contain the
 // cylinders, decomposition pieces contain the meshes), so:
 //   - FCL colliding implies World colliding (never the reverse miss);
-//   - where the World reports a collision that FCL does not, FCL's distance is at most the
-//     World's geometry excess (Summary::geometryExcess) — with one exception FCL cannot see: a
-//     mesh entirely inside another body has no intersecting triangles, FCL calls it free;
-//   - on free configurations the World's distance is at most FCL's, and at least FCL's minus the
-//     geometry excess.
+//   - where the World reports a collision that FCL does not, FCL's distance is at most the sum of
+//     the two bodies' excesses, so at most twice the World's geometry excess
+//     (Summary::geometryExcess) — with one exception FCL cannot see: a mesh entirely inside
+//     another body has no intersecting triangles, and FCL calls it free;
+//   - on free configurations the World's distance is at most FCL's, and at least FCL's minus
+//     twice the geometry excess.
 //
 // Not thread-safe: the robot's FCL objects are posed in place. Use one FclWorld per thread.
 

@@ -205,7 +205,8 @@ class World {
   using Options = WorldOptions;
 
   /// Per-thread query state: warm-start caches (one deep::PairCache per piece pair), scratch
-  /// poses and statistics. Made by World::makeContext(); bound to that world; movable, not
+  /// poses and statistics. Made by World::makeContext(); bound to that world (using it with
+  /// another is an error) and must not be used after the world is destroyed; movable, not
   /// copyable; must not be used by two threads at once.
   class Context {
    public:
