@@ -81,6 +81,8 @@ struct World::Context::Impl {
   std::uint32_t stamp = 0;
   std::vector<Eigen::Vector3d> linkCenter;  // per LinkGeometry
 
+  Eigen::VectorXd lastQ;  // the previous query's configuration
+  bool coherent = false;  // this query is within tol::kWarmStartMaxStep of the previous one
   PairKey lastHit;      // isFree: the pair that overlapped last time
   PairKey lastClosest;  // signedDistance: the closest pair last time
   std::vector<BodyPairBest> bodyPairs;
@@ -179,6 +181,8 @@ const Snapshot& prepare(const WorldState& state, Impl& c,
   const Snapshot& s = *c.snap;
   const RobotData& robot = *s.robot;
   robots::forwardKinematics(robot.model, q, c.X_WL);  // checks q (size, finite), naming the variable
+  c.coherent = c.lastQ.size() == q.size() && (q - c.lastQ).cwiseAbs().maxCoeff() <= tol::kWarmStartMaxStep;
+  c.lastQ = q;
   for (std::size_t g = 0; g < robot.links.size(); ++g) {
     c.linkCenter[g] = c.X_WL[robot.links[g].link] * robot.links[g].center_L;
   }
@@ -198,6 +202,14 @@ inline void posePiece(Impl& c, const RobotData& robot, int i) {
   c.pieceCenter[i] = c.X_WL[p.link] * p.center_L;
   c.pieceObb[i] = p.obb_L.transformed(c.X_WL[p.link]);
   c.pieceStamp[i] = c.stamp;
+}
+
+/// The pair's warm-start cache for this query: kept when the query is near the previous one,
+/// reset first otherwise (a start from an unrelated configuration is worse than a cold start:
+/// measured 20 % slower on random configurations, and DEEP runs fewer restarts when warm).
+inline deep::PairCache* warm(const Impl& c, deep::PairCache& cache) {
+  if (!c.coherent) cache.reset();
+  return &cache;
 }
 
 /// Lower bound on the distance between robot piece i (posed) and world piece w.
@@ -275,7 +287,7 @@ bool overlapWorld(World::Context& context, Impl& c, const RobotData& robot, cons
   ++c.stats.narrowPhase;
   notify(context, p.link, bodyOfWorldPiece(set, w));
   const bool hit = deep::overlaps(shapeOf(p), c.X_WP[i], shapeOf(w), w.X_WP,
-                                  &caches[static_cast<std::size_t>(i) * set.pieces.size() + wp]);
+                                  warm(c, caches[static_cast<std::size_t>(i) * set.pieces.size() + wp]));
   if (hit) c.lastHit = PairKey{kind, i, wp, -1};
   return hit;
 }
@@ -286,7 +298,7 @@ bool overlapSelf(World::Context& context, Impl& c, const RobotData& robot, int i
   ++c.stats.narrowPhase;
   ++c.stats.selfNarrowPhase;
   notify(context, a.link, robotBody(b.link));
-  const bool hit = deep::overlaps(shapeOf(a), c.X_WP[i], shapeOf(b), c.X_WP[j], &c.selfCaches[cache]);
+  const bool hit = deep::overlaps(shapeOf(a), c.X_WP[i], shapeOf(b), c.X_WP[j], warm(c, c.selfCaches[cache]));
   if (hit) c.lastHit = PairKey{PairKey::Kind::Self, i, j, cache};
   return hit;
 }
@@ -460,6 +472,7 @@ struct DistanceSearch {
   deep::SignedDistanceResult pairDistance(const deep::ConvexShape& A, const Eigen::Isometry3d& X_WA,
                                           const deep::ConvexShape& B, const Eigen::Isometry3d& X_WB,
                                           deep::PairCache& cache) {
+    warm(c, cache);
     if (!options.deep.restarts) return deep::signedDistance(A, X_WA, B, X_WB, &cache, options.deep);
     deep::DeepOptions quick = options.deep;
     quick.restarts = false;

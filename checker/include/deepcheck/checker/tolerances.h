@@ -22,6 +22,13 @@ constexpr double kObbParallel = 1e-9;
 /// (dimensionless): the same bound the narrow phase applies to every pose (deep::tol::kOrthonormal).
 constexpr double kPoseOrthonormality = 1e-6;
 
+/// Warm starts are used only between consecutive queries of a context whose configurations differ
+/// by at most this in every variable (radians or metres), the steps of motion validation and
+/// of optimizers; a query further from the previous one starts every pair cold. Unrelated
+/// configurations make poor warm starts: measured 20 % slower isFree on random Panda
+/// configurations, and DEEP runs fewer restarts when warm, so a stale start costs accuracy too.
+constexpr double kWarmStartMaxStep = 0.1;
+
 /// Default margin of the reachability filter, metres: a scene piece is dropped at load time when
 /// it is farther than this from every point any robot link can ever reach (the reach spheres of
 /// reach.h). Distances reported by the world are exact up to this margin; above it they are only
