@@ -1,26 +1,41 @@
 // Approximate convex decomposition: recursive plane cuts scored by concavity, then merging and
 // vertex reduction (decomposition.h gives the overview and the guarantees).
 //
-// How concavity is measured. A part P is the piece of the mesh inside a convex cell C (the
-// intersection of the half-spaces of the cuts that led to it), restricted to one connected
-// component. Its hull H lies inside C. For a point p on the surface of H:
-//   - if p is inside the mesh solid, its distance to the solid is 0. That can only happen on the
-//     boundary of C (a point of H's surface strictly inside C and inside the solid would be an
-//     interior point of P, hence of H). So only samples on hull facets lying on a cut plane are
-//     tested for being inside: the 2D winding number of the mesh's cross-section by that plane
-//     (CrossSection below) decides.
-//   - otherwise, its nearest point of the solid part P is on P's clipped triangles: a nearest
-//     point q on a cap (the cut face) would have, on the segment from p to q, a point where the
-//     segment enters the solid, which is on a triangle and nearer. So the distance to P's
-//     clipped triangles (a BVH query) is exact.
-// For merged pieces the same rules give an upper bound (a sample is measured against the
-// triangles of the pieces' own parts only), which keeps merging conservative.
+// Parts. A part is the piece of the mesh surface inside a convex cell (the intersection of the
+// half-spaces of the cuts that led to it): the mesh triangles clipped to the cell (convex
+// polygons), plus the cell's corners that lie inside the solid. Its hull is the hull of those
+// points. Coverage: the solid inside the cell is bounded by the polygons and by caps (the solid's
+// cut faces) on the cell planes; a cap is bounded by polygon edges and by cell edges, whose ends
+// are polygon vertices or cell corners; so the hull holds the caps, hence the solid. Each side of
+// a cut is split into components joined through mesh edges and through the regions of the cut
+// faces (loops of the cross-section that cross or nest, CrossSection below), never more finely
+// than the solid is connected; each cell corner goes to the component whose surface a ray from
+// the corner into the cell meets first.
 //
-// Departures from the papers. V-HACD voxelizes and cuts the voxel set; CoACD cuts the mesh and
+// Concavity of a hull: the largest distance from a point of its surface to the mesh solid,
+// estimated by sampling the surface and hill-climbing from the worst samples. A sample outside
+// the solid is measured against the whole mesh (a BVH query: exact). A sample inside the solid is
+// at distance 0; on a part's own hull that only happens on the cell's planes (a surface point
+// strictly inside the cell and the solid would be interior to the part, hence to its hull), so
+// only samples on hull facets lying on a cut plane are tested, by the 2D winding number of the
+// mesh's cross-section by that plane. For merged or reduced pieces, whose hull may reach into the
+// solid elsewhere, the value is an upper bound.
+//
+// Search. Each step cuts the part of largest concavity by the candidate plane that minimizes the
+// larger concavity of its sides (ties: the cut along the most mesh face area, then the smaller
+// hull volumes). Candidates: the axes and the part's principal axes, through the worst sample,
+// through the mesh point nearest to it, through mesh points near it, through the walls that rays
+// from it meet (and along those walls' own planes), a few evenly spaced offsets, a refinement of
+// the best offset, and slabs between the walls on both sides of the worst sample (a slot or gap
+// is cut out in one step). When the best cut does not lower the concavity much (a plateau: a
+// hole needs two cuts through its axis, a frame around a pocket a cut along each wall), the most
+// promising cuts are compared one cut ahead; if that shows no progress either, the cut along the
+// largest mesh face near the concavity is taken.
+//
+// Departures from the papers. V-HACD voxelizes and cuts the voxel set; CoACD cuts the mesh,
 // re-triangulates the caps to keep parts manifold, and searches cut sequences with a Monte-Carlo
-// tree. Here the caps are never built (the hull of a side only needs the cut points, and the
-// distance argument above needs no cap), and the search is greedy with a local refinement: each
-// step picks the one cut that minimizes the larger concavity of the two sides.
+// tree. Here caps are never built (their extent is the cell corners', their inside the cross
+// sections'), and the search is greedy with the one-cut lookahead, slabs and wall cuts above.
 
 #include "deepcheck/robots/decomposition.h"
 
@@ -715,9 +730,9 @@ struct Concavity {
 
 /// Which fixed points of the hull's triangles are sampled besides the random ones.
 enum class Extra {
-  None,       ///< random samples only (candidate cuts)
-  Centroids,  ///< each triangle's centroid (parts, merges): catches thin slivers of hull
-  Dense,      ///< centroids and edge midpoints (the final report)
+  None,   ///< random samples only (candidate cuts, which are many)
+  Dense,  ///< each triangle's centroid and edge midpoints (parts, merges, the final report):
+          ///< catches thin slivers of hull and maxima on hull edges
 };
 
 /// Samples `count` random points on the surface of `hull` (area-weighted), plus the `extra`
@@ -797,7 +812,6 @@ Concavity measureConcavity(const Hull& hull, const Target& target, int count, Ex
       const Vector3d& p1 = hull.vertices[tri[1]];
       const Vector3d& p2 = hull.vertices[tri[2]];
       samples.emplace_back((p0 + p1 + p2) / 3.0, t);
-      if (extra != Extra::Dense) continue;
       samples.emplace_back(0.5 * (p0 + p1), t);
       samples.emplace_back(0.5 * (p1 + p2), t);
       samples.emplace_back(0.5 * (p2 + p0), t);
@@ -924,6 +938,8 @@ struct Part {
   Vector3d worstSample = Vector3d::Zero();   ///< hull surface point farthest from the part
   Vector3d worstNearest = Vector3d::Zero();  ///< the part's point nearest to it
   bool unsplittable = false;  ///< no valid cut was found
+  bool reduced = false;       ///< finishPart ran
+  bool noSlivers = false;     ///< a sliver cut made no progress: cuts leaving a sliver are skipped
 };
 
 struct Piece {
@@ -964,8 +980,12 @@ class Decomposer {
     }
   }
 
+  /// A part from its cell and polygons: points, hull, concavity; with `reduce`, finishPart too.
+  /// `hint`: where the parent's worst hull sample was (sampled first, see measureConcavity).
   Part makePart(std::vector<CellSide> cell, std::vector<PartPolygon> polygons,
-                std::vector<Vector3d> cellCorners);
+                std::vector<Vector3d> cellCorners, bool reduce = true, const Vector3d* hint = nullptr);
+  /// Reduces the part's hull to the vertex budget (once) and measures the reduced hull.
+  void finishPart(Part* part);
   struct Component {
     std::vector<PartPolygon> polygons;
     std::vector<Vector3d> cellCorners;
@@ -988,8 +1008,13 @@ class Decomposer {
     double volume = 0.0;
     int vertices = 0;
   };
-  SideResult evaluateSide(const Part& part, const Halfspace& keep, const CrossSection& section,
-                          double abortAbove);
+  /// A half-space a side keeps, with the mesh's cross-section by its plane.
+  struct Keep {
+    Halfspace plane;
+    const CrossSection* section;
+  };
+  /// Hull and concavity of the part's side within all `keeps` (one cut, or the middle of a slab).
+  SideResult evaluateSide(const Part& part, const std::vector<Keep>& keeps, double abortAbove);
   /// A scored cut: `cut` keeps its negative side for one child, the positive side for the other.
   struct Candidate {
     Halfspace cut;
@@ -999,7 +1024,13 @@ class Decomposer {
     bool throughWorst;
     double faceArea;  ///< area of the part's polygons lying in the plane (a wall cut along)
     int direction;    ///< index of its normal among the part's cut directions (axes first)
+    /// A slab: a second, parallel cut at this larger offset (NaN for a single cut). The part is
+    /// cut in three: below `cut`, between the two planes, above this one.
+    double slabOffset = std::numeric_limits<double>::quiet_NaN();
+    bool isSlab() const { return !std::isnan(slabOffset); }
   };
+  /// Splits `part` by the candidate (one cut, or the two planes of a slab).
+  std::vector<Part> applyCut(const Part& part, const Candidate& candidate, bool reduce);
   /// Scores the candidate cuts of `part` (decomposition.h lists them); `quick`: fewer offsets and
   /// no refinement. Cuts scoring above `bound` are dropped early.
   std::vector<Candidate> scoreCuts(const Part& part, bool quick, double bound, double* bestScore);
@@ -1009,7 +1040,7 @@ class Decomposer {
   bool betterTie(const Candidate& a, const Candidate& b) const;
   /// Chooses the cut of `part` (with a one-cut lookahead on plateaus) and returns its children.
   bool chooseSplit(const Part& part, std::vector<Part>* children);
-  std::vector<Part> split(const Part& part, const Halfspace& cut);
+  std::vector<Part> split(const Part& part, const Halfspace& cut, bool reduce = true);
 
   Hull pieceHull(const Piece& a, const Piece* b) const;
   Target pieceTarget(const Piece& a, const Piece* b) const;
@@ -1034,13 +1065,26 @@ std::vector<PartPolygon> Decomposer::clip(const std::vector<PartPolygon>& polygo
   out.reserve(polygons.size());
   const double minArea = std::pow(dt::kDegenerateRelative * diagonal_, 2);
   std::vector<Vector3d> clipped;
+  const double onPlane = dt::kOnPlaneRelative * diagonal_;
   for (const PartPolygon& polygon : polygons) {
     bool allIn = true;
     bool allOut = true;
+    bool inPlane = true;
     for (const Vector3d& p : polygon.corners) {
       const double d = keep.signedDistance(p);
       allIn = allIn && d <= 0.0;
       allOut = allOut && d > 0.0;
+      inPlane = inPlane && std::abs(d) <= onPlane;
+    }
+    if (inPlane) {
+      // A face lying in the cut plane goes to the side its solid is on (against its outward
+      // normal): on the other side it would be a flat part of its own.
+      Vector3d area = Vector3d::Zero();
+      for (std::size_t k = 1; k + 1 < polygon.corners.size(); ++k) {
+        area += (polygon.corners[k] - polygon.corners[0]).cross(polygon.corners[k + 1] - polygon.corners[0]);
+      }
+      if (area.dot(keep.normal) > 0.0) out.push_back(polygon);
+      continue;
     }
     if (allIn) {
       out.push_back(polygon);
@@ -1247,7 +1291,7 @@ std::vector<Decomposer::Component> Decomposer::components(std::vector<PartPolygo
 }
 
 Part Decomposer::makePart(std::vector<CellSide> cell, std::vector<PartPolygon> polygons,
-                          std::vector<Vector3d> cellCorners) {
+                          std::vector<Vector3d> cellCorners, bool reduce, const Vector3d* hint) {
   Part part;
   part.cell = std::move(cell);
   part.polygons = std::move(polygons);
@@ -1269,54 +1313,75 @@ Part Decomposer::makePart(std::vector<CellSide> cell, std::vector<PartPolygon> p
   Target target;
   target.mesh = &meshBvh_;
   addCaps(part, &target.caps);
-  const Concavity c = measureConcavity(part.hull, target, dt::kPartSamples, Extra::Centroids, nextSeed(), kInf,
-                                       diagonal_);
+  const Concavity c = measureConcavity(part.hull, target, dt::kPartSamples, Extra::Dense, nextSeed(), kInf,
+                                       diagonal_, hint);
   part.hullConcavity = c.value;
   part.concavity = c.value;
   part.hasWorst = c.hasWorst;
   part.worstSample = c.worstSample;
   part.worstNearest = c.worstNearest;
-  // Only a hull that meets the target is worth reducing: the others will be cut anyway.
-  if (c.value <= target_ && static_cast<int>(part.hull.vertices.size()) > params_.maxVerticesPerPiece) {
-    part.finalHull = detail::reduceHullVertices(part.hull, params_.maxVerticesPerPiece);
-    part.concavity = measureConcavity(part.finalHull, target, dt::kPartSamples, Extra::Centroids, nextSeed(),
-                                      kInf, diagonal_)
-                         .value;
-    part.reductionLimited = part.concavity > target_;
-  } else {
-    part.finalHull = part.hull;
-  }
+  part.finalHull = part.hull;
+  if (reduce) finishPart(&part);
   return part;
 }
 
-Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const Halfspace& keep,
-                                                const CrossSection& section, double abortAbove) {
+void Decomposer::finishPart(Part* part) {
+  if (part->reduced) return;
+  part->reduced = true;
+  // Only a hull that meets the target is worth reducing: the others will be cut anyway.
+  if (part->hullConcavity > target_ ||
+      static_cast<int>(part->hull.vertices.size()) <= params_.maxVerticesPerPiece) {
+    return;
+  }
+  part->finalHull = detail::reduceHullVertices(part->hull, params_.maxVerticesPerPiece);
+  Target target;
+  target.mesh = &meshBvh_;
+  addCaps(*part, &target.caps);
+  part->concavity = measureConcavity(part->finalHull, target, dt::kPartSamples, Extra::Dense,
+                                     nextSeed(), kInf, diagonal_)
+                        .value;
+  part->reductionLimited = part->concavity > target_;
+}
+
+Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vector<Keep>& keeps,
+                                                double abortAbove) {
   SideResult result;
   std::vector<Vector3d> points;
   points.reserve(part.points.size());
   std::unordered_set<VertexKey, VertexKeyHash> crossings;
   const double slab = dt::kMinSlabRelative * diagonal_;
+  const double tolerance = dt::kOnPlaneRelative * diagonal_;
+  auto insideKeeps = [&](const Vector3d& x, std::size_t skip) {
+    for (std::size_t k = 0; k < keeps.size(); ++k) {
+      if (k != skip && keeps[k].plane.signedDistance(x) > tolerance) return false;
+    }
+    return true;
+  };
   for (const PartPolygon& polygon : part.polygons) {
     const std::size_t n = polygon.corners.size();
     for (std::size_t e = 0; e < n; ++e) {
       const Vector3d& a = polygon.corners[e];
       const Vector3d& b = polygon.corners[(e + 1) % n];
-      const double sa = keep.signedDistance(a);
-      const double sb = keep.signedDistance(b);
-      if (sa < -slab) result.valid = true;
-      // Each mesh edge is crossed in the two polygons that share it: compute it once, from the
-      // lexicographically smaller end, and keep the first copy.
-      if ((sa < 0.0 && sb > 0.0) || (sa > 0.0 && sb < 0.0)) {
+      bool deep = true;
+      for (const Keep& keep : keeps) deep = deep && keep.plane.signedDistance(a) < -slab;
+      if (deep) result.valid = true;
+      for (std::size_t k = 0; k < keeps.size(); ++k) {
+        const double sa = keeps[k].plane.signedDistance(a);
+        const double sb = keeps[k].plane.signedDistance(b);
+        // Each mesh edge is crossed in the two polygons that share it: compute it once, from the
+        // lexicographically smaller end, and keep the first copy.
+        if (!((sa < 0.0 && sb > 0.0) || (sa > 0.0 && sb < 0.0))) continue;
         const bool forward = std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
         const Vector3d& from = forward ? a : b;
         const Vector3d& to = forward ? b : a;
         const double sf = forward ? sa : sb;
         const double st = forward ? sb : sa;
         const Vector3d x = from + (sf / (sf - st)) * (to - from);
+        if (!insideKeeps(x, k)) continue;
         VertexKey key{};
-        for (int k = 0; k < 3; ++k) {
-          const double c = x[k] + 0.0;
-          std::memcpy(&key.bits[k], &c, sizeof c);
+        for (int c = 0; c < 3; ++c) {
+          const double v = x[c] + 0.0;
+          std::memcpy(&key.bits[c], &v, sizeof v);
         }
         if (crossings.insert(key).second) points.push_back(x);
       }
@@ -1324,36 +1389,39 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const Halfspac
   }
   if (!result.valid) return result;
   for (const Vector3d& p : part.points) {
-    if (keep.signedDistance(p) <= 0.0) points.push_back(p);  // polygon corners and cell corners
+    if (insideKeeps(p, keeps.size())) points.push_back(p);  // polygon corners and cell corners
   }
-  // New cell corners on the cut plane: where it meets the edges of the part's cell, inside the
-  // solid and inside the part's hull (corners of other parts sharing the cell stay out).
-  const double tolerance = dt::kOnPlaneRelative * diagonal_;
-  for (std::size_t a = 0; a < part.cell.size(); ++a) {
-    for (std::size_t b = a + 1; b < part.cell.size(); ++b) {
-      const Halfspace ha = halfspaceOf(part.cell[a]);
-      const Halfspace hb = halfspaceOf(part.cell[b]);
-      Eigen::Matrix3d A;
-      A.row(0) = keep.normal;
-      A.row(1) = ha.normal;
-      A.row(2) = hb.normal;
-      if (std::abs(A.determinant()) < dt::kSingularPlanes) continue;
-      const Vector3d p = A.inverse() * Vector3d(keep.offset, ha.offset, hb.offset);
-      bool feasible = p.allFinite();
-      for (std::size_t i = 0; feasible && i < part.cell.size(); ++i) {
-        feasible = halfspaceOf(part.cell[i]).signedDistance(p) <= tolerance;
+  // New cell corners on each cut plane: where it meets the edges of the part's cell (and the
+  // other cut plane), inside the solid and inside the part's hull (corners of other parts sharing
+  // the cell stay out).
+  std::vector<Halfspace> others;
+  for (const CellSide& side : part.cell) others.push_back(halfspaceOf(side));
+  for (const Keep& keep : keeps) others.push_back(keep.plane);
+  for (const Keep& keep : keeps) {
+    for (std::size_t a = 0; a < others.size(); ++a) {
+      for (std::size_t b = a + 1; b < others.size(); ++b) {
+        Eigen::Matrix3d A;
+        A.row(0) = keep.plane.normal;
+        A.row(1) = others[a].normal;
+        A.row(2) = others[b].normal;
+        if (std::abs(A.determinant()) < dt::kSingularPlanes) continue;
+        const Vector3d p = A.inverse() * Vector3d(keep.plane.offset, others[a].offset, others[b].offset);
+        bool feasible = p.allFinite();
+        for (std::size_t i = 0; feasible && i < others.size(); ++i) {
+          feasible = others[i].signedDistance(p) <= tolerance;
+        }
+        for (std::size_t f = 0; feasible && f < part.hull.triangles.size(); ++f) {
+          feasible = part.hull.normals[f].dot(p) - part.hull.offsets[f] <= tolerance;
+        }
+        if (feasible && keep.section->contains(p)) points.push_back(p);
       }
-      for (std::size_t f = 0; feasible && f < part.hull.triangles.size(); ++f) {
-        feasible = part.hull.normals[f].dot(p) - part.hull.offsets[f] <= tolerance;
-      }
-      if (feasible && section.contains(p)) points.push_back(p);
     }
   }
   const Hull hull = detail::convexHull(points);
   Target target;
   target.mesh = &meshBvh_;
   addCaps(part, &target.caps);
-  target.caps.push_back({keep.normal, keep.offset, &section});
+  for (const Keep& keep : keeps) target.caps.push_back({keep.plane.normal, keep.plane.offset, keep.section});
   const Vector3d* hint = part.hasWorst ? &part.worstSample : nullptr;
   const Concavity c = measureConcavity(hull, target, dt::kCandidateSamples, Extra::None, nextSeed(),
                                        abortAbove, diagonal_, hint);
@@ -1400,17 +1468,24 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
   *bestScore = kInf;
   const double tie = dt::kTieFraction * target_;
   const double slab = dt::kMinSlabRelative * diagonal_;
+  std::vector<std::pair<int, double>> tried;
   auto tryCut = [&](int dir, double offset, bool throughWorst) {
     const Range& r = ranges[dir];
     if (!(offset > r.lo + slab && offset < r.hi - slab)) return;
+    // A plane (almost) tried already: the same cut.
+    for (const auto& [d, o] : tried) {
+      if (d == dir && std::abs(o - offset) <= dt::kSameOffsetFraction * target_) return;
+    }
+    tried.emplace_back(dir, offset);
     const Vector3d& n = directions[dir];
     const CrossSection section(mesh_, n, offset, false);
     double abortAbove = std::min(*bestScore + tie, bound);
     if (part.reductionLimited) abortAbove = std::max(abortAbove, target_);
-    const SideResult a = evaluateSide(part, {n, offset}, section, abortAbove);
+    const SideResult a = evaluateSide(part, {{{n, offset}, &section}}, abortAbove);
     if (!a.valid || a.aborted) return;
-    const SideResult b = evaluateSide(part, {-n, -offset}, section, abortAbove);
+    const SideResult b = evaluateSide(part, {{{-n, -offset}, &section}}, abortAbove);
     if (!b.valid || b.aborted) return;
+    if (part.noSlivers && std::min(a.volume, b.volume) < (1.0 - dt::kSliverVolume) * part.hull.volume) return;
     const double score = std::max(a.concavity, b.concavity);
     *bestScore = std::min(*bestScore, score);
     double faceArea = 0.0;
@@ -1465,6 +1540,8 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
   // along each direction, both ways (the floor, ceiling and sides of a pocket or slot, which may
   // be farther than the points above).
   // The plane of the wall hit is a candidate too (a drafted wall is not axis-aligned).
+  std::vector<double> wallAbove(directions.size(), kInf);
+  std::vector<double> wallBelow(directions.size(), -kInf);
   if (part.hasWorst) {
     const int fixedDirections = static_cast<int>(directions.size());
     for (int d = 0; d < fixedDirections; ++d) {
@@ -1485,6 +1562,7 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
         if (!std::isfinite(nearest)) continue;
         const Vector3d hit = part.worstSample + nearest * dir;
         tryCut(d, directions[d].dot(hit), false);
+        (sign > 0.0 ? wallAbove : wallBelow)[d] = directions[d].dot(hit);
         Vector3d normal = Vector3d::Zero();
         for (std::size_t k = 1; k + 1 < wall->corners.size(); ++k) {
           normal += (wall->corners[k] - wall->corners[0]).cross(wall->corners[k + 1] - wall->corners[0]);
@@ -1505,6 +1583,33 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
       }
     }
   }
+  // Slabs between the walls on both sides of the worst sample: a slot, groove or gap between two
+  // walls is cut out in one step (three parts), which no single cut shows as progress.
+  for (int d = 0; d < static_cast<int>(wallAbove.size()); ++d) {
+    const double lo = wallBelow[d];
+    const double hi = wallAbove[d];
+    const Range& r = ranges[d];
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo > r.lo + slab && hi < r.hi - slab && hi - lo > 2.0 * slab)) {
+      continue;
+    }
+    const Vector3d& n = directions[d];
+    const CrossSection sectionLo(mesh_, n, lo, false);
+    const CrossSection sectionHi(mesh_, n, hi, false);
+    const double abortAbove = std::min(*bestScore + tie, bound);
+    const SideResult a = evaluateSide(part, {{{n, lo}, &sectionLo}}, abortAbove);
+    if (!a.valid || a.aborted) continue;
+    const SideResult b = evaluateSide(part, {{{-n, -lo}, &sectionLo}, {{n, hi}, &sectionHi}}, abortAbove);
+    if (!b.valid || b.aborted) continue;
+    const SideResult c = evaluateSide(part, {{{-n, -hi}, &sectionHi}}, abortAbove);
+    if (!c.valid || c.aborted) continue;
+    const double score = std::max({a.concavity, b.concavity, c.concavity});
+    *bestScore = std::min(*bestScore, score);
+    Candidate slabCut{{n, lo}, score, a.volume + b.volume + c.volume,
+                      std::max({a.vertices, b.vertices, c.vertices}), false, 0.0, d};
+    slabCut.slabOffset = hi;
+    scored.push_back(slabCut);
+    directionOf.push_back(d);
+  }
   if (quick) return scored;  // the lookahead's second cut: the planes near the concavity only
   const int offsets = dt::kOffsetsPerDirection;
   for (int d = 0; d < static_cast<int>(directions.size()); ++d) {
@@ -1515,6 +1620,7 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
   // Refine the offset of the best cut.
   for (int round = 1; round <= dt::kRefinementRounds; ++round) {
     const Candidate* pick = pickBest(part, scored, *bestScore);
+    if (pick->isSlab()) break;
     const int dir = directionOf[pick - scored.data()];
     const double offset = pick->cut.offset;
     const Range& r = ranges[dir];
@@ -1562,13 +1668,18 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
   std::vector<Candidate> scored = scoreCuts(part, false, kInf, &bestScore);
   if (scored.empty()) return false;
   const Candidate* pick = pickBest(part, scored, bestScore);
-  *children = split(part, pick->cut);
+  // The children are reduced to the vertex budget only once chosen (finishChildren).
+  auto finishChildren = [&]() {
+    for (Part& kid : *children) finishPart(&kid);
+    return !children->empty();
+  };
+  *children = applyCut(part, *pick, false);
   // The sides' concavities as the children measure them (more samples than the candidates had).
   double greedy = 0.0;
   for (const Part& kid : *children) greedy = std::max(greedy, kid.concavity);
   const bool plateau = !part.reductionLimited && greedy > target_ &&
                        greedy > dt::kPlateauFraction * part.concavity;
-  if (!plateau) return true;
+  if (!plateau) return finishChildren();
   // Plateau: no single cut lowers the worst concavity (a slot needs a cut along each wall, a hole
   // two cuts through its axis). Look one cut ahead: split by each of the most promising cuts, and
   // score it by the worst concavity left after the best quick cut of each side that misses the
@@ -1627,7 +1738,7 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
   double bestAhead = kInf;
   const Candidate* bestCandidate = nullptr;
   for (const Candidate* candidate : order) {
-    std::vector<Part> kids = candidate == pick ? std::move(*children) : split(part, candidate->cut);
+    std::vector<Part> kids = candidate == pick ? std::move(*children) : applyCut(part, *candidate, false);
     double ahead = 0.0;
     for (const Part& kid : kids) {
       double next = kid.concavity;
@@ -1653,12 +1764,36 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
       if (c.faceArea <= dt::kFaceAreaTie * diagonal_ * diagonal_ || c.score > part.concavity + tie) continue;
       if (structural == nullptr || betterTie(c, *structural)) structural = &c;
     }
-    if (structural != nullptr && structural != bestCandidate) *children = split(part, structural->cut);
+    if (structural != nullptr && structural != bestCandidate) *children = applyCut(part, *structural, false);
   }
-  return !children->empty();
+  return finishChildren();
 }
 
-std::vector<Part> Decomposer::split(const Part& part, const Halfspace& cut) {
+std::vector<Part> Decomposer::applyCut(const Part& part, const Candidate& candidate, bool reduce) {
+  std::vector<Part> first = split(part, candidate.cut, reduce && !candidate.isSlab());
+  if (!candidate.isSlab()) return first;
+  // The second plane of the slab cuts the parts above the first one.
+  const Halfspace upper{candidate.cut.normal, candidate.slabOffset};
+  std::vector<Part> out;
+  for (Part& kid : first) {
+    double lo = kInf;
+    double hi = -kInf;
+    for (const Vector3d& p : kid.points) {
+      lo = std::min(lo, upper.normal.dot(p));
+      hi = std::max(hi, upper.normal.dot(p));
+    }
+    const double slab = dt::kMinSlabRelative * diagonal_;
+    if (lo < upper.offset - slab && hi > upper.offset + slab) {
+      for (Part& piece : split(kid, upper, reduce)) out.push_back(std::move(piece));
+    } else {
+      if (reduce) finishPart(&kid);
+      out.push_back(std::move(kid));
+    }
+  }
+  return out;
+}
+
+std::vector<Part> Decomposer::split(const Part& part, const Halfspace& cut, bool reduce) {
   const int plane = static_cast<int>(planes_.size());
   planes_.push_back(std::make_unique<CutPlane>(
       CutPlane{cut.normal, cut.offset, CrossSection(mesh_, cut.normal, cut.offset, true)}));
@@ -1668,7 +1803,8 @@ std::vector<Part> Decomposer::split(const Part& part, const Halfspace& cut) {
     std::vector<CellSide> cell = part.cell;
     cell.push_back({plane, flipped});
     for (Component& component : components(clip(part.polygons, keep), cell)) {
-      children.push_back(makePart(cell, std::move(component.polygons), std::move(component.cellCorners)));
+      children.push_back(makePart(cell, std::move(component.polygons), std::move(component.cellCorners), reduce,
+                                  part.hasWorst ? &part.worstSample : nullptr));
     }
   }
   return children;
@@ -1704,12 +1840,12 @@ double Decomposer::mergeCost(const Piece& a, const Piece& b, double abortAbove) 
   }
   const Hull hull = pieceHull(a, &b);
   const Target target = pieceTarget(a, &b);
-  Concavity c = measureConcavity(hull, target, dt::kPartSamples, Extra::Centroids, nextSeed(), abortAbove,
+  Concavity c = measureConcavity(hull, target, dt::kPartSamples, Extra::Dense, nextSeed(), abortAbove,
                                  diagonal_);
   if (c.aborted) return kInf;
   if (static_cast<int>(hull.vertices.size()) > params_.maxVerticesPerPiece) {
     const Hull reduced = detail::reduceHullVertices(hull, params_.maxVerticesPerPiece);
-    c = measureConcavity(reduced, target, dt::kPartSamples, Extra::Centroids, nextSeed(), abortAbove, diagonal_);
+    c = measureConcavity(reduced, target, dt::kPartSamples, Extra::Dense, nextSeed(), abortAbove, diagonal_);
     if (c.aborted) return kInf;
   }
   return c.value;
@@ -1834,7 +1970,9 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
                             child.concavity >= parts_[index].concavity - dt::kTieFraction * target_);
         }
         if (stuck) {
-          parts_[index].unsplittable = true;
+          // Once more without the sliver cuts, then give up on this part.
+          if (parts_[index].noSlivers) parts_[index].unsplittable = true;
+          parts_[index].noSlivers = true;
           continue;
         }
         pieces.erase(pieces.begin() + worst);

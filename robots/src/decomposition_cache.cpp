@@ -24,7 +24,7 @@ namespace {
 
 constexpr char kMagic[8] = {'D', 'C', 'K', 'D', 'E', 'C', 'M', 'P'};
 /// Bumped when the file layout changes (kDecompositionAlgorithmVersion covers the content).
-constexpr std::uint32_t kFormatVersion = 1;
+constexpr std::uint32_t kFormatVersion = 2;
 /// Sanity bounds on counts read from a file: a corrupt count must not make us allocate gigabytes.
 constexpr std::uint32_t kMaxPiecesInFile = 1u << 20;
 constexpr std::uint32_t kMaxVerticesInFile = 1u << 24;

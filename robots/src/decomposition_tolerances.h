@@ -87,6 +87,9 @@ constexpr int kLookaheadCuts = 8;  ///< at most, the greedy choice first
 /// only shaved a sliver off: no progress.
 constexpr double kSliverVolume = 0.99;
 
+/// Two parallel cuts closer than kSameOffsetFraction * T are the same cut (tried once).
+constexpr double kSameOffsetFraction = 0.02;
+
 /// Two cut directions closer than this (|cos| of their angle) are the same direction.
 constexpr double kSameDirectionCos = 0.966;
 

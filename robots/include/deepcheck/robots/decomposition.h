@@ -8,32 +8,39 @@
 // within the concavity target. Written here from the papers' ideas; no code is shared.
 //
 // Concavity of a piece: the largest distance from a point of its convex hull's surface to the
-// mesh (zero for points inside the mesh solid). It is estimated by sampling the hull surface; the
-// value reported is an upper bound on the distance from each sample to the mesh solid (a sample is
-// measured against the triangles of its own part, see decomposition.cpp).
+// mesh solid (zero for points inside it). It is estimated by sampling the hull surface (random
+// points, triangle centroids and edge midpoints) and hill-climbing from the worst samples; the
+// distance of each sample is exact, so the estimate can only miss a maximum between samples.
 //
 // Steps (decomposition.cpp has the details):
 //   1. Weld identical vertices, drop degenerate triangles, fill simple holes (a missing quad of a
 //      wall is common in CAD exports), orient components outward, drop sealed inner voids.
-//   2. If the hull of the whole mesh has concavity <= target, it is the one piece ("already
-//      convex"); no decomposition.
-//   3. Otherwise, repeatedly take the part of largest concavity and cut it by the plane that
-//      minimizes the larger concavity of the two sides (ties: the smaller sum of hull volumes).
-//      Candidates: axis-aligned and principal-axis planes at several offsets, the same normals
-//      through the mesh point nearest to the part's worst hull sample, and a local refinement of
-//      the best offset. A cut triangle is clipped; each side keeps its clipped triangles, and the
-//      cross-section points belong to both sides, so the hull of each side contains its part.
-//      Each side is split again into its connected components. Stop when every part meets the
-//      target or there are maxPieces parts.
-//   4. Merge neighbouring pieces whose merged hull meets the target (cheapest first); if there
-//      are still more than maxPieces pieces, merge the cheapest pairs until there are not.
+//   2. If the hull of the whole mesh (reduced to maxVerticesPerPiece) meets the target, it is the
+//      one piece ("already convex"); no decomposition.
+//   3. Otherwise, repeatedly take the part of largest concavity and cut it by the candidate plane
+//      that minimizes the larger concavity of the two sides; candidates are axis-aligned and
+//      principal-axis planes at several offsets and through the features around the worst
+//      concavity, and slabs between two walls. Plateaus (no single cut helps) are handled by a
+//      one-cut lookahead, then by cutting along a wall. A cut triangle is clipped to both sides.
+//      Each side is split again into its connected components.
+//   4. When maxPieces parts exist, merge neighbouring pieces whose merged hull meets the target
+//      (cheapest first), which frees budget for more cuts; repeat. Finally, if there are still
+//      more than maxPieces pieces, merge the cheapest pairs until there are not. The final,
+//      denser concavity estimate sends pieces above the target back to be cut.
 //   5. Each hull is reduced to at most maxVerticesPerPiece vertices while keeping it CONTAINING
 //      the original hull (see below); the target applies to the reduced pieces, in steps 2-4.
 //
+// Decisions aim at kDecisionFraction (0.9) of the target, so that the final estimate, which
+// samples more, stays within it. The target may still be missed when maxPieces is too small for
+// the mesh: report.targetMet says so.
+//
 // Coverage: every point of every triangle lies in the hull of the part it was assigned to (a cut
-// triangle's pieces go to both sides), merging only enlarges hulls, and the vertex reduction only
-// enlarges them too. So the union of the pieces contains the mesh surface (and, for a closed
-// mesh, its solid), up to the round-off of the hull computation (~1e-12 of the mesh size).
+// triangle's pieces go to both sides); for a closed mesh the solid is covered too, because each
+// part's hull also takes the corners of its cell that lie inside the solid (where the solid's
+// cut faces end) and parts are never split more finely than the solid is connected. Merging
+// only enlarges hulls, and so does the vertex reduction. So the union of the pieces contains the
+// mesh (sealed inner voids count as solid), up to the round-off of the hull computation (~1e-12
+// of the mesh size).
 //
 // Vertex reduction (maxVerticesPerPiece) keeps CONTAINMENT: a progressive hull (Sander et al.,
 // "Silhouette clipping", SIGGRAPH 2000) collapses hull edges (u, v) into a new vertex placed on or
@@ -62,7 +69,7 @@
 namespace deepcheck::robots {
 
 /// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
-constexpr int kDecompositionAlgorithmVersion = 1;
+constexpr int kDecompositionAlgorithmVersion = 2;
 
 struct DecompositionParams {
   /// Concavity target as a fraction of the mesh's bounding-box diagonal, in (0, 1].

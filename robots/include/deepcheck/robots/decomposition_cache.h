@@ -9,8 +9,8 @@
 //
 // File format (little-endian): magic "DCKDECMP", u32 format version, u32 algorithm version, the
 // 16-byte key, the report's numbers, u32 piece count, then per piece u32 vertex count, u32
-// triangle count, the vertices (3 x f64 each), the triangles (3 x u32 each), f64 volume; then a
-// u64 checksum (FNV-1a) of everything before it. A file that is truncated, has a wrong magic,
+// triangle count, the vertices (3 x f64 each), the triangles (3 x u32 each), f64 volume, f64
+// concavity; then a u64 checksum (FNV-1a) of everything before it. A file that is truncated, has a wrong magic,
 // version, key or checksum, or holds an out-of-range index or a non-finite number is treated as
 // absent: the mesh is decomposed again and the file replaced. Reading never throws.
 //
