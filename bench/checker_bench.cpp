@@ -146,7 +146,9 @@ struct Throughput {
 /// Throughput of `perQuery` over `qs` split between `threads` threads, each with its own context.
 /// On a loaded machine the wall-clock rate cannot scale (the threads get no extra core); the rate
 /// per CPU-second shows whether the threads slow each other down (contention, false sharing).
-Throughput throughput(const checker::World& world, const std::vector<Eigen::VectorXd>& qs, int threads,
+/// The set is run `repeat` times so that a run lasts long enough (about a second) for the
+/// scheduler to give each thread a core.
+Throughput throughput(const checker::World& world, const std::vector<Eigen::VectorXd>& qs, int threads, int repeat,
                       const std::function<void(const checker::World&, checker::World::Context&, const Eigen::VectorXd&)>& perQuery) {
   std::vector<std::thread> pool;
   std::vector<double> cpu(threads, 0.0);
@@ -155,14 +157,17 @@ Throughput throughput(const checker::World& world, const std::vector<Eigen::Vect
     pool.emplace_back([&, t] {
       auto context = world.makeContext();
       const double c0 = threadCpuSeconds();
-      for (std::size_t i = t; i < qs.size(); i += threads) perQuery(world, context, qs[i]);
+      for (int r = 0; r < repeat; ++r) {
+        for (std::size_t i = t; i < qs.size(); i += threads) perQuery(world, context, qs[i]);
+      }
       cpu[t] = threadCpuSeconds() - c0;
     });
   }
   for (std::thread& th : pool) th.join();
+  const double total = static_cast<double>(qs.size()) * repeat;
   Throughput r;
-  r.wall = qs.size() / std::chrono::duration<double>(Clock::now() - t0).count();
-  r.cpu = qs.size() / std::accumulate(cpu.begin(), cpu.end(), 0.0);
+  r.wall = total / std::chrono::duration<double>(Clock::now() - t0).count();
+  r.cpu = total / std::accumulate(cpu.begin(), cpu.end(), 0.0);
   return r;
 }
 
@@ -239,9 +244,9 @@ void runWorld(const WorldSpec& spec, int samples, int motions) {
   }
   // Throughput, 1 and 2 threads.
   for (int threads : {1, 2}) {
-    const Throughput isFreeRate = throughput(world, random, threads, [](const checker::World& w, checker::World::Context& c,
+    const Throughput isFreeRate = throughput(world, random, threads, 40, [](const checker::World& w, checker::World::Context& c,
                                                                         const Eigen::VectorXd& q) { w.isFree(q, c); });
-    const Throughput sdRate = throughput(world, random, threads, [&](const checker::World& w, checker::World::Context& c,
+    const Throughput sdRate = throughput(world, random, threads, 6, [&](const checker::World& w, checker::World::Context& c,
                                                                      const Eigen::VectorXd& q) { w.signedDistance(q, c, withGradient); });
     std::printf("  throughput %d thread%s: isFree %.0f /s (%.0f per CPU-second), sd+grad %.0f /s (%.0f per CPU-second)\n",
                 threads, threads > 1 ? "s" : " ", isFreeRate.wall, isFreeRate.cpu, sdRate.wall, sdRate.cpu);
