@@ -1056,6 +1056,7 @@ class Decomposer {
   std::set<std::pair<int, int>> forbidden_;  ///< parts whose merge failed the final check
   std::vector<std::unique_ptr<CutPlane>> planes_;
   std::vector<Part> parts_;
+  int budget_ = 0;  ///< pieces allowed in the current budget stage (see run), <= maxPieces
   std::uint64_t evaluations_ = 0;
 };
 
@@ -1859,7 +1860,7 @@ std::vector<Piece> Decomposer::merge(std::vector<Piece> pieces, bool forced) {
     for (const Vector3d& v : p.hull.vertices) box.extend(v);
     return box;
   };
-  if (forced && static_cast<int>(pieces.size()) <= params_.maxPieces) return pieces;
+  if (forced && static_cast<int>(pieces.size()) <= budget_) return pieces;
   const double bound = forced ? kInf : target_;
   const int n = static_cast<int>(pieces.size());
   std::vector<std::vector<double>> cost(n, std::vector<double>(n, kInf));
@@ -1881,7 +1882,7 @@ std::vector<Piece> Decomposer::merge(std::vector<Piece> pieces, bool forced) {
   std::vector<char> alive(n, 1);
   int count = n;
   for (;;) {
-    if (forced && count <= params_.maxPieces) break;
+    if (forced && count <= budget_) break;
     int bi = -1;
     int bj = -1;
     for (int i = 0; i < n; ++i) {
@@ -1945,55 +1946,17 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
   // denser estimate may find a piece above the target that the decisions' estimate missed (a small
   // hole spanned by a hull): such a piece is cut further (or, if merged, split back into its
   // parts) while the budget lasts.
+  //
+  // Budget stages: all of this runs first with at most kFirstPieceBudget pieces; only when the
+  // target is still missed does it go on from there (the pieces above the target reopened) with
+  // twice the budget, up to maxPieces. A mesh that meets the target within the first budget gets
+  // the same pieces whatever maxPieces is, and a larger maxPieces costs nothing for it.
   std::vector<Concavity> final;
-  for (int verify = 0; verify <= dt::kVerifyRounds; ++verify) {
-    for (int round = 0; round < dt::kMaxRounds && !report->alreadyConvex; ++round) {
-      while (static_cast<int>(pieces.size()) < params_.maxPieces) {
-        int worst = -1;
-        for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
-          if (pieces[i].parts.size() != 1 || pieces[i].concavity <= target_) continue;
-          if (parts_[pieces[i].parts.front()].unsplittable) continue;
-          if (worst < 0 || pieces[i].concavity > pieces[worst].concavity) worst = i;
-        }
-        if (worst < 0) break;
-        const int index = pieces[worst].parts.front();
-        std::vector<Part> children;
-        if (!chooseSplit(parts_[index], &children) || children.empty()) {
-          parts_[index].unsplittable = true;
-          continue;
-        }
-        // A cut that only shaves a sliver off (a child with nearly the part's hull volume and its
-        // concavity) is no progress: the part is left as it is.
-        bool stuck = false;
-        for (const Part& child : children) {
-          stuck = stuck || (child.hull.volume >= dt::kSliverVolume * parts_[index].hull.volume &&
-                            child.concavity >= parts_[index].concavity - dt::kTieFraction * target_);
-        }
-        if (stuck) {
-          // Once more without the sliver cuts, then give up on this part.
-          if (parts_[index].noSlivers) parts_[index].unsplittable = true;
-          parts_[index].noSlivers = true;
-          continue;
-        }
-        pieces.erase(pieces.begin() + worst);
-        for (Part& child : children) addPart(std::move(child));
-      }
-      bool over = false;
-      for (const Piece& piece : pieces) over = over || piece.concavity > target_;
-      if (!params_.mergePieces) break;
-      const std::size_t before = pieces.size();
-      pieces = merge(std::move(pieces), false);
-      if (!over || pieces.size() == before) break;
-    }
-    if (!report->alreadyConvex) pieces = merge(std::move(pieces), true);
-
-    // The final, denser concavity estimate on what is returned.
-    final.clear();
-    for (const Piece& piece : pieces) {
-      final.push_back(measureConcavity(piece.finalHull, pieceTarget(piece, nullptr), dt::kReportSamples,
-                                       Extra::Dense, nextSeed(), kInf, diagonal_));
-    }
-    if (verify == dt::kVerifyRounds || report->alreadyConvex) break;
+  // Pieces whose final estimate is above the report's target go back to be cut: a part keeps its
+  // larger concavity and the worst sample found; a merged piece is split back into its parts.
+  // `forbidAll`: none of those parts may be merged together again; otherwise only those of a
+  // merge that the decisions had accepted (a forced merge is undone, not judged).
+  auto reopen = [&](bool forbidAll) {
     std::vector<Piece> next;
     bool changed = false;
     for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -2012,14 +1975,75 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
         piece.concavity = part.concavity;
         next.push_back(std::move(piece));
       } else {
+        const bool forbid = forbidAll || piece.concavity <= target_;
         for (int a : piece.parts) {
-          for (int b : piece.parts) forbidden_.insert({a, b});
+          if (forbid) {
+            for (int b : piece.parts) forbidden_.insert({a, b});
+          }
           next.push_back({{a}, parts_[a].hull, parts_[a].finalHull, parts_[a].concavity});
         }
       }
     }
     pieces = std::move(next);
-    if (!changed) break;
+    return changed;
+  };
+  for (budget_ = std::min(params_.maxPieces, dt::kFirstPieceBudget);;
+       budget_ = static_cast<int>(std::min<long long>(2LL * budget_, params_.maxPieces))) {
+    for (int verify = 0; verify <= dt::kVerifyRounds; ++verify) {
+      for (int round = 0; round < dt::kMaxRounds && !report->alreadyConvex; ++round) {
+        while (static_cast<int>(pieces.size()) < budget_) {
+          int worst = -1;
+          for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
+            if (pieces[i].parts.size() != 1 || pieces[i].concavity <= target_) continue;
+            if (parts_[pieces[i].parts.front()].unsplittable) continue;
+            if (worst < 0 || pieces[i].concavity > pieces[worst].concavity) worst = i;
+          }
+          if (worst < 0) break;
+          const int index = pieces[worst].parts.front();
+          std::vector<Part> children;
+          if (!chooseSplit(parts_[index], &children) || children.empty()) {
+            parts_[index].unsplittable = true;
+            continue;
+          }
+          // A cut that only shaves a sliver off (a child with nearly the part's hull volume and its
+          // concavity) is no progress: the part is left as it is.
+          bool stuck = false;
+          for (const Part& child : children) {
+            stuck = stuck || (child.hull.volume >= dt::kSliverVolume * parts_[index].hull.volume &&
+                              child.concavity >= parts_[index].concavity - dt::kTieFraction * target_);
+          }
+          if (stuck) {
+            // Once more without the sliver cuts, then give up on this part.
+            if (parts_[index].noSlivers) parts_[index].unsplittable = true;
+            parts_[index].noSlivers = true;
+            continue;
+          }
+          pieces.erase(pieces.begin() + worst);
+          for (Part& child : children) addPart(std::move(child));
+        }
+        bool over = false;
+        for (const Piece& piece : pieces) over = over || piece.concavity > target_;
+        if (!params_.mergePieces) break;
+        const std::size_t before = pieces.size();
+        pieces = merge(std::move(pieces), false);
+        if (!over || pieces.size() == before) break;
+      }
+      if (!report->alreadyConvex) pieces = merge(std::move(pieces), true);
+
+      // The final, denser concavity estimate on what is returned.
+      final.clear();
+      for (const Piece& piece : pieces) {
+        final.push_back(measureConcavity(piece.finalHull, pieceTarget(piece, nullptr), dt::kReportSamples,
+                                         Extra::Dense, nextSeed(), kInf, diagonal_));
+      }
+      if (verify == dt::kVerifyRounds || report->alreadyConvex) break;
+      if (!reopen(true)) break;
+    }
+    if (report->alreadyConvex || budget_ >= params_.maxPieces) break;
+    bool met = true;
+    for (const Concavity& c : final) met = met && c.value <= reportTarget_;
+    if (met) break;
+    reopen(false);
   }
   std::vector<ConvexPiece> out;
   report->concavity = 0.0;

@@ -34,6 +34,11 @@ constexpr int kMaxRounds = 4;
 /// Times the final estimate may send pieces back to be cut (see Decomposer::run).
 constexpr int kVerifyRounds = 2;
 
+/// Piece budget of the first stage: the decomposition works within min(maxPieces, this) pieces
+/// and doubles the budget (up to maxPieces) only while the target is missed, so the pieces of a
+/// mesh that meets it within this budget do not depend on maxPieces (see Decomposer::run).
+constexpr int kFirstPieceBudget = 32;
+
 /// Face areas of two cuts (mesh polygons lying in the plane) differing by less than
 /// kFaceAreaTie * D^2 are equal.
 constexpr double kFaceAreaTie = 1e-6;

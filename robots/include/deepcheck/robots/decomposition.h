@@ -23,10 +23,14 @@
 //      concavity, and slabs between two walls. Plateaus (no single cut helps) are handled by a
 //      one-cut lookahead, then by cutting along a wall. A cut triangle is clipped to both sides.
 //      Each side is split again into its connected components.
-//   4. When maxPieces parts exist, merge neighbouring pieces whose merged hull meets the target
-//      (cheapest first), which frees budget for more cuts; repeat. Finally, if there are still
-//      more than maxPieces pieces, merge the cheapest pairs until there are not. The final,
-//      denser concavity estimate sends pieces above the target back to be cut.
+//   4. When the budget's number of parts exist, merge neighbouring pieces whose merged hull meets
+//      the target (cheapest first), which frees budget for more cuts; repeat. Finally, if there
+//      are still more pieces than the budget, merge the cheapest pairs until there are not. The
+//      final, denser concavity estimate sends pieces above the target back to be cut.
+//      The budget grows in stages: steps 3-4 run first within min(maxPieces, 32) pieces; only if
+//      the target is still missed do they go on from that result (pieces above the target
+//      reopened, forced merges undone) with twice the budget, up to maxPieces. So a mesh that
+//      meets the target within 32 pieces gets the same pieces whatever maxPieces is.
 //   5. Each hull is reduced to at most maxVerticesPerPiece vertices while keeping it CONTAINING
 //      the original hull (see below); the target applies to the reduced pieces, in steps 2-4.
 //
@@ -69,7 +73,7 @@
 namespace deepcheck::robots {
 
 /// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
-constexpr int kDecompositionAlgorithmVersion = 2;
+constexpr int kDecompositionAlgorithmVersion = 3;
 
 struct DecompositionParams {
   /// Concavity target as a fraction of the mesh's bounding-box diagonal, in (0, 1].
@@ -78,7 +82,8 @@ struct DecompositionParams {
   /// target = max(maxConcavity * diagonal, minConcavityAbs).
   double minConcavityAbs = 0.002;
   /// Largest number of pieces, >= 1. When the target cannot be met within it, the report says so.
-  int maxPieces = 32;
+  /// More than 32 are used only by meshes that miss the target with 32 (see step 4 above).
+  int maxPieces = 64;
   /// Largest number of vertices of a piece, >= 4 (see the header comment for the bound).
   int maxVerticesPerPiece = 64;
   /// Merge neighbouring pieces whose merged hull still meets the target.
