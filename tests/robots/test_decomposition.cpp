@@ -3,7 +3,8 @@
 // Properties checked rather than stored numbers: the pieces cover the mesh (every vertex, and
 // points sampled on every triangle, inside a piece), the reported concavity meets the target, a
 // convex mesh stays one piece, the vertex budget holds, results are deterministic, the cache
-// round-trips and recovers from corrupt files, and bad input is rejected with a message.
+// round-trips and recovers from corrupt files, a budget above 32 pieces is used only by a mesh that
+// needs it, and bad input is rejected with a message.
 
 #include "deepcheck/robots/decomposition.h"
 #include "deepcheck/robots/decomposition_cache.h"
@@ -105,6 +106,16 @@ TriangleMesh box() {
     for (int j = 0; j < 2; ++j) cells.push_back({i, j, 0});
   }
   return voxelMesh(cells, 0.23, Vector3d(0.01, 0.02, 0.03), "box");
+}
+
+/// 34 separate cubes on a 17 x 2 grid, one cell apart: 34 convex components, and the hull of any
+/// two of them spans a gap far above the target, so meeting it takes 34 pieces.
+TriangleMesh cubeGrid() {
+  std::vector<std::array<int, 3>> cells;
+  for (int i = 0; i < 17; ++i) {
+    for (int j = 0; j < 2; ++j) cells.push_back({2 * i, 2 * j, 0});
+  }
+  return voxelMesh(cells, 0.07, Vector3d(-0.3, 0.2, 0.05), "cube grid");
 }
 
 /// A closed cylinder (a convex mesh with many vertices) of radius r, height h, n sides.
@@ -247,6 +258,29 @@ BOOST_AUTO_TEST_CASE(results_are_deterministic) {
     BOOST_CHECK(a.pieces[i].triangles == b.pieces[i].triangles);
   }
   BOOST_CHECK_EQUAL(a.report.concavity, b.report.concavity);
+}
+
+BOOST_AUTO_TEST_CASE(a_mesh_meeting_the_target_within_32_pieces_ignores_a_larger_budget) {
+  const TriangleMesh mesh = ring();
+  DecompositionParams small;
+  small.maxPieces = 32;
+  const ConvexDecomposition a = decomposeConvex(mesh, small);
+  const ConvexDecomposition b = decomposeConvex(mesh);  // default budget, larger
+  BOOST_REQUIRE(a.report.targetMet);
+  BOOST_REQUIRE_EQUAL(a.pieces.size(), b.pieces.size());
+  for (std::size_t i = 0; i < a.pieces.size(); ++i) {
+    BOOST_CHECK(a.pieces[i].vertices == b.pieces[i].vertices);
+    BOOST_CHECK(a.pieces[i].triangles == b.pieces[i].triangles);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_budget_grows_past_32_while_the_target_is_missed) {
+  // 34 cubes: the first stage (32 pieces) forces merges across the gaps and misses the target;
+  // the second (64) undoes them: one piece per cube. (maxPieces = 32 would stop after the first.)
+  const TriangleMesh mesh = cubeGrid();
+  const ConvexDecomposition d = decomposeConvex(mesh);
+  BOOST_CHECK_EQUAL(d.report.numPieces, 34);
+  checkDecomposition(mesh, d);
 }
 
 BOOST_AUTO_TEST_CASE(a_missing_quad_is_filled) {
