@@ -7,16 +7,28 @@
 namespace deepcheck::robots {
 namespace {
 
-/// X_JC for a joint at `value`.
-Eigen::Isometry3d jointMotion(const Joint& joint, double value) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  switch (joint.type) {
-    case JointType::Fixed: break;
-    case JointType::Revolute:
-    case JointType::Continuous: X.linear() = Eigen::AngleAxisd(value, joint.axis).toRotationMatrix(); break;
-    case JointType::Prismatic: X.translation() = value * joint.axis; break;
+/// R * Rot(k, angle) for a rotation about the coordinate axis k (0 x, 1 y, 2 z) given its cosine
+/// c and sine s: column k stays, columns i = k + 1 and j = k + 2 (cyclic) turn in their plane.
+inline void rotateAboutCoordinateAxis(Eigen::Matrix3d& R, int k, double c, double s) {
+  const int i = (k + 1) % 3;
+  const int j = (k + 2) % 3;
+  const Eigen::Vector3d ri = R.col(i);
+  const Eigen::Vector3d rj = R.col(j);
+  R.col(i) = c * ri + s * rj;
+  R.col(j) = c * rj - s * ri;
+}
+
+/// The coordinate axis (0, 1, 2) that `axis` is, exactly, or -1; `sign` is +1 or -1.
+inline int coordinateAxis(const Eigen::Vector3d& axis, double& sign) {
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3;
+    const int j = (k + 2) % 3;
+    if (axis[i] == 0.0 && axis[j] == 0.0 && (axis[k] == 1.0 || axis[k] == -1.0)) {
+      sign = axis[k];
+      return k;
+    }
   }
-  return X;
+  return -1;
 }
 
 void checkLink(const RobotModel& model, const std::vector<Eigen::Isometry3d>& X_WL, int link) {
@@ -77,17 +89,51 @@ void checkConfiguration(const RobotModel& model, const Eigen::Ref<const Eigen::V
   }
 }
 
+// X_WC = X_WP * X_PJ * X_JC(value), computed without 4 x 4 products: first X_WJ = X_WP * X_PJ
+// (a 3 x 3 product and a rotated translation), then the joint's motion applied in place: a
+// rotation about a coordinate axis (every joint of the Panda, the UR5 and the bundled arm) turns
+// two columns of R_WJ by the angle (one sine and cosine); any other axis multiplies by the
+// angle-axis matrix; a prismatic joint moves the origin along R_WJ * axis. The child origin lies
+// on a revolute axis, so the translation is t_WJ for revolute joints. Agrees with the plain
+// product of the three transforms to round-off (tests/robots/test_kinematics.cpp).
 void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q,
                        std::vector<Eigen::Isometry3d>& X_WL) {
   checkConfiguration(model, q);
   if (static_cast<int>(X_WL.size()) != model.numLinks()) X_WL.resize(model.numLinks());
   X_WL[0] = model.basePose();
   // Joint i is the parent joint of link i + 1, and parents precede children.
-  for (int i = 0; i < model.numJoints(); ++i) {
-    const Joint& joint = model.joint(i);
-    const double value =
-        joint.moves() ? joint.multiplier * q[joint.variable] + joint.offset : 0.0;
-    X_WL[joint.childLink] = X_WL[joint.parentLink] * joint.X_PJ * jointMotion(joint, value);
+  const std::vector<Joint>& joints = model.joints();
+  for (const Joint& joint : joints) {
+    const Eigen::Isometry3d& X_WP = X_WL[joint.parentLink];
+    Eigen::Isometry3d& X_WC = X_WL[joint.childLink];
+    Eigen::Matrix3d R;
+    R.noalias() = X_WP.linear() * joint.X_PJ.linear();
+    Eigen::Vector3d t = X_WP.translation();
+    t.noalias() += X_WP.linear() * joint.X_PJ.translation();
+    switch (joint.type) {
+      case JointType::Fixed: break;
+      case JointType::Revolute:
+      case JointType::Continuous: {
+        const double value = joint.multiplier * q[joint.variable] + joint.offset;
+        double sign = 1.0;
+        const int k = coordinateAxis(joint.axis, sign);
+        if (k >= 0) {
+          const double angle = sign * value;
+          rotateAboutCoordinateAxis(R, k, std::cos(angle), std::sin(angle));
+        } else {
+          R = R * Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
+        }
+        break;
+      }
+      case JointType::Prismatic: {
+        const double value = joint.multiplier * q[joint.variable] + joint.offset;
+        t.noalias() += value * (R * joint.axis);
+        break;
+      }
+    }
+    X_WC.linear() = R;
+    X_WC.translation() = t;
+    X_WC.makeAffine();
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -121,9 +122,118 @@ const char* kMimicUrdf = R"(<robot name="mimic">
     <mimic joint="j2" multiplier="-0.5" offset="0.2"/></joint>
 </robot>)";
 
+/// Every kind of joint motion forwardKinematics specialises: revolute and continuous joints about
+/// +-x, +-y, +-z and a general axis, prismatic joints along a coordinate and a general axis, a
+/// mimic, fixed joints, a branch, and joint origins with general rotations.
+const char* kAxesUrdf = R"(<robot name="axes">
+  <link name="base"/><link name="a"/><link name="b"/><link name="c"/><link name="d"/><link name="e"/>
+  <link name="f"/><link name="g"/><link name="h"/><link name="i"/><link name="k"/><link name="m"/>
+  <joint name="jx" type="revolute"><parent link="base"/><child link="a"/>
+    <origin xyz="0.1 0.2 0.3" rpy="0.3 -0.2 0.7"/><axis xyz="1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="jmy" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="0.4 0 -0.1" rpy="1.1 0.4 -0.5"/><axis xyz="0 -1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="jz" type="continuous"><parent link="b"/><child link="c"/>
+    <origin xyz="0 0.3 0.1" rpy="-1.5707963267948966 0 0"/><axis xyz="0 0 1"/></joint>
+  <joint name="jg" type="revolute"><parent link="c"/><child link="d"/>
+    <origin xyz="0.05 -0.2 0.3" rpy="0.2 0.9 -1.3"/><axis xyz="1 2 -3"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="jfix" type="fixed"><parent link="d"/><child link="e"/>
+    <origin xyz="0.1 0.1 0.1" rpy="0.5 0.5 0.5"/></joint>
+  <joint name="jpz" type="prismatic"><parent link="e"/><child link="f"/>
+    <origin xyz="0 0 0.2" rpy="0 0.3 0"/><axis xyz="0 0 1"/><limit lower="-0.5" upper="0.5" effort="1" velocity="1"/></joint>
+  <joint name="jpg" type="prismatic"><parent link="f"/><child link="g"/>
+    <origin xyz="0.2 0 0" rpy="0.1 0.2 0.3"/><axis xyz="0.3 -0.4 1"/><limit lower="-0.5" upper="0.5" effort="1" velocity="1"/></joint>
+  <joint name="jmx" type="revolute"><parent link="g"/><child link="h"/>
+    <origin xyz="0.1 0 0"/><axis xyz="-1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="jy" type="revolute"><parent link="h"/><child link="i"/>
+    <origin xyz="0 0.1 0" rpy="0.7 0 0"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/>
+    <mimic joint="jx" multiplier="-1.5" offset="0.25"/></joint>
+  <joint name="jmz" type="revolute"><parent link="a"/><child link="k"/>
+    <origin xyz="0 0 0.4" rpy="0 0 2.1"/><axis xyz="0 0 -1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="jpmx" type="prismatic"><parent link="k"/><child link="m"/>
+    <origin xyz="0.3 0 0"/><axis xyz="-1 0 0"/><limit lower="-0.5" upper="0.5" effort="1" velocity="1"/>
+    <mimic joint="jmz" multiplier="0.1" offset="-0.05"/></joint>
+</robot>)";
+
+/// The plain definition (robot_model.h): X_WL[child] = X_WL[parent] * X_PJ * X_JC(value), with
+/// general 4 x 4 products and an angle-axis matrix for every revolute joint.
+std::vector<Eigen::Isometry3d> referenceKinematics(const RobotModel& m, const Eigen::VectorXd& q) {
+  std::vector<Eigen::Isometry3d> X_WL(m.numLinks(), Eigen::Isometry3d::Identity());
+  X_WL[0] = m.basePose();
+  for (const Joint& joint : m.joints()) {
+    Eigen::Matrix4d X_JC = Eigen::Matrix4d::Identity();
+    if (joint.moves()) {
+      const double value = joint.multiplier * q[joint.variable] + joint.offset;
+      if (joint.type == JointType::Prismatic) {
+        X_JC.block<3, 1>(0, 3) = value * joint.axis;
+      } else {
+        X_JC.block<3, 3>(0, 0) = Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
+      }
+    }
+    const Eigen::Matrix4d X = X_WL[joint.parentLink].matrix() * joint.X_PJ.matrix() * X_JC;
+    X_WL[joint.childLink] = Eigen::Isometry3d(X);
+  }
+  return X_WL;
+}
+
+/// forwardKinematics against referenceKinematics on random configurations (beyond the limits
+/// too: any finite value is accepted), to 1e-12 per entry of each pose.
+void checkAgainstReference(const RobotModel& m, std::mt19937& rng, int trials) {
+  std::uniform_real_distribution<double> u(-4.0, 4.0);
+  std::vector<Eigen::Isometry3d> X_WL;
+  double worst = 0.0;
+  for (int trial = 0; trial < trials; ++trial) {
+    Eigen::VectorXd q = randomWithinLimits(m, rng);
+    if (trial % 4 == 3) {
+      for (int v = 0; v < q.size(); ++v) q[v] = u(rng);
+    }
+    forwardKinematics(m, q, X_WL);
+    const std::vector<Eigen::Isometry3d> expected = referenceKinematics(m, q);
+    for (int l = 0; l < m.numLinks(); ++l) {
+      const double error = (X_WL[l].matrix() - expected[l].matrix()).cwiseAbs().maxCoeff();
+      worst = std::max(worst, error);
+      BOOST_CHECK_MESSAGE(error <= 1e-12, m.name() << " link " << m.link(l).name << " trial " << trial
+                                                   << ": differs from the plain product by " << error);
+      BOOST_CHECK(X_WL[l].matrix().row(3) == Eigen::RowVector4d(0, 0, 0, 1));
+    }
+  }
+  BOOST_TEST_MESSAGE(m.name() << ": largest difference from the plain product " << worst);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(kinematics)
+
+BOOST_AUTO_TEST_CASE(matches_plain_product_every_joint_kind) {
+  RobotModel m = RobotModel::fromUrdfString(kAxesUrdf, "", {}, "axes.urdf");
+  BOOST_TEST(m.numVariables() == 8);
+  std::mt19937 rng(31337);
+  checkAgainstReference(m, rng, 400);
+  Eigen::Isometry3d X_WR = Eigen::Isometry3d::Identity();
+  X_WR.translation() = Eigen::Vector3d(-0.7, 1.0 / 3.0, 2.5);
+  X_WR.linear() = Eigen::AngleAxisd(-1.2, Eigen::Vector3d(2, 1, -1).normalized()).toRotationMatrix();
+  m.setBasePose(X_WR);
+  checkAgainstReference(m, rng, 400);
+}
+
+BOOST_AUTO_TEST_CASE(matches_plain_product_real_robots) {
+  const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+  LoadOptions o;
+  o.packageRoots = {data};
+  o.useRosPackagePath = false;
+  std::mt19937 rng(4242);
+  checkAgainstReference(RobotModel::fromUrdfFile(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", o), rng, 500);
+  checkAgainstReference(RobotModel::fromUrdfFile(data + "/scenes/shelf.urdf", o), rng, 5);
+  if (!haveShared("matches_plain_product_real_robots (Panda, UR5)")) return;
+  RobotModel panda = loadPanda();
+  checkAgainstReference(panda, rng, 500);
+  checkAgainstReference(loadUr5(), rng, 500);
+  Eigen::Isometry3d X_WR = Eigen::Isometry3d::Identity();
+  X_WR.translation() = Eigen::Vector3d(0.3, -1.0 / 3.0, 0.7);
+  X_WR.linear() = Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
+  panda.setBasePose(X_WR);
+  checkAgainstReference(panda, rng, 500);
+}
+
 
 BOOST_AUTO_TEST_CASE(panda_home_pose_matches_franka_dh) {
   if (!haveShared("panda_home_pose_matches_franka_dh")) return;
