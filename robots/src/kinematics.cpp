@@ -1,5 +1,6 @@
 #include "deepcheck/robots/kinematics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -16,6 +17,48 @@ inline void rotateAboutCoordinateAxis(Eigen::Matrix3d& R, int k, double c, doubl
   const Eigen::Vector3d rj = R.col(j);
   R.col(i) = c * ri + s * rj;
   R.col(j) = c * rj - s * ri;
+}
+
+/// sin x and cos x, to a few ulps, without a library call for |x| < 2^20 (joint values): x is
+/// reduced to r = x - k pi/2, |r| <= pi/4 (Cody and Waite: pi/2 in two parts, the first with
+/// its 21 low bits zero so that k times it is exact, the reduction then loses nothing), then the
+/// Taylor series of sin and cos to degree 17 and 18, whose truncation error on |r| <= pi/4 is
+/// below 1e-19, and the quadrant k mod 4 swaps and negates them.
+inline void sinCos(double x, double& sine, double& cosine) {
+  if (!(std::abs(x) < 1048576.0)) {
+    sine = std::sin(x);
+    cosine = std::cos(x);
+    return;
+  }
+  constexpr double kTwoOverPi = 0.63661977236758134308;
+  constexpr double kHalfPiHigh = 1.5707963267948965579989817342720925807952880859375;  // double(pi/2), exact
+  // double(pi/2) with its low 21 bits cleared, and the rest of pi/2 (to 1e-33).
+  constexpr double kHalfPi1 = 1.57079632673412561416625976562500;
+  constexpr double kHalfPi2 = kHalfPiHigh - kHalfPi1;  // exact: the cleared bits
+  constexpr double kHalfPi3 = 6.123233995736766035868820147292e-17;  // pi/2 - double(pi/2)
+  const int k = static_cast<int>(x * kTwoOverPi + (x >= 0.0 ? 0.5 : -0.5));
+  const double kd = k;
+  const double r = ((x - kd * kHalfPi1) - kd * kHalfPi2) - kd * kHalfPi3;
+  const double r2 = r * r;
+  // 1/n! for n = 3 .. 18.
+  constexpr double f3 = 1.0 / 6, f5 = f3 / 20, f7 = f5 / 42, f9 = f7 / 72, f11 = f9 / 110, f13 = f11 / 156,
+                   f15 = f13 / 210, f17 = f15 / 272;
+  constexpr double f2 = 0.5, f4 = f2 / 12, f6 = f4 / 30, f8 = f6 / 56, f10 = f8 / 90, f12 = f10 / 132,
+                   f14 = f12 / 182, f16 = f14 / 240, f18 = f16 / 306;
+  // Estrin's scheme (pairs, then pairs of pairs): a short dependency chain, so that the sines of
+  // consecutive joints overlap in the processor.
+  const double r4 = r2 * r2;
+  const double r8 = r4 * r4;
+  const double ps = ((-f3 + f5 * r2) + r4 * (-f7 + f9 * r2)) + r8 * ((-f11 + f13 * r2) + r4 * (-f15 + f17 * r2));
+  const double pc = ((f2 - f4 * r2) + r4 * (f6 - f8 * r2)) + r8 * ((f10 - f12 * r2) + r4 * (f14 - f16 * r2) + r8 * f18);
+  const double s = r + (r * r2) * ps;
+  const double c = 1.0 - r2 * pc;
+  switch (k & 3) {
+    case 0: sine = s; cosine = c; break;
+    case 1: sine = c; cosine = -s; break;
+    case 2: sine = -s; cosine = -c; break;
+    default: sine = -c; cosine = s; break;
+  }
 }
 
 /// The coordinate axis (0, 1, 2) that `axis` is, exactly, or -1; `sign` is +1 or -1.
@@ -92,7 +135,7 @@ void checkConfiguration(const RobotModel& model, const Eigen::Ref<const Eigen::V
 // X_WC = X_WP * X_PJ * X_JC(value), computed without 4 x 4 products: first X_WJ = X_WP * X_PJ
 // (a 3 x 3 product and a rotated translation), then the joint's motion applied in place: a
 // rotation about a coordinate axis (every joint of the Panda, the UR5 and the bundled arm) turns
-// two columns of R_WJ by the angle (one sine and cosine); any other axis multiplies by the
+// two columns of R_WJ by the angle (one sine and cosine, sinCos above); any other axis multiplies by the
 // angle-axis matrix; a prismatic joint moves the origin along R_WJ * axis. The child origin lies
 // on a revolute axis, so the translation is t_WJ for revolute joints. Agrees with the plain
 // product of the three transforms to round-off (tests/robots/test_kinematics.cpp).
@@ -101,39 +144,53 @@ void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::Ve
   checkConfiguration(model, q);
   if (static_cast<int>(X_WL.size()) != model.numLinks()) X_WL.resize(model.numLinks());
   X_WL[0] = model.basePose();
-  // Joint i is the parent joint of link i + 1, and parents precede children.
+  // Joint i is the parent joint of link i + 1, and parents precede children. The sines and
+  // cosines come first, in blocks (they do not depend on the chain of products, which is
+  // sequential): the processor overlaps them.
   const std::vector<Joint>& joints = model.joints();
-  for (const Joint& joint : joints) {
-    const Eigen::Isometry3d& X_WP = X_WL[joint.parentLink];
-    Eigen::Isometry3d& X_WC = X_WL[joint.childLink];
-    Eigen::Matrix3d R;
-    R.noalias() = X_WP.linear() * joint.X_PJ.linear();
-    Eigen::Vector3d t = X_WP.translation();
-    t.noalias() += X_WP.linear() * joint.X_PJ.translation();
-    switch (joint.type) {
-      case JointType::Fixed: break;
-      case JointType::Revolute:
-      case JointType::Continuous: {
-        const double value = joint.multiplier * q[joint.variable] + joint.offset;
-        double sign = 1.0;
-        const int k = coordinateAxis(joint.axis, sign);
-        if (k >= 0) {
-          const double angle = sign * value;
-          rotateAboutCoordinateAxis(R, k, std::cos(angle), std::sin(angle));
-        } else {
-          R = R * Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
-        }
-        break;
-      }
-      case JointType::Prismatic: {
-        const double value = joint.multiplier * q[joint.variable] + joint.offset;
-        t.noalias() += value * (R * joint.axis);
-        break;
-      }
+  constexpr int kBlock = 16;
+  double sines[kBlock], cosines[kBlock];
+  for (int first = 0; first < static_cast<int>(joints.size()); first += kBlock) {
+    const int end = std::min(first + kBlock, static_cast<int>(joints.size()));
+    for (int i = first; i < end; ++i) {
+      const Joint& joint = joints[i];
+      if (joint.type != JointType::Revolute && joint.type != JointType::Continuous) continue;
+      double sign = 1.0;
+      if (coordinateAxis(joint.axis, sign) < 0) continue;
+      sinCos(sign * (joint.multiplier * q[joint.variable] + joint.offset), sines[i - first], cosines[i - first]);
     }
-    X_WC.linear() = R;
-    X_WC.translation() = t;
-    X_WC.makeAffine();
+    for (int i = first; i < end; ++i) {
+      const Joint& joint = joints[i];
+      const Eigen::Isometry3d& X_WP = X_WL[joint.parentLink];
+      Eigen::Isometry3d& X_WC = X_WL[joint.childLink];
+      Eigen::Matrix3d R;
+      R.noalias() = X_WP.linear() * joint.X_PJ.linear();
+      Eigen::Vector3d t = X_WP.translation();
+      t.noalias() += X_WP.linear() * joint.X_PJ.translation();
+      switch (joint.type) {
+        case JointType::Fixed: break;
+        case JointType::Revolute:
+        case JointType::Continuous: {
+          const double value = joint.multiplier * q[joint.variable] + joint.offset;
+          double sign = 1.0;
+          const int k = coordinateAxis(joint.axis, sign);
+          if (k >= 0) {
+            rotateAboutCoordinateAxis(R, k, cosines[i - first], sines[i - first]);
+          } else {
+            R = R * Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
+          }
+          break;
+        }
+        case JointType::Prismatic: {
+          const double value = joint.multiplier * q[joint.variable] + joint.offset;
+          t.noalias() += value * (R * joint.axis);
+          break;
+        }
+      }
+      X_WC.linear() = R;
+      X_WC.translation() = t;
+      X_WC.makeAffine();
+    }
   }
 }
 
