@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -244,6 +245,7 @@ std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robo
       rp.center_L = p.X_LP * p.core->center();
       rp.sphereRadius = detail::padRadius(p.core->boundingRadius() + p.radius, rp.center_L);
       rp.obb_L = Obb::ofPiece(*p.core, p.radius).transformed(p.X_LP);
+      rp.seeds = detail::SupportSeeds::of(*p.core);
       rp.link = l;
       box.extend(Aabb::ofSphere(rp.center_L, rp.sphereRadius));
       robot->pieces.push_back(rp);
@@ -278,6 +280,7 @@ WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry
   w.box.lo.array() -= pad;
   w.box.hi.array() += pad;
   w.obb_W = Obb::ofPiece(*p.core, p.radius).transformed(w.X_WP);
+  w.seeds = detail::SupportSeeds::of(*p.core);
   w.body = body;
   w.uid = uid;
   return w;
@@ -359,6 +362,9 @@ std::shared_ptr<const PieceSet> buildObstaclePieces(const std::vector<std::share
 /// Self pairs of `robot` minus the adjacent and rigid ones (when asked) and the user's.
 void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
   const RobotData& robot = *s.robot;
+  // Grids depend on the robot only: those of pairs already built are kept.
+  std::map<std::pair<int, int>, std::shared_ptr<const detail::SelfPairGrid>> grids;
+  for (const SelfPair& p : s.selfPairs) grids[{p.a, p.b}] = p.grid;
   std::set<std::pair<int, int>> adjacent(robot.adjacent.begin(), robot.adjacent.end());
   std::set<std::pair<int, int>> rigid(robot.rigid.begin(), robot.rigid.end());
   std::set<std::pair<int, int>> user(s.userDisabled.begin(), s.userDisabled.end());
@@ -383,7 +389,11 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
         ++s.disabledByUser;
         continue;
       }
-      s.selfPairs.push_back({a, b, s.selfCacheSize});
+      auto known = grids.find({a, b});
+      s.selfPairs.push_back({a, b, s.selfCacheSize,
+                             known != grids.end()    ? known->second
+                             : options.selfPairGrids ? detail::SelfPairGrid::build(robot, a, b)
+                                                     : nullptr});
       s.selfCacheSize += robot.links[a].numPieces * robot.links[b].numPieces;
     }
   }
@@ -654,6 +664,19 @@ std::string World::summary() const {
       << " (reach margin " << state_->options.reachMargin << " m)\n";
   out << "obstacles: " << s.obstacles << " (" << s.obstaclePieces << " pieces)\n";
   const long long worldPairs = static_cast<long long>(s.robotPieces) * (s.scenePiecesKept + s.obstaclePieces);
+  int grids = 0, cells = 0, freeCells = 0;
+  for (const SelfPair& p : snap->selfPairs) {
+    if (p.grid == nullptr) continue;
+    ++grids;
+    cells += p.grid->numCells();
+    freeCells += p.grid->numFreeCells();
+  }
+  if (grids > 0) {
+    char share[32];
+    std::snprintf(share, sizeof share, "%.1f", 100.0 * freeCells / cells);
+    out << "self pairs with a certified-free grid: " << grids << " (" << cells << " cells, " << share
+        << " % certified free)\n";
+  }
   out << "pairs checked at most: " << worldPairs << " robot-world piece pairs, " << s.selfPiecePairs
       << " self piece pairs; broad phase " << toString(snap->broadPhase) << "\n";
   char excess[64];

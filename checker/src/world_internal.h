@@ -9,6 +9,9 @@
 #include "deepcheck/checker/reach.h"
 #include "deepcheck/checker/world.h"
 
+#include "self_pair_grid.h"
+#include "support_seeds.h"
+
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -26,6 +29,7 @@ struct RobotPiece {
   Eigen::Vector3d center_L = Eigen::Vector3d::Zero();
   double sphereRadius = 0.0;
   Obb obb_L;  // oriented box in the link frame
+  SupportSeeds seeds;  // of the core, in its frame
   int link = -1;
 };
 
@@ -39,12 +43,14 @@ struct LinkGeometry {
   double radius = 0.0;
 };
 
-/// An allowed self pair: link geometries a < b (indices into RobotData::links) and the offset of
-/// its numPieces(a) x numPieces(b) block of warm-start caches.
+/// An allowed self pair: link geometries a < b (indices into RobotData::links), the offset of
+/// its numPieces(a) x numPieces(b) block of warm-start caches, and its certified-free grid when
+/// its relative pose depends on one or two variables (self_pair_grid.h; null otherwise).
 struct SelfPair {
   int a = 0;
   int b = 0;
   int cacheOffset = 0;
+  std::shared_ptr<const SelfPairGrid> grid;
 };
 
 /// Everything about the robot: built once, shared by all snapshots.
@@ -67,6 +73,7 @@ struct WorldPiece {
   double sphereRadius = 0.0;
   Aabb box;
   Obb obb_W;                // oriented box in the world
+  SupportSeeds seeds;       // of the core, in its frame
   int body = -1;            // index into PieceSet::bodies
   std::uint64_t uid = 0;    // stable across snapshots (obstacle id << 20 | piece), for caches
 };

@@ -35,4 +35,17 @@ constexpr double kWarmStartMaxStep = 0.1;
 /// guaranteed to be at least the margin (a dropped piece may be nearer than a kept one then).
 constexpr double kDefaultReachMargin = 0.05;
 
+/// Self-pair grids (self_pair_grid.h): a cell is certified free only when the pieces' distance at
+/// its centre exceeds the motion bound by this fraction of the pair's size (the sum of the two
+/// pieces' bounding radii) on top of the GJK's own relative accuracy: far above the round-off of
+/// posing the pieces and of the contact tolerance of the narrow phase (deep::tol::kContactRelative
+/// times the pair's length scale), so a certified pair is one the narrow phase finds apart.
+constexpr double kCertifiedGapRelative = 1e-9;
+
+/// Self-pair grids: at most this many cells per grid, and at most kGridMaxPiecePairTests
+/// narrow-phase evaluations to build one (cells times piece pairs whose bounding spheres are
+/// within reach), which bounds the world's construction time (about a microsecond each).
+constexpr int kGridMaxCells = 16384;
+constexpr long long kGridMaxPiecePairTests = 1LL << 17;
+
 }  // namespace deepcheck::checker::tol

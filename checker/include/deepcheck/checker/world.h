@@ -156,6 +156,8 @@ struct QueryStats {
   std::uint64_t pieceTests = 0;       ///< piece pairs whose bounding volumes were compared
   std::uint64_t narrowPhase = 0;      ///< deep::overlaps / deep::signedDistance calls
   std::uint64_t selfNarrowPhase = 0;  ///< the part of narrowPhase on self pairs
+  std::uint64_t certifiedSelf = 0;    ///< isFree: self link pairs skipped because q lies in a
+                                      ///< cell of their grid certified free (world.cpp summary)
   std::uint64_t fullDepth = 0;        ///< signedDistance: overlapping pairs whose one-walk depth
                                       ///< could beat the best, measured again with all restarts
 };
@@ -189,6 +191,10 @@ struct WorldOptions {
   /// keeps everything).
   double reachMargin = tol::kDefaultReachMargin;
   BroadPhase broadPhase = BroadPhase::AabbTree;
+  /// Certified-free grids for the self pairs whose relative pose depends on one or two variables
+  /// (self_pair_grid.h in checker/src): isFree skips such a pair when q lies in a cell where it was
+  /// proved apart at construction. Never changes an answer; off only to compare, in tests.
+  bool selfPairGrids = true;
 };
 
 /// Placement of a scene (World::addScene).

@@ -1,0 +1,78 @@
+#pragma once
+// Certified-free grids for the self pairs whose relative pose depends on one or two variables.
+//
+// Two robot links U and D, D below U in the tree, with only revolute (or continuous) and fixed
+// joints between them: the pose of D in U's frame depends only on the variables of those joints.
+// When there are one or two such variables (the Panda's link5 against link7 and against the hand:
+// joints 6 and 7), the box of their limits is cut into cells, and a cell is marked FREE at
+// construction when every piece pair of (U, D) is certified apart over the whole cell:
+//
+//     d(centre) > delta + gap,
+//
+// d the GJK distance of the two pieces (radii included) with the variables at the cell's centre,
+// delta a bound on how far any point of a piece of D can move relative to U while the variables
+// stay in the cell,
+//
+//     delta = sum over the moving joints k between U and D of |multiplier_k| h_k rho_k,
+//     rho_k = sum of |X_PJ.translation| of the joints below k down to D + max |p_D| over D's pieces,
+//
+// h_k the cell's half-width in joint k's variable, and gap tol::kCertifiedGapRelative times the
+// pieces' size plus GJK's own relative accuracy. Why it holds: a rotation by t about an axis moves
+// a point at distance r from the axis by at most r t; joint k's child origin lies on its axis, and
+// by the triangle inequality every point of D is within rho_k of it in every configuration
+// (rotations below k keep lengths, translations add up). Moving from the centre one variable at
+// a time, the displacements add up to at most delta, and a distance shrinks by at most the
+// displacement. So in a FREE cell the narrow phase would find every piece pair apart: isFree skips
+// the pair. Cells that are not certified (pieces nearer than delta, or in contact) and
+// configurations outside the limits go through the usual tests: the grid never changes an
+// answer, only its cost.
+//
+// Grid size: cells are split between the two variables so that each contributes about the same
+// to delta, up to tol::kGridMaxCells cells and tol::kGridMaxPiecePairTests piece-pair evaluations
+// (bounding spheres first, GJK for the pairs within reach), which bounds construction time. On
+// the Panda, 128 x 128 cells give delta of 5 to 10 mm.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace deepcheck::checker::detail {
+
+struct RobotData;
+
+class SelfPairGrid {
+ public:
+  /// The grid of the self pair of link geometries (a, b) (indices into RobotData::links), or null
+  /// when the pair does not qualify (not on one branch, a prismatic joint or more than two
+  /// variables between them, degenerate limits, or too many piece pairs for the budget).
+  static std::shared_ptr<const SelfPairGrid> build(const RobotData& robot, int a, int b);
+
+  /// True when q lies in a cell certified free (q must have the robot's size).
+  bool certifiedFree(const Eigen::VectorXd& q) const {
+    int index = 0;
+    for (int d = 0; d < dims_; ++d) {
+      const double x = (q[variable_[d]] - lower_[d]) * inverseStep_[d];
+      if (!(x >= 0.0 && x < cells_[d])) return false;  // outside the limits (or NaN)
+      index = index * cells_[d] + static_cast<int>(x);
+    }
+    return free_[index] != 0;
+  }
+
+  int numCells() const { return static_cast<int>(free_.size()); }
+  int numFreeCells() const;
+  /// The largest motion bound delta over the cells, metres.
+  double motionBound() const { return delta_; }
+
+ private:
+  int dims_ = 0;
+  int variable_[2] = {-1, -1};
+  double lower_[2] = {0.0, 0.0};
+  double inverseStep_[2] = {0.0, 0.0};
+  int cells_[2] = {1, 1};
+  double delta_ = 0.0;
+  std::vector<std::uint8_t> free_;  // row-major, first variable slowest
+};
+
+}  // namespace deepcheck::checker::detail

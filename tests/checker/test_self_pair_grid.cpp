@@ -1,0 +1,113 @@
+// Certified-free self-pair grids (checker/src/self_pair_grid.h): isFree gives the same answer with
+// and without them, on random configurations and on configurations packed around the cells of
+// the grids' variables (cell boundaries, the limits, beyond the limits), and the grids are used.
+
+#include "checker_test_util.h"
+
+#include "deepcheck/checker/world.h"
+#include "deepcheck/robots/pair_filter.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace deepcheck;
+using namespace deepcheck::checker;
+using namespace deepcheck::checker::test;
+
+namespace {
+
+/// Compares isFree of `with` (grids) and `without` on `qs`; returns how many are colliding.
+int compareAnswers(const World& with, const World& without, const std::vector<Eigen::VectorXd>& qs,
+                   QueryStats* stats) {
+  auto a = with.makeContext();
+  auto b = without.makeContext();
+  int colliding = 0;
+  for (const Eigen::VectorXd& q : qs) {
+    const bool fast = with.isFree(q, a);
+    const bool reference = without.isFree(q, b);
+    BOOST_CHECK_MESSAGE(fast == reference, "q = " << q.transpose() << ": isFree " << fast << " with the grids, "
+                                                  << reference << " without");
+    colliding += !reference;
+  }
+  *stats = a.stats();
+  return colliding;
+}
+
+/// Random configurations, then ones that keep the other variables and sweep the two given ones
+/// finely (many cells, their boundaries, the limits and a little beyond them).
+std::vector<Eigen::VectorXd> configurations(const robots::RobotModel& m, int v0, int v1, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<Eigen::VectorXd> qs;
+  for (int i = 0; i < 3000; ++i) qs.push_back(randomConfiguration(m, rng));
+  const Eigen::VectorXd base = randomConfiguration(m, rng);
+  const int n = 90;
+  for (int i = -2; i <= n + 2; ++i) {
+    for (int j = -2; j <= n + 2; ++j) {
+      Eigen::VectorXd q = base;
+      q[v0] = m.lowerLimits()[v0] + (m.upperLimits()[v0] - m.lowerLimits()[v0]) * i / n;
+      q[v1] = m.lowerLimits()[v1] + (m.upperLimits()[v1] - m.lowerLimits()[v1]) * j / n;
+      qs.push_back(q);
+    }
+  }
+  return qs;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(checker_self_pair_grid)
+
+BOOST_AUTO_TEST_CASE(panda_same_answers_with_and_without_grids) {
+  if (!haveShared("panda_same_answers_with_and_without_grids")) return;
+  WorldOptions options = testWorldOptions();
+  options.disabledPairs = robots::readSrdfDisabledPairs(
+      sharedDir() + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf");
+  World with(loadPanda(), options);
+  options.selfPairGrids = false;
+  World without(loadPanda(), options);
+  const std::string text = with.summary();
+  BOOST_TEST_MESSAGE(text);
+  BOOST_TEST(text.find("certified-free grid: 2") != std::string::npos, text);
+  BOOST_TEST(without.summary().find("certified-free grid") == std::string::npos);
+  // panda_joint6 and panda_joint7 move link7 and the hand relative to link5.
+  const robots::RobotModel& m = with.robot();
+  const std::vector<Eigen::VectorXd> qs =
+      configurations(m, m.variableIndex("panda_joint6"), m.variableIndex("panda_joint7"), 17);
+  QueryStats stats;
+  const int colliding = compareAnswers(with, without, qs, &stats);
+  BOOST_TEST_MESSAGE(qs.size() << " configurations, " << colliding << " colliding; self pairs certified free "
+                               << stats.certifiedSelf << ", self narrow phase " << stats.selfNarrowPhase);
+  BOOST_TEST(colliding > 500);
+  BOOST_TEST(colliding < static_cast<int>(qs.size()) - 500);
+  BOOST_TEST(stats.certifiedSelf > qs.size());  // most queries skip both pairs
+  BOOST_TEST(stats.selfNarrowPhase > 100u);     // and the rest are still checked
+  // The grids survive a change of the pairs (kept, not rebuilt) and keep answering the same.
+  with.disablePair("panda_link0", "panda_link5");
+  without.disablePair("panda_link0", "panda_link5");
+  BOOST_TEST(with.summary().find("certified-free grid: 2") != std::string::npos);
+  compareAnswers(with, without, std::vector<Eigen::VectorXd>(qs.begin(), qs.begin() + 500), &stats);
+}
+
+BOOST_AUTO_TEST_CASE(bundled_arm_same_answers_with_and_without_grids) {
+  WorldOptions options = testWorldOptions();
+  options.disabledPairs = robots::readSrdfDisabledPairs(bundledDataDir() + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
+  const std::string urdf = bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
+  World with(robots::RobotModel::fromUrdfFile(urdf, bundledLoadOptions()), options);
+  options.selfPairGrids = false;
+  World without(robots::RobotModel::fromUrdfFile(urdf, bundledLoadOptions()), options);
+  BOOST_TEST_MESSAGE(with.summary());
+  BOOST_TEST(with.summary().find("certified-free grid") != std::string::npos);
+  const robots::RobotModel& m = with.robot();
+  const int n = m.numVariables();
+  const std::vector<Eigen::VectorXd> qs = configurations(m, n - 2, n - 1, 23);
+  QueryStats stats;
+  const int colliding = compareAnswers(with, without, qs, &stats);
+  BOOST_TEST_MESSAGE(qs.size() << " configurations, " << colliding << " colliding; self pairs certified free "
+                               << stats.certifiedSelf << ", self narrow phase " << stats.selfNarrowPhase);
+  BOOST_TEST(stats.certifiedSelf > 0u);
+  BOOST_TEST(colliding > 0);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
