@@ -15,7 +15,12 @@
 // Timing: per-query steady_clock times; each set is timed in 3 rounds and the round with the
 // lowest median is kept (the machine is shared; other processes only add time).
 // Output: a table on stdout, the machine load (from /proc/loadavg) before and after, and
-// bench/results/checker_bench.csv. Usage: checker_bench [--quick] (fewer samples).
+// bench/results/checker_bench.csv. Usage: checker_bench [--quick] [--isfree] [--repeat N]
+//   --quick     1,000 random configurations and 30 motions instead of 10,000 and 300;
+//   --isfree    only forward kinematics and isFree (ours and FCL's); the CSV is not written;
+//   --repeat N  with --isfree: then run our isFree over both sets N more times, untimed (a
+//               steady load for `perf record`);
+//   --world W   only the world named W (panda-shelf, panda-kitchen, arm-shelf).
 
 #include "deepcheck/checker/fcl_backend.h"
 #include "deepcheck/checker/world.h"
@@ -171,7 +176,17 @@ Throughput throughput(const checker::World& world, const std::vector<Eigen::Vect
   return r;
 }
 
-void runWorld(const WorldSpec& spec, int samples, int motions) {
+struct RunOptions {
+  int samples = 10000;
+  int motions = 300;
+  bool isFreeOnly = false;
+  int repeat = 0;
+  std::string world;  ///< only this world when not empty
+};
+
+void runWorld(const WorldSpec& spec, const RunOptions& run) {
+  const int samples = run.samples;
+  const int motions = run.motions;
   robots::LoadOptions load;
   load.packageRoots = spec.packageRoots;
   load.useRosPackagePath = false;
@@ -210,6 +225,27 @@ void runWorld(const WorldSpec& spec, int samples, int motions) {
     std::snprintf(note, sizeof note, "free %.1f %%, FCL/ours %.1fx", 100.0 * freeCount / qs->size(), ratio);
     addTimes(spec.name, "isFree", setName, "deepcheck", ours, note);
     addTimes(spec.name, "isFree", setName, "fcl-mesh", theirs);
+  }
+  if (run.isFreeOnly) {
+    auto context = world.makeContext();
+    std::size_t freeCount = 0;
+    for (int r = 0; r < run.repeat; ++r) {
+      for (const Eigen::VectorXd& q : random) freeCount += world.isFree(q, context);
+      for (const Eigen::VectorXd& q : motion) freeCount += world.isFree(q, context);
+    }
+    if (run.repeat > 0) std::printf("  (%d more untimed rounds of isFree, %zu free)\n", run.repeat, freeCount);
+    for (const auto& [setName, qs] : {std::pair<std::string, const std::vector<Eigen::VectorXd>*>{"random", &random},
+                                      {"motions", &motion}}) {
+      auto counted = world.makeContext();
+      for (const Eigen::VectorXd& q : *qs) world.isFree(q, counted);
+      const checker::QueryStats& st = counted.stats();
+      const double n = static_cast<double>(st.queries);
+      std::printf("  isFree %-8s per query: %.2f link candidates, %.2f piece tests, %.2f narrow phase (%.2f self), "
+                  "%.2f self pairs in a certified-free cell\n",
+                  setName.c_str(), st.linkCandidates / n, st.pieceTests / n, st.narrowPhase / n,
+                  st.selfNarrowPhase / n, st.certifiedSelf / n);
+    }
+    return;
   }
   // signedDistance with gradient (ours), FCL distance (boolean, then distance when free).
   checker::DistanceOptions withGradient;
@@ -286,9 +322,25 @@ void runWorld(const WorldSpec& spec, int samples, int motions) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
-  const int samples = quick ? 1000 : 10000;
-  const int motions = quick ? 30 : 300;
+  RunOptions run;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--quick") {
+      run.samples = 1000;
+      run.motions = 30;
+    } else if (arg == "--isfree") {
+      run.isFreeOnly = true;
+    } else if (arg == "--repeat" && i + 1 < argc) {
+      run.repeat = std::stoi(argv[++i]);
+    } else if (arg == "--world" && i + 1 < argc) {
+      run.world = argv[++i];
+    } else {
+      std::fprintf(stderr, "usage: checker_bench [--quick] [--isfree] [--repeat N] [--world NAME]\n");
+      return 2;
+    }
+  }
+  const int samples = run.samples;
+  const int motions = run.motions;
   const std::string shared = DEEPCHECK_SHARED_DIR;
   const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
   std::printf("checker_bench: %d random configurations, %d short motions (31 states each); load average before: %s\n",
@@ -306,8 +358,11 @@ int main(int argc, char** argv) {
   }
   worlds.push_back({"arm-shelf", data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", {data},
                     data + "/deepcheck_arm/srdf/deepcheck_arm.srdf", data + "/scenes/shelf.urdf"});
-  for (const WorldSpec& w : worlds) runWorld(w, samples, motions);
+  for (const WorldSpec& w : worlds) {
+    if (run.world.empty() || run.world == w.name) runWorld(w, run);
+  }
   std::printf("\nload average after: %s\n", loadAverage().c_str());
+  if (run.isFreeOnly) return 0;
 
   const std::string dir = DEEPCHECK_BENCH_RESULTS_DIR;
   std::filesystem::create_directories(dir);
