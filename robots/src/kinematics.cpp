@@ -20,8 +20,8 @@ inline void rotateAboutCoordinateAxis(Eigen::Matrix3d& R, int k, double c, doubl
 }
 
 /// sin x and cos x, to a few ulps, without a library call for |x| < 2^20 (joint values): x is
-/// reduced to r = x - k pi/2, |r| <= pi/4 (Cody and Waite: pi/2 in two parts, the first with
-/// its 21 low bits zero so that k times it is exact, the reduction then loses nothing), then the
+/// reduced to r = x - k pi/2, |r| <= pi/4 (Cody and Waite: pi/2 in three parts, the first two
+/// short enough that k times them is exact, so the reduction loses nothing), then the
 /// Taylor series of sin and cos to degree 17 and 18, whose truncation error on |r| <= pi/4 is
 /// below 1e-19, and the quadrant k mod 4 swaps and negates them.
 inline void sinCos(double x, double& sine, double& cosine) {
