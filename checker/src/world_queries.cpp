@@ -617,6 +617,7 @@ struct DistanceSearch {
   void previousClosest() {
     const PairKey k = c.lastClosest;
     if (k.kind == PairKey::Kind::None) return;
+    if (!(k.kind == PairKey::Kind::Self ? options.selfPairs : options.worldPairs)) return;
     const RobotData& robot = *s.robot;
     posePiece(c, robot, k.robotPiece);
     if (k.kind == PairKey::Kind::Self) posePiece(c, robot, k.other);
@@ -628,11 +629,13 @@ struct DistanceSearch {
     const RobotData& robot = *s.robot;
     c.candidates.clear();
     previousClosest();
-    for (int g = 0; g < static_cast<int>(robot.links.size()); ++g) {
+    for (int g = 0; options.worldPairs && g < static_cast<int>(robot.links.size()); ++g) {
       gatherWorld(PairKey::Kind::Scene, g);
       gatherWorld(PairKey::Kind::Obstacle, g);
     }
-    for (const SelfPair& sp : s.selfPairs) gatherSelf(sp);
+    if (options.selfPairs) {
+      for (const SelfPair& sp : s.selfPairs) gatherSelf(sp);
+    }
     std::sort(c.candidates.begin(), c.candidates.end(),
               [](const Candidate& x, const Candidate& y) { return x.lowerBound < y.lowerBound; });
     for (const Candidate& cand : c.candidates) {

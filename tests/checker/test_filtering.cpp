@@ -197,4 +197,42 @@ BOOST_AUTO_TEST_CASE(reach_spheres_contain_every_reachable_point) {
   checkThrowsWith([&] { linkReachSpheres(arm, {}); }, "arm");
 }
 
+// DistanceOptions::worldPairs / selfPairs: each kind alone gives the minimum over that kind, and
+// the smaller of the two is the full minimum.
+BOOST_AUTO_TEST_CASE(distance_over_world_pairs_or_self_pairs_only) {
+  robots::LoadOptions load = bundledLoadOptions();
+  World world(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf", load),
+              testWorldOptions());
+  world.addScene(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/scenes/shelf.urdf", load));
+  auto context = world.makeContext();
+  std::mt19937 rng(5);
+  int selfNearest = 0;
+  int worldNearest = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Eigen::VectorXd q = randomConfiguration(world.robot(), rng);
+    DistanceOptions worldOnly;
+    worldOnly.selfPairs = false;
+    DistanceOptions selfOnly;
+    selfOnly.worldPairs = false;
+    const DistanceResult all = world.signedDistance(q, context);
+    const DistanceResult w = world.signedDistance(q, context, worldOnly);
+    const DistanceResult s = world.signedDistance(q, context, selfOnly);
+    BOOST_TEST_REQUIRE(all.found);
+    BOOST_TEST(w.found);
+    BOOST_TEST(s.found);
+    BOOST_TEST((w.closest.bodyB.kind != BodyRef::Kind::RobotLink));
+    BOOST_TEST((s.closest.bodyB.kind == BodyRef::Kind::RobotLink));
+    // Penetration depths may differ slightly with the warm start of each query (deep.h).
+    const double tolerance = all.closest.distance < 0.0 ? 1e-3 : 1e-12;
+    BOOST_TEST(std::abs(std::min(w.closest.distance, s.closest.distance) - all.closest.distance) <= tolerance);
+    (s.closest.distance < w.closest.distance ? selfNearest : worldNearest)++;
+  }
+  BOOST_TEST(selfNearest > 10);
+  BOOST_TEST(worldNearest > 10);
+  DistanceOptions none;
+  none.worldPairs = false;
+  none.selfPairs = false;
+  BOOST_TEST(!world.signedDistance(Eigen::VectorXd::Zero(7), context, none).found);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -136,6 +136,10 @@ struct DistanceOptions {
   /// When finite, DistanceResult::contacts lists every body pair (robot link, other body) whose
   /// signed distance is at most this (the minimum over their piece pairs), nearest first.
   double contactMargin = -std::numeric_limits<double>::infinity();
+  /// Which pairs take part: robot-scene and robot-obstacle pairs (`world`), robot self pairs
+  /// (`self`). Both by default; with one off, the result is the minimum over the other kind only.
+  bool worldPairs = true;
+  bool selfPairs = true;
   /// Options of the penetration-depth walk.
   deep::DeepOptions deep;
 };
