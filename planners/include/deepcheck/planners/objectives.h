@@ -1,0 +1,81 @@
+#pragma once
+// Optimization objectives for OMPL's optimizing planners (RRT*, BIT*, PRM*, ...) on our clearance.
+//
+// ClearanceHingeObjective: the penetration and clearance cost of TrajOpt (Schulman et al., IJRR
+// 2014, the hinge penalty on signed distances), as a state cost integrated along motions:
+//     stateCost(q)       = max(0, d_safe - sd_world(q), d_self - sd_self(q))   metres
+//     motionCost(q1, q2) = integral over the joint-space arc length of stateCost     metres x rad
+// evaluated by the trapezoid rule on segments no longer than `resolution` (default: the state
+// space's longest valid segment). sd_world is the signed distance to the scenes and obstacles,
+// sd_self the robot's self distance (validity.h, SplitDistance); d_self defaults to 0 (self pairs
+// pay only for penetration, tolerances.h explains why). Zero terms are skipped exactly: with B the
+// pair displacement bound of motion_bound.h, each of sd_world and sd_self between two evaluated
+// states is at least (sd_a + sd_b - B) / 2, so where that is >= its safe distance the hinge is
+// zero in between; otherwise the middle state is evaluated (bisection). Far from obstacles a motion
+// costs two distance queries. Penetrating states pay d_safe plus their depth, so optimizing
+// planners drive paths out of slight penetration (a penetration tolerance, validity.h, lets them
+// through it) and away from obstacles. Cost 0 means "never nearer than d_safe"; the objective
+// alone is satisfied by any such path, which is why it is meant to be combined with path length:
+//
+// makeLengthClearanceObjective: OMPL's MultiOptimizationObjective of PathLengthOptimization
+// Objective (weight 1) and the hinge (weight w, 1 / metre). Its cost-to-go and motion heuristics
+// are the path length's (the straight-line distance), admissible since the hinge is >= 0; so
+// BIT* and informed RRT* keep their heuristics.
+//
+// makeMaxMinClearanceObjective: OMPL's MaximizeMinClearanceObjective, unchanged: it reads the
+// state validity checker's clearance(), which ours makes the signed distance. It interpolates
+// motions at the state space's valid segment count.
+
+#include "deepcheck/planners/motion_bound.h"
+#include "deepcheck/planners/tolerances.h"
+#include "deepcheck/planners/validity_checker.h"
+
+#include <ompl/base/OptimizationObjective.h>
+#include <ompl/base/SpaceInformation.h>
+
+#include <memory>
+
+namespace deepcheck::planners {
+
+class ClearanceHingeObjective : public ompl::base::OptimizationObjective {
+ public:
+  /// `bound` may be null (no skipping). `resolution` <= 0 means the longest valid segment.
+  /// Throws std::invalid_argument for a null checker, a negative or non-finite d_safe.
+  ClearanceHingeObjective(const ompl::base::SpaceInformationPtr& si,
+                          std::shared_ptr<const StateValidityChecker> checker,
+                          double safeDistance = tol::kDefaultSafeDistance,
+                          std::shared_ptr<const LinkSpeedBound> bound = nullptr, double resolution = 0.0);
+
+  ompl::base::Cost stateCost(const ompl::base::State* s) const override;
+  ompl::base::Cost motionCost(const ompl::base::State* s1, const ompl::base::State* s2) const override;
+
+  double safeDistance() const { return safeDistance_; }
+  double selfSafeDistance() const { return selfSafeDistance_; }
+  /// d_self (metres, finite, >= 0); throws std::invalid_argument otherwise.
+  void setSelfSafeDistance(double d);
+
+ private:
+  /// The hinge of a split distance.
+  double hinge(const SplitDistance& d) const;
+  /// The hinge at q, asking the distances only up to the safe distances.
+  double hinge(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+
+  std::shared_ptr<const StateValidityChecker> checker_;
+  std::shared_ptr<const LinkSpeedBound> bound_;
+  double safeDistance_ = 0.0;
+  double selfSafeDistance_ = tol::kDefaultSelfSafeDistance;
+  double resolution_ = 0.0;
+  int n_ = 0;
+};
+
+/// Path length + weight * hinge (see the header comment). Throws std::invalid_argument for a
+/// negative or non-finite weight.
+ompl::base::OptimizationObjectivePtr makeLengthClearanceObjective(
+    const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const StateValidityChecker> checker,
+    double safeDistance = tol::kDefaultSafeDistance, double weight = tol::kDefaultHingeWeight,
+    std::shared_ptr<const LinkSpeedBound> bound = nullptr);
+
+/// OMPL's MaximizeMinClearanceObjective on `si` (whose checker must compute clearance).
+ompl::base::OptimizationObjectivePtr makeMaxMinClearanceObjective(const ompl::base::SpaceInformationPtr& si);
+
+}  // namespace deepcheck::planners

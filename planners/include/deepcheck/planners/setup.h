@@ -1,0 +1,141 @@
+#pragma once
+// One call from URDF files to a ready ompl::geometric::SimpleSetup.
+//
+//   auto ss = deepcheck::planners::makeSimpleSetup("arm.urdf", {"shelf.urdf"}, options);
+//   deepcheck::planners::setStartAndGoal(*ss, start, goal);
+//   ss->setPlanner(std::make_shared<ompl::geometric::RRTConnect>(ss->getSpaceInformation()));
+//   ss->solve(1.0);
+//
+// What it holds:
+//   state space      one bounded dimension per robot variable (state_space.h);
+//   validity checker deepcheck::planners::StateValidityChecker on a checker::World made of the
+//                    robot (its SRDF's disabled pairs when given) and the scenes;
+//   motion validator OMPL's DiscreteMotionValidator at the state space's resolution (the default),
+//                    or ClearanceMotionValidator (motion_validator.h), which certifies every
+//                    motion it accepts (SetupOptions::motionValidation);
+//   valid sampler    PushOutValidStateSampler (valid_state_sampler.h) unless disabled;
+//   resolution       the longest valid segment fraction SetupOptions::segmentFraction.
+// No planner and no objective are set: OMPL's defaults apply until the caller sets them.
+// validityCheckerOf() and linkSpeedBoundOf() give back the pieces for objectives and reports.
+//
+// Why the discrete validator by default: planners spend most motion checks on motions that never
+// reach the solution, and the certification's distance queries cost hundreds of isFree queries
+// (bench/plan_bench.cpp: planning with the clearance validator is several times slower). The
+// guarantee is obtained where it is cheap, on the final path: certifyPath() checks every waypoint
+// and every motion of it with the clearance validator and, where that fails, repairs it
+// (path_tools.h: push-out and subdivision). The `deepcheck plan` tool does exactly this.
+//
+// Files: package:// URIs are resolved with SetupOptions::packagePaths first, then (unless
+// useRosPackagePath is false) ROS_PACKAGE_PATH (robots/package_path.h). Errors are
+// std::invalid_argument naming the file and the problem.
+
+#include "deepcheck/checker/world.h"
+#include "deepcheck/planners/motion_bound.h"
+#include "deepcheck/planners/path_tools.h"
+#include "deepcheck/planners/push_out.h"
+#include "deepcheck/planners/tolerances.h"
+#include "deepcheck/planners/validity.h"
+#include "deepcheck/planners/validity_checker.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <ompl/geometric/SimpleSetup.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace deepcheck::planners {
+
+/// A scene URDF and where it goes.
+struct SceneSpec {
+  std::string urdf;
+  /// Place the scene at X_WS instead of its URDF base pose (the identity).
+  bool overridePose = false;
+  Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
+  /// The scene's joint values (its own variables); empty: its default configuration.
+  Eigen::VectorXd q;
+
+  SceneSpec() = default;
+  SceneSpec(std::string path) : urdf(std::move(path)) {}  // NOLINT: implicit on purpose
+  SceneSpec(const char* path) : urdf(path) {}             // NOLINT
+  SceneSpec(std::string path, const Eigen::Isometry3d& pose)
+      : urdf(std::move(path)), overridePose(true), X_WS(pose) {}
+};
+
+enum class MotionValidation {
+  Discrete,   ///< OMPL's DiscreteMotionValidator at the state space's resolution
+  Clearance,  ///< ClearanceMotionValidator: discrete pass, then certification by clearance steps
+};
+
+struct SetupOptions {
+  /// Package roots for package:// URIs, searched first.
+  std::vector<std::string> packagePaths;
+  bool useRosPackagePath = true;
+  /// An SRDF whose <disable_collisions> pairs are not checked ("" for none).
+  std::string srdf;
+  /// How the World is built (decomposition, broad phase, ...); its disabledPairs are extended by
+  /// the SRDF's.
+  checker::WorldOptions world;
+  ValidityOptions validity;
+  PushOutOptions pushOut;
+  MotionValidation motionValidation = MotionValidation::Discrete;
+  /// Register the push-out valid state sampler.
+  bool pushOutSampler = true;
+  /// Longest valid segment as a fraction of the state space's extent (0, 1].
+  double segmentFraction = tol::kDefaultSegmentFraction;
+};
+
+/// The World: the robot (with the SRDF's pairs disabled) and the scenes.
+std::shared_ptr<checker::World> loadWorld(const std::string& robotUrdf, const std::vector<SceneSpec>& scenes,
+                                          const SetupOptions& options = {});
+
+/// A SimpleSetup on an existing world.
+std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(std::shared_ptr<const checker::World> world,
+                                                              const SetupOptions& options = {});
+/// loadWorld + makeSimpleSetup.
+std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(const std::string& robotUrdf,
+                                                              const std::vector<SceneSpec>& scenes,
+                                                              const SetupOptions& options = {});
+
+/// The deepcheck checker of a SimpleSetup; throws std::invalid_argument when it has another one.
+std::shared_ptr<const StateValidityChecker> validityCheckerOf(const ompl::geometric::SimpleSetup& ss);
+/// The link speed bound of its world (the ClearanceMotionValidator's when it has one; computed
+/// otherwise, which loads the robot's meshes).
+std::shared_ptr<const LinkSpeedBound> linkSpeedBoundOf(const ompl::geometric::SimpleSetup& ss);
+
+/// A SpaceInformation with the state space and validity checker of `ss` and a
+/// ClearanceMotionValidator: checkPathWithPlanner(path, si.get()) certifies a path, repairPath
+/// repairs it against it.
+ompl::base::SpaceInformationPtr certifyingSpaceInformation(const ompl::geometric::SimpleSetup& ss);
+
+/// The result of certifyPath.
+struct PathCertificate {
+  PathCheck initial;        ///< the path as given, through the clearance validator
+  bool repaired = false;    ///< repairPath ran (the initial check failed)
+  PathRepair repair;        ///< when repaired
+  bool valid = false;       ///< every waypoint and motion (now) passes the clearance validator
+};
+/// Certifies `path` (a path of `ss`'s space) with the clearance validator, repairing it in place
+/// when that fails.
+PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path);
+
+/// Sets one start and one goal state. Throws std::invalid_argument naming the configuration, the
+/// variable and the value for a wrong size or a non-finite value (not for limits or collisions:
+/// OMPL reports those when solving, repairStartAndGoal fixes them).
+void setStartAndGoal(ompl::geometric::SimpleSetup& ss, const Eigen::Ref<const Eigen::VectorXd>& start,
+                     const Eigen::Ref<const Eigen::VectorXd>& goal);
+
+/// Push-out of the start states and of a single-state goal (ompl::base::GoalState) that are
+/// invalid, in place, before planning.
+struct EndpointRepair {
+  std::vector<PushOutResult> starts;  ///< one per start state
+  bool goalIsState = false;           ///< the goal is a GoalState (others are left alone)
+  PushOutResult goal;                 ///< when goalIsState
+  /// Every start (and the goal state) is valid now.
+  bool ok() const;
+};
+EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss);
+
+}  // namespace deepcheck::planners

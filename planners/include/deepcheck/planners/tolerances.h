@@ -1,0 +1,104 @@
+#pragma once
+// All numerical tolerances and defaults of deepcheck::planners, in one place.
+//
+// Lengths are metres (workspace) or radians (joint space, for revolute joints; metres for
+// prismatic ones). "Joint-space length" is OMPL's RealVectorStateSpace distance: the Euclidean
+// norm of the difference of two configurations.
+
+namespace deepcheck::planners::tol {
+
+/// Longest motion segment that the discrete checks (OMPL's DiscreteMotionValidator, our motion
+/// validator's fallback steps, objective integration) leave unchecked, as a fraction of the state
+/// space's maximum extent. MoveIt's default (longest_valid_segment_fraction 0.005); on the bundled
+/// 7-DOF arm (extent ~13.8 rad) it is ~0.069 rad.
+constexpr double kDefaultSegmentFraction = 0.005;
+
+/// The clearance motion validator's smallest step, as a fraction of the longest valid segment: a
+/// certified step shorter than this is replaced by this uncertified one (the discrete fallback).
+/// Smaller values certify closer to obstacles at the cost of more queries there; 1 would make the
+/// fallback exactly the discrete pass's resolution.
+constexpr double kFallbackStepFraction = 0.25;
+
+/// ... and no point of the robot moves more than this (metres, by the link speed bound) in one
+/// fallback step: a discrete step in joint space can carry a fingertip through a 4 cm wall, this
+/// cannot carry anything through more than 0.5 mm of obstacle.
+constexpr double kFallbackDisplacement = 0.0005;
+
+/// Distance queries that only need to know whether sd exceeds a threshold t ask for distances up
+/// to max(t, 0) + this (metres): a cap strictly above both t and 0, so that pairs whose bounding
+/// volumes touch are always measured. Far below any geometric feature.
+constexpr double kDistanceCapMargin = 1e-6;
+
+/// Push-out aims at this much signed distance ABOVE the acceptance threshold (metres), so that
+/// the linearization error of the last step cannot leave the result invalid. Also the contact
+/// margin: every pair nearer than threshold + this is kept away, not only the deepest one.
+constexpr double kPushOutTargetClearance = 1e-3;
+
+/// Damping of the damped-least-squares step (metres per radian: the units of a row of the
+/// signed-distance gradient). Rows much shorter than this (a pair the joints barely move) get
+/// small steps instead of huge ones.
+constexpr double kPushOutDamping = 0.02;
+
+/// Largest change of one joint value in one push-out iteration (rad or m): keeps the step where
+/// the linearization is meaningful.
+constexpr double kPushOutMaxJointStep = 0.1;
+
+/// Pairs up to this far above the push-out target (metres) are watched: a step that would bring
+/// one of them inside the target makes it a constraint too (active set), so that pushing one pair
+/// out does not push another one in (a gripper straddling a wall).
+constexpr double kPushOutLookahead = 0.02;
+
+/// Bundle of the push-out (see push_out.h): the linearizations of a pair's distance made at
+/// earlier iterates stay constraints while the iterate is within this distance of where they were
+/// made (largest joint difference, rad or m); at most kPushOutBundleSize of them are kept, newest
+/// first. A pair's analytic gradient is one of its one-sided derivatives where the witness jumps
+/// (a flat face pressed onto an edge); the gradients from both sides, kept together, make the
+/// step leave along a direction that helps on both.
+constexpr double kPushOutBundleRadius = 0.2;
+constexpr int kPushOutBundleSize = 16;
+
+/// Pattern-search fallback of the push-out: when the minimum distance has not improved by
+/// kPushOutStallImprovement (metres) over kPushOutStallIterations iterations, or the gradients
+/// give no step, single joints are tried at +-each of kPushOutProbeSteps (rad or m, increasing).
+/// Penetration depth is the SHORTEST separating translation; where the cheap way out in joint
+/// space goes another way (an arm poking sideways into a table edge that tilting lets slip under
+/// it), the gradient is flat and only a probe sees the exit.
+constexpr double kPushOutStallImprovement = 1e-4;
+constexpr int kPushOutStallIterations = 5;
+constexpr double kPushOutProbeSteps[] = {0.05, 0.1, 0.2, 0.4};
+
+/// Push-out iterations before giving up.
+constexpr int kPushOutMaxIterations = 50;
+
+/// Deepest penetration (metres) the push-out starts from: deeper configurations are not "slightly
+/// colliding" and are left alone (PushOutStatus::TooDeep).
+constexpr double kPushOutMaxDepth = 0.05;
+
+/// Path repair (path_tools.h) pushes states out to at least this clearance above the threshold
+/// (metres), so that the chords between repaired neighbours clear the edges they wrap around.
+constexpr double kRepairClearance = 0.005;
+
+/// Random-jiggle baseline (MoveIt's FixStartStateCollision): each attempt moves every joint
+/// uniformly within +-fraction of its range; kJiggleAttempts attempts.
+constexpr double kJiggleFraction = 0.05;
+constexpr int kJiggleAttempts = 100;
+
+/// Safe distance of the clearance hinge objective, metres: states nearer than this to an
+/// obstacle pay max(0, d_safe - sd).
+constexpr double kDefaultSafeDistance = 0.05;
+
+/// Safe distance of the hinge for the robot's self pairs, metres: 0, so self pairs pay only for
+/// penetration. An arm's wrist links stay a few centimetres apart in every configuration (link5
+/// and link7 of the bundled arm: 1-4 cm), so a self clearance goal would tax every path alike.
+constexpr double kDefaultSelfSafeDistance = 0.0;
+
+/// Weight of the hinge objective against path length (1 / metre): with 10, a path that stays 1 cm
+/// inside the safe distance along 1 rad of motion costs as much as 0.1 rad more length.
+constexpr double kDefaultHingeWeight = 10.0;
+
+/// Resolution of the ground-truth checks used by the path verification (path_tools.h) unless
+/// given: joint-space length between two checked states (rad). At 1 m from the axis a point moves
+/// at most ~2 mm between checks on the bundled arm.
+constexpr double kFineResolution = 0.002;
+
+}  // namespace deepcheck::planners::tol

@@ -1,0 +1,159 @@
+#include "deepcheck/planners/motion_bound.h"
+
+#include "deepcheck/robots/collision_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace deepcheck::planners {
+
+LinkSpeedBound::LinkSpeedBound(const robots::RobotModel& model, const std::vector<double>& linkExtent,
+                               std::vector<std::pair<int, int>> selfPairs)
+    : extent_(linkExtent), selfPairs_(std::move(selfPairs)) {
+  const int numLinks = model.numLinks();
+  const int n = model.numVariables();
+  if (static_cast<int>(linkExtent.size()) != numLinks) {
+    throw std::invalid_argument("LinkSpeedBound: " + std::to_string(linkExtent.size()) + " link extents for robot '" +
+                                model.name() + "' with " + std::to_string(numLinks) + " links");
+  }
+  for (const auto& [a, b] : selfPairs_) {
+    if (a < 0 || b < 0 || a >= numLinks || b >= numLinks) {
+      throw std::invalid_argument("LinkSpeedBound: self pair (" + std::to_string(a) + ", " + std::to_string(b) +
+                                  ") names a link robot '" + model.name() + "' does not have");
+    }
+  }
+  speed_ = Eigen::MatrixXd::Zero(numLinks, n);
+  for (int i = 0; i < numLinks; ++i) {
+    const double rho = linkExtent[static_cast<std::size_t>(i)];
+    if (std::isnan(rho) || std::isinf(rho)) {
+      throw std::invalid_argument("LinkSpeedBound: link '" + model.link(i).name + "' has a non-finite extent");
+    }
+    if (rho < 0.0) continue;  // no geometry
+    geometryLinks_.push_back(i);
+    // Walk up the chain; `reach` bounds |p - o| for the points p of link i and the origin o of
+    // the joint frame reached so far.
+    double reach = rho;
+    int link = i;
+    while (model.link(link).parentJoint >= 0) {
+      const robots::Joint& joint = model.joint(model.link(link).parentJoint);
+      double travel = 0.0;
+      if (joint.moves() && joint.variable >= 0) {
+        const double m = std::abs(joint.multiplier);
+        if (joint.type == robots::JointType::Prismatic) {
+          speed_(i, joint.variable) += m;
+          const double lo = joint.multiplier * model.lowerLimits()[joint.variable] + joint.offset;
+          const double hi = joint.multiplier * model.upperLimits()[joint.variable] + joint.offset;
+          travel = std::max(std::abs(lo), std::abs(hi));
+        } else {
+          speed_(i, joint.variable) += m * reach;
+        }
+      }
+      reach += joint.X_PJ.translation().norm() + travel;
+      link = joint.parentLink;
+    }
+  }
+
+  // Self pairs: the variables that move each link relative to the pair's common ancestor.
+  auto ancestors = [&](int link) {
+    std::vector<int> chain;  // link, its parent, ..., the root
+    for (int l = link; l >= 0; l = model.link(l).parentLink) chain.push_back(l);
+    return chain;
+  };
+  auto relativeSpeed = [&](int link, int ancestor, Eigen::RowVectorXd& row) {
+    std::vector<bool> moves(static_cast<std::size_t>(n), false);
+    for (int l = link; l != ancestor; l = model.link(l).parentLink) {
+      const robots::Joint& joint = model.joint(model.link(l).parentJoint);
+      if (joint.moves() && joint.variable >= 0) moves[static_cast<std::size_t>(joint.variable)] = true;
+    }
+    for (int v = 0; v < n; ++v) {
+      if (moves[static_cast<std::size_t>(v)]) row[v] += speed_(link, v);
+    }
+  };
+  selfSpeed_ = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(selfPairs_.size()), n);
+  selfPairRow_ = Eigen::MatrixXi::Constant(numLinks, numLinks, -1);
+  for (std::size_t p = 0; p < selfPairs_.size(); ++p) {
+    const auto [a, b] = selfPairs_[p];
+    const std::vector<int> chainA = ancestors(a);
+    const std::vector<int> chainB = ancestors(b);
+    int common = 0;  // the root is always shared
+    for (int l : chainA) {
+      if (std::find(chainB.begin(), chainB.end(), l) != chainB.end()) {
+        common = l;
+        break;
+      }
+    }
+    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
+    relativeSpeed(a, common, row);
+    relativeSpeed(b, common, row);
+    selfSpeed_.row(static_cast<Eigen::Index>(p)) = row;
+    selfPairRow_(a, b) = static_cast<int>(p);
+    selfPairRow_(b, a) = static_cast<int>(p);
+  }
+}
+
+LinkSpeedBound LinkSpeedBound::forWorld(const checker::World& world) {
+  const robots::RobotModel& model = world.robot();
+  const double excess = world.summaryCounts().geometryExcess;
+  if (std::isnan(excess)) {
+    throw std::invalid_argument("LinkSpeedBound::forWorld: the geometry excess of robot '" + model.name() +
+                                "' is unknown (custom decomposer); give the link extents explicitly");
+  }
+  const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
+  std::vector<double> extent(static_cast<std::size_t>(model.numLinks()), -1.0);
+  for (int i = 0; i < model.numLinks(); ++i) {
+    for (const robots::CollisionPiece& piece : pieces[static_cast<std::size_t>(i)]) {
+      double farthest = 0.0;
+      for (const Eigen::Vector3d& v : piece.core->vertices()) {
+        farthest = std::max(farthest, (piece.X_LP * v).norm());
+      }
+      extent[static_cast<std::size_t>(i)] =
+          std::max(extent[static_cast<std::size_t>(i)], farthest + piece.radius + excess);
+    }
+  }
+  return LinkSpeedBound(model, extent, world.allowedSelfPairs());
+}
+
+double LinkSpeedBound::linkDisplacement(int link, const Eigen::Ref<const Eigen::VectorXd>& dq) const {
+  if (link < 0 || link >= speed_.rows()) {
+    throw std::invalid_argument("LinkSpeedBound::linkDisplacement: no link " + std::to_string(link));
+  }
+  if (dq.size() != speed_.cols()) {
+    throw std::invalid_argument("LinkSpeedBound: a motion of " + std::to_string(dq.size()) + " values for " +
+                                std::to_string(speed_.cols()) + " variables");
+  }
+  return speed_.row(link).dot(dq.cwiseAbs());
+}
+
+void LinkSpeedBound::checkMotion(const Eigen::Ref<const Eigen::VectorXd>& dq) const {
+  if (dq.size() != speed_.cols()) {
+    throw std::invalid_argument("LinkSpeedBound: a motion of " + std::to_string(dq.size()) + " values for " +
+                                std::to_string(speed_.cols()) + " variables");
+  }
+}
+
+double LinkSpeedBound::pairDisplacement(const Eigen::Ref<const Eigen::VectorXd>& dq) const {
+  checkMotion(dq);
+  const Eigen::VectorXd magnitude = dq.cwiseAbs();
+  const Eigen::VectorXd D = speed_ * magnitude;
+  double bound = 0.0;
+  for (int i : geometryLinks_) bound = std::max(bound, D[i]);
+  if (selfSpeed_.rows() > 0) bound = std::max(bound, (selfSpeed_ * magnitude).maxCoeff());
+  return bound;
+}
+
+double LinkSpeedBound::pairDisplacement(int linkA, int linkB, const Eigen::Ref<const Eigen::VectorXd>& dq) const {
+  checkMotion(dq);
+  const int numLinks = static_cast<int>(speed_.rows());
+  if (linkA < 0 || linkA >= numLinks || linkB >= numLinks) {
+    throw std::invalid_argument("LinkSpeedBound::pairDisplacement: no pair (" + std::to_string(linkA) + ", " +
+                                std::to_string(linkB) + ")");
+  }
+  if (linkB < 0) return speed_.row(linkA).dot(dq.cwiseAbs());
+  const int row = selfPairRow_(linkA, linkB);
+  if (row < 0) return (speed_.row(linkA) + speed_.row(linkB)).dot(dq.cwiseAbs());
+  return selfSpeed_.row(row).dot(dq.cwiseAbs());
+}
+
+}  // namespace deepcheck::planners

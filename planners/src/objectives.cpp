@@ -1,0 +1,158 @@
+#include "deepcheck/planners/objectives.h"
+
+#include "deepcheck/planners/state_space.h"
+
+#include <ompl/base/goals/GoalRegion.h>
+#include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace deepcheck::planners {
+
+namespace {
+
+std::string number(double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+/// Path length + weight * hinge, keeping the path length's heuristics (admissible: hinge >= 0).
+class LengthClearanceObjective : public ompl::base::MultiOptimizationObjective {
+ public:
+  explicit LengthClearanceObjective(const ompl::base::SpaceInformationPtr& si)
+      : ompl::base::MultiOptimizationObjective(si) {
+    setCostToGoHeuristic(&ompl::base::goalRegionCostToGo);
+    description_ = "Path length + clearance hinge";
+  }
+  ompl::base::Cost motionCostHeuristic(const ompl::base::State* s1, const ompl::base::State* s2) const override {
+    return ompl::base::Cost(si_->distance(s1, s2));
+  }
+};
+
+}  // namespace
+
+ClearanceHingeObjective::ClearanceHingeObjective(const ompl::base::SpaceInformationPtr& si,
+                                                 std::shared_ptr<const StateValidityChecker> checker,
+                                                 double safeDistance, std::shared_ptr<const LinkSpeedBound> bound,
+                                                 double resolution)
+    : ompl::base::OptimizationObjective(si),
+      checker_(std::move(checker)),
+      bound_(std::move(bound)),
+      safeDistance_(safeDistance),
+      resolution_(resolution) {
+  if (!checker_) throw std::invalid_argument("ClearanceHingeObjective: the validity checker is null");
+  if (!std::isfinite(safeDistance) || safeDistance < 0.0) {
+    throw std::invalid_argument("ClearanceHingeObjective: safe distance must be finite and >= 0, got " +
+                                number(safeDistance));
+  }
+  if (std::isnan(resolution) || std::isinf(resolution)) {
+    throw std::invalid_argument("ClearanceHingeObjective: resolution must be finite, got " + number(resolution));
+  }
+  n_ = checker_->dimension();
+  description_ = "Clearance hinge (d_safe " + number(safeDistance) + " m)";
+}
+
+void ClearanceHingeObjective::setSelfSafeDistance(double d) {
+  if (!std::isfinite(d) || d < 0.0) {
+    throw std::invalid_argument("ClearanceHingeObjective: self safe distance must be finite and >= 0, got " +
+                                number(d));
+  }
+  selfSafeDistance_ = d;
+}
+
+double ClearanceHingeObjective::hinge(const SplitDistance& d) const {
+  return std::max({0.0, safeDistance_ - d.world, selfSafeDistance_ - d.self});
+}
+
+double ClearanceHingeObjective::hinge(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  const double cap = std::max(safeDistance_, selfSafeDistance_) + tol::kDistanceCapMargin;
+  return hinge(checker_->splitClearanceUpTo(q, cap));
+}
+
+ompl::base::Cost ClearanceHingeObjective::stateCost(const ompl::base::State* s) const {
+  return ompl::base::Cost(hinge(mapState(s, n_)));
+}
+
+ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1, const ompl::base::State* s2) const {
+  const auto q1 = mapState(s1, n_);
+  const auto q2 = mapState(s2, n_);
+  const Eigen::VectorXd dq = q2 - q1;
+  const double length = si_->distance(s1, s2);
+  if (!(length > 0.0)) return ompl::base::Cost(0.0);
+  const double resolution = resolution_ > 0.0 ? resolution_ : si_->getStateSpace()->getLongestValidSegmentLength();
+  const int segments = std::max(1, static_cast<int>(std::ceil(length / resolution)));
+  const auto at = [&](int k) -> Eigen::VectorXd { return q1 + (static_cast<double>(k) / segments) * dq; };
+
+  // Trapezoid rule on the states k = 0..segments: sum of h_k with weight 1/2 at the ends, times
+  // length / segments.
+  double sum = 0.0;
+  if (!bound_) {
+    for (int k = 0; k <= segments; ++k) sum += (k == 0 || k == segments ? 0.5 : 1.0) * hinge(at(k));
+    return ompl::base::Cost(sum * length / segments);
+  }
+  // With the bound: bisection over the states. On the states i..j the pair distances move by at
+  // most B_ij = B(dq (j - i) / segments), so each of sd_world and sd_self stays at least
+  // (sd_i + sd_j - B_ij) / 2 there; when that is >= its safe distance for both, every h_k in
+  // between is 0 and is not evaluated. Otherwise the middle state is evaluated and both halves
+  // looked at. The sum is the full trapezoid sum: only zero terms are skipped. Distances are
+  // asked up to d + B_ij, all the tests below that state need.
+  const double safe = std::max(safeDistance_, selfSafeDistance_);
+  const auto reach = [&](int i, int j) {
+    return bound_->pairDisplacement(dq * (static_cast<double>(j - i) / segments));
+  };
+  const auto split = [&](int k, double B) { return checker_->splitClearanceUpTo(at(k), safe + B + tol::kDistanceCapMargin); };
+  const auto zeroBetween = [&](const SplitDistance& a, const SplitDistance& b, double B) {
+    return (a.world + b.world - B) / 2.0 >= safeDistance_ && (a.self + b.self - B) / 2.0 >= selfSafeDistance_;
+  };
+  const double Btotal = reach(0, segments);
+  const SplitDistance first = split(0, Btotal);
+  const SplitDistance last = split(segments, Btotal);
+  sum = 0.5 * (hinge(first) + hinge(last));
+  struct Span {
+    int i, j;
+    SplitDistance a, b;
+  };
+  std::vector<Span> stack{{0, segments, first, last}};
+  while (!stack.empty()) {
+    const Span span = stack.back();
+    stack.pop_back();
+    if (span.j - span.i <= 1) continue;
+    const double B = reach(span.i, span.j);
+    if (zeroBetween(span.a, span.b, B)) continue;
+    const int m = (span.i + span.j) / 2;
+    const SplitDistance mid = split(m, B);
+    sum += hinge(mid);
+    stack.push_back({span.i, m, span.a, mid});
+    stack.push_back({m, span.j, mid, span.b});
+  }
+  return ompl::base::Cost(sum * length / segments);
+}
+
+ompl::base::OptimizationObjectivePtr makeLengthClearanceObjective(const ompl::base::SpaceInformationPtr& si,
+                                                                  std::shared_ptr<const StateValidityChecker> checker,
+                                                                  double safeDistance, double weight,
+                                                                  std::shared_ptr<const LinkSpeedBound> bound) {
+  if (!std::isfinite(weight) || weight < 0.0) {
+    throw std::invalid_argument("makeLengthClearanceObjective: weight must be finite and >= 0, got " + number(weight));
+  }
+  auto objective = std::make_shared<LengthClearanceObjective>(si);
+  objective->addObjective(std::make_shared<ompl::base::PathLengthOptimizationObjective>(si), 1.0);
+  objective->addObjective(
+      std::make_shared<ClearanceHingeObjective>(si, std::move(checker), safeDistance, std::move(bound)), weight);
+  objective->lock();
+  return objective;
+}
+
+ompl::base::OptimizationObjectivePtr makeMaxMinClearanceObjective(const ompl::base::SpaceInformationPtr& si) {
+  if (!si) throw std::invalid_argument("makeMaxMinClearanceObjective: the space information is null");
+  return std::make_shared<ompl::base::MaximizeMinClearanceObjective>(si);
+}
+
+}  // namespace deepcheck::planners

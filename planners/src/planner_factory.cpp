@@ -1,0 +1,116 @@
+#include "deepcheck/planners/planner_factory.h"
+
+#include <ompl/geometric/planners/est/BiEST.h>
+#include <ompl/geometric/planners/est/EST.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
+#include <ompl/geometric/planners/kpiece/BKPIECE1.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/geometric/planners/prm/LazyPRM.h>
+#include <ompl/geometric/planners/prm/LazyPRMstar.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/prm/PRMstar.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/geometric/planners/rrt/TRRT.h>
+#include <ompl/geometric/planners/sbl/SBL.h>
+
+#include <algorithm>
+#include <cctype>
+#include <functional>
+#include <stdexcept>
+#include <utility>
+
+namespace deepcheck::planners {
+
+namespace {
+
+namespace og = ompl::geometric;
+using Maker = std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInformationPtr&)>;
+
+template <class P>
+Maker maker() {
+  return [](const ompl::base::SpaceInformationPtr& si) { return std::make_shared<P>(si); };
+}
+
+/// BIT* is k-nearest by default, and OMPL renames (with a warning) a k-nearest BIT* called
+/// "BITstar" at setup: name it "kBITstar" from the start.
+Maker bitStar() {
+  return [](const ompl::base::SpaceInformationPtr& si) { return std::make_shared<og::BITstar>(si, "kBITstar"); };
+}
+
+struct Entry {
+  const char* name;
+  bool optimizing;
+  Maker make;
+};
+
+const std::vector<Entry>& table() {
+  static const std::vector<Entry> entries = {
+      {"RRTConnect", false, maker<og::RRTConnect>()},
+      {"RRT", false, maker<og::RRT>()},
+      {"RRT*", true, maker<og::RRTstar>()},
+      {"InformedRRT*", true, maker<og::InformedRRTstar>()},
+      {"BIT*", true, bitStar()},
+      {"PRM", false, maker<og::PRM>()},
+      {"PRM*", true, maker<og::PRMstar>()},
+      {"LazyPRM", false, maker<og::LazyPRM>()},
+      {"LazyPRM*", true, maker<og::LazyPRMstar>()},
+      {"KPIECE1", false, maker<og::KPIECE1>()},
+      {"BKPIECE1", false, maker<og::BKPIECE1>()},
+      {"EST", false, maker<og::EST>()},
+      {"BiEST", false, maker<og::BiEST>()},
+      {"SBL", false, maker<og::SBL>()},
+      {"FMT", true, maker<og::FMT>()},
+      {"TRRT", false, maker<og::TRRT>()},
+  };
+  return entries;
+}
+
+/// Lower case, "star" for "*".
+std::string canonical(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    if (c == '*') {
+      out += "star";
+    } else {
+      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+  }
+  return out;
+}
+
+const Entry* find(const std::string& name) {
+  const std::string key = canonical(name);
+  for (const Entry& e : table()) {
+    if (canonical(e.name) == key) return &e;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> plannerNames() {
+  std::vector<std::string> names;
+  for (const Entry& e : table()) names.emplace_back(e.name);
+  return names;
+}
+
+ompl::base::PlannerPtr makePlanner(const std::string& name, const ompl::base::SpaceInformationPtr& si) {
+  const Entry* e = find(name);
+  if (e == nullptr) {
+    std::string known;
+    for (const Entry& entry : table()) known += std::string(known.empty() ? "" : ", ") + entry.name;
+    throw std::invalid_argument("unknown planner '" + name + "' (known: " + known + ")");
+  }
+  return e->make(si);
+}
+
+bool isOptimizingPlanner(const std::string& name) {
+  const Entry* e = find(name);
+  return e != nullptr && e->optimizing;
+}
+
+}  // namespace deepcheck::planners

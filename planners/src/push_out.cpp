@@ -1,0 +1,341 @@
+// Push-out by damped least squares over all contacts, and the random-jiggle baseline
+// (see push_out.h for the method and its departures from a textbook projection).
+
+#include "deepcheck/planners/push_out.h"
+
+#include "deepcheck/robots/kinematics.h"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace deepcheck::planners {
+
+namespace {
+
+std::string number(double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+/// A uniform double in [0, 1) from the raw output of the generator (portable: the standard leaves
+/// std::uniform_real_distribution's algorithm to each library).
+double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+/// One pair the push-out watches: its distance and gradient at the current iterate.
+struct Row {
+  int linkA = -1;
+  checker::BodyRef bodyB;
+  double distance = 0.0;
+  Eigen::VectorXd gradient;
+};
+
+/// One damped-least-squares step within the joint limits (push_out.h, steps 2 and 3), with the
+/// rows farther than the target joining the constraints when the step would bring them inside it.
+Eigen::VectorXd limitedStep(const std::vector<Row>& rows, double target, const Eigen::VectorXd& q,
+                            const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                            const PushOutOptions& options) {
+  const int n = static_cast<int>(q.size());
+  const int m = static_cast<int>(rows.size());
+  std::vector<bool> active(static_cast<std::size_t>(m));
+  for (int i = 0; i < m; ++i) active[static_cast<std::size_t>(i)] = rows[static_cast<std::size_t>(i)].distance <= target;
+  std::vector<bool> fixed(static_cast<std::size_t>(n), false);
+  Eigen::VectorXd dq = Eigen::VectorXd::Zero(n);  // the clipped joints' motion onto their limits
+  Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
+  const double lambda2 = options.damping * options.damping;
+  for (int round = 0; round <= n + m; ++round) {
+    std::vector<int> freeJoints;
+    std::vector<int> activeRows;
+    for (int j = 0; j < n; ++j) {
+      if (!fixed[static_cast<std::size_t>(j)]) freeJoints.push_back(j);
+    }
+    for (int i = 0; i < m; ++i) {
+      if (active[static_cast<std::size_t>(i)]) activeRows.push_back(i);
+    }
+    step = dq;
+    if (freeJoints.empty() || activeRows.empty()) break;
+    const int k = static_cast<int>(freeJoints.size());
+    const int a = static_cast<int>(activeRows.size());
+    Eigen::MatrixXd A(a, k);
+    Eigen::VectorXd rhs(a);
+    for (int r = 0; r < a; ++r) {
+      const Row& row = rows[static_cast<std::size_t>(activeRows[static_cast<std::size_t>(r)])];
+      for (int c = 0; c < k; ++c) A(r, c) = row.gradient[freeJoints[static_cast<std::size_t>(c)]];
+      // The clipped joints already move this pair by gradient . dq.
+      rhs[r] = target - row.distance - row.gradient.dot(dq);
+    }
+    Eigen::MatrixXd M = A * A.transpose();
+    M.diagonal().array() += lambda2;
+    Eigen::VectorXd dFree = A.transpose() * M.ldlt().solve(rhs);
+    const double largest = dFree.cwiseAbs().maxCoeff();
+    if (largest > options.maxJointStep) dFree *= options.maxJointStep / largest;
+    for (int c = 0; c < k; ++c) step[freeJoints[static_cast<std::size_t>(c)]] = dFree[c];
+
+    bool changed = false;
+    for (int c = 0; c < k; ++c) {
+      const int j = freeJoints[static_cast<std::size_t>(c)];
+      const double next = q[j] + step[j];
+      if (next < lower[j] || next > upper[j]) {
+        dq[j] = std::clamp(next, lower[j], upper[j]) - q[j];
+        fixed[static_cast<std::size_t>(j)] = true;
+        changed = true;
+      }
+    }
+    for (int i = 0; i < m; ++i) {
+      const Row& row = rows[static_cast<std::size_t>(i)];
+      if (!active[static_cast<std::size_t>(i)] && row.distance + row.gradient.dot(step) < target) {
+        active[static_cast<std::size_t>(i)] = true;
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  return step;
+}
+
+}  // namespace
+
+const char* toString(PushOutStatus status) {
+  switch (status) {
+    case PushOutStatus::AlreadyValid: return "AlreadyValid";
+    case PushOutStatus::Repaired: return "Repaired";
+    case PushOutStatus::TooDeep: return "TooDeep";
+    case PushOutStatus::NotConverged: return "NotConverged";
+  }
+  return "?";
+}
+
+void checkPushOutOptions(const PushOutOptions& options) {
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0.0) || std::isnan(v)) {
+      throw std::invalid_argument(std::string("PushOutOptions: ") + name + " must be > 0, got " + number(v));
+    }
+  };
+  positive(options.targetClearance, "targetClearance");
+  positive(options.damping, "damping");
+  positive(options.maxJointStep, "maxJointStep");
+  positive(options.maxDepth, "maxDepth");
+  if (!std::isfinite(options.targetClearance) || !std::isfinite(options.damping) ||
+      !std::isfinite(options.maxJointStep)) {
+    throw std::invalid_argument("PushOutOptions: targetClearance, damping and maxJointStep must be finite");
+  }
+  if (options.maxIterations < 1) {
+    throw std::invalid_argument("PushOutOptions: maxIterations must be >= 1, got " +
+                                std::to_string(options.maxIterations));
+  }
+}
+
+PushOut::PushOut(std::shared_ptr<const checker::World> world, const ValidityOptions& validity,
+                 const PushOutOptions& options)
+    : world_(std::move(world)), validity_(validity), options_(options) {
+  if (!world_) throw std::invalid_argument("PushOut: the world is null");
+  checkValidityOptions(validity_);
+  checkPushOutOptions(options_);
+}
+
+PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& q0) const {
+  const robots::RobotModel& model = world_->robot();
+  robots::checkConfiguration(model, q0);
+  const Eigen::VectorXd& lower = model.lowerLimits();
+  const Eigen::VectorXd& upper = model.upperLimits();
+
+  PushOutResult result;
+  result.q = q0.cwiseMax(lower).cwiseMin(upper);
+  result.initialDistance = std::numeric_limits<double>::quiet_NaN();
+  result.finalDistance = std::numeric_limits<double>::quiet_NaN();
+  const bool clamped = result.q != q0;
+  if (isConfigurationValid(*world_, result.q, validity_)) {
+    result.status = clamped ? PushOutStatus::Repaired : PushOutStatus::AlreadyValid;
+    result.jointMotion = (result.q - q0).norm();
+    return result;
+  }
+
+  const double target = validity_.threshold() + options_.targetClearance;
+  const double watch = target + tol::kPushOutLookahead;
+  auto query = [&](const Eigen::VectorXd& q, bool gradient) {
+    checker::DistanceOptions options;
+    options.gradient = gradient;
+    options.contactMargin = watch;
+    options.maxDistance = std::max(watch, 0.0) + tol::kDistanceCapMargin;
+    return world_->signedDistance(q, options);
+  };
+  auto minimum = [&](const checker::DistanceResult& d) { return d.found ? d.closest.distance : watch; };
+
+  checker::DistanceResult d = query(result.q, true);
+  result.initialDistance = minimum(d);
+  if (result.initialDistance < -options_.maxDepth) {
+    result.status = PushOutStatus::TooDeep;
+    result.q = q0;
+    result.finalDistance = result.initialDistance;
+    return result;
+  }
+
+  // Linearizations made at other iterates (the bundle), newest last.
+  struct Cut {
+    Row row;
+    Eigen::VectorXd at;
+  };
+  std::vector<Cut> bundle;
+  auto remember = [&](const checker::DistanceResult& dAt, const Eigen::VectorXd& at) {
+    for (const checker::Contact& c : dAt.contacts) {
+      if (c.gradient.size() == q0.size()) bundle.push_back(Cut{Row{c.linkA, c.bodyB, c.distance, c.gradient}, at});
+    }
+    if (bundle.size() > static_cast<std::size_t>(tol::kPushOutBundleSize)) {
+      bundle.erase(bundle.begin(), bundle.end() - tol::kPushOutBundleSize);
+    }
+  };
+
+  // Pattern search (see tol::kPushOutProbeSteps): the smallest single-joint move that makes q
+  // valid, else the one that improves the minimum distance most. False when none improves.
+  auto probe = [&](Eigen::VectorXd& q, bool& isValid) {
+    const double current = minimum(d);
+    double best = current;
+    Eigen::VectorXd bestQ;
+    for (double size : tol::kPushOutProbeSteps) {
+      for (Eigen::Index j = 0; j < q0.size(); ++j) {
+        for (double sign : {1.0, -1.0}) {
+          Eigen::VectorXd candidate = q;
+          candidate[j] = std::clamp(candidate[j] + sign * size, lower[j], upper[j]);
+          if (candidate[j] == q[j]) continue;
+          const double sd = signedDistanceUpTo(*world_, candidate, watch);
+          if (sd > validity_.threshold() && isConfigurationValid(*world_, candidate, validity_)) {
+            q = candidate;
+            isValid = true;
+            return true;
+          }
+          if (sd > best) {
+            best = sd;
+            bestQ = candidate;
+          }
+        }
+      }
+    }
+    if (!(best > current)) return false;
+    q = bestQ;
+    return true;
+  };
+
+  std::vector<Row> rows;
+  int rejected = 0;  // consecutive steps that made the minimum distance worse
+  int stalled = 0;   // iterations without kPushOutStallImprovement
+  double bestMinimum = minimum(d);
+  bool valid = false;
+  for (int iteration = 0; iteration < options_.maxIterations && !valid; ++iteration) {
+    result.iterations = iteration + 1;
+    rows.clear();
+    for (const checker::Contact& c : d.contacts) {
+      if (c.gradient.size() == q0.size()) rows.push_back(Row{c.linkA, c.bodyB, c.distance, c.gradient});
+    }
+    for (const Cut& cut : bundle) {
+      const Eigen::VectorXd offset = result.q - cut.at;
+      if (offset.cwiseAbs().maxCoeff() > tol::kPushOutBundleRadius) continue;
+      Row row = cut.row;
+      row.distance += row.gradient.dot(offset);  // the cut's linearization, evaluated here
+      rows.push_back(std::move(row));
+    }
+    const Eigen::VectorXd dq = rows.empty() ? Eigen::VectorXd::Zero(q0.size())
+                                            : limitedStep(rows, target, result.q, lower, upper, options_);
+    if (!(dq.cwiseAbs().maxCoeff() > 0.0) || stalled >= tol::kPushOutStallIterations) {
+      // No step from the gradients (every useful joint on its limit, or a flat distance), or no
+      // progress: probe single joints.
+      if (!probe(result.q, valid)) break;
+      if (valid) break;
+      bundle.clear();
+      stalled = 0;
+      rejected = 0;
+      d = query(result.q, true);
+      bestMinimum = minimum(d);
+      continue;
+    }
+    const Eigen::VectorXd next = result.q + dq;
+    if (isConfigurationValid(*world_, next, validity_)) {
+      result.q = next;
+      valid = true;
+      break;
+    }
+    checker::DistanceResult dNext = query(next, true);
+    if (minimum(dNext) < minimum(d) && rejected < 2) {
+      // Worse than before: stay, but keep what was learned there (its gradients) for the next try.
+      ++rejected;
+      ++stalled;
+      remember(dNext, next);
+      continue;
+    }
+    rejected = 0;
+    remember(d, result.q);
+    result.q = next;
+    d = std::move(dNext);
+    if (minimum(d) > bestMinimum + tol::kPushOutStallImprovement) {
+      bestMinimum = minimum(d);
+      stalled = 0;
+    } else {
+      ++stalled;
+    }
+  }
+  result.status = valid ? PushOutStatus::Repaired : PushOutStatus::NotConverged;
+  result.jointMotion = (result.q - q0).norm();
+  result.finalDistance = signedDistanceUpTo(*world_, result.q, std::numeric_limits<double>::infinity());
+  return result;
+}
+
+PushOutResult jiggle(const checker::World& world, const ValidityOptions& validity,
+                     const Eigen::Ref<const Eigen::VectorXd>& q, const JiggleOptions& options,
+                     std::mt19937_64& rng) {
+  checkValidityOptions(validity);
+  if (!(options.fraction > 0.0) || !std::isfinite(options.fraction)) {
+    throw std::invalid_argument("JiggleOptions: fraction must be finite and > 0, got " + number(options.fraction));
+  }
+  if (options.attempts < 1) {
+    throw std::invalid_argument("JiggleOptions: attempts must be >= 1, got " + std::to_string(options.attempts));
+  }
+  const robots::RobotModel& model = world.robot();
+  robots::checkConfiguration(model, q);
+  const Eigen::VectorXd& lower = model.lowerLimits();
+  const Eigen::VectorXd& upper = model.upperLimits();
+
+  PushOutResult result;
+  result.q = q;
+  result.initialDistance = std::numeric_limits<double>::quiet_NaN();
+  result.finalDistance = std::numeric_limits<double>::quiet_NaN();
+  if (q.cwiseMax(lower).cwiseMin(upper) == q && isConfigurationValid(world, q, validity)) {
+    result.status = PushOutStatus::AlreadyValid;
+    return result;
+  }
+  Eigen::VectorXd candidate(q.size());
+  for (int attempt = 1; attempt <= options.attempts; ++attempt) {
+    for (Eigen::Index j = 0; j < q.size(); ++j) {
+      const double half = options.fraction * (upper[j] - lower[j]);
+      candidate[j] = std::clamp(q[j] + (2.0 * uniform01(rng) - 1.0) * half, lower[j], upper[j]);
+    }
+    result.iterations = attempt;
+    if (isConfigurationValid(world, candidate, validity)) {
+      result.status = PushOutStatus::Repaired;
+      result.q = candidate;
+      result.jointMotion = (candidate - q).norm();
+      result.finalDistance = signedDistanceUpTo(world, candidate, std::numeric_limits<double>::infinity());
+      return result;
+    }
+  }
+  result.status = PushOutStatus::NotConverged;
+  return result;
+}
+
+double maxLinkDisplacement(const robots::RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& a,
+                           const Eigen::Ref<const Eigen::VectorXd>& b) {
+  const std::vector<Eigen::Isometry3d> X_a = robots::forwardKinematics(model, a);
+  const std::vector<Eigen::Isometry3d> X_b = robots::forwardKinematics(model, b);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < X_a.size(); ++i) {
+    largest = std::max(largest, (X_a[i].translation() - X_b[i].translation()).norm());
+  }
+  return largest;
+}
+
+}  // namespace deepcheck::planners

@@ -1,0 +1,171 @@
+#include "deepcheck/planners/setup.h"
+
+#include "deepcheck/planners/motion_validator.h"
+#include "deepcheck/planners/state_space.h"
+#include "deepcheck/planners/valid_state_sampler.h"
+#include "deepcheck/robots/kinematics.h"
+#include "deepcheck/robots/pair_filter.h"
+
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/goals/GoalState.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+namespace deepcheck::planners {
+
+namespace {
+
+robots::LoadOptions loadOptions(const SetupOptions& options) {
+  robots::LoadOptions load;
+  load.packageRoots = options.packagePaths;
+  load.useRosPackagePath = options.useRosPackagePath;
+  return load;
+}
+
+void checkConfigurationNamed(const robots::RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                             const char* what) {
+  try {
+    robots::checkConfiguration(model, q);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(what) + " configuration: " + e.what());
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<checker::World> loadWorld(const std::string& robotUrdf, const std::vector<SceneSpec>& scenes,
+                                          const SetupOptions& options) {
+  const robots::LoadOptions load = loadOptions(options);
+  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(robotUrdf, load);
+  checker::WorldOptions worldOptions = options.world;
+  if (!options.srdf.empty()) {
+    const std::vector<robots::DisabledPair> pairs = robots::readSrdfDisabledPairs(options.srdf);
+    robots::checkDisabledPairs(robot, pairs, options.srdf);
+    worldOptions.disabledPairs.insert(worldOptions.disabledPairs.end(), pairs.begin(), pairs.end());
+  }
+  auto world = std::make_shared<checker::World>(std::move(robot), worldOptions);
+  for (const SceneSpec& spec : scenes) {
+    robots::RobotModel scene = robots::RobotModel::fromUrdfFile(spec.urdf, load);
+    checker::SceneOptions sceneOptions;
+    sceneOptions.q = spec.q;
+    sceneOptions.overridePose = spec.overridePose;
+    sceneOptions.X_WS = spec.X_WS;
+    world->addScene(std::move(scene), sceneOptions);
+  }
+  return world;
+}
+
+std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(std::shared_ptr<const checker::World> world,
+                                                              const SetupOptions& options) {
+  if (!world) throw std::invalid_argument("makeSimpleSetup: the world is null");
+  if (!(options.segmentFraction > 0.0 && options.segmentFraction <= 1.0)) {
+    throw std::invalid_argument("makeSimpleSetup: segmentFraction must be in (0, 1], got " +
+                                std::to_string(options.segmentFraction));
+  }
+  auto space = makeStateSpace(world->robot());
+  space->setLongestValidSegmentFraction(options.segmentFraction);
+  auto ss = std::make_shared<ompl::geometric::SimpleSetup>(space);
+  const ompl::base::SpaceInformationPtr& si = ss->getSpaceInformation();
+  auto checker = std::make_shared<StateValidityChecker>(si.get(), world, options.validity, options.pushOut);
+  ss->setStateValidityChecker(checker);
+  switch (options.motionValidation) {
+    case MotionValidation::Clearance: {
+      auto bound = std::make_shared<const LinkSpeedBound>(LinkSpeedBound::forWorld(*world));
+      si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si.get(), checker, bound));
+      break;
+    }
+    case MotionValidation::Discrete:
+      si->setMotionValidator(std::make_shared<ompl::base::DiscreteMotionValidator>(si.get()));
+      break;
+  }
+  if (options.pushOutSampler) si->setValidStateSamplerAllocator(pushOutSamplerAllocator(checker));
+  si->setup();
+  return ss;
+}
+
+std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(const std::string& robotUrdf,
+                                                              const std::vector<SceneSpec>& scenes,
+                                                              const SetupOptions& options) {
+  return makeSimpleSetup(loadWorld(robotUrdf, scenes, options), options);
+}
+
+std::shared_ptr<const StateValidityChecker> validityCheckerOf(const ompl::geometric::SimpleSetup& ss) {
+  auto checker = std::dynamic_pointer_cast<const StateValidityChecker>(ss.getStateValidityChecker());
+  if (!checker) {
+    throw std::invalid_argument("validityCheckerOf: the SimpleSetup's validity checker is not a "
+                                "deepcheck::planners::StateValidityChecker");
+  }
+  return checker;
+}
+
+std::shared_ptr<const LinkSpeedBound> linkSpeedBoundOf(const ompl::geometric::SimpleSetup& ss) {
+  auto validator =
+      std::dynamic_pointer_cast<const ClearanceMotionValidator>(ss.getSpaceInformation()->getMotionValidator());
+  // The validator owns its bound for as long as it lives; share its ownership.
+  if (validator) return std::shared_ptr<const LinkSpeedBound>(validator, &validator->bound());
+  return std::make_shared<const LinkSpeedBound>(LinkSpeedBound::forWorld(validityCheckerOf(ss)->world()));
+}
+
+ompl::base::SpaceInformationPtr certifyingSpaceInformation(const ompl::geometric::SimpleSetup& ss) {
+  const auto checker = validityCheckerOf(ss);
+  auto si = std::make_shared<ompl::base::SpaceInformation>(ss.getStateSpace());
+  si->setStateValidityChecker(std::const_pointer_cast<StateValidityChecker>(checker));
+  si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si.get(), checker, linkSpeedBoundOf(ss)));
+  si->setup();
+  return si;
+}
+
+PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path) {
+  const ompl::base::SpaceInformationPtr si = certifyingSpaceInformation(ss);
+  PathCertificate certificate;
+  certificate.initial = checkPathWithPlanner(path, si.get());
+  certificate.valid = certificate.initial.valid;
+  if (!certificate.valid) {
+    certificate.repaired = true;
+    certificate.repair = repairPath(path, si);
+    certificate.valid = certificate.repair.valid;
+  }
+  return certificate;
+}
+
+void setStartAndGoal(ompl::geometric::SimpleSetup& ss, const Eigen::Ref<const Eigen::VectorXd>& start,
+                     const Eigen::Ref<const Eigen::VectorXd>& goal) {
+  const robots::RobotModel& model = validityCheckerOf(ss).get()->world().robot();
+  checkConfigurationNamed(model, start, "start");
+  checkConfigurationNamed(model, goal, "goal");
+  ompl::base::ScopedState<> s(ss.getStateSpace());
+  ompl::base::ScopedState<> g(ss.getStateSpace());
+  copyToState(start, s.get());
+  copyToState(goal, g.get());
+  ss.setStartAndGoalStates(s, g);
+}
+
+bool EndpointRepair::ok() const {
+  for (const PushOutResult& r : starts) {
+    if (!r.success()) return false;
+  }
+  return !goalIsState || goal.success();
+}
+
+EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss) {
+  const auto checker = validityCheckerOf(ss);
+  const int n = checker->dimension();
+  const ompl::base::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();
+  EndpointRepair repair;
+  for (unsigned int i = 0; i < pdef->getStartStateCount(); ++i) {
+    ompl::base::State* start = pdef->getStartState(i);
+    repair.starts.push_back(checker->pushOut().run(mapState(start, n)));
+    if (repair.starts.back().success()) copyToState(repair.starts.back().q, start);
+  }
+  if (auto goal = std::dynamic_pointer_cast<ompl::base::GoalState>(pdef->getGoal())) {
+    repair.goalIsState = true;
+    repair.goal = checker->pushOut().run(mapState(goal->getState(), n));
+    if (repair.goal.success()) copyToState(repair.goal.q, goal->getState());
+  }
+  return repair;
+}
+
+}  // namespace deepcheck::planners

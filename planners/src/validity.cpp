@@ -1,0 +1,54 @@
+#include "deepcheck/planners/validity.h"
+
+#include "deepcheck/planners/tolerances.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace deepcheck::planners {
+
+void checkValidityOptions(const ValidityOptions& options) {
+  if (!std::isfinite(options.penetrationTolerance) || options.penetrationTolerance < 0.0) {
+    throw std::invalid_argument("ValidityOptions: penetrationTolerance must be finite and >= 0, got " +
+                                std::to_string(options.penetrationTolerance));
+  }
+  if (!std::isfinite(options.safetyMargin) || options.safetyMargin < 0.0) {
+    throw std::invalid_argument("ValidityOptions: safetyMargin must be finite and >= 0, got " +
+                                std::to_string(options.safetyMargin));
+  }
+}
+
+double signedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q,
+                          double cap) {
+  checker::DistanceOptions options;
+  options.maxDistance = cap;
+  const checker::DistanceResult result = world.signedDistance(q, options);
+  // found == false: no pair measured below the cap, so every pair is at least `cap` away.
+  return result.found ? std::min(result.closest.distance, cap) : cap;
+}
+
+SplitDistance splitSignedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                      double cap) {
+  // Two pruned minimum searches, one per kind of pair: far cheaper than a contact list with a
+  // margin of `cap`, which measures every body pair within it.
+  checker::DistanceOptions options;
+  options.maxDistance = cap;
+  options.selfPairs = false;
+  const checker::DistanceResult w = world.signedDistance(q, options);
+  options.selfPairs = true;
+  options.worldPairs = false;
+  const checker::DistanceResult s = world.signedDistance(q, options);
+  return SplitDistance{w.found ? std::min(w.closest.distance, cap) : cap, s.found ? std::min(s.closest.distance, cap) : cap};
+}
+
+bool isConfigurationValid(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q,
+                          const ValidityOptions& options) {
+  const double threshold = options.threshold();
+  if (threshold == 0.0) return world.isFree(q);
+  const double cap = std::max(threshold, 0.0) + tol::kDistanceCapMargin;
+  return signedDistanceUpTo(world, q, cap) > threshold;
+}
+
+}  // namespace deepcheck::planners

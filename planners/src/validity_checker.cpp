@@ -1,0 +1,112 @@
+#include "deepcheck/planners/validity_checker.h"
+
+#include "deepcheck/planners/state_space.h"
+#include "deepcheck/robots/kinematics.h"
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace deepcheck::planners {
+
+namespace {
+
+const std::shared_ptr<const checker::World>& nonNull(const std::shared_ptr<const checker::World>& world) {
+  if (!world) throw std::invalid_argument("StateValidityChecker: the world is null");
+  return world;
+}
+
+}  // namespace
+
+StateValidityChecker::StateValidityChecker(ompl::base::SpaceInformation* si,
+                                           std::shared_ptr<const checker::World> world,
+                                           const ValidityOptions& validity, const PushOutOptions& pushOut)
+    : ompl::base::StateValidityChecker(si),
+      world_(nonNull(world)),
+      validity_(validity),
+      pushOut_(world_, validity, pushOut),
+      n_(world_->robot().numVariables()) {
+  if (si == nullptr) throw std::invalid_argument("StateValidityChecker: the space information is null");
+  const unsigned int dimension = si->getStateDimension();
+  if (dimension != static_cast<unsigned int>(n_)) {
+    throw std::invalid_argument("StateValidityChecker: the state space has dimension " + std::to_string(dimension) +
+                                " but robot '" + world_->robot().name() + "' has " + std::to_string(n_) +
+                                " variables");
+  }
+  specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
+  specs_.hasValidDirectionComputation = true;
+}
+
+StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                                           std::shared_ptr<const checker::World> world,
+                                           const ValidityOptions& validity, const PushOutOptions& pushOut)
+    : StateValidityChecker(si.get(), std::move(world), validity, pushOut) {}
+
+bool StateValidityChecker::withinBounds(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  const robots::RobotModel& model = world_->robot();
+  if (q.size() != n_) robots::checkConfiguration(model, q);  // throws, naming the sizes
+  return (q.array() >= model.lowerLimits().array()).all() && (q.array() <= model.upperLimits().array()).all();
+}
+
+bool StateValidityChecker::isValid(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  validityQueries_.fetch_add(1, std::memory_order_relaxed);
+  if (!withinBounds(q)) return false;
+  return isConfigurationValid(*world_, q, validity_);
+}
+
+double StateValidityChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  return clearanceUpTo(q, std::numeric_limits<double>::infinity());
+}
+
+double StateValidityChecker::clearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q, double cap) const {
+  distanceQueries_.fetch_add(1, std::memory_order_relaxed);
+  return signedDistanceUpTo(*world_, q, cap);
+}
+
+SplitDistance StateValidityChecker::splitClearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                                       double cap) const {
+  distanceQueries_.fetch_add(1, std::memory_order_relaxed);
+  return splitSignedDistanceUpTo(*world_, q, cap);
+}
+
+bool StateValidityChecker::isValid(const ompl::base::State* state) const { return isValid(mapState(state, n_)); }
+
+bool StateValidityChecker::isValid(const ompl::base::State* state, double& dist) const {
+  const auto q = mapState(state, n_);
+  dist = clearance(q);
+  validityQueries_.fetch_add(1, std::memory_order_relaxed);
+  if (!withinBounds(q)) return false;
+  // Same criterion as isValid(q), decided from the distance already computed; the threshold-0
+  // case keeps isFree's answer so that both overloads always agree at contact.
+  const double threshold = validity_.threshold();
+  return threshold == 0.0 ? isConfigurationValid(*world_, q, validity_) : dist > threshold;
+}
+
+bool StateValidityChecker::isValid(const ompl::base::State* state, double& dist, ompl::base::State* validState,
+                                   bool& validStateAvailable) const {
+  const bool valid = isValid(state, dist);
+  validStateAvailable = false;
+  if (valid) return true;
+  const PushOutResult pushed = pushOut_.run(mapState(state, n_));
+  if (pushed.success()) {
+    copyToState(pushed.q, validState);
+    validStateAvailable = true;
+  }
+  return false;
+}
+
+double StateValidityChecker::clearance(const ompl::base::State* state) const { return clearance(mapState(state, n_)); }
+
+double StateValidityChecker::clearance(const ompl::base::State* state, ompl::base::State* validState,
+                                       bool& validStateAvailable) const {
+  double dist = 0.0;
+  isValid(state, dist, validState, validStateAvailable);
+  return dist;
+}
+
+void StateValidityChecker::resetCounters() {
+  validityQueries_.store(0, std::memory_order_relaxed);
+  distanceQueries_.store(0, std::memory_order_relaxed);
+}
+
+}  // namespace deepcheck::planners

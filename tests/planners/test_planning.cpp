@@ -1,0 +1,242 @@
+// End to end: the one-call setup, several OMPL planners in the bundled scenes, every path verified
+// by the FCL reference backend on the original meshes; start repair before planning.
+
+#include "bundled.h"
+
+#include "deepcheck/planners/fcl_validity_checker.h"
+#include "deepcheck/planners/motion_validator.h"
+#include "deepcheck/planners/path_tools.h"
+#include "deepcheck/planners/planner_factory.h"
+#include "deepcheck/planners/setup.h"
+#include "deepcheck/planners/state_space.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace dp = deepcheck::planners;
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+using dp::test::bundledWorld;
+
+namespace {
+
+/// A cap on each planning run, seconds: planners stop at their first exact solution long before.
+constexpr double kTimeCap = 30.0;
+
+/// Solves until the first exact solution (or the cap), as a fresh planner of `name`: optimizing
+/// planners too stop at their first solution (path length, any cost satisfies).
+ob::PlannerStatus solveFirst(og::SimpleSetup& ss, const std::string& name) {
+  auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(ss.getSpaceInformation());
+  objective->setCostThreshold(objective->infiniteCost());
+  ss.setOptimizationObjective(objective);
+  ss.setPlanner(dp::makePlanner(name, ss.getSpaceInformation()));
+  ss.setup();
+  const ob::PlannerTerminationCondition ptc = ob::plannerOrTerminationCondition(
+      ob::timedPlannerTerminationCondition(kTimeCap), ob::exactSolnPlannerTerminationCondition(ss.getProblemDefinition()));
+  return ss.solve(ptc);
+}
+
+/// Every state of the path, at most tol::kFineResolution apart, is free for FCL on the meshes.
+/// Also certified by the clearance motion validator (repaired if needed) first.
+void verifyWithFcl(og::SimpleSetup& ss, const deepcheck::checker::World& world, const std::string& what) {
+  og::PathGeometric& path = ss.getSolutionPath();
+  const dp::PathCertificate certificate = dp::certifyPath(ss, path);
+  BOOST_TEST(certificate.valid, what << ": not certified");
+  if (certificate.repaired) {
+    BOOST_TEST_MESSAGE(what << ": certification repaired " << certificate.initial.invalidMotions << " motions");
+  }
+  const dp::FclStateValidityChecker fcl(ss.getSpaceInformation(), world);
+  const dp::PathCheck fine = dp::checkPathFine(path, [&](const Eigen::VectorXd& q) { return fcl.isFree(q); });
+  BOOST_TEST(fine.valid, what << ": FCL finds " << fine.invalidWaypoints << " colliding waypoints and "
+                              << fine.invalidMotions << " colliding motions among " << fine.statesChecked
+                              << " states");
+  const dp::PathCheck planner = dp::checkPathWithPlanner(path);
+  BOOST_TEST(planner.valid, what << ": the planner's own checks reject the path");
+  BOOST_TEST(fine.statesChecked > static_cast<int>(path.getStateCount()));
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(planning)
+
+BOOST_AUTO_TEST_CASE(planner_names) {
+  const auto world = bundledWorld("");
+  auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
+  for (const std::string& name : dp::plannerNames()) {
+    BOOST_TEST(dp::makePlanner(name, ss->getSpaceInformation()) != nullptr);
+  }
+  BOOST_TEST(dp::makePlanner("rrtstar", ss->getSpaceInformation())->getName() == "RRTstar");
+  BOOST_TEST(dp::makePlanner("BITstar", ss->getSpaceInformation())->getName() == "kBITstar");
+  BOOST_CHECK_EXCEPTION(dp::makePlanner("RRTDisconnect", ss->getSpaceInformation()), std::invalid_argument,
+                        [](const std::invalid_argument& e) {
+                          return std::string(e.what()).find("RRTDisconnect") != std::string::npos;
+                        });
+  BOOST_TEST(dp::isOptimizingPlanner("BIT*"));
+  BOOST_TEST(!dp::isOptimizingPlanner("RRTConnect"));
+}
+
+BOOST_AUTO_TEST_CASE(setup_is_ready_and_reports_bad_input) {
+  auto ss = dp::makeSimpleSetup(dp::test::armUrdf(), {dp::test::sceneUrdf("table")}, dp::test::bundledOptions());
+  const auto checker = dp::validityCheckerOf(*ss);
+  BOOST_TEST(checker->world().numScenes() == 1);
+  BOOST_TEST(dp::linkSpeedBoundOf(*ss) != nullptr);
+  BOOST_TEST(ss->getSpaceInformation()->isSetup());
+  BOOST_TEST(dynamic_cast<const ob::DiscreteMotionValidator*>(ss->getSpaceInformation()->getMotionValidator().get()));
+  Eigen::VectorXd bad = dp::test::suggestedStart();
+  bad[2] = std::nan("");
+  BOOST_CHECK_EXCEPTION(dp::setStartAndGoal(*ss, bad, dp::test::suggestedGoal("table")), std::invalid_argument,
+                        [](const std::invalid_argument& e) {
+                          const std::string m = e.what();
+                          return m.find("start") != std::string::npos && m.find("joint3") != std::string::npos;
+                        });
+  BOOST_CHECK_THROW(dp::setStartAndGoal(*ss, dp::test::suggestedStart(), Eigen::VectorXd::Zero(6)),
+                    std::invalid_argument);
+  BOOST_CHECK_EXCEPTION(dp::makeSimpleSetup(dp::test::armUrdf(), {"no/such/scene.urdf"}, dp::test::bundledOptions()),
+                        std::invalid_argument, [](const std::invalid_argument& e) {
+                          return std::string(e.what()).find("no/such/scene.urdf") != std::string::npos;
+                        });
+  dp::SetupOptions clearance = dp::test::bundledOptions();
+  clearance.motionValidation = dp::MotionValidation::Clearance;
+  auto ssClearance = dp::makeSimpleSetup(bundledWorld("table"), clearance);
+  BOOST_TEST(dynamic_cast<const dp::ClearanceMotionValidator*>(
+      ssClearance->getSpaceInformation()->getMotionValidator().get()));
+}
+
+// Issue 6: planning succeeds in the bundled scenes with several planners, and every returned path
+// is collision free at fine resolution for the FCL reference backend.
+// The planners per scene are those that find a solution within seconds there (RRT*, BIT* and PRM
+// take minutes through the narrow passage's window, RRT* sometimes in the shelf; see bench/).
+BOOST_AUTO_TEST_CASE(plans_in_every_bundled_scene_and_fcl_agrees) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"table", {"RRTConnect", "RRT*", "BIT*", "PRM"}},
+      {"shelf", {"RRTConnect", "BIT*", "PRM", "BiEST"}},
+      {"narrow_passage", {"RRTConnect", "BiEST"}},
+  };
+  for (const auto& [scene, planners] : cases) {
+    const auto world = bundledWorld(scene);
+    for (const std::string& planner : planners) {
+      auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
+      dp::setStartAndGoal(*ss, dp::test::suggestedStart(), dp::test::suggestedGoal(scene));
+      const ob::PlannerStatus status = solveFirst(*ss, planner);
+      const std::string what = planner + " in " + scene;
+      BOOST_TEST_REQUIRE(status == ob::PlannerStatus::EXACT_SOLUTION, what << ": " << status.asString());
+      ss->simplifySolution();
+      const og::PathGeometric& path = ss->getSolutionPath();
+      BOOST_TEST((dp::mapState(path.getState(0), 7) == dp::test::suggestedStart()));
+      BOOST_TEST((dp::mapState(path.getState(path.getStateCount() - 1), 7) - dp::test::suggestedGoal(scene)).norm() < 1e-9);
+      BOOST_TEST_MESSAGE(what << ": " << path.getStateCount() << " waypoints, length " << path.length() << " rad");
+      verifyWithFcl(*ss, *world, what);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_colliding_start_is_repaired_then_planned_from) {
+  const auto world = bundledWorld("shelf");
+  auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
+  // Start from the shelf goal (hand in a compartment) turned about joint 1 until the hand is 5 to
+  // 15 mm into the compartment's wall.
+  Eigen::VectorXd start = dp::test::suggestedGoal("shelf");
+  const Eigen::VectorXd inside = start;
+  double sd = 1.0;
+  for (double turn = 0.0; turn < 0.6 && !(sd < -0.005); turn += 0.002) {
+    start = inside;
+    start[0] += turn;
+    sd = world->signedDistance(start).closest.distance;
+  }
+  BOOST_TEST_REQUIRE(sd < -0.005);
+  BOOST_TEST_REQUIRE(sd > -0.015);
+  dp::setStartAndGoal(*ss, start, dp::test::suggestedStart());
+  BOOST_TEST(!ss->getSpaceInformation()->isValid(ss->getProblemDefinition()->getStartState(0)));
+
+  const dp::EndpointRepair repair = dp::repairStartAndGoal(*ss);
+  BOOST_TEST_REQUIRE(repair.ok());
+  BOOST_TEST(repair.starts.size() == 1u);
+  BOOST_TEST(repair.starts[0].status == dp::PushOutStatus::Repaired);
+  BOOST_TEST(repair.goalIsState);
+  BOOST_TEST(repair.goal.status == dp::PushOutStatus::AlreadyValid);
+  BOOST_TEST(repair.starts[0].jointMotion < 0.1);
+  BOOST_TEST_MESSAGE("start repaired from sd " << sd << " m by " << repair.starts[0].jointMotion << " rad");
+
+  BOOST_TEST_REQUIRE(solveFirst(*ss, "RRTConnect") == ob::PlannerStatus::EXACT_SOLUTION);
+  ss->simplifySolution();
+  BOOST_TEST((dp::mapState(ss->getSolutionPath().getState(0), 7) - repair.starts[0].q).norm() < 1e-12);
+  verifyWithFcl(*ss, *world, "repaired start");
+}
+
+BOOST_AUTO_TEST_CASE(waypoints_after_tolerant_planning_and_smoothing_are_repaired) {
+  // Plan and smooth accepting 5 mm of penetration, then repair against the strict checker with the
+  // clearance motion validator; every repaired path must then be free for FCL too.
+  constexpr int kRuns = 8;
+  const auto world = bundledWorld("narrow_passage");
+  dp::SetupOptions tolerantOptions = dp::test::bundledOptions();
+  tolerantOptions.validity.penetrationTolerance = 0.005;
+  auto strict = dp::makeSimpleSetup(world, dp::test::bundledOptions());
+  const ob::SpaceInformationPtr certifying = dp::certifyingSpaceInformation(*strict);
+  const dp::FclStateValidityChecker fcl(strict->getSpaceInformation(), *world);
+  int penetrating = 0;
+  int repaired = 0;
+  for (int run = 0; run < kRuns; ++run) {
+    auto tolerant = dp::makeSimpleSetup(world, tolerantOptions);
+    dp::setStartAndGoal(*tolerant, dp::test::suggestedStart(), dp::test::suggestedGoal("narrow_passage"));
+    BOOST_TEST_REQUIRE(solveFirst(*tolerant, "RRTConnect") == ob::PlannerStatus::EXACT_SOLUTION);
+    tolerant->simplifySolution();
+    og::PathGeometric path = tolerant->getSolutionPath();
+    const dp::PathCheck before = dp::checkPathWithPlanner(path, certifying.get());
+    penetrating += !before.valid;
+    const dp::PathRepair repair = dp::repairPath(path, certifying);
+    BOOST_TEST_MESSAGE("run " << run << ": " << before.invalidWaypoints << " penetrating waypoints and "
+                              << before.invalidMotions << " motions; repair: " << repair.waypointsPushed
+                              << " waypoints pushed out, " << repair.statesInserted << " states inserted, "
+                              << (repair.valid ? "valid" : "NOT valid"));
+    BOOST_TEST(repair.valid == dp::checkPathWithPlanner(path, certifying.get()).valid);
+    if (repair.valid) {
+      ++repaired;
+      BOOST_TEST(dp::checkPathFine(path, [&](const Eigen::VectorXd& q) { return fcl.isFree(q); }).valid);
+    }
+  }
+  BOOST_TEST_MESSAGE(penetrating << " of " << kRuns << " tolerant paths penetrated, " << repaired
+                                 << " valid after repair");
+  BOOST_TEST(penetrating >= 2);  // the case happens
+  BOOST_TEST(repaired >= kRuns - 1);
+}
+
+BOOST_AUTO_TEST_CASE(paths_are_written_one_configuration_per_line) {
+  const auto world = bundledWorld("table");
+  auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
+  og::PathGeometric path(ss->getSpaceInformation());
+  ob::ScopedState<> s(ss->getStateSpace());
+  dp::copyToState(dp::test::suggestedStart(), s.get());
+  path.append(s.get());
+  dp::copyToState(dp::test::suggestedGoal("table"), s.get());
+  path.append(s.get());
+  std::ostringstream out;
+  dp::writePath(path, out);
+  std::istringstream in(out.str());
+  std::string line;
+  std::vector<Eigen::VectorXd> read;
+  while (std::getline(in, line)) {
+    std::istringstream values(line);
+    Eigen::VectorXd q(7);
+    for (int i = 0; i < 7; ++i) values >> q[i];
+    BOOST_TEST(!values.fail());
+    read.push_back(q);
+  }
+  BOOST_TEST_REQUIRE(read.size() == 2u);
+  BOOST_TEST((read[0] == dp::test::suggestedStart()));  // %.17g round-trips exactly
+  BOOST_TEST((read[1] == dp::test::suggestedGoal("table")));
+  BOOST_CHECK_EXCEPTION(dp::writePath(path, "/no/such/dir/path.txt"), std::invalid_argument,
+                        [](const std::invalid_argument& e) {
+                          return std::string(e.what()).find("/no/such/dir/path.txt") != std::string::npos;
+                        });
+}
+
+BOOST_AUTO_TEST_SUITE_END()
