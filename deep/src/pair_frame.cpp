@@ -45,6 +45,11 @@ PairFrame PairFrame::make(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA
                           const ConvexPolytope& B, const Eigen::Isometry3d& X_WB) {
   checkPose(X_WA, "X_WA");
   checkPose(X_WB, "X_WB");
+  return makeUnchecked(A, X_WA, B, X_WB);
+}
+
+PairFrame PairFrame::makeUnchecked(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
+                                   const ConvexPolytope& B, const Eigen::Isometry3d& X_WB) {
   const Eigen::Matrix3d R_WA = X_WA.linear();
   const Eigen::Matrix3d R_WB = X_WB.linear();
   PairFrame frame;

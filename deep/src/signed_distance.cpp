@@ -143,7 +143,14 @@ bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexS
               const Eigen::Isometry3d& X_WB, PairCache* cache) {
   checkShape(A, "A");
   checkShape(B, "B");
-  const PairFrame frame = PairFrame::make(*A.core, X_WA, *B.core, X_WB);
+  checkPose(X_WA, "X_WA");
+  checkPose(X_WB, "X_WB");
+  return overlapsUnchecked(A, X_WA, B, X_WB, cache);
+}
+
+bool overlapsUnchecked(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
+                       const Eigen::Isometry3d& X_WB, PairCache* cache) {
+  const PairFrame frame = PairFrame::makeUnchecked(*A.core, X_WA, *B.core, X_WB);
   if (A.radius == 0 && B.radius == 0) return gjkOverlap(*A.core, *B.core, frame, cache ? &cache->gjk : nullptr);
   const GjkResult g = gjkDistance(*A.core, *B.core, frame, cache ? &cache->gjk : nullptr);
   return g.distance <= A.radius + B.radius;

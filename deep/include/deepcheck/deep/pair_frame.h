@@ -21,6 +21,11 @@ struct PairFrame {
   /// NaN/infinite entries or a rotation that is not orthonormal (message names which pose).
   static PairFrame make(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
                         const ConvexPolytope& B, const Eigen::Isometry3d& X_WB);
+  /// make() without the pose checks, for callers whose poses are rigid by construction (the
+  /// checker's, from forward kinematics and validated world poses). The same frame as make() on
+  /// valid poses; anything on invalid ones.
+  static PairFrame makeUnchecked(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
+                                 const ConvexPolytope& B, const Eigen::Isometry3d& X_WB);
 
   /// Pose of P in the world, to map results back: x_W = X_WP * x_P.
   Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();

@@ -100,8 +100,12 @@ class ConvexPolytope {
   const Eigen::Vector3d& localVertex(int v) const { return local_[v]; }
 
   /// Index of a vertex maximizing dir.x. Hill climbing over the vertex adjacency from `hint`
-  /// (any vertex index; out-of-range hints start at vertex 0); brute force on small hulls.
+  /// (any vertex index; out-of-range hints start at vertex 0) or from the direction index's
+  /// vertex for dir, whichever is higher along dir; brute force on small hulls.
   int support(const Eigen::Vector3d& dir, int hint = 0) const;
+  /// The direction index's starting vertex for dir (a vertex whose support region is near dir),
+  /// or -1 when the hull has no index (small hulls) or dir is zero or not finite. For tests.
+  int supportStart(const Eigen::Vector3d& dir) const;
   /// Brute-force support, for tests.
   int supportBruteForce(const Eigen::Vector3d& dir) const;
 
@@ -132,6 +136,11 @@ class ConvexPolytope {
   double lengthScale_ = 1.0;
   Eigen::Matrix3d axes_ = Eigen::Matrix3d::Identity();
   double flatTol_ = 0.0;
+  // Direction index (hulls beyond brute-force size): the support vertex of the centre direction
+  // of each cell of a cube map, 6 faces of kDirectionGrid x kDirectionGrid cells.
+  static constexpr int kDirectionGrid = 8;
+  std::vector<int> directionIndex_;
+  void buildDirectionIndex();
 };
 
 }  // namespace deepcheck::deep

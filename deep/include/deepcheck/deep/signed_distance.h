@@ -76,4 +76,11 @@ SignedDistanceResult signedDistance(const ConvexPolytope& A, const Eigen::Isomet
 bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
               const Eigen::Isometry3d& X_WB, PairCache* cache = nullptr);
 
+/// overlaps() without its argument checks (null core, radius, finite and orthonormal poses), for
+/// callers that validated their shapes once and compute their poses as rigid motions themselves
+/// (the checker's isFree). The same answer and cache update as overlaps() on valid arguments;
+/// undefined on invalid ones.
+bool overlapsUnchecked(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
+                       const Eigen::Isometry3d& X_WB, PairCache* cache = nullptr);
+
 }  // namespace deepcheck::deep
