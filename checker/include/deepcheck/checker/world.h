@@ -162,6 +162,9 @@ struct QueryStats {
   std::uint64_t selfNarrowPhase = 0;  ///< the part of narrowPhase on self pairs
   std::uint64_t certifiedSelf = 0;    ///< isFree: self link pairs skipped because q lies in a
                                       ///< cell of their grid certified free (world.cpp summary)
+  std::uint64_t centroidInside = 0;   ///< isFree: the part of narrowPhase decided without GJK,
+                                      ///< a robot piece's centroid inside a world piece
+                                      ///< (WorldOptions::centroidTest)
   std::uint64_t fullDepth = 0;        ///< signedDistance: overlapping pairs whose one-walk depth
                                       ///< could beat the best, measured again with all restarts
 };
@@ -199,6 +202,11 @@ struct WorldOptions {
   /// (self_pair_grid.h in checker/src): isFree skips such a pair when q lies in a cell where it was
   /// proved apart at construction. Never changes an answer; off only to compare, in tests.
   bool selfPairGrids = true;
+  /// isFree: before GJK on a robot piece against a world piece of at most 32 faces, test whether
+  /// the robot piece's centroid (a point of its core) lies inside the world piece, deeper than
+  /// twice its hull tolerance: then they overlap, as GJK would find. Never changes an answer;
+  /// off only to compare, in tests.
+  bool centroidTest = true;
 };
 
 /// Placement of a scene (World::addScene).

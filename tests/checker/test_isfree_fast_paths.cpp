@@ -1,0 +1,134 @@
+// isFree's fast paths: the centroid test (WorldOptions::centroidTest: a robot piece's centroid
+// inside a world piece decides an overlap without GJK) gives the same answers as GJK alone, on
+// random configurations and short motions of the Panda in the kitchen and of the arm among
+// primitive and mesh obstacles; and a robot pose that left the doubles is reported, not
+// answered (the narrow phase no longer checks poses itself).
+
+#include "checker_test_util.h"
+
+#include "deepcheck/checker/world.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <limits>
+#include <random>
+#include <vector>
+
+using namespace deepcheck;
+using namespace deepcheck::checker;
+using namespace deepcheck::checker::test;
+
+namespace {
+
+/// Random configurations, then short motions (31 states 0.01 rad apart) from random starts, so
+/// that warm starts and the re-test of the last overlapping pair are exercised too.
+std::vector<Eigen::VectorXd> configurations(const robots::RobotModel& m, int random, int motions, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<Eigen::VectorXd> qs;
+  for (int i = 0; i < random; ++i) qs.push_back(randomConfiguration(m, rng));
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int k = 0; k < motions; ++k) {
+    Eigen::VectorXd q = randomConfiguration(m, rng);
+    Eigen::VectorXd step(q.size());
+    for (int v = 0; v < q.size(); ++v) step[v] = g(rng);
+    step *= 0.01 / step.cwiseAbs().maxCoeff();
+    for (int s = 0; s <= 30; ++s) qs.push_back(q + s * step);
+  }
+  return qs;
+}
+
+/// isFree of `with` (centroid test) against `without` on qs; returns the stats of `with`.
+QueryStats compareAnswers(const World& with, const World& without, const std::vector<Eigen::VectorXd>& qs,
+                          int* colliding) {
+  auto a = with.makeContext();
+  auto b = without.makeContext();
+  *colliding = 0;
+  for (const Eigen::VectorXd& q : qs) {
+    const bool fast = with.isFree(q, a);
+    const bool reference = without.isFree(q, b);
+    BOOST_CHECK_MESSAGE(fast == reference, "q = " << q.transpose() << ": isFree " << fast
+                                                  << " with the centroid test, " << reference << " without");
+    *colliding += !reference;
+  }
+  BOOST_TEST(b.stats().centroidInside == 0u);
+  return a.stats();
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(checker_isfree_fast_paths)
+
+BOOST_AUTO_TEST_CASE(panda_kitchen_same_answers_with_and_without_centroid_test) {
+  if (!haveShared("panda_kitchen_same_answers_with_and_without_centroid_test")) return;
+  WorldOptions options = testWorldOptions();
+  World with(loadPanda(), options);
+  options.centroidTest = false;
+  World without(loadPanda(), options);
+  with.addScene(loadKitchen());
+  without.addScene(loadKitchen());
+  const std::vector<Eigen::VectorXd> qs = configurations(with.robot(), 6000, 100, 41);
+  int colliding = 0;
+  const QueryStats stats = compareAnswers(with, without, qs, &colliding);
+  BOOST_TEST_MESSAGE(qs.size() << " configurations, " << colliding << " colliding; narrow phase "
+                               << stats.narrowPhase << ", decided by the centroid test " << stats.centroidInside);
+  BOOST_TEST(colliding > 1000);
+  BOOST_TEST(colliding < static_cast<int>(qs.size()) - 1000);
+  BOOST_TEST(stats.centroidInside > 300u);                   // the test decides many overlaps
+  BOOST_TEST(stats.centroidInside < stats.narrowPhase / 2);  // and GJK still runs on the rest
+}
+
+BOOST_AUTO_TEST_CASE(arm_obstacles_same_answers_with_and_without_centroid_test) {
+  // Boxes (a tilted one, and a lid over the arm), a sphere (a point core: no faces, never tested), a cylinder
+  // prism and a mesh; obstacles moved between rounds.
+  WorldOptions options = testWorldOptions();
+  World with(armRobot(), options);
+  options.centroidTest = false;
+  World without(armRobot(), options);
+  Eigen::Isometry3d tilted = translation(0.35, 0.1, 0.55);
+  tilted.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  robots::TriangleMesh tetra;
+  tetra.vertices = {{0, 0, 0}, {0.3, 0, 0}, {0, 0.3, 0}, {0, 0, 0.3}};
+  tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::vector<int> ids;
+  for (World* w : {&with, &without}) {
+    ids.push_back(w->addObstacle(Obstacle::box("crate", Eigen::Vector3d(0.4, 0.5, 0.45), tilted)));
+    w->addObstacle(Obstacle::box("lid", Eigen::Vector3d(0.6, 0.6, 0.2), translation(0.0, 0.0, 1.05)));
+    w->addObstacle(Obstacle::sphere("ball", 0.15, translation(-0.3, -0.25, 0.7)));
+    w->addObstacle(Obstacle::cylinder("post", 0.08, 0.8, translation(0.0, 0.45, 0.4)));
+    w->addObstacle(Obstacle::fromMesh("tetra", tetra, translation(-0.4, 0.3, 0.2)));
+  }
+  int colliding = 0;
+  QueryStats stats = compareAnswers(with, without, configurations(with.robot(), 3000, 60, 42), &colliding);
+  BOOST_TEST_MESSAGE("colliding " << colliding << ", decided by the centroid test " << stats.centroidInside);
+  BOOST_TEST(colliding > 300);
+  BOOST_TEST(stats.centroidInside > 50u);
+  // Move the crate and compare again (the test reads the pieces' new poses).
+  Eigen::Isometry3d moved = translation(-0.45, 0.4, 0.6);
+  moved.linear() = Eigen::AngleAxisd(-1.1, Eigen::Vector3d(0.3, -1, 0.2).normalized()).toRotationMatrix();
+  with.setObstaclePose(ids[0], moved);
+  without.setObstaclePose(ids[1], moved);
+  stats = compareAnswers(with, without, configurations(with.robot(), 2000, 30, 43), &colliding);
+  BOOST_TEST_MESSAGE("after the move: colliding " << colliding << ", decided by the centroid test "
+                                                 << stats.centroidInside);
+  BOOST_TEST(colliding > 200);
+  BOOST_TEST(stats.centroidInside > 20u);
+}
+
+BOOST_AUTO_TEST_CASE(link_pose_beyond_the_doubles_is_reported) {
+  // A slider whose joint origin is already near the largest double: q = 1e308 moves the cube to
+  // infinity. isFree must not answer (free or not) from such a pose.
+  const std::string xml =
+      "<robot name='far'>"
+      "<link name='base'/>"
+      "<link name='cube'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
+      "<joint name='slide' type='prismatic'><parent link='base'/><child link='cube'/>"
+      "<origin xyz='1e308 0 0'/><axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
+      "</robot>";
+  World world(robots::RobotModel::fromUrdfString(xml, ".", {}, "far.urdf"), testWorldOptions());
+  world.addObstacle(Obstacle::box("box", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0, 0, 0)));
+  Eigen::VectorXd q(1);
+  q << 1e308;
+  checkThrowsWith([&] { world.isFree(q); }, "not finite");
+}
+
+BOOST_AUTO_TEST_SUITE_END()
