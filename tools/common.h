@@ -8,6 +8,8 @@
 //   - errors are reported on stderr as one line "deepcheck <subcommand>: <message>", the message
 //     naming the offending input (line number and text, file, shape id ...).
 
+#include <Eigen/Geometry>
+
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -50,5 +52,20 @@ PackagePaths takePackagePaths(std::vector<std::string>& args, bool useEnvironmen
 
 /// Throws UsageError naming the first remaining argument that starts with '-' (an unknown option).
 void rejectUnknownOptions(const std::vector<std::string>& args);
+
+/// A `--scene FILE [--scene-pose x y z roll pitch yaw]` of the command line.
+struct SceneArg {
+  std::string path;
+  bool posed = false;
+  Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
+};
+
+/// A finite number, or UsageError naming `what` and the text.
+double parseValue(const std::string& text, const std::string& what);
+
+/// Removes --robot (required), --scene (each optionally followed by --scene-pose) and --srdf from
+/// `args`, in command-line order. Throws UsageError for a missing or repeated value.
+void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::vector<SceneArg>& scenes,
+                      std::string& srdf);
 
 }  // namespace deepcheck::tools

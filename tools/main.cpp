@@ -19,6 +19,7 @@ const Subcommand* const kSubcommands[] = {
     &deepcheck::tools::kInfoCommand,
     &deepcheck::tools::kCheckCommand,
     &deepcheck::tools::kDecomposeCommand,
+    &deepcheck::tools::kPlanCommand,
 };
 
 void printUsage(std::FILE* out) {

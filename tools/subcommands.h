@@ -21,5 +21,6 @@ extern const Subcommand kPdCommand;    // pd.cpp
 extern const Subcommand kInfoCommand;  // info.cpp
 extern const Subcommand kCheckCommand;  // check.cpp
 extern const Subcommand kDecomposeCommand;  // decompose.cpp
+extern const Subcommand kPlanCommand;  // plan.cpp
 
 }  // namespace deepcheck::tools

@@ -138,14 +138,16 @@ ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1
 ompl::base::OptimizationObjectivePtr makeLengthClearanceObjective(const ompl::base::SpaceInformationPtr& si,
                                                                   std::shared_ptr<const StateValidityChecker> checker,
                                                                   double safeDistance, double weight,
-                                                                  std::shared_ptr<const LinkSpeedBound> bound) {
+                                                                  std::shared_ptr<const LinkSpeedBound> bound,
+                                                                  double resolution) {
   if (!std::isfinite(weight) || weight < 0.0) {
     throw std::invalid_argument("makeLengthClearanceObjective: weight must be finite and >= 0, got " + number(weight));
   }
   auto objective = std::make_shared<LengthClearanceObjective>(si);
   objective->addObjective(std::make_shared<ompl::base::PathLengthOptimizationObjective>(si), 1.0);
   objective->addObjective(
-      std::make_shared<ClearanceHingeObjective>(si, std::move(checker), safeDistance, std::move(bound)), weight);
+      std::make_shared<ClearanceHingeObjective>(si, std::move(checker), safeDistance, std::move(bound), resolution),
+      weight);
   objective->lock();
   return objective;
 }

@@ -162,49 +162,4 @@ BOOST_AUTO_TEST_CASE(maximize_min_clearance_objective_reads_our_clearance) {
   BOOST_TEST(cost <= smallest + 1e-12);  // the minimum over the waypoints and interpolated states
 }
 
-// Issue 6: the clearance objective yields a higher minimum clearance than path length alone.
-// Same planner (RRT*), same iteration budget, runs alternated so that both objectives see the same
-// sequence of OMPL seeds positions; the minimum clearance is measured along the whole path.
-BOOST_AUTO_TEST_CASE(clearance_objective_keeps_paths_farther_from_obstacles) {
-  constexpr int kRuns = 4;
-  constexpr int kIterations = 1500;
-  const auto world = bundledWorld("table");
-  std::vector<double> lengthOnly;
-  std::vector<double> withClearance;
-  for (int run = 0; run < kRuns; ++run) {
-    for (const bool clearance : {false, true}) {
-      auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
-      const auto si = ss->getSpaceInformation();
-      const auto checker = dp::validityCheckerOf(*ss);
-      dp::setStartAndGoal(*ss, dp::test::suggestedStart(), dp::test::suggestedGoal("table"));
-      if (clearance) {
-        ss->setOptimizationObjective(dp::makeLengthClearanceObjective(si, checker, 0.05, 10.0, dp::linkSpeedBoundOf(*ss)));
-      } else {
-        ss->setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
-      }
-      ss->setPlanner(dp::makePlanner("RRT*", si));
-      BOOST_TEST_REQUIRE(ss->solve(iterationLimit(kIterations)) == ob::PlannerStatus::EXACT_SOLUTION);
-      const og::PathGeometric& path = ss->getSolutionPath();
-      // The clearance to the scene: the objective's d_self is 0 (self pairs pay only penetration).
-      const double minimum = dp::minClearanceAlong(
-          path,
-          [&](const Eigen::VectorXd& q) {
-            return checker->splitClearanceUpTo(q, std::numeric_limits<double>::infinity()).world;
-          },
-          0.01);
-      (clearance ? withClearance : lengthOnly).push_back(minimum);
-      BOOST_TEST_MESSAGE("run " << run << (clearance ? " length + clearance" : " length only") << ": length "
-                                << path.length() << " rad, min clearance " << minimum << " m");
-    }
-  }
-  std::sort(lengthOnly.begin(), lengthOnly.end());
-  std::sort(withClearance.begin(), withClearance.end());
-  const double medianLength = 0.5 * (lengthOnly[kRuns / 2 - 1] + lengthOnly[kRuns / 2]);
-  const double medianClearance = 0.5 * (withClearance[kRuns / 2 - 1] + withClearance[kRuns / 2]);
-  BOOST_TEST_MESSAGE("median min clearance: length only " << medianLength << " m, length + clearance "
-                                                          << medianClearance << " m");
-  BOOST_TEST(medianClearance > medianLength);
-  BOOST_TEST(withClearance.front() > lengthOnly.front());
-}
-
 BOOST_AUTO_TEST_SUITE_END()

@@ -68,12 +68,14 @@ class ClearanceHingeObjective : public ompl::base::OptimizationObjective {
   int n_ = 0;
 };
 
-/// Path length + weight * hinge (see the header comment). Throws std::invalid_argument for a
+/// Path length + weight * hinge (see the header comment); `resolution` as for the hinge (a coarser
+/// one makes optimizing planners cheaper near obstacles: each motion cost evaluates the states
+/// within d_safe + B of an obstacle). Throws std::invalid_argument for a
 /// negative or non-finite weight.
 ompl::base::OptimizationObjectivePtr makeLengthClearanceObjective(
     const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const StateValidityChecker> checker,
     double safeDistance = tol::kDefaultSafeDistance, double weight = tol::kDefaultHingeWeight,
-    std::shared_ptr<const LinkSpeedBound> bound = nullptr);
+    std::shared_ptr<const LinkSpeedBound> bound = nullptr, double resolution = 0.0);
 
 /// OMPL's MaximizeMinClearanceObjective on `si` (whose checker must compute clearance).
 ompl::base::OptimizationObjectivePtr makeMaxMinClearanceObjective(const ompl::base::SpaceInformationPtr& si);

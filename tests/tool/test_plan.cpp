@@ -1,0 +1,124 @@
+// End-to-end tests of `deepcheck plan`: the bundled arm through the bundled shelf, the path file
+// checked line by line against the checker, and the errors of bad command lines and inputs.
+
+#include "deepcheck/checker/world.h"
+#include "deepcheck/robots/pair_filter.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace deepcheck;
+
+namespace {
+
+const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+const std::string kWorld = " --robot " + kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf --srdf " + kData +
+                           "/deepcheck_arm/srdf/deepcheck_arm.srdf --scene " + kData +
+                           "/scenes/shelf.urdf --package-path " + kData;
+const std::string kStart = " --start 0 -0.4 0 -1.6 0 1.2 0";
+const std::string kGoal = " --goal 1.05 0.75 -1.17 -1.30 0.05 -0.07 -2.79";
+
+struct Result {
+  int status = -1;
+  std::string err;
+};
+
+/// Runs `deepcheck plan <args>` in a scratch folder (also its decomposition cache); stderr kept.
+Result plan(const fs::path& dir, const std::string& args) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string cmd = "XDG_CACHE_HOME=" + (dir / "cache").string() + " " + DEEPCHECK_TOOL + " plan" + args +
+                          " > /dev/null 2> " + err.string();
+  Result r;
+  const int raw = std::system(cmd.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(err);
+  std::ostringstream text;
+  text << in.rdbuf();
+  r.err = text.str();
+  return r;
+}
+
+struct Scratch {
+  fs::path dir = fs::temp_directory_path() / ("deepcheck_tool_plan_" + std::to_string(::getpid()));
+  Scratch() { fs::create_directories(dir); }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(tool_plan)
+
+BOOST_AUTO_TEST_CASE(plans_through_the_shelf_and_every_waypoint_is_free) {
+  Scratch scratch;
+  const fs::path out = scratch.dir / "path.txt";
+  const Result r = plan(scratch.dir, kWorld + kStart + kGoal + " --seed 3 --time 10 --out " + out.string());
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("certified") != std::string::npos, r.err);
+  robots::LoadOptions load;
+  load.packageRoots = {kData};
+  load.useRosPackagePath = false;
+  checker::WorldOptions options;
+  options.disabledPairs = robots::readSrdfDisabledPairs(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
+  checker::World world(robots::RobotModel::fromUrdfFile(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf", load),
+                       options);
+  world.addScene(robots::RobotModel::fromUrdfFile(kData + "/scenes/shelf.urdf", load));
+  std::ifstream in(out);
+  std::string line;
+  std::vector<Eigen::VectorXd> waypoints;
+  while (std::getline(in, line)) {
+    std::istringstream values(line);
+    std::vector<double> q;
+    double v;
+    while (values >> v) q.push_back(v);
+    BOOST_TEST_REQUIRE(q.size() == 7u, "line '" << line << "'");
+    waypoints.push_back(Eigen::Map<Eigen::VectorXd>(q.data(), 7));
+    BOOST_TEST(world.isFree(waypoints.back()), "waypoint '" << line << "'");
+  }
+  BOOST_TEST_REQUIRE(waypoints.size() >= 2u);
+  BOOST_TEST((waypoints.front() - Eigen::Map<const Eigen::VectorXd>(std::vector<double>{0, -0.4, 0, -1.6, 0, 1.2, 0}.data(), 7)).norm() < 1e-12);
+  // Every motion, at 0.005 rad.
+  for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
+    const int steps = static_cast<int>(std::ceil((waypoints[i + 1] - waypoints[i]).norm() / 0.005));
+    for (int k = 1; k < steps; ++k) {
+      BOOST_TEST(world.isFree(waypoints[i] + (double(k) / steps) * (waypoints[i + 1] - waypoints[i])));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bad_command_lines_and_inputs_are_named) {
+  Scratch scratch;
+  const std::string out = " --out " + (scratch.dir / "p.txt").string();
+  Result r = plan(scratch.dir, kWorld + kStart + kGoal);  // no --out
+  BOOST_TEST(r.status == 2);
+  BOOST_TEST(r.err.find("--out") != std::string::npos, r.err);
+  r = plan(scratch.dir, kWorld + kStart + kGoal + out + " --planner RRTDisconnect");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("RRTDisconnect") != std::string::npos, r.err);
+  r = plan(scratch.dir, kWorld + " --start 0 0 0" + kGoal + out);  // 3 values for 7 joints
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("start") != std::string::npos, r.err);
+  r = plan(scratch.dir, kWorld + kStart + kGoal + out + " --objective fastest");
+  BOOST_TEST(r.status == 2);
+  BOOST_TEST(r.err.find("fastest") != std::string::npos, r.err);
+  // The goal inside the shelf's board: in collision, named, and no planning without repair.
+  r = plan(scratch.dir, kWorld + kStart + " --goal 0 1.2 0 0 0 0 0" + out);
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("goal") != std::string::npos, r.err);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
