@@ -31,6 +31,8 @@
 //                               limit), the run's time for planners that stop at their first
 //                               solution (RRTConnect); absent for PRM, which in OMPL 1.5 grows its
 //                               roadmap until the time limit and reports no intermediate solution.
+// BIT*'s progress properties are removed (ProgressPropertyStripper: reading them while it runs
+// crashes OMPL 1.5.2); the other planners keep theirs (Planner Arena's progress plots).
 // A path the FCL check rejects is written to OUT/rejected_<problem>_<checker>_<planner>_<run>.txt
 // (one configuration per line, the `deepcheck plan` format).
 //
@@ -40,7 +42,9 @@
 // missing). Progress on stderr.
 //
 // Usage: plan_bench [--runs N] [--time S] [--problems a,b] [--planners a,b] [--quick] [--out DIR]
-//                   [--seed S] [--pick-panda-endpoints]
+//                   [--seed S] [--pick-panda-endpoints] [--certify DIR]
+//   --certify DIR  for each rejected path in DIR: certifyPath (setup.h) on our setup, then the
+//                  fine FCL check again; writes DIR/plan_bench_certify.md.
 
 #include "deepcheck/planners/fcl_validity_checker.h"
 #include "deepcheck/planners/path_tools.h"
@@ -68,6 +72,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <random>
 #include <sstream>
@@ -240,6 +245,16 @@ class Bench : public ot::Benchmark {
   CompleteExperiment& data() { return exp_; }
 };
 
+/// Removes a planner's progress properties (the values Benchmark's collector thread reads every
+/// 50 ms while the planner runs). BIT*'s read its search queue unsynchronized: in this benchmark
+/// OMPL 1.5.2 crashed with a segfault inside libompl during a BIT* run (shelf, run 9 of 10), as in
+/// ompl/ompl#779 ("BIT* is failing when added to a benchmark", traced there to
+/// currentVertexProgressProperty). The member is protected; a pointer to it named through a
+/// derived class is the standard way to reach it.
+struct ProgressPropertyStripper : ob::Planner {
+  static void strip(ob::Planner& planner) { (planner.*(&ProgressPropertyStripper::plannerProgressProperties_)).clear(); }
+};
+
 /// An OMPL SimpleSetup with the FCL checker on the same state space (bounds, names, segment
 /// fraction) as `ours`.
 std::shared_ptr<og::SimpleSetup> makeFclSetup(const og::SimpleSetup& ours, const deepcheck::checker::World& world,
@@ -396,6 +411,65 @@ int pickPandaEndpoints() {
   return 0;
 }
 
+// ---- what certification makes of the rejected paths (--certify DIR) ---------------------------
+
+/// For every rejected_<problem>_<checker>_<planner>_<run>.txt in `dir`: the path through
+/// certifyPath (setup.h: the clearance motion validator, repairing where it fails) on our setup of
+/// that problem, then the same fine FCL check. Writes DIR/plan_bench_certify.md (also printed).
+int certifyRejected(const std::string& dir) {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("rejected_", 0) == 0 && entry.path().extension() == ".txt") files.push_back(entry.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  const std::vector<Problem> all = problems();
+  std::ostringstream md;
+  md << "| rejected path | waypoints | certified as planned | repaired | certified after repair | FCL ok after |\n";
+  md << "|---|--:|--:|--:|--:|--:|\n";
+  for (const std::string& file : files) {
+    const std::string name = std::filesystem::path(file).filename().string();
+    const Problem* problem = nullptr;
+    for (const Problem& p : all) {
+      if (name.rfind("rejected_" + p.name + "_", 0) == 0 && (problem == nullptr || p.name.size() > problem->name.size())) {
+        problem = &p;
+      }
+    }
+    if (problem == nullptr || (problem->needsShared && !haveShared())) {
+      std::fprintf(stderr, "plan_bench: %s: no such problem here, skipped\n", name.c_str());
+      continue;
+    }
+    auto world = dp::loadWorld(problem->robotUrdf, problem->scenes, problem->options);
+    auto ss = dp::makeSimpleSetup(world, problem->options);
+    dp::setStartAndGoal(*ss, problem->start, problem->goal);
+    ss->setup();
+    std::shared_ptr<dp::FclStateValidityChecker> fcl;
+    auto fss = makeFclSetup(*ss, *world, &fcl);
+    og::PathGeometric path(ss->getSpaceInformation());
+    std::ifstream in(file);
+    std::string line;
+    ob::ScopedState<> state(ss->getStateSpace());
+    while (std::getline(in, line)) {
+      std::istringstream values(line);
+      std::vector<double> q{std::istream_iterator<double>(values), std::istream_iterator<double>()};
+      if (q.empty()) continue;
+      dp::copyToState(Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size())), state.get());
+      path.append(state.get());
+    }
+    const std::size_t waypoints = path.getStateCount();
+    const dp::PathCertificate cert = dp::certifyPath(*ss, path);
+    const dp::PathCheck after = dp::checkPathFine(path, [&](const Eigen::VectorXd& q) { return fcl->isFree(q); });
+    md << "| `" << name << "` | " << waypoints << " | " << (cert.initial.valid ? "yes" : "no") << " | "
+       << (cert.repaired ? "yes (" + std::to_string(cert.repair.waypointsPushed) + " pushed, " +
+                               std::to_string(cert.repair.statesInserted) + " inserted)"
+                         : std::string("no"))
+       << " | " << (cert.valid ? "yes" : "no") << " | " << (after.valid ? "yes" : "NO") << " |\n";
+  }
+  std::cout << md.str();
+  std::ofstream(dir + "/plan_bench_certify.md") << md.str();
+  return 0;
+}
+
 // ---- main -------------------------------------------------------------------------------------
 
 struct Options {
@@ -411,14 +485,16 @@ struct Options {
   if (!error.empty()) std::fprintf(stderr, "plan_bench: %s\n", error.c_str());
   std::fprintf(stderr,
                "usage: plan_bench [--runs N] [--time SECONDS] [--problems a,b] [--planners a,b] [--quick]\n"
-               "                  [--out DIR] [--seed S] [--pick-panda-endpoints]\n"
+               "                  [--out DIR] [--seed S] [--pick-panda-endpoints] [--certify DIR]\n"
                "  --runs N       runs per planner, checker and problem (default 10)\n"
                "  --time S       time limit per run, seconds (default 5)\n"
                "  --problems     table, shelf, narrow_passage, panda_kitchen, panda_table_bars (default all)\n"
                "  --planners     any name deepcheck::planners::makePlanner knows (default RRTConnect,RRT*,BIT*,PRM)\n"
                "  --quick        2 runs of 1 s (overrides --runs and --time)\n"
                "  --out DIR      output folder (default bench/results)\n"
-               "  --seed S       OMPL's random seed (default 1)\n");
+               "  --seed S       OMPL's random seed (default 1)\n"
+               "  --pick-panda-endpoints  print how the Panda's start and goal were found, and exit\n"
+               "  --certify DIR  certifyPath + fine FCL check of the rejected_*.txt paths in DIR, and exit\n");
   std::exit(2);
 }
 
@@ -454,6 +530,8 @@ int main(int argc, char** argv) {
         opt.seed = static_cast<std::uint32_t>(std::stoul(value()));
       } else if (arg == "--pick-panda-endpoints") {
         return pickPandaEndpoints();
+      } else if (arg == "--certify") {
+        return certifyRejected(value());
       } else if (arg == "--help" || arg == "-h") {
         usage("");
       } else {
@@ -572,7 +650,11 @@ int main(int argc, char** argv) {
       b.addExperimentParameter("longest_valid_segment_fraction", "REAL",
                                fmt(ss.getStateSpace()->getLongestValidSegmentFraction(), "%.17g"));
       b.addExperimentParameter("scenes", "INTEGER", std::to_string(problem.scenes.size()));
-      for (const std::string& name : opt.planners) b.addPlanner(dp::makePlanner(name, ss.getSpaceInformation()));
+      for (const std::string& name : opt.planners) {
+        ob::PlannerPtr planner = dp::makePlanner(name, ss.getSpaceInformation());
+        if (planner->getName().find("BIT") != std::string::npos) ProgressPropertyStripper::strip(*planner);
+        b.addPlanner(planner);
+      }
 
       // First exact solution time: RRT* and BIT* report intermediate solutions.
       auto runStart = std::make_shared<std::chrono::steady_clock::time_point>();
