@@ -5,6 +5,8 @@
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/robot_model.h"
 
+#include "common/test_paths.h"
+
 #include <boost/test/unit_test.hpp>
 
 #include <Eigen/Core>
@@ -16,27 +18,13 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace deepcheck::checker::test {
 
-/// The shared data folder (../shared of the source tree), or "" when it is absent.
-inline std::string sharedDir() {
-#ifdef DEEPCHECK_SHARED_DIR
-  std::error_code ec;
-  if (std::filesystem::is_directory(std::filesystem::path(DEEPCHECK_SHARED_DIR) / "robots", ec)) {
-    return DEEPCHECK_SHARED_DIR;
-  }
-#endif
-  return "";
-}
-
-/// True when ../shared is present; otherwise logs why the calling test is skipped.
-inline bool haveShared(const char* what) {
-  if (!sharedDir().empty()) return true;
-  BOOST_TEST_MESSAGE("skipped " << what << ": the shared data folder (../shared beside the source tree, with "
-                                   "robots/ and scenes/) is absent");
-  return false;
-}
+using deepcheck::test::bundledDataDir;
+using deepcheck::test::haveShared;
+using deepcheck::test::sharedDir;
 
 /// Decomposition cache of the test runs (in the build folder, so reruns are fast).
 inline std::string testCacheDir() {
@@ -109,6 +97,43 @@ inline Eigen::Isometry3d translation(double x, double y, double z) {
   return X;
 }
 
+/// A tetrahedron of edge 0.3 along the axes, corner at the origin, as a triangle mesh.
+inline robots::TriangleMesh tetrahedronMesh() {
+  robots::TriangleMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {0.3, 0, 0}, {0, 0.3, 0}, {0, 0, 0.3}};
+  mesh.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  return mesh;
+}
+
+/// The arm's obstacles in the agreement and gradient tests: a tilted crate, a ball and a post.
+inline void addCrateBallPost(World& world) {
+  Eigen::Isometry3d tilted = translation(0.35, 0.1, 0.55);
+  tilted.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  world.addObstacle(Obstacle::box("crate", Eigen::Vector3d(0.2, 0.3, 0.25), tilted));
+  world.addObstacle(Obstacle::sphere("ball", 0.12, translation(-0.3, -0.25, 0.7)));
+  world.addObstacle(Obstacle::cylinder("post", 0.05, 0.6, translation(0.0, 0.45, 0.4)));
+}
+
+/// isFree of `with` (a fast path on: `feature`) against `without` (off) on `qs`, one fresh context
+/// each: every answer must agree. Returns how many of qs are colliding; the two contexts' counters
+/// in *withStats and *withoutStats (when not null).
+inline int compareIsFree(const World& with, const World& without, const std::vector<Eigen::VectorXd>& qs,
+                         const std::string& feature, QueryStats* withStats, QueryStats* withoutStats = nullptr) {
+  auto a = with.makeContext();
+  auto b = without.makeContext();
+  int colliding = 0;
+  for (const Eigen::VectorXd& q : qs) {
+    const bool fast = with.isFree(q, a);
+    const bool reference = without.isFree(q, b);
+    BOOST_CHECK_MESSAGE(fast == reference, "q = " << q.transpose() << ": isFree " << fast << " with " << feature
+                                                  << ", " << reference << " without");
+    colliding += !reference;
+  }
+  if (withStats != nullptr) *withStats = a.stats();
+  if (withoutStats != nullptr) *withoutStats = b.stats();
+  return colliding;
+}
+
 /// Checks that `f` throws std::invalid_argument whose message contains `needle`.
 inline void checkThrowsWith(const std::function<void()>& f, const std::string& needle) {
   try {
@@ -118,15 +143,6 @@ inline void checkThrowsWith(const std::function<void()>& f, const std::string& n
     BOOST_TEST(std::string(e.what()).find(needle) != std::string::npos,
                "message '" << e.what() << "' should mention '" << needle << "'");
   }
-}
-
-/// The project's own data (robots/data): the bundled arm, its SRDF and the scenes.
-inline std::string bundledDataDir() {
-#ifdef DEEPCHECK_SOURCE_DIR
-  return std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
-#else
-  return "robots/data";
-#endif
 }
 
 inline robots::LoadOptions bundledLoadOptions() {

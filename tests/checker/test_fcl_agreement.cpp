@@ -89,15 +89,8 @@ BOOST_AUTO_TEST_SUITE(checker_fcl)
 
 BOOST_AUTO_TEST_CASE(arm_with_primitives_and_a_mesh) {
   World world(armRobot(), testWorldOptions());
-  Eigen::Isometry3d tilted = translation(0.35, 0.1, 0.55);
-  tilted.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  world.addObstacle(Obstacle::box("crate", Eigen::Vector3d(0.2, 0.3, 0.25), tilted));
-  world.addObstacle(Obstacle::sphere("ball", 0.12, translation(-0.3, -0.25, 0.7)));
-  world.addObstacle(Obstacle::cylinder("post", 0.05, 0.6, translation(0.0, 0.45, 0.4)));
-  robots::TriangleMesh tetra;
-  tetra.vertices = {{0, 0, 0}, {0.3, 0, 0}, {0, 0.3, 0}, {0, 0, 0.3}};
-  tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  world.addObstacle(Obstacle::fromMesh("tetra", tetra, translation(-0.4, 0.3, 0.2)));
+  addCrateBallPost(world);
+  world.addObstacle(Obstacle::fromMesh("tetra", tetrahedronMesh(), translation(-0.4, 0.3, 0.2)));
   const Agreement a = compare(world, 3000, 31, true);
   BOOST_TEST(a.missed == 0);
   BOOST_TEST(a.falseAlarmsBeyondExcess == 0);

@@ -77,11 +77,7 @@ BOOST_AUTO_TEST_SUITE(checker_gradient)
 
 BOOST_AUTO_TEST_CASE(arm_against_obstacles_and_itself) {
   World world(armRobot(), testWorldOptions());
-  Eigen::Isometry3d tilted = translation(0.35, 0.1, 0.55);
-  tilted.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  world.addObstacle(Obstacle::box("crate", Eigen::Vector3d(0.2, 0.3, 0.25), tilted));
-  world.addObstacle(Obstacle::sphere("ball", 0.12, translation(-0.3, -0.25, 0.7)));
-  world.addObstacle(Obstacle::cylinder("post", 0.05, 0.6, translation(0.0, 0.45, 0.4)));
+  addCrateBallPost(world);
   auto context = world.makeContext();
   std::mt19937 rng(20240611);
   GradientStats stats;

@@ -37,21 +37,14 @@ std::vector<Eigen::VectorXd> configurations(const robots::RobotModel& m, int ran
   return qs;
 }
 
-/// isFree of `with` (centroid test) against `without` on qs; returns the stats of `with`.
+/// isFree with the centroid test against without it on qs (compareIsFree); returns the stats of
+/// `with`.
 QueryStats compareAnswers(const World& with, const World& without, const std::vector<Eigen::VectorXd>& qs,
                           int* colliding) {
-  auto a = with.makeContext();
-  auto b = without.makeContext();
-  *colliding = 0;
-  for (const Eigen::VectorXd& q : qs) {
-    const bool fast = with.isFree(q, a);
-    const bool reference = without.isFree(q, b);
-    BOOST_CHECK_MESSAGE(fast == reference, "q = " << q.transpose() << ": isFree " << fast
-                                                  << " with the centroid test, " << reference << " without");
-    *colliding += !reference;
-  }
-  BOOST_TEST(b.stats().centroidInside == 0u);
-  return a.stats();
+  QueryStats withStats, withoutStats;
+  *colliding = compareIsFree(with, without, qs, "the centroid test", &withStats, &withoutStats);
+  BOOST_TEST(withoutStats.centroidInside == 0u);
+  return withStats;
 }
 
 }  // namespace
@@ -86,9 +79,7 @@ BOOST_AUTO_TEST_CASE(arm_obstacles_same_answers_with_and_without_centroid_test) 
   World without(armRobot(), options);
   Eigen::Isometry3d tilted = translation(0.35, 0.1, 0.55);
   tilted.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  robots::TriangleMesh tetra;
-  tetra.vertices = {{0, 0, 0}, {0.3, 0, 0}, {0, 0.3, 0}, {0, 0, 0.3}};
-  tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  const robots::TriangleMesh tetra = tetrahedronMesh();
   std::vector<int> ids;
   for (World* w : {&with, &without}) {
     ids.push_back(w->addObstacle(Obstacle::box("crate", Eigen::Vector3d(0.4, 0.5, 0.45), tilted)));

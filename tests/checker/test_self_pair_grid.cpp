@@ -19,23 +19,6 @@ using namespace deepcheck::checker::test;
 
 namespace {
 
-/// Compares isFree of `with` (grids) and `without` on `qs`; returns how many are colliding.
-int compareAnswers(const World& with, const World& without, const std::vector<Eigen::VectorXd>& qs,
-                   QueryStats* stats) {
-  auto a = with.makeContext();
-  auto b = without.makeContext();
-  int colliding = 0;
-  for (const Eigen::VectorXd& q : qs) {
-    const bool fast = with.isFree(q, a);
-    const bool reference = without.isFree(q, b);
-    BOOST_CHECK_MESSAGE(fast == reference, "q = " << q.transpose() << ": isFree " << fast << " with the grids, "
-                                                  << reference << " without");
-    colliding += !reference;
-  }
-  *stats = a.stats();
-  return colliding;
-}
-
 /// Random configurations, then ones that keep the other variables and sweep the two given ones
 /// finely (many cells, their boundaries, the limits and a little beyond them).
 std::vector<Eigen::VectorXd> configurations(const robots::RobotModel& m, int v0, int v1, unsigned seed) {
@@ -76,7 +59,7 @@ BOOST_AUTO_TEST_CASE(panda_same_answers_with_and_without_grids) {
   const std::vector<Eigen::VectorXd> qs =
       configurations(m, m.variableIndex("panda_joint6"), m.variableIndex("panda_joint7"), 17);
   QueryStats stats;
-  const int colliding = compareAnswers(with, without, qs, &stats);
+  const int colliding = compareIsFree(with, without, qs, "the grids", &stats);
   BOOST_TEST_MESSAGE(qs.size() << " configurations, " << colliding << " colliding; self pairs certified free "
                                << stats.certifiedSelf << ", self narrow phase " << stats.selfNarrowPhase);
   BOOST_TEST(colliding > 500);
@@ -87,7 +70,7 @@ BOOST_AUTO_TEST_CASE(panda_same_answers_with_and_without_grids) {
   with.disablePair("panda_link0", "panda_link5");
   without.disablePair("panda_link0", "panda_link5");
   BOOST_TEST(with.summary().find("certified-free grid: 2") != std::string::npos);
-  compareAnswers(with, without, std::vector<Eigen::VectorXd>(qs.begin(), qs.begin() + 500), &stats);
+  compareIsFree(with, without, std::vector<Eigen::VectorXd>(qs.begin(), qs.begin() + 500), "the grids", &stats);
 }
 
 BOOST_AUTO_TEST_CASE(bundled_arm_same_answers_with_and_without_grids) {
@@ -103,7 +86,7 @@ BOOST_AUTO_TEST_CASE(bundled_arm_same_answers_with_and_without_grids) {
   const int n = m.numVariables();
   const std::vector<Eigen::VectorXd> qs = configurations(m, n - 2, n - 1, 23);
   QueryStats stats;
-  const int colliding = compareAnswers(with, without, qs, &stats);
+  const int colliding = compareIsFree(with, without, qs, "the grids", &stats);
   BOOST_TEST_MESSAGE(qs.size() << " configurations, " << colliding << " colliding; self pairs certified free "
                                << stats.certifiedSelf << ", self narrow phase " << stats.selfNarrowPhase);
   BOOST_TEST(stats.certifiedSelf > 0u);

@@ -108,11 +108,8 @@ BOOST_AUTO_TEST_CASE(add_move_remove_obstacles) {
 
 BOOST_AUTO_TEST_CASE(mesh_obstacle_in_memory) {
   // A tetrahedron as a mesh obstacle; its single convex piece is itself.
-  robots::TriangleMesh mesh;
-  mesh.vertices = {{0, 0, 0}, {0.3, 0, 0}, {0, 0.3, 0}, {0, 0, 0.3}};
-  mesh.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   World world(sliderRobot(0.2), testWorldOptions());
-  world.addObstacle(Obstacle::fromMesh("tetra", mesh, translation(0.5, -0.1, -0.1)));
+  world.addObstacle(Obstacle::fromMesh("tetra", tetrahedronMesh(), translation(0.5, -0.1, -0.1)));
   // The tetrahedron's face x = 0.5 (its vertex plane) faces the cube's face x = q + 0.1.
   const DistanceResult r = world.signedDistance(at(0.0));
   BOOST_TEST(std::abs(r.closest.distance - 0.4) < kExact);

@@ -2,6 +2,8 @@
 // Helpers shared by the robots test files: where ../shared is, temporary folders, and checks of
 // exception messages.
 
+#include "common/test_paths.h"
+
 #include <boost/test/unit_test.hpp>
 
 #include <atomic>
@@ -17,24 +19,8 @@
 
 namespace deepcheck::robots::test {
 
-/// The shared data folder (../shared of the source tree), or "" when it is absent.
-inline std::string sharedDir() {
-#ifdef DEEPCHECK_SHARED_DIR
-  std::error_code ec;
-  if (std::filesystem::is_directory(std::filesystem::path(DEEPCHECK_SHARED_DIR) / "robots", ec)) {
-    return DEEPCHECK_SHARED_DIR;
-  }
-#endif
-  return "";
-}
-
-/// Returns true when ../shared is present; otherwise logs why the calling test is skipped.
-inline bool haveShared(const char* what) {
-  if (!sharedDir().empty()) return true;
-  BOOST_TEST_MESSAGE("skipped " << what << ": the shared data folder (../shared beside the source "
-                                   "tree, with robots/ and scenes/) is absent");
-  return false;
-}
+using deepcheck::test::haveShared;
+using deepcheck::test::sharedDir;
 
 /// A fresh folder under the system temporary directory, removed with everything in it on
 /// destruction. Names are unique per process and per instance.
