@@ -224,10 +224,9 @@ robots::MeshDecomposer makeDecomposer(const WorldOptions& options, std::shared_p
 }
 
 std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robots::CollisionGeometryOptions& geometry) {
-  auto robot = std::make_shared<RobotData>(RobotData{std::move(model), {}, {}, {}, {}, {}, {}});
+  auto robot = std::make_shared<RobotData>(RobotData{std::move(model), {}, {}, {}, {}, {}});
   const robots::RobotModel& m = robot->model;
   const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(m, geometry);
-  robot->geometryOfLink.assign(m.numLinks(), -1);
   std::vector<bool> hasGeometry(m.numLinks(), false);
   for (int l = 0; l < m.numLinks(); ++l) {
     if (pieces[l].empty()) continue;
@@ -257,7 +256,6 @@ std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robo
       r = std::max(r, (rp.center_L - lg.center_L).norm() + rp.sphereRadius);
     }
     lg.radius = detail::padRadius(r, lg.center_L);
-    robot->geometryOfLink[l] = static_cast<int>(robot->links.size());
     robot->links.push_back(lg);
   }
   robot->reach = linkReachSpheres(m, pieces);
@@ -449,7 +447,6 @@ World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std
     *excess = std::numeric_limits<double>::quiet_NaN();  // a custom decomposer: unknown
   }
   auto snap = std::make_shared<Snapshot>();
-  snap->broadPhase = options.broadPhase;
   snap->robot = buildRobot(std::move(robot), st.geometry);
   robots::checkDisabledPairs(snap->robot->model, options.disabledPairs, "WorldOptions::disabledPairs");
   for (const robots::DisabledPair& p : options.disabledPairs) {
@@ -489,7 +486,7 @@ int World::addScene(robots::RobotModel scene, const SceneOptions& options) {
   auto snap = std::make_shared<Snapshot>(*st.current);
   const int index = static_cast<int>(snap->scenes.size());
   snap->scenePieces = appendScenePieces(*snap->scenePieces, *snap->robot, *data, index, pieces,
-                                        st.options.reachMargin, snap->broadPhase);
+                                        st.options.reachMargin, st.options.broadPhase);
   snap->scenes.push_back(data);
   publish(st, snap);
   return static_cast<int>(snap->scenes.size()) - 1;
@@ -514,7 +511,7 @@ int World::addObstacle(const Obstacle& obstacle) {
   data->id = st.nextObstacleId++;
   auto snap = std::make_shared<Snapshot>(*st.current);
   snap->obstacles.push_back(data);
-  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, snap->broadPhase);
+  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.broadPhase);
   publish(st, snap);
   return data->id;
 }
@@ -536,7 +533,7 @@ void World::removeObstacle(int id) {
   const std::size_t i = findObstacle(*st.current, id);
   auto snap = std::make_shared<Snapshot>(*st.current);
   snap->obstacles.erase(snap->obstacles.begin() + static_cast<std::ptrdiff_t>(i));
-  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, snap->broadPhase);
+  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.broadPhase);
   publish(st, snap);
 }
 
@@ -549,7 +546,7 @@ void World::setObstaclePose(int id, const Eigen::Isometry3d& X_WO) {
   auto moved = std::make_shared<ObstacleData>(*snap->obstacles[i]);
   moved->source.X_WO = X_WO;
   snap->obstacles[i] = moved;
-  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, snap->broadPhase);
+  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.broadPhase);
   publish(st, snap);
 }
 
@@ -678,7 +675,7 @@ std::string World::summary() const {
         << " % certified free)\n";
   }
   out << "pairs checked at most: " << worldPairs << " robot-world piece pairs, " << s.selfPiecePairs
-      << " self piece pairs; broad phase " << toString(snap->broadPhase) << "\n";
+      << " self piece pairs; broad phase " << toString(state_->options.broadPhase) << "\n";
   char excess[64];
   std::snprintf(excess, sizeof excess, "%.3g", s.geometryExcess);
   out << "geometry excess (pieces beyond the original shapes): " << (std::isnan(s.geometryExcess) ? "unknown" : excess)

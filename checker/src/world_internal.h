@@ -58,7 +58,6 @@ struct RobotData {
   robots::RobotModel model;
   std::vector<RobotPiece> pieces;   // grouped by link, in link order
   std::vector<LinkGeometry> links;  // links with pieces, in link order
-  std::vector<int> geometryOfLink;  // link -> index into links, -1 without pieces
   std::vector<ReachSphere> reach;   // per link
   std::vector<std::pair<int, int>> adjacent;  // link pairs, robots::adjacentLinkPairs()
   std::vector<std::pair<int, int>> rigid;     // link pairs, rigidLinkPairs()
@@ -75,7 +74,7 @@ struct WorldPiece {
   Obb obb_W;                // oriented box in the world
   SupportSeeds seeds;       // of the core, in its frame
   int body = -1;            // index into PieceSet::bodies
-  std::uint64_t uid = 0;    // stable across snapshots (obstacle id << 20 | piece), for caches
+  std::uint64_t uid = 0;    // stable across snapshots (obstacle id << 24 | piece), for caches
 };
 
 struct WorldBody {
@@ -124,7 +123,6 @@ struct Snapshot {
   int disabledByUser = 0;
   std::vector<std::pair<int, int>> userDisabled;  // link pairs, first < second
   double excess = 0.0;
-  BroadPhase broadPhase = BroadPhase::AabbTree;
 };
 
 /// The shared state of a World (the World object itself only holds a pointer to it, so moving a

@@ -18,7 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <functional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -234,14 +234,44 @@ inline double pieceWorldLowerBound(const Impl& c, const RobotPiece& p, int i, co
   return std::max(toBox, toSphere);
 }
 
+/// The bounding tests of robot piece i (posed) against world piece w: false when its bounding
+/// sphere's lower bound is positive or the oriented boxes are apart.
+inline bool worldBoundsMeet(const Impl& c, const RobotData& robot, int i, const WorldPiece& w) {
+  return !(pieceWorldLowerBound(c, robot.pieces[i], i, w) > 0) && !separated(c.pieceObb[i], w.obb_W);
+}
+
+/// The bounding tests of robot pieces i and j (both posed): spheres, then oriented boxes.
+inline bool selfBoundsMeet(const Impl& c, const RobotData& robot, int i, int j) {
+  return !((c.pieceCenter[i] - c.pieceCenter[j]).norm() > robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius) &&
+         !separated(c.pieceObb[i], c.pieceObb[j]);
+}
+
+/// Calls f(i, j, cache) for the piece pairs of the self pair sp (both pieces posed; cache indexes
+/// selfCaches), until f returns true; true when stopped.
+template <class F>
+bool forEachSelfPiecePair(Impl& c, const RobotData& robot, const SelfPair& sp, F&& f) {
+  const LinkGeometry& la = robot.links[sp.a];
+  const LinkGeometry& lb = robot.links[sp.b];
+  for (int i = la.firstPiece; i < la.firstPiece + la.numPieces; ++i) {
+    posePiece(c, robot, i);
+    for (int j = lb.firstPiece; j < lb.firstPiece + lb.numPieces; ++j) {
+      posePiece(c, robot, j);
+      ++c.stats.pieceTests;
+      if (f(i, j, sp.cacheOffset + (i - la.firstPiece) * lb.numPieces + (j - lb.firstPiece))) return true;
+    }
+  }
+  return false;
+}
+
 /// Calls visit(worldPiece) for the pieces of `set` whose box overlaps `query`; stops (returns
-/// true) when visit returns true.
+/// true) when visit returns true. FCL's tree takes std::function: built from std::ref, it never
+/// allocates (a std::function copy of a lambda with many captures would, on every query).
 template <class Visit>
 bool forEachOverlapping(const PieceSet& set, BroadPhase broadPhase, const Aabb& query, Visit&& visit) {
   switch (broadPhase) {
     case BroadPhase::AabbTree: return set.tree.visitOverlapping(query, visit);
     case BroadPhase::FclTree:
-      return set.fclTree != nullptr && set.fclTree->visitOverlapping(query, std::function<bool(int)>(visit));
+      return set.fclTree != nullptr && set.fclTree->visitOverlapping(query, std::function<bool(int)>(std::ref(visit)));
     case BroadPhase::None:
       for (int i = 0; i < static_cast<int>(set.pieces.size()); ++i) {
         if (visit(i)) return true;
@@ -260,7 +290,8 @@ void forEachNear(const PieceSet& set, BroadPhase broadPhase, const Eigen::Vector
     case BroadPhase::AabbTree: set.tree.visitNear(center, r, bound, visit); return;
     case BroadPhase::FclTree:
       if (set.fclTree != nullptr) {
-        set.fclTree->visitNear(center, r, std::function<double()>(bound), std::function<void(int, double)>(visit));
+        set.fclTree->visitNear(center, r, std::function<double()>(std::ref(bound)),
+                               std::function<void(int, double)>(std::ref(visit)));
       }
       return;
     case BroadPhase::None:
@@ -367,16 +398,14 @@ bool linkHitsSet(World::Context& context, Impl& c, const Snapshot& s, const Piec
   const RobotData& robot = *s.robot;
   const LinkGeometry& lg = robot.links[g];
   const Eigen::Vector3d& center = c.linkCenter[g];
-  return forEachOverlapping(set, s.broadPhase, Aabb::ofSphere(center, lg.radius), [&](int wp) {
+  return forEachOverlapping(set, c.state->options.broadPhase, Aabb::ofSphere(center, lg.radius), [&](int wp) {
     const WorldPiece& w = set.pieces[wp];
     ++c.stats.linkCandidates;
     if (w.box.distance(center) > lg.radius) return false;
     for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
       posePiece(c, robot, i);
       ++c.stats.pieceTests;
-      if (pieceWorldLowerBound(c, robot.pieces[i], i, w) > 0) continue;
-      if (separated(c.pieceObb[i], w.obb_W)) continue;
-      if (overlapWorld(context, c, robot, set, caches, kind, i, wp)) return true;
+      if (worldBoundsMeet(c, robot, i, w) && overlapWorld(context, c, robot, set, caches, kind, i, wp)) return true;
     }
     return false;
   });
@@ -391,20 +420,9 @@ bool selfPairHits(World::Context& context, Impl& c, const RobotData& robot, cons
     return false;
   }
   if ((c.linkCenter[sp.a] - c.linkCenter[sp.b]).norm() > la.radius + lb.radius) return false;
-  for (int i = la.firstPiece; i < la.firstPiece + la.numPieces; ++i) {
-    posePiece(c, robot, i);
-    const RobotPiece& a = robot.pieces[i];
-    for (int j = lb.firstPiece; j < lb.firstPiece + lb.numPieces; ++j) {
-      posePiece(c, robot, j);
-      const RobotPiece& b = robot.pieces[j];
-      ++c.stats.pieceTests;
-      if ((c.pieceCenter[i] - c.pieceCenter[j]).norm() > a.sphereRadius + b.sphereRadius) continue;
-      if (separated(c.pieceObb[i], c.pieceObb[j])) continue;
-      const int cache = sp.cacheOffset + (i - la.firstPiece) * lb.numPieces + (j - lb.firstPiece);
-      if (overlapSelf(context, c, robot, i, j, cache)) return true;
-    }
-  }
-  return false;
+  return forEachSelfPiecePair(c, robot, sp, [&](int i, int j, int cache) {
+    return selfBoundsMeet(c, robot, i, j) && overlapSelf(context, c, robot, i, j, cache);
+  });
 }
 
 /// Re-tests the pair that overlapped in the previous query (motions overlap the same pair in a
@@ -413,19 +431,15 @@ bool lastHitStillHits(World::Context& context, Impl& c, const Snapshot& s) {
   const PairKey k = c.lastHit;
   const RobotData& robot = *s.robot;
   posePiece(c, robot, k.robotPiece);
-  const RobotPiece& p = robot.pieces[k.robotPiece];
   if (k.kind == PairKey::Kind::Self) {
     posePiece(c, robot, k.other);
-    const RobotPiece& b = robot.pieces[k.other];
-    if ((c.pieceCenter[k.robotPiece] - c.pieceCenter[k.other]).norm() > p.sphereRadius + b.sphereRadius) return false;
-    if (separated(c.pieceObb[k.robotPiece], c.pieceObb[k.other])) return false;
-    return overlapSelf(context, c, robot, k.robotPiece, k.other, k.cache);
+    return selfBoundsMeet(c, robot, k.robotPiece, k.other) &&
+           overlapSelf(context, c, robot, k.robotPiece, k.other, k.cache);
   }
   const bool scene = k.kind == PairKey::Kind::Scene;
   const PieceSet& set = scene ? *s.scenePieces : *s.obstaclePieces;
-  if (pieceWorldLowerBound(c, p, k.robotPiece, set.pieces[k.other]) > 0) return false;
-  if (separated(c.pieceObb[k.robotPiece], set.pieces[k.other].obb_W)) return false;
-  return overlapWorld(context, c, robot, set, scene ? c.sceneCaches : c.obstacleCaches, k.kind, k.robotPiece,
+  return worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other]) &&
+         overlapWorld(context, c, robot, set, scene ? c.sceneCaches : c.obstacleCaches, k.kind, k.robotPiece,
                       k.other);
 }
 
@@ -609,7 +623,7 @@ struct DistanceSearch {
     if (set.pieces.empty()) return;
     const RobotData& robot = *s.robot;
     const LinkGeometry& lg = robot.links[g];
-    forEachNear(set, s.broadPhase, c.linkCenter[g], lg.radius, [this] { return bound(); },
+    forEachNear(set, c.state->options.broadPhase, c.linkCenter[g], lg.radius, [this] { return bound(); },
                 [&](int wp, double /*linkLowerBound*/) {
                   const WorldPiece& w = set.pieces[wp];
                   ++c.stats.linkCandidates;
@@ -633,23 +647,16 @@ struct DistanceSearch {
     const LinkGeometry& lb = robot.links[sp.b];
     ++c.stats.linkCandidates;
     if ((c.linkCenter[sp.a] - c.linkCenter[sp.b]).norm() - la.radius - lb.radius >= bound()) return;
-    for (int i = la.firstPiece; i < la.firstPiece + la.numPieces; ++i) {
-      posePiece(c, robot, i);
+    forEachSelfPiecePair(c, robot, sp, [&](int i, int j, int cache) {
       const RobotPiece& a = robot.pieces[i];
-      for (int j = lb.firstPiece; j < lb.firstPiece + lb.numPieces; ++j) {
-        posePiece(c, robot, j);
-        const RobotPiece& b = robot.pieces[j];
-        ++c.stats.pieceTests;
-        const double centers = (c.pieceCenter[i] - c.pieceCenter[j]).norm();
-        upper = std::min(upper, centers - a.radius - b.radius);
-        const double lower = centers - a.sphereRadius - b.sphereRadius;
-        if (lower >= bound()) continue;
-        const int cache = sp.cacheOffset + (i - la.firstPiece) * lb.numPieces + (j - lb.firstPiece);
-        const PairKey key{PairKey::Kind::Self, i, j, cache};
-        if (key == skip) continue;
-        c.candidates.push_back(Candidate{lower, key});
-      }
-    }
+      const RobotPiece& b = robot.pieces[j];
+      const double centers = (c.pieceCenter[i] - c.pieceCenter[j]).norm();
+      upper = std::min(upper, centers - a.radius - b.radius);
+      const double lower = centers - a.sphereRadius - b.sphereRadius;
+      const PairKey key{PairKey::Kind::Self, i, j, cache};
+      if (!(lower >= bound()) && !(key == skip)) c.candidates.push_back(Candidate{lower, key});
+      return false;
+    });
   }
 
   /// The previous closest pair, measured first: its distance is usually near the new minimum

@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <random>
 #include <set>
+#include <string>
+#include <vector>
 
 using namespace deepcheck;
 using namespace deepcheck::checker;
@@ -195,6 +197,47 @@ BOOST_AUTO_TEST_CASE(reach_spheres_contain_every_reachable_point) {
   const robots::RobotModel arm = armRobot();
   BOOST_TEST(linkReachSpheres(arm, robots::collisionPieces(arm))[0].fixed);
   checkThrowsWith([&] { linkReachSpheres(arm, {}); }, "arm");
+}
+
+// The broad phases (static AABB tree, FCL's dynamic tree, none) only choose which world pieces
+// reach the bounding tests: isFree answers the same with each, and signedDistance finds the same
+// separation (each query cold, so a pair's distance does not depend on what was measured before).
+BOOST_AUTO_TEST_CASE(broad_phases_give_the_same_answers) {
+  const robots::LoadOptions load = bundledLoadOptions();
+  const std::string urdf = bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
+  const BroadPhase phases[] = {BroadPhase::AabbTree, BroadPhase::FclTree, BroadPhase::None};
+  std::vector<World> worlds;
+  for (BroadPhase b : phases) {
+    WorldOptions options = testWorldOptions();
+    options.broadPhase = b;
+    World& w = worlds.emplace_back(robots::RobotModel::fromUrdfFile(urdf, load), options);
+    w.addScene(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/scenes/shelf.urdf", load));
+    addCrateBallPost(w);
+  }
+  std::mt19937 rng(19);
+  std::vector<Eigen::VectorXd> qs;
+  for (int i = 0; i < 1500; ++i) qs.push_back(randomConfiguration(worlds[0].robot(), rng));
+  for (std::size_t k = 1; k < worlds.size(); ++k) {
+    const std::string name = std::string("broad phase ") + toString(phases[k]);
+    const int colliding = compareIsFree(worlds[k], worlds[0], qs, name + " (without: the AABB tree)", nullptr);
+    BOOST_TEST(colliding > 100);
+    BOOST_TEST(colliding < static_cast<int>(qs.size()) - 100);
+    auto reference = worlds[0].makeContext();
+    auto other = worlds[k].makeContext();
+    int separated = 0;
+    for (std::size_t i = 0; i < 300; ++i) {
+      reference.resetCaches();
+      other.resetCaches();
+      const DistanceResult a = worlds[0].signedDistance(qs[i], reference);
+      const DistanceResult b = worlds[k].signedDistance(qs[i], other);
+      BOOST_TEST_REQUIRE(a.found);
+      BOOST_TEST_REQUIRE(b.found);
+      if (a.closest.distance <= 0.0) continue;
+      ++separated;
+      BOOST_TEST(b.closest.distance == a.closest.distance, name << ", q " << qs[i].transpose());
+    }
+    BOOST_TEST(separated > 100);
+  }
 }
 
 // DistanceOptions::worldPairs / selfPairs: each kind alone gives the minimum over that kind, and
