@@ -244,7 +244,6 @@ std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robo
       rp.center_L = p.X_LP * p.core->center();
       rp.sphereRadius = detail::padRadius(p.core->boundingRadius() + p.radius, rp.center_L);
       rp.obb_L = Obb::ofPiece(*p.core, p.radius).transformed(p.X_LP);
-      rp.seeds = detail::SupportSeeds::of(*p.core);
       rp.link = l;
       box.extend(Aabb::ofSphere(rp.center_L, rp.sphereRadius));
       robot->pieces.push_back(rp);
@@ -278,7 +277,6 @@ WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry
   w.box.lo.array() -= pad;
   w.box.hi.array() += pad;
   w.obb_W = Obb::ofPiece(*p.core, p.radius).transformed(w.X_WP);
-  w.seeds = detail::SupportSeeds::of(*p.core);
   w.body = body;
   w.uid = uid;
   return w;

@@ -10,7 +10,6 @@
 #include "deepcheck/checker/world.h"
 
 #include "self_pair_grid.h"
-#include "support_seeds.h"
 
 #include <atomic>
 #include <cstdint>
@@ -29,7 +28,6 @@ struct RobotPiece {
   Eigen::Vector3d center_L = Eigen::Vector3d::Zero();
   double sphereRadius = 0.0;
   Obb obb_L;  // oriented box in the link frame
-  SupportSeeds seeds;  // of the core, in its frame
   int link = -1;
 };
 
@@ -72,7 +70,6 @@ struct WorldPiece {
   double sphereRadius = 0.0;
   Aabb box;
   Obb obb_W;                // oriented box in the world
-  SupportSeeds seeds;       // of the core, in its frame
   int body = -1;            // index into PieceSet::bodies
   std::uint64_t uid = 0;    // stable across snapshots (obstacle id << 24 | piece), for caches
 };

@@ -206,24 +206,10 @@ inline void posePiece(Impl& c, const RobotData& robot, int i) {
 
 /// The pair's warm-start cache for this query: kept when the query is near the previous one,
 /// reset first otherwise (a start from an unrelated configuration is worse than a cold start:
-/// measured 20 % slower on random configurations, and DEEP runs fewer restarts when warm).
+/// measured 20 % slower on random configurations, and DEEP runs fewer restarts when warm). A cold
+/// pair's support climbs start from each hull's direction index (deep::ConvexPolytope::support).
 inline deep::PairCache* warm(const Impl& c, deep::PairCache& cache) {
   if (!c.coherent) cache.reset();
-  return &cache;
-}
-
-/// The pair's cache for isFree's boolean test: warm (see warm()), or reset with the support
-/// hints of GJK's first direction (the centroid difference, support_seeds.h).
-template <class PieceA, class PieceB>
-inline deep::PairCache* warmOrSeeded(const Impl& c, deep::PairCache& cache, const PieceA& a,
-                                     const Eigen::Isometry3d& X_WA, const Eigen::Vector3d& centerA,
-                                     const PieceB& b, const Eigen::Isometry3d& X_WB,
-                                     const Eigen::Vector3d& centerB) {
-  if (c.coherent) return &cache;
-  cache.reset();
-  const Eigen::Vector3d d = centerB - centerA;
-  cache.gjk.hintA = a.seeds.start(X_WA.linear().transpose() * d);
-  cache.gjk.hintB = b.seeds.start(-(X_WB.linear().transpose() * d));
   return &cache;
 }
 
@@ -372,8 +358,7 @@ bool overlapWorld(World::Context& context, Impl& c, const RobotData& robot, cons
     return true;
   }
   const bool hit = deep::overlapsUnchecked(shapeOf(p), c.X_WP[i], shapeOf(w), w.X_WP,
-                                  warmOrSeeded(c, caches[static_cast<std::size_t>(i) * set.pieces.size() + wp], p,
-                                               c.X_WP[i], c.pieceCenter[i], w, w.X_WP, w.center_W));
+                                           warm(c, caches[static_cast<std::size_t>(i) * set.pieces.size() + wp]));
   if (hit) c.lastHit = PairKey{kind, i, wp, -1};
   return hit;
 }
@@ -384,9 +369,7 @@ bool overlapSelf(World::Context& context, Impl& c, const RobotData& robot, int i
   ++c.stats.narrowPhase;
   ++c.stats.selfNarrowPhase;
   notify(context, a.link, robotBody(b.link));
-  const bool hit = deep::overlapsUnchecked(shapeOf(a), c.X_WP[i], shapeOf(b), c.X_WP[j],
-                                  warmOrSeeded(c, c.selfCaches[cache], a, c.X_WP[i], c.pieceCenter[i], b, c.X_WP[j],
-                                               c.pieceCenter[j]));
+  const bool hit = deep::overlapsUnchecked(shapeOf(a), c.X_WP[i], shapeOf(b), c.X_WP[j], warm(c, c.selfCaches[cache]));
   if (hit) c.lastHit = PairKey{PairKey::Kind::Self, i, j, cache};
   return hit;
 }
