@@ -10,14 +10,16 @@
 // the broad phases (static AABB tree, FCL's dynamic AABB tree, none); agreement with FCL on random
 // configurations (FCL colliding but reported free must be 0; false alarms counted with their FCL
 // distance against the pair tolerance, twice the world's geometry excess); forward kinematics
-// alone (a floor under both backends: each poses every link).
+// alone (a floor under both backends: each poses every link); an empty call (the clock reads in
+// every per-query time).
 //
 // Timing: per-query steady_clock times; each set is timed in 3 rounds and the round with the
 // lowest median is kept (the machine is shared; other processes only add time).
 // Output: a table on stdout, the machine load (from /proc/loadavg) before and after, and
 // bench/results/checker_bench.csv. Usage: checker_bench [--quick] [--isfree] [--repeat N]
 //   --quick     1,000 random configurations and 30 motions instead of 10,000 and 300;
-//   --isfree    only forward kinematics and isFree (ours and FCL's); the CSV is not written;
+//   --isfree    only the empty call, forward kinematics and isFree (ours and FCL's); the CSV is
+//               not written;
 //   --repeat N  with --isfree: then run our isFree over both sets N more times, untimed (a
 //               steady load for `perf record`);
 //   --world W   only the world named W (panda-shelf, panda-kitchen, arm-shelf).
@@ -206,6 +208,8 @@ void runWorld(const WorldSpec& spec, const RunOptions& run) {
   for (int i = 0; i < samples; ++i) random.push_back(randomConfiguration(world.robot(), rng));
   const std::vector<Eigen::VectorXd> motion = shortMotions(world.robot(), motions, rng);
 
+  // An empty call: what the two clock reads add to every per-query time below.
+  addTimes(spec.name, "clock", "random", "empty call", timeEach(random, [](const Eigen::VectorXd&) {}));
   // Forward kinematics alone: a floor under both backends' isFree (both pose every link).
   {
     std::vector<Eigen::Isometry3d> X_WL;
