@@ -2,108 +2,24 @@
 // configurations written to temporary files; answers are compared with distances known in closed
 // form (a cube on a slider against scene boxes), and the output format with the contract.
 
+#include "tool_runner.h"
+
 #include <boost/test/unit_test.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fs = std::filesystem;
+using namespace deepcheck::tool_test;
 
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-/// A folder of its own under the temporary directory, removed at the end.
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    static int counter = 0;
-    dir = fs::temp_directory_path() /
-          ("deepcheck_tool_check_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir / name, std::ios::binary) << text;
-    return (dir / name).string();
-  }
-};
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs `deepcheck check <args>` with `input` on stdin. The decomposition cache goes to the
-/// scratch folder (XDG_CACHE_HOME) so the test never writes to the user's cache.
+/// Runs `deepcheck check <args>` with `input` on stdin.
 Run runCheck(const Scratch& scratch, const std::string& args, const std::string& input) {
-  const std::string in = scratch.write("stdin.txt", input);
-  const fs::path err = scratch.dir / "stderr.txt";
-  const std::string cmd = "XDG_CACHE_HOME=" + quote((scratch.dir / "cache").string()) + " " + quote(DEEPCHECK_TOOL) +
-                          " check " + args + " < " + quote(in) + " 2> " + quote(err.string());
-  Run r;
-  if (FILE* pipe = ::popen(cmd.c_str(), "r")) {
-    char buf[4096];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-    const int status = ::pclose(pipe);
-    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  r.err = readFile(err);
-  return r;
-}
-
-std::vector<std::string> lines(const std::string& s) {
-  std::vector<std::string> out;
-  std::istringstream in(s);
-  std::string line;
-  while (std::getline(in, line)) out.push_back(line);
-  return out;
-}
-
-std::vector<std::string> fields(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> out;
-  std::string f;
-  while (in >> f) out.push_back(f);
-  return out;
-}
-
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-/// Parses a number printed with %.17g (and checks that it was).
-double number(const std::string& field) {
-  const double v = std::strtod(field.c_str(), nullptr);
-  BOOST_TEST(fmt(v) == field, "'" << field << "' is not printed with %.17g");
-  return v;
+  return scratch.run("check " + args, input);
 }
 
 // A cube of edge 0.2 on a prismatic joint along x (centre at x = q) and a variable "lift" that

@@ -1,63 +1,25 @@
 // End-to-end tests of `deepcheck info` on the bundled arm (robots/data): the binary is run with
 // popen and its text output is read back.
 
+#include "tool_runner.h"
+
 #include <boost/test/unit_test.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
 
-namespace fs = std::filesystem;
+using namespace deepcheck::tool_test;
 
 namespace {
 
 const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
 const std::string kArm = kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
 
-struct InfoRun {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string shellQuote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-fs::path scratchPath(const std::string& what) {
-  static int counter = 0;
-  return fs::temp_directory_path() / ("deepcheck_tool_info_" + std::to_string(::getpid()) + "_" +
-                                      std::to_string(counter++) + "_" + what);
-}
-
-InfoRun runInfo(const std::vector<std::string>& args) {
-  const fs::path err = scratchPath("err.txt");
-  std::string cmd = shellQuote(DEEPCHECK_TOOL) + " info";
-  for (const std::string& a : args) cmd += " " + shellQuote(a);
-  cmd += " < /dev/null 2> " + shellQuote(err.string());
-  InfoRun r;
-  if (FILE* pipe = ::popen(cmd.c_str(), "r")) {
-    char buf[4096];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-    const int status = ::pclose(pipe);
-    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  std::ifstream in(err);
-  std::stringstream s;
-  s << in.rdbuf();
-  r.err = s.str();
-  fs::remove(err);
-  return r;
+/// Runs `deepcheck info <args>` (each argument one word) with an empty stdin.
+Run runInfo(const Scratch& scratch, const std::vector<std::string>& args) {
+  return scratch.run("info " + quoteAll(args));
 }
 
 /// The lines of `text` after the line equal to `heading`, up to the next blank line.
@@ -79,7 +41,8 @@ std::vector<std::string> section(const std::string& text, const std::string& hea
 BOOST_AUTO_TEST_SUITE(tool_info)
 
 BOOST_AUTO_TEST_CASE(bundled_arm) {
-  const InfoRun r = runInfo({kArm, "--package-path", kData, "--samples", "2000"});
+  Scratch scratch;
+  const Run r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "2000"});
   BOOST_TEST_MESSAGE(r.out);
   BOOST_REQUIRE_MESSAGE(r.status == 0, "exit " << r.status << ": " << r.err);
   BOOST_TEST(r.out.find("robot 'deepcheck_arm'") != std::string::npos);
@@ -128,15 +91,12 @@ BOOST_AUTO_TEST_CASE(bundled_arm) {
 }
 
 BOOST_AUTO_TEST_CASE(writes_srdf) {
-  const fs::path srdf = scratchPath("arm.srdf");
-  const InfoRun r = runInfo({kArm, "--package-path=" + kData, "--samples", "500", "--seed", "3",
-                             "--write-srdf", srdf.string()});
+  Scratch scratch;
+  const std::string srdf = scratch.path("arm.srdf");
+  const Run r = runInfo(scratch, {kArm, "--package-path=" + kData, "--samples", "500", "--seed", "3",
+                             "--write-srdf", srdf});
   BOOST_REQUIRE_MESSAGE(r.status == 0, "exit " << r.status << ": " << r.err);
-  std::ifstream in(srdf);
-  std::stringstream s;
-  s << in.rdbuf();
-  fs::remove(srdf);
-  const std::string text = s.str();
+  const std::string text = readFile(srdf);
   BOOST_TEST(text.find("<robot name=\"deepcheck_arm\">") != std::string::npos);
   BOOST_TEST(text.find("<disable_collisions link1=\"base_link\" link2=\"link1\" reason=\"Adjacent\"/>") !=
              std::string::npos);
@@ -146,22 +106,23 @@ BOOST_AUTO_TEST_CASE(writes_srdf) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_input) {
+  Scratch scratch;
   // A missing file: exit 1, one error line naming it.
-  const InfoRun missing = runInfo({kData + "/no_such_robot.urdf"});
+  const Run missing = runInfo(scratch, {kData + "/no_such_robot.urdf"});
   BOOST_TEST(missing.status == 1);
   BOOST_TEST(missing.err.find("deepcheck info:") == 0u);
   BOOST_TEST(missing.err.find("no_such_robot.urdf") != std::string::npos);
   // An unresolvable package: exit 1, naming the URI.
-  const InfoRun package = runInfo({kArm, "--samples", "0"});
+  const Run package = runInfo(scratch, {kArm, "--samples", "0"});
   if (package.status != 0) {  // unless ROS_PACKAGE_PATH happens to hold robots/data
     BOOST_TEST(package.status == 1);
     BOOST_TEST(package.err.find("package://deepcheck_arm/meshes/") != std::string::npos);
   }
   // Bad command lines: exit 2.
-  BOOST_TEST(runInfo({}).status == 2);
-  BOOST_TEST(runInfo({kArm, "--samples", "many"}).status == 2);
-  BOOST_TEST(runInfo({kArm, "--bogus"}).status == 2);
-  BOOST_TEST(runInfo({kArm, kArm}).status == 2);
+  BOOST_TEST(runInfo(scratch, {}).status == 2);
+  BOOST_TEST(runInfo(scratch, {kArm, "--samples", "many"}).status == 2);
+  BOOST_TEST(runInfo(scratch, {kArm, "--bogus"}).status == 2);
+  BOOST_TEST(runInfo(scratch, {kArm, kArm}).status == 2);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,6 +1,8 @@
 // End-to-end tests of `deepcheck pd` (and the dispatcher): the binary is run with popen on inputs
 // written to temporary files; its answers are compared with the library called in-process.
 
+#include "tool_runner.h"
+
 #include "deepcheck/deep/exact.h"
 #include "deepcheck/deep/signed_distance.h"
 
@@ -8,22 +10,17 @@
 
 #include <Eigen/Geometry>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <random>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
 
 using namespace deepcheck::deep;
+using namespace deepcheck::tool_test;
 namespace fs = std::filesystem;
 
 namespace {
@@ -36,68 +33,9 @@ constexpr double kNormalAgree = 1e-6;
 /// Warm and cold starts reach the same facet: the answers may differ by round-off only.
 constexpr double kColdWarm = 1e-9;
 
-struct Run {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-fs::path tempPath(const std::string& what) {
-  static int counter = 0;
-  return fs::temp_directory_path() /
-         ("deepcheck_tool_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" +
-          what);
-}
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs `deepcheck <args>` with `input` on stdin.
+/// Runs `deepcheck <args>` with `input` on stdin, in a scratch folder of its own.
 Run runTool(const std::string& args, const std::string& input) {
-  const fs::path in = tempPath("in.txt");
-  const fs::path err = tempPath("err.txt");
-  {
-    std::ofstream f(in, std::ios::binary);
-    f << input;
-  }
-  const std::string cmd = quote(DEEPCHECK_TOOL) + " " + args + " < " + quote(in.string()) + " 2> " +
-                          quote(err.string());
-  Run r;
-  if (FILE* pipe = ::popen(cmd.c_str(), "r")) {
-    char buf[4096];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-    const int status = ::pclose(pipe);
-    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  r.err = readFile(err);
-  fs::remove(in);
-  fs::remove(err);
-  return r;
-}
-
-std::vector<std::string> lines(const std::string& s) {
-  std::vector<std::string> out;
-  std::istringstream in(s);
-  std::string line;
-  while (std::getline(in, line)) out.push_back(line);
-  return out;
-}
-
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
+  return Scratch().run(args, input);
 }
 
 /// One answer line "sd nx ny nz", parsed; checks that each field is printed with %.17g.
@@ -107,18 +45,10 @@ struct Answer {
 };
 
 Answer parseAnswer(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> fields;
-  std::string f;
-  while (in >> f) fields.push_back(f);
-  BOOST_TEST_REQUIRE(fields.size() == 4u, "answer line '" << line << "'");
-  double v[4];
-  for (int i = 0; i < 4; ++i) {
-    v[i] = std::strtod(fields[i].c_str(), nullptr);
-    BOOST_TEST(fmt(v[i]) == fields[i], "field printed with %.17g in '" << line << "'");
-  }
-  BOOST_TEST(line == fields[0] + " " + fields[1] + " " + fields[2] + " " + fields[3]);
-  return {v[0], Eigen::Vector3d(v[1], v[2], v[3])};
+  const std::vector<std::string> f = fields(line);
+  BOOST_TEST_REQUIRE(f.size() == 4u, "answer line '" << line << "'");
+  BOOST_TEST(line == f[0] + " " + f[1] + " " + f[2] + " " + f[3]);
+  return {number(f[0]), Eigen::Vector3d(number(f[1]), number(f[2]), number(f[3]))};
 }
 
 std::vector<Answer> parseAnswers(const std::string& out) {

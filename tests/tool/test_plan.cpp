@@ -1,63 +1,38 @@
 // End-to-end tests of `deepcheck plan`: the bundled arm through the bundled shelf, the path file
 // checked line by line against the checker, and the errors of bad command lines and inputs.
 
+#include "tool_runner.h"
+
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include <boost/test/unit_test.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
-namespace fs = std::filesystem;
 using namespace deepcheck;
+using tool_test::quote;
+using tool_test::Run;
+using tool_test::Scratch;
 
 namespace {
 
 const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
-const std::string kWorld = " --robot " + kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf --srdf " + kData +
-                           "/deepcheck_arm/srdf/deepcheck_arm.srdf --scene " + kData +
-                           "/scenes/shelf.urdf --package-path " + kData;
+const std::string kWorld = " --robot " + quote(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --srdf " +
+                           quote(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf") + " --scene " +
+                           quote(kData + "/scenes/shelf.urdf") + " --package-path " + quote(kData);
 const std::string kStart = " --start 0 -0.4 0 -1.6 0 1.2 0";
 const std::string kGoal = " --goal 1.05 0.75 -1.17 -1.30 0.05 -0.07 -2.79";
 
-struct Result {
-  int status = -1;
-  std::string err;
-};
-
-/// Runs `deepcheck plan <args>` in a scratch folder (also its decomposition cache); stderr kept.
-Result plan(const fs::path& dir, const std::string& args) {
-  const fs::path err = dir / "stderr.txt";
-  const std::string cmd = "XDG_CACHE_HOME=" + (dir / "cache").string() + " " + DEEPCHECK_TOOL + " plan" + args +
-                          " > /dev/null 2> " + err.string();
-  Result r;
-  const int raw = std::system(cmd.c_str());
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream in(err);
-  std::ostringstream text;
-  text << in.rdbuf();
-  r.err = text.str();
-  return r;
+/// Runs `deepcheck plan <args>` in the scratch folder (also its decomposition cache).
+Run plan(const Scratch& scratch, const std::string& args) {
+  return scratch.run("plan" + args);
 }
-
-struct Scratch {
-  fs::path dir = fs::temp_directory_path() / ("deepcheck_tool_plan_" + std::to_string(::getpid()));
-  Scratch() { fs::create_directories(dir); }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-};
 
 }  // namespace
 
@@ -65,8 +40,8 @@ BOOST_AUTO_TEST_SUITE(tool_plan)
 
 BOOST_AUTO_TEST_CASE(plans_through_the_shelf_and_every_waypoint_is_free) {
   Scratch scratch;
-  const fs::path out = scratch.dir / "path.txt";
-  const Result r = plan(scratch.dir, kWorld + kStart + kGoal + " --seed 3 --time 10 --out " + out.string());
+  const std::string out = scratch.path("path.txt");
+  const Run r = plan(scratch, kWorld + kStart + kGoal + " --seed 3 --time 10 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.err.find("certified") != std::string::npos, r.err);
   robots::LoadOptions load;
@@ -102,21 +77,21 @@ BOOST_AUTO_TEST_CASE(plans_through_the_shelf_and_every_waypoint_is_free) {
 
 BOOST_AUTO_TEST_CASE(bad_command_lines_and_inputs_are_named) {
   Scratch scratch;
-  const std::string out = " --out " + (scratch.dir / "p.txt").string();
-  Result r = plan(scratch.dir, kWorld + kStart + kGoal);  // no --out
+  const std::string out = " --out " + quote(scratch.path("p.txt"));
+  Run r = plan(scratch, kWorld + kStart + kGoal);  // no --out
   BOOST_TEST(r.status == 2);
   BOOST_TEST(r.err.find("--out") != std::string::npos, r.err);
-  r = plan(scratch.dir, kWorld + kStart + kGoal + out + " --planner RRTDisconnect");
+  r = plan(scratch, kWorld + kStart + kGoal + out + " --planner RRTDisconnect");
   BOOST_TEST(r.status == 1);
   BOOST_TEST(r.err.find("RRTDisconnect") != std::string::npos, r.err);
-  r = plan(scratch.dir, kWorld + " --start 0 0 0" + kGoal + out);  // 3 values for 7 joints
+  r = plan(scratch, kWorld + " --start 0 0 0" + kGoal + out);  // 3 values for 7 joints
   BOOST_TEST(r.status == 1);
   BOOST_TEST(r.err.find("start") != std::string::npos, r.err);
-  r = plan(scratch.dir, kWorld + kStart + kGoal + out + " --objective fastest");
+  r = plan(scratch, kWorld + kStart + kGoal + out + " --objective fastest");
   BOOST_TEST(r.status == 2);
   BOOST_TEST(r.err.find("fastest") != std::string::npos, r.err);
   // The goal inside the shelf's board: in collision, named, and no planning without repair.
-  r = plan(scratch.dir, kWorld + kStart + " --goal 0 1.2 0 0 0 0 0" + out);
+  r = plan(scratch, kWorld + kStart + " --goal 0 1.2 0 0 0 0 0" + out);
   BOOST_TEST(r.status == 1);
   BOOST_TEST(r.err.find("goal") != std::string::npos, r.err);
 }

@@ -1,0 +1,133 @@
+#pragma once
+// Running the `deepcheck` binary in the end-to-end tests of tests/tool: a scratch folder per test,
+// `deepcheck <subcommand> <args>` with a given stdin, its stdout, stderr and exit status, and the
+// small text helpers the tests read the output with.
+//
+// Every run gets the scratch folder's own decomposition cache (XDG_CACHE_HOME), so the tests never
+// write to the user's cache.
+
+#include <boost/test/unit_test.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+namespace deepcheck::tool_test {
+
+namespace fs = std::filesystem;
+
+/// The outcome of one run of the binary.
+struct Run {
+  int status = -1;  ///< exit status; -1 when the binary did not exit normally
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+/// `s` as one shell word.
+inline std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// The shell words of `args`, each quoted, separated by blanks.
+inline std::string quoteAll(const std::vector<std::string>& args) {
+  std::string words;
+  for (const std::string& a : args) words += (words.empty() ? "" : " ") + quote(a);
+  return words;
+}
+
+inline std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A folder of its own under the temporary directory, removed at the end.
+struct Scratch {
+  fs::path dir;
+
+  Scratch() {
+    static int counter = 0;
+    dir = fs::temp_directory_path() /
+          ("deepcheck_tool_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(dir);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+
+  /// The path of `name` in the folder.
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+
+  /// Writes `text` to the file `name` of the folder; returns its path.
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir / name, std::ios::binary) << text;
+    return path(name);
+  }
+
+  /// Runs `deepcheck <args>` with `input` on stdin. `args` is inserted into a shell command as
+  /// given: quote words that need it (quote, quoteAll).
+  Run run(const std::string& args, const std::string& input = "") const {
+    const std::string in = write("stdin.txt", input);
+    const std::string err = path("stderr.txt");
+    const std::string cmd = "XDG_CACHE_HOME=" + quote(path("cache")) + " " + quote(DEEPCHECK_TOOL) + " " + args +
+                            " < " + quote(in) + " 2> " + quote(err);
+    Run r;
+    if (FILE* pipe = ::popen(cmd.c_str(), "r")) {
+      char buf[4096];
+      std::size_t n;
+      while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+      const int status = ::pclose(pipe);
+      r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+    r.err = readFile(err);
+    return r;
+  }
+};
+
+/// The lines of `s`, without their terminators.
+inline std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  std::string line;
+  while (std::getline(in, line)) out.push_back(line);
+  return out;
+}
+
+/// The blank-separated fields of `line`.
+inline std::vector<std::string> fields(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  std::string f;
+  while (in >> f) out.push_back(f);
+  return out;
+}
+
+/// `v` as the tools print numbers: %.17g.
+inline std::string fmt(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+/// Parses a number printed with %.17g (and checks that it was).
+inline double number(const std::string& field) {
+  const double v = std::strtod(field.c_str(), nullptr);
+  BOOST_TEST(fmt(v) == field, "'" << field << "' is not printed with %.17g");
+  return v;
+}
+
+}  // namespace deepcheck::tool_test
