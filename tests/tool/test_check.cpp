@@ -167,6 +167,20 @@ BOOST_AUTO_TEST_CASE(bundled_arm_in_the_shelf) {
   BOOST_TEST(fields(out[1])[2] == "scene/shelf", out[1]);
 }
 
+BOOST_AUTO_TEST_CASE(package_roots_from_ros_package_path) {
+  // The arm's meshes are package:// URIs: found through ROS_PACKAGE_PATH alone, and not found
+  // (exit 1, the URI named) when no root holds them.
+  Scratch s;
+  const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+  const std::string args = "check --robot " + quote(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf");
+  Run r = s.run(args, "0 0 0 0 0 0 0\n", "ROS_PACKAGE_PATH=" + quote(s.path("nothing") + ":" + data));
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(lines(r.out).size() == 1u);
+  r = s.run(args, "0 0 0 0 0 0 0\n", "ROS_PACKAGE_PATH= AMENT_PREFIX_PATH=");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("package://deepcheck_arm/") != std::string::npos, r.err);
+}
+
 BOOST_AUTO_TEST_CASE(panda_in_the_kitchen) {
   const std::string shared = DEEPCHECK_SHARED_DIR;
   if (!fs::is_directory(shared + "/robots")) {

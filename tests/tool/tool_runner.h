@@ -78,13 +78,14 @@ struct Scratch {
     return path(name);
   }
 
-  /// Runs `deepcheck <args>` with `input` on stdin. `args` is inserted into a shell command as
-  /// given: quote words that need it (quote, quoteAll).
-  Run run(const std::string& args, const std::string& input = "") const {
+  /// Runs `deepcheck <args>` with `input` on stdin, and `environment` ("NAME=value ...") added to
+  /// the environment. Both are inserted into a shell command as given: quote words that need it
+  /// (quote, quoteAll).
+  Run run(const std::string& args, const std::string& input = "", const std::string& environment = "") const {
     const std::string in = write("stdin.txt", input);
     const std::string err = path("stderr.txt");
-    const std::string cmd = "XDG_CACHE_HOME=" + quote(path("cache")) + " " + quote(DEEPCHECK_TOOL) + " " + args +
-                            " < " + quote(in) + " 2> " + quote(err);
+    const std::string cmd = "XDG_CACHE_HOME=" + quote(path("cache")) + " " + environment + " " +
+                            quote(DEEPCHECK_TOOL) + " " + args + " < " + quote(in) + " 2> " + quote(err);
     Run r;
     if (FILE* pipe = ::popen(cmd.c_str(), "r")) {
       char buf[4096];
