@@ -27,10 +27,9 @@
 
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace deepcheck::tools {
@@ -60,31 +59,16 @@ constexpr const char* kUsage =
 /// The configurations of stdin; throws InputError naming the line.
 std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot) {
   std::vector<Eigen::VectorXd> out;
-  std::string text;
-  int number = 0;
-  while (std::getline(in, text)) {
-    ++number;
-    const std::size_t first = text.find_first_not_of(" \t\r");
-    if (first == std::string::npos || text[first] == '#') continue;
-    std::istringstream tokens(text);
-    std::vector<double> values;
-    std::string token;
-    while (tokens >> token) {
-      const char* begin = token.c_str();
-      char* end = nullptr;
-      const double value = std::strtod(begin, &end);
-      if (end == begin || *end != '\0' || !std::isfinite(value)) {
-        throw InputError("line " + std::to_string(number) + " ('" + text + "'): '" + token +
-                         "' is not a finite number");
-      }
-      values.push_back(value);
+  int lineNumber = 0;
+  InputLine line;
+  while (nextInputLine(in, lineNumber, line)) {
+    Eigen::VectorXd q(static_cast<Eigen::Index>(line.tokens.size()));
+    for (Eigen::Index v = 0; v < q.size(); ++v) q[v] = parseNumber(line, line.tokens[static_cast<std::size_t>(v)]);
+    if (q.size() != robot.numVariables()) {
+      failAt(line, std::to_string(q.size()) + " values, robot '" + robot.name() + "' has " +
+                       std::to_string(robot.numVariables()) + " variables");
     }
-    if (static_cast<int>(values.size()) != robot.numVariables()) {
-      throw InputError("line " + std::to_string(number) + " ('" + text + "'): " + std::to_string(values.size()) +
-                       " values, robot '" + robot.name() + "' has " + std::to_string(robot.numVariables()) +
-                       " variables");
-    }
-    out.push_back(Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())));
+    out.push_back(std::move(q));
   }
   return out;
 }
@@ -100,8 +84,7 @@ int run(std::vector<std::string> args) {
   if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "'");
 
   robots::LoadOptions load;
-  load.packageRoots = paths.roots();
-  load.useRosPackagePath = false;  // already in paths.roots()
+  load.packageRoots = paths.commandLine;
   robots::RobotModel robot = robots::RobotModel::fromUrdfFile(robotPath, load);
   checker::WorldOptions options;
   if (!srdf.empty()) {

@@ -3,8 +3,10 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -39,34 +41,15 @@ std::vector<std::string> takeOption(std::vector<std::string>& args, const std::s
   return values;
 }
 
-std::vector<std::string> splitPathList(const std::string& list) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    const std::size_t colon = std::min(list.find(':', start), list.size());
-    if (colon > start) parts.push_back(list.substr(start, colon - start));
-    start = colon + 1;
-  }
-  return parts;
+std::string takeSingleOption(std::vector<std::string>& args, const std::string& name,
+                             const std::string& fallback) {
+  const std::vector<std::string> values = takeOption(args, name);
+  if (values.size() > 1) throw UsageError("option " + name + " given more than once");
+  return values.empty() ? fallback : values.front();
 }
 
-std::vector<std::string> PackagePaths::roots() const {
-  std::vector<std::string> all;
-  for (const auto* list : {&commandLine, &environment}) {
-    for (const auto& p : *list) {
-      if (std::find(all.begin(), all.end(), p) == all.end()) all.push_back(p);
-    }
-  }
-  return all;
-}
-
-PackagePaths takePackagePaths(std::vector<std::string>& args, bool useEnvironment) {
-  PackagePaths paths;
-  paths.commandLine = takeOption(args, "--package-path");
-  if (useEnvironment) {
-    if (const char* env = std::getenv("ROS_PACKAGE_PATH")) paths.environment = splitPathList(env);
-  }
-  return paths;
+PackagePaths takePackagePaths(std::vector<std::string>& args) {
+  return PackagePaths{takeOption(args, "--package-path")};
 }
 
 void rejectUnknownOptions(const std::vector<std::string>& args) {
@@ -81,6 +64,23 @@ double parseValue(const std::string& text, const std::string& what) {
   const double value = std::strtod(begin, &end);
   if (end == begin || *end != '\0' || !std::isfinite(value)) {
     throw UsageError(what + " needs a finite number, got '" + text + "'");
+  }
+  return value;
+}
+
+std::uint64_t parseCount(const std::string& text, const std::string& option, std::uint64_t min, std::uint64_t max) {
+  std::uint64_t value = 0;
+  bool ok = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+  if (ok) {
+    try {
+      value = std::stoull(text);
+    } catch (const std::exception&) {  // out of range
+      ok = false;
+    }
+  }
+  if (!ok || value < min || value > max) {
+    throw UsageError("option " + option + " needs a whole number from " + std::to_string(min) + " to " +
+                     std::to_string(max) + ", got '" + text + "'");
   }
   return value;
 }
@@ -133,6 +133,50 @@ void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::v
   }
   args = std::move(rest);
   if (robot.empty()) throw UsageError("option --robot is required");
+}
+
+namespace {
+
+std::vector<std::string> tokenize(const std::string& s) {
+  std::vector<std::string> tokens;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+    const std::size_t start = i;
+    while (i < s.size() && !std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+    if (i > start) tokens.push_back(s.substr(start, i - start));
+  }
+  return tokens;
+}
+
+}  // namespace
+
+bool nextInputLine(std::istream& in, int& lineNumber, InputLine& line) {
+  std::string text;
+  while (std::getline(in, text)) {
+    ++lineNumber;
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    std::vector<std::string> tokens = tokenize(text);
+    if (tokens.empty() || tokens[0][0] == '#') continue;
+    line.number = lineNumber;
+    line.text = std::move(text);
+    line.tokens = std::move(tokens);
+    return true;
+  }
+  return false;
+}
+
+void failAt(const InputLine& line, const std::string& problem) {
+  throw InputError("line " + std::to_string(line.number) + ": " + problem + ": '" + line.text + "'");
+}
+
+double parseNumber(const InputLine& line, const std::string& token) {
+  const char* begin = token.c_str();
+  char* end = nullptr;
+  const double value = std::strtod(begin, &end);
+  if (end == begin || *end != '\0') failAt(line, "'" + token + "' is not a number");
+  if (!std::isfinite(value)) failAt(line, "'" + token + "' is not a finite number");
+  return value;
 }
 
 }  // namespace deepcheck::tools

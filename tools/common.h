@@ -10,6 +10,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
+#include <istream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,22 +35,20 @@ bool takeFlag(std::vector<std::string>& args, const std::string& name);
 /// Throws UsageError when `name` is the last argument (no value) or the value is empty.
 std::vector<std::string> takeOption(std::vector<std::string>& args, const std::string& name);
 
-/// Splits a colon-separated path list (ROS_PACKAGE_PATH style); empty entries are dropped.
-std::vector<std::string> splitPathList(const std::string& list);
+/// The value of an option given at most once (`name VALUE` or `name=VALUE`, removed from `args`);
+/// `fallback` when absent. Throws UsageError when it is given more than once.
+std::string takeSingleOption(std::vector<std::string>& args, const std::string& name,
+                             const std::string& fallback = "");
 
-/// Package roots used to resolve `package://` URIs, as given by `--package-path DIR` (repeatable)
-/// and the ROS_PACKAGE_PATH environment variable.
+/// Package roots given by `--package-path DIR` (repeatable), in the order given, to search for
+/// `package://` URIs. The environment (ROS_PACKAGE_PATH, AMENT_PREFIX_PATH) is searched after them
+/// by the robots library (robots::packageRoots, LoadOptions::useRosPackagePath).
 struct PackagePaths {
-  std::vector<std::string> commandLine;  ///< `--package-path` values, in the order given
-  std::vector<std::string> environment;  ///< ROS_PACKAGE_PATH entries, in order
-
-  /// All roots to search: the command-line ones first, then the environment's; each path once.
-  std::vector<std::string> roots() const;
+  std::vector<std::string> commandLine;
 };
 
-/// Removes the `--package-path DIR` / `--package-path=DIR` options from `args` and reads
-/// ROS_PACKAGE_PATH (unless `useEnvironment` is false).
-PackagePaths takePackagePaths(std::vector<std::string>& args, bool useEnvironment = true);
+/// Removes the `--package-path DIR` / `--package-path=DIR` options from `args`.
+PackagePaths takePackagePaths(std::vector<std::string>& args);
 
 /// Throws UsageError naming the first remaining argument that starts with '-' (an unknown option).
 void rejectUnknownOptions(const std::vector<std::string>& args);
@@ -63,9 +63,31 @@ struct SceneArg {
 /// A finite number, or UsageError naming `what` and the text.
 double parseValue(const std::string& text, const std::string& what);
 
+/// A whole number (decimal digits only) from `min` to `max`, or UsageError naming `option` and the
+/// text.
+std::uint64_t parseCount(const std::string& text, const std::string& option, std::uint64_t min, std::uint64_t max);
+
 /// Removes --robot (required), --scene (each optionally followed by --scene-pose) and --srdf from
 /// `args`, in command-line order. Throws UsageError for a missing or repeated value.
 void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::vector<SceneArg>& scenes,
                       std::string& srdf);
+
+/// One non-blank, non-comment line of an input read from stdin.
+struct InputLine {
+  int number = 0;                   ///< 1-based, counting every line
+  std::string text;                 ///< as read, without the line terminator (CR LF too)
+  std::vector<std::string> tokens;  ///< whitespace-separated
+};
+
+/// Reads the next line of `in` that has a token and whose first token does not start with '#'
+/// (comment); `lineNumber` counts every line read. False at the end of the input.
+bool nextInputLine(std::istream& in, int& lineNumber, InputLine& line);
+
+/// Throws InputError "line N: <problem>: '<text>'".
+[[noreturn]] void failAt(const InputLine& line, const std::string& problem);
+
+/// A finite number, or InputError naming the line and the token ("is not a number" / "is not a
+/// finite number").
+double parseNumber(const InputLine& line, const std::string& token);
 
 }  // namespace deepcheck::tools

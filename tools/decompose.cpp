@@ -22,7 +22,7 @@
 #include "deepcheck/robots/package_path.h"
 
 #include <chrono>
-#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -57,40 +57,8 @@ constexpr const char* kUsage =
     "  --package-path DIR      a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH\n"
     "                          is also read)\n";
 
-/// The last value of an option given at most once ("" when absent).
-std::string singleValue(std::vector<std::string>& args, const std::string& name) {
-  const std::vector<std::string> values = takeOption(args, name);
-  if (values.size() > 1) throw UsageError("option " + name + " given more than once");
-  return values.empty() ? std::string() : values[0];
-}
-
-double parseNumber(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty() || !std::isfinite(value)) {
-    throw UsageError("option " + option + " needs a number, got '" + text + "'");
-  }
-  return value;
-}
-
-int parseCount(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  long value = 0;
-  try {
-    value = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty() || value < 1 || value > 1000000) {
-    throw UsageError("option " + option + " needs a whole number from 1 to 1000000, got '" + text + "'");
-  }
-  return static_cast<int>(value);
-}
+/// Largest value of --max-pieces and --max-vertices.
+constexpr std::uint64_t kMaxCount = 1000000;
 
 std::string baseName(const std::string& path) {
   return std::filesystem::path(path).filename().string();
@@ -120,20 +88,20 @@ void printReport(const robots::DecompositionReport& r) {
 int run(std::vector<std::string> args) {
   const bool report = takeFlag(args, "--report");
   const bool noCache = takeFlag(args, "--no-cache");
-  const std::string out = singleValue(args, "--out");
-  const std::string cacheDir = singleValue(args, "--cache");
+  const std::string out = takeSingleOption(args, "--out");
+  const std::string cacheDir = takeSingleOption(args, "--cache");
   robots::DecompositionParams params;
-  if (const std::string v = singleValue(args, "--max-concavity"); !v.empty()) {
-    params.maxConcavity = parseNumber("--max-concavity", v);
+  if (const std::string v = takeSingleOption(args, "--max-concavity"); !v.empty()) {
+    params.maxConcavity = parseValue(v, "option --max-concavity");
   }
-  if (const std::string v = singleValue(args, "--min-concavity-abs"); !v.empty()) {
-    params.minConcavityAbs = parseNumber("--min-concavity-abs", v);
+  if (const std::string v = takeSingleOption(args, "--min-concavity-abs"); !v.empty()) {
+    params.minConcavityAbs = parseValue(v, "option --min-concavity-abs");
   }
-  if (const std::string v = singleValue(args, "--max-pieces"); !v.empty()) {
-    params.maxPieces = parseCount("--max-pieces", v);
+  if (const std::string v = takeSingleOption(args, "--max-pieces"); !v.empty()) {
+    params.maxPieces = static_cast<int>(parseCount(v, "--max-pieces", 1, kMaxCount));
   }
-  if (const std::string v = singleValue(args, "--max-vertices"); !v.empty()) {
-    params.maxVerticesPerPiece = parseCount("--max-vertices", v);
+  if (const std::string v = takeSingleOption(args, "--max-vertices"); !v.empty()) {
+    params.maxVerticesPerPiece = static_cast<int>(parseCount(v, "--max-vertices", 1, kMaxCount));
   }
   const PackagePaths packages = takePackagePaths(args);
   rejectUnknownOptions(args);
@@ -148,7 +116,7 @@ int run(std::vector<std::string> args) {
   }
   const robots::DecompositionCache cache =
       noCache ? robots::DecompositionCache::disabled() : robots::DecompositionCache(cacheDir);
-  const std::vector<std::string> roots = robots::packageRoots(packages.roots());
+  const std::vector<std::string> roots = robots::packageRoots(packages.commandLine);
 
   std::vector<robots::TriangleMesh> meshes;
   for (const std::string& arg : args) {

@@ -55,28 +55,6 @@ constexpr const char* kUsage =
     "  --seed S            seed of the random configurations (default 1)\n"
     "  --write-srdf FILE   write the disabled pairs as an SRDF file\n";
 
-std::uint64_t parseCount(const std::string& option, const std::string& text, std::uint64_t max) {
-  std::size_t used = 0;
-  unsigned long long value = 0;
-  try {
-    value = std::stoull(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty() || text[0] == '-' || value > max) {
-    throw UsageError("option " + option + " needs a whole number from 0 to " +
-                     std::to_string(max) + ", got '" + text + "'");
-  }
-  return value;
-}
-
-/// Last value of an option given at most once.
-std::string singleOption(std::vector<std::string>& args, const std::string& name) {
-  const std::vector<std::string> values = takeOption(args, name);
-  if (values.size() > 1) throw UsageError("option " + name + " given more than once");
-  return values.empty() ? std::string() : values[0];
-}
-
 /// Volume enclosed by a closed, consistently wound mesh (divergence theorem); NaN otherwise.
 double closedMeshVolume(const robots::TriangleMesh& mesh) {
   std::map<std::pair<int, int>, int> edges;
@@ -166,9 +144,9 @@ void printMeshes(const robots::RobotModel& model) {
 
 int runInfo(std::vector<std::string> args) {
   const PackagePaths packagePaths = takePackagePaths(args);
-  const std::string samplesText = singleOption(args, "--samples");
-  const std::string seedText = singleOption(args, "--seed");
-  const std::string srdfPath = singleOption(args, "--write-srdf");
+  const std::string samplesText = takeSingleOption(args, "--samples");
+  const std::string seedText = takeSingleOption(args, "--seed");
+  const std::string srdfPath = takeSingleOption(args, "--write-srdf");
   rejectUnknownOptions(args);
   if (args.size() != 1) {
     throw UsageError(args.empty() ? "missing ROBOT.urdf" : "expected one ROBOT.urdf, got " +
@@ -177,15 +155,14 @@ int runInfo(std::vector<std::string> args) {
   }
   robots::PairFilterOptions filter;
   if (!samplesText.empty()) {
-    filter.samples = static_cast<int>(
-        parseCount("--samples", samplesText, std::numeric_limits<int>::max()));
+    filter.samples = static_cast<int>(parseCount(samplesText, "--samples", 0, std::numeric_limits<int>::max()));
   }
   if (!seedText.empty()) {
-    filter.seed = parseCount("--seed", seedText, std::numeric_limits<std::uint64_t>::max());
+    filter.seed = parseCount(seedText, "--seed", 0, std::numeric_limits<std::uint64_t>::max());
   }
 
   robots::LoadOptions load;
-  load.packageRoots = packagePaths.roots();
+  load.packageRoots = packagePaths.commandLine;
   const robots::RobotModel model = robots::RobotModel::fromUrdfFile(args[0], load);
   const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
 

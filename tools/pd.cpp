@@ -22,7 +22,6 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -57,59 +56,11 @@ constexpr const char* kUsage =
     "  --cold    no warm start (by default consecutive queries of the same pair share a cache)\n"
     "  --exact   answer with the exact brute-force reference (hull of all vertex differences)\n";
 
-/// One non-blank, non-comment input line.
-struct Line {
-  int number = 0;
-  std::string text;                 // as read, without the line terminator
-  std::vector<std::string> tokens;  // whitespace-separated
-};
-
-std::vector<std::string> tokenize(const std::string& s) {
-  std::vector<std::string> tokens;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    const std::size_t start = i;
-    while (i < s.size() && !std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    if (i > start) tokens.push_back(s.substr(start, i - start));
-  }
-  return tokens;
-}
-
-/// Reads the next meaningful line of `in`; false at the end of the input.
-bool nextLine(std::istream& in, int& lineNumber, Line& line) {
-  std::string text;
-  while (std::getline(in, text)) {
-    ++lineNumber;
-    if (!text.empty() && text.back() == '\r') text.pop_back();
-    std::vector<std::string> tokens = tokenize(text);
-    if (tokens.empty() || tokens[0][0] == '#') continue;
-    line.number = lineNumber;
-    line.text = std::move(text);
-    line.tokens = std::move(tokens);
-    return true;
-  }
-  return false;
-}
-
-[[noreturn]] void fail(const Line& line, const std::string& problem) {
-  throw InputError("line " + std::to_string(line.number) + ": " + problem + ": '" + line.text + "'");
-}
-
-double parseNumber(const Line& line, const std::string& token) {
-  const char* begin = token.c_str();
-  char* end = nullptr;
-  const double value = std::strtod(begin, &end);
-  if (end == begin || *end != '\0') fail(line, "'" + token + "' is not a number");
-  if (!std::isfinite(value)) fail(line, "'" + token + "' is not a finite number");
-  return value;
-}
-
-int parseCount(const Line& line, const std::string& token) {
+int parsePointCount(const InputLine& line, const std::string& token) {
   const bool digits = !token.empty() && token.size() <= 9 &&
                       token.find_first_not_of("0123456789") == std::string::npos;
   const int n = digits ? std::atoi(token.c_str()) : 0;
-  if (n < 1) fail(line, "the point count '" + token + "' is not a positive integer");
+  if (n < 1) failAt(line, "the point count '" + token + "' is not a positive integer");
   return n;
 }
 
@@ -132,7 +83,7 @@ struct Input {
   std::vector<Query> queries;
 };
 
-Eigen::Isometry3d parsePose(const Line& line, std::size_t first, const std::string& which) {
+Eigen::Isometry3d parsePose(const InputLine& line, std::size_t first, const std::string& which) {
   double v[7];
   for (int i = 0; i < 7; ++i) v[i] = parseNumber(line, line.tokens[first + i]);
   Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
@@ -140,7 +91,7 @@ Eigen::Isometry3d parsePose(const Line& line, std::size_t first, const std::stri
   if (!(std::abs(norm - 1.0) <= kQuaternionNormTolerance)) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.17g", norm);
-    fail(line, "the quaternion of " + which + " has norm " + buf +
+    failAt(line, "the quaternion of " + which + " has norm " + buf +
                    " (must be 1 within 1e-6; quaternions are not normalized for you)");
   }
   q.coeffs() /= norm;
@@ -150,63 +101,63 @@ Eigen::Isometry3d parsePose(const Line& line, std::size_t first, const std::stri
   return X;
 }
 
-int shapeIndex(const Input& input, const Line& line, const std::string& id) {
+int shapeIndex(const Input& input, const InputLine& line, const std::string& id) {
   const auto it = input.ids.find(id);
-  if (it == input.ids.end()) fail(line, "unknown shape id '" + id + "'");
+  if (it == input.ids.end()) failAt(line, "unknown shape id '" + id + "'");
   return it->second;
 }
 
 Input readInput(std::istream& in) {
   Input input;
   int lineNumber = 0;
-  Line line;
-  bool pending = nextLine(in, lineNumber, line);
+  InputLine line;
+  bool pending = nextInputLine(in, lineNumber, line);
   while (pending) {
     const std::string& keyword = line.tokens[0];
     if (keyword == "shape") {
-      if (line.tokens.size() != 3) fail(line, "expected 'shape <id> <n>'");
-      const Line header = line;
+      if (line.tokens.size() != 3) failAt(line, "expected 'shape <id> <n>'");
+      const InputLine header = line;
       const std::string id = header.tokens[1];
-      const int n = parseCount(header, header.tokens[2]);
+      const int n = parsePointCount(header, header.tokens[2]);
       if (const auto it = input.ids.find(id); it != input.ids.end()) {
-        fail(header, "duplicate shape id '" + id + "' (first defined on line " +
+        failAt(header, "duplicate shape id '" + id + "' (first defined on line " +
                          std::to_string(input.shapes[static_cast<std::size_t>(it->second)].line) +
                          ")");
       }
       std::vector<Eigen::Vector3d> points;
       // A bad count must not allocate a huge buffer up front; the vector grows as points come.
       points.reserve(static_cast<std::size_t>(std::min(n, 1 << 16)));
-      pending = nextLine(in, lineNumber, line);
+      pending = nextInputLine(in, lineNumber, line);
       while (static_cast<int>(points.size()) < n) {
         if (!pending) {
-          fail(header, "shape '" + id + "' declares " + std::to_string(n) +
+          failAt(header, "shape '" + id + "' declares " + std::to_string(n) +
                            " points but the input ends after " + std::to_string(points.size()));
         }
         if (line.tokens[0] == "shape" || line.tokens[0] == "query") {
-          fail(line, "shape '" + id + "' (line " + std::to_string(header.number) + ") declares " +
+          failAt(line, "shape '" + id + "' (line " + std::to_string(header.number) + ") declares " +
                          std::to_string(n) + " points but only " + std::to_string(points.size()) +
                          " precede this line");
         }
         if (line.tokens.size() != 3) {
-          fail(line, "expected a point '<x> <y> <z>' (point " + std::to_string(points.size() + 1) +
+          failAt(line, "expected a point '<x> <y> <z>' (point " + std::to_string(points.size() + 1) +
                          " of " + std::to_string(n) + " of shape '" + id + "')");
         }
         points.emplace_back(parseNumber(line, line.tokens[0]), parseNumber(line, line.tokens[1]),
                             parseNumber(line, line.tokens[2]));
-        pending = nextLine(in, lineNumber, line);
+        pending = nextInputLine(in, lineNumber, line);
       }
       try {
         input.shapes.push_back({ConvexPolytope::fromPoints(points, "shape '" + id + "'"),
                                 header.number});
       } catch (const std::exception& e) {
-        fail(header, "cannot build the hull of shape '" + id + "': " + e.what());
+        failAt(header, "cannot build the hull of shape '" + id + "': " + e.what());
       }
       input.ids.emplace(id, static_cast<int>(input.shapes.size()) - 1);
       continue;  // `line` already holds the next line
     }
     if (keyword == "query") {
       if (line.tokens.size() != 17) {
-        fail(line, "expected 'query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> "
+        failAt(line, "expected 'query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> "
                    "<qw> <qx> <qy> <qz>' (17 fields, got " +
                        std::to_string(line.tokens.size()) + ")");
       }
@@ -218,9 +169,9 @@ Input readInput(std::istream& in) {
       q.X_WB = parsePose(line, 10, "B (shape '" + line.tokens[9] + "')");
       input.queries.push_back(q);
     } else {
-      fail(line, "unknown keyword '" + keyword + "' (expected 'shape' or 'query')");
+      failAt(line, "unknown keyword '" + keyword + "' (expected 'shape' or 'query')");
     }
-    pending = nextLine(in, lineNumber, line);
+    pending = nextInputLine(in, lineNumber, line);
   }
   return input;
 }
