@@ -6,6 +6,7 @@
 #include "fcl_broad_phase.h"
 #include "world_internal.h"
 
+#include "deepcheck/deep/pair_frame.h"
 #include "deepcheck/robots/decomposition_cache.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/mesh_loader.h"
@@ -403,15 +404,10 @@ std::pair<int, int> linkPairByName(const robots::RobotModel& model, const std::s
   return {std::min(ia, ib), std::max(ia, ib)};
 }
 
-void checkFinitePose(const Eigen::Isometry3d& X, const std::string& what) {
-  const Eigen::Matrix3d R = X.linear();
-  if (!X.matrix().allFinite() ||
-      ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > tol::kPoseOrthonormality) ||
-      R.determinant() < 0) {
-    std::ostringstream msg;
-    msg << what << ": pose is not finite or its rotation is not orthonormal:\n" << X.matrix();
-    throw std::invalid_argument(msg.str());
-  }
+/// The narrow phase's own check of a pose (finite, a rotation within deep::tol::kOrthonormal),
+/// made once when an obstacle is placed: isFree's narrow phase skips it (overlapsUnchecked).
+void checkObstaclePose(const Eigen::Isometry3d& X_WO, const std::string& name) {
+  deep::checkPose(X_WO, ("obstacle '" + name + "'").c_str());
 }
 
 }  // namespace
@@ -500,7 +496,7 @@ int World::addScene(robots::RobotModel scene, const Eigen::Isometry3d& X_WS) {
 int World::addObstacle(const Obstacle& obstacle) {
   WorldState& st = *state_;
   if (obstacle.name.empty()) throw std::invalid_argument("addObstacle: the obstacle has no name");
-  checkFinitePose(obstacle.X_WO, "obstacle '" + obstacle.name + "'");
+  checkObstaclePose(obstacle.X_WO, obstacle.name);
   std::lock_guard<std::mutex> lock(st.mutex);
   auto data = std::make_shared<ObstacleData>();
   data->source = obstacle;
@@ -539,7 +535,7 @@ void World::setObstaclePose(int id, const Eigen::Isometry3d& X_WO) {
   WorldState& st = *state_;
   std::lock_guard<std::mutex> lock(st.mutex);
   const std::size_t i = findObstacle(*st.current, id);
-  checkFinitePose(X_WO, "obstacle '" + st.current->obstacles[i]->source.name + "'");
+  checkObstaclePose(X_WO, st.current->obstacles[i]->source.name);
   auto snap = std::make_shared<Snapshot>(*st.current);
   auto moved = std::make_shared<ObstacleData>(*snap->obstacles[i]);
   moved->source.X_WO = X_WO;

@@ -192,6 +192,13 @@ BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
   Eigen::Isometry3d skew = Eigen::Isometry3d::Identity();
   skew.linear()(0, 1) = 0.5;
   checkThrowsWith([&] { world.addObstacle(Obstacle::sphere("skewed", 0.1, skew)); }, "skewed");
+  Eigen::Isometry3d mirrored = Eigen::Isometry3d::Identity();
+  mirrored.linear()(2, 2) = -1.0;
+  checkThrowsWith([&] { world.addObstacle(Obstacle::sphere("mirrored", 0.1, mirrored)); }, "mirrored");
+  checkThrowsWith([&] { world.addObstacle(Obstacle::sphere("lost", 0.1, translation(0, std::nan(""), 0))); }, "lost");
+  const int kept = world.addObstacle(Obstacle::sphere("kept", 0.1, translation(0, 1, 0)));
+  checkThrowsWith([&] { world.setObstaclePose(kept, skew); }, "kept");
+  BOOST_TEST(world.obstacle(kept).X_WO.isApprox(translation(0, 1, 0)));  // unchanged
   checkThrowsWith([&] { world.addObstacle(Obstacle::meshFile("missing", "no/such/file.stl", Eigen::Isometry3d::Identity())); },
                   "missing");
   checkThrowsWith([&] { world.disablePair("link1", "no_such_link"); }, "no_such_link");

@@ -18,10 +18,6 @@ constexpr double kBoundingRelative = 1e-9;
 /// (dimensionless).
 constexpr double kObbParallel = 1e-9;
 
-/// An obstacle pose is rejected when its rotation R has max |(R^T R - I)_ij| above this
-/// (dimensionless): the same bound the narrow phase applies to every pose (deep::tol::kOrthonormal).
-constexpr double kPoseOrthonormality = 1e-6;
-
 /// Warm starts are used only between consecutive queries of a context whose configurations differ
 /// by at most this in every variable (radians or metres), the steps of motion validation and
 /// of optimizers; a query further from the previous one starts every pair cold. Unrelated
