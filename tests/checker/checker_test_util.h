@@ -91,6 +91,13 @@ inline Eigen::VectorXd randomConfiguration(const robots::RobotModel& model, std:
   return q;
 }
 
+/// n uniformly random configurations within the limits.
+inline std::vector<Eigen::VectorXd> randomConfigurations(const robots::RobotModel& model, int n, std::mt19937& rng) {
+  std::vector<Eigen::VectorXd> qs;
+  for (int i = 0; i < n; ++i) qs.push_back(randomConfiguration(model, rng));
+  return qs;
+}
+
 inline Eigen::Isometry3d translation(double x, double y, double z) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation() = Eigen::Vector3d(x, y, z);

@@ -125,8 +125,7 @@ BOOST_AUTO_TEST_CASE(changes_while_queries_run) {
   const Eigen::Isometry3d open = translation(3.0, 0, 0.6);
   const Eigen::Isometry3d closed = translation(0.3, 0, 0.6);
   std::mt19937 rng(23);
-  std::vector<Eigen::VectorXd> qs;
-  for (int i = 0; i < 200; ++i) qs.push_back(randomConfiguration(world.robot(), rng));
+  const std::vector<Eigen::VectorXd> qs = randomConfigurations(world.robot(), 200, rng);
   // Reference answers of both worlds (fresh contexts, isFree only: exact booleans).
   auto freshIsFree = [&](const Eigen::VectorXd& q) {
     auto context = world.makeContext();

@@ -215,8 +215,7 @@ BOOST_AUTO_TEST_CASE(broad_phases_give_the_same_answers) {
     addCrateBallPost(w);
   }
   std::mt19937 rng(19);
-  std::vector<Eigen::VectorXd> qs;
-  for (int i = 0; i < 1500; ++i) qs.push_back(randomConfiguration(worlds[0].robot(), rng));
+  const std::vector<Eigen::VectorXd> qs = randomConfigurations(worlds[0].robot(), 1500, rng);
   for (std::size_t k = 1; k < worlds.size(); ++k) {
     const std::string name = std::string("broad phase ") + toString(phases[k]);
     const int colliding = compareIsFree(worlds[k], worlds[0], qs, name + " (without: the AABB tree)", nullptr);

@@ -24,8 +24,7 @@ namespace {
 /// that warm starts and the re-test of the last overlapping pair are exercised too.
 std::vector<Eigen::VectorXd> configurations(const robots::RobotModel& m, int random, int motions, unsigned seed) {
   std::mt19937 rng(seed);
-  std::vector<Eigen::VectorXd> qs;
-  for (int i = 0; i < random; ++i) qs.push_back(randomConfiguration(m, rng));
+  std::vector<Eigen::VectorXd> qs = randomConfigurations(m, random, rng);
   std::normal_distribution<double> g(0.0, 1.0);
   for (int k = 0; k < motions; ++k) {
     Eigen::VectorXd q = randomConfiguration(m, rng);

@@ -23,8 +23,7 @@ namespace {
 /// finely (many cells, their boundaries, the limits and a little beyond them).
 std::vector<Eigen::VectorXd> configurations(const robots::RobotModel& m, int v0, int v1, unsigned seed) {
   std::mt19937 rng(seed);
-  std::vector<Eigen::VectorXd> qs;
-  for (int i = 0; i < 3000; ++i) qs.push_back(randomConfiguration(m, rng));
+  std::vector<Eigen::VectorXd> qs = randomConfigurations(m, 3000, rng);
   const Eigen::VectorXd base = randomConfiguration(m, rng);
   const int n = 90;
   for (int i = -2; i <= n + 2; ++i) {
