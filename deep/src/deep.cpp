@@ -151,7 +151,7 @@ class Walker {
     tolInside_ = tol::kInsideRelative * L_;
   }
 
-  Vec3 va(int i) const { return A_.vertex(i) - A_.center(); }
+  const Vec3& va(int i) const { return A_.localVertex(i); }
   const Vec3& vb(int j) const {
     if (s_.bVertexGen[j] != s_.gen) {
       s_.bVertex[j] = F_.vertexB(B_, j);

@@ -31,10 +31,10 @@ struct PairFrame {
   Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
 
   /// A's vertex v in P.
-  static Eigen::Vector3d vertexA(const ConvexPolytope& A, int v) { return A.vertex(v) - A.center(); }
+  static const Eigen::Vector3d& vertexA(const ConvexPolytope& A, int v) { return A.localVertex(v); }
   /// B's vertex v in P.
   Eigen::Vector3d vertexB(const ConvexPolytope& B, int v) const {
-    return R * (B.vertex(v) - B.center()) + t;
+    return R * B.localVertex(v) + t;
   }
   /// A direction of P expressed in B's frame.
   Eigen::Vector3d toB(const Eigen::Vector3d& dir_P) const { return R.transpose() * dir_P; }
