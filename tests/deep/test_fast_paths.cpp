@@ -62,12 +62,10 @@ BOOST_AUTO_TEST_SUITE(fast_paths)
 
 BOOST_AUTO_TEST_CASE(direction_index_start_and_support) {
   std::mt19937 rng(2025);
-  int hulls = 0;
   for (int n : {8, 17, 40, 150, 600, 3000}) {
     for (int trial = 0; trial < 4; ++trial) {
       const Vector3d semi(0.05 + 0.3 * trial, 0.2, 0.02 + 0.1 * trial);
       const ConvexPolytope poly = ConvexPolytope::fromPoints(t::ellipsoidPoints(rng, n, semi));
-      ++hulls;
       const bool indexed = poly.numVertices() > 16;
       const double tol = poly.hullTolerance() + 4.0 * std::numeric_limits<double>::epsilon() * poly.lengthScale();
       std::uniform_int_distribution<int> hint(-2, poly.numVertices() + 2);
@@ -99,7 +97,6 @@ BOOST_AUTO_TEST_CASE(direction_index_start_and_support) {
       BOOST_TEST(startFar == 0, "n " << n << " trial " << trial);
     }
   }
-  BOOST_TEST(hulls == 24);
 }
 
 BOOST_AUTO_TEST_CASE(direction_index_rejects_zero_and_non_finite) {

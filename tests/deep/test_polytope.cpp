@@ -9,6 +9,8 @@
 #include "deepcheck/deep/polytope.h"
 #include "deepcheck/deep/tolerances.h"
 
+#include "shapes.h"
+
 #include <boost/test/unit_test.hpp>
 
 #include <Eigen/Geometry>
@@ -27,6 +29,7 @@ using deepcheck::deep::ConvexPolytope;
 using deepcheck::deep::PairFrame;
 using deepcheck::deep::PolytopeKind;
 using Eigen::Vector3d;
+namespace shapes = deepcheck::deep::testing;
 
 namespace {
 
@@ -35,25 +38,12 @@ Vector3d gaussian(std::mt19937& rng) {
   return Vector3d(g(rng), g(rng), g(rng));
 }
 
-Vector3d onSphere(std::mt19937& rng) {
-  Vector3d v = gaussian(rng);
-  while (v.norm() < 1e-3) v = gaussian(rng);
-  return v.normalized();
-}
-
 Vector3d inBall(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (;;) {
     const Vector3d v(u(rng), u(rng), u(rng));
     if (v.squaredNorm() <= 1.0) return v;
   }
-}
-
-Eigen::Matrix3d randomRotation(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
-  q.normalize();
-  return q.toRotationMatrix();
 }
 
 /// Points sampled on the six faces of the box [-e, e], plus its eight corners.
@@ -213,7 +203,7 @@ BOOST_AUTO_TEST_CASE(segment_kind) {
   std::mt19937 rng(12);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (double offset : {0.0, 1e4}) {
-    const Vector3d dir = onSphere(rng);
+    const Vector3d dir = shapes::randomUnit(rng);
     const Vector3d base = offset * Vector3d(1.0, -1.0, 1.0) + Vector3d(0.3, 0.1, -0.2);
     std::vector<Vector3d> pts;
     for (int i = 0; i < 100; ++i) pts.push_back(base + (0.7 * u(rng)) * dir);
@@ -246,7 +236,7 @@ BOOST_AUTO_TEST_CASE(polygon_kind_conventions) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (double offset : {0.0, 1e4}) {
     for (int n : {5, 300, 2000}) {
-      const Eigen::Matrix3d R = randomRotation(rng);
+      const Eigen::Matrix3d R = shapes::randomRotation(rng).toRotationMatrix();
       const Vector3d t = offset * Vector3d(-1.0, 1.0, 1.0) + Vector3d(0.25, 0.5, 1.0 / 3.0);
       std::vector<Vector3d> flat;
       for (int i = 0; i < n; ++i) {
@@ -296,7 +286,7 @@ BOOST_AUTO_TEST_CASE(polygon_from_square_with_collinear_points) {
   std::mt19937 rng(14);
   // Points on the boundary of a rotated square, including its edges' interior points and
   // duplicates: only the four corners are vertices.
-  const Eigen::Matrix3d R = randomRotation(rng);
+  const Eigen::Matrix3d R = shapes::randomRotation(rng).toRotationMatrix();
   std::vector<Vector3d> flat;
   for (int i = 0; i <= 10; ++i) {
     const double s = -1.0 + 0.2 * i;
@@ -379,7 +369,8 @@ BOOST_AUTO_TEST_CASE(box_surface_samples_merge_into_six_faces) {
   const Vector3d e(0.5, 1.0 / 3.0, 0.2);
   const std::vector<Vector3d> surface = boxSurfacePoints(e, 300, rng);
   for (int rotated = 0; rotated < 2; ++rotated) {
-    const Eigen::Matrix3d R = rotated ? randomRotation(rng) : Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d R =
+        rotated ? shapes::randomRotation(rng).toRotationMatrix() : Eigen::Matrix3d::Identity();
     const std::vector<Vector3d> pts = transformed(surface, R, Vector3d(0.1, -0.7, 1.0 / 3.0));
     const ConvexPolytope poly = ConvexPolytope::fromPoints(pts);
     BOOST_TEST_CONTEXT("rotated " << rotated) {
@@ -421,8 +412,8 @@ BOOST_AUTO_TEST_CASE(noisy_and_nearly_degenerate_inputs) {
   int solids = 0;
   for (int trial = 0; trial < 6; ++trial) {
     const double scale = trial % 2 ? 1e-3 : 10.0;
-    const Vector3d t = (trial < 3 ? 1e4 : 1.0) * onSphere(rng);
-    const Eigen::Matrix3d R = randomRotation(rng);
+    const Vector3d t = (trial < 3 ? 1e4 : 1.0) * shapes::randomUnit(rng);
+    const Eigen::Matrix3d R = shapes::randomRotation(rng).toRotationMatrix();
     auto place = [&](std::vector<Vector3d> pts) {
       for (Vector3d& p : pts) p = t + scale * (R * p);
       return pts;
@@ -503,7 +494,7 @@ BOOST_AUTO_TEST_CASE(duplicates_and_near_duplicates) {
 BOOST_AUTO_TEST_CASE(sphere_points) {
   std::mt19937 rng(20);
   std::vector<Vector3d> pts;
-  for (int i = 0; i < 2000; ++i) pts.push_back(onSphere(rng));
+  for (int i = 0; i < 2000; ++i) pts.push_back(shapes::randomUnit(rng));
   const ConvexPolytope poly = ConvexPolytope::fromPoints(pts);
   BOOST_TEST(poly.numVertices() == 2000);
   BOOST_TEST(poly.numEdges() == 3 * 2000 - 6);  // a triangulation: all points are vertices
@@ -520,10 +511,10 @@ BOOST_AUTO_TEST_CASE(scales_and_offsets) {
        {Case{1e-3, 0.0}, Case{1e3, 0.0}, Case{1.0, 1e4}, Case{1e-3, 1e4}, Case{1e3, 1e4}}) {
     const Vector3d t =
         c.offset * Vector3d(1.0, -1.0, 1.0) + Vector3d(1.0 / 3.0, 0.2, 0.1) * c.scale;
-    const Eigen::Matrix3d R = randomRotation(rng);
+    const Eigen::Matrix3d R = shapes::randomRotation(rng).toRotationMatrix();
     std::vector<Vector3d> pts;
     for (int i = 0; i < 300; ++i) pts.push_back(t + c.scale * inBall(rng));
-    for (int i = 0; i < 300; ++i) pts.push_back(t + c.scale * onSphere(rng));
+    for (int i = 0; i < 300; ++i) pts.push_back(t + c.scale * shapes::randomUnit(rng));
     for (const Vector3d& p : boxSurfacePoints(Vector3d(0.5, 0.3, 0.2), 50, rng)) {
       pts.push_back(t + c.scale * (R * p));
     }
@@ -543,7 +534,7 @@ BOOST_AUTO_TEST_CASE(large_inputs) {
   checkHull(ConvexPolytope::fromPoints(ball), ball, rng, "ball 10000");
   std::vector<Vector3d> sphere;
   for (int i = 0; i < 10000; ++i)
-    sphere.push_back(Vector3d(2.0, 1.0, 0.5).cwiseProduct(onSphere(rng)));
+    sphere.push_back(Vector3d(2.0, 1.0, 0.5).cwiseProduct(shapes::randomUnit(rng)));
   const ConvexPolytope ellipsoid = ConvexPolytope::fromPoints(sphere);
   BOOST_TEST(ellipsoid.numVertices() == 10000);
   // The principal axes of an axis-aligned ellipsoid's samples are close to x, y, z.
@@ -557,8 +548,8 @@ BOOST_AUTO_TEST_CASE(flat_sets_are_classified_before_qhull) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::uniform_real_distribution<double> tiny(-1e-12, 1e-12);  // below kFlatRelative * L
   for (int trial = 0; trial < 10; ++trial) {
-    const Eigen::Matrix3d R = randomRotation(rng);
-    const Vector3d t = (trial % 2 ? 1e4 : 1.0) * onSphere(rng);
+    const Eigen::Matrix3d R = shapes::randomRotation(rng).toRotationMatrix();
+    const Vector3d t = (trial % 2 ? 1e4 : 1.0) * shapes::randomUnit(rng);
     std::vector<Vector3d> flat;
     std::vector<Vector3d> line;
     for (int i = 0; i < 200; ++i) {
@@ -587,8 +578,8 @@ BOOST_AUTO_TEST_CASE(pair_frame_maps_vertices) {
       const Vector3d o = offset * Vector3d(1.0, -1.0, 1.0);
       Eigen::Isometry3d X_WA = Eigen::Isometry3d::Identity();
       Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-      X_WA.linear() = randomRotation(rng);
-      X_WB.linear() = randomRotation(rng);
+      X_WA.linear() = shapes::randomRotation(rng).toRotationMatrix();
+      X_WB.linear() = shapes::randomRotation(rng).toRotationMatrix();
       const Vector3d a = inBall(rng);
       const Vector3d b = inBall(rng);
       X_WA.translation() = o + a;
@@ -622,7 +613,7 @@ BOOST_AUTO_TEST_CASE(pair_frame_maps_vertices) {
       }
       BOOST_TEST(worstWorld <= tolWorld);
       BOOST_TEST(worstLocal <= 1e-14);
-      const Vector3d d = onSphere(rng);
+      const Vector3d d = shapes::randomUnit(rng);
       BOOST_TEST((frame.fromB(frame.toB(d)) - d).norm() < 1e-14);
       BOOST_TEST((frame.toB(d) - X_WB.linear().transpose() * (X_WA.linear() * d)).norm() < 1e-14);
     }
