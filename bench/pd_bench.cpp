@@ -271,6 +271,15 @@ void writeMarkdown(const std::string& path, const std::vector<Row>& rows) {
   }
 }
 
+/// The comma-separated names of an option value.
+std::vector<std::string> splitNames(const std::string& list) {
+  std::vector<std::string> names;
+  std::stringstream ss(list);
+  std::string name;
+  while (std::getline(ss, name, ',')) names.push_back(name);
+  return names;
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -282,13 +291,9 @@ Options parse(int argc, char** argv) {
     if (a == "--quick") {
       o.quick = true;
     } else if (a == "--families") {
-      std::stringstream ss(value());
-      std::string name;
-      while (std::getline(ss, name, ',')) o.families.push_back(name);
+      for (const std::string& name : splitNames(value())) o.families.push_back(name);
     } else if (a == "--methods") {
-      std::stringstream ss(value());
-      std::string name;
-      while (std::getline(ss, name, ',')) o.methods.push_back(name);
+      for (const std::string& name : splitNames(value())) o.methods.push_back(name);
     } else if (a == "--reps") {
       o.reps = std::stoi(value());
     } else if (a == "--out") {
@@ -308,6 +313,12 @@ Options parse(int argc, char** argv) {
     }
   }
   if (o.families.empty()) o.families = familyNames();
+  const auto all = makeMethods();
+  for (const std::string& name : o.methods) {  // a typo would otherwise time no method at all
+    bool known = false;
+    for (const auto& m : all) known = known || m->name() == name;
+    if (!known) throw std::invalid_argument("unknown method '" + name + "' (try --help)");
+  }
   if (o.reps <= 0) o.reps = o.quick ? 3 : 7;
   return o;
 }
