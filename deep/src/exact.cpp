@@ -17,6 +17,7 @@
 
 #include "deepcheck/deep/exact.h"
 
+#include "deepcheck/deep/closest_point.h"
 #include "deepcheck/deep/tolerances.h"
 
 #include <Eigen/Geometry>
@@ -34,51 +35,10 @@
 namespace deepcheck::deep {
 namespace {
 
-/// Closest point to the origin on triangle (a, b, c) (Voronoi regions of the triangle's
-/// features, tested in order: vertices, edges, interior).
+/// Closest point to the origin on triangle (a, b, c).
 Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                   const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a;
-  const Eigen::Vector3d ac = c - a;
-  const Eigen::Vector3d ap = -a;
-  const double d1 = ab.dot(ap);
-  const double d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
-
-  const Eigen::Vector3d bp = -b;
-  const double d3 = ab.dot(bp);
-  const double d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return b;
-
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
-
-  const Eigen::Vector3d cp = -c;
-  const double d5 = ab.dot(cp);
-  const double d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return c;
-
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
-
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  }
-  const double denom = va + vb + vc;
-  if (!(denom > 0.0)) {
-    // Degenerate (zero-area) triangle: its closest point is on one of its edges.
-    Eigen::Vector3d best = a;
-    for (const auto& [p, q] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
-      const Eigen::Vector3d e = q - p;
-      const double ee = e.squaredNorm();
-      const double s = ee > 0.0 ? std::clamp(-p.dot(e) / ee, 0.0, 1.0) : 0.0;
-      const Eigen::Vector3d x = p + s * e;
-      if (x.squaredNorm() < best.squaredNorm()) best = x;
-    }
-    return best;
-  }
-  return a + (vb / denom) * ab + (vc / denom) * ac;
+  return closestPointOnTriangle(Eigen::Vector3d::Zero(), a, b, c);
 }
 
 /// Closest point to the origin on segment [p, q].

@@ -3,6 +3,8 @@
 // hierarchy of axis-aligned boxes over a part's triangles, queried with an optional half-space
 // that clips the triangles on the fly (so one hierarchy serves every candidate cut of a part).
 
+#include "deepcheck/deep/closest_point.h"
+
 #include <Eigen/Core>
 
 #include <array>
@@ -21,9 +23,7 @@ struct Halfspace {
 
 using Triangle = std::array<Eigen::Vector3d, 3>;
 
-/// Closest point to `p` on the triangle (a, b, c) (any shape, degenerate ones included).
-Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+using deep::closestPointOnTriangle;
 
 /// Parameter t > 0 where the ray origin + t dir meets the triangle (a, b, c), or -1 when it misses
 /// (Moller-Trumbore; rays grazing the triangle's plane miss).
