@@ -20,7 +20,9 @@ Vector3d closestPointOnTriangle(const Vector3d& p, const Vector3d& a, const Vect
   const double d4 = ac.dot(bp);
   if (d3 >= 0.0 && d4 <= d3) return b;
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  // d1 - d3 = |ab|^2: when a == b (d1 = d3 = 0) edge ab is a point, and the other tests find
+  // the closest point (dividing by d1 - d3 would give NaN).
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 > d3) return a + (d1 / (d1 - d3)) * ab;
   const Vector3d cp = p - c;
   const double d5 = ab.dot(cp);
   const double d6 = ac.dot(cp);

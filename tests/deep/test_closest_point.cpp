@@ -45,8 +45,11 @@ BOOST_AUTO_TEST_CASE(degenerate_triangles) {
   requireNear(closestPointOnTriangle(Vector3d(1.5, 1, 0), a, b, c), Vector3d(1.5, 0, 0));
   requireNear(closestPointOnTriangle(Vector3d(3, 1, 1), a, b, c), b);
   requireNear(closestPointOnTriangle(Vector3d(-1, 0, 1), a, b, c), a);
-  // Two coincident corners: a segment; all three coincident: a point.
+  // Two coincident corners, in each position: a segment; all three coincident: a point.
   requireNear(closestPointOnTriangle(Vector3d(0.5, 0, 1), a, b, b), Vector3d(0.5, 0, 0));
+  requireNear(closestPointOnTriangle(Vector3d(0.5, 0, 1), a, a, b), Vector3d(0.5, 0, 0));
+  requireNear(closestPointOnTriangle(Vector3d(0.5, 0, 1), a, b, a), Vector3d(0.5, 0, 0));
+  requireNear(closestPointOnTriangle(Vector3d(0.5, 1, 0), b, b, a), Vector3d(0.5, 0, 0));
   requireNear(closestPointOnTriangle(Vector3d(4, 5, 6), c, c, c), c);
 }
 
