@@ -51,7 +51,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -69,6 +68,9 @@ namespace deepcheck::robots {
 
 using detail::Halfspace;
 using detail::Hull;
+using detail::PositionKey;
+using detail::PositionKeyHash;
+using detail::positionKey;
 using detail::Triangle;
 using detail::TriangleBvh;
 using Eigen::Vector3d;
@@ -88,6 +90,41 @@ std::string formatNumber(double x) {
   out.precision(17);
   out << x;
   return out.str();
+}
+
+/// Twice the vector area of a convex polygon given by its corners in order (the sum of the cross
+/// products of its fan triangles): its normal, times twice its area.
+Vector3d doubleVectorArea(const std::vector<Vector3d>& corners) {
+  Vector3d area = Vector3d::Zero();
+  for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
+    area += (corners[k] - corners[0]).cross(corners[k + 1] - corners[0]);
+  }
+  return area;
+}
+
+/// The point where the planes of three half-spaces meet; false when two of them are (nearly)
+/// parallel (see kSingularPlanes) or the point is not finite.
+bool planesMeet(const Halfspace& a, const Halfspace& b, const Halfspace& c, Vector3d* point) {
+  Eigen::Matrix3d A;
+  A.row(0) = a.normal;
+  A.row(1) = b.normal;
+  A.row(2) = c.normal;
+  if (std::abs(A.determinant()) < dt::kSingularPlanes) return false;
+  *point = A.inverse() * Vector3d(a.offset, b.offset, c.offset);
+  return point->allFinite();
+}
+
+/// The smallest and largest of d.p over `points`.
+struct Extent {
+  double lo, hi;
+};
+Extent extentAlong(const std::vector<Vector3d>& points, const Vector3d& d) {
+  Extent e{kInf, -kInf};
+  for (const Vector3d& p : points) {
+    e.lo = std::min(e.lo, d.dot(p));
+    e.hi = std::max(e.hi, d.dot(p));
+  }
+  return e;
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -129,20 +166,6 @@ struct CleanMesh {
   int inputVertices = 0;   ///< before filling holes
   int inputTriangles = 0;
   double volume = 0.0;  ///< sum of the components' volumes (voids count negative); NaN when open
-};
-
-struct VertexKey {
-  std::uint64_t bits[3];
-  bool operator==(const VertexKey& o) const {
-    return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
-  }
-};
-struct VertexKeyHash {
-  std::size_t operator()(const VertexKey& k) const {
-    std::uint64_t h = 1469598103934665603ULL;
-    for (std::uint64_t b : k.bits) h = (h ^ b) * 1099511628211ULL ^ (h >> 29);
-    return static_cast<std::size_t>(h);
-  }
 };
 
 int findRoot(std::vector<int>& parent, int x) {
@@ -288,16 +311,11 @@ CleanMesh cleanMesh(const TriangleMesh& mesh) {
   }
   CleanMesh out;
   // Weld bit-identical positions (after turning -0 into +0).
-  std::unordered_map<VertexKey, int, VertexKeyHash> index;
+  std::unordered_map<PositionKey, int, PositionKeyHash> index;
   std::vector<int> remap(n, -1);
   auto weld = [&](int i) {
     if (remap[i] >= 0) return remap[i];
-    VertexKey key{};
-    for (int k = 0; k < 3; ++k) {
-      const double c = mesh.vertices[i][k] + 0.0;
-      std::memcpy(&key.bits[k], &c, sizeof c);
-    }
-    auto [it, inserted] = index.emplace(key, static_cast<int>(out.vertices.size()));
+    auto [it, inserted] = index.emplace(positionKey(mesh.vertices[i]), static_cast<int>(out.vertices.size()));
     if (inserted) out.vertices.push_back(mesh.vertices[i]);
     return remap[i] = it->second;
   };
@@ -448,7 +466,6 @@ CleanMesh cleanMesh(const TriangleMesh& mesh) {
     if (groupLabel[root] < 0) groupLabel[root] = out.numGroups++;
     out.group[t] = groupLabel[root];
   }
-  if (!out.closed) out.volume = std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 
@@ -523,7 +540,7 @@ class CrossSection {
     if (segments_.empty()) return false;
     const double pu = u_.dot(p);
     const double pv = v_.dot(p);
-    return windingAt(pu, pv, buckets_.empty() ? nullptr : &buckets_[bucketOf(pv)]);
+    return windingAt(pu, pv);
   }
 
   /// Region of the cut face bordered by the segment of mesh triangle `triangle` (-1: none).
@@ -588,12 +605,14 @@ class CrossSection {
     }
   }
 
-  /// Winding test of (pu, pv) against `subset` of the segments (all when null).
-  bool windingAt(double pu, double pv, const std::vector<int>* subset) const {
-    const int count = subset != nullptr ? static_cast<int>(subset->size()) : static_cast<int>(segments_.size());
+  /// Winding test of (pu, pv): against all segments (generalized winding number), or against the
+  /// bucket of pv (crossing number).
+  bool windingAt(double pu, double pv) const {
+    const std::vector<int>* subset = buckets_.empty() ? nullptr : &buckets_[bucketOf(pv)];
+    const int n = subset != nullptr ? static_cast<int>(subset->size()) : static_cast<int>(segments_.size());
     if (generalized_) {
       double angle = 0.0;
-      for (int k = 0; k < count; ++k) {
+      for (int k = 0; k < n; ++k) {
         const Segment& s = segments_[subset != nullptr ? (*subset)[k] : k];
         const double ax = s.au - pu;
         const double ay = s.av - pv;
@@ -603,9 +622,7 @@ class CrossSection {
       }
       return std::abs(angle) >= kPi;  // |winding| >= 1/2
     }
-    if (subset == nullptr && !buckets_.empty()) subset = &buckets_[bucketOf(pv)];
     int winding = 0;
-    const int n = subset != nullptr ? static_cast<int>(subset->size()) : static_cast<int>(segments_.size());
     for (int k = 0; k < n; ++k) {
       const Segment& s = segments_[subset != nullptr ? (*subset)[k] : k];
       const double side = (s.bu - s.au) * (pv - s.av) - (pu - s.au) * (s.bv - s.av);
@@ -687,7 +704,7 @@ class CrossSection {
     }
     std::vector<int> region(numLoops);
     for (int a = 0; a < numLoops; ++a) region[a] = findRoot(loopParent, a);
-    loops_ = loops;
+    loops_ = std::move(loops);
     loopRegion_ = region;
     for (int i = 0; i < n; ++i) regionOfTriangle_[segments_[i].triangle] = region[loopOf[i]];
   }
@@ -1080,11 +1097,7 @@ std::vector<PartPolygon> Decomposer::clip(const std::vector<PartPolygon>& polygo
     if (inPlane) {
       // A face lying in the cut plane goes to the side its solid is on (against its outward
       // normal): on the other side it would be a flat part of its own.
-      Vector3d area = Vector3d::Zero();
-      for (std::size_t k = 1; k + 1 < polygon.corners.size(); ++k) {
-        area += (polygon.corners[k] - polygon.corners[0]).cross(polygon.corners[k + 1] - polygon.corners[0]);
-      }
-      if (area.dot(keep.normal) > 0.0) out.push_back(polygon);
+      if (doubleVectorArea(polygon.corners).dot(keep.normal) > 0.0) out.push_back(polygon);
       continue;
     }
     if (allIn) {
@@ -1094,11 +1107,7 @@ std::vector<PartPolygon> Decomposer::clip(const std::vector<PartPolygon>& polygo
     if (allOut) continue;
     detail::clipPolygon(polygon.corners, keep, &clipped);
     if (clipped.size() < 3) continue;
-    Vector3d area = Vector3d::Zero();
-    for (std::size_t k = 1; k + 1 < clipped.size(); ++k) {
-      area += (clipped[k] - clipped[0]).cross(clipped[k + 1] - clipped[0]);
-    }
-    if (0.5 * area.norm() <= minArea) continue;
+    if (0.5 * doubleVectorArea(clipped).norm() <= minArea) continue;
     out.push_back({clipped, polygon.source});
   }
   return out;
@@ -1114,13 +1123,8 @@ std::vector<Decomposer::CellCorner> Decomposer::solidCellCorners(const std::vect
   for (int a = 0; a < k; ++a) {
     for (int b = a + 1; b < k; ++b) {
       for (int c = b + 1; c < k; ++c) {
-        Eigen::Matrix3d A;
-        A.row(0) = h[a].normal;
-        A.row(1) = h[b].normal;
-        A.row(2) = h[c].normal;
-        if (std::abs(A.determinant()) < dt::kSingularPlanes) continue;
-        const Vector3d p = A.inverse() * Vector3d(h[a].offset, h[b].offset, h[c].offset);
-        bool feasible = p.allFinite();
+        Vector3d p;
+        bool feasible = planesMeet(h[a], h[b], h[c], &p);
         for (int i = 0; feasible && i < k; ++i) feasible = h[i].signedDistance(p) <= tolerance;
         if (!feasible) continue;
         bool known = false;
@@ -1297,14 +1301,9 @@ Part Decomposer::makePart(std::vector<CellSide> cell, std::vector<PartPolygon> p
   part.cell = std::move(cell);
   part.polygons = std::move(polygons);
   part.cellCorners = std::move(cellCorners);
-  std::unordered_map<VertexKey, int, VertexKeyHash> seen;
+  std::unordered_set<PositionKey, PositionKeyHash> seen;
   auto addPoint = [&](const Vector3d& p) {
-    VertexKey key{};
-    for (int k = 0; k < 3; ++k) {
-      const double c = p[k] + 0.0;
-      std::memcpy(&key.bits[k], &c, sizeof c);
-    }
-    if (seen.emplace(key, 0).second) part.points.push_back(p);
+    if (seen.insert(positionKey(p)).second) part.points.push_back(p);
   };
   for (const PartPolygon& polygon : part.polygons) {
     for (const Vector3d& p : polygon.corners) addPoint(p);
@@ -1349,7 +1348,7 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vec
   SideResult result;
   std::vector<Vector3d> points;
   points.reserve(part.points.size());
-  std::unordered_set<VertexKey, VertexKeyHash> crossings;
+  std::unordered_set<PositionKey, PositionKeyHash> crossings;
   const double slab = dt::kMinSlabRelative * diagonal_;
   const double tolerance = dt::kOnPlaneRelative * diagonal_;
   auto insideKeeps = [&](const Vector3d& x, std::size_t skip) {
@@ -1379,12 +1378,7 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vec
         const double st = forward ? sb : sa;
         const Vector3d x = from + (sf / (sf - st)) * (to - from);
         if (!insideKeeps(x, k)) continue;
-        VertexKey key{};
-        for (int c = 0; c < 3; ++c) {
-          const double v = x[c] + 0.0;
-          std::memcpy(&key.bits[c], &v, sizeof v);
-        }
-        if (crossings.insert(key).second) points.push_back(x);
+        if (crossings.insert(positionKey(x)).second) points.push_back(x);
       }
     }
   }
@@ -1401,13 +1395,8 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vec
   for (const Keep& keep : keeps) {
     for (std::size_t a = 0; a < others.size(); ++a) {
       for (std::size_t b = a + 1; b < others.size(); ++b) {
-        Eigen::Matrix3d A;
-        A.row(0) = keep.plane.normal;
-        A.row(1) = others[a].normal;
-        A.row(2) = others[b].normal;
-        if (std::abs(A.determinant()) < dt::kSingularPlanes) continue;
-        const Vector3d p = A.inverse() * Vector3d(keep.plane.offset, others[a].offset, others[b].offset);
-        bool feasible = p.allFinite();
+        Vector3d p;
+        bool feasible = planesMeet(keep.plane, others[a], others[b], &p);
         for (std::size_t i = 0; feasible && i < others.size(); ++i) {
           feasible = others[i].signedDistance(p) <= tolerance;
         }
@@ -1451,27 +1440,16 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
       if (!repeated && d.allFinite()) directions.push_back(d);
     }
   }
-  struct Range {
-    double lo, hi;
-  };
-  std::vector<Range> ranges;
-  for (const Vector3d& d : directions) {
-    Range r{kInf, -kInf};
-    for (const Vector3d& p : part.points) {
-      r.lo = std::min(r.lo, d.dot(p));
-      r.hi = std::max(r.hi, d.dot(p));
-    }
-    ranges.push_back(r);
-  }
+  std::vector<Extent> ranges;
+  for (const Vector3d& d : directions) ranges.push_back(extentAlong(part.points, d));
 
   std::vector<Candidate> scored;
-  std::vector<int> directionOf;
   *bestScore = kInf;
   const double tie = dt::kTieFraction * target_;
   const double slab = dt::kMinSlabRelative * diagonal_;
   std::vector<std::pair<int, double>> tried;
   auto tryCut = [&](int dir, double offset, bool throughWorst) {
-    const Range& r = ranges[dir];
+    const Extent& r = ranges[dir];
     if (!(offset > r.lo + slab && offset < r.hi - slab)) return;
     // A plane (almost) tried already: the same cut.
     for (const auto& [d, o] : tried) {
@@ -1495,15 +1473,10 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
       bool inPlane = true;
       for (const Vector3d& p : polygon.corners) inPlane = inPlane && std::abs(n.dot(p) - offset) <= onPlane;
       if (!inPlane) continue;
-      Vector3d area = Vector3d::Zero();
-      for (std::size_t k = 1; k + 1 < polygon.corners.size(); ++k) {
-        area += (polygon.corners[k] - polygon.corners[0]).cross(polygon.corners[k + 1] - polygon.corners[0]);
-      }
-      faceArea += 0.5 * area.norm();
+      faceArea += 0.5 * doubleVectorArea(polygon.corners).norm();
     }
     scored.push_back({{n, offset}, score, a.volume + b.volume, std::max(a.vertices, b.vertices), throughWorst,
                       faceArea, dir});
-    directionOf.push_back(dir);
   };
 
   // Through the worst hull sample (the middle of the deepest concavity: cutting there splits it)
@@ -1564,22 +1537,14 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
         const Vector3d hit = part.worstSample + nearest * dir;
         tryCut(d, directions[d].dot(hit), false);
         (sign > 0.0 ? wallAbove : wallBelow)[d] = directions[d].dot(hit);
-        Vector3d normal = Vector3d::Zero();
-        for (std::size_t k = 1; k + 1 < wall->corners.size(); ++k) {
-          normal += (wall->corners[k] - wall->corners[0]).cross(wall->corners[k + 1] - wall->corners[0]);
-        }
+        Vector3d normal = doubleVectorArea(wall->corners);
         if (!(normal.norm() > 0.0)) continue;
         normal.normalize();
         bool known = false;
         for (const Vector3d& e : directions) known = known || std::abs(normal.dot(e)) > 1.0 - dt::kOnPlaneNormal;
         if (known) continue;
         directions.push_back(normal);
-        Range r{kInf, -kInf};
-        for (const Vector3d& p : part.points) {
-          r.lo = std::min(r.lo, normal.dot(p));
-          r.hi = std::max(r.hi, normal.dot(p));
-        }
-        ranges.push_back(r);
+        ranges.push_back(extentAlong(part.points, normal));
         tryCut(static_cast<int>(directions.size()) - 1, normal.dot(hit), false);
       }
     }
@@ -1589,7 +1554,7 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
   for (int d = 0; d < static_cast<int>(wallAbove.size()); ++d) {
     const double lo = wallBelow[d];
     const double hi = wallAbove[d];
-    const Range& r = ranges[d];
+    const Extent& r = ranges[d];
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo > r.lo + slab && hi < r.hi - slab && hi - lo > 2.0 * slab)) {
       continue;
     }
@@ -1609,12 +1574,11 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
                       std::max({a.vertices, b.vertices, c.vertices}), false, 0.0, d};
     slabCut.slabOffset = hi;
     scored.push_back(slabCut);
-    directionOf.push_back(d);
   }
   if (quick) return scored;  // the lookahead's second cut: the planes near the concavity only
   const int offsets = dt::kOffsetsPerDirection;
   for (int d = 0; d < static_cast<int>(directions.size()); ++d) {
-    const Range& r = ranges[d];
+    const Extent& r = ranges[d];
     for (int i = 0; i < offsets; ++i) tryCut(d, r.lo + (r.hi - r.lo) * (i + 0.5) / offsets, false);
   }
   if (scored.empty()) return scored;
@@ -1622,9 +1586,9 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
   for (int round = 1; round <= dt::kRefinementRounds; ++round) {
     const Candidate* pick = pickBest(part, scored, *bestScore);
     if (pick->isSlab()) break;
-    const int dir = directionOf[pick - scored.data()];
+    const int dir = pick->direction;
     const double offset = pick->cut.offset;
-    const Range& r = ranges[dir];
+    const Extent& r = ranges[dir];
     const double step = (r.hi - r.lo) / offsets / std::pow(2.0, round);
     tryCut(dir, offset - step, false);
     tryCut(dir, offset + step, false);
@@ -1777,14 +1741,9 @@ std::vector<Part> Decomposer::applyCut(const Part& part, const Candidate& candid
   const Halfspace upper{candidate.cut.normal, candidate.slabOffset};
   std::vector<Part> out;
   for (Part& kid : first) {
-    double lo = kInf;
-    double hi = -kInf;
-    for (const Vector3d& p : kid.points) {
-      lo = std::min(lo, upper.normal.dot(p));
-      hi = std::max(hi, upper.normal.dot(p));
-    }
+    const Extent e = extentAlong(kid.points, upper.normal);
     const double slab = dt::kMinSlabRelative * diagonal_;
-    if (lo < upper.offset - slab && hi > upper.offset + slab) {
+    if (e.lo < upper.offset - slab && e.hi > upper.offset + slab) {
       for (Part& piece : split(kid, upper, reduce)) out.push_back(std::move(piece));
     } else {
       if (reduce) finishPart(&kid);

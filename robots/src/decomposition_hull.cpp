@@ -17,7 +17,6 @@ extern "C" {
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -286,29 +285,6 @@ Hull circumscribedReduction(const Hull& hull, int maxVertices) {
   Hull reduced = convexHull(corners);
   if (static_cast<int>(reduced.vertices.size()) > maxVertices || !(reduced.volume > 0.0)) return hull;
   return reduced;
-}
-
-/// Bit pattern of a position: identifies a vertex across hull recomputations.
-struct PositionKey {
-  std::uint64_t bits[3];
-  bool operator==(const PositionKey& o) const {
-    return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
-  }
-};
-struct PositionKeyHash {
-  std::size_t operator()(const PositionKey& k) const {
-    std::uint64_t h = 0x84222325cbf29ce4ULL;
-    for (std::uint64_t b : k.bits) h = (h ^ b) * 0x100000001b3ULL ^ (h >> 31);
-    return static_cast<std::size_t>(h);
-  }
-};
-PositionKey positionKey(const Vector3d& p) {
-  PositionKey key{};
-  for (int k = 0; k < 3; ++k) {
-    const double c = p[k] + 0.0;
-    std::memcpy(&key.bits[k], &c, sizeof c);
-  }
-  return key;
 }
 
 /// Progressive hull (after Sander et al., "Silhouette clipping", SIGGRAPH 2000): collapse hull

@@ -5,9 +5,35 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace deepcheck::robots::detail {
+
+/// Bit pattern of a position (-0 turned into +0): identifies a point exactly, to weld vertices
+/// and to tell points apart across hull recomputations.
+struct PositionKey {
+  std::uint64_t bits[3];
+  bool operator==(const PositionKey& o) const {
+    return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
+  }
+};
+struct PositionKeyHash {
+  std::size_t operator()(const PositionKey& k) const {
+    std::uint64_t h = 0x84222325cbf29ce4ULL;
+    for (std::uint64_t b : k.bits) h = (h ^ b) * 0x100000001b3ULL ^ (h >> 31);
+    return static_cast<std::size_t>(h);
+  }
+};
+inline PositionKey positionKey(const Eigen::Vector3d& p) {
+  PositionKey key{};
+  for (int k = 0; k < 3; ++k) {
+    const double c = p[k] + 0.0;
+    std::memcpy(&key.bits[k], &c, sizeof c);
+  }
+  return key;
+}
 
 /// A triangulated convex hull.
 struct Hull {
