@@ -150,13 +150,16 @@ void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::Ve
   const std::vector<Joint>& joints = model.joints();
   constexpr int kBlock = 16;
   double sines[kBlock], cosines[kBlock];
+  int axes[kBlock];  // the coordinate axis of a revolute joint (coordinateAxis), else -1
   for (int first = 0; first < static_cast<int>(joints.size()); first += kBlock) {
     const int end = std::min(first + kBlock, static_cast<int>(joints.size()));
     for (int i = first; i < end; ++i) {
       const Joint& joint = joints[i];
+      axes[i - first] = -1;
       if (joint.type != JointType::Revolute && joint.type != JointType::Continuous) continue;
       double sign = 1.0;
-      if (coordinateAxis(joint.axis, sign) < 0) continue;
+      axes[i - first] = coordinateAxis(joint.axis, sign);
+      if (axes[i - first] < 0) continue;
       sinCos(sign * (joint.multiplier * q[joint.variable] + joint.offset), sines[i - first], cosines[i - first]);
     }
     for (int i = first; i < end; ++i) {
@@ -171,12 +174,11 @@ void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::Ve
         case JointType::Fixed: break;
         case JointType::Revolute:
         case JointType::Continuous: {
-          const double value = joint.multiplier * q[joint.variable] + joint.offset;
-          double sign = 1.0;
-          const int k = coordinateAxis(joint.axis, sign);
+          const int k = axes[i - first];
           if (k >= 0) {
             rotateAboutCoordinateAxis(R, k, cosines[i - first], sines[i - first]);
           } else {
+            const double value = joint.multiplier * q[joint.variable] + joint.offset;
             R = R * Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
           }
           break;
