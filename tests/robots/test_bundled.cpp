@@ -1,7 +1,7 @@
 // The robot and scenes bundled in robots/data (no ../shared needed): the arm loads with its
 // package, its kinematics are the KUKA iiwa 7 R800's link lengths, its meshes are small, closed
 // and non-convex, the committed SRDF is what the pair filter computes, and the start and goal
-// configurations documented in robots/data/README.md are collision free.
+// configurations documented in robots/data/README.md are collision free, 1.5 cm apart.
 
 #include "robots_test_util.h"
 
@@ -11,10 +11,13 @@
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
+#include "deepcheck/deep/signed_distance.h"
+
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -66,6 +69,25 @@ const std::vector<Problem> kProblems = {
 
 Eigen::VectorXd vec(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+/// Clearance of the documented start and goal configurations (robots/data/README.md).
+constexpr double kProblemClearance = 0.015;
+
+/// Smallest signed distance between a piece of `a` and a piece of `b`, posed at X_WA and X_WB.
+double piecesDistance(const std::vector<CollisionPiece>& a, const Eigen::Isometry3d& X_WA,
+                      const std::vector<CollisionPiece>& b, const Eigen::Isometry3d& X_WB) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const CollisionPiece& pa : a) {
+    for (const CollisionPiece& pb : b) {
+      const auto r = deepcheck::deep::signedDistance(deepcheck::deep::ConvexShape{pa.core.get(), pa.radius},
+                                                     X_WA * pa.X_LP,
+                                                     deepcheck::deep::ConvexShape{pb.core.get(), pb.radius},
+                                                     X_WB * pb.X_LP);
+      best = std::min(best, r.distance);
+    }
+  }
+  return best;
 }
 
 /// Tool point: between the fingertips, 12 cm from the flange along the hand's z axis.
@@ -281,11 +303,15 @@ BOOST_AUTO_TEST_CASE(start_and_goal_are_collision_free) {
       for (const auto& [i, j] : selfPairs) {
         BOOST_TEST(!piecesOverlap(armPieces[i], X[i], armPieces[j], X[j]),
                    label << ": " << arm.link(i).name << " hits " << arm.link(j).name);
+        BOOST_TEST(piecesDistance(armPieces[i], X[i], armPieces[j], X[j]) >= kProblemClearance,
+                   label << ": " << arm.link(i).name << " is too close to " << arm.link(j).name);
       }
       for (int a = 0; a < arm.numLinks(); ++a) {
         for (int s = 0; s < scene.numLinks(); ++s) {
           BOOST_TEST(!piecesOverlap(armPieces[a], X[a], scenePieces[s], X_S[s]),
                      label << ": " << arm.link(a).name << " hits " << scene.link(s).name);
+          BOOST_TEST(piecesDistance(armPieces[a], X[a], scenePieces[s], X_S[s]) >= kProblemClearance,
+                     label << ": " << arm.link(a).name << " is too close to " << scene.link(s).name);
         }
       }
       const Eigen::Vector3d tool = X[hand] * kToolPoint_H;
