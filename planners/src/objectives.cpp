@@ -2,13 +2,14 @@
 
 #include "deepcheck/planners/state_space.h"
 
+#include "number.h"
+
 #include <ompl/base/goals/GoalRegion.h>
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -17,11 +18,7 @@ namespace deepcheck::planners {
 
 namespace {
 
-std::string number(double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
+using detail::number;
 
 /// Path length + weight * hinge, keeping the path length's heuristics (admissible: hinge >= 0).
 class LengthClearanceObjective : public ompl::base::MultiOptimizationObjective {

@@ -3,9 +3,10 @@
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/planners/validity_checker.h"
 
+#include "number.h"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <ostream>
@@ -179,13 +180,8 @@ std::vector<Eigen::VectorXd> pathConfigurations(const ompl::geometric::PathGeome
 }
 
 void writePath(const ompl::geometric::PathGeometric& path, std::ostream& out) {
-  char buffer[64];
   for (const Eigen::VectorXd& q : pathConfigurations(path)) {
-    for (Eigen::Index j = 0; j < q.size(); ++j) {
-      std::snprintf(buffer, sizeof buffer, "%.17g", q[j]);
-      if (j > 0) out << ' ';
-      out << buffer;
-    }
+    for (Eigen::Index j = 0; j < q.size(); ++j) out << (j > 0 ? " " : "") << detail::number(q[j]);
     out << '\n';
   }
 }

@@ -5,11 +5,12 @@
 
 #include "deepcheck/robots/kinematics.h"
 
+#include "number.h"
+
 #include <Eigen/Cholesky>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -19,11 +20,7 @@ namespace deepcheck::planners {
 
 namespace {
 
-std::string number(double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
+using detail::number;
 
 /// A uniform double in [0, 1) from the raw output of the generator (portable: the standard leaves
 /// std::uniform_real_distribution's algorithm to each library).

@@ -9,8 +9,6 @@
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/goals/GoalState.h>
 
-#include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 

@@ -2,8 +2,9 @@
 
 #include "deepcheck/planners/tolerances.h"
 
+#include "number.h"
+
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -21,11 +22,9 @@ std::shared_ptr<ompl::base::RealVectorStateSpace> makeStateSpace(const robots::R
     const double lo = model.lowerLimits()[v];
     const double hi = model.upperLimits()[v];
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
-      char buffer[160];
-      std::snprintf(buffer, sizeof buffer, "limits [%.17g, %.17g]", lo, hi);
       throw std::invalid_argument("makeStateSpace: robot '" + model.name() + "', variable '" +
-                                  model.variableNames()[static_cast<std::size_t>(v)] + "' has " + buffer +
-                                  " (need finite lower < upper)");
+                                  model.variableNames()[static_cast<std::size_t>(v)] + "' has limits [" +
+                                  detail::number(lo) + ", " + detail::number(hi) + "] (need finite lower < upper)");
     }
     bounds.setLow(static_cast<unsigned int>(v), lo);
     bounds.setHigh(static_cast<unsigned int>(v), hi);
