@@ -119,10 +119,7 @@ double LinkSpeedBound::linkDisplacement(int link, const Eigen::Ref<const Eigen::
   if (link < 0 || link >= speed_.rows()) {
     throw std::invalid_argument("LinkSpeedBound::linkDisplacement: no link " + std::to_string(link));
   }
-  if (dq.size() != speed_.cols()) {
-    throw std::invalid_argument("LinkSpeedBound: a motion of " + std::to_string(dq.size()) + " values for " +
-                                std::to_string(speed_.cols()) + " variables");
-  }
+  checkMotion(dq);
   return speed_.row(link).dot(dq.cwiseAbs());
 }
 

@@ -43,13 +43,9 @@ ClearanceMotionValidator::ClearanceMotionValidator(const ompl::base::SpaceInform
     : ClearanceMotionValidator(si.get(), std::move(checker), std::move(bound), fallbackFraction) {}
 
 double ClearanceMotionValidator::minStep(double length, double B) const {
+  double h = fallbackFraction_ * si_->getStateSpace()->getLongestValidSegmentLength();
   // No point may move more than kFallbackDisplacement between two checked states.
-  if (B > 0.0) {
-    const double h = std::min(fallbackFraction_ * si_->getStateSpace()->getLongestValidSegmentLength(),
-                              tol::kFallbackDisplacement / B * length);
-    return length > h ? h / length : 1.0;
-  }
-  const double h = fallbackFraction_ * si_->getStateSpace()->getLongestValidSegmentLength();
+  if (B > 0.0) h = std::min(h, tol::kFallbackDisplacement / B * length);
   return length > h ? h / length : 1.0;
 }
 

@@ -9,6 +9,16 @@
 
 namespace deepcheck::planners {
 
+namespace {
+
+/// The minimum distance a query capped at `cap` found; `cap` when it found no pair below the cap
+/// (then every pair is at least `cap` away).
+double cappedMinimum(const checker::DistanceResult& result, double cap) {
+  return result.found ? std::min(result.closest.distance, cap) : cap;
+}
+
+}  // namespace
+
 void checkValidityOptions(const ValidityOptions& options) {
   if (!std::isfinite(options.penetrationTolerance) || options.penetrationTolerance < 0.0) {
     throw std::invalid_argument("ValidityOptions: penetrationTolerance must be finite and >= 0, got " +
@@ -24,9 +34,7 @@ double signedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Ei
                           double cap) {
   checker::DistanceOptions options;
   options.maxDistance = cap;
-  const checker::DistanceResult result = world.signedDistance(q, options);
-  // found == false: no pair measured below the cap, so every pair is at least `cap` away.
-  return result.found ? std::min(result.closest.distance, cap) : cap;
+  return cappedMinimum(world.signedDistance(q, options), cap);
 }
 
 SplitDistance splitSignedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -36,11 +44,10 @@ SplitDistance splitSignedDistanceUpTo(const checker::World& world, const Eigen::
   checker::DistanceOptions options;
   options.maxDistance = cap;
   options.selfPairs = false;
-  const checker::DistanceResult w = world.signedDistance(q, options);
+  const double worldDistance = cappedMinimum(world.signedDistance(q, options), cap);
   options.selfPairs = true;
   options.worldPairs = false;
-  const checker::DistanceResult s = world.signedDistance(q, options);
-  return SplitDistance{w.found ? std::min(w.closest.distance, cap) : cap, s.found ? std::min(s.closest.distance, cap) : cap};
+  return SplitDistance{worldDistance, cappedMinimum(world.signedDistance(q, options), cap)};
 }
 
 bool isConfigurationValid(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q,
