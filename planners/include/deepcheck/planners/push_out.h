@@ -92,8 +92,12 @@ struct PushOutResult {
   PushOutStatus status = PushOutStatus::NotConverged;
   Eigen::VectorXd q;             ///< the result (valid when success())
   int iterations = 0;            ///< push-out iterations / jiggle attempts used
-  double initialDistance = 0.0;  ///< sd of the input (metres; +inf when nothing is near)
-  double finalDistance = 0.0;    ///< sd of q (metres)
+  /// sd of the input (metres), measured no farther than t + c + tol::kPushOutLookahead (that value
+  /// when nothing is nearer); NaN when the push-out did not start (the input valid, or valid once
+  /// clamped into the limits) and for the jiggle.
+  double initialDistance = 0.0;
+  /// sd of q (metres); NaN when the push-out did not start, and for a jiggle that did not repair.
+  double finalDistance = 0.0;
   double jointMotion = 0.0;      ///< |q - input|, joint-space Euclidean norm
   bool success() const {
     return status == PushOutStatus::AlreadyValid || status == PushOutStatus::Repaired;

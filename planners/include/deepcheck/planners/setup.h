@@ -19,11 +19,13 @@
 // validityCheckerOf() and linkSpeedBoundOf() give back the pieces for objectives and reports.
 //
 // Why the discrete validator by default: planners spend most motion checks on motions that never
-// reach the solution, and the certification's distance queries cost hundreds of isFree queries
-// (bench/plan_bench.cpp: planning with the clearance validator is several times slower). The
-// guarantee is obtained where it is cheap, on the final path: certifyPath() checks every waypoint
-// and every motion of it with the clearance validator and, where that fails, repairs it
-// (path_tools.h: push-out and subdivision). The `deepcheck plan` tool does exactly this.
+// reach the solution, and the clearance validator adds to the discrete validator's isFree queries
+// a certification by distance queries, each of which costs more than an isFree query
+// (tests/planners/test_motion_validator.cpp counts checks and distance queries per motion;
+// planning with the clearance validator is not benchmarked). The guarantee is obtained where it
+// is cheap, on the final path: certifyPath() checks every waypoint and every motion of it with
+// the clearance validator and, where that fails, repairs it (path_tools.h: push-out and
+// subdivision). The `deepcheck plan` tool does exactly this.
 //
 // Files: package:// URIs are resolved with SetupOptions::packagePaths first, then (unless
 // useRosPackagePath is false) ROS_PACKAGE_PATH (robots/package_path.h). Errors are
