@@ -1,6 +1,6 @@
 #pragma once
-// The bundled arm and scenes (robots/data) for the planners suite, loaded once per process, and
-// the suggested planning problems of robots/data/README.md.
+// The bundled arm and scenes (robots/data) for the planners suite, loaded once per process, the
+// suggested planning problems of robots/data/README.md, and seeded random configurations.
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/planners/push_out.h"
@@ -9,8 +9,9 @@
 #include <Eigen/Core>
 
 #include <map>
-#include <ostream>
 #include <memory>
+#include <ostream>
+#include <random>
 #include <string>
 
 namespace deepcheck::planners {
@@ -44,6 +45,19 @@ inline std::shared_ptr<const checker::World> bundledWorld(const std::string& sce
   auto world = loadWorld(armUrdf(), scenes, bundledOptions());
   cache[scene] = world;
   return world;
+}
+
+/// A uniform double in [0, 1) from the raw output of the generator: the same sequence with every
+/// standard library (std::uniform_real_distribution's algorithm is each library's own).
+inline double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+/// A configuration drawn uniformly within the limits, one uniform01 per variable.
+inline Eigen::VectorXd randomConfiguration(const robots::RobotModel& model, std::mt19937_64& rng) {
+  Eigen::VectorXd q(model.numVariables());
+  for (int v = 0; v < q.size(); ++v) {
+    q[v] = model.lowerLimits()[v] + uniform01(rng) * (model.upperLimits()[v] - model.lowerLimits()[v]);
+  }
+  return q;
 }
 
 /// robots/data/README.md, "Suggested planning problems".

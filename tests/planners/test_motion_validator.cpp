@@ -26,21 +26,13 @@
 namespace dp = deepcheck::planners;
 namespace ob = ompl::base;
 using dp::test::bundledWorld;
+using dp::test::randomConfiguration;
+using dp::test::uniform01;
 
 namespace {
 
 /// Ground truth resolution of the motion checks: joint-space length between checked states (rad).
 constexpr double kTruthResolution = 0.001;
-
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
-
-Eigen::VectorXd randomConfiguration(const deepcheck::robots::RobotModel& model, std::mt19937_64& rng) {
-  Eigen::VectorXd q(model.numVariables());
-  for (int v = 0; v < q.size(); ++v) {
-    q[v] = model.lowerLimits()[v] + uniform01(rng) * (model.upperLimits()[v] - model.lowerLimits()[v]);
-  }
-  return q;
-}
 
 Eigen::VectorXd randomDirection(int n, std::mt19937_64& rng) {
   std::normal_distribution<double> normal;

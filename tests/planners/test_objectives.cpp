@@ -1,5 +1,5 @@
-// Clearance objectives: the hinge state and motion costs, the combination with path length, OMPL's
-// MaximizeMinClearanceObjective on our clearance, and RRT* driven away from obstacles.
+// Clearance objectives: the hinge state and motion costs, the combination with path length, and
+// OMPL's MaximizeMinClearanceObjective on our clearance (with RRT*).
 
 #include "bundled.h"
 
@@ -28,18 +28,9 @@ namespace dp = deepcheck::planners;
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 using dp::test::bundledWorld;
+using dp::test::randomConfiguration;
 
 namespace {
-
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
-
-Eigen::VectorXd randomConfiguration(const deepcheck::robots::RobotModel& model, std::mt19937_64& rng) {
-  Eigen::VectorXd q(model.numVariables());
-  for (int v = 0; v < q.size(); ++v) {
-    q[v] = model.lowerLimits()[v] + uniform01(rng) * (model.upperLimits()[v] - model.lowerLimits()[v]);
-  }
-  return q;
-}
 
 /// Stops after `iterations` evaluations (RRT* evaluates it once per iteration): the same amount of
 /// work on every machine, whatever its load, so that pinned seeds give the same trees.
@@ -137,6 +128,32 @@ BOOST_AUTO_TEST_CASE(motion_cost_integrates_the_hinge_and_the_bound_only_skips_z
                                       << " of 120 comparisons above 1e-9");
   BOOST_TEST(skipped > 5);
   BOOST_TEST(inexact <= 12);
+}
+
+BOOST_AUTO_TEST_CASE(length_clearance_objective_is_length_plus_weighted_hinge) {
+  // A bare SpaceInformation, no SimpleSetup: this test draws no seed from OMPL's seed generator
+  // (SimpleSetup's path simplifier would), so the planning tests after it keep their samples.
+  const auto world = bundledWorld("shelf");
+  auto si = std::make_shared<ob::SpaceInformation>(dp::makeStateSpace(world->robot()));
+  auto checker = std::make_shared<dp::StateValidityChecker>(si, world);
+  si->setStateValidityChecker(checker);
+  si->setup();
+  const double weight = 10.0;
+  const auto combined = dp::makeLengthClearanceObjective(si, checker, 0.05, weight, nullptr, 0.01);
+  const dp::ClearanceHingeObjective hinge(si, checker, 0.05, nullptr, 0.01);
+  ob::ScopedState<> a(si), b(si);
+  // From the suggested start into the shelf: the motion ends within d_safe of the shelf.
+  dp::copyToState(dp::test::suggestedStart(), a.get());
+  dp::copyToState(dp::test::suggestedGoal("shelf"), b.get());
+  const double length = si->distance(a.get(), b.get());
+  const double h = hinge.motionCost(a.get(), b.get()).value();
+  BOOST_TEST(h > 0.0);
+  BOOST_TEST(combined->motionCost(a.get(), b.get()).value() == length + weight * h,
+             boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(combined->stateCost(b.get()).value() == weight * hinge.stateCost(b.get()).value(),
+             boost::test_tools::tolerance(1e-9));
+  // The path length's heuristic, admissible since the hinge is >= 0.
+  BOOST_TEST(combined->motionCostHeuristic(a.get(), b.get()).value() == length);
 }
 
 BOOST_AUTO_TEST_CASE(maximize_min_clearance_objective_reads_our_clearance) {

@@ -15,18 +15,9 @@
 
 namespace dp = deepcheck::planners;
 using dp::test::bundledWorld;
+using dp::test::randomConfiguration;
 
 namespace {
-
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
-
-Eigen::VectorXd randomConfiguration(const deepcheck::robots::RobotModel& model, std::mt19937_64& rng) {
-  Eigen::VectorXd q(model.numVariables());
-  for (int v = 0; v < q.size(); ++v) {
-    q[v] = model.lowerLimits()[v] + uniform01(rng) * (model.upperLimits()[v] - model.lowerLimits()[v]);
-  }
-  return q;
-}
 
 /// Random configurations of `world` whose signed distance is in [-maxDepth, 0): slightly colliding
 /// starts, with the scene or with the robot itself.

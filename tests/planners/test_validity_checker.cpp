@@ -36,14 +36,7 @@ std::vector<Eigen::VectorXd> randomConfigurations(const deepcheck::robots::Robot
                                                   std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::vector<Eigen::VectorXd> out;
-  for (int i = 0; i < count; ++i) {
-    Eigen::VectorXd q(model.numVariables());
-    for (int v = 0; v < q.size(); ++v) {
-      const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
-      q[v] = model.lowerLimits()[v] + u * (model.upperLimits()[v] - model.lowerLimits()[v]);
-    }
-    out.push_back(q);
-  }
+  for (int i = 0; i < count; ++i) out.push_back(dp::test::randomConfiguration(model, rng));
   return out;
 }
 
@@ -57,8 +50,7 @@ Eigen::VectorXd configurationWithDistance(const deepcheck::checker::World& world
 }
 
 ob::SpaceInformationPtr spaceFor(const deepcheck::checker::World& world) {
-  auto si = std::make_shared<ob::SpaceInformation>(dp::makeStateSpace(world.robot()));
-  return si;
+  return std::make_shared<ob::SpaceInformation>(dp::makeStateSpace(world.robot()));
 }
 
 }  // namespace
