@@ -193,18 +193,6 @@ std::vector<std::string> splitList(const std::string& s) {
   return out;
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-/// "rrtstar" and "RRT*" alike.
-std::string normalizedPlannerName(const std::string& name) {
-  std::string s = lower(name);
-  for (std::string::size_type p; (p = s.find("star")) != std::string::npos;) s.replace(p, 4, "*");
-  return s;
-}
-
 std::string loadAverage() {
   std::ifstream in("/proc/loadavg");
   std::string a, b, c;
@@ -549,17 +537,12 @@ int main(int argc, char** argv) {
   // Planners: canonical names of makePlanner.
   if (!wantedPlanners.empty()) {
     opt.planners.clear();
-    const std::vector<std::string> known = dp::plannerNames();
     for (const std::string& w : wantedPlanners) {
-      auto it = std::find_if(known.begin(), known.end(), [&](const std::string& k) {
-        return normalizedPlannerName(k) == normalizedPlannerName(w);
-      });
-      if (it == known.end()) {
-        std::string list;
-        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-        usage("unknown planner '" + w + "' (known: " + list + ")");
+      try {
+        opt.planners.push_back(dp::plannerName(w));
+      } catch (const std::invalid_argument& e) {  // names it and lists the known ones
+        usage(e.what());
       }
-      opt.planners.push_back(*it);
     }
   }
   // Problems.

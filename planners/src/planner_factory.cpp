@@ -37,14 +37,18 @@ Maker maker() {
 
 /// BIT* is k-nearest by default, and OMPL renames (with a warning) a k-nearest BIT* called
 /// "BITstar" at setup: name it "kBITstar" from the start.
+constexpr const char* kBitStarName = "kBITstar";
 Maker bitStar() {
-  return [](const ompl::base::SpaceInformationPtr& si) { return std::make_shared<og::BITstar>(si, "kBITstar"); };
+  return [](const ompl::base::SpaceInformationPtr& si) { return std::make_shared<og::BITstar>(si, kBitStarName); };
 }
 
 struct Entry {
   const char* name;
   bool optimizing;
   Maker make;
+  /// The name the planner gives itself (Planner::getName) when it is not `name` written with
+  /// "star".
+  const char* omplName = nullptr;
 };
 
 const std::vector<Entry>& table() {
@@ -53,7 +57,7 @@ const std::vector<Entry>& table() {
       {"RRT", false, maker<og::RRT>()},
       {"RRT*", true, maker<og::RRTstar>()},
       {"InformedRRT*", true, maker<og::InformedRRTstar>()},
-      {"BIT*", true, bitStar()},
+      {"BIT*", true, bitStar(), kBitStarName},
       {"PRM", false, maker<og::PRM>()},
       {"PRM*", true, maker<og::PRMstar>()},
       {"LazyPRM", false, maker<og::LazyPRM>()},
@@ -85,9 +89,20 @@ std::string canonical(const std::string& name) {
 const Entry* find(const std::string& name) {
   const std::string key = canonical(name);
   for (const Entry& e : table()) {
-    if (canonical(e.name) == key) return &e;
+    if (canonical(e.name) == key || (e.omplName != nullptr && canonical(e.omplName) == key)) return &e;
   }
   return nullptr;
+}
+
+/// The entry of `name`; std::invalid_argument naming it and listing the known ones otherwise.
+const Entry& entry(const std::string& name) {
+  const Entry* e = find(name);
+  if (e == nullptr) {
+    std::string known;
+    for (const Entry& other : table()) known += std::string(known.empty() ? "" : ", ") + other.name;
+    throw std::invalid_argument("unknown planner '" + name + "' (known: " + known + ")");
+  }
+  return *e;
 }
 
 }  // namespace
@@ -98,14 +113,10 @@ std::vector<std::string> plannerNames() {
   return names;
 }
 
+std::string plannerName(const std::string& name) { return entry(name).name; }
+
 ompl::base::PlannerPtr makePlanner(const std::string& name, const ompl::base::SpaceInformationPtr& si) {
-  const Entry* e = find(name);
-  if (e == nullptr) {
-    std::string known;
-    for (const Entry& entry : table()) known += std::string(known.empty() ? "" : ", ") + entry.name;
-    throw std::invalid_argument("unknown planner '" + name + "' (known: " + known + ")");
-  }
-  return e->make(si);
+  return entry(name).make(si);
 }
 
 bool isOptimizingPlanner(const std::string& name) {

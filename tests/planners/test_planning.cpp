@@ -72,7 +72,12 @@ BOOST_AUTO_TEST_CASE(planner_names) {
   const auto world = bundledWorld("");
   auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
   for (const std::string& name : dp::plannerNames()) {
-    BOOST_TEST(dp::makePlanner(name, ss->getSpaceInformation()) != nullptr);
+    const ob::PlannerPtr planner = dp::makePlanner(name, ss->getSpaceInformation());
+    BOOST_TEST_REQUIRE(planner != nullptr);
+    // The name a planner gives itself leads back to its entry (plan_bench asks
+    // isOptimizingPlanner with Planner::getName(); BIT* calls itself "kBITstar").
+    BOOST_TEST(dp::plannerName(planner->getName()) == name, planner->getName());
+    BOOST_TEST(dp::isOptimizingPlanner(planner->getName()) == dp::isOptimizingPlanner(name), planner->getName());
   }
   BOOST_TEST(dp::makePlanner("rrtstar", ss->getSpaceInformation())->getName() == "RRTstar");
   BOOST_TEST(dp::makePlanner("BITstar", ss->getSpaceInformation())->getName() == "kBITstar");
@@ -82,6 +87,10 @@ BOOST_AUTO_TEST_CASE(planner_names) {
                         });
   BOOST_TEST(dp::isOptimizingPlanner("BIT*"));
   BOOST_TEST(!dp::isOptimizingPlanner("RRTConnect"));
+  BOOST_TEST(dp::plannerName("lazyprmstar") == "LazyPRM*");
+  BOOST_CHECK_EXCEPTION(dp::plannerName("RRTDisconnect"), std::invalid_argument, [](const std::invalid_argument& e) {
+    return std::string(e.what()).find("RRTDisconnect") != std::string::npos;
+  });
 }
 
 BOOST_AUTO_TEST_CASE(setup_is_ready_and_reports_bad_input) {
