@@ -73,7 +73,9 @@
 namespace deepcheck::robots {
 
 /// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
-constexpr int kDecompositionAlgorithmVersion = 3;
+/// 4: the point-to-triangle distance no longer returns NaN for a triangle with two equal corners
+/// (such clipped triangles were dropped from the concavity measure).
+constexpr int kDecompositionAlgorithmVersion = 4;
 
 struct DecompositionParams {
   /// Concavity target as a fraction of the mesh's bounding-box diagonal, in (0, 1].
