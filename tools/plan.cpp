@@ -28,8 +28,10 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -63,7 +65,8 @@ constexpr const char* kUsage =
     "                      max(0, 0.05 m - sd) integrated along the path (planners/objectives.h)\n"
     "  --repair-start      push a start (and goal) in slight collision out to the nearest free\n"
     "                      configuration first (planners/push_out.h)\n"
-    "  --seed N            OMPL's random seed (default: OMPL's own, different each run)\n"
+    "  --seed N            OMPL's random seed, 0 to 4294967295 (default: OMPL's own, different\n"
+    "                      each run)\n"
     "  --out FILE          where to write the path (required)\n";
 
 /// Removes `name v1 v2 ...` from args: the values up to the next `--option` (negative numbers are
@@ -88,12 +91,6 @@ std::vector<double> takeVector(std::vector<std::string>& args, const std::string
   return values;
 }
 
-std::string single(std::vector<std::string>& args, const std::string& name, const std::string& fallback) {
-  const std::vector<std::string> values = takeOption(args, name);
-  if (values.size() > 1) throw UsageError("option " + name + " given more than once");
-  return values.empty() ? fallback : values.front();
-}
-
 Eigen::VectorXd toVector(const std::vector<double>& values) {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
@@ -106,12 +103,12 @@ int run(std::vector<std::string> args) {
   const PackagePaths packages = takePackagePaths(args);
   const std::vector<double> start = takeVector(args, "--start");
   const std::vector<double> goal = takeVector(args, "--goal");
-  const std::string plannerName = single(args, "--planner", "RRTConnect");
-  const double seconds = parseValue(single(args, "--time", "5"), "--time");
-  const std::string objectiveName = single(args, "--objective", "length");
+  const std::string plannerName = takeSingleOption(args, "--planner", "RRTConnect");
+  const double seconds = parseValue(takeSingleOption(args, "--time", "5"), "--time");
+  const std::string objectiveName = takeSingleOption(args, "--objective", "length");
   const bool repair = takeFlag(args, "--repair-start");
-  const std::string seed = single(args, "--seed", "");
-  const std::string out = single(args, "--out", "");
+  const std::string seed = takeSingleOption(args, "--seed");
+  const std::string out = takeSingleOption(args, "--out");
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args.front() + "'");
   if (start.empty()) throw UsageError("option --start is required");
@@ -122,10 +119,8 @@ int run(std::vector<std::string> args) {
     throw UsageError("--objective must be 'length' or 'clearance', got '" + objectiveName + "'");
   }
   if (!seed.empty()) {
-    const double value = parseValue(seed, "--seed");
-    if (value < 0 || value != static_cast<double>(static_cast<long long>(value))) {
-      throw UsageError("--seed must be a non-negative integer, got '" + seed + "'");
-    }
+    // OMPL seeds a 32-bit generator (and takes 0 as 1).
+    const std::uint64_t value = parseCount(seed, "--seed", 0, std::numeric_limits<std::uint32_t>::max());
     ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(value));  // before any OMPL object
   }
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
@@ -147,9 +142,11 @@ int run(std::vector<std::string> args) {
 
   if (repair) {
     const planners::EndpointRepair r = planners::repairStartAndGoal(*ss);
-    const auto report = [](const char* what, const planners::PushOutResult& p) {
+    const auto report = [&](const char* what, const planners::PushOutResult& p) {
+      // finalDistance is NaN when the push-out did not start (push_out.h): measure it then.
+      const double sd = std::isnan(p.finalDistance) ? checker->clearance(p.q) : p.finalDistance;
       std::fprintf(stderr, "repair %s: %s, moved %.4g rad, signed distance now %.4g m\n", what, planners::toString(p.status),
-                   p.jointMotion, p.finalDistance);
+                   p.jointMotion, sd);
     };
     report("start", r.starts.front());
     if (r.goalIsState) report("goal", r.goal);
