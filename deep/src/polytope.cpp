@@ -115,6 +115,43 @@ Vector3d newellVector(const Loop& loop, const Coord& coord) {
   return sum;
 }
 
+/// Position i in verts of the point coord(verts[i]) farthest from `from` (the first on ties).
+template <class Verts, class Coord>
+int farthestFrom(const Verts& verts, const Coord& coord, const Vector3d& from) {
+  int best = 0;
+  double bestD = -1.0;
+  const int k = static_cast<int>(verts.size());
+  for (int i = 0; i < k; ++i) {
+    const double d = (coord(verts[i]) - from).squaredNorm();
+    if (d > bestD) {
+      bestD = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+/// Andrew's monotone chain: the boundary of the 2-d convex hull of `sorted` (points sorted by x,
+/// then y), counter-clockwise, each corner once. The chain keeps corner m between o and e when
+/// keep(o, m, e) (a strict left turn, possibly by more than a tolerance).
+template <class P, class Keep>
+std::vector<P> monotoneChain(const std::vector<P>& sorted, const Keep& keep) {
+  std::vector<P> hull;
+  hull.reserve(2 * sorted.size());
+  for (int pass = 0; pass < 2; ++pass) {  // lower chain, then upper chain
+    const std::size_t base = hull.size();
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      const P& x = pass == 0 ? sorted[i] : sorted[sorted.size() - 1 - i];
+      while (hull.size() >= base + 2 && !keep(hull[hull.size() - 2], hull.back(), x)) {
+        hull.pop_back();
+      }
+      hull.push_back(x);
+    }
+    hull.pop_back();  // the next chain's first point
+  }
+  return hull;
+}
+
 /// A plane fitted to a set of points: unit normal, the thickness of the set along it (band) and
 /// the width of the set (largest distance from its longest chord: a sliver has a small width).
 struct PlaneFit {
@@ -134,20 +171,8 @@ PlaneFit fitPlane(const Verts& verts, const Coord& coord, const Vector3d& orient
   PlaneFit fit;
   const int k = static_cast<int>(verts.size());
   if (k < 3) return fit;
-  auto farthest = [&](const Vector3d& from) {
-    int best = 0;
-    double bestD = -1.0;
-    for (int i = 0; i < k; ++i) {
-      const double d = (coord(verts[i]) - from).squaredNorm();
-      if (d > bestD) {
-        bestD = d;
-        best = i;
-      }
-    }
-    return best;
-  };
-  const Vector3d a = coord(verts[farthest(coord(verts[0]))]);
-  const Vector3d chord = coord(verts[farthest(a)]) - a;
+  const Vector3d a = coord(verts[farthestFrom(verts, coord, coord(verts[0]))]);
+  const Vector3d chord = coord(verts[farthestFrom(verts, coord, a)]) - a;
   if (!(chord.norm() > 0.0)) return fit;
   const Vector3d u = chord.normalized();
   Vector3d across = Vector3d::Zero();
@@ -364,23 +389,11 @@ ConvexPolytope PolytopeBuilder::build() {
   q_.resize(n);
   for (int i = 0; i < n; ++i) q_[i] = points_[i] - origin;
 
-  auto farthestFrom = [&](const Vector3d& p) {
-    int best = 0;
-    double bestD = -1.0;
-    for (int i = 0; i < n; ++i) {
-      const double d = (q_[i] - p).squaredNorm();
-      if (d > bestD) {
-        bestD = d;
-        best = i;
-      }
-    }
-    return best;
-  };
-
   // Farthest-point sweeps: from point 0, then back from the point found, twice.
-  const int b0 = farthestFrom(q_[0]);
-  const int a = farthestFrom(q_[b0]);
-  const int b = farthestFrom(q_[a]);
+  auto self = [](const Vector3d& x) -> const Vector3d& { return x; };
+  const int b0 = farthestFrom(q_, self, q_[0]);
+  const int a = farthestFrom(q_, self, q_[b0]);
+  const int b = farthestFrom(q_, self, q_[a]);
   const double extent = (q_[b] - q_[a]).norm();
   h_ = std::max(tol::kFlatRelative * extent, tol::kCoordinateRoundoff * maxAbs);
   if (!(extent > h_)) return makePoint(0);
@@ -504,20 +517,7 @@ bool PolytopeBuilder::makePolygon(const Vector3d& normal, ConvexPolytope* out) c
     const double cross = (m.x - o.x) * (e.y - o.y) - (m.y - o.y) * (e.x - o.x);
     return cross > h_ * std::hypot(e.x - o.x, e.y - o.y);
   };
-  std::vector<P2> hull;
-  hull.reserve(2 * pts.size());
-  for (const P2& p : pts) {  // lower chain
-    while (hull.size() >= 2 && !leftTurn(hull[hull.size() - 2], hull.back(), p)) hull.pop_back();
-    hull.push_back(p);
-  }
-  const std::size_t lowerSize = hull.size();
-  for (auto it = pts.rbegin() + 1; it != pts.rend(); ++it) {  // upper chain
-    while (hull.size() > lowerSize && !leftTurn(hull[hull.size() - 2], hull.back(), *it)) {
-      hull.pop_back();
-    }
-    hull.push_back(*it);
-  }
-  hull.pop_back();  // the first point again
+  std::vector<P2> hull = monotoneChain(pts, leftTurn);
   // The chain's end points are never tested; drop any vertex within h_ of its neighbours' line.
   for (bool changed = true; changed && hull.size() >= 3;) {
     changed = false;
@@ -651,19 +651,8 @@ bool PolytopeBuilder::covers(const ConvexPolytope& p, const std::vector<int>& ve
   auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
   };
-  std::vector<Eigen::Vector2d> outline;
-  for (int pass = 0; pass < 2; ++pass) {  // lower chain, then upper chain (Andrew)
-    const std::size_t base = outline.size();
-    for (std::size_t i = 0; i < shadow.size(); ++i) {
-      const Eigen::Vector2d& x = pass == 0 ? shadow[i] : shadow[shadow.size() - 1 - i];
-      while (outline.size() >= base + 2 &&
-             turn(outline[outline.size() - 2], outline.back(), x) <= 0.0) {
-        outline.pop_back();
-      }
-      outline.push_back(x);
-    }
-    outline.pop_back();
-  }
+  const std::vector<Eigen::Vector2d> outline = monotoneChain(
+      shadow, [&](const auto& o, const auto& a, const auto& b) { return !(turn(o, a, b) <= 0.0); });
   for (const Vector3d& point : points_) {
     const Vector3d x = point - p.center();
     const Eigen::Vector2d y(e0.dot(x), e1.dot(x));
@@ -833,6 +822,12 @@ ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, doub
   const int numPoints = static_cast<int>(points_.size());
   std::vector<int> faceCount(numPoints, 0);
   std::vector<std::vector<int>> faces;
+  auto countFaces = [&] {  // faceCount[v]: the faces listing v
+    std::fill(faceCount.begin(), faceCount.end(), 0);
+    for (const auto& l : faces) {
+      for (int v : l) ++faceCount[v];
+    }
+  };
   std::vector<int> faceGroup;  // the merged group a face comes from, or -1
   // A vertex left on two faces only must lie on the straight edge between its loop neighbours
   // (within h_), else it is a real corner that a merge hid (thin sets): such merges are undone.
@@ -854,10 +849,7 @@ ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, doub
         }
       }
     }
-    std::fill(faceCount.begin(), faceCount.end(), 0);
-    for (const auto& l : faces) {
-      for (int v : l) ++faceCount[v];
-    }
+    countFaces();
     for (std::size_t f = 0; f < faces.size(); ++f) {
       const auto& l = faces[f];
       const std::size_t k = l.size();
@@ -883,10 +875,7 @@ ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, doub
   // fewer than three vertices vanish (their two half-edges' twins then pair up).
   for (bool changed = true; changed;) {
     changed = false;
-    std::fill(faceCount.begin(), faceCount.end(), 0);
-    for (const auto& l : faces) {
-      for (int v : l) ++faceCount[v];
-    }
+    countFaces();
     for (auto& l : faces) {
       const std::size_t before = l.size();
       l.erase(std::remove_if(l.begin(), l.end(), [&](int v) { return faceCount[v] == 2; }),
@@ -1194,15 +1183,11 @@ int ConvexPolytope::support(const Vector3d& dir, int hint) const {
   double value = dir.dot(local_[v]);
   // Start from the direction index's vertex when it is higher than the hint: it lies near the
   // support, while a hint (the last support of a pair) may be far when the direction swung.
-  if (!directionIndex_.empty()) {
-    const int cell = cubeCell(dir, kDirectionGrid);
-    if (cell >= 0) {
-      const int start = directionIndex_[cell];
-      const double startValue = dir.dot(local_[start]);
-      if (startValue > value) {
-        v = start;
-        value = startValue;
-      }
+  if (const int start = supportStart(dir); start >= 0) {
+    const double startValue = dir.dot(local_[start]);
+    if (startValue > value) {
+      v = start;
+      value = startValue;
     }
   }
   for (;;) {
@@ -1367,14 +1352,11 @@ std::string ConvexPolytope::checkInvariants(bool globalConvexity) const {
       }
     }
   } else {
+    // Face 0 lists the vertices in order, so the face loop above has checked every left turn.
     const Vector3d& n = faceNormals_[0];
     for (int i = 0; i < nv; ++i) {
       const Vector3d& a = local_[i];
       const Vector3d& b = local_[(i + 1) % nv];
-      const Vector3d& c = local_[(i + 2) % nv];
-      if (!((b - a).cross(c - b).dot(n) > 0.0)) {
-        return fail("Polygon turns right or goes straight at vertex ", (i + 1) % nv);
-      }
       const Vector3d out = (b - a).cross(n).normalized();
       for (int v = 0; v < nv; ++v) {
         if (out.dot(local_[v] - a) > tol) {
