@@ -184,7 +184,9 @@ BOOST_AUTO_TEST_CASE(a_colliding_start_is_repaired_then_planned_from) {
 BOOST_AUTO_TEST_CASE(waypoints_after_tolerant_planning_and_smoothing_are_repaired) {
   // Plan and smooth accepting 5 mm of penetration, then repair against the strict checker with the
   // clearance motion validator; every repaired path must then be free for FCL too.
-  constexpr int kRuns = 8;
+  // Every planner and SimpleSetup draws its seed from OMPL's one global sequence, so which paths
+  // this test gets depends on the tests before it: 24 runs make the rate, not one path, decide.
+  constexpr int kRuns = 24;
   const auto world = bundledWorld("narrow_passage");
   dp::SetupOptions tolerantOptions = dp::test::bundledOptions();
   tolerantOptions.validity.penetrationTolerance = 0.005;
@@ -215,7 +217,7 @@ BOOST_AUTO_TEST_CASE(waypoints_after_tolerant_planning_and_smoothing_are_repaire
   BOOST_TEST_MESSAGE(penetrating << " of " << kRuns << " tolerant paths penetrated, " << repaired
                                  << " valid after repair");
   BOOST_TEST(penetrating >= 2);  // the case happens
-  BOOST_TEST(repaired >= kRuns - 1);
+  BOOST_TEST(repaired * 8 >= kRuns * 7);  // at least 7 in 8, as when this test made 8 runs
 }
 
 BOOST_AUTO_TEST_CASE(paths_are_written_one_configuration_per_line) {
