@@ -62,7 +62,8 @@ constexpr const char* kUsage =
     "                      EST, BiEST, SBL, FMT, TRRT\n"
     "  --time SECONDS      planning time limit (default 5); optimizing planners use all of it\n"
     "  --objective O       length (default) or clearance: path length plus the clearance hinge\n"
-    "                      max(0, 0.05 m - sd) integrated along the path (planners/objectives.h)\n"
+    "                      max(0, 0.05 m - sd), weight 100 / m, integrated along the path\n"
+    "                      (planners/objectives.h); RRT* then uses radius neighbours\n"
     "  --repair-start      push a start (and goal) in slight collision out to the nearest free\n"
     "                      configuration first (planners/push_out.h)\n"
     "  --seed N            OMPL's random seed, 0 to 4294967295 (default: OMPL's own, different\n"
@@ -165,6 +166,7 @@ int run(std::vector<std::string> args) {
     ss->setOptimizationObjective(
         planners::makeLengthClearanceObjective(si, checker, planners::tol::kDefaultSafeDistance,
                                                planners::tol::kDefaultHingeWeight, planners::linkSpeedBoundOf(*ss)));
+    planners::prepareForCostlyObjective(*planner);  // RRT*: radius neighbours (planner_factory.h)
   } else {
     ss->setOptimizationObjective(std::make_shared<ompl::base::PathLengthOptimizationObjective>(si));
   }

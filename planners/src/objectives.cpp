@@ -85,32 +85,55 @@ ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1
   if (!(length > 0.0)) return ompl::base::Cost(0.0);
   const double resolution = resolution_ > 0.0 ? resolution_ : si_->getStateSpace()->getLongestValidSegmentLength();
   const int segments = std::max(1, static_cast<int>(std::ceil(length / resolution)));
-  const auto at = [&](int k) -> Eigen::VectorXd { return q1 + (static_cast<double>(k) / segments) * dq; };
+
+  // Every state the integration evaluates is first checked for validity (validity.h; isFree's
+  // early exit by default, no depth). A motion with an invalid evaluated state costs infinity: it
+  // is never part of a valid path, and the early return spares the rest of the motion, penetration
+  // depths included (optimizing planners ask the cost of many motions before checking them: RRT*
+  // of every neighbour). On a valid state the self term is zero whenever d_self <= threshold
+  // (sd_self > threshold >= d_self), so the self pairs are then not measured at all: adjacent
+  // links a few millimetres apart would otherwise keep the bisection below from skipping.
+  const double threshold = checker_->validityOptions().threshold();
+  const bool selfTerm = selfSafeDistance_ > threshold;
+  const double safe = selfTerm ? std::max(safeDistance_, selfSafeDistance_) : safeDistance_;
+  // The split distance at state k, asked up to the safe distance + B (all the tests of the spans
+  // that state ends need); `valid` false (and no distance) for an invalid state.
+  const auto evaluate = [&](int k, double B, bool& valid) {
+    const Eigen::VectorXd q = q1 + (static_cast<double>(k) / segments) * dq;
+    valid = checker_->isValid(q);
+    return valid ? checker_->splitClearanceUpTo(q, safe + B + tol::kDistanceCapMargin, selfTerm) : SplitDistance{};
+  };
+  const ompl::base::Cost invalid = infiniteCost();
+  bool valid = false;
 
   // Trapezoid rule on the states k = 0..segments: sum of h_k with weight 1/2 at the ends, times
   // length / segments.
   double sum = 0.0;
   if (!bound_) {
-    for (int k = 0; k <= segments; ++k) sum += (k == 0 || k == segments ? 0.5 : 1.0) * hinge(at(k));
+    for (int k = 0; k <= segments; ++k) {
+      const SplitDistance d = evaluate(k, 0.0, valid);
+      if (!valid) return invalid;
+      sum += (k == 0 || k == segments ? 0.5 : 1.0) * hinge(d);
+    }
     return ompl::base::Cost(sum * length / segments);
   }
   // With the bound: bisection over the states. On the states i..j the pair distances move by at
   // most B_ij = B(dq (j - i) / segments), so each of sd_world and sd_self stays at least
   // (sd_i + sd_j - B_ij) / 2 there; when that is >= its safe distance for both, every h_k in
   // between is 0 and is not evaluated. Otherwise the middle state is evaluated and both halves
-  // looked at. The sum is the full trapezoid sum: only zero terms are skipped. Distances are
-  // asked up to d + B_ij, all the tests below that state need.
-  const double safe = std::max(safeDistance_, selfSafeDistance_);
+  // looked at. The sum is the full trapezoid sum: only zero terms are skipped.
   const auto reach = [&](int i, int j) {
     return bound_->pairDisplacement(dq * (static_cast<double>(j - i) / segments));
   };
-  const auto split = [&](int k, double B) { return checker_->splitClearanceUpTo(at(k), safe + B + tol::kDistanceCapMargin); };
   const auto zeroBetween = [&](const SplitDistance& a, const SplitDistance& b, double B) {
-    return (a.world + b.world - B) / 2.0 >= safeDistance_ && (a.self + b.self - B) / 2.0 >= selfSafeDistance_;
+    return (a.world + b.world - B) / 2.0 >= safeDistance_ &&
+           (!selfTerm || (a.self + b.self - B) / 2.0 >= selfSafeDistance_);
   };
   const double Btotal = reach(0, segments);
-  const SplitDistance first = split(0, Btotal);
-  const SplitDistance last = split(segments, Btotal);
+  const SplitDistance first = evaluate(0, Btotal, valid);
+  if (!valid) return invalid;
+  const SplitDistance last = evaluate(segments, Btotal, valid);
+  if (!valid) return invalid;
   sum = 0.5 * (hinge(first) + hinge(last));
   struct Span {
     int i, j;
@@ -124,7 +147,8 @@ ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1
     const double B = reach(span.i, span.j);
     if (zeroBetween(span.a, span.b, B)) continue;
     const int m = (span.i + span.j) / 2;
-    const SplitDistance mid = split(m, B);
+    const SplitDistance mid = evaluate(m, B, valid);
+    if (!valid) return invalid;
     sum += hinge(mid);
     stack.push_back({span.i, m, span.a, mid});
     stack.push_back({m, span.j, mid, span.b});

@@ -124,4 +124,12 @@ bool isOptimizingPlanner(const std::string& name) {
   return e != nullptr && e->optimizing;
 }
 
+bool prepareForCostlyObjective(ompl::base::Planner& planner) {
+  // InformedRRTstar derives from RRTstar.
+  auto* rrtStar = dynamic_cast<og::RRTstar*>(&planner);
+  if (rrtStar == nullptr || !rrtStar->getKNearest()) return false;
+  rrtStar->setKNearest(false);
+  return true;
+}
+
 }  // namespace deepcheck::planners

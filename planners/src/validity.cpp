@@ -3,6 +3,7 @@
 #include "deepcheck/planners/tolerances.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -38,13 +39,14 @@ double signedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Ei
 }
 
 SplitDistance splitSignedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q,
-                                      double cap) {
+                                      double cap, bool selfPairs) {
   // Two pruned minimum searches, one per kind of pair: far cheaper than a contact list with a
   // margin of `cap`, which measures every body pair within it.
   checker::DistanceOptions options;
   options.maxDistance = cap;
   options.selfPairs = false;
   const double worldDistance = cappedMinimum(world.signedDistance(q, options), cap);
+  if (!selfPairs) return SplitDistance{worldDistance, std::numeric_limits<double>::infinity()};
   options.selfPairs = true;
   options.worldPairs = false;
   return SplitDistance{worldDistance, cappedMinimum(world.signedDistance(q, options), cap)};

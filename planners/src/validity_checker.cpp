@@ -64,9 +64,9 @@ double StateValidityChecker::clearanceUpTo(const Eigen::Ref<const Eigen::VectorX
 }
 
 SplitDistance StateValidityChecker::splitClearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                                       double cap) const {
+                                                       double cap, bool selfPairs) const {
   distanceQueries_.fetch_add(1, std::memory_order_relaxed);
-  return splitSignedDistanceUpTo(*world_, q, cap);
+  return splitSignedDistanceUpTo(*world_, q, cap, selfPairs);
 }
 
 bool StateValidityChecker::isValid(const ompl::base::State* state) const { return isValid(mapState(state, n_)); }

@@ -30,7 +30,9 @@ using dp::test::bundledWorld;
 namespace {
 
 /// A cap on each planning run, seconds: planners stop at their first exact solution long before.
-constexpr double kTimeCap = 30.0;
+constexpr double kTimeCap = 20.0;
+/// Runs per planner and scene before "planning succeeds" fails.
+constexpr int kAttempts = 3;
 
 /// Solves until the first exact solution (or the cap), as a fresh planner of `name`: optimizing
 /// planners too stop at their first solution (path length, any cost satisfies).
@@ -123,26 +125,39 @@ BOOST_AUTO_TEST_CASE(setup_is_ready_and_reports_bad_input) {
 // Issue 6: planning succeeds in the bundled scenes with several planners, and every returned path
 // is collision free at fine resolution for the FCL reference backend.
 // The planners per scene are those that find a solution within seconds there (RRT*, BIT* and PRM
-// take minutes through the narrow passage's window, RRT* sometimes in the shelf; see bench/).
+// take minutes through the narrow passage's window, RRT* sometimes in the shelf, PRM 15 s to over
+// 30 s in the shelf; see bench/).
 BOOST_AUTO_TEST_CASE(plans_in_every_bundled_scene_and_fcl_agrees) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
       {"table", {"RRTConnect", "RRT*", "BIT*", "PRM"}},
-      {"shelf", {"RRTConnect", "BIT*", "PRM", "BiEST"}},
+      {"shelf", {"RRTConnect", "BIT*", "BiEST"}},
       {"narrow_passage", {"RRTConnect", "BiEST"}},
   };
   for (const auto& [scene, planners] : cases) {
     const auto world = bundledWorld(scene);
     for (const std::string& planner : planners) {
-      auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
-      dp::setStartAndGoal(*ss, dp::test::suggestedStart(), dp::test::suggestedGoal(scene));
-      const ob::PlannerStatus status = solveFirst(*ss, planner);
       const std::string what = planner + " in " + scene;
-      BOOST_TEST_REQUIRE(status == ob::PlannerStatus::EXACT_SOLUTION, what << ": " << status.asString());
+      // Sampling planners are probabilistically complete, not certain within a time cap: up to
+      // kAttempts runs, each a new planner drawing new seeds (the seeds other tests leave in
+      // OMPL's global sequence cannot decide the outcome).
+      std::shared_ptr<og::SimpleSetup> ss;
+      ob::PlannerStatus status;
+      int attempts = 0;
+      while (attempts < kAttempts && status != ob::PlannerStatus::EXACT_SOLUTION) {
+        ++attempts;
+        ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
+        dp::setStartAndGoal(*ss, dp::test::suggestedStart(), dp::test::suggestedGoal(scene));
+        status = solveFirst(*ss, planner);
+      }
+      BOOST_TEST_REQUIRE(status == ob::PlannerStatus::EXACT_SOLUTION,
+                         what << ": " << status.asString() << " in " << attempts << " attempts");
+      if (attempts > 1) BOOST_TEST_MESSAGE(what << ": solved in attempt " << attempts);
       ss->simplifySolution();
       const og::PathGeometric& path = ss->getSolutionPath();
       BOOST_TEST((dp::mapState(path.getState(0), 7) == dp::test::suggestedStart()));
       BOOST_TEST((dp::mapState(path.getState(path.getStateCount() - 1), 7) - dp::test::suggestedGoal(scene)).norm() < 1e-9);
-      BOOST_TEST_MESSAGE(what << ": " << path.getStateCount() << " waypoints, length " << path.length() << " rad");
+      BOOST_TEST_MESSAGE(what << ": " << path.getStateCount() << " waypoints, length " << path.length() << " rad, "
+                              << ss->getLastPlanComputationTime() << " s");
       verifyWithFcl(*ss, *world, what);
     }
   }

@@ -75,6 +75,26 @@ BOOST_AUTO_TEST_CASE(plans_through_the_shelf_and_every_waypoint_is_free) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(rrt_star_with_the_clearance_objective_plans_and_certifies) {
+  // The table problem (its straight motion is free): RRT* with the clearance objective uses its
+  // whole time, then the path is simplified and certified like any other.
+  Scratch scratch;
+  const std::string out = scratch.path("path.txt");
+  const std::string table = " --robot " + quote(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --srdf " +
+                            quote(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf") + " --scene " +
+                            quote(kData + "/scenes/table.urdf") + " --package-path " + quote(kData);
+  const Run r = plan(scratch, table + kStart + " --goal -0.14 0.61 0.24 -0.77 -0.14 1.77 -2.23" +
+                                  " --planner RRT* --objective clearance --time 1 --seed 2 --out " + quote(out));
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("RRTstar") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("certified") != std::string::npos, r.err);
+  std::ifstream in(out);
+  std::string line;
+  int lines = 0;
+  while (std::getline(in, line)) ++lines;
+  BOOST_TEST(lines >= 2);
+}
+
 BOOST_AUTO_TEST_CASE(bad_command_lines_and_inputs_are_named) {
   Scratch scratch;
   const std::string out = " --out " + quote(scratch.path("p.txt"));

@@ -4,7 +4,8 @@
 // Names (case-insensitive; "*" may be written "star"): RRTConnect, RRT, RRT*, InformedRRT*,
 // BIT*, PRM, PRM*, LazyPRM, LazyPRM*, KPIECE1, BKPIECE1, EST, BiEST, SBL, FMT, TRRT. The name a
 // planner made here gives itself (Planner::getName: "RRTstar", "kBITstar") is accepted too.
-// Every planner gets OMPL's default parameters.
+// Every planner gets OMPL's default parameters (prepareForCostlyObjective changes RRT*'s
+// neighbours for the clearance objective).
 
 #include <ompl/base/Planner.h>
 #include <ompl/base/SpaceInformation.h>
@@ -27,5 +28,15 @@ ompl::base::PlannerPtr makePlanner(const std::string& name, const ompl::base::Sp
 /// True for the planners that optimize a cost (RRT*, InformedRRT*, BIT*, PRM*, LazyPRM*, FMT);
 /// false for an unknown name.
 bool isOptimizingPlanner(const std::string& name);
+
+/// Prepares `planner` for an objective whose motion costs are expensive (the clearance hinge of
+/// objectives.h integrates distance queries along each motion). RRT* and InformedRRT* are switched
+/// from k-nearest to radius neighbours: OMPL 1.5's k-nearest RRT* asks the cost of the motion to
+/// k = 1.1 * 2^(d+1) e (1 + 1/d) ln(n) nodes for each new node (d joints, n nodes; 36 ln n for 2
+/// joints, measured, and more than the whole tree for 7 joints below ~10^4 nodes), those farther
+/// than its range included, which it then never connects. The radius variant asks only the nodes
+/// within min(range, r(n)). Other planners are left as they are. Returns true when it changed
+/// the planner.
+bool prepareForCostlyObjective(ompl::base::Planner& planner);
 
 }  // namespace deepcheck::planners

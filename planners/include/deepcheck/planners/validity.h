@@ -54,7 +54,8 @@ struct SplitDistance {
   double world = 0.0;
   double self = 0.0;
 };
+/// With `selfPairs` false only the robot-world pairs are measured and `self` is +infinity.
 SplitDistance splitSignedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q,
-                                      double cap);
+                                      double cap, bool selfPairs = true);
 
 }  // namespace deepcheck::planners

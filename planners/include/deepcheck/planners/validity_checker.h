@@ -67,8 +67,10 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
   double clearance(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   /// min(sd(q), cap), cheaper for a small cap (validity.h).
   double clearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q, double cap) const;
-  /// The same split into robot-world and self pairs (validity.h), each capped at `cap`.
-  SplitDistance splitClearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q, double cap) const;
+  /// The same split into robot-world and self pairs (validity.h), each capped at `cap`; with
+  /// `selfPairs` false the self pairs are not measured (`self` is +infinity).
+  SplitDistance splitClearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q, double cap,
+                                   bool selfPairs = true) const;
 
   const checker::World& world() const { return *world_; }
   const std::shared_ptr<const checker::World>& worldPtr() const { return world_; }
