@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     std::mt19937_64 rng(1);
     const deepcheck::planners::PushOutResult jiggled =
         deepcheck::planners::jiggle(checker->world(), checker->validityOptions(), start, {}, rng);
-    std::printf("random jiggle    %s after %d tries, joint motion %.3f rad, hand moved %.3f m\n",
+    std::printf("random jiggle    %s after %d tries, joint motion %.3f rad, farthest link moved %.3f m\n",
                 deepcheck::planners::toString(jiggled.status), jiggled.iterations, jiggled.jointMotion,
                 jiggled.success() ? deepcheck::planners::maxLinkDisplacement(checker->world().robot(), start, jiggled.q)
                                   : 0.0);
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
     deepcheck::planners::setStartAndGoal(*ss, start, goal);
     const deepcheck::planners::EndpointRepair repair = deepcheck::planners::repairStartAndGoal(*ss);
     const deepcheck::planners::PushOutResult& pushed = repair.starts.front();
-    std::printf("push-out         %s in %d iterations, joint motion %.3f rad, hand moved %.3f m, "
+    std::printf("push-out         %s in %d iterations, joint motion %.3f rad, farthest link moved %.3f m, "
                 "signed distance %.4f m\n",
                 deepcheck::planners::toString(pushed.status), pushed.iterations, pushed.jointMotion,
                 pushed.success() ? deepcheck::planners::maxLinkDisplacement(checker->world().robot(), start, pushed.q)
