@@ -62,13 +62,8 @@ int main(int argc, char** argv) {
   ompl::RNG::setSeed(1);  // before any OMPL object: reproducible samples (the runs stop on time)
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   try {
-    // 1. The arm in the shelf scene (see example_plan_shelf).
-    deepcheck::planners::SetupOptions options;
-    options.packagePaths = {data};
-    options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
-    auto ss = deepcheck::planners::makeSimpleSetup(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
-                                                   {data + "/scenes/shelf.urdf"}, options);
-    // 2. From the hand in the middle-row compartment back to the arm in front of the shelf
+    auto ss = example::bundledArm(data, "shelf");  // as in example_plan_shelf
+    // 1. From the hand in the middle-row compartment back to the arm in front of the shelf
     //    (robots/data/README.md, the shelf problem reversed: RRT* grows out of a compartment far
     //    sooner than into one).
     Eigen::VectorXd start(7), goal(7);
@@ -77,7 +72,7 @@ int main(int argc, char** argv) {
     deepcheck::planners::setStartAndGoal(*ss, start, goal);
     const auto si = ss->getSpaceInformation();
 
-    // 3. Path length alone: RRT* keeps whatever clearance its shortest path happens to have.
+    // 2. Path length alone: RRT* keeps whatever clearance its shortest path happens to have.
     //    (On 7 joints RRT* improves slowly: after seconds both runs are still near the first
     //    solutions they found, which differ by luck as much as by objective. The objective's
     //    effect on converged runs is measured by tests/planners/test_objectives.cpp on a planar
@@ -86,7 +81,7 @@ int main(int argc, char** argv) {
     if (!planWith(*ss, std::make_shared<ompl::base::PathLengthOptimizationObjective>(si), seconds)) return 1;
     example::reportAndWrite(*ss, lengthOut);
 
-    // 4. Path length + 100 / m x the hinge max(0, d_safe - sd) integrated along the path
+    // 3. Path length + 100 / m x the hinge max(0, d_safe - sd) integrated along the path
     //    (objectives.h): states nearer than d_safe = 5 cm to the shelf cost extra, penetrating
     //    ones (allowed only with a penetration tolerance) more. The link speed bound lets the
     //    integration skip the parts of a motion that are provably farther than d_safe.

@@ -13,7 +13,6 @@
 
 #include <deepcheck/planners/setup.h>
 
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -59,20 +58,7 @@ int main(int argc, char** argv) {
     deepcheck::planners::setStartAndGoal(*ss, start, goal);
 
     // 3. Plan, shortcut, certify every motion with the clearance motion validator, report.
-    ss->setPlanner(std::make_shared<ompl::geometric::RRTConnect>(ss->getSpaceInformation()));
-    const ompl::base::PlannerStatus status = ss->solve(20.0);
-    if (status != ompl::base::PlannerStatus::EXACT_SOLUTION) {
-      std::fprintf(stderr, "no exact solution: %s\n", status.asString().c_str());
-      return 1;
-    }
-    ss->simplifySolution();
-    const deepcheck::planners::PathCertificate certificate =
-        deepcheck::planners::certifyPath(*ss, ss->getSolutionPath());
-    std::printf("certified        %s%s\n", certificate.valid ? "yes" : "NO",
-                certificate.repaired ? " (after repairing the path)" : "");
-    if (!certificate.valid) return 1;
-    example::reportAndWrite(*ss, out);
-    return 0;
+    return example::planCertifyAndWrite(*ss, 20.0, out) ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -12,7 +12,6 @@
 #include <deepcheck/planners/push_out.h>
 #include <deepcheck/planners/setup.h>
 
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -27,11 +26,7 @@ int main(int argc, char** argv) {
   ompl::RNG::setSeed(1);  // before any OMPL object: reproducible samples
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   try {
-    deepcheck::planners::SetupOptions options;
-    options.packagePaths = {data};
-    options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
-    auto ss = deepcheck::planners::makeSimpleSetup(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
-                                                   {data + "/scenes/shelf.urdf"}, options);
+    auto ss = example::bundledArm(data, "shelf");  // as in example_plan_shelf
     const auto checker = deepcheck::planners::validityCheckerOf(*ss);
 
     // 1. The hand in the middle-row compartment (robots/data/README.md), turned about joint 1 by
@@ -70,22 +65,10 @@ int main(int argc, char** argv) {
     }
 
     // 4. Plan from the repaired start as usual, shortcut, certify, report. The repaired start is
-    //    only 1 mm from the wall: the discrete motion checks may let the first motion graze it,
-    //    so the path is certified by the clearance motion validator (and repaired where needed).
-    ss->setPlanner(std::make_shared<ompl::geometric::RRTConnect>(ss->getSpaceInformation()));
-    const ompl::base::PlannerStatus status = ss->solve(10.0);
-    if (status != ompl::base::PlannerStatus::EXACT_SOLUTION) {
-      std::fprintf(stderr, "no exact solution: %s\n", status.asString().c_str());
-      return 1;
-    }
-    ss->simplifySolution();
-    const deepcheck::planners::PathCertificate certificate =
-        deepcheck::planners::certifyPath(*ss, ss->getSolutionPath());
-    std::printf("\ncertified        %s%s\n", certificate.valid ? "yes" : "NO",
-                certificate.repaired ? " (after repairing the path)" : "");
-    if (!certificate.valid) return 1;
-    example::reportAndWrite(*ss, out);
-    return 0;
+    //    only 1 mm from the wall: the discrete motion checks may let a motion graze it, so the
+    //    path is certified by the clearance motion validator (and repaired where needed).
+    std::printf("\n");
+    return example::planCertifyAndWrite(*ss, 10.0, out) ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -1,15 +1,19 @@
 #pragma once
-// What every example prints after planning: planner, time, path length, minimum clearance along
-// the path (signed distance, metres, checked every 0.002 rad of joint motion; overall and to the
-// scene alone), and where the path went. Shared by the examples so that each of them stays about planning.
+// What the examples share, so that each of them stays about its own point: the report every one
+// prints after planning (planner, time, path length, minimum clearance along the path — signed
+// distance, metres, checked every 0.002 rad of joint motion; overall and to the scene alone — and
+// where the path went), the bundled arm's setup as example_plan_shelf makes it, and the
+// plan-shortcut-certify sequence.
 
 #include <deepcheck/planners/path_tools.h>
 #include <deepcheck/planners/setup.h>
 
 #include <ompl/geometric/SimpleSetup.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
 
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <string>
 
 namespace example {
@@ -32,6 +36,35 @@ inline void reportAndWrite(const ompl::geometric::SimpleSetup& ss, const std::st
   std::printf("path length      %.3f rad\n", path.length());
   std::printf("min clearance    %.4f m (to the scene %.4f m)\n", clearance, sceneClearance);
   std::printf("path written to  %s\n", file.c_str());
+}
+
+/// The bundled arm (its SRDF's disabled self pairs) in robots/data/scenes/<scene>.urdf, as
+/// example_plan_shelf sets it up; `data` is robots/data.
+inline std::shared_ptr<ompl::geometric::SimpleSetup> bundledArm(const std::string& data, const std::string& scene) {
+  deepcheck::planners::SetupOptions options;
+  options.packagePaths = {data};
+  options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
+  return deepcheck::planners::makeSimpleSetup(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
+                                              {data + "/scenes/" + scene + ".urdf"}, options);
+}
+
+/// RRTConnect for up to `seconds`, shortcut, certifyPath (every waypoint and motion through the
+/// clearance motion validator, the path repaired where it fails), then the report, and the path
+/// written to `file`. False, with a message, when there is no exact solution or no certificate.
+inline bool planCertifyAndWrite(ompl::geometric::SimpleSetup& ss, double seconds, const std::string& file) {
+  ss.setPlanner(std::make_shared<ompl::geometric::RRTConnect>(ss.getSpaceInformation()));
+  const ompl::base::PlannerStatus status = ss.solve(seconds);
+  if (status != ompl::base::PlannerStatus::EXACT_SOLUTION) {
+    std::fprintf(stderr, "no exact solution: %s\n", status.asString().c_str());
+    return false;
+  }
+  ss.simplifySolution();
+  const deepcheck::planners::PathCertificate certificate = deepcheck::planners::certifyPath(ss, ss.getSolutionPath());
+  std::printf("certified        %s%s\n", certificate.valid ? "yes" : "NO",
+              certificate.repaired ? " (after repairing the path)" : "");
+  if (!certificate.valid) return false;
+  reportAndWrite(ss, file);
+  return true;
 }
 
 }  // namespace example
