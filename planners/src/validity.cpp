@@ -3,8 +3,8 @@
 #include "deepcheck/planners/tolerances.h"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 

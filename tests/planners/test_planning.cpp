@@ -138,8 +138,8 @@ BOOST_AUTO_TEST_CASE(plans_in_every_bundled_scene_and_fcl_agrees) {
     for (const std::string& planner : planners) {
       const std::string what = planner + " in " + scene;
       // Sampling planners are probabilistically complete, not certain within a time cap: up to
-      // kAttempts runs, each a new planner drawing new seeds (the seeds other tests leave in
-      // OMPL's global sequence cannot decide the outcome).
+      // kAttempts runs, each a new planner drawing new seeds, so that a planner unlucky with the
+      // seeds the earlier tests leave in OMPL's global sequence gets another chance (reported).
       std::shared_ptr<og::SimpleSetup> ss;
       ob::PlannerStatus status;
       int attempts = 0;
