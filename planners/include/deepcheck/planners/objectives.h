@@ -29,8 +29,8 @@
 // Planner settings: with OMPL's k-nearest RRT* (its default) every new node asks the cost to a
 // number of neighbours that exceeds the whole tree on a 7-joint arm; call
 // prepareForCostlyObjective (planner_factory.h) to use radius neighbours. Measured on a planar
-// arm, 1,500 iterations (tests/planners/test_objectives.cpp): 0.11-0.14 s with radius neighbours,
-// 3.0-3.5 s with k-nearest even at a 2.4x coarser integration resolution.
+// arm, 1,500 iterations (printed by tests/planners/test_objectives.cpp): 0.12 s with radius
+// neighbours, 3.7 s with k-nearest.
 //
 //
 // makeLengthClearanceObjective: OMPL's MultiOptimizationObjective of PathLengthOptimization
