@@ -253,7 +253,7 @@ BOOST_AUTO_TEST_CASE(clearance_objective_keeps_rrt_star_paths_farther_from_obsta
   goal << 0.9, 0.0;
   // Returns the minimum clearance to the pole; `length` the path length, `seconds` the planning time.
   const auto plan = [&](bool clearance, std::uint_fast32_t seed, double& length, double& seconds,
-                        bool radiusNeighbours = true) {
+                        bool radiusNeighbours = true, double weight = dp::tol::kDefaultHingeWeight) {
     auto space = dp::makeStateSpace(world->robot());
     space->setStateSamplerAllocator(
         [seed](const ob::StateSpace* s) { return std::make_shared<SeededSampler>(s, seed); });
@@ -267,9 +267,9 @@ BOOST_AUTO_TEST_CASE(clearance_objective_keeps_rrt_star_paths_farther_from_obsta
     dp::copyToState(start, a.get());
     dp::copyToState(goal, b.get());
     pdef->setStartAndGoalStates(a, b);
-    pdef->setOptimizationObjective(clearance ? dp::makeLengthClearanceObjective(si, checker, dp::tol::kDefaultSafeDistance,
-                                                                                dp::tol::kDefaultHingeWeight, bound)
-                                             : std::make_shared<ob::PathLengthOptimizationObjective>(si));
+    pdef->setOptimizationObjective(
+        clearance ? dp::makeLengthClearanceObjective(si, checker, dp::tol::kDefaultSafeDistance, weight, bound)
+                  : std::make_shared<ob::PathLengthOptimizationObjective>(si));
     auto planner = std::make_shared<SeededRRTstar>(si, seed);
     // The same neighbours for both objectives.
     if (radiusNeighbours) BOOST_TEST(dp::prepareForCostlyObjective(*planner));
@@ -304,9 +304,14 @@ BOOST_AUTO_TEST_CASE(clearance_objective_keeps_rrt_star_paths_farther_from_obsta
   }
   BOOST_TEST_MESSAGE("mean min clearance over 5 seeds: " << sumLength / 5 << " m with length alone, "
                                                          << sumClearance / 5 << " m with the clearance hinge");
-  // What prepareForCostlyObjective saves (a figure, not a test): seed 1 with OMPL's k-nearest RRT*.
+  // Figures, not tests: the previous default weight 10 on the same seeds, and what
+  // prepareForCostlyObjective saves (seed 1 with OMPL's k-nearest RRT*).
   double length = 0.0;
   double seconds = 0.0;
+  for (std::uint_fast32_t seed = 1; seed <= 5; ++seed) {
+    const double weak = plan(true, seed, length, seconds, true, 10.0);
+    BOOST_TEST_MESSAGE("seed " << seed << " with weight 10: " << weak << " m (length " << length << " rad)");
+  }
   const double kNearest = plan(true, 1, length, seconds, false);
   BOOST_TEST_MESSAGE("seed 1 with k-nearest neighbours: " << kNearest << " m (length " << length << " rad, "
                                                           << seconds << " s) with the clearance hinge");

@@ -94,10 +94,9 @@ constexpr double kDefaultSelfSafeDistance = 0.0;
 
 /// Weight of the hinge objective against path length (1 / metre): with 100, a path that stays
 /// 1 cm inside the safe distance along 0.1 rad of motion costs as much as 0.1 rad more length.
-/// Measured (the setting of tests/planners/test_objectives.cpp, RRT* on a planar arm passing a
-/// pole, 5 seeds): with 10, three paths graze the pole as with length alone and two pass 1.1-1.2
-/// cm from it; with 100 all pass 4.3-5.1 cm from it. One 5 s BIT* run of the bundled arm into the
-/// shelf: 2.1 cm from the shelf with 10, 5.4 cm with 100.
+/// Measured (printed by tests/planners/test_objectives.cpp, RRT* on a planar arm passing a pole,
+/// 5 seeds): with 10, three paths graze the pole as with length alone and two pass 1.1-1.2 cm
+/// from it; with 100 all pass 4.3-5.1 cm from it.
 constexpr double kDefaultHingeWeight = 100.0;
 
 /// Resolution of the ground-truth checks used by the path verification (path_tools.h) unless
