@@ -46,8 +46,9 @@ int main(int argc, char** argv) {
       return 1;
     }
 
-    // 4. Shortcut the path (every shortcut is checked by the same motion validator), report.
-    ss->simplifySolution();
+    // 4. Shortcut the path (every shortcut is checked by the same motion validator; should OMPL's
+    //    simplifier still return a path its own checks reject, the planned one is kept), report.
+    deepcheck::planners::simplifySolutionChecked(*ss);
     example::reportAndWrite(*ss, out);
     return 0;
   } catch (const std::exception& e) {

@@ -58,7 +58,7 @@ inline bool planCertifyAndWrite(ompl::geometric::SimpleSetup& ss, double seconds
     std::fprintf(stderr, "no exact solution: %s\n", status.asString().c_str());
     return false;
   }
-  ss.simplifySolution();
+  deepcheck::planners::simplifySolutionChecked(ss);  // shortcuts, each checked like the planner's motions
   const deepcheck::planners::PathCertificate certificate = deepcheck::planners::certifyPath(ss, ss.getSolutionPath());
   std::printf("certified        %s%s\n", certificate.valid ? "yes" : "NO",
               certificate.repaired ? " (after repairing the path)" : "");

@@ -179,7 +179,10 @@ int run(std::vector<std::string> args) {
     throw InputError(std::string("no exact solution (") + status.asString() + ")" +
                      (ss->haveSolutionPath() ? "; the approximate path was written to " + out : std::string()));
   }
-  ss->simplifySolution();
+  if (!planners::simplifySolutionChecked(*ss)) {
+    std::fprintf(stderr, "path simplification: OMPL's simplifier returned a path that fails its own checks; "
+                         "the path as planned is kept\n");
+  }
   ompl::geometric::PathGeometric& path = ss->getSolutionPath();
   const planners::PathCertificate certificate = planners::certifyPath(*ss, path);
   planners::writePath(path, out);

@@ -129,6 +129,18 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
   return certificate;
 }
 
+bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds) {
+  if (!ss.haveSolutionPath()) throw std::invalid_argument("simplifySolutionChecked: the SimpleSetup has no solution path");
+  const ompl::geometric::PathGeometric planned = ss.getSolutionPath();
+  // The simplifier is randomized: a failed attempt may succeed the next time.
+  for (int attempt = 0; attempt < tol::kSimplifyAttempts; ++attempt) {
+    ss.simplifySolution(seconds);
+    if (checkPathWithPlanner(ss.getSolutionPath()).valid) return true;
+    ss.getSolutionPath() = planned;
+  }
+  return false;
+}
+
 void setStartAndGoal(ompl::geometric::SimpleSetup& ss, const Eigen::Ref<const Eigen::VectorXd>& start,
                      const Eigen::Ref<const Eigen::VectorXd>& goal) {
   const robots::RobotModel& model = validityCheckerOf(ss).get()->world().robot();

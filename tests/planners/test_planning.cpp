@@ -152,7 +152,7 @@ BOOST_AUTO_TEST_CASE(plans_in_every_bundled_scene_and_fcl_agrees) {
       BOOST_TEST_REQUIRE(status == ob::PlannerStatus::EXACT_SOLUTION,
                          what << ": " << status.asString() << " in " << attempts << " attempts");
       if (attempts > 1) BOOST_TEST_MESSAGE(what << ": solved in attempt " << attempts);
-      ss->simplifySolution();
+      if (!dp::simplifySolutionChecked(*ss)) BOOST_TEST_MESSAGE(what << ": simplified path invalid, planned one kept");
       const og::PathGeometric& path = ss->getSolutionPath();
       BOOST_TEST((dp::mapState(path.getState(0), 7) == dp::test::suggestedStart()));
       BOOST_TEST((dp::mapState(path.getState(path.getStateCount() - 1), 7) - dp::test::suggestedGoal(scene)).norm() < 1e-9);
@@ -161,6 +161,39 @@ BOOST_AUTO_TEST_CASE(plans_in_every_bundled_scene_and_fcl_agrees) {
       verifyWithFcl(*ss, *world, what);
     }
   }
+}
+
+BOOST_AUTO_TEST_CASE(simplification_never_returns_a_path_the_planner_rejects) {
+  // A problem whose goal has the hand in the compartment's side wall (the shelf goal turned about
+  // joint 1 by 0.18 rad, 1 cm deep), and a "solution" ending there: no simplification can make
+  // it valid (the ends stay), so the function must give it back unchanged.
+  Eigen::VectorXd inWall = dp::test::suggestedGoal("shelf");
+  inWall[0] += 0.18;
+  auto ss = dp::makeSimpleSetup(bundledWorld("shelf"), dp::test::bundledOptions());
+  dp::setStartAndGoal(*ss, dp::test::suggestedStart(), inWall);
+  BOOST_CHECK_THROW(dp::simplifySolutionChecked(*ss), std::invalid_argument);  // no solution yet
+  const auto si = ss->getSpaceInformation();
+  auto path = std::make_shared<og::PathGeometric>(si);
+  ob::ScopedState<> s(si), m(si), e(si);
+  dp::copyToState(dp::test::suggestedStart(), s.get());
+  dp::copyToState(dp::test::suggestedGoal("shelf"), m.get());
+  dp::copyToState(inWall, e.get());
+  path->append(s.get());
+  path->append(m.get());
+  path->append(e.get());
+  BOOST_TEST_REQUIRE(!si->isValid(e.get()));
+  const std::vector<Eigen::VectorXd> planned = dp::pathConfigurations(*path);
+  ss->getProblemDefinition()->addSolutionPath(path);
+  BOOST_TEST(!dp::simplifySolutionChecked(*ss));
+  const std::vector<Eigen::VectorXd> kept = dp::pathConfigurations(ss->getSolutionPath());
+  BOOST_TEST_REQUIRE(kept.size() == planned.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) BOOST_TEST((kept[i] == planned[i]), kept[i].transpose() << " vs " << planned[i].transpose());
+  // A planned solution is simplified, and what comes back passes the planner's checks.
+  auto planning = dp::makeSimpleSetup(bundledWorld("shelf"), dp::test::bundledOptions());
+  dp::setStartAndGoal(*planning, dp::test::suggestedStart(), dp::test::suggestedGoal("shelf"));
+  BOOST_TEST_REQUIRE(solveFirst(*planning, "RRTConnect") == ob::PlannerStatus::EXACT_SOLUTION);
+  dp::simplifySolutionChecked(*planning);
+  BOOST_TEST(dp::checkPathWithPlanner(planning->getSolutionPath()).valid);
 }
 
 BOOST_AUTO_TEST_CASE(a_colliding_start_is_repaired_then_planned_from) {
@@ -191,7 +224,7 @@ BOOST_AUTO_TEST_CASE(a_colliding_start_is_repaired_then_planned_from) {
   BOOST_TEST_MESSAGE("start repaired from sd " << sd << " m by " << repair.starts[0].jointMotion << " rad");
 
   BOOST_TEST_REQUIRE(solveFirst(*ss, "RRTConnect") == ob::PlannerStatus::EXACT_SOLUTION);
-  ss->simplifySolution();
+  dp::simplifySolutionChecked(*ss);
   BOOST_TEST((dp::mapState(ss->getSolutionPath().getState(0), 7) - repair.starts[0].q).norm() < 1e-12);
   verifyWithFcl(*ss, *world, "repaired start");
 }
@@ -214,7 +247,7 @@ BOOST_AUTO_TEST_CASE(waypoints_after_tolerant_planning_and_smoothing_are_repaire
     auto tolerant = dp::makeSimpleSetup(world, tolerantOptions);
     dp::setStartAndGoal(*tolerant, dp::test::suggestedStart(), dp::test::suggestedGoal("narrow_passage"));
     BOOST_TEST_REQUIRE(solveFirst(*tolerant, "RRTConnect") == ob::PlannerStatus::EXACT_SOLUTION);
-    tolerant->simplifySolution();
+    dp::simplifySolutionChecked(*tolerant);
     og::PathGeometric path = tolerant->getSolutionPath();
     const dp::PathCheck before = dp::checkPathWithPlanner(path, certifying.get());
     penetrating += !before.valid;

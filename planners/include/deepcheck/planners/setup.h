@@ -123,6 +123,16 @@ struct PathCertificate {
 /// when that fails.
 PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path);
 
+/// ss.simplifySolution(seconds) (0: OMPL's simplifyMax), keeping the solution as planned when the
+/// simplified path fails the planner's own checks (every waypoint isValid, every motion
+/// checkMotion). OMPL 1.5's PathSimplifier can return such a path: when its shortcuts and B-spline
+/// smoothing leave an invalid motion that checkAndRepair cannot mend, it warns "Solution path may
+/// slightly touch on an invalid region of the state space" and returns it (seen: a 4 rad motion
+/// through the bundled shelf). The simplifier is randomized: up to tol::kSimplifyAttempts
+/// attempts, each from the planned path. Returns true when a simplified path was kept. Throws
+/// std::invalid_argument when `ss` has no solution path.
+bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds = 0.0);
+
 /// Sets one start and one goal state. Throws std::invalid_argument naming the configuration, the
 /// variable and the value for a wrong size or a non-finite value (not for limits or collisions:
 /// OMPL reports those when solving, repairStartAndGoal fixes them).

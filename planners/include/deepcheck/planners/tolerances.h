@@ -99,6 +99,9 @@ constexpr double kDefaultSelfSafeDistance = 0.0;
 /// from it; with 100 all pass 4.3-5.1 cm from it.
 constexpr double kDefaultHingeWeight = 100.0;
 
+/// Attempts of simplifySolutionChecked (setup.h) before it keeps the path as planned.
+constexpr int kSimplifyAttempts = 3;
+
 /// Resolution of the ground-truth checks used by the path verification (path_tools.h) unless
 /// given: joint-space length between two checked states (rad). At 1 m from the axis a point moves
 /// at most ~2 mm between checks on the bundled arm.
