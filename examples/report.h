@@ -11,6 +11,7 @@
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -22,12 +23,14 @@ namespace example {
 inline void reportAndWrite(const ompl::geometric::SimpleSetup& ss, const std::string& file) {
   const auto checker = deepcheck::planners::validityCheckerOf(ss);
   const ompl::geometric::PathGeometric& path = ss.getSolutionPath();
-  const double clearance = deepcheck::planners::minClearanceAlong(
-      path, [&](const Eigen::VectorXd& q) { return checker->clearance(q); });
-  // The robot's own links sit a few centimetres apart in every configuration (an arm's wrist):
-  // the clearance to the scene alone is what a clearance objective can change.
-  const double sceneClearance = deepcheck::planners::minClearanceAlong(path, [&](const Eigen::VectorXd& q) {
-    return checker->splitClearanceUpTo(q, std::numeric_limits<double>::infinity(), false).world;
+  // One pass over the path's states, split by kind of pair: the robot's own links sit a few
+  // centimetres apart in every configuration (an arm's wrist), so the clearance to the scene
+  // alone is what a clearance objective can change; the overall one is the smaller of the two.
+  double sceneClearance = std::numeric_limits<double>::infinity();
+  const double clearance = deepcheck::planners::minClearanceAlong(path, [&](const Eigen::VectorXd& q) {
+    const deepcheck::planners::SplitDistance d = checker->splitClearanceUpTo(q, std::numeric_limits<double>::infinity());
+    sceneClearance = std::min(sceneClearance, d.world);
+    return std::min(d.world, d.self);
   });
   deepcheck::planners::writePath(path, file);
   std::printf("planner          %s\n", ss.getPlanner()->getName().c_str());

@@ -9,10 +9,10 @@
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 namespace deepcheck::planners {
 
@@ -139,10 +139,13 @@ ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1
     int i, j;
     SplitDistance a, b;
   };
-  std::vector<Span> stack{{0, segments, first, last}};
-  while (!stack.empty()) {
-    const Span span = stack.back();
-    stack.pop_back();
+  // Depth first: the stack holds at most one pending half per level of the bisection, and there
+  // are at most 31 levels (segments is an int), so a fixed array does (no allocation per motion).
+  std::array<Span, 64> stack;
+  int size = 0;
+  stack[size++] = {0, segments, first, last};
+  while (size > 0) {
+    const Span span = stack[--size];
     if (span.j - span.i <= 1) continue;
     const double B = reach(span.i, span.j);
     if (zeroBetween(span.a, span.b, B)) continue;
@@ -150,8 +153,8 @@ ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1
     const SplitDistance mid = evaluate(m, B, valid);
     if (!valid) return invalid;
     sum += hinge(mid);
-    stack.push_back({span.i, m, span.a, mid});
-    stack.push_back({m, span.j, mid, span.b});
+    stack[size++] = {span.i, m, span.a, mid};
+    stack[size++] = {m, span.j, mid, span.b};
   }
   return ompl::base::Cost(sum * length / segments);
 }

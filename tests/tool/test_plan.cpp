@@ -23,9 +23,13 @@ using tool_test::Scratch;
 namespace {
 
 const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
-const std::string kWorld = " --robot " + quote(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --srdf " +
-                           quote(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf") + " --scene " +
-                           quote(kData + "/scenes/shelf.urdf") + " --package-path " + quote(kData);
+/// The options naming the bundled arm and one bundled scene.
+std::string armIn(const std::string& scene) {
+  return " --robot " + quote(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --srdf " +
+         quote(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf") + " --scene " +
+         quote(kData + "/scenes/" + scene + ".urdf") + " --package-path " + quote(kData);
+}
+const std::string kWorld = armIn("shelf");
 const std::string kStart = " --start 0 -0.4 0 -1.6 0 1.2 0";
 const std::string kGoal = " --goal 1.05 0.75 -1.17 -1.30 0.05 -0.07 -2.79";
 
@@ -80,10 +84,7 @@ BOOST_AUTO_TEST_CASE(rrt_star_with_the_clearance_objective_plans_and_certifies) 
   // whole time, then the path is simplified and certified like any other.
   Scratch scratch;
   const std::string out = scratch.path("path.txt");
-  const std::string table = " --robot " + quote(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --srdf " +
-                            quote(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf") + " --scene " +
-                            quote(kData + "/scenes/table.urdf") + " --package-path " + quote(kData);
-  const Run r = plan(scratch, table + kStart + " --goal -0.14 0.61 0.24 -0.77 -0.14 1.77 -2.23" +
+  const Run r = plan(scratch, armIn("table") + kStart + " --goal -0.14 0.61 0.24 -0.77 -0.14 1.77 -2.23" +
                                   " --planner RRT* --objective clearance --time 1 --seed 2 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.err.find("RRTstar") != std::string::npos, r.err);

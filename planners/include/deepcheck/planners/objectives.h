@@ -32,7 +32,6 @@
 // arm, 1,500 iterations (printed by tests/planners/test_objectives.cpp): 0.12 s with radius
 // neighbours, 3.7 s with k-nearest.
 //
-//
 // makeLengthClearanceObjective: OMPL's MultiOptimizationObjective of PathLengthOptimization
 // Objective (weight 1) and the hinge (weight w, 1 / metre; tolerances.h says why 100 by default). Its cost-to-go and motion heuristics
 // are the path length's (the straight-line distance), admissible since the hinge is >= 0; so

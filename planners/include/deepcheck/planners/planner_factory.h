@@ -32,8 +32,8 @@ bool isOptimizingPlanner(const std::string& name);
 /// Prepares `planner` for an objective whose motion costs are expensive (the clearance hinge of
 /// objectives.h integrates distance queries along each motion). RRT* and InformedRRT* are switched
 /// from k-nearest to radius neighbours: OMPL 1.5's k-nearest RRT* asks the cost of the motion to
-/// k = 1.1 * 2^(d+1) e (1 + 1/d) ln(n) nodes for each new node (d joints, n nodes; 36 ln n for 2
-/// joints, measured, and more than the whole tree for 7 joints below ~10^4 nodes), those farther
+/// k = 1.1 * 2^(d+1) e (1 + 1/d) ln(n) nodes for each new node (d joints, n nodes; 35.9 ln n for 2
+/// joints, and more than the whole tree for 7 joints below ~10^4 nodes), those farther
 /// than its range included, which it then never connects. The radius variant asks only the nodes
 /// within min(range, r(n)). Other planners are left as they are. Returns true when it changed
 /// the planner.
