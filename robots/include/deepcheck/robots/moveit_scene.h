@@ -1,0 +1,140 @@
+#pragma once
+// MoveIt planning scenes written as YAML (moveit_msgs/PlanningScene, as MoveIt, Robowflex and
+// MotionBenchMaker write them): the collision objects of `world: collision_objects:`, each a set
+// of boxes, spheres, cylinders, cones and meshes posed in a named frame.
+//
+// What is read, per collision object:
+//   id                  required, unique in the file, not empty
+//   header.frame_id     required: the frame F the object is given in (a robot link, after the
+//                       caller's aliases; see shapeWorldPoses)
+//   pose                optional: the object's pose X_FO (MoveIt's newer format); identity when
+//                       absent. Shapes are posed relative to it: X_FS = X_FO * X_OS.
+//   primitives          list of {type, dimensions}; type box, sphere, cylinder or cone (any case,
+//                       or the shape_msgs numbers 1 to 4), dimensions as shape_msgs orders them:
+//                         box [x, y, z] (full edge lengths), sphere [radius],
+//                         cylinder [height, radius], cone [height, radius]
+//                       (cylinders and cones along z of the shape's frame, centred on its origin;
+//                       the cone's base at z = -height/2, its tip at +height/2).
+//   primitive_poses     one pose X_OS per primitive
+//   meshes              list of {resource (or filename), scale (or dimensions): [sx, sy, sz]};
+//                       resource is package://PKG/path (package_path.h, searched in
+//                       SceneLoadOptions::packageRoots then ROS_PACKAGE_PATH), file://path or a
+//                       plain path; relative paths are relative to the YAML file's folder. The
+//                       file is found here; it is read later (collision_geometry.h, mesh_loader.h).
+//   mesh_poses          one pose X_OS per mesh
+//   operation           optional; only "add" (0) is accepted: a scene file describes a world
+//   type, subframe_names, subframe_poses   accepted and ignored (no geometry)
+// A pose is {position: [x, y, z], orientation: [x, y, z, w]} or the message form
+// {position: {x:, y:, z:}, orientation: {x:, y:, z:, w:}}. A quaternion whose norm is within
+// tol::kSceneQuaternionNorm of 1 is normalised; any other is an error.
+// Top level: `world` (its `collision_objects`; an `octomap` is an error: not supported). The
+// robot-side fields of a PlanningScene (name, robot_state, robot_model_name,
+// allowed_collision_matrix, link_padding, link_scale, object_colors, is_diff) are accepted and
+// ignored. `fixed_frame_transforms` entries are accepted when their transform is the identity
+// (MotionBenchMaker's cage says base_link is the planning frame this way) and rejected otherwise.
+// Any other key is an error (a misspelt key must not silently drop an object).
+//
+// Cones. A cone becomes an in-memory triangle mesh (SceneShape::mesh): the circumscribed
+// pyramid whose base is the regular N-gon tangent to the base circle (apothem = radius), N
+// chosen as for cylinders (collision_geometry.h: cylinderSides with coneMaxDeviation). It
+// CONTAINS the cone and sticks out of it by at most radius * (1 / cos(pi / N) - 1), at the base
+// corners. It is convex, so its convex hull (the default MeshDecomposer) is exactly it.
+//
+// Errors: std::invalid_argument, the message starting with "planning scene '<file>', line <n>"
+// (1-based; the line of the offending node, or of its parent when a key is missing), then the
+// object ("object 'Can1'", or "object <index>" before its id is known), then what is wrong:
+// malformed YAML, a missing key, an unknown key or primitive type, a wrong number of dimensions,
+// a size that is not positive, a number that is not finite (.nan, .inf), a quaternion far from
+// unit norm, a mesh that cannot be found (every place searched is listed).
+//
+// Frames: F the object's frame (header.frame_id), O the object (pose), S a shape, W the world.
+
+#include "deepcheck/robots/mesh.h"
+#include "deepcheck/robots/robot_model.h"
+#include "deepcheck/robots/tolerances.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace deepcheck::robots {
+
+namespace tol {
+/// A quaternion read from a scene is normalised when | |q| - 1 | <= kSceneQuaternionNorm
+/// (dimensionless) and rejected otherwise. Files written by hand round components to 2 or 3
+/// digits ([0.707, 0, 0, 0.707] has norm 0.99985); a 1 % error is such rounding, anything larger
+/// is a mistake (a zero quaternion, a missing component, Euler angles).
+constexpr double kSceneQuaternionNorm = 1e-2;
+}  // namespace tol
+
+/// One shape of a collision object.
+struct SceneShape {
+  /// Box, Sphere, Cylinder or Mesh (meshUri, meshPath, meshScale) as for a URDF. A cone is
+  /// type Mesh with an empty meshPath and its pyramid in `mesh`.
+  Geometry geometry;
+  /// The in-memory mesh of a cone (see the header comment); null otherwise.
+  std::shared_ptr<const TriangleMesh> mesh;
+  /// Pose of the shape in the object's frame F (object pose included).
+  Eigen::Isometry3d X_FS = Eigen::Isometry3d::Identity();
+  /// "primitive 0 (box)", "primitive 2 (cone, 24-sided pyramid)", "mesh 0 (shelf.stl)".
+  std::string name;
+  int line = 0;  ///< 1-based line of the shape in the file
+};
+
+struct SceneObject {
+  std::string id;
+  std::string frameId;  ///< header.frame_id as written
+  Eigen::Isometry3d X_FO = Eigen::Isometry3d::Identity();  ///< the object pose (identity if none)
+  std::vector<SceneShape> shapes;  ///< primitives first, then meshes, in file order
+  int line = 0;                    ///< 1-based line where the object starts
+};
+
+struct PlanningScene {
+  std::string source;  ///< the file (or the name given to parsePlanningScene)
+  std::vector<SceneObject> objects;  ///< in file order
+  /// Index of the object called `id`, -1 when there is none.
+  int objectIndex(const std::string& id) const;
+};
+
+struct SceneLoadOptions {
+  /// Package roots searched first for package:// resources (e.g. --package-path arguments).
+  std::vector<std::string> packageRoots;
+  /// Also search ROS_PACKAGE_PATH (and AMENT_PREFIX_PATH/share).
+  bool useRosPackagePath = true;
+  /// Largest distance a cone's pyramid may stick out of the cone, metres (> 0).
+  double coneMaxDeviation = tol::kCylinderMaxDeviation;
+};
+
+/// Reads a planning-scene YAML file; relative mesh paths are relative to its folder.
+PlanningScene loadPlanningScene(const std::string& path, const SceneLoadOptions& options = {});
+/// Reads planning-scene YAML text; relative mesh paths are relative to `baseDirectory`.
+/// `sourceName` names the text in messages ("<string>" when empty).
+PlanningScene parsePlanningScene(const std::string& yaml, const std::string& baseDirectory,
+                                 const SceneLoadOptions& options = {},
+                                 const std::string& sourceName = "");
+
+/// The triangle mesh of the circumscribed pyramid of a cone along z (see the header comment).
+/// Throws std::invalid_argument unless height, radius and maxDeviation are positive and finite.
+TriangleMesh coneMesh(double height, double radius, double maxDeviation);
+
+/// Frame names of a scene file mapped to robot link names, e.g. {"base_link", "panda_link0"}.
+using FrameAliases = std::map<std::string, std::string>;
+
+/// Parses "NAME=LINK" (the CLI's --frame-alias). Throws std::invalid_argument when malformed.
+std::pair<std::string, std::string> parseFrameAlias(const std::string& text);
+
+/// World poses X_WS of every shape, result[object][shape] = X_WF * X_FS, where X_WF is the pose
+/// of the robot link named by the object's frame (through `aliases` when it is a key there) at
+/// configuration q (forward kinematics, with the robot's base pose). Throws
+/// std::invalid_argument for a frame that is no link, naming the file, object and frame, listing
+/// the robot's links and suggesting an alias; or for an alias whose target is no link.
+std::vector<std::vector<Eigen::Isometry3d>> shapeWorldPoses(
+    const PlanningScene& scene, const RobotModel& robot, const Eigen::Ref<const Eigen::VectorXd>& q,
+    const FrameAliases& aliases = {});
+
+}  // namespace deepcheck::robots
