@@ -179,16 +179,16 @@ void rejectNonEmpty(const Context& ctx, const YAML::Node& node, const char* key,
 SceneObject readObject(Reader& r, const YAML::Node& node, int index) {
   Context& ctx = r.ctx;
   ctx.object = "object " + std::to_string(index);
-  scene_yaml::checkKeys(ctx, node, "a collision object",
-                        {"header", "id", "pose", "type", "primitives", "primitive_poses", "meshes",
-                         "mesh_poses", "planes", "plane_poses", "subframe_names", "subframe_poses",
-                         "operation"});
   SceneObject object;
   object.line = lineOf(node);
   const YAML::Node idNode = required(ctx, node, "id");
   object.id = readString(ctx, idNode, "id");
   if (object.id.empty()) ctx.fail(idNode, "the id is empty");
   ctx.object = "object '" + object.id + "'";
+  scene_yaml::checkKeys(ctx, node, "a collision object",
+                        {"header", "id", "pose", "type", "primitives", "primitive_poses", "meshes",
+                         "mesh_poses", "planes", "plane_poses", "subframe_names", "subframe_poses",
+                         "operation"});
   const YAML::Node header = required(ctx, node, "header");
   scene_yaml::checkKeys(ctx, header, "header", {"frame_id", "seq", "stamp"});
   const YAML::Node frameNode = required(ctx, header, "frame_id");
