@@ -29,7 +29,8 @@ int lineOf(const YAML::Node& node) {
 YAML::Node required(const Context& ctx, const YAML::Node& parent, const char* key) {
   if (!parent.IsMap()) ctx.fail(parent, std::string("expected a map with '") + key + "'");
   YAML::Node child = parent[key];
-  if (!child.IsDefined() || child.IsNull()) ctx.fail(parent, std::string("missing '") + key + "'");
+  if (!child.IsDefined()) ctx.fail(parent, std::string("missing '") + key + "'");
+  if (child.IsNull()) ctx.fail(child, std::string("'") + key + "' is empty");
   return child;
 }
 
