@@ -31,4 +31,29 @@ constexpr double kCylinderMaxDeviation = 1e-3;
 constexpr int kCylinderMinSides = 6;
 constexpr int kCylinderMaxSides = 128;
 
+/// Inverse kinematics (inverse_kinematics.h). A pose is reached when the link origin is within
+/// kIkPositionTolerance metres of the target position AND the rotation from the link's orientation
+/// to the target's is at most kIkOrientationTolerance radians. 0.1 mm and 1 mrad (0.057 deg) are
+/// far below what a collision checker with a 1 mm decomposition resolves; the damped least
+/// squares converge quadratically near a solution, so tighter values cost few iterations.
+constexpr double kIkPositionTolerance = 1e-4;
+constexpr double kIkOrientationTolerance = 1e-3;
+/// Damped least-squares iterations per attempt, and random restarts after the first attempt.
+constexpr int kIkMaxIterations = 100;
+constexpr int kIkMaxRestarts = 50;
+/// Initial damping lambda of the damped least squares, in the units of the pose error (metres and
+/// radians weighted alike): dq = J^T (J J^T + lambda^2 I)^-1 e. Halved after a step that lowers
+/// the error, multiplied by 4 after one that does not (Levenberg-Marquardt), kept within
+/// [kIkMinDamping, kIkMaxDamping]; an attempt whose damping would exceed the maximum has stalled.
+constexpr double kIkDamping = 1e-2;
+constexpr double kIkMinDamping = 1e-6;
+constexpr double kIkMaxDamping = 1e3;
+/// Largest change of one joint in one iteration, radians (metres for a prismatic joint): the
+/// linearization holds over a fraction of a radian, and a larger step overshoots.
+constexpr double kIkMaxJointStep = 0.5;
+/// A quaternion given for a pose (poseFromQuaternion) must have |norm - 1| at most this: values
+/// typed with four significant digits (0.7071 for sqrt(1/2): norm 0.99999) are accepted, a
+/// forgotten or mistyped component is not. The quaternion is then normalized.
+constexpr double kQuaternionUnitNorm = 1e-4;
+
 }  // namespace deepcheck::robots::tol

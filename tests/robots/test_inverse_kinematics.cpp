@@ -1,0 +1,207 @@
+// Inverse kinematics: poses reached by forward kinematics of random configurations are solved
+// (FK of the solution within the tolerances, the solution within the joint limits), an unreachable
+// pose is reported as such with its best error, results depend only on the seed, and bad input is
+// rejected with a message naming the value.
+
+#include "robots_test_util.h"
+
+#include "deepcheck/robots/inverse_kinematics.h"
+#include "deepcheck/robots/kinematics.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+
+using namespace deepcheck::robots;
+using deepcheck::robots::test::checkThrows;
+using deepcheck::robots::test::haveShared;
+using deepcheck::robots::test::sharedDir;
+
+namespace {
+
+RobotModel loadArm() {
+  LoadOptions o;
+  o.packageRoots = {deepcheck::test::bundledDataDir()};
+  o.useRosPackagePath = false;
+  return RobotModel::fromUrdfFile(deepcheck::test::bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf", o);
+}
+
+RobotModel loadPanda() {
+  LoadOptions o;
+  o.packageRoots = {sharedDir() + "/robots/panda"};
+  o.useRosPackagePath = false;
+  return RobotModel::fromUrdfFile(sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf", o);
+}
+
+Eigen::VectorXd randomConfiguration(const RobotModel& model, std::mt19937_64& rng) {
+  Eigen::VectorXd q(model.numVariables());
+  for (int v = 0; v < q.size(); ++v) {
+    const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;  // the same with every library
+    q[v] = model.lowerLimits()[v] + u * (model.upperLimits()[v] - model.lowerLimits()[v]);
+  }
+  return q;
+}
+
+bool withinLimits(const RobotModel& model, const Eigen::VectorXd& q) {
+  return (q.array() >= model.lowerLimits().array()).all() && (q.array() <= model.upperLimits().array()).all();
+}
+
+/// `trials` poses of `link` from FK of random configurations; each solved from a random start
+/// (never the configuration that made the pose). Requires at least `required` of them reached,
+/// and checks every reported solution independently: FK within tolerance, within the limits.
+void checkReachablePoses(const RobotModel& model, const std::string& link, int trials, int required) {
+  std::mt19937_64 rng(7);
+  const int index = model.linkIndex(link);
+  int converged = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const Eigen::VectorXd qTarget = randomConfiguration(model, rng);
+    const Eigen::Isometry3d X_WT = forwardKinematics(model, qTarget)[index];
+    IkOptions options;
+    options.seed = 1000 + trial;
+    const IkResult result = solveInverseKinematics(model, link, X_WT, options);
+    BOOST_TEST(withinLimits(model, result.q), "trial " << trial << ": outside the limits: " << result.q.transpose());
+    const PoseError check = poseError(model, index, result.q, X_WT, options);
+    BOOST_TEST(check.normalized == result.error.normalized);
+    if (!result.converged()) {
+      BOOST_TEST_MESSAGE("trial " << trial << ": " << toString(result.status) << ", best error "
+                                  << result.error.position << " m, " << result.error.orientation << " rad");
+      continue;
+    }
+    ++converged;
+    BOOST_TEST(check.position <= options.positionTolerance, "trial " << trial << ": " << check.position << " m");
+    BOOST_TEST(check.orientation <= options.orientationTolerance, "trial " << trial << ": " << check.orientation << " rad");
+  }
+  BOOST_TEST_MESSAGE(model.name() << ": " << converged << " of " << trials << " poses reached");
+  BOOST_TEST(converged >= required, converged << " of " << trials << " reached, " << required << " required");
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(inverse_kinematics)
+
+BOOST_AUTO_TEST_CASE(bundled_arm_reaches_random_reachable_poses) {
+  checkReachablePoses(loadArm(), "flange", 200, 198);
+}
+
+BOOST_AUTO_TEST_CASE(panda_reaches_random_reachable_poses) {
+  if (!haveShared("panda_reaches_random_reachable_poses")) return;
+  checkReachablePoses(loadPanda(), "panda_link8", 200, 198);
+}
+
+BOOST_AUTO_TEST_CASE(unreachable_pose_is_not_converged_with_best_error) {
+  const RobotModel arm = loadArm();
+  // 5 m above the base: far beyond the arm's reach (about 1.3 m).
+  const Eigen::Isometry3d X_WT(Eigen::Translation3d(0.0, 0.0, 5.0));
+  IkOptions options;
+  options.maxRestarts = 3;
+  const IkResult result = solveInverseKinematics(arm, "flange", X_WT, options);
+  BOOST_TEST(!result.converged());
+  BOOST_TEST(result.status == IkStatus::NotConverged);
+  BOOST_TEST(result.attempts == 4);
+  BOOST_TEST(withinLimits(arm, result.q));
+  // The best error is the error of the returned configuration, and the arm's straight-up
+  // configuration gets within its reach of the target: the error is the gap, ~3.7 m.
+  const PoseError check = poseError(arm, arm.linkIndex("flange"), result.q, X_WT, options);
+  BOOST_TEST(check.position == result.error.position);
+  const double reach = forwardKinematics(arm, Eigen::VectorXd::Zero(7))[arm.linkIndex("flange")].translation().norm();
+  BOOST_TEST(result.error.position >= 5.0 - reach - 1e-9);
+  BOOST_TEST(result.error.position <= 5.0 - reach + 0.05);
+}
+
+BOOST_AUTO_TEST_CASE(joint_limits_are_respected_when_the_target_needs_more) {
+  // Target made with joint 4 beyond its limit: the arm must stay within the limits anyway.
+  const RobotModel arm = loadArm();
+  Eigen::VectorXd qBeyond = Eigen::VectorXd::Zero(7);
+  qBeyond[1] = 0.5;
+  qBeyond[3] = arm.upperLimits()[3] + 0.6;
+  const int flange = arm.linkIndex("flange");
+  const Eigen::Isometry3d X_WT = forwardKinematics(arm, qBeyond)[flange];
+  IkOptions options;
+  options.initial = Eigen::VectorXd::Zero(7);
+  options.maxRestarts = 5;
+  const IkResult result = solveInverseKinematics(arm, "flange", X_WT, options);
+  BOOST_TEST(withinLimits(arm, result.q), result.q.transpose());
+  if (result.converged()) {
+    BOOST_TEST(poseError(arm, flange, result.q, X_WT, options).within());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(deterministic_for_a_seed) {
+  const RobotModel arm = loadArm();
+  std::mt19937_64 rng(3);
+  const Eigen::Isometry3d X_WT = forwardKinematics(arm, randomConfiguration(arm, rng))[arm.linkIndex("flange")];
+  IkOptions options;
+  options.seed = 42;
+  const IkResult a = solveInverseKinematics(arm, "flange", X_WT, options);
+  const IkResult b = solveInverseKinematics(arm, "flange", X_WT, options);
+  BOOST_TEST_REQUIRE(a.converged());
+  BOOST_TEST(a.q == b.q);
+  BOOST_TEST(a.iterations == b.iterations);
+  // Other seeds start elsewhere and, the arm being redundant, end elsewhere.
+  bool different = false;
+  for (std::uint64_t seed = 43; seed < 48 && !different; ++seed) {
+    options.seed = seed;
+    const IkResult c = solveInverseKinematics(arm, "flange", X_WT, options);
+    different = c.converged() && (c.q - a.q).norm() > 1e-3;
+  }
+  BOOST_TEST(different);
+}
+
+BOOST_AUTO_TEST_CASE(acceptance_test_filters_solutions) {
+  const RobotModel arm = loadArm();
+  std::mt19937_64 rng(5);
+  const Eigen::Isometry3d X_WT = forwardKinematics(arm, randomConfiguration(arm, rng))[arm.linkIndex("flange")];
+  IkOptions options;
+  options.maxRestarts = 10;
+  // Only solutions with joint 1 positive: accepted ones satisfy it.
+  const IkResult some = solveInverseKinematics(arm, "flange", X_WT, options,
+                                               [](const Eigen::VectorXd& q) { return q[0] > 0.0; });
+  if (some.converged()) {
+    BOOST_TEST(some.q[0] > 0.0);
+  }
+  // Rejecting everything: never converged, every reached pose counted as rejected.
+  int calls = 0;
+  const IkResult none = solveInverseKinematics(arm, "flange", X_WT, options, [&](const Eigen::VectorXd&) {
+    ++calls;
+    return false;
+  });
+  BOOST_TEST(none.status == IkStatus::Rejected);
+  BOOST_TEST(none.rejected == calls);
+  BOOST_TEST(none.rejected >= 1);
+  BOOST_TEST(none.error.within());
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_is_named) {
+  const RobotModel arm = loadArm();
+  const Eigen::Isometry3d X_WT(Eigen::Translation3d(0.3, 0.0, 0.5));
+  checkThrows([&] { solveInverseKinematics(arm, "gripper", X_WT); }, {"gripper", "flange", "link1"});
+  Eigen::Isometry3d nan = X_WT;
+  nan.translation().x() = std::numeric_limits<double>::quiet_NaN();
+  checkThrows([&] { solveInverseKinematics(arm, "flange", nan); }, {"flange", "not a finite rigid transform"});
+  Eigen::Isometry3d sheared = X_WT;
+  sheared.linear()(0, 1) = 0.1;
+  checkThrows([&] { solveInverseKinematics(arm, "flange", sheared); }, {"not a finite rigid transform"});
+  checkThrows([&] { poseFromQuaternion(Eigen::Vector3d(0.3, 0, 0.5), 0, 0, 0.5, 0.5); },
+              {"not a unit quaternion", "0.707"});
+  checkThrows([&] { poseFromQuaternion(Eigen::Vector3d(0.3, 0, 0.5), 0, 0, 0, std::nan("")); }, {"not finite"});
+  const Eigen::Isometry3d fromQuaternion = poseFromQuaternion(Eigen::Vector3d(0.3, 0, 0.5), 0, 0, 0.7071, 0.7071);
+  BOOST_TEST(std::abs(fromQuaternion.linear().determinant() - 1.0) < 1e-12);
+  IkOptions options;
+  options.positionTolerance = 0.0;
+  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"positionTolerance (m)", "is 0"});
+  options = {};
+  options.orientationTolerance = -1e-3;
+  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"orientationTolerance (rad)", "-0.001"});
+  options = {};
+  options.maxIterations = 0;
+  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"maxIterations"});
+  options = {};
+  options.initial = Eigen::VectorXd::Zero(3);
+  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"3 values"});
+}
+
+BOOST_AUTO_TEST_SUITE_END()
