@@ -14,7 +14,13 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <ostream>
 #include <string>
+
+namespace deepcheck::robots {
+/// For Boost.Test messages.
+inline std::ostream& operator<<(std::ostream& out, IkStatus status) { return out << toString(status); }
+}  // namespace deepcheck::robots
 
 using namespace deepcheck::robots;
 using deepcheck::robots::test::checkThrows;
