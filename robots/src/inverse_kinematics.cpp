@@ -135,6 +135,19 @@ void checkTarget(const RobotModel& model, const std::string& link, const Eigen::
   }
 }
 
+void checkOptions(const RobotModel& model, const IkOptions& options) {
+  const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
+  if (!positive(options.positionTolerance)) badOption("positionTolerance (m)", options.positionTolerance, "positive");
+  if (!positive(options.orientationTolerance)) {
+    badOption("orientationTolerance (rad)", options.orientationTolerance, "positive");
+  }
+  if (!positive(options.damping)) badOption("damping", options.damping, "positive");
+  if (!positive(options.maxJointStep)) badOption("maxJointStep", options.maxJointStep, "positive");
+  if (options.maxIterations < 1) badOption("maxIterations", options.maxIterations, "at least 1");
+  if (options.maxRestarts < 0) badOption("maxRestarts", options.maxRestarts, "at least 0");
+  if (options.initial.size() > 0) checkConfiguration(model, options.initial);
+}
+
 }  // namespace
 
 const char* toString(IkStatus status) {
@@ -176,17 +189,12 @@ Eigen::Isometry3d poseFromQuaternion(const Eigen::Vector3d& p_WT, double qx, dou
   return X_WT;
 }
 
-void checkIkOptions(const RobotModel& model, const IkOptions& options) {
-  const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
-  if (!positive(options.positionTolerance)) badOption("positionTolerance (m)", options.positionTolerance, "positive");
-  if (!positive(options.orientationTolerance)) {
-    badOption("orientationTolerance (rad)", options.orientationTolerance, "positive");
-  }
-  if (!positive(options.damping)) badOption("damping", options.damping, "positive");
-  if (!positive(options.maxJointStep)) badOption("maxJointStep", options.maxJointStep, "positive");
-  if (options.maxIterations < 1) badOption("maxIterations", options.maxIterations, "at least 1");
-  if (options.maxRestarts < 0) badOption("maxRestarts", options.maxRestarts, "at least 0");
-  if (options.initial.size() > 0) checkConfiguration(model, options.initial);
+int checkIkProblem(const RobotModel& model, const std::string& link, const Eigen::Isometry3d& X_WT,
+                   const IkOptions& options) {
+  const int index = requireLink(model, link);
+  checkTarget(model, link, X_WT);
+  checkOptions(model, options);
+  return index;
 }
 
 PoseError poseError(const RobotModel& model, int link, const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -202,9 +210,7 @@ PoseError poseError(const RobotModel& model, int link, const Eigen::Ref<const Ei
 
 IkResult solveInverseKinematics(const RobotModel& model, const std::string& linkName, const Eigen::Isometry3d& X_WT,
                                 const IkOptions& options, const IkAcceptFn& accept) {
-  const int link = requireLink(model, linkName);
-  checkTarget(model, linkName, X_WT);
-  checkIkOptions(model, options);
+  const int link = checkIkProblem(model, linkName, X_WT, options);
   std::mt19937_64 rng(options.seed);
   IkResult result;
   for (int attempt = 0; attempt <= options.maxRestarts; ++attempt) {

@@ -107,4 +107,13 @@ constexpr int kSimplifyAttempts = 3;
 /// at most ~2 mm between checks on the bundled arm.
 constexpr double kFineResolution = 0.002;
 
+/// Pose goals (pose_goal.h). The goal's sampling thread stops after kPoseGoalMaxStates distinct
+/// collision-free IK solutions (a bidirectional planner grows one tree from each; more rarely
+/// help), or after kPoseGoalMaxFailedSamples consecutive IK calls (each with all its restarts)
+/// that found none: the pose is then taken as unreachable without collision.
+constexpr int kPoseGoalMaxStates = 16;
+constexpr int kPoseGoalMaxFailedSamples = 8;
+/// Two IK solutions closer than this (joint-space length, rad) are the same goal state.
+constexpr double kPoseGoalMinSeparation = 0.01;
+
 }  // namespace deepcheck::planners::tol

@@ -91,10 +91,13 @@ int requireLink(const RobotModel& model, const std::string& name);
 /// tol::kQuaternionUnitNorm; normalizes it otherwise.
 Eigen::Isometry3d poseFromQuaternion(const Eigen::Vector3d& p_WT, double qx, double qy, double qz, double qw);
 
-/// Throws std::invalid_argument unless every option is usable (tolerances, damping and step
-/// positive and finite, maxIterations >= 1, maxRestarts >= 0) and `initial` is empty or a finite
-/// configuration of `model`. The message names the option and its value.
-void checkIkOptions(const RobotModel& model, const IkOptions& options);
+/// Checks a problem before solving: `link` names a link (requireLink), X_WT is finite and rigid
+/// (rotation orthonormal within tol::kOrthonormality, right-handed), every option is usable
+/// (tolerances, damping and step positive and finite, maxIterations >= 1, maxRestarts >= 0) and
+/// `initial` is empty or a finite configuration of `model`. Throws std::invalid_argument naming
+/// the value; returns the link's index.
+int checkIkProblem(const RobotModel& model, const std::string& link, const Eigen::Isometry3d& X_WT,
+                   const IkOptions& options);
 
 /// The error of link `link` at q against X_WT (tolerances from `options` for `normalized`).
 PoseError poseError(const RobotModel& model, int link, const Eigen::Ref<const Eigen::VectorXd>& q,
