@@ -4,6 +4,8 @@
 
 #include "common/test_paths.h"
 
+#include "deepcheck/robots/robot_model.h"
+
 #include <boost/test/unit_test.hpp>
 
 #include <atomic>
@@ -54,6 +56,22 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+/// The Panda of the shared data folder (call only when haveShared()).
+inline RobotModel loadPanda() {
+  LoadOptions o;
+  o.packageRoots = {sharedDir() + "/robots/panda"};
+  o.useRosPackagePath = false;
+  return RobotModel::fromUrdfFile(sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf", o);
+}
+
+/// The bundled arm (robots/data), ROS_PACKAGE_PATH ignored.
+inline RobotModel loadBundledArm() {
+  LoadOptions o;
+  o.packageRoots = {deepcheck::test::bundledDataDir()};
+  o.useRosPackagePath = false;
+  return RobotModel::fromUrdfFile(deepcheck::test::bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf", o);
+}
 
 /// Runs f, which must throw std::invalid_argument whose message contains every one of `parts`.
 inline void checkThrows(const std::function<void()>& f, std::initializer_list<std::string> parts) {

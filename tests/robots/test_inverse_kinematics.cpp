@@ -25,23 +25,10 @@ inline std::ostream& operator<<(std::ostream& out, IkStatus status) { return out
 using namespace deepcheck::robots;
 using deepcheck::robots::test::checkThrows;
 using deepcheck::robots::test::haveShared;
-using deepcheck::robots::test::sharedDir;
+using deepcheck::robots::test::loadBundledArm;
+using deepcheck::robots::test::loadPanda;
 
 namespace {
-
-RobotModel loadArm() {
-  LoadOptions o;
-  o.packageRoots = {deepcheck::test::bundledDataDir()};
-  o.useRosPackagePath = false;
-  return RobotModel::fromUrdfFile(deepcheck::test::bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf", o);
-}
-
-RobotModel loadPanda() {
-  LoadOptions o;
-  o.packageRoots = {sharedDir() + "/robots/panda"};
-  o.useRosPackagePath = false;
-  return RobotModel::fromUrdfFile(sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf", o);
-}
 
 Eigen::VectorXd randomConfiguration(const RobotModel& model, std::mt19937_64& rng) {
   Eigen::VectorXd q(model.numVariables());
@@ -50,6 +37,12 @@ Eigen::VectorXd randomConfiguration(const RobotModel& model, std::mt19937_64& rn
     q[v] = model.lowerLimits()[v] + u * (model.upperLimits()[v] - model.lowerLimits()[v]);
   }
   return q;
+}
+
+/// The pose of `link` at a random configuration (generator seeded with `seed`): reachable.
+Eigen::Isometry3d randomReachablePose(const RobotModel& model, const std::string& link, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  return forwardKinematics(model, randomConfiguration(model, rng))[model.linkIndex(link)];
 }
 
 bool withinLimits(const RobotModel& model, const Eigen::VectorXd& q) {
@@ -90,7 +83,7 @@ void checkReachablePoses(const RobotModel& model, const std::string& link, int t
 BOOST_AUTO_TEST_SUITE(inverse_kinematics)
 
 BOOST_AUTO_TEST_CASE(bundled_arm_reaches_random_reachable_poses) {
-  checkReachablePoses(loadArm(), "flange", 200, 198);
+  checkReachablePoses(loadBundledArm(), "flange", 200, 198);
 }
 
 BOOST_AUTO_TEST_CASE(panda_reaches_random_reachable_poses) {
@@ -99,7 +92,7 @@ BOOST_AUTO_TEST_CASE(panda_reaches_random_reachable_poses) {
 }
 
 BOOST_AUTO_TEST_CASE(unreachable_pose_is_not_converged_with_best_error) {
-  const RobotModel arm = loadArm();
+  const RobotModel arm = loadBundledArm();
   // 5 m above the base: far beyond the arm's reach (about 1.3 m).
   const Eigen::Isometry3d X_WT(Eigen::Translation3d(0.0, 0.0, 5.0));
   IkOptions options;
@@ -120,7 +113,7 @@ BOOST_AUTO_TEST_CASE(unreachable_pose_is_not_converged_with_best_error) {
 
 BOOST_AUTO_TEST_CASE(joint_limits_are_respected_when_the_target_needs_more) {
   // Target made with joint 4 beyond its limit: the arm must stay within the limits anyway.
-  const RobotModel arm = loadArm();
+  const RobotModel arm = loadBundledArm();
   Eigen::VectorXd qBeyond = Eigen::VectorXd::Zero(7);
   qBeyond[1] = 0.5;
   qBeyond[3] = arm.upperLimits()[3] + 0.6;
@@ -137,9 +130,8 @@ BOOST_AUTO_TEST_CASE(joint_limits_are_respected_when_the_target_needs_more) {
 }
 
 BOOST_AUTO_TEST_CASE(deterministic_for_a_seed) {
-  const RobotModel arm = loadArm();
-  std::mt19937_64 rng(3);
-  const Eigen::Isometry3d X_WT = forwardKinematics(arm, randomConfiguration(arm, rng))[arm.linkIndex("flange")];
+  const RobotModel arm = loadBundledArm();
+  const Eigen::Isometry3d X_WT = randomReachablePose(arm, "flange", 3);
   IkOptions options;
   options.seed = 42;
   const IkResult a = solveInverseKinematics(arm, "flange", X_WT, options);
@@ -158,17 +150,15 @@ BOOST_AUTO_TEST_CASE(deterministic_for_a_seed) {
 }
 
 BOOST_AUTO_TEST_CASE(acceptance_test_filters_solutions) {
-  const RobotModel arm = loadArm();
-  std::mt19937_64 rng(5);
-  const Eigen::Isometry3d X_WT = forwardKinematics(arm, randomConfiguration(arm, rng))[arm.linkIndex("flange")];
+  const RobotModel arm = loadBundledArm();
+  const Eigen::Isometry3d X_WT = randomReachablePose(arm, "flange", 5);
   IkOptions options;
   options.maxRestarts = 10;
   // Only solutions with joint 1 positive: accepted ones satisfy it.
   const IkResult some = solveInverseKinematics(arm, "flange", X_WT, options,
                                                [](const Eigen::VectorXd& q) { return q[0] > 0.0; });
-  if (some.converged()) {
-    BOOST_TEST(some.q[0] > 0.0);
-  }
+  BOOST_TEST_REQUIRE(some.converged());
+  BOOST_TEST(some.q[0] > 0.0);
   // Rejecting everything: never converged, every reached pose counted as rejected.
   int calls = 0;
   const IkResult none = solveInverseKinematics(arm, "flange", X_WT, options, [&](const Eigen::VectorXd&) {
@@ -182,7 +172,7 @@ BOOST_AUTO_TEST_CASE(acceptance_test_filters_solutions) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_is_named) {
-  const RobotModel arm = loadArm();
+  const RobotModel arm = loadBundledArm();
   const Eigen::Isometry3d X_WT(Eigen::Translation3d(0.3, 0.0, 0.5));
   checkThrows([&] { solveInverseKinematics(arm, "gripper", X_WT); }, {"gripper", "flange", "link1"});
   Eigen::Isometry3d nan = X_WT;

@@ -18,17 +18,10 @@
 using namespace deepcheck::robots;
 using deepcheck::robots::test::checkThrows;
 using deepcheck::robots::test::haveShared;
+using deepcheck::robots::test::loadPanda;
 using deepcheck::robots::test::sharedDir;
 
 namespace {
-
-RobotModel loadPanda() {
-  LoadOptions o;
-  o.packageRoots = {sharedDir() + "/robots/panda"};
-  o.useRosPackagePath = false;
-  return RobotModel::fromUrdfFile(
-      sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf", o);
-}
 
 RobotModel loadUr5() {
   LoadOptions o;
