@@ -292,6 +292,17 @@ class World {
   /// The obstacle as given (pose updated by setObstaclePose).
   Obstacle obstacle(int id) const;
 
+  /// The convex pieces the queries use for robot link `link`, in the link frame (X_LP); empty for
+  /// a link without geometry. For display and export (html_view.h). Defined in world_pieces.cpp.
+  std::vector<robots::CollisionPiece> linkPieces(int link) const;
+  /// A scene or obstacle piece as the queries use it: X_LP is its pose in the world.
+  struct WorldPieceRef {
+    BodyRef body;
+    robots::CollisionPiece piece;
+  };
+  /// Every scene piece kept by the reach filter and every obstacle piece, posed in the world.
+  std::vector<WorldPieceRef> worldPieces() const;
+
   /// Self pairs checked, as (link, link) with the first index smaller.
   std::vector<std::pair<int, int>> allowedSelfPairs() const;
   /// The name of a body ("scene/<link>", "obstacle/<name>" or the link name).
