@@ -17,10 +17,10 @@
 // one error line naming the line, and exit status 1.
 
 #include "common.h"
+#include "load_world.h"
 #include "subcommands.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include <Eigen/Geometry>
@@ -56,23 +56,6 @@ constexpr const char* kUsage =
     "                      also read)\n"
     "  --gradient          append the gradient of sd with respect to the joint values\n";
 
-/// The configurations of stdin; throws InputError naming the line.
-std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot) {
-  std::vector<Eigen::VectorXd> out;
-  int lineNumber = 0;
-  InputLine line;
-  while (nextInputLine(in, lineNumber, line)) {
-    Eigen::VectorXd q(static_cast<Eigen::Index>(line.tokens.size()));
-    for (Eigen::Index v = 0; v < q.size(); ++v) q[v] = parseNumber(line, line.tokens[static_cast<std::size_t>(v)]);
-    if (q.size() != robot.numVariables()) {
-      failAt(line, std::to_string(q.size()) + " values, robot '" + robot.name() + "' has " +
-                       std::to_string(robot.numVariables()) + " variables");
-    }
-    out.push_back(std::move(q));
-  }
-  return out;
-}
-
 int run(std::vector<std::string> args) {
   const bool gradient = takeFlag(args, "--gradient");
   const PackagePaths paths = takePackagePaths(args);
@@ -83,23 +66,7 @@ int run(std::vector<std::string> args) {
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "'");
 
-  robots::LoadOptions load;
-  load.packageRoots = paths.commandLine;
-  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(robotPath, load);
-  checker::WorldOptions options;
-  if (!srdf.empty()) {
-    options.disabledPairs = robots::readSrdfDisabledPairs(srdf);
-    robots::checkDisabledPairs(robot, options.disabledPairs, srdf);
-  }
-  checker::World world(std::move(robot), options);
-  for (const SceneArg& s : scenes) {
-    robots::RobotModel scene = robots::RobotModel::fromUrdfFile(s.path, load);
-    if (s.posed) {
-      world.addScene(std::move(scene), s.X_WS);
-    } else {
-      world.addScene(std::move(scene));
-    }
-  }
+  checker::World world = loadWorld(robotPath, scenes, srdf, paths);
   const std::vector<Eigen::VectorXd> configurations = readConfigurations(std::cin, world.robot());
   std::fputs(world.summary().c_str(), stderr);
 

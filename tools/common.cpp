@@ -85,6 +85,26 @@ std::uint64_t parseCount(const std::string& text, const std::string& option, std
   return value;
 }
 
+std::vector<double> takeVector(std::vector<std::string>& args, const std::string& name) {
+  std::vector<std::string> rest;
+  std::vector<double> values;
+  bool seen = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] != name) {
+      rest.push_back(args[i]);
+      continue;
+    }
+    if (seen) throw UsageError("option " + name + " given more than once");
+    seen = true;
+    while (i + 1 < args.size() && args[i + 1].compare(0, 2, "--") != 0) {
+      values.push_back(parseValue(args[++i], name));
+    }
+    if (values.empty()) throw UsageError("option " + name + " needs the joint values");
+  }
+  args = std::move(rest);
+  return values;
+}
+
 void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::vector<SceneArg>& scenes,
                       std::string& srdf) {
   std::vector<std::string> rest;

@@ -67,6 +67,10 @@ double parseValue(const std::string& text, const std::string& what);
 /// text.
 std::uint64_t parseCount(const std::string& text, const std::string& option, std::uint64_t min, std::uint64_t max);
 
+/// Removes `name v1 v2 ...` from `args`: the values up to the next `--option` (negative numbers
+/// are values). Empty when absent; UsageError when given twice or without values.
+std::vector<double> takeVector(std::vector<std::string>& args, const std::string& name);
+
 /// Removes --robot (required), --scene (each optionally followed by --scene-pose) and --srdf from
 /// `args`, in command-line order. Throws UsageError for a missing or repeated value.
 void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::vector<SceneArg>& scenes,

@@ -20,6 +20,7 @@ const Subcommand* const kSubcommands[] = {
     &deepcheck::tools::kCheckCommand,
     &deepcheck::tools::kDecomposeCommand,
     &deepcheck::tools::kPlanCommand,
+    &deepcheck::tools::kViewCommand,
 };
 
 void printUsage(std::FILE* out) {

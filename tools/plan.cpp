@@ -70,28 +70,6 @@ constexpr const char* kUsage =
     "                      each run)\n"
     "  --out FILE          where to write the path (required)\n";
 
-/// Removes `name v1 v2 ...` from args: the values up to the next `--option` (negative numbers are
-/// values). Empty when absent; UsageError when given twice or without values.
-std::vector<double> takeVector(std::vector<std::string>& args, const std::string& name) {
-  std::vector<std::string> rest;
-  std::vector<double> values;
-  bool seen = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] != name) {
-      rest.push_back(args[i]);
-      continue;
-    }
-    if (seen) throw UsageError("option " + name + " given more than once");
-    seen = true;
-    while (i + 1 < args.size() && args[i + 1].compare(0, 2, "--") != 0) {
-      values.push_back(parseValue(args[++i], name));
-    }
-    if (values.empty()) throw UsageError("option " + name + " needs the joint values");
-  }
-  args = std::move(rest);
-  return values;
-}
-
 Eigen::VectorXd toVector(const std::vector<double>& values) {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }

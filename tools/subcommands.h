@@ -22,5 +22,6 @@ extern const Subcommand kInfoCommand;  // info.cpp
 extern const Subcommand kCheckCommand;  // check.cpp
 extern const Subcommand kDecomposeCommand;  // decompose.cpp
 extern const Subcommand kPlanCommand;  // plan.cpp
+extern const Subcommand kViewCommand;  // view.cpp
 
 }  // namespace deepcheck::tools

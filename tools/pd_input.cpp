@@ -1,0 +1,126 @@
+#include "pd_input.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace deepcheck::tools {
+namespace {
+
+using deep::ConvexPolytope;
+
+/// Quaternions are taken as given, not silently repaired: one whose norm differs from 1 by more
+/// than this is an input error. Within it (printed values carry a few digits) it is normalized so
+/// that the pose is a rotation to round-off.
+constexpr double kQuaternionNormTolerance = 1e-6;
+
+int parsePointCount(const InputLine& line, const std::string& token) {
+  const bool digits = !token.empty() && token.size() <= 9 &&
+                      token.find_first_not_of("0123456789") == std::string::npos;
+  const int n = digits ? std::atoi(token.c_str()) : 0;
+  if (n < 1) failAt(line, "the point count '" + token + "' is not a positive integer");
+  return n;
+}
+
+Eigen::Isometry3d parsePose(const InputLine& line, std::size_t first, const std::string& which) {
+  double v[7];
+  for (int i = 0; i < 7; ++i) v[i] = parseNumber(line, line.tokens[first + i]);
+  Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+  const double norm = q.norm();
+  if (!(std::abs(norm - 1.0) <= kQuaternionNormTolerance)) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", norm);
+    failAt(line, "the quaternion of " + which + " has norm " + buf +
+                   " (must be 1 within 1e-6; quaternions are not normalized for you)");
+  }
+  q.coeffs() /= norm;
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = q.toRotationMatrix();
+  X.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+  return X;
+}
+
+int shapeIndex(const PdInput& input, const InputLine& line, const std::string& id) {
+  const auto it = input.ids.find(id);
+  if (it == input.ids.end()) failAt(line, "unknown shape id '" + id + "'");
+  return it->second;
+}
+
+}  // namespace
+
+PdInput readPdInput(std::istream& in) {
+  PdInput input;
+  int lineNumber = 0;
+  InputLine line;
+  bool pending = nextInputLine(in, lineNumber, line);
+  while (pending) {
+    const std::string& keyword = line.tokens[0];
+    if (keyword == "shape") {
+      if (line.tokens.size() != 3) failAt(line, "expected 'shape <id> <n>'");
+      const InputLine header = line;
+      const std::string id = header.tokens[1];
+      const int n = parsePointCount(header, header.tokens[2]);
+      if (const auto it = input.ids.find(id); it != input.ids.end()) {
+        failAt(header, "duplicate shape id '" + id + "' (first defined on line " +
+                         std::to_string(input.shapes[static_cast<std::size_t>(it->second)].line) +
+                         ")");
+      }
+      std::vector<Eigen::Vector3d> points;
+      // A bad count must not allocate a huge buffer up front; the vector grows as points come.
+      points.reserve(static_cast<std::size_t>(std::min(n, 1 << 16)));
+      pending = nextInputLine(in, lineNumber, line);
+      while (static_cast<int>(points.size()) < n) {
+        if (!pending) {
+          failAt(header, "shape '" + id + "' declares " + std::to_string(n) +
+                           " points but the input ends after " + std::to_string(points.size()));
+        }
+        if (line.tokens[0] == "shape" || line.tokens[0] == "query") {
+          failAt(line, "shape '" + id + "' (line " + std::to_string(header.number) + ") declares " +
+                         std::to_string(n) + " points but only " + std::to_string(points.size()) +
+                         " precede this line");
+        }
+        if (line.tokens.size() != 3) {
+          failAt(line, "expected a point '<x> <y> <z>' (point " + std::to_string(points.size() + 1) +
+                         " of " + std::to_string(n) + " of shape '" + id + "')");
+        }
+        points.emplace_back(parseNumber(line, line.tokens[0]), parseNumber(line, line.tokens[1]),
+                            parseNumber(line, line.tokens[2]));
+        pending = nextInputLine(in, lineNumber, line);
+      }
+      try {
+        input.shapes.push_back({ConvexPolytope::fromPoints(points, "shape '" + id + "'"),
+                                header.number});
+      } catch (const std::exception& e) {
+        failAt(header, "cannot build the hull of shape '" + id + "': " + e.what());
+      }
+      input.ids.emplace(id, static_cast<int>(input.shapes.size()) - 1);
+      continue;  // `line` already holds the next line
+    }
+    if (keyword == "query") {
+      if (line.tokens.size() != 17) {
+        failAt(line, "expected 'query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> "
+                   "<qw> <qx> <qy> <qz>' (17 fields, got " +
+                       std::to_string(line.tokens.size()) + ")");
+      }
+      PdQuery q;
+      q.line = line.number;
+      q.a = shapeIndex(input, line, line.tokens[1]);
+      q.X_WA = parsePose(line, 2, "A (shape '" + line.tokens[1] + "')");
+      q.b = shapeIndex(input, line, line.tokens[9]);
+      q.X_WB = parsePose(line, 10, "B (shape '" + line.tokens[9] + "')");
+      input.queries.push_back(q);
+    } else {
+      failAt(line, "unknown keyword '" + keyword + "' (expected 'shape' or 'query')");
+    }
+    pending = nextInputLine(in, lineNumber, line);
+  }
+  return input;
+}
+
+}  // namespace deepcheck::tools
