@@ -2,9 +2,10 @@
 // What the examples share, so that each of them stays about its own point: the report every one
 // prints after planning (planner, time, path length, minimum clearance along the path — signed
 // distance, metres, checked every 0.002 rad of joint motion; overall and to the scene alone — and
-// where the path went), the bundled arm's setup as example_plan_shelf makes it, and the
-// plan-shortcut-certify sequence.
+// where the path went, with a page next to it to look at it: checker/html_view.h), the bundled
+// arm's setup as example_plan_shelf makes it, and the plan-shortcut-certify sequence.
 
+#include <deepcheck/checker/html_view.h>
 #include <deepcheck/planners/path_tools.h>
 #include <deepcheck/planners/setup.h>
 
@@ -19,7 +20,16 @@
 
 namespace example {
 
-/// Prints the report for the solution of `ss` and writes its path to `file`.
+/// `file` with its extension replaced by ".html" (shelf_path.txt -> shelf_path.html).
+inline std::string viewFileOf(const std::string& file) {
+  const std::size_t dot = file.find_last_of('.');
+  const std::size_t slash = file.find_last_of('/');
+  const bool hasExtension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (hasExtension ? file.substr(0, dot) : file) + ".html";
+}
+
+/// Prints the report for the solution of `ss`, writes its path to `file` and, next to it, the
+/// page that shows it (the robot along the path, the closest pair and clearance per frame).
 inline void reportAndWrite(const ompl::geometric::SimpleSetup& ss, const std::string& file) {
   const auto checker = deepcheck::planners::validityCheckerOf(ss);
   const ompl::geometric::PathGeometric& path = ss.getSolutionPath();
@@ -33,12 +43,17 @@ inline void reportAndWrite(const ompl::geometric::SimpleSetup& ss, const std::st
     return std::min(d.world, d.self);
   });
   deepcheck::planners::writePath(path, file);
+  deepcheck::checker::WorldViewOptions view;
+  view.title = "deepcheck example: " + file;
+  const std::string viewFile = viewFileOf(file);
+  deepcheck::checker::writeHtmlView(checker->world(), deepcheck::planners::pathConfigurations(path), viewFile, view);
   std::printf("planner          %s\n", ss.getPlanner()->getName().c_str());
   std::printf("time             %.3f s\n", ss.getLastPlanComputationTime());
   std::printf("waypoints        %zu\n", path.getStateCount());
   std::printf("path length      %.3f rad\n", path.length());
   std::printf("min clearance    %.4f m (to the scene %.4f m)\n", clearance, sceneClearance);
   std::printf("path written to  %s\n", file.c_str());
+  std::printf("view written to  %s (open it in a browser)\n", viewFile.c_str());
 }
 
 /// The bundled arm (its SRDF's disabled self pairs) in robots/data/scenes/<scene>.urdf, as

@@ -33,6 +33,7 @@
 
   const LAYER_COLOURS = { robot: 0xd9a45b, scene: 0x8fa3b8, obstacle: 0xb86f5e, 'shape A': 0x4a90d9,
     'shape B': 0xe0a030, answer: 0x3fae49, mesh: 0xb5b5b5 };
+  const SHAPE_OPACITY = { scene: 0.55, obstacle: 0.7, answer: 0.35 };
   const colourOf = (layer) => (layer in LAYER_COLOURS ? LAYER_COLOURS[layer] : 0xa0a0a0);
 
   // --- three.js scene -------------------------------------------------------------------------
@@ -73,9 +74,11 @@
 
   function shapesObject(body) {
     const group = new THREE.Group();
+    // Scenes and answers see-through: the robot inside a shelf stays visible.
+    const opacity = SHAPE_OPACITY[body.layer] || 1;
     const material = new THREE.MeshStandardMaterial({ color: colourOf(body.layer), roughness: 0.75,
-      metalness: 0.05, flatShading: true, side: THREE.DoubleSide, transparent: body.layer === 'answer',
-      opacity: body.layer === 'answer' ? 0.35 : 1 });
+      metalness: 0.05, flatShading: true, side: THREE.DoubleSide, transparent: opacity < 1, opacity: opacity,
+      depthWrite: opacity === 1 });
     for (const shape of body.shapes) {
       const mesh = new THREE.Mesh(primitiveGeometry(shape), material);
       setPose(mesh, shape.pose, 0);
@@ -100,7 +103,7 @@
     g.setAttribute('color', new THREE.BufferAttribute(colours, 3));
     g.setIndex(new THREE.BufferAttribute(u32(pieces.edges), 1));
     const material = new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors, transparent: true,
-      opacity: 0.75, depthTest: false });
+      opacity: 0.6, depthTest: false });
     const lines = new THREE.LineSegments(g, material);
     lines.renderOrder = 1;  // drawn over the shaded shapes they wrap
     group.add(lines);
@@ -143,6 +146,7 @@
   }
 
   // --- contact: witness points and the signed-distance arrow -------------------------------------
+  scene.updateMatrixWorld(true);
   const bounds = new THREE.Box3();
   for (const b of bodies) bounds.expandByObject(b.object);
   if (bounds.isEmpty()) bounds.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
@@ -352,8 +356,15 @@
     const list = document.getElementById('bodies');
     for (const b of bodies) checkbox(list, b.data.name, b.on, (on) => { b.on = on; });
     if (data.caption) {
+      // The first line always shown, the rest on demand.
       const caption = document.getElementById('caption');
-      caption.textContent = data.caption;
+      const lines = data.caption.replace(/\n+$/, '').split('\n');
+      const details = document.createElement('details');
+      const summary = document.createElement('summary');
+      summary.textContent = lines[0];
+      details.append(summary, lines.slice(1).join('\n'));
+      details.open = lines.length <= 4;
+      caption.appendChild(details);
       caption.hidden = false;
     }
     if (frames.count < 2) document.body.classList.add('single-frame');
@@ -362,9 +373,10 @@
   // --- camera, rendering, start-up -----------------------------------------------------------------------
   const controls = new THREE.OrbitControls(camera, renderer.domElement);
   controls.target.copy(center);
-  camera.position.copy(center).add(new THREE.Vector3(1.1, -1.5, 0.9).multiplyScalar(size * 0.75));
+  camera.position.copy(center).add(new THREE.Vector3(1.1, -1.5, 0.9).multiplyScalar(size * 0.6));
   camera.near = size * 0.002;
   camera.far = size * 50;
+  controls.update();
   controls.addEventListener('change', () => render());
 
   function resize() {

@@ -1,0 +1,66 @@
+# The viewer in a real browser: headless Chromium, no network, loads the shelf demo's page from
+# disk at its first and last frame. Checks that the page reports it is ready, that no script error
+# was recorded, that the image is not blank (luminance variance measured by the page on its own
+# drawing buffer) and that both the image and the screenshot change between the two frames.
+#   cmake -DTOOL=deepcheck -DCHROMIUM=chromium -DDATA=robots/data -DPATH_FILE=path.txt -DWORK=dir
+#         -P browser_test.cmake
+# Prints "skipped: ..." and succeeds when no browser was found (ctest reports it as skipped).
+if(NOT CHROMIUM OR NOT EXISTS "${CHROMIUM}")
+  message("skipped: no Chromium found (install Debian's chromium or chromium-headless-shell)")
+  return()
+endif()
+# A blank page has variance 0; the demo's image is measured far above this.
+set(min_variance 50)
+
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+set(page "${WORK}/demo.html")
+execute_process(
+  COMMAND "${TOOL}" view --robot "${DATA}/deepcheck_arm/urdf/deepcheck_arm.urdf"
+          --srdf "${DATA}/deepcheck_arm/srdf/deepcheck_arm.srdf" --scene "${DATA}/scenes/shelf.urdf"
+          --package-path "${DATA}" --path "${PATH_FILE}" --out "${page}"
+  RESULT_VARIABLE status ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "deepcheck view failed (${status}): ${err}")
+endif()
+
+# Every request outside the page fails: no proxy reachable, no name resolves.
+set(browser "${CHROMIUM}" --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader
+    --window-size=1200,800 --proxy-server=127.0.0.1:9 "--host-resolver-rules=MAP * ~NOTFOUND"
+    --no-first-run --disable-extensions "--user-data-dir=${WORK}/profile")
+
+foreach(frame 0 end)
+  execute_process(COMMAND ${browser} --dump-dom "file://${page}#t=${frame},probe"
+                  OUTPUT_VARIABLE dom ERROR_VARIABLE log RESULT_VARIABLE status TIMEOUT 180)
+  string(REGEX MATCH "<html[^>]*>" root "${dom}")
+  if(NOT status EQUAL 0 OR NOT root MATCHES "data-ready=\"1\"")
+    message(FATAL_ERROR "#t=${frame}: the page did not report ready (status ${status}): ${root}\n${log}")
+  endif()
+  if(root MATCHES "data-error=\"([^\"]*)\"")
+    message(FATAL_ERROR "#t=${frame}: script error: ${CMAKE_MATCH_1}")
+  endif()
+  string(REGEX MATCH "data-pixel-variance=\"([0-9.]+)\"" _ "${root}")
+  set(variance "${CMAKE_MATCH_1}")
+  string(REGEX MATCH "data-pixel-hash=\"([0-9a-f]+)\"" _ "${root}")
+  set(hash_${frame} "${CMAKE_MATCH_1}")
+  if(variance STREQUAL "" OR variance LESS min_variance)
+    message(FATAL_ERROR "#t=${frame}: the image looks blank (luminance variance '${variance}' < ${min_variance})")
+  endif()
+  message("#t=${frame}: ready, no script error, luminance variance ${variance}, image hash ${hash_${frame}}")
+
+  set(png "${WORK}/frame_${frame}.png")
+  execute_process(COMMAND ${browser} "--screenshot=${png}" "file://${page}#t=${frame}"
+                  OUTPUT_QUIET ERROR_VARIABLE log RESULT_VARIABLE status TIMEOUT 180)
+  if(NOT status EQUAL 0 OR NOT EXISTS "${png}")
+    message(FATAL_ERROR "#t=${frame}: no screenshot (status ${status})\n${log}")
+  endif()
+  file(SHA256 "${png}" png_${frame})
+endforeach()
+
+if(hash_0 STREQUAL hash_end)
+  message(FATAL_ERROR "the image is the same at the first and the last frame (hash ${hash_0})")
+endif()
+if(png_0 STREQUAL png_end)
+  message(FATAL_ERROR "the screenshots of the first and the last frame are identical")
+endif()
+message("first and last frame differ (images and screenshots)")
