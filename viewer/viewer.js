@@ -157,15 +157,36 @@
   grid.rotateX(Math.PI / 2);  // the xy plane (z up)
   scene.add(grid);
 
+  /// An arrow of solid meshes (lines are one pixel wide): a shaft and a cone along +y, scaled by place().
+  function makeArrow() {
+    const material = new THREE.MeshBasicMaterial({ color: 0x22aa22, depthTest: false, transparent: true });
+    const shaft = new THREE.Mesh(new THREE.CylinderBufferGeometry(1, 1, 1, 12), material);
+    const head = new THREE.Mesh(new THREE.ConeBufferGeometry(1, 1, 16), material);
+    const object = new THREE.Group();
+    object.add(shaft, head);
+    const up = new THREE.Vector3(0, 1, 0);
+    function place(origin, direction, length) {
+      const headLength = Math.min(0.4 * length, size * 0.025);
+      const radius = size * 0.002;
+      object.position.copy(origin);
+      object.quaternion.setFromUnitVectors(up, direction);
+      shaft.scale.set(radius, length - headLength, radius);
+      shaft.position.set(0, (length - headLength) / 2, 0);
+      head.scale.set(2.5 * radius, headLength, 2.5 * radius);
+      head.position.set(0, length - headLength / 2, 0);
+    }
+    return { object: object, material: material, place: place };
+  }
+
   const contact = (function () {
     const group = new THREE.Group();
-    const marker = new THREE.SphereBufferGeometry(size * 0.006, 16, 8);
-    const pointA = new THREE.Mesh(marker, new THREE.MeshBasicMaterial({ color: 0x1a3cc8, depthTest: false }));
-    const pointB = new THREE.Mesh(marker, new THREE.MeshBasicMaterial({ color: 0xc81a9c, depthTest: false }));
-    const arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, 0x22aa22);
-    for (const o of [pointA, pointB]) o.renderOrder = 2;
-    arrow.traverse((o) => { o.renderOrder = 2; if (o.material) o.material.depthTest = false; });
-    group.add(pointA, pointB, arrow);
+    const marker = new THREE.SphereBufferGeometry(size * 0.0035, 16, 8);
+    const pointA = new THREE.Mesh(marker, new THREE.MeshBasicMaterial({ color: 0x1a3cc8, depthTest: false, transparent: true }));
+    const pointB = new THREE.Mesh(marker, new THREE.MeshBasicMaterial({ color: 0xc81a9c, depthTest: false, transparent: true }));
+    const arrow = makeArrow();
+    // Drawn last, over everything (transparent objects are drawn after opaque ones).
+    for (const o of [pointA, pointB, arrow.object]) o.traverse((x) => { x.renderOrder = 2; });
+    group.add(pointA, pointB, arrow.object);
     scene.add(group);
     return { group: group, pointA: pointA, pointB: pointB, arrow: arrow, present: false };
   })();
@@ -184,12 +205,9 @@
     // distance > 0: from A's witness to B's; penetration: depth x normal from B's witness to A's
     // (the translation of B that separates the pair). Both point along the normal.
     const length = Math.abs(d);
-    contact.arrow.visible = length > 1e-9;
-    contact.arrow.position.copy(d >= 0 ? a : b);
-    contact.arrow.setDirection(n);
-    const head = Math.min(0.3 * length, size * 0.03);
-    contact.arrow.setLength(Math.max(length, 1e-9), head, head * 0.6);
-    contact.arrow.setColor(new THREE.Color(d >= 0 ? 0x22aa22 : 0xdd2222));
+    contact.arrow.object.visible = length > 1e-9;
+    if (length > 1e-9) contact.arrow.place(d >= 0 ? a : b, n.normalize(), length);
+    contact.arrow.material.color.set(d >= 0 ? 0x22aa22 : 0xee1111);
   }
 
   // --- frames --------------------------------------------------------------------------------------
@@ -373,7 +391,7 @@
   // --- camera, rendering, start-up -----------------------------------------------------------------------
   const controls = new THREE.OrbitControls(camera, renderer.domElement);
   controls.target.copy(center);
-  camera.position.copy(center).add(new THREE.Vector3(1.1, -1.5, 0.9).multiplyScalar(size * 0.6));
+  camera.position.copy(center).add(new THREE.Vector3(-0.9, -1.5, 0.8).multiplyScalar(size * 0.55));
   camera.near = size * 0.002;
   camera.far = size * 50;
   controls.update();
