@@ -2,8 +2,11 @@
 # Size and load time of the viewer's page for a 20-variable robot with 500 pieces along a
 # 1,000-waypoint path (bench/view_bench.cpp writes it). The load time is the page's own
 # data-load-ms: milliseconds from navigation start until the first image is drawn, in headless
-# Chromium with software WebGL (SwiftShader), read with --dump-dom; RUNS loads, each printed.
-#   bench/run_view_bench.sh BUILD_DIR [RUNS]
+# Chromium with software WebGL (SwiftShader), read with --dump-dom; frame_ms is the page's
+# data-frame-ms: the mean time to show one frame (poses, contact, plot, render) over all frames.
+# The same for the shelf demo's page (tests/viewer/shelf_demo_path.txt: 68 frames), for scale.
+# RUNS loads of each, each printed.
+#   bench/run_view_bench.sh BUILD_DIR [RUNS]      (from the repository root)
 set -eu
 build=${1:?usage: run_view_bench.sh BUILD_DIR [RUNS]}
 runs=${2:-5}
@@ -15,12 +18,20 @@ if [ -z "$browser" ]; then
   echo "no Chromium: load time not measured" >&2
   exit 1
 fi
-echo "run load_ms"
-i=1
-while [ "$i" -le "$runs" ]; do
-  ms=$("$browser" --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader \
-        --window-size=1280,800 --user-data-dir="$out/profile" --dump-dom "file://$out/bench.html" 2>/dev/null |
-       sed -n 's/.*data-load-ms="\([0-9]*\)".*/\1/p' | head -n 1)
-  echo "$i ${ms:-failed}"
-  i=$((i + 1))
+data=robots/data
+"$build/tools/deepcheck" view --robot "$data/deepcheck_arm/urdf/deepcheck_arm.urdf" \
+  --srdf "$data/deepcheck_arm/srdf/deepcheck_arm.srdf" --scene "$data/scenes/shelf.urdf" --package-path "$data" \
+  --path tests/viewer/shelf_demo_path.txt --out "$out/demo.html" 2>/dev/null
+echo "page bytes run load_ms frame_ms"
+for page in bench demo; do
+  i=1
+  while [ "$i" -le "$runs" ]; do
+    root=$("$browser" --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader \
+            --window-size=1280,800 --user-data-dir="$out/profile" --dump-dom "file://$out/$page.html#timing" \
+            2>/dev/null | grep -o '<html[^>]*>' | head -n 1)
+    load=$(echo "$root" | sed -n 's/.*data-load-ms="\([0-9]*\)".*/\1/p')
+    frame=$(echo "$root" | sed -n 's/.*data-frame-ms="\([0-9.]*\)".*/\1/p')
+    echo "$page $(wc -c < "$out/$page.html") $i ${load:-failed} ${frame:-failed}"
+    i=$((i + 1))
+  done
 done

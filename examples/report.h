@@ -44,7 +44,7 @@ inline void reportAndWrite(const ompl::geometric::SimpleSetup& ss, const std::st
   });
   deepcheck::planners::writePath(path, file);
   deepcheck::checker::WorldViewOptions view;
-  view.title = "deepcheck example: " + file;
+  view.title = "deepcheck example: " + file.substr(file.find_last_of('/') + 1);
   const std::string viewFile = viewFileOf(file);
   deepcheck::checker::writeHtmlView(checker->world(), deepcheck::planners::pathConfigurations(path), viewFile, view);
   std::printf("planner          %s\n", ss.getPlanner()->getName().c_str());

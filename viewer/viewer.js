@@ -8,7 +8,9 @@
 //             ("1"/"0" per frame), value f64 (plotted), labels[], contact {has, distance f64,
 //             points f32 (pointA, pointB, normal per frame), names [A, B per frame]}.
 // URL hash: #t=N | #t=end selects the frame; "probe" adds pixel statistics of the first image
-// (data-pixel-variance, data-pixel-hash on <html>) for the browser test. When the first image is
+// (data-pixel-variance, data-pixel-hash on <html>) for the browser test; "timing" shows up to 60
+// frames and sets data-frame-ms (for the benchmark); "antialias" multisamples even in software
+// WebGL (for screenshots). When the first image is
 // drawn <html> gets data-ready="1" and data-load-ms (time since navigation start).
 (function () {
   'use strict';
@@ -38,7 +40,15 @@
 
   // --- three.js scene -------------------------------------------------------------------------
   const container = document.getElementById('view');
-  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  // Multisampling costs 4x in software WebGL (SwiftShader, llvmpipe: headless browsers, virtual
+  // machines) and nearly nothing on a GPU.
+  function softwareWebGl() {
+    const gl = document.createElement('canvas').getContext('webgl');
+    const info = gl && gl.getExtension('WEBGL_debug_renderer_info');
+    return /swiftshader|llvmpipe|software/i.test(info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : '');
+  }
+  const antialias = /antialias/.test(window.location.hash) || !softwareWebGl();
+  const renderer = new THREE.WebGLRenderer({ antialias: antialias, preserveDrawingBuffer: true });
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setClearColor(0xf4f5f7);
   container.appendChild(renderer.domElement);
@@ -438,11 +448,26 @@
     document.documentElement.setAttribute('data-pixel-hash', hash.toString(16));
   }
 
+  /// Mean milliseconds to show a frame (poses, contact, plot, render), over up to 60 frames spread
+  /// along the path, on <html> data-frame-ms (for bench/run_view_bench.sh).
+  function timeFrames() {
+    const shown = Math.min(frames.count, 60);
+    const start = performance.now();
+    for (let i = 0; i < shown; ++i) {
+      showFrame(Math.round(i * (frames.count - 1) / Math.max(1, shown - 1)));
+    }
+    const gl = renderer.getContext();
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // waits for the drawing
+    const ms = (performance.now() - start) / shown;
+    document.documentElement.setAttribute('data-frame-ms', ms.toFixed(2));
+  }
+
   buildPanel();
   camera.updateProjectionMatrix();
   resize();
   showFrame(frameFromHash());
   if (/probe/.test(window.location.hash)) probePixels();
   document.documentElement.setAttribute('data-load-ms', performance.now().toFixed(0));
+  if (/timing/.test(window.location.hash)) timeFrames();
   document.documentElement.setAttribute('data-ready', '1');
 })();
