@@ -129,14 +129,7 @@ Densified densify(const std::vector<Eigen::VectorXd>& path, double maxStep, int 
 }
 
 ViewContact contactOf(const Contact& c) {
-  ViewContact v;
-  v.distance = c.distance;
-  v.pointA = c.pointA;
-  v.pointB = c.pointB;
-  v.normal = c.normal;
-  v.nameA = c.nameA;
-  v.nameB = c.nameB;
-  return v;
+  return ViewContact{c.distance, c.pointA, c.pointB, c.normal, c.nameA, c.nameB};
 }
 
 }  // namespace
