@@ -1,5 +1,5 @@
 // checker_bench: speed and agreement of the collision world (deepcheck::checker) against the FCL
-// mesh backend (checker/fcl_backend.h) on the same worlds:
+// mesh backend (fcl_reference/fcl_backend.h) on the same worlds:
 //   - Panda (../shared) in the bundled shelf scene (robots/data/scenes/shelf.urdf),
 //   - Panda in the MotionBenchMaker kitchen (../shared/scenes),
 //   - the bundled arm in the bundled shelf (runs without ../shared).
@@ -24,7 +24,8 @@
 //               steady load for `perf record`);
 //   --world W   only the world named W (panda-shelf, panda-kitchen, arm-shelf).
 
-#include "deepcheck/checker/fcl_backend.h"
+#include "deepcheck/fcl_reference/fcl_backend.h"
+#include "deepcheck/fcl_reference/fcl_broad_phase.h"
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/pair_filter.h"
@@ -199,7 +200,7 @@ void runWorld(const WorldSpec& spec, const RunOptions& run) {
   checker::World world(robot, options);
   world.addScene(robots::RobotModel::fromUrdfFile(spec.scene, load));
   const double loadSeconds = std::chrono::duration<double>(Clock::now() - tLoad).count();
-  checker::FclWorld fcl(world);
+  fcl_reference::FclWorld fcl(world);
   std::printf("\n== %s  (world loaded in %.2f s, decomposition cache included)\n%s", spec.name.c_str(), loadSeconds,
               world.summary().c_str());
 
@@ -270,6 +271,7 @@ void runWorld(const WorldSpec& spec, const RunOptions& run) {
     addTimes(spec.name, "distance", setName, "fcl-mesh (no depth)", theirs);
   }
   // Broad phases (isFree, random set).
+  fcl_reference::enableFclBroadPhase();
   for (checker::BroadPhase b : {checker::BroadPhase::AabbTree, checker::BroadPhase::FclTree, checker::BroadPhase::None}) {
     checker::WorldOptions o = options;
     o.broadPhase = b;

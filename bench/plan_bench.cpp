@@ -46,7 +46,7 @@
 //   --certify DIR  for each rejected path in DIR: certifyPath (setup.h) on our setup, then the
 //                  fine FCL check again; writes DIR/plan_bench_certify.md.
 
-#include "deepcheck/planners/fcl_validity_checker.h"
+#include "deepcheck/fcl_reference/fcl_validity_checker.h"
 #include "deepcheck/planners/path_tools.h"
 #include "deepcheck/planners/planner_factory.h"
 #include "deepcheck/planners/setup.h"
@@ -90,6 +90,7 @@ namespace ob = ompl::base;
 namespace og = ompl::geometric;
 namespace ot = ompl::tools;
 namespace dp = deepcheck::planners;
+using deepcheck::fcl_reference::FclStateValidityChecker;
 
 namespace {
 
@@ -246,11 +247,11 @@ struct ProgressPropertyStripper : ob::Planner {
 /// An OMPL SimpleSetup with the FCL checker on the same state space (bounds, names, segment
 /// fraction) as `ours`.
 std::shared_ptr<og::SimpleSetup> makeFclSetup(const og::SimpleSetup& ours, const deepcheck::checker::World& world,
-                                              std::shared_ptr<dp::FclStateValidityChecker>* checkerOut) {
+                                              std::shared_ptr<FclStateValidityChecker>* checkerOut) {
   auto space = dp::makeStateSpace(world.robot());
   space->setLongestValidSegmentFraction(ours.getStateSpace()->getLongestValidSegmentFraction());
   auto ss = std::make_shared<og::SimpleSetup>(space);
-  auto checker = std::make_shared<dp::FclStateValidityChecker>(ss->getSpaceInformation(), world);
+  auto checker = std::make_shared<FclStateValidityChecker>(ss->getSpaceInformation(), world);
   ss->setStateValidityChecker(checker);
   if (checkerOut != nullptr) *checkerOut = checker;
   return ss;
@@ -311,7 +312,7 @@ Row summarize(const std::vector<Record>& all, const std::string& problem, const 
 /// The first configuration found, from seeded random starts refined by damped least squares on
 /// the fingertip position (panda_hand origin + 0.1034 m along its z), within 1 cm of `target`, at
 /// least 2 cm from everything by our signed distance, and free for FCL. Finger at 0.035 m.
-Eigen::VectorXd pickEndpoint(const deepcheck::checker::World& world, dp::FclStateValidityChecker& fcl,
+Eigen::VectorXd pickEndpoint(const deepcheck::checker::World& world, FclStateValidityChecker& fcl,
                              const Eigen::Vector3d& target, std::mt19937& rng, int* attemptsOut) {
   const auto& model = world.robot();
   const int n = model.numVariables();
@@ -370,7 +371,7 @@ int pickPandaEndpoints() {
   for (const Target& t : targets) {
     auto world = dp::loadWorld(pandaUrdf(), t.scenes, pandaOptions());
     auto ss = dp::makeSimpleSetup(world);
-    std::shared_ptr<dp::FclStateValidityChecker> fcl;
+    std::shared_ptr<FclStateValidityChecker> fcl;
     auto fss = makeFclSetup(*ss, *world, &fcl);
     std::mt19937 rng(1);
     int a1 = 0, a2 = 0;
@@ -431,7 +432,7 @@ int certifyRejected(const std::string& dir) {
     auto ss = dp::makeSimpleSetup(world, problem->options);
     dp::setStartAndGoal(*ss, problem->start, problem->goal);
     ss->setup();
-    std::shared_ptr<dp::FclStateValidityChecker> fcl;
+    std::shared_ptr<FclStateValidityChecker> fcl;
     auto fss = makeFclSetup(*ss, *world, &fcl);
     og::PathGeometric path(ss->getSpaceInformation());
     std::ifstream in(file);
@@ -598,7 +599,7 @@ int main(int argc, char** argv) {
     auto ours = dp::makeSimpleSetup(world, problem.options);
     dp::setStartAndGoal(*ours, problem.start, problem.goal);
     const auto ourChecker = dp::validityCheckerOf(*ours);
-    std::shared_ptr<dp::FclStateValidityChecker> fclChecker;
+    std::shared_ptr<FclStateValidityChecker> fclChecker;
     auto fcl = makeFclSetup(*ours, *world, &fclChecker);
     setEndpoints(*fcl, problem.start, problem.goal);
     if (!std::dynamic_pointer_cast<ob::DiscreteMotionValidator>(ours->getSpaceInformation()->getMotionValidator())) {

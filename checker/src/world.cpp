@@ -3,7 +3,7 @@
 
 #include "deepcheck/checker/world.h"
 
-#include "fcl_broad_phase.h"
+#include "external_broad_phase.h"
 #include "world_internal.h"
 
 #include "deepcheck/deep/pair_frame.h"
@@ -288,9 +288,7 @@ void finishPieceSet(PieceSet& set, BroadPhase broadPhase) {
   boxes.reserve(set.pieces.size());
   for (const WorldPiece& p : set.pieces) boxes.push_back(p.box);
   set.tree = AabbTree(boxes);
-  if (broadPhase == BroadPhase::FclTree && !boxes.empty()) {
-    set.fclTree = std::make_shared<const detail::FclPieceTree>(boxes);
-  }
+  if (broadPhase == BroadPhase::FclTree) set.fclTree = detail::makeExternalPieceTree(broadPhase, boxes);
 }
 
 /// The scene pieces of `old` plus those of the new scene `scene` (index `sceneIndex`) that pass

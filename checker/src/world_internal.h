@@ -79,14 +79,14 @@ struct WorldBody {
   std::string name;
 };
 
-class FclPieceTree;  // fcl_broad_phase.h
+class ExternalPieceTree;  // external_broad_phase.h
 
 /// World pieces with their broad-phase structures; immutable once built.
 struct PieceSet {
   std::vector<WorldPiece> pieces;
   std::vector<WorldBody> bodies;
   AabbTree tree;
-  std::shared_ptr<const FclPieceTree> fclTree;  // only with BroadPhase::FclTree
+  std::shared_ptr<const ExternalPieceTree> fclTree;  // only with BroadPhase::FclTree
 };
 
 /// One scene as loaded.

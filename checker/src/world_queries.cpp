@@ -11,7 +11,7 @@
 
 #include "deepcheck/checker/world.h"
 
-#include "fcl_broad_phase.h"
+#include "external_broad_phase.h"
 #include "world_internal.h"
 
 #include "deepcheck/robots/kinematics.h"

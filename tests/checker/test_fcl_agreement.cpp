@@ -7,7 +7,7 @@
 
 #include "checker_test_util.h"
 
-#include "deepcheck/checker/fcl_backend.h"
+#include "deepcheck/fcl_reference/fcl_backend.h"
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/pair_filter.h"
 
@@ -41,7 +41,7 @@ struct Agreement {
 };
 
 Agreement compare(const World& world, int samples, unsigned seed, bool distances) {
-  FclWorld fcl(world);
+  fcl_reference::FclWorld fcl(world);
   auto context = world.makeContext();
   const double excess = 2 * world.summaryCounts().geometryExcess;  // both bodies of the pair
   BOOST_TEST_REQUIRE(!std::isnan(excess));
@@ -59,7 +59,7 @@ Agreement compare(const World& world, int samples, unsigned seed, bool distances
     }
     const bool checkDistance = distances && theirs && ours && a.distanceChecks < kMaxDistanceChecks;
     if (!checkDistance && theirs == ours) continue;
-    const FclDistanceResult reference = theirs ? fcl.distance(q) : FclDistanceResult{};
+    const fcl_reference::FclDistanceResult reference = theirs ? fcl.distance(q) : fcl_reference::FclDistanceResult{};
     if (theirs && !ours) {
       ++a.falseAlarms;
       a.worstFalseAlarm = std::max(a.worstFalseAlarm, reference.distance);

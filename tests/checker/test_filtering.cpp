@@ -3,7 +3,8 @@
 
 #include "checker_test_util.h"
 
-#include "deepcheck/checker/fcl_backend.h"
+#include "deepcheck/fcl_reference/fcl_backend.h"
+#include "deepcheck/fcl_reference/fcl_broad_phase.h"
 #include "deepcheck/checker/reach.h"
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/collision_geometry.h"
@@ -150,7 +151,7 @@ BOOST_AUTO_TEST_CASE(unreachable_scene_pieces_are_dropped) {
   BOOST_TEST(s.scenePiecesDropped == 2);
   BOOST_TEST(world.summary().find("dropped 2") != std::string::npos);
   // The FCL backend keeps every piece: it checks that dropping changed nothing.
-  FclWorld fcl(world);
+  fcl_reference::FclWorld fcl(world);
   BOOST_TEST(fcl.numWorldObjects() == 3);
   Eigen::VectorXd q(1);
   for (int k = 0; k < 80; ++k) {
@@ -205,6 +206,7 @@ BOOST_AUTO_TEST_CASE(reach_spheres_contain_every_reachable_point) {
 BOOST_AUTO_TEST_CASE(broad_phases_give_the_same_answers) {
   const robots::LoadOptions load = bundledLoadOptions();
   const std::string urdf = bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
+  fcl_reference::enableFclBroadPhase();
   const BroadPhase phases[] = {BroadPhase::AabbTree, BroadPhase::FclTree, BroadPhase::None};
   std::vector<World> worlds;
   for (BroadPhase b : phases) {

@@ -218,7 +218,8 @@ BOOST_AUTO_TEST_CASE(length_clearance_objective_is_length_plus_weighted_hinge) {
   BOOST_TEST(combined->motionCostHeuristic(a.get(), b.get()).value() == length);
 }
 
-BOOST_AUTO_TEST_CASE(maximize_min_clearance_objective_reads_our_clearance) {
+// Plans: labelled integration (tests/CMakeLists.txt).
+BOOST_AUTO_TEST_CASE(maximize_min_clearance_objective_reads_our_clearance, *boost::unit_test::label("integration")) {
   const auto world = bundledWorld("table");
   auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
   const auto objective = dp::makeMaxMinClearanceObjective(ss->getSpaceInformation());
@@ -241,7 +242,9 @@ BOOST_AUTO_TEST_CASE(maximize_min_clearance_objective_reads_our_clearance) {
   BOOST_TEST(cost <= smallest + 1e-12);  // the minimum over the waypoints and interpolated states
 }
 
-BOOST_AUTO_TEST_CASE(clearance_objective_keeps_rrt_star_paths_farther_from_obstacles_than_length_alone) {
+// Plans: labelled integration (tests/CMakeLists.txt).
+BOOST_AUTO_TEST_CASE(clearance_objective_keeps_rrt_star_paths_farther_from_obstacles_than_length_alone,
+                     *boost::unit_test::label("integration")) {
   // RRT* on the planar arm, 1,500 iterations, on the same five seeds with path length alone and
   // with path length + the clearance hinge (defaults: d_safe 5 cm, weight 100 / m). Length alone
   // grazes the pole (it even clips it between the discrete motion checks by up to ~1.5 mm); the

@@ -3,7 +3,7 @@
 
 #include "bundled.h"
 
-#include "deepcheck/planners/fcl_validity_checker.h"
+#include "deepcheck/fcl_reference/fcl_validity_checker.h"
 #include "deepcheck/planners/motion_validator.h"
 #include "deepcheck/planners/path_tools.h"
 #include "deepcheck/planners/planner_factory.h"
@@ -56,7 +56,7 @@ void verifyWithFcl(og::SimpleSetup& ss, const deepcheck::checker::World& world, 
   if (certificate.repaired) {
     BOOST_TEST_MESSAGE(what << ": certification repaired " << certificate.initial.invalidMotions << " motions");
   }
-  const dp::FclStateValidityChecker fcl(ss.getSpaceInformation(), world);
+  const deepcheck::fcl_reference::FclStateValidityChecker fcl(ss.getSpaceInformation(), world);
   const dp::PathCheck fine = dp::checkPathFine(path, [&](const Eigen::VectorXd& q) { return fcl.isFree(q); });
   BOOST_TEST(fine.valid, what << ": FCL finds " << fine.invalidWaypoints << " colliding waypoints and "
                               << fine.invalidMotions << " colliding motions among " << fine.statesChecked
@@ -68,7 +68,8 @@ void verifyWithFcl(og::SimpleSetup& ss, const deepcheck::checker::World& world, 
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(planning)
+// Planning runs: the ctest entry test_planners_integration (tests/CMakeLists.txt).
+BOOST_AUTO_TEST_SUITE(planning, *boost::unit_test::label("integration"))
 
 BOOST_AUTO_TEST_CASE(planner_names) {
   const auto world = bundledWorld("");
@@ -240,7 +241,7 @@ BOOST_AUTO_TEST_CASE(waypoints_after_tolerant_planning_and_smoothing_are_repaire
   tolerantOptions.validity.penetrationTolerance = 0.005;
   auto strict = dp::makeSimpleSetup(world, dp::test::bundledOptions());
   const ob::SpaceInformationPtr certifying = dp::certifyingSpaceInformation(*strict);
-  const dp::FclStateValidityChecker fcl(strict->getSpaceInformation(), *world);
+  const deepcheck::fcl_reference::FclStateValidityChecker fcl(strict->getSpaceInformation(), *world);
   int penetrating = 0;
   int repaired = 0;
   for (int run = 0; run < kRuns; ++run) {

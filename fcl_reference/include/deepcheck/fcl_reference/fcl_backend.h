@@ -25,10 +25,11 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <memory>
 #include <string>
 
-namespace deepcheck::checker {
+namespace deepcheck::fcl_reference {
 
 struct FclDistanceResult {
   /// Some allowed pair collides (FCL's boolean test); `distance` is then 0 and no pair is given.
@@ -43,7 +44,7 @@ class FclWorld {
  public:
   /// Loads the original meshes of every body of `world` (robot, scenes, obstacles as they are
   /// now). Throws std::invalid_argument naming the body when a mesh cannot be loaded.
-  explicit FclWorld(const World& world);
+  explicit FclWorld(const checker::World& world);
   ~FclWorld();
   FclWorld(FclWorld&&) noexcept;
   FclWorld& operator=(FclWorld&&) noexcept;
@@ -61,4 +62,4 @@ class FclWorld {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace deepcheck::checker
+}  // namespace deepcheck::fcl_reference

@@ -1,4 +1,4 @@
-#include "deepcheck/checker/fcl_backend.h"
+#include "deepcheck/fcl_reference/fcl_backend.h"
 
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/mesh_loader.h"
@@ -17,7 +17,7 @@
 #include <stdexcept>
 #include <tuple>
 
-namespace deepcheck::checker {
+namespace deepcheck::fcl_reference {
 namespace {
 
 using GeometryPtr = std::shared_ptr<fcl::CollisionGeometryd>;
@@ -131,7 +131,7 @@ bool distanceCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void
 
 }  // namespace
 
-FclWorld::FclWorld(const World& world) : impl_(std::make_unique<Impl>(world.robot())) {
+FclWorld::FclWorld(const checker::World& world) : impl_(std::make_unique<Impl>(world.robot())) {
   Impl& m = *impl_;
   std::map<MeshKey, GeometryPtr> meshes;
   m.linkObjects.assign(m.robot.numLinks(), {0, 0});
@@ -171,7 +171,7 @@ FclWorld::FclWorld(const World& world) : impl_(std::make_unique<Impl>(world.robo
     }
   }
   for (int id : world.obstacleIds()) {
-    const Obstacle o = world.obstacle(id);
+    const checker::Obstacle o = world.obstacle(id);
     addWorldObject(fclGeometry(o.geometry, o.mesh.get(), meshes, "obstacle '" + o.name + "'"), o.X_WO,
                    "obstacle/" + o.name);
   }
@@ -247,4 +247,4 @@ FclDistanceResult FclWorld::distance(const Eigen::Ref<const Eigen::VectorXd>& q)
   return out;
 }
 
-}  // namespace deepcheck::checker
+}  // namespace deepcheck::fcl_reference

@@ -1,5 +1,5 @@
 #pragma once
-// An OMPL state validity checker on the FCL reference backend (checker/fcl_backend.h): the
+// An OMPL state validity checker on the FCL reference backend (fcl_backend.h): the
 // robot's and scenes' ORIGINAL meshes (fcl::BVHModel), not the convex pieces. The baseline of the
 // planning benchmark and the ground truth of the planning tests.
 //
@@ -10,7 +10,7 @@
 // Thread safety: FclWorld poses its robot objects in place, so every query takes a mutex; const
 // calls from several threads are safe but serialized.
 
-#include "deepcheck/checker/fcl_backend.h"
+#include "deepcheck/fcl_reference/fcl_backend.h"
 #include "deepcheck/checker/world.h"
 
 #include <Eigen/Core>
@@ -21,7 +21,7 @@
 #include <memory>
 #include <mutex>
 
-namespace deepcheck::planners {
+namespace deepcheck::fcl_reference {
 
 class FclStateValidityChecker : public ompl::base::StateValidityChecker {
  public:
@@ -44,7 +44,7 @@ class FclStateValidityChecker : public ompl::base::StateValidityChecker {
   Eigen::VectorXd lower_;
   Eigen::VectorXd upper_;
   mutable std::mutex mutex_;
-  std::unique_ptr<checker::FclWorld> fcl_;
+  std::unique_ptr<FclWorld> fcl_;
 };
 
-}  // namespace deepcheck::planners
+}  // namespace deepcheck::fcl_reference

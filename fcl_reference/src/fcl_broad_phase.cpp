@@ -1,14 +1,20 @@
-#include "fcl_broad_phase.h"
+#include "deepcheck/fcl_reference/fcl_broad_phase.h"
+
+#include "external_broad_phase.h"
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/narrowphase/collision_object.h>
 
 #include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
 
-namespace deepcheck::checker::detail {
-
+namespace deepcheck::fcl_reference {
 namespace {
+
+using checker::Aabb;
 
 fcl::AABBd toFcl(const Aabb& b) { return fcl::AABBd(b.lo, b.hi); }
 
@@ -45,13 +51,24 @@ bool nearCallback(fcl::CollisionObjectd* item, fcl::CollisionObjectd* /*query*/,
   return false;
 }
 
-}  // namespace
+class FclPieceTree : public checker::detail::ExternalPieceTree {
+ public:
+  explicit FclPieceTree(const std::vector<Aabb>& boxes);
+  FclPieceTree(const FclPieceTree&) = delete;
+  FclPieceTree& operator=(const FclPieceTree&) = delete;
 
-struct FclPieceTree::Impl {
-  std::shared_ptr<fcl::CollisionGeometryd> unitBox = std::make_shared<fcl::Boxd>(1.0, 1.0, 1.0);
-  std::vector<std::unique_ptr<BoxObject>> objects;
-  std::vector<Aabb> boxes;
-  fcl::DynamicAABBTreeCollisionManagerd manager;
+  bool visitOverlapping(const Aabb& query, const std::function<bool(int)>& visit) const override;
+  void visitNear(const Eigen::Vector3d& c, double r, const std::function<double()>& bound,
+                 const std::function<void(int, double)>& visit) const override;
+
+ private:
+  struct Impl {
+    std::shared_ptr<fcl::CollisionGeometryd> unitBox = std::make_shared<fcl::Boxd>(1.0, 1.0, 1.0);
+    std::vector<std::unique_ptr<BoxObject>> objects;
+    std::vector<Aabb> boxes;
+    fcl::DynamicAABBTreeCollisionManagerd manager;
+  };
+  std::unique_ptr<Impl> impl_;
 };
 
 FclPieceTree::FclPieceTree(const std::vector<Aabb>& boxes) : impl_(std::make_unique<Impl>()) {
@@ -67,8 +84,6 @@ FclPieceTree::FclPieceTree(const std::vector<Aabb>& boxes) : impl_(std::make_uni
   impl_->manager.registerObjects(raw);
   impl_->manager.setup();
 }
-
-FclPieceTree::~FclPieceTree() = default;
 
 bool FclPieceTree::visitOverlapping(const Aabb& query, const std::function<bool(int)>& visit) const {
   BoxObject object(impl_->unitBox);
@@ -90,4 +105,12 @@ void FclPieceTree::visitNear(const Eigen::Vector3d& c, double r, const std::func
   impl_->manager.distance(&object, &data, nearCallback);
 }
 
-}  // namespace deepcheck::checker::detail
+std::shared_ptr<const checker::detail::ExternalPieceTree> makeFclPieceTree(const std::vector<Aabb>& boxes) {
+  return std::make_shared<const FclPieceTree>(boxes);
+}
+
+}  // namespace
+
+void enableFclBroadPhase() { checker::detail::setExternalBroadPhase(checker::BroadPhase::FclTree, makeFclPieceTree); }
+
+}  // namespace deepcheck::fcl_reference

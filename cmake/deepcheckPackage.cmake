@@ -1,0 +1,34 @@
+# The installed CMake package (deepcheckConfig.cmake, its version file, the exported targets
+# deepcheck::<library>) and deepcheck.pc for pkg-config. Included by the top-level CMakeLists.txt
+# when DEEPCHECK_INSTALL is on, after every library is defined.
+include(CMakePackageConfigHelpers)
+
+set(DEEPCHECK_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/deepcheck)
+set(DEEPCHECK_INSTALL_DATADIR ${CMAKE_INSTALL_DATADIR}/deepcheck)
+if(BUILD_SHARED_LIBS)
+  set(DEEPCHECK_SHARED_LIBS ON)
+else()
+  set(DEEPCHECK_SHARED_LIBS OFF)
+endif()
+
+install(EXPORT deepcheckTargets NAMESPACE deepcheck:: DESTINATION ${DEEPCHECK_INSTALL_CMAKEDIR})
+if(TARGET deepcheck_fcl_reference)
+  install(EXPORT deepcheckFclReferenceTargets NAMESPACE deepcheck:: DESTINATION ${DEEPCHECK_INSTALL_CMAKEDIR})
+endif()
+
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/deepcheckConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/deepcheckConfig.cmake
+  INSTALL_DESTINATION ${DEEPCHECK_INSTALL_CMAKEDIR}
+  PATH_VARS DEEPCHECK_INSTALL_DATADIR)
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/deepcheckConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES
+  ${PROJECT_BINARY_DIR}/deepcheckConfig.cmake
+  ${PROJECT_BINARY_DIR}/deepcheckConfigVersion.cmake
+  ${CMAKE_CURRENT_LIST_DIR}/deepcheckOmpl.cmake
+  DESTINATION ${DEEPCHECK_INSTALL_CMAKEDIR})
+
+# deepcheck.pc finds its prefix from its own location, so the installed tree can be moved.
+file(RELATIVE_PATH DEEPCHECK_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+configure_file(${CMAKE_CURRENT_LIST_DIR}/deepcheck.pc.in ${PROJECT_BINARY_DIR}/deepcheck.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/deepcheck.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
