@@ -82,7 +82,8 @@ BOOST_AUTO_TEST_CASE(pose_inside_a_board_has_no_valid_solution) {
   BOOST_TEST(!checker->isValid(result.q));
 }
 
-BOOST_AUTO_TEST_CASE(rrt_connect_plans_to_a_pose_in_the_shelf) {
+// Plans: labelled integration (tests/CMakeLists.txt).
+BOOST_AUTO_TEST_CASE(rrt_connect_plans_to_a_pose_in_the_shelf, *boost::unit_test::label("integration")) {
   const auto world = bundledWorld("shelf");
   auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
   const dr::RobotModel& arm = world->robot();
