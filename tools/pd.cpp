@@ -1,5 +1,5 @@
 // `deepcheck pd`: signed distance / penetration depth of posed convex shapes read from stdin.
-// The input and output formats are a contract (DESIGN.md, "The deepcheck tool"):
+// The input and output formats are a contract, kept stable (tests/tool/test_pd.cpp checks them):
 //
 //   shape <id> <n>          followed by n lines "<x> <y> <z>": the shape is their convex hull
 //   query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> <qw> <qx> <qy> <qz>

@@ -403,9 +403,10 @@ BOOST_AUTO_TEST_CASE(error_unknown_package) {
   checkThrows([&] { RobotModel::fromUrdfString(xml, "", rootsOnly({root}), "u.urdf"); },
               {"u.urdf", "link 'l'", "package 'no_such_package'",
                (fs::path(root) / "no_such_package/m.stl").string()});
-  // No roots at all: the message says how to give some.
+  // No roots at all: the message names the library's option (not a command-line flag) and the
+  // environment variables.
   checkThrows([&] { RobotModel::fromUrdfString(xml, "", rootsOnly({}), "u.urdf"); },
-              {"no package roots", "--package-path", "ROS_PACKAGE_PATH"});
+              {"no package roots", "LoadOptions::packageRoots", "ROS_PACKAGE_PATH"});
 }
 
 BOOST_AUTO_TEST_CASE(error_mimic_cycle) {

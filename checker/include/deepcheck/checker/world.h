@@ -24,8 +24,8 @@
 // Names. A robot link is named by its URDF name, a scene link "scene/<link>", an obstacle
 // "obstacle/<name>".
 //
-// Signed distance (DESIGN.md contract, per pair of convex pieces, minimized over pieces and
-// pairs). For a pair (A, B): A is always a robot link; B is a robot link (self pair, B's link
+// Signed distance (per pair of convex pieces the contract of deep/signed_distance.h, minimized
+// over pieces and pairs). For a pair (A, B): A is always a robot link; B is a robot link (self pair, B's link
 // index > A's) or a world body. distance > 0 is the distance, < 0 minus the penetration depth;
 // normal is unit and points from A towards B; pointB - pointA = distance * normal (world frame).
 //

@@ -1,9 +1,11 @@
 #pragma once
 // OMPL state validity checker on a deepcheck World.
 //
-// isValid(state)   the state is within the bounds of the state space AND valid by validity.h
-//                  (sd > safetyMargin - penetrationTolerance; with both 0, World::isFree's early
-//                  exit). Thread safe and const: OMPL's parallel planners may call it from many
+// isValid(state)   the configuration is within the robot's URDF joint limits
+//                  (RobotModel::lowerLimits / upperLimits; the state space's own bounds are not
+//                  read: makeStateSpace sets them to the same limits, a user's space may differ)
+//                  AND valid by validity.h (sd > safetyMargin - penetrationTolerance; with both
+//                  0, World::isFree's early exit). Thread safe and const: OMPL's parallel planners may call it from many
 //                  threads (each uses its own warm-start context of the World).
 // clearance(state) the signed distance sd(q) of the world, metres: positive the distance to the
 //                  nearest obstacle (scene, obstacle or another link of the robot), NEGATIVE
