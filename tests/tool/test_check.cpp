@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -165,6 +166,40 @@ BOOST_AUTO_TEST_CASE(bundled_arm_in_the_shelf) {
   BOOST_TEST(number(fields(out[0])[0]) > 0.0, out[0]);
   BOOST_TEST(number(fields(out[1])[0]) < 0.0, out[1]);
   BOOST_TEST(fields(out[1])[2] == "scene/shelf", out[1]);
+}
+
+BOOST_AUTO_TEST_CASE(damaged_decomposition_cache_entries_are_recomputed_with_a_note) {
+  // The bundled arm's meshes go through the scratch folder's decomposition cache. Each entry is
+  // then replaced by a directory, then by garbage: the answers stay the same, exit status 0, and
+  // stderr says what was wrong with the cache.
+  Scratch s;
+  const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+  const std::string args = "--robot " + quote(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --package-path " +
+                           quote(data);
+  const std::string input = "0 0.3 0 -1 0 0.5 0\n";
+  const Run first = runCheck(s, args, input);
+  BOOST_TEST_REQUIRE(first.status == 0, first.err);
+  const fs::path cache = fs::path(s.path("cache")) / "deepcheck";
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(cache)) entries.push_back(e.path());
+  BOOST_TEST_REQUIRE(!entries.empty());
+  for (const fs::path& e : entries) {
+    fs::remove(e);
+    fs::create_directory(e);
+  }
+  Run r = runCheck(s, args, input);
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.out == first.out);
+  BOOST_TEST(r.err.find("deepcheck: decomposition cache: " + entries.front().string()) != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("not a regular file") != std::string::npos, r.err);
+  for (const fs::path& e : entries) {
+    fs::remove(e);
+    std::ofstream(e, std::ios::binary) << std::string(100, 'x');  // long enough to have a checksum
+  }
+  r = runCheck(s, args, input);
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.out == first.out);
+  BOOST_TEST(r.err.find("checksum mismatch") != std::string::npos, r.err);
 }
 
 BOOST_AUTO_TEST_CASE(package_roots_from_ros_package_path) {
