@@ -6,7 +6,8 @@
 //                  [--planner NAME] [--time SECONDS] [--objective length|clearance]
 //                  [--repair-start] [--seed N] --out path.txt
 //
-// The path written is the planner's solution, shortcut by OMPL's simplifier, then certified by the
+// The path written is the planner's solution, shortcut by OMPL's simplifier where that does not make
+// the objective's cost worse (planners/setup.h: simplifySolutionChecked), then certified by the
 // clearance motion validator (planners/motion_validator.h: every waypoint and every motion is
 // proved free by conservative advancement, with discrete checks where that cannot conclude) and
 // repaired where that fails (planners/path_tools.h). Exit status 0 only for an exact solution
@@ -158,8 +159,8 @@ int run(std::vector<std::string> args) {
                      (ss->haveSolutionPath() ? "; the approximate path was written to " + out : std::string()));
   }
   if (!planners::simplifySolutionChecked(*ss)) {
-    std::fprintf(stderr, "path simplification: OMPL's simplifier returned a path that fails its own checks; "
-                         "the path as planned is kept\n");
+    std::fprintf(stderr, "path simplification: no simplified path passed the planner's checks without a worse "
+                         "objective cost; the path as planned is kept\n");
   }
   ompl::geometric::PathGeometric& path = ss->getSolutionPath();
   const planners::PathCertificate certificate = planners::certifyPath(*ss, path);

@@ -8,6 +8,8 @@
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/goals/GoalState.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/geometric/PathSimplifier.h>
 
 #include <stdexcept>
 #include <string>
@@ -129,14 +131,39 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
   return certificate;
 }
 
+namespace {
+
+/// The objective's cost of `path` is no worse than `reference` (always true without an objective).
+bool costNotWorse(const ompl::geometric::PathGeometric& path, const ompl::base::OptimizationObjectivePtr& objective,
+                  const ompl::base::Cost& reference) {
+  return !objective || !objective->isCostBetterThan(reference, path.cost(objective));
+}
+
+}  // namespace
+
 bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds) {
   if (!ss.haveSolutionPath()) throw std::invalid_argument("simplifySolutionChecked: the SimpleSetup has no solution path");
+  const ompl::base::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();
+  const ompl::base::OptimizationObjectivePtr objective =
+      pdef->hasOptimizationObjective() ? pdef->getOptimizationObjective() : nullptr;
+  const bool lengthOnly =
+      !objective || std::dynamic_pointer_cast<ompl::base::PathLengthOptimizationObjective>(objective) != nullptr;
   const ompl::geometric::PathGeometric planned = ss.getSolutionPath();
+  const ompl::base::Cost plannedCost = objective ? planned.cost(objective) : ompl::base::Cost(0.0);
+  // Another objective than length: shortcuts only, by a simplifier that knows the objective (the
+  // vertex reduction and B-spline smoothing of simplifyMax ignore it and pull a clearance path
+  // onto the obstacles).
+  ompl::geometric::PathSimplifier costAware(ss.getSpaceInformation(), pdef->getGoal(), objective);
   // The simplifier is randomized: a failed attempt may succeed the next time.
   for (int attempt = 0; attempt < tol::kSimplifyAttempts; ++attempt) {
-    ss.simplifySolution(seconds);
-    if (checkPathWithPlanner(ss.getSolutionPath()).valid) return true;
-    ss.getSolutionPath() = planned;
+    ompl::geometric::PathGeometric& path = ss.getSolutionPath();
+    if (lengthOnly) {
+      ss.simplifySolution(seconds);
+    } else {
+      costAware.shortcutPath(path);
+    }
+    if (checkPathWithPlanner(path).valid && costNotWorse(path, objective, plannedCost)) return true;
+    path = planned;
   }
   return false;
 }

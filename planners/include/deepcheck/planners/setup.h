@@ -123,14 +123,22 @@ struct PathCertificate {
 /// when that fails.
 PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path);
 
-/// ss.simplifySolution(seconds) (0: OMPL's simplifyMax), keeping the solution as planned when the
-/// simplified path fails the planner's own checks (every waypoint isValid, every motion
-/// checkMotion). OMPL 1.5's PathSimplifier can return such a path: when its shortcuts and B-spline
-/// smoothing leave an invalid motion that checkAndRepair cannot mend, it warns "Solution path may
-/// slightly touch on an invalid region of the state space" and returns it (seen: a 4 rad motion
-/// through the bundled shelf). The simplifier is randomized: up to tol::kSimplifyAttempts
-/// attempts, each from the planned path. Returns true when a simplified path was kept. Throws
-/// std::invalid_argument when `ss` has no solution path.
+/// Simplifies the solution of `ss` without ever making it worse: the simplified path is kept only
+/// when it passes the planner's own checks (every waypoint isValid, every motion checkMotion) and
+/// its cost under the problem's optimization objective (when one is set) is no worse than the
+/// planned path's; otherwise the solution stays as planned. Up to tol::kSimplifyAttempts attempts,
+/// each from the planned path (the simplifier is randomized).
+///   - No objective, or path length: ss.simplifySolution(seconds) (0: OMPL's simplifyMax). OMPL
+///     1.5's PathSimplifier can return a path that fails its own checks: when its shortcuts and
+///     B-spline smoothing leave an invalid motion that checkAndRepair cannot mend, it warns
+///     "Solution path may slightly touch on an invalid region of the state space" and returns it
+///     (seen: a 4 rad motion through the bundled shelf).
+///   - Any other objective (the clearance objectives of objectives.h): OMPL's shortcutting with
+///     the objective (PathSimplifier::shortcutPath), not simplifyMax, whose vertex reduction and
+///     B-spline smoothing ignore the objective and pull a path planned away from the obstacles
+///     back onto them. `seconds` is not used.
+/// Returns true when a simplified path was kept. Throws std::invalid_argument when `ss` has no
+/// solution path.
 bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds = 0.0);
 
 /// Sets one start and one goal state. Throws std::invalid_argument naming the configuration, the
