@@ -170,13 +170,14 @@ bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds) {
 
 void setStartAndGoal(ompl::geometric::SimpleSetup& ss, const Eigen::Ref<const Eigen::VectorXd>& start,
                      const Eigen::Ref<const Eigen::VectorXd>& goal) {
-  const robots::RobotModel& model = validityCheckerOf(ss).get()->world().robot();
+  const auto checker = validityCheckerOf(ss);
+  const robots::RobotModel& model = checker->world().robot();
   checkConfigurationNamed(model, start, "start");
   checkConfigurationNamed(model, goal, "goal");
   ompl::base::ScopedState<> s(ss.getStateSpace());
   ompl::base::ScopedState<> g(ss.getStateSpace());
-  copyToState(start, s.get());
-  copyToState(goal, g.get());
+  checker->mapping().toState(start, s.get());
+  checker->mapping().toState(goal, g.get());
   ss.setStartAndGoalStates(s, g);
 }
 
@@ -189,18 +190,18 @@ bool EndpointRepair::ok() const {
 
 EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss) {
   const auto checker = validityCheckerOf(ss);
-  const int n = checker->dimension();
+  const StateMapping& mapping = checker->mapping();
   const ompl::base::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();
   EndpointRepair repair;
   for (unsigned int i = 0; i < pdef->getStartStateCount(); ++i) {
     ompl::base::State* start = pdef->getStartState(i);
-    repair.starts.push_back(checker->pushOut().run(mapState(start, n)));
-    if (repair.starts.back().success()) copyToState(repair.starts.back().q, start);
+    repair.starts.push_back(checker->pushOut().run(mapping.configuration(start)));
+    if (repair.starts.back().success()) mapping.toState(repair.starts.back().q, start);
   }
   if (auto goal = std::dynamic_pointer_cast<ompl::base::GoalState>(pdef->getGoal())) {
     repair.goalIsState = true;
-    repair.goal = checker->pushOut().run(mapState(goal->getState(), n));
-    if (repair.goal.success()) copyToState(repair.goal.q, goal->getState());
+    repair.goal = checker->pushOut().run(mapping.configuration(goal->getState()));
+    if (repair.goal.success()) mapping.toState(repair.goal.q, goal->getState());
   }
   return repair;
 }

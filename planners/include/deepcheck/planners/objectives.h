@@ -80,7 +80,6 @@ class ClearanceHingeObjective : public ompl::base::OptimizationObjective {
   double safeDistance_ = 0.0;
   double selfSafeDistance_ = tol::kDefaultSelfSafeDistance;
   double resolution_ = 0.0;
-  int n_ = 0;
 };
 
 /// Path length + weight * hinge (see the header comment); `resolution` as for the hinge (a coarser
