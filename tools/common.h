@@ -76,6 +76,9 @@ std::vector<double> takeVector(std::vector<std::string>& args, const std::string
 void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::vector<SceneArg>& scenes,
                       std::string& srdf);
 
+/// A duration for people: "850 us", "12.3 ms", "4.56 s" (never "0.000 s").
+std::string formatDuration(double seconds);
+
 /// One non-blank, non-comment line of an input read from stdin.
 struct InputLine {
   int number = 0;                   ///< 1-based, counting every line

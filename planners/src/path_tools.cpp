@@ -128,11 +128,8 @@ PathRepair repairPath(ompl::geometric::PathGeometric& path, const ompl::base::Sp
   // Repaired states stand a few millimetres off the surface, not one: the chord between two states
   // on the two faces of an edge cuts the edge unless they stand off it. So the push-out used here
   // treats everything nearer than kRepairClearance (above the threshold) as invalid.
-  const double threshold = checker->validityOptions().threshold() + tol::kRepairClearance;
-  ValidityOptions standOff;
-  standOff.safetyMargin = std::max(threshold, 0.0);
-  standOff.penetrationTolerance = std::max(-threshold, 0.0);
-  const PushOut pushOut(checker->worldPtr(), standOff, checker->pushOut().options());
+  const PushOut pushOut = standOffPushOut(checker->worldPtr(), checker->validityOptions(),
+                                         checker->pushOut().options(), tol::kRepairClearance);
 
   // Pushes `state` off when it is nearer than the stand-off; true when it is valid afterwards.
   auto standOffState = [&](ompl::base::State* state) {

@@ -137,6 +137,20 @@ PushOut::PushOut(std::shared_ptr<const checker::World> world, const ValidityOpti
   checkPushOutOptions(options_);
 }
 
+PushOut standOffPushOut(std::shared_ptr<const checker::World> world, const ValidityOptions& validity,
+                        const PushOutOptions& options, double standOff) {
+  if (!std::isfinite(standOff) || standOff < 0.0) {
+    throw std::invalid_argument("standOffPushOut: the stand-off must be finite and >= 0 metres, got " +
+                                std::to_string(standOff));
+  }
+  // Only the difference of the two options matters (validity.h): move the threshold up by standOff.
+  const double threshold = validity.threshold() + standOff;
+  ValidityOptions raised;
+  raised.safetyMargin = std::max(threshold, 0.0);
+  raised.penetrationTolerance = std::max(-threshold, 0.0);
+  return PushOut(std::move(world), raised, options);
+}
+
 PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& q0) const {
   const robots::RobotModel& model = world_->robot();
   robots::checkConfiguration(model, q0);

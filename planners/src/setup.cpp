@@ -11,6 +11,7 @@
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/geometric/PathSimplifier.h>
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -188,20 +189,31 @@ bool EndpointRepair::ok() const {
   return !goalIsState || goal.success();
 }
 
-EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss) {
+EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss, double margin) {
   const auto checker = validityCheckerOf(ss);
   const StateMapping& mapping = checker->mapping();
+  const PushOut pushOut =
+      standOffPushOut(checker->worldPtr(), checker->validityOptions(), checker->pushOut().options(), margin);
+  // An invalid state is pushed out to the margin, in place; a valid one stays.
+  const auto repairState = [&](ompl::base::State* state) {
+    const Eigen::VectorXd q = mapping.configuration(state);
+    if (checker->isValid(q)) {
+      PushOutResult unchanged;
+      unchanged.status = PushOutStatus::AlreadyValid;
+      unchanged.q = q;
+      unchanged.initialDistance = unchanged.finalDistance = std::numeric_limits<double>::quiet_NaN();
+      return unchanged;
+    }
+    PushOutResult pushed = pushOut.run(q);
+    if (pushed.success()) mapping.toState(pushed.q, state);
+    return pushed;
+  };
   const ompl::base::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();
   EndpointRepair repair;
-  for (unsigned int i = 0; i < pdef->getStartStateCount(); ++i) {
-    ompl::base::State* start = pdef->getStartState(i);
-    repair.starts.push_back(checker->pushOut().run(mapping.configuration(start)));
-    if (repair.starts.back().success()) mapping.toState(repair.starts.back().q, start);
-  }
+  for (unsigned int i = 0; i < pdef->getStartStateCount(); ++i) repair.starts.push_back(repairState(pdef->getStartState(i)));
   if (auto goal = std::dynamic_pointer_cast<ompl::base::GoalState>(pdef->getGoal())) {
     repair.goalIsState = true;
-    repair.goal = checker->pushOut().run(mapping.configuration(goal->getState()));
-    if (repair.goal.success()) mapping.toState(repair.goal.q, goal->getState());
+    repair.goal = repairState(goal->getState());
   }
   return repair;
 }

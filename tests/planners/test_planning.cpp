@@ -221,6 +221,8 @@ BOOST_AUTO_TEST_CASE(a_colliding_start_is_repaired_then_planned_from) {
   BOOST_TEST(repair.goalIsState);
   BOOST_TEST(repair.goal.status == dp::PushOutStatus::AlreadyValid);
   BOOST_TEST(repair.starts[0].jointMotion < 0.1);
+  // Pushed out to the endpoint margin, not just past contact.
+  BOOST_TEST(world->signedDistance(repair.starts[0].q).closest.distance > dp::tol::kEndpointRepairMargin);
   BOOST_TEST_MESSAGE("start repaired from sd " << sd << " m by " << repair.starts[0].jointMotion << " rad");
 
   BOOST_TEST_REQUIRE(solveFirst(*ss, "RRTConnect") == ob::PlannerStatus::EXACT_SOLUTION);

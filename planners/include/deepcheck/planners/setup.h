@@ -148,7 +148,9 @@ void setStartAndGoal(ompl::geometric::SimpleSetup& ss, const Eigen::Ref<const Ei
                      const Eigen::Ref<const Eigen::VectorXd>& goal);
 
 /// Push-out of the start states and of a single-state goal (ompl::base::GoalState) that are
-/// invalid, in place, before planning.
+/// invalid, in place, before planning: each is pushed out to at least `margin` (metres, >= 0)
+/// above the validity threshold (standOffPushOut, push_out.h). Valid ones stay where they are
+/// (status AlreadyValid). Throws std::invalid_argument for a negative or non-finite margin.
 struct EndpointRepair {
   std::vector<PushOutResult> starts;  ///< one per start state
   bool goalIsState = false;           ///< the goal is a GoalState (others are left alone)
@@ -156,6 +158,6 @@ struct EndpointRepair {
   /// Every start (and the goal state) is valid now.
   bool ok() const;
 };
-EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss);
+EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss, double margin = tol::kEndpointRepairMargin);
 
 }  // namespace deepcheck::planners

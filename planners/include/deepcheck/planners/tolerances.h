@@ -78,6 +78,12 @@ constexpr double kPushOutMaxDepth = 0.05;
 /// (metres), so that the chords between repaired neighbours clear the edges they wrap around.
 constexpr double kRepairClearance = 0.005;
 
+/// Endpoint repair (setup.h: repairStartAndGoal, `deepcheck plan --repair-start`) pushes an
+/// invalid start or goal out to at least this clearance above the validity threshold (metres), not
+/// just past contact: a start left micrometres from an obstacle makes the first motion of every
+/// path graze it. The default of --repair-margin.
+constexpr double kEndpointRepairMargin = 0.001;
+
 /// Random-jiggle baseline (MoveIt's FixStartStateCollision): each attempt moves every joint
 /// uniformly within +-fraction of its range; kJiggleAttempts attempts.
 constexpr double kJiggleFraction = 0.05;
