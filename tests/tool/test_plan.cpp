@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -33,6 +34,19 @@ const std::string kWorld = armIn("shelf");
 const std::string kStart = " --start 0 -0.4 0 -1.6 0 1.2 0";
 const std::string kGoal = " --goal 1.05 0.75 -1.17 -1.30 0.05 -0.07 -2.79";
 
+/// The world `kWorld` names (the bundled arm with its SRDF in the shelf), to check paths with.
+std::unique_ptr<checker::World> armInTheShelf() {
+  robots::LoadOptions load;
+  load.packageRoots = {kData};
+  load.useRosPackagePath = false;
+  checker::WorldOptions options;
+  options.disabledPairs = robots::readSrdfDisabledPairs(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
+  auto world = std::make_unique<checker::World>(
+      robots::RobotModel::fromUrdfFile(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf", load), options);
+  world->addScene(robots::RobotModel::fromUrdfFile(kData + "/scenes/shelf.urdf", load));
+  return world;
+}
+
 /// Runs `deepcheck plan <args>` in the scratch folder (also its decomposition cache).
 Run plan(const Scratch& scratch, const std::string& args) {
   return scratch.run("plan" + args);
@@ -48,14 +62,8 @@ BOOST_AUTO_TEST_CASE(plans_through_the_shelf_and_every_waypoint_is_free) {
   const Run r = plan(scratch, kWorld + kStart + kGoal + " --seed 3 --time 10 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.err.find("certified") != std::string::npos, r.err);
-  robots::LoadOptions load;
-  load.packageRoots = {kData};
-  load.useRosPackagePath = false;
-  checker::WorldOptions options;
-  options.disabledPairs = robots::readSrdfDisabledPairs(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
-  checker::World world(robots::RobotModel::fromUrdfFile(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf", load),
-                       options);
-  world.addScene(robots::RobotModel::fromUrdfFile(kData + "/scenes/shelf.urdf", load));
+  const std::unique_ptr<checker::World> armWorld = armInTheShelf();
+  const checker::World& world = *armWorld;
   std::ifstream in(out);
   std::string line;
   std::vector<Eigen::VectorXd> waypoints;
@@ -133,14 +141,8 @@ BOOST_AUTO_TEST_CASE(bad_command_lines_and_inputs_are_named) {
 
 BOOST_AUTO_TEST_CASE(a_repaired_start_gets_the_margin_and_the_report_splits_scene_and_self_clearance) {
   // The shelf goal turned about joint 1 until the hand is 2 to 10 mm into the compartment's wall.
-  robots::LoadOptions load;
-  load.packageRoots = {kData};
-  load.useRosPackagePath = false;
-  checker::WorldOptions options;
-  options.disabledPairs = robots::readSrdfDisabledPairs(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
-  checker::World world(robots::RobotModel::fromUrdfFile(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf", load),
-                       options);
-  world.addScene(robots::RobotModel::fromUrdfFile(kData + "/scenes/shelf.urdf", load));
+  const std::unique_ptr<checker::World> armWorld = armInTheShelf();
+  const checker::World& world = *armWorld;
   std::vector<double> start = {1.05, 0.75, -1.17, -1.30, 0.05, -0.07, -2.79};
   const double joint1 = start[0];
   double sd = 1.0;
