@@ -1,0 +1,63 @@
+#pragma once
+// Certified penetration depth: an expanding surface of Minkowski vertices (van den Bergen 2001's
+// expanding polytope), run best-first from GJK's simplex.
+//
+// M = B - A contains the origin when A and B overlap. A closed convex surface S of points of M
+// that encloses the origin gives a lower bound on the depth: every ray from the origin leaves M
+// beyond some face of S, so PD >= min over faces of the face-plane distance. Every support query
+// h_M(u) = max u.(b - a), u unit, gives an upper bound: translating B by h_M(u) along -u
+// separates the shapes. The expansion pops the nearest face, queries the support in its normal
+// (lowering the upper bound), and adds that support point to S (raising the lower bound); it
+// stops when the bounds meet within tau = tol::kCertifyRelative * L, L the pair's length scale.
+// The result always carries its bracket [lower, upper]; a cap hit or a degenerate surface returns
+// the bracket with NotConverged, never a silent guess.
+//
+// Starts: GJK's simplex when it is a tetrahedron strictly enclosing the origin; otherwise (the
+// origin on the simplex, identical shapes at one pose, touching contact, a flat simplex) the
+// supports of M in four generic directions, completed to a tetrahedron with supports normal to
+// their span. Faces seen from the origin's far side (negative distance) are expanded first, which
+// encloses the origin. A flat M (no tetrahedron of positive volume) returns NotConverged with
+// lower bound 0: the caller handles flat pairs (their depth is zero).
+
+#include "deepcheck/deep/expansion_surface.h"
+#include "deepcheck/deep/gjk.h"
+
+namespace deepcheck::deep {
+
+struct CertifiedOptions {
+  /// Cap on support points added to the surface (beyond it: NotConverged with the bracket).
+  int maxExpansions = 128;
+};
+
+enum class CertifiedStatus {
+  Certified,     ///< upper - lower <= tau
+  NotConverged,  ///< cap hit, flat M or a degenerate surface; the bracket is still valid
+};
+
+const char* toString(CertifiedStatus s);
+
+struct CertifiedResult {
+  CertifiedStatus status = CertifiedStatus::NotConverged;
+  double lower = 0.0;  ///< PD >= lower >= 0 (frame P units)
+  double upper = 0.0;  ///< PD <= upper: h_M(direction)
+  double tau = 0.0;    ///< the stopping tolerance, tol::kCertifyRelative * L
+  /// Unit outward normal of M at the upper bound (the answer's normal, from A towards B, is its
+  /// opposite), and the support pair there: A's vertex minimizing direction.a, B's maximizing
+  /// direction.b. Only meaningful when upper is finite.
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  int supportA = 0;
+  int supportB = 0;
+  int expansions = 0;  ///< support points added to the surface
+  int faces = 0;       ///< live faces at the end
+};
+
+/// Certified penetration depth of A and B (cores, Polygon or Polyhedron; for points and segments
+/// the depth is enumerated directly by deepPenetration) in the pair frame. Meaningful when GJK
+/// found them overlapping or touching: `gjk` is that result (its simplex seeds the surface).
+/// `surface` is the caller's scratch space, overwritten; no allocation.
+CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B,
+                                     const PairFrame& frame, const GjkResult& gjk,
+                                     ExpansionSurface& surface,
+                                     const CertifiedOptions& options = {});
+
+}  // namespace deepcheck::deep
