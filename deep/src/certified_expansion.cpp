@@ -143,6 +143,11 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
     }
     if (face.d >= 0 && r.upper - face.d <= r.tau) {
       r.status = CertifiedStatus::Certified;
+      r.faceNormal = face.n;
+      for (int k = 0; k < 3; ++k) {
+        r.faceA[k] = surface.vertex(face.v[k]).a;
+        r.faceB[k] = surface.vertex(face.v[k]).b;
+      }
       break;
     }
     // A support already on the face cannot raise it (round-off on a sliver); the cap bounds work.

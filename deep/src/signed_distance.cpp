@@ -109,8 +109,8 @@ struct Penetration {
   int expansions = 0;
 };
 
-/// DEEP's walk from the certified direction: it names the facet of M the bracket converged on
-/// (VF, FV or EE, witnesses, exact normal). Its depth is a facet offset of M, an upper bound; the
+/// DEEP's walk from the certified direction, for the faces certifiedFacet() cannot name: it names
+/// the facet of M the bracket converged on (VF, FV or EE, witnesses, exact normal). Its depth is a facet offset of M, an upper bound; the
 /// answer is the better of it and the expansion's own upper bound.
 DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                      const CertifiedResult& c) {
@@ -157,7 +157,7 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   p.lower = c.lower;
   p.expansions = c.expansions;
   if (c.status == CertifiedStatus::Certified) {
-    p.deep = nameFacet(A, B, frame, c);
+    if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c);
   } else {
     DeepOptions full = options;
     full.warmStart = false;

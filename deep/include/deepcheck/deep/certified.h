@@ -19,6 +19,7 @@
 // encloses the origin. A flat M (no tetrahedron of positive volume) returns NotConverged with
 // lower bound 0: the caller handles flat pairs (their depth is zero).
 
+#include "deepcheck/deep/deep.h"
 #include "deepcheck/deep/expansion_surface.h"
 #include "deepcheck/deep/gjk.h"
 
@@ -47,6 +48,10 @@ struct CertifiedResult {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
   int supportA = 0;
   int supportB = 0;
+  /// The certifying face (status Certified): its corners' index pairs, unit normal and offset.
+  int faceA[3] = {0, 0, 0};
+  int faceB[3] = {0, 0, 0};
+  Eigen::Vector3d faceNormal = Eigen::Vector3d::UnitZ();
   int expansions = 0;  ///< support points added to the surface
   int faces = 0;       ///< live faces at the end
 };
@@ -59,5 +64,14 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
                                      const PairFrame& frame, const GjkResult& gjk,
                                      ExpansionSurface& surface,
                                      const CertifiedOptions& options = {});
+
+/// Names the facet of M a certified result converged on, from its certifying face's corners
+/// (certified_facet.cpp): one vertex of A and a face of B (VF), the reverse (FV), or an edge of
+/// each (EE); the facet's exact normal from those features, its offset from one support query in
+/// that normal, witness points from the origin's foot on the face. Returns false when the corners
+/// do not name one facet (they span several coplanar features, or the features found do not
+/// support the normal); the caller then names it otherwise (DEEP's walk from the direction).
+bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                    const CertifiedResult& c, DeepResult& out);
 
 }  // namespace deepcheck::deep
