@@ -34,14 +34,6 @@ namespace {
 /// M whose offsets carry a few ulps of the pair's length scale.
 constexpr double kBracketSlackRelative = 1e-14;
 
-double pairScale(const ConvexPolytope& A, const ConvexPolytope& B) {
-  return std::max(A.boundingRadius(), B.boundingRadius());
-}
-
-double relError(double sd, double exact, double L) {
-  return std::abs(sd - exact) / std::max(std::abs(exact), 1e-3 * L);
-}
-
 /// Pair length scale of the certificate (tolerances.h): larger bounding radius plus the centre
 /// distance.
 double certifyScale(const ConvexPolytope& A, const Isometry3d& X_WA, const ConvexPolytope& B,
@@ -56,7 +48,7 @@ std::string checkCertified(const ConvexPolytope& A, const Isometry3d& X_WA, cons
                            const Isometry3d& X_WB, const SignedDistanceResult& r, double tolRel) {
   std::ostringstream why;
   const ExactResult exact = exactSignedDistance(A, X_WA, B, X_WB);
-  const double err = relError(r.distance, exact.distance, pairScale(A, B));
+  const double err = depthError(r.distance, exact.distance, depthScale(A, B));
   if (!(err <= tolRel)) why << "sd " << r.distance << " exact " << exact.distance << " (error " << err << "); ";
   if (exact.distance < 0) {
     if (!r.certified) why << "not certified; ";
@@ -120,7 +112,7 @@ BOOST_AUTO_TEST_CASE(exact_and_certified_on_random_pairs) {
     BOOST_TEST(why.empty(), "pair " << i << " cold: " << why);
     BOOST_TEST(cold.expansions > 0);
     const SignedDistanceResult swapped = signedDistance(p.B, p.X_WB, p.A, p.X_WA);
-    BOOST_TEST(relError(swapped.distance, cold.distance, pairScale(p.A, p.B)) <= tol,
+    BOOST_TEST(depthError(swapped.distance, cold.distance, depthScale(p.A, p.B)) <= tol,
                "pair " << i << ": swapped " << swapped.distance << " vs " << cold.distance);
     BOOST_TEST(swapped.certified);
     PairCache cache;

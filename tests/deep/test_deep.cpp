@@ -30,14 +30,6 @@ namespace {
 constexpr double kSingleWalkMinRate = 0.13;
 constexpr double kSingleWalkMaxRate = 0.20;
 
-double pairScale(const ConvexPolytope& A, const ConvexPolytope& B) {
-  return std::max(A.boundingRadius(), B.boundingRadius());
-}
-
-double relError(double sd, double exact, double L) {
-  return std::abs(sd - exact) / std::max(std::abs(exact), 1e-3 * L);
-}
-
 Isometry3d translated(const Isometry3d& X, const Vector3d& d) {
   Isometry3d Y = X;
   Y.translation() += d;
@@ -48,7 +40,7 @@ Isometry3d translated(const Isometry3d& X, const Vector3d& d) {
 std::string checkAnswer(const ConvexPolytope& A, const Isometry3d& X_WA, const ConvexPolytope& B,
                         const Isometry3d& X_WB, const SignedDistanceResult& r) {
   std::ostringstream why;
-  const double L = pairScale(A, B);
+  const double L = depthScale(A, B);
   if (!std::isfinite(r.distance) || !r.normal.allFinite() || !r.pointA.allFinite() || !r.pointB.allFinite())
     why << "non-finite output; ";
   if (std::abs(r.normal.norm() - 1) > 1e-9) why << "normal not unit; ";
@@ -123,16 +115,16 @@ BOOST_AUTO_TEST_CASE(agrees_with_exact_reference_on_10000_pairs) {
     const RandomPair p = makePair(rng, i);
     const ConvexPolytope A = ConvexPolytope::fromPoints(p.a);
     const ConvexPolytope B = ConvexPolytope::fromPoints(p.b);
-    const double L = pairScale(A, B);
+    const double L = depthScale(A, B);
     const ExactResult exact = exactSignedDistance(A, p.X_WA, B, p.X_WB);
     const SignedDistanceResult r = signedDistance(A, p.X_WA, B, p.X_WB);
-    const double err = relError(r.distance, exact.distance, L);
+    const double err = depthError(r.distance, exact.distance, L);
     const double bound = p.far ? 1e-10 : 1e-12;
     if (exact.distance < 0) {
       ++overlapping;
       if (!r.certified) ++uncertified;
       const SignedDistanceResult walk = signedDistance(A, p.X_WA, B, p.X_WB, nullptr, deepWalk);
-      if (relError(walk.distance, exact.distance, L) > bound) ++walkMisses;
+      if (depthError(walk.distance, exact.distance, L) > bound) ++walkMisses;
       walks += walk.deep.starts;
       localMinWalks += walk.deep.localMinima;
       depthErrors.push_back(err);
@@ -197,7 +189,7 @@ BOOST_AUTO_TEST_CASE(single_walk_local_minimum_rate_is_in_its_band) {
     if (exact.distance >= 0) continue;
     ++overlapping;
     const SignedDistanceResult r = signedDistance(A, p.X_WA, B, p.X_WB, nullptr, single);
-    if (relError(r.distance, exact.distance, pairScale(A, B)) > (p.far ? 1e-10 : 1e-12)) ++misses;
+    if (depthError(r.distance, exact.distance, depthScale(A, B)) > (p.far ? 1e-10 : 1e-12)) ++misses;
   }
   const double rate = static_cast<double>(misses) / overlapping;
   BOOST_TEST_MESSAGE("single walk: " << misses << " misses in " << overlapping << " overlapping pairs (" << 100 * rate << " %)");
@@ -214,7 +206,7 @@ BOOST_AUTO_TEST_CASE(swapping_shapes_gives_same_depth_and_opposite_normal) {
     const ConvexPolytope B = ConvexPolytope::fromPoints(p.b);
     const SignedDistanceResult ab = signedDistance(A, p.X_WA, B, p.X_WB);
     const SignedDistanceResult ba = signedDistance(B, p.X_WB, A, p.X_WA);
-    const double L = pairScale(A, B);
+    const double L = depthScale(A, B);
     BOOST_TEST(std::abs(ab.distance - ba.distance) <= (p.far ? 1e-10 : 1e-12) * std::max(std::abs(ab.distance), 1e-3 * L),
                "pair " << i << ": " << ab.distance << " vs " << ba.distance);
     // The swapped answer, read back for (A, B), must be a valid answer too (normals may differ
@@ -277,23 +269,23 @@ namespace {
 /// (when given). Returns the A-B result.
 SignedDistanceResult expectExact(const ConvexPolytope& A, const Isometry3d& X_WA, const ConvexPolytope& B,
                                  const Isometry3d& X_WB, double tolRel = 1e-12) {
-  const double L = pairScale(A, B);
+  const double L = depthScale(A, B);
   const ExactResult exact = exactSignedDistance(A, X_WA, B, X_WB);
   const SignedDistanceResult r = signedDistance(A, X_WA, B, X_WB);
   const SignedDistanceResult s = signedDistance(B, X_WB, A, X_WA);
-  BOOST_TEST(relError(r.distance, exact.distance, L) <= tolRel, "sd " << r.distance << " exact " << exact.distance);
-  BOOST_TEST(relError(s.distance, exact.distance, L) <= tolRel, "swapped sd " << s.distance << " exact " << exact.distance);
+  BOOST_TEST(depthError(r.distance, exact.distance, L) <= tolRel, "sd " << r.distance << " exact " << exact.distance);
+  BOOST_TEST(depthError(s.distance, exact.distance, L) <= tolRel, "swapped sd " << s.distance << " exact " << exact.distance);
   BOOST_TEST(r.certified);
   BOOST_TEST(s.certified);
   // Warm: a second query of the same pair through a cache that saw the first.
   PairCache cache;
   signedDistance(A, X_WA, B, X_WB, &cache);
   const SignedDistanceResult warm = signedDistance(A, X_WA, B, X_WB, &cache);
-  BOOST_TEST(relError(warm.distance, exact.distance, L) <= tolRel, "warm sd " << warm.distance << " exact " << exact.distance);
+  BOOST_TEST(depthError(warm.distance, exact.distance, L) <= tolRel, "warm sd " << warm.distance << " exact " << exact.distance);
   DeepOptions deepWalk;
   deepWalk.method = PenetrationMethod::DeepWalk;
   const SignedDistanceResult walk = signedDistance(A, X_WA, B, X_WB, nullptr, deepWalk);
-  BOOST_TEST(relError(walk.distance, exact.distance, L) <= tolRel, "DEEP walk sd " << walk.distance << " exact " << exact.distance);
+  BOOST_TEST(depthError(walk.distance, exact.distance, L) <= tolRel, "DEEP walk sd " << walk.distance << " exact " << exact.distance);
   const std::string why = checkAnswer(A, X_WA, B, X_WB, r);
   BOOST_TEST(why.empty(), why);
   return r;

@@ -3,6 +3,8 @@
 // consecutive queries of a pair, as the tool runs them), exact and certified with the certified
 // method.
 
+#include "shapes.h"
+
 #include "deepcheck/deep/exact.h"
 #include "deepcheck/deep/signed_distance.h"
 
@@ -20,6 +22,7 @@
 #include <vector>
 
 using namespace deepcheck::deep;
+using namespace deepcheck::deep::testing;
 using Eigen::Isometry3d;
 using Eigen::Vector3d;
 namespace fs = std::filesystem;
@@ -114,13 +117,12 @@ BOOST_AUTO_TEST_CASE(every_saved_deep_miss_is_exact_and_certified) {
       const SignedDistanceResult warm = signedDistance(A, q.X_WA, B, q.X_WB, &cache);
       const SignedDistanceResult cold = signedDistance(A, q.X_WA, B, q.X_WB);
       const ExactResult exact = exactSignedDistance(A, q.X_WA, B, q.X_WB);
-      const double L = std::max(A.boundingRadius(), B.boundingRadius());
+      const double L = depthScale(A, B);
       const double far = std::max(q.X_WA.translation().norm(), q.X_WB.translation().norm());
       const double tol = far > 1e3 ? 1e-10 : 1e-12;
-      const double floor = std::max(std::abs(exact.distance), 1e-3 * L);
-      BOOST_TEST(std::abs(cold.distance - exact.distance) / floor <= tol,
+      BOOST_TEST(depthError(cold.distance, exact.distance, L) <= tol,
                  path.filename() << " query " << i << ": cold " << cold.distance << " exact " << exact.distance);
-      BOOST_TEST(std::abs(warm.distance - exact.distance) / floor <= tol,
+      BOOST_TEST(depthError(warm.distance, exact.distance, L) <= tol,
                  path.filename() << " query " << i << ": warm " << warm.distance << " exact " << exact.distance);
       if (exact.distance < 0) {
         BOOST_TEST(cold.certified, path.filename() << " query " << i);
