@@ -141,7 +141,8 @@ DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
 /// segments (M's facets are enumerated exactly) and expansions that did not converge (flat M,
 /// cap) go to DEEP's walks with all restarts; the bracket's lower bound is kept.
 Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                           const GjkResult& g, ExpansionSurface& surface, const DeepOptions& options) {
+                           const GjkResult& g, ExpansionSurface& surface, const DeepOptions& options,
+                           PairCache* cache) {
   Penetration p;
   const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
   const double tau = tol::kCertifyRelative * L;
@@ -151,9 +152,18 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
     p.certified = true;
     return p;
   }
-  CertifiedOptions co;
-  co.maxExpansions = options.maxExpansions;
-  const CertifiedResult c = certifiedPenetration(A, B, frame, g, surface, co);
+  CertifiedResult c;
+  const bool warm = options.warmStart && cache && cache->certified;
+  if (warm) c = certifiedWarm(A, B, frame, *cache->certified);
+  if (c.status != CertifiedStatus::Certified) {
+    CertifiedOptions co;
+    co.maxExpansions = options.maxExpansions;
+    c = certifiedPenetration(A, B, frame, g, surface, co);
+    if (cache) {
+      if (!cache->certified) cache->certified = std::make_unique<CertifiedWarmStart>();
+      saveWarmStart(A, B, surface, c, *cache->certified);
+    }
+  }
   p.lower = c.lower;
   p.expansions = c.expansions;
   if (c.status == CertifiedStatus::Certified) {
@@ -195,15 +205,16 @@ SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3
                                                 : SignedDistanceStatus::NotConverged;
     r.featureA = simplexFeature(a, g.simplexA.data(), g.simplexSize, n_P, Eigen::Matrix3d::Identity());
     r.featureB = simplexFeature(b, g.simplexB.data(), g.simplexSize, -n_P, frame.R);
+    // The certified warm start stays: its check measures the motion from its own reference.
     if (cache) cache->deep.valid = false;
   } else {
     Penetration p;
     if (options.method == PenetrationMethod::Certified) {
       if (cache && cache->surface) {
-        p = certifiedDepth(a, b, frame, g, *cache->surface, options);
+        p = certifiedDepth(a, b, frame, g, *cache->surface, options, cache);
       } else {
         ExpansionSurface surface;
-        p = certifiedDepth(a, b, frame, g, surface, options);
+        p = certifiedDepth(a, b, frame, g, surface, options, cache);
       }
     } else {
       p.deep = deepPenetration(a, b, frame, cache ? &cache->deep : nullptr, options);

@@ -183,10 +183,12 @@ BOOST_AUTO_TEST_CASE(degenerate_starts) {
   }
 }
 
-// Warm answers (one cache along the motion) equal cold ones at every step.
+// Warm answers (one cache along the motion) equal cold ones at every step, and the cached surface
+// certifies most steps without an expansion.
 BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
   std::mt19937 rng(14);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int overlapping = 0, withoutExpansion = 0;
   for (int trial = 0; trial < 8; ++trial) {
     const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
     PairCache cache;
@@ -201,8 +203,44 @@ BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
       const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, X_WB);
       BOOST_TEST(std::abs(warm.distance - cold.distance) <= 1e-12, "trial " << trial << " step " << k);
       BOOST_TEST(warm.certified == cold.certified);
+      if (cold.distance < 0) {
+        ++overlapping;
+        withoutExpansion += warm.expansions == 0;
+        BOOST_TEST(cold.expansions > 0);
+      }
     }
   }
+  BOOST_TEST(overlapping > 200);
+  BOOST_TEST(withoutExpansion > overlapping / 2);
+}
+
+// A jump far beyond the cached surface's margin (faces that could have swept over the origin)
+// sends the query cold; a cache of another pair is not used.
+BOOST_AUTO_TEST_CASE(warm_start_goes_cold_when_it_cannot_certify) {
+  std::mt19937 rng(17);
+  const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
+  const Pair other = randomPair(rng, 100, 100, Vector3d::Zero());
+  PairCache cache;
+  const SignedDistanceResult first = signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache);
+  BOOST_TEST_REQUIRE(first.distance < 0);
+  BOOST_TEST(first.expansions > 0);
+  // The same pose again: certified from the cache alone.
+  const SignedDistanceResult again = signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache);
+  BOOST_TEST(again.expansions == 0);
+  BOOST_TEST(again.certified);
+  BOOST_TEST(again.distance == first.distance);
+  // B turned half around: every face moves by about the shapes' size.
+  const Isometry3d turned = makePose(Quaterniond(Eigen::AngleAxisd(M_PI, Vector3d::UnitX())) * Quaterniond(p.X_WB.linear()),
+                                     p.X_WB.translation());
+  const SignedDistanceResult jump = signedDistance(p.A, p.X_WA, p.B, turned, &cache);
+  const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, turned);
+  BOOST_TEST(jump.expansions == cold.expansions);
+  BOOST_TEST(jump.distance == cold.distance);
+  // The cache now belongs to (A, B): another pair runs cold.
+  const SignedDistanceResult foreign = signedDistance(other.A, other.X_WA, other.B, other.X_WB, &cache);
+  const SignedDistanceResult foreignCold = signedDistance(other.A, other.X_WA, other.B, other.X_WB);
+  BOOST_TEST(foreign.expansions == foreignCold.expansions);
+  BOOST_TEST(foreign.distance == foreignCold.distance);
 }
 
 // A 500-vertex sphere against itself, rotated: the surface needs hundreds of expansions. Below

@@ -65,6 +65,49 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
                                      ExpansionSurface& surface,
                                      const CertifiedOptions& options = {});
 
+/// Warm start of the certified method for one pair: the surface of a cold query (faces as vertex
+/// index pairs, at most kMaxFaces), kept with its vertices' positions and face offsets at that
+/// query's pose, the reference (certified_warm.cpp).
+///
+/// After a motion, each cached vertex b - a of M has moved by a distance the next query measures
+/// exactly. Moving the vertices straight from their reference positions to their new ones moves
+/// every point of a face by at most the largest move of its corners, so a face whose reference
+/// offset exceeds that never crosses the origin: the moved surface still winds once around it,
+/// and every face's distance to the origin is at least key = offset - move (a valid lower bound
+/// even though the moved surface need not be convex). Faces below the current upper bound are
+/// refreshed from their moved corners (the distance to a triangle is at least the distance to its
+/// plane), one support in the nearest face's normal gives the upper bound, and when the bounds
+/// meet within tau the answer is certified without expanding. Any face whose move could reach the
+/// origin, or a gap that would need an expansion, sends the query cold (which then becomes the
+/// new reference).
+struct CertifiedWarmStart {
+  static constexpr int kMaxFaces = 96;
+  static constexpr int kMaxVertices = kMaxFaces / 2 + 2;  ///< a closed surface of F faces has F/2 + 2 vertices
+  bool valid = false;
+  const ConvexPolytope* A = nullptr;  ///< the pair the surface belongs to (checked before use)
+  const ConvexPolytope* B = nullptr;
+  int numVertices = 0;
+  int numFaces = 0;
+  int a[kMaxVertices];
+  int b[kMaxVertices];
+  Eigen::Vector3d p[kMaxVertices];  ///< positions b - a at the reference pose, frame P
+  int face[kMaxFaces][3];
+  double offset[kMaxFaces];          ///< face-plane offsets at the reference pose (all >= 0)
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< the last answer's direction
+  int hintA = 0;
+  int hintB = 0;
+};
+
+/// Saves the surface of a certified cold query as the reference of the pair's warm start; leaves
+/// `warm` invalid when the surface has more than kMaxFaces faces (the next query runs cold).
+void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const ExpansionSurface& surface,
+                   const CertifiedResult& result, CertifiedWarmStart& warm);
+
+/// The warm query: Certified when the cached surface certifies the depth without expanding,
+/// else NotConverged (the caller runs certifiedPenetration).
+CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
+                              const PairFrame& frame, CertifiedWarmStart& warm);
+
 /// Names the facet of M a certified result converged on, from its certifying face's corners
 /// (certified_facet.cpp): one vertex of A and a face of B (VF), the reverse (FV), or an edge of
 /// each (EE); the facet's exact normal from those features, its offset from one support query in

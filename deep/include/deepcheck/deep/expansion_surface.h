@@ -59,6 +59,8 @@ class ExpansionSurface {
   const Vertex& vertex(int v) const { return vertices_[v]; }
   int numVertices() const { return numVertices_; }
   int numLiveFaces() const { return live_; }
+  /// Face slots in use (live or recycled): iterate 0..numFaceSlots() and test face(f).alive.
+  int numFaceSlots() const { return numSlots_; }
   /// True when w's index pair is already a vertex of face f.
   bool isCorner(int f, const Vertex& w) const;
 

@@ -19,6 +19,8 @@
 #include "deepcheck/deep/deep.h"
 #include "deepcheck/deep/gjk.h"
 
+#include <memory>
+
 namespace deepcheck::deep {
 
 /// A convex shape: a core polytope (not owned; must outlive the shape) and a radius.
@@ -73,11 +75,30 @@ struct PairCache {
   /// (on the stack, about 60 KB). Share one per thread across pairs to keep the stack small.
   ExpansionSurface* surface = nullptr;
   DeepCache deep;
-  /// Makes the next query cold (keeps the scratch pointer).
+  /// The certified method's warm start (about 4 KB), allocated by the pair's first overlapping
+  /// query with that method and reused after; copies of the cache copy it.
+  std::unique_ptr<CertifiedWarmStart> certified;
+
+  PairCache() = default;
+  PairCache(const PairCache& other) { *this = other; }
+  PairCache& operator=(const PairCache& other) {
+    if (this == &other) return *this;
+    gjk = other.gjk;
+    surface = other.surface;
+    deep = other.deep;
+    if (!other.certified) certified.reset();
+    else if (certified) *certified = *other.certified;
+    else certified = std::make_unique<CertifiedWarmStart>(*other.certified);
+    return *this;
+  }
+  PairCache(PairCache&&) = default;
+  PairCache& operator=(PairCache&&) = default;
+
+  /// Makes the next query cold (keeps the scratch pointer and the warm start's allocation).
   void reset() {
-    ExpansionSurface* keep = surface;
-    *this = PairCache{};
-    surface = keep;
+    gjk = GjkCache{};
+    deep = DeepCache{};
+    if (certified) certified->valid = false;
   }
 };
 
