@@ -59,16 +59,24 @@ int ringFaceAlong(const ConvexPolytope& P, int v, const Vec3& dir, Map toP, Vec3
   return best;
 }
 
-/// Barycentric weights (clamped to the triangle) of the origin's foot on the plane of p0 p1 p2.
-void footWeights(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& n, double w[3]) {
-  const Vec3 x = n.dot(p0) * n;
-  const double area = (p1 - p0).cross(p2 - p0).dot(n);
-  w[0] = (p1 - x).cross(p2 - x).dot(n) / area;
-  w[1] = (p2 - x).cross(p0 - x).dot(n) / area;
-  w[2] = 1.0 - w[0] - w[1];
-  for (int k = 0; k < 3; ++k) w[k] = std::max(w[k], 0.0);
-  const double sum = w[0] + w[1] + w[2];
-  for (int k = 0; k < 3; ++k) w[k] = sum > 0 ? w[k] / sum : 1.0 / 3.0;
+/// Witness on A for the facet named in `out` with normal u and offset h: A's vertex (VF), B's
+/// vertex moved back by h u (FV), or the point of A's edge on the common perpendicular of the two
+/// edges' lines (EE).
+Vec3 witnessOnA(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
+                const DeepResult& out, const Vec3& u, double h) {
+  switch (out.type) {
+    case DeepResult::FacetType::VF: return A.localVertex(out.featureA);
+    case DeepResult::FacetType::FV: return F.vertexB(B, out.featureB) - h * u;
+    case DeepResult::FacetType::EE: break;
+  }
+  const Vec3 a0 = A.localVertex(out.featureA), ea = A.localVertex(out.featureA2) - a0;
+  const Vec3 b0 = F.vertexB(B, out.featureB), eb = F.vertexB(B, out.featureB2) - b0;
+  // Closest points of the lines a0 + s ea and b0 + t eb (skew: the edges are not parallel).
+  const Vec3 d = a0 - b0;
+  const double aa = ea.dot(ea), ab = ea.dot(eb), bb = eb.dot(eb), ad = ea.dot(d), bd = eb.dot(d);
+  const double det = aa * bb - ab * ab;
+  const double s = std::clamp((ab * bd - bb * ad) / det, 0.0, 1.0);
+  return a0 + s * ea;
 }
 
 /// The facet's type, features and normal u from the corners' index pairs; false if they name none.
@@ -123,17 +131,10 @@ bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   // The corners must support u (else the features are not the facet's) and the offset must lie
   // in the bracket.
   if (h - onFacet > tol::kFeatureRelative * L || h > c.upper + c.tau || h < c.lower - c.tau) return false;
-  Vec3 p[3], a[3];
-  for (int k = 0; k < 3; ++k) {
-    a[k] = A.localVertex(c.faceA[k]);
-    p[k] = F.vertexB(B, c.faceB[k]) - a[k];
-  }
-  double w[3];
-  footWeights(p[0], p[1], p[2], c.faceNormal, w);
   out.status = DeepStatus::Converged;
   out.depth = h;
   out.normal = -u;
-  out.pointA = w[0] * a[0] + w[1] * a[1] + w[2] * a[2];
+  out.pointA = witnessOnA(A, B, F, out, u, h);
   out.pointB = out.pointA + h * u;
   return true;
 }

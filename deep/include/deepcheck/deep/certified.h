@@ -111,7 +111,7 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
 /// Names the facet of M a certified result converged on, from its certifying face's corners
 /// (certified_facet.cpp): one vertex of A and a face of B (VF), the reverse (FV), or an edge of
 /// each (EE); the facet's exact normal from those features, its offset from one support query in
-/// that normal, witness points from the origin's foot on the face. Returns false when the corners
+/// that normal, witness points from the features. Returns false when the corners
 /// do not name one facet (they span several coplanar features, or the features found do not
 /// support the normal); the caller then names it otherwise (DEEP's walk from the direction).
 bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
