@@ -143,7 +143,7 @@ void writeRepro(const Options& opt, const Family& f, int qi, const std::string& 
   out.precision(17);
   out << "# deepcheck pd reproducer from bench/pd_bench: family " << f.name << ", query " << qi << ", method "
       << method << "\n# got sd = " << sd << ", exact sd = " << exact << ", relative error " << rel << "\n";
-  const bool warm = method == "deep_warm";
+  const bool warm = method.size() > 5 && method.compare(method.size() - 5, 5, "_warm") == 0;
   if (warm) {
     out << (f.sequence ? "# warm: the queries before the last are the trajectory's earlier steps (run without --cold)\n"
                        : "# warm: the first query primes the cache, the second is the one that fails (run without --cold)\n");

@@ -39,7 +39,7 @@ namespace {
 using deep::ConvexPolytope;
 
 constexpr const char* kUsage =
-    "usage: deepcheck pd [--cold] [--exact] < cases.txt\n"
+    "usage: deepcheck pd [--cold] [--method certified|deep-walk|exact] < cases.txt\n"
     "\n"
     "Signed distance of pairs of posed convex shapes. Input on stdin:\n"
     "  shape <id> <n>      followed by n lines '<x> <y> <z>' (the shape is their convex hull)\n"
@@ -50,11 +50,23 @@ constexpr const char* kUsage =
     "\n"
     "options:\n"
     "  --cold    no warm start (by default consecutive queries of the same pair share a cache)\n"
-    "  --exact   answer with the exact brute-force reference (hull of all vertex differences)\n";
+    "  --method certified   (default) the certified penetration depth: an expanding surface\n"
+    "                       of Minkowski vertices brackets the depth, DEEP's facets name it\n"
+    "  --method deep-walk   DEEP's walks with restarts (the warm start reuses their basins)\n"
+    "  --method exact       the exact brute-force reference (hull of all vertex differences)\n"
+    "  --exact              same as --method exact\n";
 
 int runPd(std::vector<std::string> args) {
   const bool cold = takeFlag(args, "--cold");
-  const bool exact = takeFlag(args, "--exact");
+  const bool exactFlag = takeFlag(args, "--exact");
+  const std::string method = takeSingleOption(args, "--method", exactFlag ? "exact" : "certified");
+  if (method != "certified" && method != "deep-walk" && method != "exact")
+    throw UsageError("unknown --method '" + method + "' (expected certified, deep-walk or exact)");
+  if (exactFlag && method != "exact") throw UsageError("--exact contradicts --method " + method);
+  const bool exact = method == "exact";
+  deep::DeepOptions options;
+  options.method = method == "deep-walk" ? deep::PenetrationMethod::DeepWalk
+                                         : deep::PenetrationMethod::Certified;
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "' (input is read from stdin)");
 
@@ -62,6 +74,8 @@ int runPd(std::vector<std::string> args) {
   const PdInput input = readPdInput(std::cin);
 
   deep::PairCache cache;
+  deep::ExpansionSurface surface;  // the certified method's scratch, shared by every query
+  cache.surface = &surface;
   int lastA = -1;
   int lastB = -1;
   std::chrono::steady_clock::duration total{0};
@@ -69,7 +83,7 @@ int runPd(std::vector<std::string> args) {
     const ConvexPolytope& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
     const ConvexPolytope& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
     // Warm start only across consecutive queries of the same ordered pair.
-    if (q.a != lastA || q.b != lastB) cache.reset();
+    if (cold || q.a != lastA || q.b != lastB) cache.reset();
     lastA = q.a;
     lastB = q.b;
     double sd = 0.0;
@@ -84,7 +98,7 @@ int runPd(std::vector<std::string> args) {
       } else {
         const auto t0 = std::chrono::steady_clock::now();
         const deep::SignedDistanceResult r =
-            deep::signedDistance(A, q.X_WA, B, q.X_WB, cold ? nullptr : &cache);
+            deep::signedDistance(A, q.X_WA, B, q.X_WB, &cache, options);
         total += std::chrono::steady_clock::now() - t0;
         sd = r.distance;
         n = r.normal;

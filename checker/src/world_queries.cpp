@@ -536,7 +536,9 @@ struct DistanceSearch {
                                           const deep::ConvexShape& B, const Eigen::Isometry3d& X_WB,
                                           deep::PairCache& cache) {
     warm(c, cache);
-    if (!options.deep.restarts) return deep::signedDistance(A, X_WA, B, X_WB, &cache, options.deep);
+    // The certified method runs no restarts: one call is the whole query.
+    if (!options.deep.restarts || options.deep.method == deep::PenetrationMethod::Certified)
+      return deep::signedDistance(A, X_WA, B, X_WB, &cache, options.deep);
     deep::DeepOptions quick = options.deep;
     quick.restarts = false;
     deep::SignedDistanceResult r = deep::signedDistance(A, X_WA, B, X_WB, &cache, quick);

@@ -232,6 +232,18 @@ BOOST_AUTO_TEST_CASE(answers_match_exact_reference) {
   checkAgainstExact(s, "pd --cold");
 }
 
+BOOST_AUTO_TEST_CASE(every_method_matches_exact_reference) {
+  const Scenario s = makeScenario(4343, 60);
+  for (const char* args : {"pd --method certified", "pd --method deep-walk", "pd --cold --method deep-walk"})
+    checkAgainstExact(s, args);
+  // --method exact is --exact.
+  const std::string input = inputText(s.shapes, s.queries);
+  const Run a = runTool("pd --method exact", input), b = runTool("pd --exact", input);
+  BOOST_TEST_REQUIRE(a.status == 0, "stderr: " << a.err);
+  BOOST_TEST(a.out == b.out);
+  checkSummary(a.err, s.queries.size());
+}
+
 BOOST_AUTO_TEST_CASE(far_from_origin_answers_match_exact_reference) {
   checkAgainstExact(makeScenario(8080, 40, Eigen::Vector3d(1e4, -1e4, 1e4)), "pd");
 }
@@ -356,6 +368,17 @@ BOOST_AUTO_TEST_CASE(command_line_errors) {
   BOOST_TEST(r.err.find("unknown option '--bogus'") != std::string::npos);
   BOOST_TEST(r.err.find("usage: deepcheck pd") != std::string::npos);
 
+  r = runTool("pd --method fastest", "");
+  BOOST_TEST(r.status == 2);
+  BOOST_TEST(r.err.find("unknown --method 'fastest'") != std::string::npos);
+
+  r = runTool("pd --exact --method deep-walk", "");
+  BOOST_TEST(r.status == 2);
+  BOOST_TEST(r.err.find("--exact contradicts --method deep-walk") != std::string::npos);
+
+  r = runTool("pd --method certified --method exact", "");
+  BOOST_TEST(r.status == 2);
+
   r = runTool("pd extra.txt", "");
   BOOST_TEST(r.status == 2);
   BOOST_TEST(r.err.find("unexpected argument 'extra.txt'") != std::string::npos);
@@ -376,7 +399,7 @@ BOOST_AUTO_TEST_CASE(command_line_errors) {
 
   r = runTool("pd --help", "");
   BOOST_TEST(r.status == 0);
-  BOOST_TEST(r.out.find("usage: deepcheck pd [--cold] [--exact]") != std::string::npos);
+  BOOST_TEST(r.out.find("usage: deepcheck pd [--cold] [--method certified|deep-walk|exact]") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
