@@ -14,7 +14,12 @@ namespace deepcheck::robots {
 
 namespace detail::decomp {
 
-std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
+void Decomposer::addPart(std::vector<Piece>* pieces, Part part) {
+  pieces->push_back({{static_cast<int>(parts_.size())}, part.hull, part.finalHull, part.concavity});
+  parts_.push_back(std::move(part));
+}
+
+std::vector<Piece> Decomposer::initialPieces(DecompositionReport* report) {
   // The whole mesh as one part: if its hull meets the target, it is the answer.
   std::vector<PartPolygon> all;
   all.reserve(mesh_.triangles.size());
@@ -23,20 +28,109 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
     all.push_back({{mesh_.vertices[tri[0]], mesh_.vertices[tri[1]], mesh_.vertices[tri[2]]}, t});
   }
   std::vector<Piece> pieces;
-  auto addPart = [&](Part part) {
-    pieces.push_back({{static_cast<int>(parts_.size())}, part.hull, part.finalHull, part.concavity});
-    parts_.push_back(std::move(part));
-  };
   Part whole = makePart({}, all, {});
   report->hullConcavity = whole.hullConcavity;
   report->alreadyConvex = whole.concavity <= target_;
   if (report->alreadyConvex || mesh_.numGroups == 1) {
-    addPart(std::move(whole));
+    addPart(&pieces, std::move(whole));
   } else {
     std::vector<std::vector<PartPolygon>> byGroup(mesh_.numGroups);
     for (const PartPolygon& polygon : all) byGroup[mesh_.group[polygon.source]].push_back(polygon);
-    for (auto& polygons : byGroup) addPart(makePart({}, std::move(polygons), {}));
+    for (auto& polygons : byGroup) addPart(&pieces, makePart({}, std::move(polygons), {}));
   }
+  return pieces;
+}
+
+bool Decomposer::reopen(std::vector<Piece>* pieces, const std::vector<Concavity>& final, bool forbidAll) {
+  std::vector<Piece> next;
+  bool changed = false;
+  for (std::size_t i = 0; i < pieces->size(); ++i) {
+    Piece& piece = (*pieces)[i];
+    if (final[i].value <= reportTarget_) {
+      next.push_back(std::move(piece));
+      continue;
+    }
+    changed = true;
+    if (piece.parts.size() == 1) {
+      Part& part = parts_[piece.parts.front()];
+      part.concavity = std::max(part.concavity, final[i].value);
+      part.hasWorst = final[i].hasWorst;
+      part.worstSample = final[i].worstSample;
+      part.worstNearest = final[i].worstNearest;
+      piece.concavity = part.concavity;
+      next.push_back(std::move(piece));
+    } else {
+      const bool forbid = forbidAll || piece.concavity <= target_;
+      for (int a : piece.parts) {
+        if (forbid) {
+          for (int b : piece.parts) forbidden_.insert({a, b});
+        }
+        next.push_back({{a}, parts_[a].hull, parts_[a].finalHull, parts_[a].concavity});
+      }
+    }
+  }
+  *pieces = std::move(next);
+  return changed;
+}
+
+bool Decomposer::cutWorst(std::vector<Piece>* pieces) {
+  int worst = -1;
+  for (int i = 0; i < static_cast<int>(pieces->size()); ++i) {
+    const Piece& piece = (*pieces)[i];
+    if (piece.parts.size() != 1 || piece.concavity <= target_) continue;
+    if (parts_[piece.parts.front()].unsplittable) continue;
+    if (worst < 0 || piece.concavity > (*pieces)[worst].concavity) worst = i;
+  }
+  if (worst < 0) return false;
+  const int index = (*pieces)[worst].parts.front();
+  std::vector<Part> children;
+  if (!chooseSplit(parts_[index], &children) || children.empty()) {
+    parts_[index].unsplittable = true;
+    return true;
+  }
+  // A cut that only shaves a sliver off (a child with nearly the part's hull volume and its
+  // concavity) is no progress: the part is left as it is.
+  bool stuck = false;
+  for (const Part& child : children) {
+    stuck = stuck || (child.hull.volume >= dt::kSliverVolume * parts_[index].hull.volume &&
+                      child.concavity >= parts_[index].concavity - dt::kTieFraction * target_);
+  }
+  if (stuck) {
+    // Once more without the sliver cuts, then give up on this part.
+    if (parts_[index].noSlivers) parts_[index].unsplittable = true;
+    parts_[index].noSlivers = true;
+    return true;
+  }
+  pieces->erase(pieces->begin() + worst);
+  for (Part& child : children) addPart(pieces, std::move(child));
+  return true;
+}
+
+void Decomposer::cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex) {
+  for (int round = 0; round < dt::kMaxRounds && !alreadyConvex; ++round) {
+    while (static_cast<int>(pieces->size()) < budget_ && cutWorst(pieces)) {
+    }
+    bool over = false;
+    for (const Piece& piece : *pieces) over = over || piece.concavity > target_;
+    if (!params_.mergePieces) break;
+    const std::size_t before = pieces->size();
+    *pieces = merge(std::move(*pieces), false);
+    if (!over || pieces->size() == before) break;
+  }
+  if (!alreadyConvex) *pieces = merge(std::move(*pieces), true);
+}
+
+std::vector<Concavity> Decomposer::finalConcavities(const std::vector<Piece>& pieces) {
+  std::vector<Concavity> final;
+  for (const Piece& piece : pieces) {
+    final.push_back(measureConcavity(piece.finalHull, pieceTarget(piece, nullptr), dt::kReportSamples, Extra::Dense,
+                                     nextSeed(), kInf, diagonal_));
+  }
+  return final;
+}
+
+std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
+  std::vector<Piece> pieces = initialPieces(report);
   // Rounds: cut the worst part until all meet the target or the budget is spent; then merge the
   // neighbours that can be merged, which frees budget for more cuts. Then verify: the final,
   // denser estimate may find a piece above the target that the decisions' estimate missed (a small
@@ -48,98 +142,19 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
   // twice the budget, up to maxPieces. A mesh that meets the target within the first budget gets
   // the same pieces whatever maxPieces is, and a larger maxPieces costs nothing for it.
   std::vector<Concavity> final;
-  // Pieces whose final estimate is above the report's target go back to be cut: a part keeps its
-  // larger concavity and the worst sample found; a merged piece is split back into its parts.
-  // `forbidAll`: none of those parts may be merged together again; otherwise only those of a
-  // merge that the decisions had accepted (a forced merge is undone, not judged).
-  auto reopen = [&](bool forbidAll) {
-    std::vector<Piece> next;
-    bool changed = false;
-    for (std::size_t i = 0; i < pieces.size(); ++i) {
-      Piece& piece = pieces[i];
-      if (final[i].value <= reportTarget_) {
-        next.push_back(std::move(piece));
-        continue;
-      }
-      changed = true;
-      if (piece.parts.size() == 1) {
-        Part& part = parts_[piece.parts.front()];
-        part.concavity = std::max(part.concavity, final[i].value);
-        part.hasWorst = final[i].hasWorst;
-        part.worstSample = final[i].worstSample;
-        part.worstNearest = final[i].worstNearest;
-        piece.concavity = part.concavity;
-        next.push_back(std::move(piece));
-      } else {
-        const bool forbid = forbidAll || piece.concavity <= target_;
-        for (int a : piece.parts) {
-          if (forbid) {
-            for (int b : piece.parts) forbidden_.insert({a, b});
-          }
-          next.push_back({{a}, parts_[a].hull, parts_[a].finalHull, parts_[a].concavity});
-        }
-      }
-    }
-    pieces = std::move(next);
-    return changed;
-  };
   for (budget_ = std::min(params_.maxPieces, dt::kFirstPieceBudget);;
        budget_ = static_cast<int>(std::min<long long>(2LL * budget_, params_.maxPieces))) {
     for (int verify = 0; verify <= dt::kVerifyRounds; ++verify) {
-      for (int round = 0; round < dt::kMaxRounds && !report->alreadyConvex; ++round) {
-        while (static_cast<int>(pieces.size()) < budget_) {
-          int worst = -1;
-          for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
-            if (pieces[i].parts.size() != 1 || pieces[i].concavity <= target_) continue;
-            if (parts_[pieces[i].parts.front()].unsplittable) continue;
-            if (worst < 0 || pieces[i].concavity > pieces[worst].concavity) worst = i;
-          }
-          if (worst < 0) break;
-          const int index = pieces[worst].parts.front();
-          std::vector<Part> children;
-          if (!chooseSplit(parts_[index], &children) || children.empty()) {
-            parts_[index].unsplittable = true;
-            continue;
-          }
-          // A cut that only shaves a sliver off (a child with nearly the part's hull volume and its
-          // concavity) is no progress: the part is left as it is.
-          bool stuck = false;
-          for (const Part& child : children) {
-            stuck = stuck || (child.hull.volume >= dt::kSliverVolume * parts_[index].hull.volume &&
-                              child.concavity >= parts_[index].concavity - dt::kTieFraction * target_);
-          }
-          if (stuck) {
-            // Once more without the sliver cuts, then give up on this part.
-            if (parts_[index].noSlivers) parts_[index].unsplittable = true;
-            parts_[index].noSlivers = true;
-            continue;
-          }
-          pieces.erase(pieces.begin() + worst);
-          for (Part& child : children) addPart(std::move(child));
-        }
-        bool over = false;
-        for (const Piece& piece : pieces) over = over || piece.concavity > target_;
-        if (!params_.mergePieces) break;
-        const std::size_t before = pieces.size();
-        pieces = merge(std::move(pieces), false);
-        if (!over || pieces.size() == before) break;
-      }
-      if (!report->alreadyConvex) pieces = merge(std::move(pieces), true);
-
-      // The final, denser concavity estimate on what is returned.
-      final.clear();
-      for (const Piece& piece : pieces) {
-        final.push_back(measureConcavity(piece.finalHull, pieceTarget(piece, nullptr), dt::kReportSamples,
-                                         Extra::Dense, nextSeed(), kInf, diagonal_));
-      }
+      cutAndMerge(&pieces, report->alreadyConvex);
+      final = finalConcavities(pieces);  // the final, denser estimate on what is returned
       if (verify == dt::kVerifyRounds || report->alreadyConvex) break;
-      if (!reopen(true)) break;
+      if (!reopen(&pieces, final, true)) break;
     }
     if (report->alreadyConvex || budget_ >= params_.maxPieces) break;
     bool met = true;
     for (const Concavity& c : final) met = met && c.value <= reportTarget_;
     if (met) break;
-    reopen(false);
+    reopen(&pieces, final, false);
   }
   std::vector<ConvexPiece> out;
   report->concavity = 0.0;

@@ -296,27 +296,9 @@ const Decomposer::Candidate* Decomposer::pickBest(const Part& part, const std::v
   return pick;
 }
 
-bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
-  double bestScore = kInf;
-  std::vector<Candidate> scored = scoreCuts(part, false, kInf, &bestScore);
-  if (scored.empty()) return false;
-  const Candidate* pick = pickBest(part, scored, bestScore);
-  // The children are reduced to the vertex budget only once chosen (finishChildren).
-  auto finishChildren = [&]() {
-    for (Part& kid : *children) finishPart(&kid);
-    return !children->empty();
-  };
-  *children = applyCut(part, *pick, false);
-  // The sides' concavities as the children measure them (more samples than the candidates had).
-  double greedy = 0.0;
-  for (const Part& kid : *children) greedy = std::max(greedy, kid.concavity);
-  const bool plateau = !part.reductionLimited && greedy > target_ &&
-                       greedy > dt::kPlateauFraction * part.concavity;
-  if (!plateau) return finishChildren();
-  // Plateau: no single cut lowers the worst concavity (a slot needs a cut along each wall, a hole
-  // two cuts through its axis). Look one cut ahead: split by each of the most promising cuts, and
-  // score it by the worst concavity left after the best quick cut of each side that misses the
-  // target.
+std::vector<const Decomposer::Candidate*> Decomposer::lookaheadOrder(const Part& part,
+                                                                    const std::vector<Candidate>& scored,
+                                                                    const Candidate* pick) const {
   // First cuts tried: through the worst sample (a hole needs two of those), the nearest cut on
   // each side of it along each direction (a slot needs one along each wall), and the best scores.
   std::vector<const Candidate*> order = {pick};
@@ -358,17 +340,20 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
   for (int k = 0; k < dt::kLookaheadBest && k < static_cast<int>(ranked.size()); ++k) {
     order.insert(order.begin() + std::min<std::size_t>(order.size(), 1 + k), ranked[k]);
   }
-  // (duplicates from the insertion above are skipped below)
-  {
-    std::vector<const Candidate*> unique;
-    for (const Candidate* c : order) {
-      if (std::find(unique.begin(), unique.end(), c) == unique.end()) unique.push_back(c);
-    }
-    order = std::move(unique);
+  // Duplicates from the insertion above are dropped.
+  std::vector<const Candidate*> unique;
+  for (const Candidate* c : order) {
+    if (std::find(unique.begin(), unique.end(), c) == unique.end()) unique.push_back(c);
   }
-  if (static_cast<int>(order.size()) > dt::kLookaheadCuts) order.resize(dt::kLookaheadCuts);
+  if (static_cast<int>(unique.size()) > dt::kLookaheadCuts) unique.resize(dt::kLookaheadCuts);
+  return unique;
+}
+
+const Decomposer::Candidate* Decomposer::lookahead(const Part& part, const std::vector<const Candidate*>& order,
+                                                   const Candidate* pick, std::vector<Part>* children,
+                                                   double* bestAhead) {
   const double tie = dt::kTieFraction * target_;
-  double bestAhead = kInf;
+  *bestAhead = kInf;
   const Candidate* bestCandidate = nullptr;
   for (const Candidate* candidate : order) {
     std::vector<Part> kids = candidate == pick ? std::move(*children) : applyCut(part, *candidate, false);
@@ -377,21 +362,49 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
       double next = kid.concavity;
       if (next > target_) {
         double quickBest = kInf;
-        scoreCuts(kid, true, std::min(bestAhead + tie, next), &quickBest);
+        scoreCuts(kid, true, std::min(*bestAhead + tie, next), &quickBest);
         next = std::min(next, quickBest);
       }
       ahead = std::max(ahead, next);
-      if (ahead > bestAhead + tie) break;
+      if (ahead > *bestAhead + tie) break;
     }
-    if (ahead < bestAhead - tie || (ahead <= bestAhead + tie && (bestCandidate == nullptr || betterTie(*candidate, *bestCandidate)))) {
-      bestAhead = std::min(bestAhead, ahead);
+    if (ahead < *bestAhead - tie ||
+        (ahead <= *bestAhead + tie && (bestCandidate == nullptr || betterTie(*candidate, *bestCandidate)))) {
+      *bestAhead = std::min(*bestAhead, ahead);
       bestCandidate = candidate;
       *children = std::move(kids);
     }
   }
+  return bestCandidate;
+}
+
+bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
+  double bestScore = kInf;
+  std::vector<Candidate> scored = scoreCuts(part, false, kInf, &bestScore);
+  if (scored.empty()) return false;
+  const Candidate* pick = pickBest(part, scored, bestScore);
+  // The children are reduced to the vertex budget only once chosen (finishChildren).
+  auto finishChildren = [&]() {
+    for (Part& kid : *children) finishPart(&kid);
+    return !children->empty();
+  };
+  *children = applyCut(part, *pick, false);
+  // The sides' concavities as the children measure them (more samples than the candidates had).
+  double greedy = 0.0;
+  for (const Part& kid : *children) greedy = std::max(greedy, kid.concavity);
+  const bool plateau = !part.reductionLimited && greedy > target_ &&
+                       greedy > dt::kPlateauFraction * part.concavity;
+  if (!plateau) return finishChildren();
+  // Plateau: no single cut lowers the worst concavity (a slot needs a cut along each wall, a hole
+  // two cuts through its axis). Look one cut ahead: split by each of the most promising cuts, and
+  // score it by the worst concavity left after the best quick cut of each side that misses the
+  // target.
+  double bestAhead = kInf;
+  const Candidate* bestCandidate = lookahead(part, lookaheadOrder(part, scored, pick), pick, children, &bestAhead);
   // Still no progress two cuts deep (a frame around a pocket needs a cut along each of its
   // walls before any concavity drops): cut along the largest mesh face near the concavity.
   if (bestAhead > dt::kStructuralFraction * part.concavity) {
+    const double tie = dt::kTieFraction * target_;
     const Candidate* structural = nullptr;
     for (const Candidate& c : scored) {
       if (c.faceArea <= dt::kFaceAreaTie * diagonal_ * diagonal_ || c.score > part.concavity + tie) continue;

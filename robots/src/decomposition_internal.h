@@ -400,6 +400,23 @@ class Decomposer {
   std::vector<ConvexPiece> run(DecompositionReport* report);
 
  private:
+  // The steps of run() (decomposition.cpp).
+  void addPart(std::vector<Piece>* pieces, Part part);
+  /// The whole mesh as one part, or one part per group when its hull misses the target.
+  std::vector<Piece> initialPieces(DecompositionReport* report);
+  /// Cuts the worst part that can still be cut; false when there is none.
+  bool cutWorst(std::vector<Piece>* pieces);
+  /// Rounds of cuts within the budget and merges of neighbours, then the forced merges.
+  void cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex);
+  /// The final, denser concavity estimate of each piece.
+  std::vector<Concavity> finalConcavities(const std::vector<Piece>& pieces);
+  /// Pieces whose final estimate is above the report's target go back to be cut: a part keeps
+  /// its larger concavity and the worst sample found; a merged piece is split back into its
+  /// parts. `forbidAll`: none of those parts may be merged together again; otherwise only those
+  /// of a merge that the decisions had accepted (a forced merge is undone, not judged). False
+  /// when every piece met the target.
+  bool reopen(std::vector<Piece>* pieces, const std::vector<Concavity>& final, bool forbidAll);
+
   std::uint64_t nextSeed() { return params_.seed ^ (0x9e3779b97f4a7c15ULL * ++evaluations_); }
   Halfspace halfspaceOf(const CellSide& side) const {
     const CutPlane& plane = *planes_[side.plane];
@@ -424,6 +441,13 @@ class Decomposer {
   };
   std::vector<Component> components(std::vector<PartPolygon> polygons,
                                     const std::vector<CellSide>& cell) const;
+  // The steps of components() (decomposition_parts.cpp): union-find over the source triangles
+  // (`node`: triangle -> index in `sources`) and the regions of the cut faces.
+  void joinAcrossEdges(const std::unordered_map<int, int>& node, const std::vector<int>& sources,
+                       const std::vector<Halfspace>& halfspaces, std::vector<int>* parent) const;
+  void joinThroughCutFaces(const std::vector<PartPolygon>& polygons, const std::vector<CellSide>& cell,
+                           const std::unordered_map<int, int>& node, const std::vector<int>& sources,
+                           const std::vector<Halfspace>& halfspaces, std::vector<int>* parent) const;
   std::vector<PartPolygon> clip(const std::vector<PartPolygon>& polygons, const Halfspace& keep) const;
   /// Corners of the cell (vertices of the intersection of its half-spaces) inside the solid, with
   /// the cell planes through each.
@@ -432,6 +456,12 @@ class Decomposer {
     std::vector<int> planes;  ///< indices into the cell
   };
   std::vector<CellCorner> solidCellCorners(const std::vector<CellSide>& cell) const;
+  /// Gives each cell corner inside the solid to the components whose hulls must hold it.
+  void assignCellCorners(const std::vector<CellSide>& cell, const std::vector<Halfspace>& halfspaces,
+                         std::vector<Component>* out) const;
+  /// The components a corner belongs to, by rays into the cell (empty: none found).
+  std::vector<int> cornerOwners(const CellCorner& corner, const std::vector<Halfspace>& halfspaces,
+                                const std::vector<Component>& out, const std::vector<char>& touchesCell) const;
 
   struct SideResult {
     bool valid = false;
@@ -472,6 +502,13 @@ class Decomposer {
   bool betterTie(const Candidate& a, const Candidate& b) const;
   /// Chooses the cut of `part` (with a one-cut lookahead on plateaus) and returns its children.
   bool chooseSplit(const Part& part, std::vector<Part>* children);
+  /// The cuts the lookahead tries, `pick` (the greedy choice) first.
+  std::vector<const Candidate*> lookaheadOrder(const Part& part, const std::vector<Candidate>& scored,
+                                               const Candidate* pick) const;
+  /// The cut of `order` whose children leave the least concavity after one more quick cut; its
+  /// children in `children` (which holds pick's on entry) and that concavity in `bestAhead`.
+  const Candidate* lookahead(const Part& part, const std::vector<const Candidate*>& order, const Candidate* pick,
+                             std::vector<Part>* children, double* bestAhead);
   std::vector<Part> split(const Part& part, const Halfspace& cut, bool reduce = true);
 
   Hull pieceHull(const Piece& a, const Piece* b) const;

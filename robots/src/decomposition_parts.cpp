@@ -82,6 +82,77 @@ std::vector<Decomposer::CellCorner> Decomposer::solidCellCorners(const std::vect
   return corners;
 }
 
+namespace {
+
+/// Whether the segment a-b meets the cell (the intersection of the half-spaces).
+bool edgeMeetsCell(const std::vector<Halfspace>& halfspaces, const Vector3d& a, const Vector3d& b) {
+  double t0 = 0.0;
+  double t1 = 1.0;
+  for (const Halfspace& h : halfspaces) {
+    const double sa = h.signedDistance(a);
+    const double sb = h.signedDistance(b);
+    if (sa > 0.0 && sb > 0.0) return false;
+    if (sa > 0.0) t0 = std::max(t0, sa / (sa - sb));
+    if (sb > 0.0) t1 = std::min(t1, sa / (sa - sb));
+  }
+  return t0 <= t1;
+}
+
+}  // namespace
+
+void Decomposer::joinAcrossEdges(const std::unordered_map<int, int>& node, const std::vector<int>& sources,
+                                 const std::vector<Halfspace>& halfspaces, std::vector<int>* parent) const {
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const int t = sources[i];
+    for (int e = 0; e < 3; ++e) {
+      const int edge = mesh_.edgeOf[3 * t + e];
+      bool checked = false;
+      bool meets = false;
+      for (int k = mesh_.edgeStart[edge]; k < mesh_.edgeStart[edge + 1]; ++k) {
+        const int other = mesh_.edgeTris[k];
+        if (other == t) continue;
+        auto it = node.find(other);
+        if (it == node.end()) continue;
+        if (!checked) {
+          const auto& tri = mesh_.triangles[t];
+          meets = edgeMeetsCell(halfspaces, mesh_.vertices[tri[e]], mesh_.vertices[tri[(e + 1) % 3]]);
+          checked = true;
+        }
+        if (meets) unite(*parent, static_cast<int>(i), it->second);
+      }
+    }
+  }
+}
+
+void Decomposer::joinThroughCutFaces(const std::vector<PartPolygon>& polygons, const std::vector<CellSide>& cell,
+                                     const std::unordered_map<int, int>& node, const std::vector<int>& sources,
+                                     const std::vector<Halfspace>& halfspaces, std::vector<int>* parent) const {
+  std::map<std::pair<int, int>, int> regionNode;
+  auto join = [&](int sourceNode, int plane, int region) {
+    auto [it, inserted] = regionNode.emplace(std::make_pair(plane, region), static_cast<int>(parent->size()));
+    if (inserted) parent->push_back(it->second);
+    unite(*parent, sourceNode, it->second);
+  };
+  const double onPlane = dt::kOnPlaneRelative * diagonal_;
+  for (std::size_t c = 0; c < cell.size(); ++c) {
+    const CrossSection& section = planes_[cell[c].plane]->section;
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      const int region = section.regionOfTriangle(sources[i]);
+      if (region >= 0) join(static_cast<int>(i), cell[c].plane, region);
+    }
+    // A polygon that reaches the plane borders the region there, even when its mesh triangle's
+    // own segment lies outside the cell (a body around a void whose walls it does not share).
+    for (const PartPolygon& polygon : polygons) {
+      for (const Vector3d& p : polygon.corners) {
+        if (std::abs(halfspaces[c].signedDistance(p)) > onPlane) continue;
+        const int region = section.regionAt(p);
+        if (region >= 0) join(node.at(polygon.source), cell[c].plane, region);
+        break;
+      }
+    }
+  }
+}
+
 std::vector<Decomposer::Component> Decomposer::components(std::vector<PartPolygon> polygons,
                                                           const std::vector<CellSide>& cell) const {
   // Union-find over the source triangles present, plus one node per (cut plane, region) of the
@@ -99,62 +170,8 @@ std::vector<Decomposer::Component> Decomposer::components(std::vector<PartPolygo
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<Halfspace> halfspaces;
   for (const CellSide& side : cell) halfspaces.push_back(halfspaceOf(side));
-  auto edgeMeetsCell = [&](const Vector3d& a, const Vector3d& b) {
-    double t0 = 0.0;
-    double t1 = 1.0;
-    for (const Halfspace& h : halfspaces) {
-      const double sa = h.signedDistance(a);
-      const double sb = h.signedDistance(b);
-      if (sa > 0.0 && sb > 0.0) return false;
-      if (sa > 0.0) t0 = std::max(t0, sa / (sa - sb));
-      if (sb > 0.0) t1 = std::min(t1, sa / (sa - sb));
-    }
-    return t0 <= t1;
-  };
-  for (std::size_t i = 0; i < sources.size(); ++i) {
-    const int t = sources[i];
-    for (int e = 0; e < 3; ++e) {
-      const int edge = mesh_.edgeOf[3 * t + e];
-      bool checked = false;
-      bool meets = false;
-      for (int k = mesh_.edgeStart[edge]; k < mesh_.edgeStart[edge + 1]; ++k) {
-        const int other = mesh_.edgeTris[k];
-        if (other == t) continue;
-        auto it = node.find(other);
-        if (it == node.end()) continue;
-        if (!checked) {
-          const auto& tri = mesh_.triangles[t];
-          meets = edgeMeetsCell(mesh_.vertices[tri[e]], mesh_.vertices[tri[(e + 1) % 3]]);
-          checked = true;
-        }
-        if (meets) unite(parent, static_cast<int>(i), it->second);
-      }
-    }
-  }
-  std::map<std::pair<int, int>, int> regionNode;
-  auto join = [&](int sourceNode, int plane, int region) {
-    auto [it, inserted] = regionNode.emplace(std::make_pair(plane, region), static_cast<int>(parent.size()));
-    if (inserted) parent.push_back(it->second);
-    unite(parent, sourceNode, it->second);
-  };
-  const double onPlane = dt::kOnPlaneRelative * diagonal_;
-  for (std::size_t c = 0; c < cell.size(); ++c) {
-    const CrossSection& section = planes_[cell[c].plane]->section;
-    for (std::size_t i = 0; i < sources.size(); ++i) {
-      const int region = section.regionOfTriangle(sources[i]);
-      if (region >= 0) join(static_cast<int>(i), cell[c].plane, region);
-    }
-    // A polygon that reaches the plane borders the region there, even when its mesh triangle's
-    // own segment lies outside the cell (a body around a void whose walls it does not share).
-    for (const PartPolygon& polygon : polygons) {
-      for (const Vector3d& p : polygon.corners) {
-        if (std::abs(halfspaces[c].signedDistance(p)) > onPlane) continue;
-        const int region = section.regionAt(p);
-        if (region >= 0) join(node[polygon.source], cell[c].plane, region);
-        break;
-      }
-    }
-  }
+  joinAcrossEdges(node, sources, halfspaces, &parent);
+  joinThroughCutFaces(polygons, cell, node, sources, halfspaces, &parent);
   std::vector<int> label(parent.size(), -1);
   std::vector<Component> out;
   for (PartPolygon& polygon : polygons) {
@@ -165,6 +182,55 @@ std::vector<Decomposer::Component> Decomposer::components(std::vector<PartPolygo
     }
     out[label[root]].polygons.push_back(std::move(polygon));
   }
+  assignCellCorners(cell, halfspaces, &out);
+  return out;
+}
+
+std::vector<int> Decomposer::cornerOwners(const CellCorner& corner, const std::vector<Halfspace>& halfspaces,
+                                          const std::vector<Component>& out,
+                                          const std::vector<char>& touchesCell) const {
+  Vector3d inward = Vector3d::Zero();
+  for (int c : corner.planes) inward -= halfspaces[c].normal;
+  const Vector3d axis = inward.normalized();
+  std::vector<int> owners;
+  for (int attempt = 0; owners.empty() && attempt < dt::kCornerRays && axis.allFinite(); ++attempt) {
+    // The axis, then the axis tilted away from each of the corner's planes in turn.
+    Vector3d dir = axis;
+    if (attempt > 0) dir = (axis - 0.5 * halfspaces[corner.planes[attempt % corner.planes.size()]].normal).normalized();
+    double exit = kInf;
+    for (const Halfspace& h : halfspaces) {
+      const double rate = h.normal.dot(dir);
+      if (rate > 0.0) exit = std::min(exit, -h.signedDistance(corner.point) / rate);
+    }
+    double first = exit;
+    double firstTouching = exit;
+    int firstOwner = -1;
+    int touchingOwner = -1;
+    for (int i = 0; i < static_cast<int>(out.size()); ++i) {
+      for (const PartPolygon& polygon : out[i].polygons) {
+        for (std::size_t k = 1; k + 1 < polygon.corners.size(); ++k) {
+          const double t =
+              detail::rayTriangle(corner.point, dir, polygon.corners[0], polygon.corners[k], polygon.corners[k + 1]);
+          if (!(t > 0.0)) continue;
+          if (t < first) {
+            first = t;
+            firstOwner = i;
+          }
+          if (touchesCell[i] && t < firstTouching) {
+            firstTouching = t;
+            touchingOwner = i;
+          }
+        }
+      }
+    }
+    if (firstOwner >= 0) owners.push_back(firstOwner);
+    if (firstOwner >= 0 && !touchesCell[firstOwner] && touchingOwner >= 0) owners.push_back(touchingOwner);
+  }
+  return owners;
+}
+
+void Decomposer::assignCellCorners(const std::vector<CellSide>& cell, const std::vector<Halfspace>& halfspaces,
+                                   std::vector<Component>* out) const {
   // Cell corners inside the solid: the solid's cut faces end there, so the hull of the component
   // whose solid holds the corner must include it. That component is found by casting a ray from
   // the corner into the cell: the ray runs inside that solid until it meets the solid's surface,
@@ -172,61 +238,25 @@ std::vector<Decomposer::Component> Decomposer::components(std::vector<PartPolygo
   // may be a void inside the solid (an inner boundary): then the first component touching the
   // cell's planes along the ray gets the corner too. A corner whose rays all leave the cell first
   // goes to every component (safe).
-  std::vector<char> touchesCell(out.size(), 0);
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    for (const PartPolygon& polygon : out[i].polygons) {
+  const double onPlane = dt::kOnPlaneRelative * diagonal_;
+  std::vector<char> touchesCell(out->size(), 0);
+  for (std::size_t i = 0; i < out->size(); ++i) {
+    for (const PartPolygon& polygon : (*out)[i].polygons) {
       for (const Vector3d& p : polygon.corners) {
         for (const Halfspace& h : halfspaces) touchesCell[i] = touchesCell[i] || std::abs(h.signedDistance(p)) <= onPlane;
       }
     }
   }
   for (const CellCorner& corner : solidCellCorners(cell)) {
-    Vector3d inward = Vector3d::Zero();
-    for (int c : corner.planes) inward -= halfspaces[c].normal;
-    const Vector3d axis = inward.normalized();
-    std::vector<int> owners;
-    for (int attempt = 0; owners.empty() && attempt < dt::kCornerRays && axis.allFinite(); ++attempt) {
-      // The axis, then the axis tilted away from each of the corner's planes in turn.
-      Vector3d dir = axis;
-      if (attempt > 0) dir = (axis - 0.5 * halfspaces[corner.planes[attempt % corner.planes.size()]].normal).normalized();
-      double exit = kInf;
-      for (const Halfspace& h : halfspaces) {
-        const double rate = h.normal.dot(dir);
-        if (rate > 0.0) exit = std::min(exit, -h.signedDistance(corner.point) / rate);
-      }
-      double first = exit;
-      double firstTouching = exit;
-      int firstOwner = -1;
-      int touchingOwner = -1;
-      for (int i = 0; i < static_cast<int>(out.size()); ++i) {
-        for (const PartPolygon& polygon : out[i].polygons) {
-          for (std::size_t k = 1; k + 1 < polygon.corners.size(); ++k) {
-            const double t = detail::rayTriangle(corner.point, dir, polygon.corners[0], polygon.corners[k],
-                                                 polygon.corners[k + 1]);
-            if (!(t > 0.0)) continue;
-            if (t < first) {
-              first = t;
-              firstOwner = i;
-            }
-            if (touchesCell[i] && t < firstTouching) {
-              firstTouching = t;
-              touchingOwner = i;
-            }
-          }
-        }
-      }
-      if (firstOwner >= 0) owners.push_back(firstOwner);
-      if (firstOwner >= 0 && !touchesCell[firstOwner] && touchingOwner >= 0) owners.push_back(touchingOwner);
-    }
+    std::vector<int> owners = cornerOwners(corner, halfspaces, *out, touchesCell);
     // No owner found: every component gets the corner (safe), but only for a closed mesh. An open
     // mesh has no well-defined solid (its inside test is fuzzy near holes), so there only corners
     // with an owner are added; its surface is covered either way.
     if (owners.empty() && mesh_.closed) {
-      for (int i = 0; i < static_cast<int>(out.size()); ++i) owners.push_back(i);
+      for (int i = 0; i < static_cast<int>(out->size()); ++i) owners.push_back(i);
     }
-    for (int i : owners) out[i].cellCorners.push_back(corner.point);
+    for (int i : owners) (*out)[i].cellCorners.push_back(corner.point);
   }
-  return out;
 }
 
 Part Decomposer::makePart(std::vector<CellSide> cell, std::vector<PartPolygon> polygons,

@@ -1,6 +1,7 @@
 #include "deepcheck/robots/pair_filter.h"
 
 #include "deepcheck/robots/kinematics.h"
+#include "deepcheck/robots/random_configuration.h"
 
 #include "deepcheck/deep/signed_distance.h"
 
@@ -58,9 +59,6 @@ bool posedOverlap(const std::vector<PosedPiece>& a, const std::vector<PosedPiece
   }
   return false;
 }
-
-/// Uniform in [0, 1) from the top 53 bits of one 64-bit draw: the same on every platform.
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
 std::string robotContext(const RobotModel& model) {
   return "robot " + quoted(model.name()) + " (" + model.source() + ")";
@@ -238,12 +236,8 @@ PairFilterResult computeDisabledPairs(const RobotModel& model,
       if (r.reason != DisableReason::Adjacent) sampled.push_back(&r);
     }
     std::mt19937_64 rng(options.seed);
-    const Eigen::VectorXd& lo = model.lowerLimits();
-    const Eigen::VectorXd& hi = model.upperLimits();
-    Eigen::VectorXd q(model.numVariables());
     for (int s = 0; s < options.samples; ++s) {
-      for (int v = 0; v < q.size(); ++v) q[v] = lo[v] + uniform01(rng) * (hi[v] - lo[v]);
-      poseAll(q);
+      poseAll(randomConfiguration(model, rng));
       for (LinkPairReport* r : sampled) {
         if (posedOverlap(posed[r->link1], posed[r->link2])) ++r->collisions;
       }
