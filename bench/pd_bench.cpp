@@ -24,6 +24,7 @@
 // failed, thrown), reproducers DIR/repro_pd_<family>_<query>_<method>.txt in the input format of
 // `deepcheck pd` (DESIGN.md).
 
+#include "format.h"
 #include "pd_families.h"
 #include "pd_methods.h"
 
@@ -122,12 +123,7 @@ struct Tally {
   int notConverged = 0, repros = 0;
 };
 
-std::string fmt(double x, const char* f = "%.3g") {
-  if (std::isnan(x)) return "-";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, x);
-  return buf;
-}
+using deepcheck::bench::fmt;
 
 void writePose(std::ostream& out, const Pose& p) {
   out << p.t.x() << ' ' << p.t.y() << ' ' << p.t.z() << ' ' << p.q.w() << ' ' << p.q.x() << ' '

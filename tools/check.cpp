@@ -64,7 +64,7 @@ constexpr const char* kUsage =
 
 int run(std::vector<std::string> args) {
   const bool gradient = takeFlag(args, "--gradient");
-  const PackagePaths paths = takePackagePaths(args);
+  const PackageRoots paths = takePackageRoots(args);
   std::string robotPath;
   std::string srdf;
   std::vector<SceneArg> scenes;

@@ -49,8 +49,8 @@ std::string takeSingleOption(std::vector<std::string>& args, const std::string& 
   return values.empty() ? fallback : values.front();
 }
 
-PackagePaths takePackagePaths(std::vector<std::string>& args) {
-  return PackagePaths{takeOption(args, "--package-path")};
+PackageRoots takePackageRoots(std::vector<std::string>& args) {
+  return PackageRoots{takeOption(args, "--package-path")};
 }
 
 void rejectUnknownOptions(const std::vector<std::string>& args) {

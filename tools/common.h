@@ -43,12 +43,12 @@ std::string takeSingleOption(std::vector<std::string>& args, const std::string& 
 /// Package roots given by `--package-path DIR` (repeatable), in the order given, to search for
 /// `package://` URIs. The environment (ROS_PACKAGE_PATH, AMENT_PREFIX_PATH) is searched after them
 /// by the robots library (robots::packageRoots, LoadOptions::useRosPackagePath).
-struct PackagePaths {
+struct PackageRoots {
   std::vector<std::string> commandLine;
 };
 
 /// Removes the `--package-path DIR` / `--package-path=DIR` options from `args`.
-PackagePaths takePackagePaths(std::vector<std::string>& args);
+PackageRoots takePackageRoots(std::vector<std::string>& args);
 
 /// Throws UsageError naming the first remaining argument that starts with '-' (an unknown option).
 void rejectUnknownOptions(const std::vector<std::string>& args);

@@ -140,7 +140,7 @@ int run(std::vector<std::string> args) {
   std::vector<SceneArg> scenes;
   std::string srdf;
   takeWorldOptions(args, robotPath, scenes, srdf);
-  const PackagePaths packages = takePackagePaths(args);
+  const PackageRoots packages = takePackageRoots(args);
   const std::vector<double> start = takeVector(args, "--start");
   const std::vector<double> goal = takeVector(args, "--goal");
   const std::string plannerName = takeSingleOption(args, "--planner", "RRTConnect");
@@ -173,7 +173,7 @@ int run(std::vector<std::string> args) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
 
   planners::SetupOptions options;
-  options.packagePaths = packages.commandLine;
+  options.packageRoots = packages.commandLine;
   options.srdf = srdf;
   std::vector<planners::SceneSpec> specs;
   for (const SceneArg& scene : scenes) {

@@ -3,7 +3,7 @@
 // with the same two queries as AabbTree (aabb_tree.h), so the two can be compared on one world.
 // Thread-safe: the manager is only read after construction; each query makes its own query object.
 
-#include "deepcheck/checker/aabb_tree.h"
+#include "aabb_tree.h"
 
 #include <functional>
 #include <memory>

@@ -21,7 +21,7 @@ namespace {
 
 robots::LoadOptions loadOptions(const SetupOptions& options) {
   robots::LoadOptions load;
-  load.packageRoots = options.packagePaths;
+  load.packageRoots = options.packageRoots;
   load.useRosPackagePath = options.useRosPackagePath;
   return load;
 }
@@ -50,11 +50,7 @@ std::shared_ptr<checker::World> loadWorld(const std::string& robotUrdf, const st
   auto world = std::make_shared<checker::World>(std::move(robot), worldOptions);
   for (const SceneSpec& spec : scenes) {
     robots::RobotModel scene = robots::RobotModel::fromUrdfFile(spec.urdf, load);
-    checker::SceneOptions sceneOptions;
-    sceneOptions.q = spec.q;
-    sceneOptions.overridePose = spec.overridePose;
-    sceneOptions.X_WS = spec.X_WS;
-    world->addScene(std::move(scene), sceneOptions);
+    world->addScene(std::move(scene), spec);
   }
   return world;
 }

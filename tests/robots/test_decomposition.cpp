@@ -186,9 +186,6 @@ int uncoveredPoints(const TriangleMesh& mesh, const std::vector<ConvexPiece>& pi
 
 void checkDecomposition(const TriangleMesh& mesh, const ConvexDecomposition& d) {
   const DecompositionReport& r = d.report;
-  BOOST_TEST_MESSAGE(mesh.source << ": " << r.numPieces << " pieces, concavity " << r.concavity
-                                 << " (" << 100.0 * r.concavityRelative << " % of the diagonal), target "
-                                 << r.targetConcavity << ", volume ratio " << r.volumeRatio);
   BOOST_CHECK_EQUAL(r.numPieces, static_cast<int>(d.pieces.size()));
   BOOST_CHECK(r.targetMet);
   BOOST_CHECK_LE(r.concavity, r.targetConcavity);
@@ -205,7 +202,7 @@ void checkDecomposition(const TriangleMesh& mesh, const ConvexDecomposition& d) 
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(decomposition)
+BOOST_AUTO_TEST_SUITE(robots_decomposition)
 
 BOOST_AUTO_TEST_CASE(l_u_and_ring_shapes_get_several_pieces_that_cover_them) {
   // Each shape with its volume (cells times cell volume).

@@ -89,7 +89,7 @@ const char* kMimicUrdf = R"(<robot name="mimic">
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(urdf)
+BOOST_AUTO_TEST_SUITE(robots_urdf)
 
 BOOST_AUTO_TEST_CASE(panda_structure) {
   if (!haveShared("panda_structure")) return;

@@ -27,7 +27,7 @@
 // the clearance validator and, where that fails, repairs it (path_tools.h: push-out and
 // subdivision). The `deepcheck plan` tool does exactly this.
 //
-// Files: package:// URIs are resolved with SetupOptions::packagePaths first, then (unless
+// Files: package:// URIs are resolved with SetupOptions::packageRoots first, then (unless
 // useRosPackagePath is false) ROS_PACKAGE_PATH (robots/package_path.h). Errors are
 // std::invalid_argument naming the file and the problem.
 
@@ -50,21 +50,8 @@
 
 namespace deepcheck::planners {
 
-/// A scene URDF and where it goes.
-struct SceneSpec {
-  std::string urdf;
-  /// Place the scene at X_WS instead of its URDF base pose (the identity).
-  bool overridePose = false;
-  Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
-  /// The scene's joint values (its own variables); empty: its default configuration.
-  Eigen::VectorXd q;
-
-  SceneSpec() = default;
-  SceneSpec(std::string path) : urdf(std::move(path)) {}  // NOLINT: implicit on purpose
-  SceneSpec(const char* path) : urdf(path) {}             // NOLINT
-  SceneSpec(std::string path, const Eigen::Isometry3d& pose)
-      : urdf(std::move(path)), overridePose(true), X_WS(pose) {}
-};
+/// A scene URDF and where it goes (the checker's scene type).
+using SceneSpec = checker::SceneSpec;
 
 enum class MotionValidation {
   Discrete,   ///< OMPL's DiscreteMotionValidator at the state space's resolution
@@ -73,7 +60,7 @@ enum class MotionValidation {
 
 struct SetupOptions {
   /// Package roots for package:// URIs, searched first.
-  std::vector<std::string> packagePaths;
+  std::vector<std::string> packageRoots;
   bool useRosPackagePath = true;
   /// An SRDF whose <disable_collisions> pairs are not checked ("" for none).
   std::string srdf;
