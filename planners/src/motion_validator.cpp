@@ -40,6 +40,25 @@ ClearanceMotionValidator::ClearanceMotionValidator(const ompl::base::SpaceInform
                                                    double fallbackFraction)
     : ClearanceMotionValidator(si.get(), std::move(checker), std::move(bound), fallbackFraction) {}
 
+namespace {
+
+std::shared_ptr<const LinkSpeedBound> boundOfWorld(const std::shared_ptr<const StateValidityChecker>& checker) {
+  if (!checker) throw std::invalid_argument("ClearanceMotionValidator: the validity checker is null");
+  return std::make_shared<const LinkSpeedBound>(LinkSpeedBound::forWorld(checker->world()));
+}
+
+}  // namespace
+
+ClearanceMotionValidator::ClearanceMotionValidator(ompl::base::SpaceInformation* si,
+                                                   std::shared_ptr<const StateValidityChecker> checker,
+                                                   double fallbackFraction)
+    : ClearanceMotionValidator(si, checker, boundOfWorld(checker), fallbackFraction) {}
+
+ClearanceMotionValidator::ClearanceMotionValidator(const ompl::base::SpaceInformationPtr& si,
+                                                   std::shared_ptr<const StateValidityChecker> checker,
+                                                   double fallbackFraction)
+    : ClearanceMotionValidator(si.get(), checker, boundOfWorld(checker), fallbackFraction) {}
+
 double ClearanceMotionValidator::minStep(double length, double B) const {
   double h = fallbackFraction_ * si_->getStateSpace()->getLongestValidSegmentLength();
   // No point may move more than kFallbackDisplacement between two checked states.

@@ -69,6 +69,10 @@ struct MotionValidatorStats {
                                               ///< certification found colliding
 };
 
+class ClearanceMotionValidator;
+/// Shared pointer, as OMPL names its own (ompl::base::MotionValidatorPtr).
+using ClearanceMotionValidatorPtr = std::shared_ptr<ClearanceMotionValidator>;
+
 class ClearanceMotionValidator : public ompl::base::MotionValidator {
  public:
   /// Throws std::invalid_argument for a null checker or bound, or a bound of another size. States
@@ -80,6 +84,13 @@ class ClearanceMotionValidator : public ompl::base::MotionValidator {
   ClearanceMotionValidator(const ompl::base::SpaceInformationPtr& si,
                            std::shared_ptr<const StateValidityChecker> checker,
                            std::shared_ptr<const LinkSpeedBound> bound,
+                           double fallbackFraction = tol::kFallbackStepFraction);
+  /// The same with the bound of the checker's world, built here (LinkSpeedBound::forWorld, which
+  /// loads the robot's meshes): what an OMPL user plugging in the validator wants.
+  ClearanceMotionValidator(ompl::base::SpaceInformation* si, std::shared_ptr<const StateValidityChecker> checker,
+                           double fallbackFraction = tol::kFallbackStepFraction);
+  ClearanceMotionValidator(const ompl::base::SpaceInformationPtr& si,
+                           std::shared_ptr<const StateValidityChecker> checker,
                            double fallbackFraction = tol::kFallbackStepFraction);
 
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;

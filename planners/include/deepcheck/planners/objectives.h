@@ -52,6 +52,10 @@
 
 namespace deepcheck::planners {
 
+class ClearanceHingeObjective;
+/// Shared pointer, as OMPL names its own (ompl::base::OptimizationObjectivePtr).
+using ClearanceHingeObjectivePtr = std::shared_ptr<ClearanceHingeObjective>;
+
 class ClearanceHingeObjective : public ompl::base::OptimizationObjective {
  public:
   /// `bound` may be null (no skipping). `resolution` <= 0 means the longest valid segment.

@@ -104,6 +104,10 @@ struct PushOutResult {
   }
 };
 
+class PushOut;
+/// Shared pointer, named as OMPL names its own.
+using PushOutPtr = std::shared_ptr<PushOut>;
+
 class PushOut {
  public:
   /// Throws std::invalid_argument for bad options (naming them) or a null world.

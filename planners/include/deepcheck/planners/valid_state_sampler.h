@@ -24,6 +24,10 @@
 
 namespace deepcheck::planners {
 
+class PushOutValidStateSampler;
+/// Shared pointer, as OMPL names its own (ompl::base::ValidStateSamplerPtr).
+using PushOutValidStateSamplerPtr = std::shared_ptr<PushOutValidStateSampler>;
+
 class PushOutValidStateSampler : public ompl::base::ValidStateSampler {
  public:
   /// Throws std::invalid_argument for a null checker. States are read and written through the

@@ -53,6 +53,10 @@
 
 namespace deepcheck::planners {
 
+class StateValidityChecker;
+/// Shared pointer, as OMPL names its own (ompl::base::StateValidityCheckerPtr).
+using StateValidityCheckerPtr = std::shared_ptr<StateValidityChecker>;
+
 class StateValidityChecker : public ompl::base::StateValidityChecker {
  public:
   /// States of si's state space map to configurations of world->robot() by
