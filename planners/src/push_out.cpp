@@ -4,6 +4,7 @@
 #include "deepcheck/planners/push_out.h"
 
 #include "deepcheck/robots/kinematics.h"
+#include "deepcheck/robots/random_configuration.h"
 
 #include "number.h"
 
@@ -22,9 +23,7 @@ namespace {
 
 using detail::number;
 
-/// A uniform double in [0, 1) from the raw output of the generator (portable: the standard leaves
-/// std::uniform_real_distribution's algorithm to each library).
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using robots::uniform01;
 
 /// One pair the push-out watches: its distance and gradient at the current iterate.
 struct Row {
