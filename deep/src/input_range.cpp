@@ -17,21 +17,21 @@ std::string number(double x) {
   return buf;
 }
 
-std::string coordinateProblem(double x) {
-  if (!std::isfinite(x)) return "non-finite";
-  return "out-of-range (|value| > " + number(kMaxCoordinate) + ")";
-}
-
 }  // namespace
+
+void checkCoordinate(double x, const std::string& what) {
+  if (std::abs(x) <= kMaxCoordinate) return;
+  throw std::invalid_argument(what + " = " + number(x) + " is " +
+                              (std::isfinite(x) ? "out of range (|value| > " + number(kMaxCoordinate) + ")"
+                                                : std::string("non-finite")));
+}
 
 void checkPoints(const std::vector<Eigen::Vector3d>& points, const std::string& name) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     for (int c = 0; c < 3; ++c) {
-      const double x = points[i][c];
-      if (!(std::abs(x) <= kMaxCoordinate)) {
-        throw std::invalid_argument(name + ": point " + std::to_string(i) + " has a " +
-                                    coordinateProblem(x) + " coordinate " + axisLabel(c) + " = " +
-                                    number(x));
+      // The message is built only for a bad value: this runs on every point of every hull.
+      if (!(std::abs(points[i][c]) <= kMaxCoordinate)) {
+        checkCoordinate(points[i][c], name + ": point " + std::to_string(i) + " coordinate " + axisLabel(c));
       }
     }
   }
@@ -52,10 +52,8 @@ void checkPoints(const std::vector<Eigen::Vector3d>& points, const std::string& 
 
 void checkTranslation(const Eigen::Vector3d& translation, const std::string& what) {
   for (int c = 0; c < 3; ++c) {
-    const double x = translation[c];
-    if (!(std::abs(x) <= kMaxCoordinate)) {
-      throw std::invalid_argument(what + ": pose has a " + coordinateProblem(x) + " translation " +
-                                  axisLabel(c) + " = " + number(x));
+    if (!(std::abs(translation[c]) <= kMaxCoordinate)) {
+      checkCoordinate(translation[c], what + ": pose translation " + axisLabel(c));
     }
   }
 }

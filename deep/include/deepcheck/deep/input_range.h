@@ -28,6 +28,10 @@ constexpr double kMaxCoordinate = 1e50;
 /// point, which is accepted). Same unit as the input.
 constexpr double kMinExtent = 1e-50;
 
+/// Throws std::invalid_argument "<what> = <x> is non-finite" or "... is out of range (|value| >
+/// 1e+50)" unless x is finite with magnitude at most kMaxCoordinate.
+void checkCoordinate(double x, const std::string& what);
+
 /// Throws std::invalid_argument unless every coordinate of `points` is finite with magnitude at
 /// most kMaxCoordinate and their extent is zero or at least kMinExtent. The message starts with
 /// `name` and names the offending point index, axis and value (or the extent).
