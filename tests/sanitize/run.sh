@@ -44,8 +44,7 @@ step "ASan+UBSan corpus replay"
 ctest --test-dir build-asan -R '^fuzz_replay_' --output-on-failure
 
 step "TSan build"
-cmake -S . -B build-tsan "${common[@]}" "-DCMAKE_CXX_FLAGS=-fsanitize=thread" \
-  "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread" >/dev/null
+cmake -S . -B build-tsan "${common[@]}" -DDEEPCHECK_TSAN=ON >/dev/null
 cmake --build build-tsan -j "$jobs" --target test_checker
 step "TSan concurrency test"
 TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \
