@@ -23,8 +23,13 @@ namespace {
 using namespace deepcheck::tools;
 
 const deepcheck::robots::RobotModel& arm() {
-  static const deepcheck::robots::RobotModel model = deepcheck::robots::RobotModel::fromUrdfFile(
-      DEEPCHECK_SOURCE_DIR "/robots/data/deepcheck_arm/urdf/deepcheck_arm.urdf");
+  static const deepcheck::robots::RobotModel model = [] {
+    deepcheck::robots::LoadOptions options;
+    options.packageRoots = {DEEPCHECK_SOURCE_DIR "/robots/data"};
+    options.useRosPackagePath = false;
+    return deepcheck::robots::RobotModel::fromUrdfFile(
+        DEEPCHECK_SOURCE_DIR "/robots/data/deepcheck_arm/urdf/deepcheck_arm.urdf", options);
+  }();
   return model;
 }
 

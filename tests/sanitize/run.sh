@@ -5,7 +5,7 @@
 #      first report fails the run) build of the deep, robots and checker unit tests and of the fuzz
 #      harnesses (as corpus replay drivers, or libFuzzer binaries with Clang); runs the tests and
 #      replays every committed corpus input.
-#   2. build-tsan: ThreadSanitizer build of the checker tests; runs the concurrency suite.
+#   2. build-tsan: ThreadSanitizer build of the checker's concurrency suite alone; runs it.
 # The long randomized sweeps of test_deep (see SANITIZE_DEEP_SKIP) run in the normal build only:
 # under ASan they alone would take longer than the rest of CI.
 #
@@ -45,9 +45,9 @@ ctest --test-dir build-asan -R '^fuzz_replay_' --output-on-failure
 
 step "TSan build"
 cmake -S . -B build-tsan "${common[@]}" -DDEEPCHECK_TSAN=ON >/dev/null
-cmake --build build-tsan -j "$jobs" --target test_checker
+cmake --build build-tsan -j "$jobs" --target test_checker_concurrency
 step "TSan concurrency test"
 TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \
-  build-tsan/tests/test_checker --report_level=short --run_test=checker_concurrency
+  build-tsan/tests/test_checker_concurrency --report_level=short --run_test=checker_concurrency
 
 step "passed"
