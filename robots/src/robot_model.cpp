@@ -3,6 +3,8 @@
 #include "deepcheck/robots/package_path.h"
 #include "deepcheck/robots/tolerances.h"
 
+#include "xml_text.h"
+
 #include <console_bridge/console.h>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
@@ -86,13 +88,7 @@ class Prepass {
   /// Returns the cleaned XML text for urdfdom; fills jointOrder (joint name -> position in file).
   std::string run(const std::string& xml, std::map<std::string, int>& jointOrder) {
     TiXmlDocument doc;
-    doc.Parse(xml.c_str(), nullptr, TIXML_ENCODING_UTF8);
-    if (doc.Error()) {
-      std::ostringstream msg;
-      msg << context_ << ": malformed XML at line " << doc.ErrorRow() << ", column "
-          << doc.ErrorCol() << ": " << doc.ErrorDesc();
-      throw std::invalid_argument(msg.str());
-    }
+    parseXml(doc, xml, context_);
     TiXmlElement* robot = doc.RootElement();
     if (robot == nullptr || std::string(robot->Value()) != "robot") {
       throw std::invalid_argument(context_ + ": the root element is not <robot>");
