@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace deepcheck::deep::range {
@@ -11,9 +12,13 @@ namespace {
 
 const char* axisLabel(int axis) { return axis == 0 ? "x" : (axis == 1 ? "y" : "z"); }
 
+/// The shortest text that reads back as x (1e+50, not 1.0000000000000001e+50).
 std::string number(double x) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
   return buf;
 }
 

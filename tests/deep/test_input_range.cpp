@@ -100,7 +100,7 @@ BOOST_AUTO_TEST_CASE(coordinate_limit_is_inclusive) {
   const ConvexPolytope ok = ConvexPolytope::fromPoints({{0, 0, 0}, {0, -max, 0}, {max, 0, 0}});
   BOOST_TEST(ok.numVertices() == 3);
   checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, 0}, {0, -beyond, 0}}, "shape 'a'"); },
-                "shape 'a': point 1 coordinate y = -1.0000000000000001e+50 is out of range");
+                "shape 'a': point 1 coordinate y = -1.0000000000000003e+50 is out of range (|value| > 1e+50)");
   checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, 0}, {0, 0, 1e300}}); }, "coordinate z = 1e+300");
   checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, std::nan("")}}); }, "coordinate z = nan is non-finite");
 }
@@ -113,7 +113,8 @@ BOOST_AUTO_TEST_CASE(extent_limit_is_inclusive_and_a_single_point_is_accepted) {
   BOOST_TEST(point.numVertices() == 1);
   const double below = std::nextafter(min, 0.0);
   checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, 0}, {0, 0, below}}, "shape 't'"); },
-                "shape 't': the points span only 9.9999999999999993e-51");
+                "shape 't': the points span only 9.999999999999999e-51 (largest coordinate spread), below the "
+                "smallest supported extent 1e-50");
   checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, 0}, {1e-300, 0, 0}, {0, 1e-300, 0}, {0, 0, 1e-300}}); },
                 "span only 1e-300");
 }
@@ -126,9 +127,9 @@ BOOST_AUTO_TEST_CASE(pose_translation_limit_is_inclusive) {
   BOOST_TEST(std::isfinite(r.distance));
   BOOST_TEST(r.distance == 2 * max, boost::test_tools::tolerance(1e-12));
   checkRejected([&] { signedDistance(A, at({0, 0, 0}), A, at({beyond, 0, 0})); },
-                "X_WB: pose translation x = 1.0000000000000001e+50 is out of range");
+                "X_WB: pose translation x = 1.0000000000000003e+50 is out of range");
   checkRejected([&] { exactSignedDistance(A, at({0, -beyond, 0}), A, at({0, 0, 0})); },
-                "X_WA: pose translation y = -1.0000000000000001e+50 is out of range");
+                "X_WA: pose translation y = -1.0000000000000003e+50 is out of range");
 }
 
 BOOST_AUTO_TEST_CASE(tiny_to_huge_shapes_are_answered_correctly) {
