@@ -16,6 +16,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -238,6 +239,13 @@ class UrdfBuilder {
 
  private:
   void addLink(const urdf::Link& link, int parentJoint) {
+    // urdfdom accepts a joint whose child is an ancestor of its parent (itself included); the
+    // walk from the root would then never end.
+    if (!added_.insert(link.name).second) {
+      throw std::invalid_argument(context_ + ": joint " + inQuotes(model_.joints_[parentJoint].name) +
+                                  " closes a loop: its child link " + inQuotes(link.name) +
+                                  " is already in the tree (URDF kinematics must be a tree)");
+    }
     const int index = static_cast<int>(model_.links_.size());
     model_.links_.emplace_back();
     {
@@ -463,6 +471,7 @@ class UrdfBuilder {
   std::vector<std::string> roots_;
   std::vector<std::pair<int, std::string>> mimics_;  // (joint, the joint it names)
   std::vector<std::pair<int, int>> resolvedSource_;   // (mimic joint, joint at the chain's end)
+  std::set<std::string> added_;                       // names of the links added so far
 };
 
 RobotModel RobotModel::fromUrdfFile(const std::string& path, const LoadOptions& options) {

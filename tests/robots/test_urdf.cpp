@@ -383,6 +383,22 @@ BOOST_AUTO_TEST_CASE(error_text_that_is_not_utf8) {
   BOOST_TEST(ok.name() == "r\xc3\xa9\xe2\x82\xac");
 }
 
+BOOST_AUTO_TEST_CASE(error_joint_closes_a_loop) {
+  // urdfdom accepts a joint whose child is its own parent or an ancestor of it; walking the tree
+  // then recursed until the stack overflowed (found by fuzz_urdf).
+  const std::string self = R"(<robot name="x"><link name="a"/><link name="b"/>
+    <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+    <joint name="j2" type="fixed"><parent link="b"/><child link="b"/></joint></robot>)";
+  checkThrows([&] { RobotModel::fromUrdfString(self, "", rootsOnly({}), "self.urdf"); },
+              {"self.urdf", "joint 'j2' closes a loop: its child link 'b' is already in the tree"});
+  const std::string cycle = R"(<robot name="x"><link name="a"/><link name="b"/><link name="c"/>
+    <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+    <joint name="j2" type="fixed"><parent link="b"/><child link="c"/></joint>
+    <joint name="j3" type="fixed"><parent link="c"/><child link="b"/></joint></robot>)";
+  checkThrows([&] { RobotModel::fromUrdfString(cycle, "", rootsOnly({}), "cycle.urdf"); },
+              {"cycle.urdf", "closes a loop"});
+}
+
 BOOST_AUTO_TEST_CASE(error_urdfdom_rejects) {
   // Well-formed XML, but the joint names a link that does not exist.
   const std::string xml = R"(<robot name="x"><link name="a"/>
