@@ -16,7 +16,6 @@
 #include <fstream>
 #include <map>
 #include <mutex>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -95,15 +94,18 @@ class Prepass {
       throw std::invalid_argument(context_ + ": the root element is not <robot>");
     }
     int jointCount = 0;
+    std::map<std::string, JointLinks> parentOf;  // child link -> its joint
     for (TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
       const std::string tag = e->Value();
       if (tag == "link") {
         checkLink(*e);
       } else if (tag == "joint") {
         checkJoint(*e);
+        addToTree(*e, parentOf);
         jointOrder.emplace(attribute(*e, "name"), jointCount++);
       }
     }
+    checkNoLoop(parentOf);
     TiXmlPrinter printer;
     doc.Accept(&printer);
     return printer.CStr();
@@ -194,6 +196,46 @@ class Prepass {
     }
   }
 
+  struct JointLinks {
+    std::string joint;
+    std::string parent;
+  };
+
+  static std::string linkOf(const TiXmlElement& joint, const char* which) {
+    const TiXmlElement* e = joint.FirstChildElement(which);
+    return e == nullptr ? std::string() : attribute(*e, "link");
+  }
+
+  /// urdfdom accepts a link that is the child of two joints, and a joint whose child link is an
+  /// ancestor of its parent (itself included): its tree then holds a cycle (of shared pointers,
+  /// never freed) and walking it never ends. Both are rejected here, naming the joints.
+  void addToTree(const TiXmlElement& joint, std::map<std::string, JointLinks>& parentOf) const {
+    const std::string name = attribute(joint, "name");
+    const std::string child = linkOf(joint, "child");
+    const auto [it, added] = parentOf.emplace(child, JointLinks{name, linkOf(joint, "parent")});
+    if (!added) {
+      throw std::invalid_argument(context_ + ": link " + inQuotes(child) + " is the child of two joints, " +
+                                  inQuotes(it->second.joint) + " and " + inQuotes(name) +
+                                  " (URDF kinematics must be a tree)");
+    }
+  }
+
+  void checkNoLoop(const std::map<std::string, JointLinks>& parentOf) const {
+    for (const auto& [child, j] : parentOf) {
+      std::string link = j.parent;
+      for (std::size_t steps = 0; steps <= parentOf.size(); ++steps) {
+        if (link == child) {
+          throw std::invalid_argument(context_ + ": joint " + inQuotes(j.joint) + " closes a loop: its child link " +
+                                      inQuotes(child) + " is also its parent or an ancestor of it" +
+                                      " (URDF kinematics must be a tree)");
+        }
+        const auto up = parentOf.find(link);
+        if (up == parentOf.end()) break;
+        link = up->second.parent;
+      }
+    }
+  }
+
   std::string context_;
 };
 
@@ -239,13 +281,6 @@ class UrdfBuilder {
 
  private:
   void addLink(const urdf::Link& link, int parentJoint) {
-    // urdfdom accepts a joint whose child is an ancestor of its parent (itself included); the
-    // walk from the root would then never end.
-    if (!added_.insert(link.name).second) {
-      throw std::invalid_argument(context_ + ": joint " + inQuotes(model_.joints_[parentJoint].name) +
-                                  " closes a loop: its child link " + inQuotes(link.name) +
-                                  " is already in the tree (URDF kinematics must be a tree)");
-    }
     const int index = static_cast<int>(model_.links_.size());
     model_.links_.emplace_back();
     {
@@ -471,7 +506,6 @@ class UrdfBuilder {
   std::vector<std::string> roots_;
   std::vector<std::pair<int, std::string>> mimics_;  // (joint, the joint it names)
   std::vector<std::pair<int, int>> resolvedSource_;   // (mimic joint, joint at the chain's end)
-  std::set<std::string> added_;                       // names of the links added so far
 };
 
 RobotModel RobotModel::fromUrdfFile(const std::string& path, const LoadOptions& options) {

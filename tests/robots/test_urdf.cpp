@@ -384,19 +384,25 @@ BOOST_AUTO_TEST_CASE(error_text_that_is_not_utf8) {
 }
 
 BOOST_AUTO_TEST_CASE(error_joint_closes_a_loop) {
-  // urdfdom accepts a joint whose child is its own parent or an ancestor of it; walking the tree
-  // then recursed until the stack overflowed (found by fuzz_urdf).
+  // urdfdom accepts a joint whose child is its own parent or an ancestor of it, and a link with two
+  // parent joints; walking the tree then recursed until the stack overflowed (found by fuzz_urdf).
   const std::string self = R"(<robot name="x"><link name="a"/><link name="b"/>
     <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
-    <joint name="j2" type="fixed"><parent link="b"/><child link="b"/></joint></robot>)";
+    <joint name="j2" type="fixed"><parent link="a"/><child link="a"/></joint></robot>)";
   checkThrows([&] { RobotModel::fromUrdfString(self, "", rootsOnly({}), "self.urdf"); },
-              {"self.urdf", "joint 'j2' closes a loop: its child link 'b' is already in the tree"});
+              {"self.urdf", "joint 'j2' closes a loop: its child link 'a' is also its parent or an ancestor"});
   const std::string cycle = R"(<robot name="x"><link name="a"/><link name="b"/><link name="c"/>
     <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
     <joint name="j2" type="fixed"><parent link="b"/><child link="c"/></joint>
     <joint name="j3" type="fixed"><parent link="c"/><child link="b"/></joint></robot>)";
   checkThrows([&] { RobotModel::fromUrdfString(cycle, "", rootsOnly({}), "cycle.urdf"); },
-              {"cycle.urdf", "closes a loop"});
+              {"cycle.urdf", "link 'b' is the child of two joints, 'j1' and 'j3'"});
+  const std::string ring = R"(<robot name="x"><link name="a"/><link name="b"/><link name="c"/>
+    <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+    <joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint>
+    <joint name="j3" type="fixed"><parent link="b"/><child link="c"/></joint></robot>)";
+  checkThrows([&] { RobotModel::fromUrdfString(ring, "", rootsOnly({}), "ring.urdf"); },
+              {"ring.urdf", "closes a loop"});
 }
 
 BOOST_AUTO_TEST_CASE(error_urdfdom_rejects) {
