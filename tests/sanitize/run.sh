@@ -32,7 +32,7 @@ asan="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-poi
 cmake -S . -B build-asan "${common[@]}" -DDEEPCHECK_BUILD_FUZZERS=ON \
   "-DCMAKE_CXX_FLAGS=$asan" "-DCMAKE_EXE_LINKER_FLAGS=$asan" >/dev/null
 cmake --build build-asan -j "$jobs" --target test_deep test_robots test_checker \
-  fuzz_pd_input fuzz_urdf fuzz_mesh fuzz_config_lines
+  fuzz_pd_input fuzz_urdf fuzz_mesh fuzz_config_lines fuzz_moveit_scene
 
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
