@@ -10,6 +10,10 @@
 // "queries N total_us T", T the time spent in the signed-distance calls only, in whole
 // microseconds (parsing and hull building excluded).
 //
+// Values outside deep's supported range (deep/input_range.h: coordinates and translations up to
+// 1e50 in magnitude, shapes spanning 0 or at least 1e-50) and shapes of more than
+// kMaxShapePoints points are input errors.
+//
 // The whole input is parsed and every hull built before the first query runs, so a bad input
 // produces no output on stdout, only one error line (naming the input line) and exit status 1.
 
@@ -28,7 +32,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,6 +48,8 @@ constexpr const char* kUsage =
     "  shape <id> <n>      followed by n lines '<x> <y> <z>' (the shape is their convex hull)\n"
     "  query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> <qw> <qx> <qy> <qz>\n"
     "  lines starting with '#' are comments; blank lines are ignored.\n"
+    "Supported range: |coordinate| and |translation| <= 1e50; a shape's points span 0 (one point)\n"
+    "or at least 1e-50; at most 100000 points per shape.\n"
     "Output: one line 'sd nx ny nz' per query (sd < 0: penetration depth; n from A to B),\n"
     "and on stderr a last line 'queries N total_us T' (time in the queries only).\n"
     "\n"

@@ -1,5 +1,7 @@
 #include "deepcheck/robots/srdf.h"
 
+#include "xml_text.h"
+
 #include <tinyxml.h>
 
 #include <fstream>
@@ -57,13 +59,7 @@ std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml,
                                                  const std::string& sourceName) {
   const std::string context = "SRDF " + quoted(sourceName.empty() ? "<string>" : sourceName);
   TiXmlDocument doc;
-  doc.Parse(xml.c_str(), nullptr, TIXML_ENCODING_UTF8);
-  if (doc.Error()) {
-    std::ostringstream msg;
-    msg << context << ": malformed XML at line " << doc.ErrorRow() << ", column "
-        << doc.ErrorCol() << ": " << doc.ErrorDesc();
-    throw std::invalid_argument(msg.str());
-  }
+  parseXml(doc, xml, context);
   const TiXmlElement* robot = doc.RootElement();
   if (robot == nullptr || std::string(robot->Value()) != "robot") {
     throw std::invalid_argument(context + ": the root element is not <robot>");
