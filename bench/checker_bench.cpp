@@ -24,6 +24,8 @@
 //               steady load for `perf record`);
 //   --world W   only the world named W (panda-shelf, panda-kitchen, arm-shelf).
 
+#include "format.h"
+
 #include "deepcheck/fcl_reference/fcl_backend.h"
 #include "deepcheck/fcl_reference/fcl_broad_phase.h"
 #include "deepcheck/checker/world.h"
@@ -51,13 +53,7 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-std::string loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return a + " " + b + " " + c;
-}
-
+using deepcheck::bench::loadAverage;
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return std::nan("");
   std::sort(v.begin(), v.end());

@@ -24,6 +24,7 @@
 // failed, thrown), reproducers DIR/repro_pd_<family>_<query>_<method>.txt in the input format of
 // `deepcheck pd` (DESIGN.md).
 
+#include "format.h"
 #include "pd_families.h"
 #include "pd_methods.h"
 
@@ -122,12 +123,7 @@ struct Tally {
   int notConverged = 0, repros = 0;
 };
 
-std::string fmt(double x, const char* f = "%.3g") {
-  if (std::isnan(x)) return "-";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, x);
-  return buf;
-}
+using deepcheck::bench::fmt;
 
 void writePose(std::ostream& out, const Pose& p) {
   out << p.t.x() << ' ' << p.t.y() << ' ' << p.t.z() << ' ' << p.q.w() << ' ' << p.q.x() << ' '
@@ -143,7 +139,7 @@ void writeRepro(const Options& opt, const Family& f, int qi, const std::string& 
   out.precision(17);
   out << "# deepcheck pd reproducer from bench/pd_bench: family " << f.name << ", query " << qi << ", method "
       << method << "\n# got sd = " << sd << ", exact sd = " << exact << ", relative error " << rel << "\n";
-  const bool warm = method == "deep_warm";
+  const bool warm = method.size() > 5 && method.compare(method.size() - 5, 5, "_warm") == 0;
   if (warm) {
     out << (f.sequence ? "# warm: the queries before the last are the trajectory's earlier steps (run without --cold)\n"
                        : "# warm: the first query primes the cache, the second is the one that fails (run without --cold)\n");

@@ -1,4 +1,4 @@
-// The project's methods (DEEP warm and cold, GJK) and libccd called directly (see pd_methods.h).
+// The project's methods (certified and DEEP's walk, warm and cold; GJK) and libccd called directly (see pd_methods.h).
 
 #include "pd_methods.h"
 
@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace deepcheck::bench {
 namespace {
@@ -29,15 +30,28 @@ WalkStats walkOf(const deep::SignedDistanceResult& r) {
   return w;
 }
 
-/// DEEP through the public entry point signedDistance(), with a PairCache primed as
-/// pd_families.h describes (previous step, or the same pair at a nearby pose).
-class DeepWarm : public Method {
+deep::DeepOptions optionsFor(deep::PenetrationMethod method) {
+  deep::DeepOptions o;
+  o.method = method;
+  return o;
+}
+
+const char* prefixOf(deep::PenetrationMethod method) {
+  return method == deep::PenetrationMethod::Certified ? "certified" : "deep";
+}
+
+/// signedDistance() with a PairCache primed as pd_families.h describes (previous step, or the
+/// same pair at a nearby pose): DEEP's walk ("deep_warm") or the certified method
+/// ("certified_warm"). The certified method's scratch surface is the method's own, reused.
+class Warm : public Method {
  public:
-  std::string name() const override { return "deep_warm"; }
+  explicit Warm(deep::PenetrationMethod method) : options_(optionsFor(method)), prefix_(prefixOf(method)) {}
+  std::string name() const override { return prefix_ + "_warm"; }
 
   void beginFamily(const Family& f) override {
     primed_.assign(f.queries.size(), deep::PairCache{});
     deep::PairCache carried;
+    carried.surface = surface_.get();
     for (std::size_t i = 0; i < f.queries.size(); ++i) {
       const Query& q = f.queries[i];
       const ConvexPolytope& A = f.shapes[q.a];
@@ -45,10 +59,11 @@ class DeepWarm : public Method {
       if (f.sequence) {
         if (i == 0 || q.a != f.queries[i - 1].a || q.b != f.queries[i - 1].b) carried.reset();
         primed_[i] = carried;
-        deep::signedDistance(A, q.X_WA, B, q.X_WB, &carried);
+        deep::signedDistance(A, q.X_WA, B, q.X_WB, &carried, options_);
       } else {
         deep::PairCache c;
-        deep::signedDistance(A, q.X_WA, B, q.primeB->iso(), &c);
+        c.surface = surface_.get();
+        deep::signedDistance(A, q.X_WA, B, q.primeB->iso(), &c, options_);
         primed_[i] = c;
       }
     }
@@ -58,7 +73,7 @@ class DeepWarm : public Method {
 
   Answer run(const Family& f, int qi) override {
     const Query& q = f.queries[qi];
-    last_ = deep::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB, &cache_);
+    last_ = deep::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB, &cache_, options_);
     return {Answer::Kind::SignedDistance, last_.distance};
   }
 
@@ -66,24 +81,37 @@ class DeepWarm : public Method {
   void endFamily() override { primed_.clear(); }
 
  private:
+  deep::DeepOptions options_;
+  std::string prefix_;
+  std::unique_ptr<deep::ExpansionSurface> surface_ = std::make_unique<deep::ExpansionSurface>();
   std::vector<deep::PairCache> primed_;
   deep::PairCache cache_;
   deep::SignedDistanceResult last_;
 };
 
-/// DEEP without a cache: every query cold, all restarts (DeepOptions defaults).
-class DeepCold : public Method {
+/// Every query cold: DEEP's walk with all restarts ("deep_cold") or the certified method
+/// ("certified_cold"), each with a cache that is reset before the query (it only carries the
+/// certified method's scratch surface).
+class Cold : public Method {
  public:
-  std::string name() const override { return "deep_cold"; }
+  explicit Cold(deep::PenetrationMethod method) : options_(optionsFor(method)), prefix_(prefixOf(method)) {
+    cache_.surface = surface_.get();
+  }
+  std::string name() const override { return prefix_ + "_cold"; }
   void beginFamily(const Family&) override {}
+  void beforeRun(const Family&, int) override { cache_.reset(); }
   Answer run(const Family& f, int qi) override {
     const Query& q = f.queries[qi];
-    last_ = deep::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB);
+    last_ = deep::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB, &cache_, options_);
     return {Answer::Kind::SignedDistance, last_.distance};
   }
   WalkStats lastWalk() const override { return walkOf(last_); }
 
  private:
+  deep::DeepOptions options_;
+  std::string prefix_;
+  std::unique_ptr<deep::ExpansionSurface> surface_ = std::make_unique<deep::ExpansionSurface>();
+  deep::PairCache cache_;
   deep::SignedDistanceResult last_;
 };
 
@@ -182,8 +210,10 @@ class CcdPenetration : public Method {
 
 std::vector<std::unique_ptr<Method>> makeMethods() {
   std::vector<std::unique_ptr<Method>> m;
-  m.push_back(std::make_unique<DeepWarm>());
-  m.push_back(std::make_unique<DeepCold>());
+  m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::Certified));
+  m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::Certified));
+  m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::DeepWalk));
+  m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::DeepWalk));
   m.push_back(std::make_unique<ProjectGjk>());
   for (auto& peer : makeFclMethods()) m.push_back(std::move(peer));
   m.push_back(std::make_unique<CcdPenetration>(false));

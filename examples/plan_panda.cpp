@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     //    kitchen's package:// meshes under scenes/. The Panda's visual-quality collision meshes are
     //    decomposed into convex pieces once (a few seconds each) and read from the cache after.
     deepcheck::planners::SetupOptions options;
-    options.packagePaths = {panda, shared + "/scenes"};
+    options.packageRoots = {panda, shared + "/scenes"};
     options.srdf = panda + "/moveit_resources_panda_moveit_config/config/panda.srdf";
     options.world.decompositionCacheDir = cache;  // "": the default directory
     const auto loadStart = std::chrono::steady_clock::now();

@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
     // 1. One call: the arm (with its SRDF's disabled self pairs) in the shelf scene, as an OMPL
     //    SimpleSetup with deepcheck's validity checker (OMPL's discrete motion validator).
     deepcheck::planners::SetupOptions options;
-    options.packagePaths = {data};  // resolves package://deepcheck_arm/...
+    options.packageRoots = {data};  // resolves package://deepcheck_arm/...
     options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
     auto ss = deepcheck::planners::makeSimpleSetup(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
                                                    {data + "/scenes/shelf.urdf"}, options);

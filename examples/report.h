@@ -60,7 +60,7 @@ inline void reportAndWrite(const ompl::geometric::SimpleSetup& ss, const std::st
 /// example_plan_shelf sets it up; `data` is robots/data.
 inline std::shared_ptr<ompl::geometric::SimpleSetup> bundledArm(const std::string& data, const std::string& scene) {
   deepcheck::planners::SetupOptions options;
-  options.packagePaths = {data};
+  options.packageRoots = {data};
   options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
   return deepcheck::planners::makeSimpleSetup(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
                                               {data + "/scenes/" + scene + ".urdf"}, options);

@@ -6,11 +6,15 @@
 // Input: one configuration per line, the joint values in configuration order (the order
 // `deepcheck info` prints: RobotModel::variableNames()), separated by blanks; lines whose first
 // non-blank character is '#', and blank lines, are skipped.
-// Output: one line per configuration, "sd linkA linkB" (%.17g): the minimum signed distance over
-// the checked pairs (robot-scene and robot self-collision; < 0 is minus the penetration depth),
-// its robot link and the other body (a robot link, or "scene/<link>" for a scene link); with
-// --gradient, the nq components of d sd / dq follow. When the world has no pair at all the line
-// is "inf none none". On stderr: the world's summary, then a last line
+// Output: one line per configuration, three triples "sd linkA linkB" (%.17g) then, with
+// --gradient, the nq components of d sd / dq of the first triple:
+//   1. the minimum signed distance over all checked pairs (< 0 is minus the penetration depth),
+//      its robot link and the other body (a robot link, or "scene/<link>" for a scene link);
+//   2. the same over the robot-scene pairs only (scene clearance);
+//   3. the same over the robot's self pairs only (self clearance).
+// The scene and self clearances are separate because an arm's nearest pair is usually a fixed
+// wrist pair a few centimetres apart in every configuration, which hides the scene. A triple
+// with no pair to measure is "inf none none". On stderr: the world's summary, then a last line
 // "configurations N total_us T", T the time spent in the queries (loading excluded).
 //
 // The whole input is parsed before the first query, so a bad line produces no output on stdout,
@@ -41,8 +45,10 @@ constexpr const char* kUsage =
     "\n"
     "Minimum signed distance of the robot to its scenes and to itself, one configuration per\n"
     "input line (joint values in the order `deepcheck info` prints; '#' comments and blank lines\n"
-    "are skipped). Output per line: 'sd linkA linkB' (%.17g; sd < 0 is minus the penetration\n"
-    "depth; scene links are named scene/<link>), and with --gradient the components of d sd/dq.\n"
+    "are skipped). Output per line: three triples 'sd linkA linkB' (%.17g; sd < 0 is minus the\n"
+    "penetration depth; scene links are named scene/<link>): the minimum over all pairs, over the\n"
+    "robot-scene pairs, over the robot's self pairs; then with --gradient the components of d sd/dq\n"
+    "of the first.\n"
     "On stderr: the world's summary and a last line 'configurations N total_us T'.\n"
     "\n"
     "options:\n"
@@ -58,7 +64,7 @@ constexpr const char* kUsage =
 
 int run(std::vector<std::string> args) {
   const bool gradient = takeFlag(args, "--gradient");
-  const PackagePaths paths = takePackagePaths(args);
+  const PackageRoots paths = takePackageRoots(args);
   std::string robotPath;
   std::string srdf;
   std::vector<SceneArg> scenes;
@@ -70,23 +76,39 @@ int run(std::vector<std::string> args) {
   const std::vector<Eigen::VectorXd> configurations = readConfigurations(std::cin, world.robot());
   std::fputs(world.summary().c_str(), stderr);
 
-  checker::DistanceOptions query;
-  query.gradient = gradient;
+  // Two pruned searches, one per kind of pair; the overall minimum is the smaller.
+  checker::DistanceOptions sceneQuery;
+  sceneQuery.gradient = gradient;
+  sceneQuery.selfPairs = false;
+  checker::DistanceOptions selfQuery = sceneQuery;
+  selfQuery.selfPairs = true;
+  selfQuery.worldPairs = false;
   auto context = world.makeContext();
-  std::vector<checker::DistanceResult> results;
+  std::vector<std::pair<checker::DistanceResult, checker::DistanceResult>> results;
   results.reserve(configurations.size());
   const auto start = std::chrono::steady_clock::now();
-  for (const Eigen::VectorXd& q : configurations) results.push_back(world.signedDistance(q, context, query));
+  for (const Eigen::VectorXd& q : configurations) {
+    results.emplace_back(world.signedDistance(q, context, sceneQuery), world.signedDistance(q, context, selfQuery));
+  }
   const auto stop = std::chrono::steady_clock::now();
-  for (const checker::DistanceResult& r : results) {
+  const auto printTriple = [](const checker::DistanceResult& r) {
     if (!r.found) {
       std::printf("inf none none");
     } else {
       std::printf("%.17g %s %s", r.closest.distance, r.closest.nameA.c_str(), r.closest.nameB.c_str());
     }
+  };
+  for (const auto& [scene, self] : results) {
+    const bool sceneNearer = scene.found && (!self.found || scene.closest.distance <= self.closest.distance);
+    const checker::DistanceResult& overall = sceneNearer ? scene : self;
+    printTriple(overall);
+    std::printf(" ");
+    printTriple(scene);
+    std::printf(" ");
+    printTriple(self);
     if (gradient) {
       for (int v = 0; v < world.robot().numVariables(); ++v) {
-        std::printf(" %.17g", r.found ? r.closest.gradient[v] : 0.0);
+        std::printf(" %.17g", overall.found ? overall.closest.gradient[v] : 0.0);
       }
     }
     std::printf("\n");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <string>
@@ -48,8 +49,8 @@ std::string takeSingleOption(std::vector<std::string>& args, const std::string& 
   return values.empty() ? fallback : values.front();
 }
 
-PackagePaths takePackagePaths(std::vector<std::string>& args) {
-  return PackagePaths{takeOption(args, "--package-path")};
+PackageRoots takePackageRoots(std::vector<std::string>& args) {
+  return PackageRoots{takeOption(args, "--package-path")};
 }
 
 void rejectUnknownOptions(const std::vector<std::string>& args) {
@@ -153,6 +154,18 @@ void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::v
   }
   args = std::move(rest);
   if (robot.empty()) throw UsageError("option --robot is required");
+}
+
+std::string formatDuration(double seconds) {
+  char text[48];
+  if (seconds < 1e-3) {
+    std::snprintf(text, sizeof text, "%.0f us", seconds * 1e6);
+  } else if (seconds < 1.0) {
+    std::snprintf(text, sizeof text, "%.1f ms", seconds * 1e3);
+  } else {
+    std::snprintf(text, sizeof text, "%.2f s", seconds);
+  }
+  return text;
 }
 
 namespace {

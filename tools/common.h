@@ -43,12 +43,12 @@ std::string takeSingleOption(std::vector<std::string>& args, const std::string& 
 /// Package roots given by `--package-path DIR` (repeatable), in the order given, to search for
 /// `package://` URIs. The environment (ROS_PACKAGE_PATH, AMENT_PREFIX_PATH) is searched after them
 /// by the robots library (robots::packageRoots, LoadOptions::useRosPackagePath).
-struct PackagePaths {
+struct PackageRoots {
   std::vector<std::string> commandLine;
 };
 
 /// Removes the `--package-path DIR` / `--package-path=DIR` options from `args`.
-PackagePaths takePackagePaths(std::vector<std::string>& args);
+PackageRoots takePackageRoots(std::vector<std::string>& args);
 
 /// Throws UsageError naming the first remaining argument that starts with '-' (an unknown option).
 void rejectUnknownOptions(const std::vector<std::string>& args);
@@ -75,6 +75,9 @@ std::vector<double> takeVector(std::vector<std::string>& args, const std::string
 /// `args`, in command-line order. Throws UsageError for a missing or repeated value.
 void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::vector<SceneArg>& scenes,
                       std::string& srdf);
+
+/// A duration for people: "850 us", "12.3 ms", "4.56 s" (never "0.000 s").
+std::string formatDuration(double seconds);
 
 /// One non-blank, non-comment line of an input read from stdin.
 struct InputLine {

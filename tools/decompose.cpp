@@ -103,7 +103,7 @@ int run(std::vector<std::string> args) {
   if (const std::string v = takeSingleOption(args, "--max-vertices"); !v.empty()) {
     params.maxVerticesPerPiece = static_cast<int>(parseCount(v, "--max-vertices", 1, kMaxCount));
   }
-  const PackagePaths packages = takePackagePaths(args);
+  const PackageRoots packages = takePackageRoots(args);
   rejectUnknownOptions(args);
   if (noCache && !cacheDir.empty()) throw UsageError("--cache and --no-cache exclude each other");
   if (args.empty()) throw UsageError("no mesh given");

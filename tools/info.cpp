@@ -143,7 +143,7 @@ void printMeshes(const robots::RobotModel& model) {
 }
 
 int runInfo(std::vector<std::string> args) {
-  const PackagePaths packagePaths = takePackagePaths(args);
+  const PackageRoots roots = takePackageRoots(args);
   const std::string samplesText = takeSingleOption(args, "--samples");
   const std::string seedText = takeSingleOption(args, "--seed");
   const std::string srdfPath = takeSingleOption(args, "--write-srdf");
@@ -162,7 +162,7 @@ int runInfo(std::vector<std::string> args) {
   }
 
   robots::LoadOptions load;
-  load.packageRoots = packagePaths.commandLine;
+  load.packageRoots = roots.commandLine;
   const robots::RobotModel model = robots::RobotModel::fromUrdfFile(args[0], load);
   const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
 

@@ -26,7 +26,7 @@ std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::
 }
 
 checker::World loadWorld(const std::string& robotPath, const std::vector<SceneArg>& scenes, const std::string& srdf,
-                         const PackagePaths& paths) {
+                         const PackageRoots& paths) {
   robots::LoadOptions load;
   load.packageRoots = paths.commandLine;
   robots::RobotModel robot = robots::RobotModel::fromUrdfFile(robotPath, load);

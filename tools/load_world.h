@@ -21,6 +21,6 @@ std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::
 /// Loads the robot, disables the SRDF's pairs (an unknown link in it is an error naming the file)
 /// and adds the scenes. Throws std::invalid_argument naming the bad file.
 checker::World loadWorld(const std::string& robotPath, const std::vector<SceneArg>& scenes, const std::string& srdf,
-                         const PackagePaths& paths);
+                         const PackageRoots& paths);
 
 }  // namespace deepcheck::tools

@@ -1,5 +1,5 @@
 // `deepcheck pd`: signed distance / penetration depth of posed convex shapes read from stdin.
-// The input and output formats are a contract (DESIGN.md, "The deepcheck tool"):
+// The input and output formats are a contract, kept stable (tests/tool/test_pd.cpp checks them):
 //
 //   shape <id> <n>          followed by n lines "<x> <y> <z>": the shape is their convex hull
 //   query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> <qw> <qx> <qy> <qz>
@@ -9,6 +9,10 @@
 // the penetration depth, n the unit normal from A towards B, world frame); on stderr a last line
 // "queries N total_us T", T the time spent in the signed-distance calls only, in whole
 // microseconds (parsing and hull building excluded).
+//
+// Values outside deep's supported range (deep/input_range.h: coordinates and translations up to
+// 1e50 in magnitude, shapes spanning 0 or at least 1e-50) and shapes of more than
+// kMaxShapePoints points are input errors.
 //
 // The whole input is parsed and every hull built before the first query runs, so a bad input
 // produces no output on stdout, only one error line (naming the input line) and exit status 1.
@@ -28,7 +32,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,22 +42,36 @@ namespace {
 using deep::ConvexPolytope;
 
 constexpr const char* kUsage =
-    "usage: deepcheck pd [--cold] [--exact] < cases.txt\n"
+    "usage: deepcheck pd [--cold] [--method certified|deep-walk|exact] < cases.txt\n"
     "\n"
     "Signed distance of pairs of posed convex shapes. Input on stdin:\n"
     "  shape <id> <n>      followed by n lines '<x> <y> <z>' (the shape is their convex hull)\n"
     "  query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> <qw> <qx> <qy> <qz>\n"
     "  lines starting with '#' are comments; blank lines are ignored.\n"
+    "Supported range: |coordinate| and |translation| <= 1e50; a shape's points span 0 (one point)\n"
+    "or at least 1e-50; at most 100000 points per shape.\n"
     "Output: one line 'sd nx ny nz' per query (sd < 0: penetration depth; n from A to B),\n"
     "and on stderr a last line 'queries N total_us T' (time in the queries only).\n"
     "\n"
     "options:\n"
     "  --cold    no warm start (by default consecutive queries of the same pair share a cache)\n"
-    "  --exact   answer with the exact brute-force reference (hull of all vertex differences)\n";
+    "  --method certified   (default) the certified penetration depth: an expanding surface\n"
+    "                       of Minkowski vertices brackets the depth, DEEP's facets name it\n"
+    "  --method deep-walk   DEEP's walks with restarts (the warm start reuses their basins)\n"
+    "  --method exact       the exact brute-force reference (hull of all vertex differences)\n"
+    "  --exact              same as --method exact\n";
 
 int runPd(std::vector<std::string> args) {
   const bool cold = takeFlag(args, "--cold");
-  const bool exact = takeFlag(args, "--exact");
+  const bool exactFlag = takeFlag(args, "--exact");
+  const std::string method = takeSingleOption(args, "--method", exactFlag ? "exact" : "certified");
+  if (method != "certified" && method != "deep-walk" && method != "exact")
+    throw UsageError("unknown --method '" + method + "' (expected certified, deep-walk or exact)");
+  if (exactFlag && method != "exact") throw UsageError("--exact contradicts --method " + method);
+  const bool exact = method == "exact";
+  deep::DeepOptions options;
+  options.method = method == "deep-walk" ? deep::PenetrationMethod::DeepWalk
+                                         : deep::PenetrationMethod::Certified;
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "' (input is read from stdin)");
 
@@ -62,6 +79,8 @@ int runPd(std::vector<std::string> args) {
   const PdInput input = readPdInput(std::cin);
 
   deep::PairCache cache;
+  deep::ExpansionSurface surface;  // the certified method's scratch, shared by every query
+  cache.surface = &surface;
   int lastA = -1;
   int lastB = -1;
   std::chrono::steady_clock::duration total{0};
@@ -69,7 +88,7 @@ int runPd(std::vector<std::string> args) {
     const ConvexPolytope& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
     const ConvexPolytope& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
     // Warm start only across consecutive queries of the same ordered pair.
-    if (q.a != lastA || q.b != lastB) cache.reset();
+    if (cold || q.a != lastA || q.b != lastB) cache.reset();
     lastA = q.a;
     lastB = q.b;
     double sd = 0.0;
@@ -84,7 +103,7 @@ int runPd(std::vector<std::string> args) {
       } else {
         const auto t0 = std::chrono::steady_clock::now();
         const deep::SignedDistanceResult r =
-            deep::signedDistance(A, q.X_WA, B, q.X_WB, cold ? nullptr : &cache);
+            deep::signedDistance(A, q.X_WA, B, q.X_WB, &cache, options);
         total += std::chrono::steady_clock::now() - t0;
         sd = r.distance;
         n = r.normal;

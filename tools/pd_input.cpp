@@ -1,6 +1,11 @@
+// Reading the input of `deepcheck pd` (pd_input.h; the format is described in pd.cpp).
+
 #include "pd_input.h"
 
-#include <Eigen/Geometry>
+#include "common.h"
+
+#include "deepcheck/deep/input_range.h"
+#include "deepcheck/deep/pair_frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +13,11 @@
 #include <cstdlib>
 #include <exception>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace deepcheck::tools {
 namespace {
-
-using deep::ConvexPolytope;
 
 /// Quaternions are taken as given, not silently repaired: one whose norm differs from 1 by more
 /// than this is an input error. Within it (printed values carry a few digits) it is normalized so
@@ -25,6 +29,10 @@ int parsePointCount(const InputLine& line, const std::string& token) {
                       token.find_first_not_of("0123456789") == std::string::npos;
   const int n = digits ? std::atoi(token.c_str()) : 0;
   if (n < 1) failAt(line, "the point count '" + token + "' is not a positive integer");
+  if (n > kMaxShapePoints) {
+    failAt(line, "the point count " + token + " exceeds the supported " +
+                     std::to_string(kMaxShapePoints) + " points per shape");
+  }
   return n;
 }
 
@@ -43,6 +51,11 @@ Eigen::Isometry3d parsePose(const InputLine& line, std::size_t first, const std:
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear() = q.toRotationMatrix();
   X.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+  try {
+    deep::checkPose(X, which.c_str());
+  } catch (const std::exception& e) {
+    failAt(line, e.what());
+  }
   return X;
 }
 
@@ -50,6 +63,72 @@ int shapeIndex(const PdInput& input, const InputLine& line, const std::string& i
   const auto it = input.ids.find(id);
   if (it == input.ids.end()) failAt(line, "unknown shape id '" + id + "'");
   return it->second;
+}
+
+/// Reads the points of the shape whose header is `header` (`line` holds the line after it) and
+/// builds its hull; on return `line` holds the line after the points and the result says whether
+/// there is one.
+bool readShape(std::istream& in, int& lineNumber, const InputLine& header, InputLine& line,
+               PdInput& input) {
+  if (header.tokens.size() != 3) failAt(header, "expected 'shape <id> <n>'");
+  const std::string id = header.tokens[1];
+  const int n = parsePointCount(header, header.tokens[2]);
+  if (const auto it = input.ids.find(id); it != input.ids.end()) {
+    failAt(header, "duplicate shape id '" + id + "' (first defined on line " +
+                       std::to_string(input.shapes[static_cast<std::size_t>(it->second)].line) + ")");
+  }
+  std::vector<Eigen::Vector3d> points;
+  // A bad count must not allocate a huge buffer up front; the vector grows as points come.
+  points.reserve(static_cast<std::size_t>(std::min(n, 1 << 16)));
+  bool pending = nextInputLine(in, lineNumber, line);
+  while (static_cast<int>(points.size()) < n) {
+    if (!pending) {
+      failAt(header, "shape '" + id + "' declares " + std::to_string(n) +
+                         " points but the input ends after " + std::to_string(points.size()));
+    }
+    if (line.tokens[0] == "shape" || line.tokens[0] == "query") {
+      failAt(line, "shape '" + id + "' (line " + std::to_string(header.number) + ") declares " +
+                       std::to_string(n) + " points but only " + std::to_string(points.size()) +
+                       " precede this line");
+    }
+    if (line.tokens.size() != 3) {
+      failAt(line, "expected a point '<x> <y> <z>' (point " + std::to_string(points.size() + 1) +
+                       " of " + std::to_string(n) + " of shape '" + id + "')");
+    }
+    Eigen::Vector3d p;
+    for (int c = 0; c < 3; ++c) {
+      p[c] = parseNumber(line, line.tokens[static_cast<std::size_t>(c)]);
+      try {
+        deep::range::checkCoordinate(p[c], "'" + line.tokens[static_cast<std::size_t>(c)] + "'");
+      } catch (const std::exception& e) {
+        failAt(line, e.what());
+      }
+    }
+    points.push_back(p);
+    pending = nextInputLine(in, lineNumber, line);
+  }
+  try {
+    input.shapes.push_back({deep::ConvexPolytope::fromPoints(points, "shape '" + id + "'"), header.number});
+  } catch (const std::exception& e) {
+    failAt(header, "cannot build the hull of shape '" + id + "': " + e.what());
+  }
+  input.ids.emplace(id, static_cast<int>(input.shapes.size()) - 1);
+  return pending;
+}
+
+PdQuery readQuery(const InputLine& line, const PdInput& input) {
+  if (line.tokens.size() != 17) {
+    failAt(line, "expected 'query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> "
+                 "<qw> <qx> <qy> <qz>' (17 fields, got " +
+                     std::to_string(line.tokens.size()) + ")");
+  }
+  PdQuery q;
+  q.line = line.number;
+  q.a = shapeIndex(input, line, line.tokens[1]);
+  q.X_WA = parsePose(line, 2, "A (shape '" + line.tokens[1] + "')");
+  q.b = shapeIndex(input, line, line.tokens[9]);
+  q.X_WB = parsePose(line, 10, "B (shape '" + line.tokens[9] + "')");
+  return q;
 }
 
 }  // namespace
@@ -62,59 +141,12 @@ PdInput readPdInput(std::istream& in) {
   while (pending) {
     const std::string& keyword = line.tokens[0];
     if (keyword == "shape") {
-      if (line.tokens.size() != 3) failAt(line, "expected 'shape <id> <n>'");
       const InputLine header = line;
-      const std::string id = header.tokens[1];
-      const int n = parsePointCount(header, header.tokens[2]);
-      if (const auto it = input.ids.find(id); it != input.ids.end()) {
-        failAt(header, "duplicate shape id '" + id + "' (first defined on line " +
-                         std::to_string(input.shapes[static_cast<std::size_t>(it->second)].line) +
-                         ")");
-      }
-      std::vector<Eigen::Vector3d> points;
-      // A bad count must not allocate a huge buffer up front; the vector grows as points come.
-      points.reserve(static_cast<std::size_t>(std::min(n, 1 << 16)));
-      pending = nextInputLine(in, lineNumber, line);
-      while (static_cast<int>(points.size()) < n) {
-        if (!pending) {
-          failAt(header, "shape '" + id + "' declares " + std::to_string(n) +
-                           " points but the input ends after " + std::to_string(points.size()));
-        }
-        if (line.tokens[0] == "shape" || line.tokens[0] == "query") {
-          failAt(line, "shape '" + id + "' (line " + std::to_string(header.number) + ") declares " +
-                         std::to_string(n) + " points but only " + std::to_string(points.size()) +
-                         " precede this line");
-        }
-        if (line.tokens.size() != 3) {
-          failAt(line, "expected a point '<x> <y> <z>' (point " + std::to_string(points.size() + 1) +
-                         " of " + std::to_string(n) + " of shape '" + id + "')");
-        }
-        points.emplace_back(parseNumber(line, line.tokens[0]), parseNumber(line, line.tokens[1]),
-                            parseNumber(line, line.tokens[2]));
-        pending = nextInputLine(in, lineNumber, line);
-      }
-      try {
-        input.shapes.push_back({ConvexPolytope::fromPoints(points, "shape '" + id + "'"),
-                                header.number});
-      } catch (const std::exception& e) {
-        failAt(header, "cannot build the hull of shape '" + id + "': " + e.what());
-      }
-      input.ids.emplace(id, static_cast<int>(input.shapes.size()) - 1);
+      pending = readShape(in, lineNumber, header, line, input);
       continue;  // `line` already holds the next line
     }
     if (keyword == "query") {
-      if (line.tokens.size() != 17) {
-        failAt(line, "expected 'query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> "
-                   "<qw> <qx> <qy> <qz>' (17 fields, got " +
-                       std::to_string(line.tokens.size()) + ")");
-      }
-      PdQuery q;
-      q.line = line.number;
-      q.a = shapeIndex(input, line, line.tokens[1]);
-      q.X_WA = parsePose(line, 2, "A (shape '" + line.tokens[1] + "')");
-      q.b = shapeIndex(input, line, line.tokens[9]);
-      q.X_WB = parsePose(line, 10, "B (shape '" + line.tokens[9] + "')");
-      input.queries.push_back(q);
+      input.queries.push_back(readQuery(line, input));
     } else {
       failAt(line, "unknown keyword '" + keyword + "' (expected 'shape' or 'query')");
     }

@@ -70,7 +70,7 @@ std::vector<Eigen::VectorXd> readPathFile(const std::string& file, const robots:
   return path;
 }
 
-checker::ViewScene worldView(std::vector<std::string>& args, const PackagePaths& packages) {
+checker::ViewScene worldView(std::vector<std::string>& args, const PackageRoots& packages) {
   std::string robotPath;
   std::string srdf;
   std::vector<SceneArg> scenes;
@@ -193,7 +193,7 @@ checker::ViewScene pdView(const std::string& file) {
   return scene;
 }
 
-checker::ViewScene decomposeView(const std::string& meshArg, const PackagePaths& packages) {
+checker::ViewScene decomposeView(const std::string& meshArg, const PackageRoots& packages) {
   const std::string path = robots::resolveUriOrThrow(meshArg, robots::packageRoots(packages.commandLine), "", "--decompose");
   auto mesh = std::make_shared<const robots::TriangleMesh>(robots::loadMesh(path));
   const robots::ConvexDecomposition d = robots::decomposeConvexCached(*mesh, robots::DecompositionParams(),
@@ -230,7 +230,7 @@ int run(std::vector<std::string> args) {
   const std::string out = takeSingleOption(args, "--out");
   const std::string decompose = takeSingleOption(args, "--decompose");
   const std::string pd = takeSingleOption(args, "--pd");
-  const PackagePaths packages = takePackagePaths(args);
+  const PackageRoots packages = takePackageRoots(args);
   if (out.empty()) throw UsageError("option --out is required");
   if (!decompose.empty() && !pd.empty()) throw UsageError("--decompose and --pd exclude each other");
   checker::ViewScene scene;

@@ -1,4 +1,4 @@
-#include "deepcheck/checker/aabb_tree.h"
+#include "aabb_tree.h"
 
 #include <numeric>
 

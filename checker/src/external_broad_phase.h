@@ -6,7 +6,7 @@
 // A World built with such a broad phase before its provider was installed throws
 // std::invalid_argument naming the provider.
 
-#include "deepcheck/checker/aabb_tree.h"
+#include "aabb_tree.h"
 #include "deepcheck/checker/world.h"
 
 #include <Eigen/Core>

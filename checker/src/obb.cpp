@@ -1,4 +1,4 @@
-#include "deepcheck/checker/obb.h"
+#include "obb.h"
 
 namespace deepcheck::checker {
 

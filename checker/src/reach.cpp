@@ -1,6 +1,6 @@
-#include "deepcheck/checker/reach.h"
+#include "reach.h"
 
-#include "deepcheck/checker/aabb_tree.h"
+#include "aabb_tree.h"
 #include "deepcheck/robots/kinematics.h"
 
 #include <algorithm>

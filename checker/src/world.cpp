@@ -1,5 +1,6 @@
-// World construction, changes (scenes, obstacles, disabled pairs) and description. The queries
-// are in world_queries.cpp.
+// World construction: the robot, its scenes and self pairs, and the world's changes other than
+// obstacles (world_obstacles.cpp). The queries are in world_is_free.cpp and world_distance.cpp,
+// the description in world_summary.cpp.
 
 #include "deepcheck/checker/world.h"
 
@@ -33,144 +34,10 @@ using detail::Snapshot;
 using detail::WorldBody;
 using detail::WorldPiece;
 using detail::WorldState;
-
-const char* toString(BroadPhase b) {
-  switch (b) {
-    case BroadPhase::AabbTree: return "aabb-tree";
-    case BroadPhase::FclTree: return "fcl-dynamic-aabb-tree";
-    case BroadPhase::None: return "none";
-  }
-  return "unknown";
-}
-
-// --- obstacles -------------------------------------------------------------------------------
-
-Obstacle Obstacle::box(const std::string& name, const Eigen::Vector3d& size, const Eigen::Isometry3d& X_WO) {
-  Obstacle o;
-  o.name = name;
-  o.geometry.type = robots::GeometryType::Box;
-  o.geometry.boxSize = size;
-  o.X_WO = X_WO;
-  return o;
-}
-
-Obstacle Obstacle::sphere(const std::string& name, double radius, const Eigen::Isometry3d& X_WO) {
-  Obstacle o;
-  o.name = name;
-  o.geometry.type = robots::GeometryType::Sphere;
-  o.geometry.radius = radius;
-  o.X_WO = X_WO;
-  return o;
-}
-
-Obstacle Obstacle::cylinder(const std::string& name, double radius, double length,
-                            const Eigen::Isometry3d& X_WO) {
-  Obstacle o;
-  o.name = name;
-  o.geometry.type = robots::GeometryType::Cylinder;
-  o.geometry.radius = radius;
-  o.geometry.length = length;
-  o.X_WO = X_WO;
-  return o;
-}
-
-Obstacle Obstacle::meshFile(const std::string& name, const std::string& path, const Eigen::Isometry3d& X_WO,
-                            const Eigen::Vector3d& scale) {
-  Obstacle o;
-  o.name = name;
-  o.geometry.type = robots::GeometryType::Mesh;
-  o.geometry.meshUri = path;
-  o.geometry.meshPath = path;
-  o.geometry.meshScale = scale;
-  o.X_WO = X_WO;
-  return o;
-}
-
-Obstacle Obstacle::fromMesh(const std::string& name, robots::TriangleMesh mesh, const Eigen::Isometry3d& X_WO) {
-  Obstacle o;
-  o.name = name;
-  o.geometry.type = robots::GeometryType::Mesh;
-  o.mesh = std::make_shared<const robots::TriangleMesh>(std::move(mesh));
-  o.X_WO = X_WO;
-  return o;
-}
-
-namespace detail {
-
-std::vector<robots::CollisionPiece> piecesOfGeometry(const robots::Geometry& g, const robots::TriangleMesh* mesh,
-                                                     const robots::CollisionGeometryOptions& options,
-                                                     const std::string& what) {
-  auto finite = [](double v) { return std::isfinite(v); };
-  std::vector<robots::CollisionPiece> out;
-  robots::CollisionPiece piece;
-  switch (g.type) {
-    case robots::GeometryType::Box:
-      if (!(g.boxSize.array() > 0).all() || !g.boxSize.allFinite()) {
-        std::ostringstream msg;
-        msg << what << ": box size (" << g.boxSize.transpose() << ") must be positive and finite";
-        throw std::invalid_argument(msg.str());
-      }
-      piece.core = std::make_shared<const deep::ConvexPolytope>(deep::ConvexPolytope::box(0.5 * g.boxSize));
-      piece.origin = what + " box";
-      out.push_back(piece);
-      break;
-    case robots::GeometryType::Sphere:
-      if (!(g.radius > 0) || !finite(g.radius)) {
-        throw std::invalid_argument(what + ": sphere radius " + std::to_string(g.radius) +
-                                    " must be positive and finite");
-      }
-      piece.core = std::make_shared<const deep::ConvexPolytope>(
-          deep::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}, what));
-      piece.radius = g.radius;
-      piece.origin = what + " sphere";
-      out.push_back(piece);
-      break;
-    case robots::GeometryType::Cylinder:
-      if (!(g.radius > 0) || !finite(g.radius) || !(g.length > 0) || !finite(g.length)) {
-        throw std::invalid_argument(what + ": cylinder radius " + std::to_string(g.radius) + " and length " +
-                                    std::to_string(g.length) + " must be positive and finite");
-      }
-      piece.core = std::make_shared<const deep::ConvexPolytope>(
-          robots::cylinderPrism(g.radius, g.length, options.cylinderMaxDeviation));
-      piece.origin = what + " cylinder";
-      out.push_back(piece);
-      break;
-    case robots::GeometryType::Mesh: {
-      robots::TriangleMesh loaded;
-      if (mesh == nullptr) {
-        if (g.meshPath.empty()) throw std::invalid_argument(what + ": a mesh needs a file or a TriangleMesh");
-        if (!g.meshScale.allFinite() || !(g.meshScale.array() != 0).all()) {
-          std::ostringstream msg;
-          msg << what << ": mesh scale (" << g.meshScale.transpose() << ") must be finite and non-zero";
-          throw std::invalid_argument(msg.str());
-        }
-        try {
-          loaded = robots::loadMesh(g.meshPath, g.meshScale);
-        } catch (const std::exception& e) {
-          throw std::invalid_argument(what + ": " + e.what());
-        }
-        mesh = &loaded;
-      }
-      if (mesh->empty()) throw std::invalid_argument(what + ": the mesh has no triangle");
-      std::vector<deep::ConvexPolytope> polytopes;
-      try {
-        polytopes = options.decomposer ? options.decomposer(*mesh) : robots::convexHullDecomposer(*mesh);
-      } catch (const std::invalid_argument& e) {
-        throw std::invalid_argument(what + ": " + e.what());
-      }
-      if (polytopes.empty()) throw std::invalid_argument(what + ": the mesh decomposer returned no piece");
-      for (std::size_t i = 0; i < polytopes.size(); ++i) {
-        piece.core = std::make_shared<const deep::ConvexPolytope>(std::move(polytopes[i]));
-        piece.origin = what + " mesh piece " + std::to_string(i);
-        out.push_back(piece);
-      }
-      break;
-    }
-  }
-  return out;
-}
-
-}  // namespace detail
+using detail::buildObstaclePieces;
+using detail::finishPieceSet;
+using detail::makeWorldPiece;
+using detail::publish;
 
 // --- adjacency -------------------------------------------------------------------------------
 
@@ -264,6 +131,10 @@ std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robo
   return robot;
 }
 
+}  // namespace
+
+namespace detail {
+
 WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry3d& X_WB, int body,
                           std::uint64_t uid) {
   WorldPiece w;
@@ -290,6 +161,10 @@ void finishPieceSet(PieceSet& set, BroadPhase broadPhase) {
   set.tree = AabbTree(boxes);
   if (broadPhase == BroadPhase::FclTree) set.fclTree = detail::makeExternalPieceTree(broadPhase, boxes);
 }
+
+}  // namespace detail
+
+namespace {
 
 /// The scene pieces of `old` plus those of the new scene `scene` (index `sceneIndex`) that pass
 /// the reach filter; fills the scene's kept / dropped counts.
@@ -329,25 +204,6 @@ std::shared_ptr<const PieceSet> appendScenePieces(const PieceSet& old, const Rob
       b.ref.scene = sceneIndex;
       b.name = "scene/" + scene.model.link(l).name;
       set->bodies.push_back(b);
-    }
-  }
-  finishPieceSet(*set, broadPhase);
-  return set;
-}
-
-std::shared_ptr<const PieceSet> buildObstaclePieces(const std::vector<std::shared_ptr<const ObstacleData>>& obstacles,
-                                                    BroadPhase broadPhase) {
-  auto set = std::make_shared<PieceSet>();
-  for (const auto& o : obstacles) {
-    const int body = static_cast<int>(set->bodies.size());
-    WorldBody b;
-    b.ref.kind = BodyRef::Kind::Obstacle;
-    b.ref.index = o->id;
-    b.name = "obstacle/" + o->source.name;
-    set->bodies.push_back(b);
-    for (std::size_t i = 0; i < o->pieces.size(); ++i) {
-      const std::uint64_t uid = (static_cast<std::uint64_t>(o->id) << 24) | i;
-      set->pieces.push_back(makeWorldPiece(o->pieces[i], o->source.X_WO, body, uid));
     }
   }
   finishPieceSet(*set, broadPhase);
@@ -402,19 +258,12 @@ std::pair<int, int> linkPairByName(const robots::RobotModel& model, const std::s
   return {std::min(ia, ib), std::max(ia, ib)};
 }
 
-/// The narrow phase's own check of a pose (finite, a rotation within deep::tol::kOrthonormal),
-/// made once when an obstacle is placed: isFree's narrow phase skips it (overlapsUnchecked).
-void checkObstaclePose(const Eigen::Isometry3d& X_WO, const std::string& name) {
-  deep::checkPose(X_WO, ("obstacle '" + name + "'").c_str());
-}
-
 }  // namespace
 
 // --- World -----------------------------------------------------------------------------------
 
-namespace {
+namespace detail {
 
-/// Publishes a new snapshot (caller holds the mutex).
 void publish(WorldState& st, std::shared_ptr<Snapshot> snap) {
   snap->excess = std::isnan(*st.excessSink) ? *st.excessSink
                                             : std::max(*st.excessSink, st.options.geometry.cylinderMaxDeviation);
@@ -422,7 +271,7 @@ void publish(WorldState& st, std::shared_ptr<Snapshot> snap) {
   st.generation.fetch_add(1, std::memory_order_acq_rel);
 }
 
-}  // namespace
+}  // namespace detail
 
 World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std::make_shared<WorldState>()) {
   if (!(options.reachMargin >= 0)) {
@@ -461,7 +310,7 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 World::~World() = default;
 
-int World::addScene(robots::RobotModel scene, const SceneOptions& options) {
+int World::addScene(robots::RobotModel scene, const SceneSpec& options) {
   WorldState& st = *state_;
   std::lock_guard<std::mutex> lock(st.mutex);
   if (options.overridePose) scene.setBasePose(options.X_WS);
@@ -485,68 +334,10 @@ int World::addScene(robots::RobotModel scene, const SceneOptions& options) {
 }
 
 int World::addScene(robots::RobotModel scene, const Eigen::Isometry3d& X_WS) {
-  SceneOptions options;
-  options.overridePose = true;
-  options.X_WS = X_WS;
-  return addScene(std::move(scene), options);
-}
-
-int World::addObstacle(const Obstacle& obstacle) {
-  WorldState& st = *state_;
-  if (obstacle.name.empty()) throw std::invalid_argument("addObstacle: the obstacle has no name");
-  checkObstaclePose(obstacle.X_WO, obstacle.name);
-  std::lock_guard<std::mutex> lock(st.mutex);
-  auto data = std::make_shared<ObstacleData>();
-  data->source = obstacle;
-  data->pieces = detail::piecesOfGeometry(obstacle.geometry, obstacle.mesh.get(), st.geometry,
-                                          "obstacle '" + obstacle.name + "'");
-  data->id = st.nextObstacleId++;
-  auto snap = std::make_shared<Snapshot>(*st.current);
-  snap->obstacles.push_back(data);
-  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.broadPhase);
-  publish(st, snap);
-  return data->id;
-}
-
-namespace {
-
-std::size_t findObstacle(const Snapshot& s, int id) {
-  for (std::size_t i = 0; i < s.obstacles.size(); ++i) {
-    if (s.obstacles[i]->id == id) return i;
-  }
-  throw std::invalid_argument("no obstacle with id " + std::to_string(id));
-}
-
-}  // namespace
-
-void World::removeObstacle(int id) {
-  WorldState& st = *state_;
-  std::lock_guard<std::mutex> lock(st.mutex);
-  const std::size_t i = findObstacle(*st.current, id);
-  auto snap = std::make_shared<Snapshot>(*st.current);
-  snap->obstacles.erase(snap->obstacles.begin() + static_cast<std::ptrdiff_t>(i));
-  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.broadPhase);
-  publish(st, snap);
-}
-
-void World::setObstaclePose(int id, const Eigen::Isometry3d& X_WO) {
-  WorldState& st = *state_;
-  std::lock_guard<std::mutex> lock(st.mutex);
-  const std::size_t i = findObstacle(*st.current, id);
-  checkObstaclePose(X_WO, st.current->obstacles[i]->source.name);
-  auto snap = std::make_shared<Snapshot>(*st.current);
-  auto moved = std::make_shared<ObstacleData>(*snap->obstacles[i]);
-  moved->source.X_WO = X_WO;
-  snap->obstacles[i] = moved;
-  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.broadPhase);
-  publish(st, snap);
-}
-
-std::vector<int> World::obstacleIds() const {
-  const auto snap = state_->snapshot();
-  std::vector<int> ids;
-  for (const auto& o : snap->obstacles) ids.push_back(o->id);
-  return ids;
+  SceneSpec placement;
+  placement.overridePose = true;
+  placement.X_WS = X_WS;
+  return addScene(std::move(scene), placement);
 }
 
 void World::disablePair(const std::string& linkA, const std::string& linkB) {
@@ -578,101 +369,11 @@ const Eigen::VectorXd& World::sceneConfiguration(int index) const {
   return snap->scenes[index]->q;
 }
 
-Obstacle World::obstacle(int id) const {
-  const auto snap = state_->snapshot();
-  return snap->obstacles[findObstacle(*snap, id)]->source;
-}
-
 std::vector<std::pair<int, int>> World::allowedSelfPairs() const {
   const auto snap = state_->snapshot();
   std::vector<std::pair<int, int>> out;
   for (const SelfPair& p : snap->selfPairs) out.emplace_back(snap->robot->links[p.a].link, snap->robot->links[p.b].link);
   return out;
-}
-
-std::string World::bodyName(const BodyRef& body) const {
-  const auto snap = state_->snapshot();
-  switch (body.kind) {
-    case BodyRef::Kind::RobotLink:
-      if (body.index < 0 || body.index >= snap->robot->model.numLinks()) break;
-      return snap->robot->model.link(body.index).name;
-    case BodyRef::Kind::SceneLink:
-      if (body.scene < 0 || body.scene >= static_cast<int>(snap->scenes.size())) break;
-      if (body.index < 0 || body.index >= snap->scenes[body.scene]->model.numLinks()) break;
-      return "scene/" + snap->scenes[body.scene]->model.link(body.index).name;
-    case BodyRef::Kind::Obstacle:
-      for (const auto& o : snap->obstacles) {
-        if (o->id == body.index) return "obstacle/" + o->source.name;
-      }
-      break;
-  }
-  throw std::invalid_argument("bodyName: no such body (index " + std::to_string(body.index) + ")");
-}
-
-World::Summary World::summaryCounts() const {
-  const auto snap = state_->snapshot();
-  Summary s;
-  const RobotData& r = *snap->robot;
-  s.robotLinks = r.model.numLinks();
-  s.robotLinksWithGeometry = static_cast<int>(r.links.size());
-  s.robotPieces = static_cast<int>(r.pieces.size());
-  s.selfPairs = static_cast<int>(snap->selfPairs.size());
-  s.selfPiecePairs = snap->selfCacheSize;
-  s.disabledAdjacent = snap->disabledAdjacent;
-  s.disabledRigid = snap->disabledRigid;
-  s.disabledByUser = snap->disabledByUser;
-  s.scenes = static_cast<int>(snap->scenes.size());
-  for (const auto& sc : snap->scenes) {
-    s.sceneLinksWithGeometry += sc->linksWithGeometry;
-    s.scenePiecesKept += sc->piecesKept;
-    s.scenePiecesDropped += sc->piecesDropped;
-  }
-  s.obstacles = static_cast<int>(snap->obstacles.size());
-  s.obstaclePieces = static_cast<int>(snap->obstaclePieces->pieces.size());
-  s.geometryExcess = snap->excess;
-  return s;
-}
-
-std::string World::summary() const {
-  const Summary s = summaryCounts();
-  const auto snap = state_->snapshot();
-  const robots::RobotModel& m = snap->robot->model;
-  std::ostringstream out;
-  out << "robot '" << m.name() << "': " << s.robotLinks << " links (" << s.robotLinksWithGeometry
-      << " with geometry), " << m.numVariables() << " variables, " << s.robotPieces << " pieces\n";
-  out << "self pairs: " << s.selfPairs << " link pairs checked (" << s.selfPiecePairs << " piece pairs), "
-      << s.disabledAdjacent << " disabled as adjacent, " << s.disabledRigid << " as rigidly attached, "
-      << s.disabledByUser << " by name (SRDF)\n";
-  for (std::size_t i = 0; i < snap->scenes.size(); ++i) {
-    const SceneData& sc = *snap->scenes[i];
-    out << "scene " << i << " '" << sc.model.name() << "': " << sc.model.numLinks() << " links ("
-        << sc.linksWithGeometry << " with geometry), pieces kept " << sc.piecesKept << ", dropped "
-        << sc.piecesDropped << " (unreachable)\n";
-  }
-  out << "scene pieces: kept " << s.scenePiecesKept << ", dropped " << s.scenePiecesDropped
-      << " (reach margin " << state_->options.reachMargin << " m)\n";
-  out << "obstacles: " << s.obstacles << " (" << s.obstaclePieces << " pieces)\n";
-  const long long worldPairs = static_cast<long long>(s.robotPieces) * (s.scenePiecesKept + s.obstaclePieces);
-  int grids = 0, cells = 0, freeCells = 0;
-  for (const SelfPair& p : snap->selfPairs) {
-    if (p.grid == nullptr) continue;
-    ++grids;
-    cells += p.grid->numCells();
-    freeCells += p.grid->numFreeCells();
-  }
-  if (grids > 0) {
-    char share[32];
-    std::snprintf(share, sizeof share, "%.1f", 100.0 * freeCells / cells);
-    out << "self pairs with a certified-free grid: " << grids << " (" << cells << " cells, " << share
-        << " % certified free)\n";
-  }
-  out << "pairs checked at most: " << worldPairs << " robot-world piece pairs, " << s.selfPiecePairs
-      << " self piece pairs; broad phase " << toString(state_->options.broadPhase) << "\n";
-  char excess[64];
-  std::snprintf(excess, sizeof excess, "%.3g", s.geometryExcess);
-  out << "geometry excess (pieces beyond the original shapes): " << (std::isnan(s.geometryExcess) ? "unknown" : excess)
-      << " m\n";
-  return out.str();
 }
 
 }  // namespace deepcheck::checker

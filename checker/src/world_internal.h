@@ -1,12 +1,13 @@
 #pragma once
-// Private data of World and World::Context (world.cpp builds it, world_queries.cpp reads it).
+// Private data of World and World::Context (world.cpp builds it; the queries read it,
+// world_queries_internal.h).
 //
 // A World owns an immutable Snapshot behind a shared_ptr; every change makes a new one. Contexts
 // hold the snapshot they were last refreshed with, so a query never sees a half-made change.
 
-#include "deepcheck/checker/aabb_tree.h"
-#include "deepcheck/checker/obb.h"
-#include "deepcheck/checker/reach.h"
+#include "aabb_tree.h"
+#include "obb.h"
+#include "reach.h"
 #include "deepcheck/checker/world.h"
 
 #include "self_pair_grid.h"
@@ -147,6 +148,20 @@ std::vector<robots::CollisionPiece> piecesOfGeometry(const robots::Geometry& geo
                                                      const robots::TriangleMesh* mesh,
                                                      const robots::CollisionGeometryOptions& options,
                                                      const std::string& what);
+
+/// A world piece from a collision piece of a body posed at X_WB: its bounding box, sphere and
+/// oriented box.
+WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry3d& X_WB, int body, std::uint64_t uid);
+
+/// Builds the broad phase of `set` (its AABB tree, and FCL's tree when asked).
+void finishPieceSet(PieceSet& set, BroadPhase broadPhase);
+
+/// The pieces of the obstacles, in their order (world_obstacles.cpp).
+std::shared_ptr<const PieceSet> buildObstaclePieces(const std::vector<std::shared_ptr<const ObstacleData>>& obstacles,
+                                                    BroadPhase broadPhase);
+
+/// Publishes a new snapshot (caller holds the mutex).
+void publish(WorldState& st, std::shared_ptr<Snapshot> snap);
 
 /// Pads a bounding radius for round-off (tol::kBoundingRelative).
 inline double padRadius(double r, const Eigen::Vector3d& center) {

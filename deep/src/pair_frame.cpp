@@ -2,6 +2,7 @@
 
 #include "deepcheck/deep/pair_frame.h"
 
+#include "deepcheck/deep/input_range.h"
 #include "deepcheck/deep/tolerances.h"
 
 #include <cmath>
@@ -25,6 +26,7 @@ void checkPose(const Eigen::Isometry3d& X, const char* what) {
       }
     }
   }
+  range::checkTranslation(p, what);
   const double error = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
   if (!(error < tol::kOrthonormal)) {
     std::ostringstream msg;

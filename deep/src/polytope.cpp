@@ -34,6 +34,7 @@
 
 #include "deepcheck/deep/polytope.h"
 
+#include "deepcheck/deep/input_range.h"
 #include "deepcheck/deep/tolerances.h"
 
 #include <Eigen/Eigenvalues>
@@ -992,15 +993,7 @@ ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, doub
 ConvexPolytope ConvexPolytope::fromPoints(const std::vector<Vector3d>& points,
                                           const std::string& name) {
   if (points.empty()) throw std::invalid_argument(name + ": no points");
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(points[i][c])) {
-        throw std::invalid_argument(name + ": point " + std::to_string(i) +
-                                    " has a non-finite coordinate " + axisName(c) + " = " +
-                                    formatDouble(points[i][c]));
-      }
-    }
-  }
+  range::checkPoints(points, name);
   return PolytopeBuilder(points, name).build();
 }
 

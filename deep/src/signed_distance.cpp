@@ -1,5 +1,8 @@
 #include "deepcheck/deep/signed_distance.h"
 
+#include "deepcheck/deep/tolerances.h"
+
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -11,6 +14,14 @@ const char* toString(SignedDistanceStatus s) {
     case SignedDistanceStatus::Separated: return "separated";
     case SignedDistanceStatus::Penetrating: return "penetrating";
     case SignedDistanceStatus::NotConverged: return "not-converged";
+  }
+  return "unknown";
+}
+
+const char* toString(PenetrationMethod m) {
+  switch (m) {
+    case PenetrationMethod::Certified: return "certified";
+    case PenetrationMethod::DeepWalk: return "deep-walk";
   }
   return "unknown";
 }
@@ -86,6 +97,88 @@ Feature deepFeatureB(const DeepResult& d) {
   return f;
 }
 
+bool isLowDim(const ConvexPolytope& P) {
+  return P.kind() == PolytopeKind::Point || P.kind() == PolytopeKind::Segment;
+}
+
+/// A penetration depth with its bracket (core depths, frame P).
+struct Penetration {
+  DeepResult deep;
+  double lower = 0.0;
+  bool certified = false;
+  int expansions = 0;
+};
+
+/// DEEP's walk from the certified direction, for the faces certifiedFacet() cannot name: it names
+/// the facet of M the bracket converged on (VF, FV or EE, witnesses, exact normal). Its depth is a facet offset of M, an upper bound; the
+/// answer is the better of it and the expansion's own upper bound.
+DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                     const CertifiedResult& c) {
+  DeepCache start;
+  start.valid = true;
+  start.count = 1;
+  start.hubA[0] = c.supportA;
+  start.hubB[0] = c.supportB;
+  start.u[0] = c.direction;
+  DeepOptions one;
+  one.warmCentroidStart = false;
+  one.refreshEvery = 0;
+  DeepResult d = deepPenetration(A, B, frame, &start, one);
+  if (d.depth <= c.upper) return d;
+  // The walk found nothing better than the support: answer with the support itself.
+  d.status = DeepStatus::Converged;
+  d.depth = c.upper;
+  d.normal = -c.direction;
+  d.pointB = frame.vertexB(B, c.supportB);
+  d.pointA = d.pointB + c.upper * d.normal;
+  d.type = DeepResult::FacetType::FV;
+  d.featureA = A.vertexFaces(c.supportA)[0];
+  d.featureB = c.supportB;
+  return d;
+}
+
+/// The certified method: the expansion's bracket, the answer named by DEEP's facets. Points and
+/// segments (M's facets are enumerated exactly) and expansions that did not converge (flat M,
+/// cap) go to DEEP's walks with all restarts; the bracket's lower bound is kept.
+Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                           const GjkResult& g, ExpansionSurface& surface, const DeepOptions& options,
+                           PairCache* cache) {
+  Penetration p;
+  const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
+  const double tau = tol::kCertifyRelative * L;
+  if (isLowDim(A) || isLowDim(B)) {
+    p.deep = deepPenetration(A, B, frame, nullptr, options);
+    p.lower = p.deep.depth;
+    p.certified = true;
+    return p;
+  }
+  CertifiedResult c;
+  const bool warm = options.warmStart && cache && cache->certified;
+  if (warm) c = certifiedWarm(A, B, frame, *cache->certified);
+  if (c.status != CertifiedStatus::Certified) {
+    CertifiedOptions co;
+    co.maxExpansions = options.maxExpansions;
+    c = certifiedPenetration(A, B, frame, g, surface, co);
+    if (cache) {
+      if (!cache->certified) cache->certified = std::make_unique<CertifiedWarmStart>();
+      saveWarmStart(A, B, surface, c, *cache->certified);
+    }
+  }
+  p.lower = c.lower;
+  p.expansions = c.expansions;
+  if (c.status == CertifiedStatus::Certified) {
+    if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c);
+  } else {
+    DeepOptions full = options;
+    full.warmStart = false;
+    full.restarts = true;
+    p.deep = deepPenetration(A, B, frame, nullptr, full);
+    if (c.upper < p.deep.depth) p.deep = nameFacet(A, B, frame, c);
+  }
+  p.certified = p.deep.depth - p.lower <= tau;
+  return p;
+}
+
 }  // namespace
 
 SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3d& X_WA,
@@ -112,21 +205,43 @@ SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3
                                                 : SignedDistanceStatus::NotConverged;
     r.featureA = simplexFeature(a, g.simplexA.data(), g.simplexSize, n_P, Eigen::Matrix3d::Identity());
     r.featureB = simplexFeature(b, g.simplexB.data(), g.simplexSize, -n_P, frame.R);
+    // The certified warm start stays: its check measures the motion from its own reference.
     if (cache) cache->deep.valid = false;
   } else {
-    const DeepResult d = deepPenetration(a, b, frame, cache ? &cache->deep : nullptr, options);
+    Penetration p;
+    if (options.method == PenetrationMethod::Certified) {
+      if (cache && cache->surface) {
+        p = certifiedDepth(a, b, frame, g, *cache->surface, options, cache);
+      } else {
+        ExpansionSurface surface;
+        p = certifiedDepth(a, b, frame, g, surface, options, cache);
+      }
+    } else {
+      p.deep = deepPenetration(a, b, frame, cache ? &cache->deep : nullptr, options);
+    }
+    const DeepResult& d = p.deep;
     coreSd = -d.depth;
     n_P = d.normal;
     pA_P = d.pointA;
     pB_P = d.pointB;
-    r.status = d.status == DeepStatus::Converged ? SignedDistanceStatus::Penetrating
-                                                 : SignedDistanceStatus::NotConverged;
+    r.certified = p.certified;
+    r.status = d.status == DeepStatus::Converged &&
+                       (p.certified || options.method == PenetrationMethod::DeepWalk)
+                   ? SignedDistanceStatus::Penetrating
+                   : SignedDistanceStatus::NotConverged;
     r.featureA = deepFeatureA(d);
     r.featureB = deepFeatureB(d);
     r.deep = d.stats;
+    r.expansions = p.expansions;
+    r.depthLower = p.lower + A.radius + B.radius;
   }
   // Radii: A grows towards B along n, B towards A along -n.
   r.distance = coreSd - A.radius - B.radius;
+  r.depthUpper = -r.distance;
+  if (apart) {
+    r.depthLower = r.depthUpper;
+    r.certified = r.status == SignedDistanceStatus::Separated;
+  }
   r.normal = frame.X_WP.linear() * n_P;
   r.pointA = frame.X_WP * (pA_P + A.radius * n_P);
   r.pointB = frame.X_WP * (pB_P - B.radius * n_P);

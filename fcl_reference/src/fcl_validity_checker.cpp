@@ -7,18 +7,21 @@
 
 namespace deepcheck::fcl_reference {
 
+namespace {
+
+ompl::base::SpaceInformation* nonNull(ompl::base::SpaceInformation* si) {
+  if (si == nullptr) throw std::invalid_argument("FclStateValidityChecker: the space information is null");
+  return si;
+}
+
+}  // namespace
+
 FclStateValidityChecker::FclStateValidityChecker(ompl::base::SpaceInformation* si, const checker::World& world)
-    : ompl::base::StateValidityChecker(si),
-      n_(world.robot().numVariables()),
+    : ompl::base::StateValidityChecker(nonNull(si)),
+      mapping_(planners::makeStateMapping(*si->getStateSpace(), world.robot())),
       lower_(world.robot().lowerLimits()),
       upper_(world.robot().upperLimits()),
       fcl_(std::make_unique<FclWorld>(world)) {
-  if (si == nullptr) throw std::invalid_argument("FclStateValidityChecker: the space information is null");
-  if (si->getStateDimension() != static_cast<unsigned int>(n_)) {
-    throw std::invalid_argument("FclStateValidityChecker: the state space has dimension " +
-                                std::to_string(si->getStateDimension()) + " but robot '" + world.robot().name() +
-                                "' has " + std::to_string(n_) + " variables");
-  }
   specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
 }
 
@@ -40,13 +43,13 @@ double FclStateValidityChecker::distance(const Eigen::Ref<const Eigen::VectorXd>
 }
 
 bool FclStateValidityChecker::isValid(const ompl::base::State* state) const {
-  const auto q = planners::mapState(state, n_);
+  const Eigen::VectorXd q = mapping_.configuration(state);
   if (!((q.array() >= lower_.array()).all() && (q.array() <= upper_.array()).all())) return false;
   return isFree(q);
 }
 
 double FclStateValidityChecker::clearance(const ompl::base::State* state) const {
-  return distance(planners::mapState(state, n_));
+  return distance(mapping_.configuration(state));
 }
 
 }  // namespace deepcheck::fcl_reference

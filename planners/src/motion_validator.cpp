@@ -28,11 +28,9 @@ ClearanceMotionValidator::ClearanceMotionValidator(ompl::base::SpaceInformation*
   if (!checker_) throw std::invalid_argument("ClearanceMotionValidator: the validity checker is null");
   if (!bound_) throw std::invalid_argument("ClearanceMotionValidator: the link speed bound is null");
   n_ = checker_->dimension();
-  if (si->getStateDimension() != static_cast<unsigned int>(n_) || bound_->speeds().cols() != n_) {
-    throw std::invalid_argument("ClearanceMotionValidator: state space of dimension " +
-                                std::to_string(si->getStateDimension()) + ", checker of dimension " +
-                                std::to_string(n_) + ", bound of dimension " +
-                                std::to_string(bound_->speeds().cols()) + " do not match");
+  if (bound_->speeds().cols() != n_) {
+    throw std::invalid_argument("ClearanceMotionValidator: checker of dimension " + std::to_string(n_) +
+                                ", bound of dimension " + std::to_string(bound_->speeds().cols()) + " do not match");
   }
 }
 
@@ -41,6 +39,25 @@ ClearanceMotionValidator::ClearanceMotionValidator(const ompl::base::SpaceInform
                                                    std::shared_ptr<const LinkSpeedBound> bound,
                                                    double fallbackFraction)
     : ClearanceMotionValidator(si.get(), std::move(checker), std::move(bound), fallbackFraction) {}
+
+namespace {
+
+std::shared_ptr<const LinkSpeedBound> boundOfWorld(const std::shared_ptr<const StateValidityChecker>& checker) {
+  if (!checker) throw std::invalid_argument("ClearanceMotionValidator: the validity checker is null");
+  return std::make_shared<const LinkSpeedBound>(LinkSpeedBound::forWorld(checker->world()));
+}
+
+}  // namespace
+
+ClearanceMotionValidator::ClearanceMotionValidator(ompl::base::SpaceInformation* si,
+                                                   std::shared_ptr<const StateValidityChecker> checker,
+                                                   double fallbackFraction)
+    : ClearanceMotionValidator(si, checker, boundOfWorld(checker), fallbackFraction) {}
+
+ClearanceMotionValidator::ClearanceMotionValidator(const ompl::base::SpaceInformationPtr& si,
+                                                   std::shared_ptr<const StateValidityChecker> checker,
+                                                   double fallbackFraction)
+    : ClearanceMotionValidator(si.get(), checker, boundOfWorld(checker), fallbackFraction) {}
 
 double ClearanceMotionValidator::minStep(double length, double B) const {
   double h = fallbackFraction_ * si_->getStateSpace()->getLongestValidSegmentLength();
@@ -74,6 +91,7 @@ bool ClearanceMotionValidator::discretePass(const Eigen::Ref<const Eigen::Vector
                                             int segments) const {
   // The states j / segments, j = 1 .. segments - 1, in bisection order (OMPL's
   // DiscreteMotionValidator's order: a collision in the middle is found first).
+  const StateMapping& mapping = checker_->mapping();
   std::queue<std::pair<int, int>> ranges;
   if (segments > 1) ranges.emplace(1, segments - 1);
   Eigen::VectorXd q(n_);
@@ -81,7 +99,7 @@ bool ClearanceMotionValidator::discretePass(const Eigen::Ref<const Eigen::Vector
     const auto [a, b] = ranges.front();
     ranges.pop();
     const int mid = (a + b) / 2;
-    q = q1 + (static_cast<double>(mid) / segments) * dq;
+    q = mapping.along(q1, dq, static_cast<double>(mid) / segments);
     validityQueries_.fetch_add(1, std::memory_order_relaxed);
     if (!checker_->isValid(q)) return false;
     if (a < mid) ranges.emplace(a, mid - 1);
@@ -92,14 +110,15 @@ bool ClearanceMotionValidator::discretePass(const Eigen::Ref<const Eigen::Vector
 
 bool ClearanceMotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const {
   motions_.fetch_add(1, std::memory_order_relaxed);
-  const auto q1 = mapState(s1, n_);
-  const auto q2 = mapState(s2, n_);
+  const StateMapping& mapping = checker_->mapping();
+  const Eigen::VectorXd q1 = mapping.configuration(s1);
+  const Eigen::VectorXd q2 = mapping.configuration(s2);
   validityQueries_.fetch_add(1, std::memory_order_relaxed);
   if (!checker_->isValid(q2)) {
     ++invalid_;
     return false;
   }
-  const Eigen::VectorXd dq = q2 - q1;
+  const Eigen::VectorXd dq = mapping.displacement(q1, q2);
   // 1. The discrete pass: colliding motions (most of those a planner asks about) are rejected at
   //    the price of OMPL's DiscreteMotionValidator.
   if (!discretePass(q1, dq, static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2)))) {
@@ -112,13 +131,13 @@ bool ClearanceMotionValidator::checkMotion(const ompl::base::State* s1, const om
     ++valid_;
     return true;
   }
-  const double h = minStep(dq.norm(), B);
+  const double h = minStep(si_->distance(s1, s2), B);
   double lo = 0.0;
   double hi = 1.0;
   bool fromLo = true;
   Eigen::VectorXd q(n_);
   while (true) {
-    q = q1 + (fromLo ? lo : hi) * dq;
+    q = mapping.along(q1, dq, fromLo ? lo : hi);
     double step = certifiedStep(q, dq, B, hi - lo);
     if (step < 0.0) {
       certificationRejections_.fetch_add(1, std::memory_order_relaxed);
@@ -144,12 +163,13 @@ bool ClearanceMotionValidator::checkMotion(const ompl::base::State* s1, const om
 bool ClearanceMotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                                            std::pair<ompl::base::State*, double>& lastValid) const {
   motions_.fetch_add(1, std::memory_order_relaxed);
-  const auto q1 = mapState(s1, n_);
-  const auto q2 = mapState(s2, n_);
-  const Eigen::VectorXd dq = q2 - q1;
+  const StateMapping& mapping = checker_->mapping();
+  const Eigen::VectorXd q1 = mapping.configuration(s1);
+  const Eigen::VectorXd q2 = mapping.configuration(s2);
+  const Eigen::VectorXd dq = mapping.displacement(q1, q2);
   auto fail = [&](double last) {
     lastValid.second = last;
-    if (lastValid.first != nullptr) copyToState(q1 + last * dq, lastValid.first);
+    if (lastValid.first != nullptr) mapping.toState(mapping.along(q1, dq, last), lastValid.first);
     ++invalid_;
     return false;
   };
@@ -157,7 +177,7 @@ bool ClearanceMotionValidator::checkMotion(const ompl::base::State* s1, const om
   const int segments = static_cast<int>(si_->getStateSpace()->validSegmentCount(s1, s2));
   Eigen::VectorXd q(n_);
   for (int j = 1; j < segments; ++j) {
-    q = q1 + (static_cast<double>(j) / segments) * dq;
+    q = mapping.along(q1, dq, static_cast<double>(j) / segments);
     validityQueries_.fetch_add(1, std::memory_order_relaxed);
     if (!checker_->isValid(q)) return fail(static_cast<double>(j - 1) / segments);
   }
@@ -165,12 +185,12 @@ bool ClearanceMotionValidator::checkMotion(const ompl::base::State* s1, const om
   if (!checker_->isValid(q2)) return fail(static_cast<double>(segments - 1) / segments);
   // 2. Certification forwards from s1.
   const double B = bound_->pairDisplacement(dq);
-  const double h = minStep(dq.norm(), B);
+  const double h = minStep(si_->distance(s1, s2), B);
   double previous = 0.0;
   double s = 0.0;
   if (B > 0.0) {
     while (s < 1.0) {
-      q = q1 + s * dq;
+      q = mapping.along(q1, dq, s);
       double step = certifiedStep(q, dq, B, 1.0 - s);
       if (step < 0.0) {
         certificationRejections_.fetch_add(1, std::memory_order_relaxed);

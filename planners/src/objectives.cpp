@@ -52,7 +52,6 @@ ClearanceHingeObjective::ClearanceHingeObjective(const ompl::base::SpaceInformat
   if (std::isnan(resolution) || std::isinf(resolution)) {
     throw std::invalid_argument("ClearanceHingeObjective: resolution must be finite, got " + number(resolution));
   }
-  n_ = checker_->dimension();
   description_ = "Clearance hinge (d_safe " + number(safeDistance) + " m)";
 }
 
@@ -74,13 +73,13 @@ double ClearanceHingeObjective::hinge(const Eigen::Ref<const Eigen::VectorXd>& q
 }
 
 ompl::base::Cost ClearanceHingeObjective::stateCost(const ompl::base::State* s) const {
-  return ompl::base::Cost(hinge(mapState(s, n_)));
+  return ompl::base::Cost(hinge(checker_->mapping().configuration(s)));
 }
 
 ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1, const ompl::base::State* s2) const {
-  const auto q1 = mapState(s1, n_);
-  const auto q2 = mapState(s2, n_);
-  const Eigen::VectorXd dq = q2 - q1;
+  const StateMapping& mapping = checker_->mapping();
+  const Eigen::VectorXd q1 = mapping.configuration(s1);
+  const Eigen::VectorXd dq = mapping.displacement(q1, mapping.configuration(s2));
   const double length = si_->distance(s1, s2);
   if (!(length > 0.0)) return ompl::base::Cost(0.0);
   const double resolution = resolution_ > 0.0 ? resolution_ : si_->getStateSpace()->getLongestValidSegmentLength();
@@ -99,7 +98,7 @@ ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1
   // The split distance at state k, asked up to the safe distance + B (all the tests of the spans
   // that state ends need); `valid` false (and no distance) for an invalid state.
   const auto evaluate = [&](int k, double B, bool& valid) {
-    const Eigen::VectorXd q = q1 + (static_cast<double>(k) / segments) * dq;
+    const Eigen::VectorXd q = mapping.along(q1, dq, static_cast<double>(k) / segments);
     valid = checker_->isValid(q);
     return valid ? checker_->splitClearanceUpTo(q, safe + B + tol::kDistanceCapMargin, selfTerm) : SplitDistance{};
   };

@@ -16,8 +16,21 @@ namespace deepcheck::planners {
 
 namespace {
 
-int dimensionOf(const ompl::geometric::PathGeometric& path) {
-  return static_cast<int>(path.getSpaceInformation()->getStateDimension());
+/// How the path's states are configurations: its validity checker's mapping when that is a
+/// deepcheck checker, else the values of a RealVectorStateSpace.
+StateMapping mappingOf(const ompl::geometric::PathGeometric& path) {
+  const ompl::base::SpaceInformation& si = *path.getSpaceInformation();
+  if (auto checker = std::dynamic_pointer_cast<const StateValidityChecker>(si.getStateValidityChecker())) {
+    return checker->mapping();
+  }
+  const auto* real = dynamic_cast<const ompl::base::RealVectorStateSpace*>(si.getStateSpace().get());
+  if (real == nullptr) {
+    throw std::invalid_argument("path tools: the path's state space '" + si.getStateSpace()->getName() +
+                                "' is not a RealVectorStateSpace and its validity checker is not a "
+                                "deepcheck::planners::StateValidityChecker, whose StateMapping would say how to "
+                                "read it");
+  }
+  return StateMapping::realVector(static_cast<int>(real->getDimension()), "RealVector '" + real->getName() + "'");
 }
 
 /// Calls visit(q) on every state of `path` at most `resolution` apart, waypoints included, with
@@ -28,17 +41,17 @@ void forEachState(const ompl::geometric::PathGeometric& path, double resolution,
   if (!(resolution > 0.0) || std::isinf(resolution)) {
     throw std::invalid_argument("path check: resolution must be finite and > 0, got " + std::to_string(resolution));
   }
-  const int n = dimensionOf(path);
   const std::size_t count = path.getStateCount();
   if (count == 0) return;
-  Eigen::VectorXd q = mapState(path.getState(0), n);
+  const StateMapping mapping = mappingOf(path);
+  Eigen::VectorXd q = mapping.configuration(path.getState(0));
   if (!visit(q, -1, true)) return;
   for (std::size_t i = 0; i + 1 < count; ++i) {
-    const Eigen::VectorXd a = mapState(path.getState(i), n);
-    const Eigen::VectorXd b = mapState(path.getState(i + 1), n);
-    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / resolution)));
+    const Eigen::VectorXd a = mapping.configuration(path.getState(i));
+    const Eigen::VectorXd dq = mapping.displacement(a, mapping.configuration(path.getState(i + 1)));
+    const int steps = std::max(1, static_cast<int>(std::ceil(dq.norm() / resolution)));
     for (int k = 1; k <= steps; ++k) {
-      q = a + (static_cast<double>(k) / steps) * (b - a);
+      q = mapping.along(a, dq, static_cast<double>(k) / steps);
       if (!visit(q, static_cast<int>(i), k == steps)) return;
     }
   }
@@ -109,28 +122,25 @@ PathRepair repairPath(ompl::geometric::PathGeometric& path, const ompl::base::Sp
                                 "deepcheck::planners::StateValidityChecker");
   }
   if (maxDepth < 0) throw std::invalid_argument("repairPath: maxDepth must be >= 0, got " + std::to_string(maxDepth));
-  const int n = checker->dimension();
+  const StateMapping& mapping = checker->mapping();
   const ompl::base::SpaceInformationPtr& owner = path.getSpaceInformation();
   PathRepair repair;
   // Repaired states stand a few millimetres off the surface, not one: the chord between two states
   // on the two faces of an edge cuts the edge unless they stand off it. So the push-out used here
   // treats everything nearer than kRepairClearance (above the threshold) as invalid.
-  const double threshold = checker->validityOptions().threshold() + tol::kRepairClearance;
-  ValidityOptions standOff;
-  standOff.safetyMargin = std::max(threshold, 0.0);
-  standOff.penetrationTolerance = std::max(-threshold, 0.0);
-  const PushOut pushOut(checker->worldPtr(), standOff, checker->pushOut().options());
+  const PushOut pushOut = standOffPushOut(checker->worldPtr(), checker->validityOptions(),
+                                         checker->pushOut().options(), tol::kRepairClearance);
 
   // Pushes `state` off when it is nearer than the stand-off; true when it is valid afterwards.
   auto standOffState = [&](ompl::base::State* state) {
     const bool valid = si->isValid(state);
-    const PushOutResult pushed = pushOut.run(mapState(state, n));
+    const PushOutResult pushed = pushOut.run(mapping.configuration(state));
     if (pushed.status == PushOutStatus::AlreadyValid) return valid;
     if (!pushed.success()) {
       if (!valid) ++repair.pushOutFailures;
       return valid;
     }
-    copyToState(pushed.q, state);
+    mapping.toState(pushed.q, state);
     return true;
   };
 
@@ -139,9 +149,9 @@ PathRepair repairPath(ompl::geometric::PathGeometric& path, const ompl::base::Sp
     const bool endpoint = i == 0 || i + 1 == states.size();
     if (si->isValid(states[i])) {
       if (endpoint) continue;  // a valid start or goal stays where it is
-      const Eigen::VectorXd before = mapState(states[i], n);
+      const Eigen::VectorXd before = mapping.configuration(states[i]);
       standOffState(states[i]);
-      if ((mapState(states[i], n) - before).norm() > 0.0) ++repair.waypointsPushed;
+      if (mapping.configuration(states[i]) != before) ++repair.waypointsPushed;
     } else if (standOffState(states[i])) {
       ++repair.waypointsPushed;
     }
@@ -154,7 +164,8 @@ PathRepair repairPath(ompl::geometric::PathGeometric& path, const ompl::base::Sp
       [&](const ompl::base::State* a, const ompl::base::State* b, int depth) {
         if (depth >= maxDepth || si->checkMotion(a, b)) return;
         ompl::base::State* mid = owner->allocState();
-        copyToState(0.5 * (mapState(a, n) + mapState(b, n)), mid);
+        const Eigen::VectorXd qa = mapping.configuration(a);
+        mapping.toState(mapping.along(qa, mapping.displacement(qa, mapping.configuration(b)), 0.5), mid);
         standOffState(mid);
         ++repair.statesInserted;
         fix(a, mid, depth + 1);
@@ -172,10 +183,10 @@ PathRepair repairPath(ompl::geometric::PathGeometric& path, const ompl::base::Sp
 }
 
 std::vector<Eigen::VectorXd> pathConfigurations(const ompl::geometric::PathGeometric& path) {
-  const int n = dimensionOf(path);
+  const StateMapping mapping = mappingOf(path);
   std::vector<Eigen::VectorXd> qs;
   qs.reserve(path.getStateCount());
-  for (std::size_t i = 0; i < path.getStateCount(); ++i) qs.emplace_back(mapState(path.getState(i), n));
+  for (std::size_t i = 0; i < path.getStateCount(); ++i) qs.push_back(mapping.configuration(path.getState(i)));
   return qs;
 }
 

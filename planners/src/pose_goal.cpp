@@ -9,10 +9,6 @@
 namespace deepcheck::planners {
 namespace {
 
-// The one place where this file maps between OMPL states and configurations (state_space.h).
-Eigen::VectorXd configurationOf(const ompl::base::State* state, int n) { return mapState(state, n); }
-void writeConfiguration(const Eigen::VectorXd& q, ompl::base::State* state) { copyToState(q, state); }
-
 std::shared_ptr<const StateValidityChecker> deepcheckChecker(const ompl::base::SpaceInformationPtr& si) {
   auto checker = si ? std::dynamic_pointer_cast<const StateValidityChecker>(si->getStateValidityChecker()) : nullptr;
   if (!checker) {
@@ -62,7 +58,7 @@ PoseGoal::PoseGoal(const ompl::base::SpaceInformationPtr& si, const std::string&
 PoseGoal::~PoseGoal() { stopSampling(); }
 
 robots::PoseError PoseGoal::poseError(const ompl::base::State* state) const {
-  return robots::poseError(checker_->world().robot(), link_, configurationOf(state, checker_->dimension()), X_WT_,
+  return robots::poseError(checker_->world().robot(), link_, checker_->mapping().configuration(state), X_WT_,
                            options_.ik);
 }
 
@@ -92,7 +88,7 @@ bool PoseGoal::sample(ompl::base::State* state) {
     if (ikCalls_++ > 0) ik.initial.resize(0);  // only the first call starts from the given configuration
     const robots::IkResult result = solveCollisionFree(*checker_, linkName_, X_WT_, ik);
     if (result.converged()) {
-      writeConfiguration(result.q, state);
+      checker_->mapping().toState(result.q, state);
       stateCountAtLastSample_ = stateCount;
       return true;
     }

@@ -4,6 +4,7 @@
 #include "deepcheck/planners/push_out.h"
 
 #include "deepcheck/robots/kinematics.h"
+#include "deepcheck/robots/random_configuration.h"
 
 #include "number.h"
 
@@ -22,9 +23,7 @@ namespace {
 
 using detail::number;
 
-/// A uniform double in [0, 1) from the raw output of the generator (portable: the standard leaves
-/// std::uniform_real_distribution's algorithm to each library).
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using robots::uniform01;
 
 /// One pair the push-out watches: its distance and gradient at the current iterate.
 struct Row {
@@ -135,6 +134,20 @@ PushOut::PushOut(std::shared_ptr<const checker::World> world, const ValidityOpti
   if (!world_) throw std::invalid_argument("PushOut: the world is null");
   checkValidityOptions(validity_);
   checkPushOutOptions(options_);
+}
+
+PushOut standOffPushOut(std::shared_ptr<const checker::World> world, const ValidityOptions& validity,
+                        const PushOutOptions& options, double standOff) {
+  if (!std::isfinite(standOff) || standOff < 0.0) {
+    throw std::invalid_argument("standOffPushOut: the stand-off must be finite and >= 0 metres, got " +
+                                std::to_string(standOff));
+  }
+  // Only the difference of the two options matters (validity.h): move the threshold up by standOff.
+  const double threshold = validity.threshold() + standOff;
+  ValidityOptions raised;
+  raised.safetyMargin = std::max(threshold, 0.0);
+  raised.penetrationTolerance = std::max(-threshold, 0.0);
+  return PushOut(std::move(world), raised, options);
 }
 
 PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& q0) const {

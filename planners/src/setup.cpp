@@ -8,7 +8,10 @@
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/goals/GoalState.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/geometric/PathSimplifier.h>
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -18,7 +21,7 @@ namespace {
 
 robots::LoadOptions loadOptions(const SetupOptions& options) {
   robots::LoadOptions load;
-  load.packageRoots = options.packagePaths;
+  load.packageRoots = options.packageRoots;
   load.useRosPackagePath = options.useRosPackagePath;
   return load;
 }
@@ -47,11 +50,7 @@ std::shared_ptr<checker::World> loadWorld(const std::string& robotUrdf, const st
   auto world = std::make_shared<checker::World>(std::move(robot), worldOptions);
   for (const SceneSpec& spec : scenes) {
     robots::RobotModel scene = robots::RobotModel::fromUrdfFile(spec.urdf, load);
-    checker::SceneOptions sceneOptions;
-    sceneOptions.q = spec.q;
-    sceneOptions.overridePose = spec.overridePose;
-    sceneOptions.X_WS = spec.X_WS;
-    world->addScene(std::move(scene), sceneOptions);
+    world->addScene(std::move(scene), spec);
   }
   return world;
 }
@@ -129,27 +128,53 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
   return certificate;
 }
 
+namespace {
+
+/// The objective's cost of `path` is no worse than `reference` (always true without an objective).
+bool costNotWorse(const ompl::geometric::PathGeometric& path, const ompl::base::OptimizationObjectivePtr& objective,
+                  const ompl::base::Cost& reference) {
+  return !objective || !objective->isCostBetterThan(reference, path.cost(objective));
+}
+
+}  // namespace
+
 bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds) {
   if (!ss.haveSolutionPath()) throw std::invalid_argument("simplifySolutionChecked: the SimpleSetup has no solution path");
+  const ompl::base::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();
+  const ompl::base::OptimizationObjectivePtr objective =
+      pdef->hasOptimizationObjective() ? pdef->getOptimizationObjective() : nullptr;
+  const bool lengthOnly =
+      !objective || std::dynamic_pointer_cast<ompl::base::PathLengthOptimizationObjective>(objective) != nullptr;
   const ompl::geometric::PathGeometric planned = ss.getSolutionPath();
+  const ompl::base::Cost plannedCost = objective ? planned.cost(objective) : ompl::base::Cost(0.0);
+  // Another objective than length: shortcuts only, by a simplifier that knows the objective (the
+  // vertex reduction and B-spline smoothing of simplifyMax ignore it and pull a clearance path
+  // onto the obstacles).
+  ompl::geometric::PathSimplifier costAware(ss.getSpaceInformation(), pdef->getGoal(), objective);
   // The simplifier is randomized: a failed attempt may succeed the next time.
   for (int attempt = 0; attempt < tol::kSimplifyAttempts; ++attempt) {
-    ss.simplifySolution(seconds);
-    if (checkPathWithPlanner(ss.getSolutionPath()).valid) return true;
-    ss.getSolutionPath() = planned;
+    ompl::geometric::PathGeometric& path = ss.getSolutionPath();
+    if (lengthOnly) {
+      ss.simplifySolution(seconds);
+    } else {
+      costAware.shortcutPath(path);
+    }
+    if (checkPathWithPlanner(path).valid && costNotWorse(path, objective, plannedCost)) return true;
+    path = planned;
   }
   return false;
 }
 
 void setStartAndGoal(ompl::geometric::SimpleSetup& ss, const Eigen::Ref<const Eigen::VectorXd>& start,
                      const Eigen::Ref<const Eigen::VectorXd>& goal) {
-  const robots::RobotModel& model = validityCheckerOf(ss).get()->world().robot();
+  const auto checker = validityCheckerOf(ss);
+  const robots::RobotModel& model = checker->world().robot();
   checkConfigurationNamed(model, start, "start");
   checkConfigurationNamed(model, goal, "goal");
   ompl::base::ScopedState<> s(ss.getStateSpace());
   ompl::base::ScopedState<> g(ss.getStateSpace());
-  copyToState(start, s.get());
-  copyToState(goal, g.get());
+  checker->mapping().toState(start, s.get());
+  checker->mapping().toState(goal, g.get());
   ss.setStartAndGoalStates(s, g);
 }
 
@@ -160,20 +185,31 @@ bool EndpointRepair::ok() const {
   return !goalIsState || goal.success();
 }
 
-EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss) {
+EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss, double margin) {
   const auto checker = validityCheckerOf(ss);
-  const int n = checker->dimension();
+  const StateMapping& mapping = checker->mapping();
+  const PushOut pushOut =
+      standOffPushOut(checker->worldPtr(), checker->validityOptions(), checker->pushOut().options(), margin);
+  // An invalid state is pushed out to the margin, in place; a valid one stays.
+  const auto repairState = [&](ompl::base::State* state) {
+    const Eigen::VectorXd q = mapping.configuration(state);
+    if (checker->isValid(q)) {
+      PushOutResult unchanged;
+      unchanged.status = PushOutStatus::AlreadyValid;
+      unchanged.q = q;
+      unchanged.initialDistance = unchanged.finalDistance = std::numeric_limits<double>::quiet_NaN();
+      return unchanged;
+    }
+    PushOutResult pushed = pushOut.run(q);
+    if (pushed.success()) mapping.toState(pushed.q, state);
+    return pushed;
+  };
   const ompl::base::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();
   EndpointRepair repair;
-  for (unsigned int i = 0; i < pdef->getStartStateCount(); ++i) {
-    ompl::base::State* start = pdef->getStartState(i);
-    repair.starts.push_back(checker->pushOut().run(mapState(start, n)));
-    if (repair.starts.back().success()) copyToState(repair.starts.back().q, start);
-  }
+  for (unsigned int i = 0; i < pdef->getStartStateCount(); ++i) repair.starts.push_back(repairState(pdef->getStartState(i)));
   if (auto goal = std::dynamic_pointer_cast<ompl::base::GoalState>(pdef->getGoal())) {
     repair.goalIsState = true;
-    repair.goal = checker->pushOut().run(mapState(goal->getState(), n));
-    if (repair.goal.success()) copyToState(repair.goal.q, goal->getState());
+    repair.goal = repairState(goal->getState());
   }
   return repair;
 }

@@ -13,24 +13,19 @@ PushOutValidStateSampler::PushOutValidStateSampler(const ompl::base::SpaceInform
                                                    std::shared_ptr<const StateValidityChecker> checker)
     : ompl::base::ValidStateSampler(si), checker_(std::move(checker)) {
   if (!checker_) throw std::invalid_argument("PushOutValidStateSampler: the validity checker is null");
-  if (si->getStateDimension() != static_cast<unsigned int>(checker_->dimension())) {
-    throw std::invalid_argument("PushOutValidStateSampler: state space of dimension " +
-                                std::to_string(si->getStateDimension()) + " for a checker of dimension " +
-                                std::to_string(checker_->dimension()));
-  }
   name_ = "push_out";
   sampler_ = si->allocStateSampler();
 }
 
 bool PushOutValidStateSampler::accept(ompl::base::State* state) {
-  const int n = checker_->dimension();
-  if (checker_->isValid(mapState(state, n))) {
+  const Eigen::VectorXd q = checker_->mapping().configuration(state);
+  if (checker_->isValid(q)) {
     ++uniformValid_;
     return true;
   }
-  const PushOutResult pushed = checker_->pushOut().run(mapState(state, n));
+  const PushOutResult pushed = checker_->pushOut().run(q);
   if (pushed.success()) {  // within the limits by construction
-    copyToState(pushed.q, state);
+    checker_->mapping().toState(pushed.q, state);
     ++pushedOut_;
     return true;
   }

@@ -16,31 +16,46 @@ const std::shared_ptr<const checker::World>& nonNull(const std::shared_ptr<const
   return world;
 }
 
+ompl::base::SpaceInformation* nonNull(ompl::base::SpaceInformation* si) {
+  if (si == nullptr) throw std::invalid_argument("StateValidityChecker: the space information is null");
+  return si;
+}
+
 }  // namespace
 
 StateValidityChecker::StateValidityChecker(ompl::base::SpaceInformation* si,
                                            std::shared_ptr<const checker::World> world,
                                            const ValidityOptions& validity, const PushOutOptions& pushOut)
-    : ompl::base::StateValidityChecker(si),
+    : StateValidityChecker(si, world, makeStateMapping(*nonNull(si)->getStateSpace(), nonNull(world)->robot()),
+                           validity, pushOut) {}
+
+StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                                           std::shared_ptr<const checker::World> world,
+                                           const ValidityOptions& validity, const PushOutOptions& pushOut)
+    : StateValidityChecker(si.get(), std::move(world), validity, pushOut) {}
+
+StateValidityChecker::StateValidityChecker(ompl::base::SpaceInformation* si,
+                                           std::shared_ptr<const checker::World> world, StateMapping mapping,
+                                           const ValidityOptions& validity, const PushOutOptions& pushOut)
+    : ompl::base::StateValidityChecker(nonNull(si)),
       world_(nonNull(world)),
+      mapping_(std::move(mapping)),
       validity_(validity),
       pushOut_(world_, validity, pushOut),
       n_(world_->robot().numVariables()) {
-  if (si == nullptr) throw std::invalid_argument("StateValidityChecker: the space information is null");
-  const unsigned int dimension = si->getStateDimension();
-  if (dimension != static_cast<unsigned int>(n_)) {
-    throw std::invalid_argument("StateValidityChecker: the state space has dimension " + std::to_string(dimension) +
-                                " but robot '" + world_->robot().name() + "' has " + std::to_string(n_) +
-                                " variables");
+  if (mapping_.numVariables() != n_) {
+    throw std::invalid_argument("StateValidityChecker: the state mapping (" + mapping_.description() + ") has " +
+                                std::to_string(mapping_.numVariables()) + " variables but robot '" +
+                                world_->robot().name() + "' has " + std::to_string(n_));
   }
   specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
   specs_.hasValidDirectionComputation = true;
 }
 
 StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr& si,
-                                           std::shared_ptr<const checker::World> world,
+                                           std::shared_ptr<const checker::World> world, StateMapping mapping,
                                            const ValidityOptions& validity, const PushOutOptions& pushOut)
-    : StateValidityChecker(si.get(), std::move(world), validity, pushOut) {}
+    : StateValidityChecker(si.get(), std::move(world), std::move(mapping), validity, pushOut) {}
 
 bool StateValidityChecker::withinBounds(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   const robots::RobotModel& model = world_->robot();
@@ -69,10 +84,10 @@ SplitDistance StateValidityChecker::splitClearanceUpTo(const Eigen::Ref<const Ei
   return splitSignedDistanceUpTo(*world_, q, cap, selfPairs);
 }
 
-bool StateValidityChecker::isValid(const ompl::base::State* state) const { return isValid(mapState(state, n_)); }
+bool StateValidityChecker::isValid(const ompl::base::State* state) const { return isValid(mapping_.configuration(state)); }
 
 bool StateValidityChecker::isValid(const ompl::base::State* state, double& dist) const {
-  const auto q = mapState(state, n_);
+  const Eigen::VectorXd q = mapping_.configuration(state);
   dist = clearance(q);
   validityQueries_.fetch_add(1, std::memory_order_relaxed);
   if (!withinBounds(q)) return false;
@@ -87,15 +102,17 @@ bool StateValidityChecker::isValid(const ompl::base::State* state, double& dist,
   const bool valid = isValid(state, dist);
   validStateAvailable = false;
   if (valid) return true;
-  const PushOutResult pushed = pushOut_.run(mapState(state, n_));
+  const PushOutResult pushed = pushOut_.run(mapping_.configuration(state));
   if (pushed.success()) {
-    copyToState(pushed.q, validState);
+    mapping_.toState(pushed.q, validState);
     validStateAvailable = true;
   }
   return false;
 }
 
-double StateValidityChecker::clearance(const ompl::base::State* state) const { return clearance(mapState(state, n_)); }
+double StateValidityChecker::clearance(const ompl::base::State* state) const {
+  return clearance(mapping_.configuration(state));
+}
 
 double StateValidityChecker::clearance(const ompl::base::State* state, ompl::base::State* validState,
                                        bool& validStateAvailable) const {

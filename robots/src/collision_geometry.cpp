@@ -31,10 +31,7 @@ const PolytopeList& meshPieces(const RobotModel& model, int link, int collision,
   if (it != cache.end()) return it->second;
   PolytopeList pieces;
   try {
-    const TriangleMesh mesh = loadMesh(g.meshPath, g.meshScale);
-    std::vector<deep::ConvexPolytope> polytopes =
-        options.decomposer ? options.decomposer(mesh) : convexHullDecomposer(mesh);
-    if (polytopes.empty()) throw std::invalid_argument("the mesh decomposer returned no piece");
+    std::vector<deep::ConvexPolytope> polytopes = meshPolytopes(loadMesh(g.meshPath, g.meshScale), options);
     for (deep::ConvexPolytope& p : polytopes) {
       pieces.push_back(std::make_shared<const deep::ConvexPolytope>(std::move(p)));
     }
@@ -56,47 +53,73 @@ std::vector<CollisionPiece> piecesOfLink(const RobotModel& model, int link,
   for (int c = 0; c < static_cast<int>(L.collisions.size()); ++c) {
     const CollisionElement& element = L.collisions[c];
     const Geometry& g = element.geometry;
-    const std::string prefix = "link " + L.name + " collision " + std::to_string(c) + " ";
-    CollisionPiece piece;
-    piece.X_LP = element.X_LG;
-    switch (g.type) {
-      case GeometryType::Box:
-        piece.core = std::make_shared<const deep::ConvexPolytope>(
-            deep::ConvexPolytope::box(0.5 * g.boxSize));
-        piece.origin = prefix + "box";
-        out.push_back(piece);
-        break;
-      case GeometryType::Sphere:
-        piece.core = std::make_shared<const deep::ConvexPolytope>(
-            deep::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}, prefix + "sphere"));
-        piece.radius = g.radius;
-        piece.origin = prefix + "sphere";
-        out.push_back(piece);
-        break;
-      case GeometryType::Cylinder:
-        piece.core = std::make_shared<const deep::ConvexPolytope>(
-            cylinderPrism(g.radius, g.length, options.cylinderMaxDeviation));
-        piece.origin = prefix + "cylinder (" +
-                       std::to_string(cylinderSides(g.radius, options.cylinderMaxDeviation)) +
-                       "-sided prism)";
-        out.push_back(piece);
-        break;
-      case GeometryType::Mesh: {
-        const PolytopeList& pieces = meshPieces(model, link, c, g, options, cache);
-        const std::string file = std::filesystem::path(g.meshPath).filename().string();
-        for (size_t i = 0; i < pieces.size(); ++i) {
-          piece.core = pieces[i];
-          piece.origin = prefix + "mesh " + file + " piece " + std::to_string(i);
-          out.push_back(piece);
-        }
-        break;
-      }
+    const std::string prefix = "link " + L.name + " collision " + std::to_string(c);
+    if (g.type != GeometryType::Mesh) {
+      CollisionPiece piece = primitivePiece(g, options, prefix);
+      piece.X_LP = element.X_LG;
+      out.push_back(std::move(piece));
+      continue;
+    }
+    const PolytopeList& pieces = meshPieces(model, link, c, g, options, cache);
+    const std::string file = std::filesystem::path(g.meshPath).filename().string();
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      CollisionPiece piece;
+      piece.X_LP = element.X_LG;
+      piece.core = pieces[i];
+      piece.origin = prefix + " mesh " + file + " piece " + std::to_string(i);
+      out.push_back(std::move(piece));
     }
   }
   return out;
 }
 
 }  // namespace
+
+CollisionPiece primitivePiece(const Geometry& g, const CollisionGeometryOptions& options, const std::string& what) {
+  auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  CollisionPiece piece;
+  switch (g.type) {
+    case GeometryType::Box:
+      if (!positive(g.boxSize.x()) || !positive(g.boxSize.y()) || !positive(g.boxSize.z())) {
+        std::ostringstream msg;
+        msg << what << ": box size (" << g.boxSize.transpose() << ") must be positive and finite";
+        throw std::invalid_argument(msg.str());
+      }
+      piece.core = std::make_shared<const deep::ConvexPolytope>(deep::ConvexPolytope::box(0.5 * g.boxSize));
+      piece.origin = what + " box";
+      return piece;
+    case GeometryType::Sphere:
+      if (!positive(g.radius)) {
+        throw std::invalid_argument(what + ": sphere radius " + std::to_string(g.radius) +
+                                    " must be positive and finite");
+      }
+      piece.origin = what + " sphere";
+      piece.core = std::make_shared<const deep::ConvexPolytope>(
+          deep::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}, piece.origin));
+      piece.radius = g.radius;
+      return piece;
+    case GeometryType::Cylinder:
+      if (!positive(g.radius) || !positive(g.length)) {
+        throw std::invalid_argument(what + ": cylinder radius " + std::to_string(g.radius) + " and length " +
+                                    std::to_string(g.length) + " must be positive and finite");
+      }
+      piece.core = std::make_shared<const deep::ConvexPolytope>(
+          cylinderPrism(g.radius, g.length, options.cylinderMaxDeviation));
+      piece.origin = what + " cylinder (" + std::to_string(cylinderSides(g.radius, options.cylinderMaxDeviation)) +
+                     "-sided prism)";
+      return piece;
+    case GeometryType::Mesh:
+      break;
+  }
+  throw std::invalid_argument(what + ": a mesh is not a primitive");
+}
+
+std::vector<deep::ConvexPolytope> meshPolytopes(const TriangleMesh& mesh, const CollisionGeometryOptions& options) {
+  if (mesh.empty()) throw std::invalid_argument("the mesh has no triangle");
+  std::vector<deep::ConvexPolytope> polytopes = options.decomposer ? options.decomposer(mesh) : convexHullDecomposer(mesh);
+  if (polytopes.empty()) throw std::invalid_argument("the mesh decomposer returned no piece");
+  return polytopes;
+}
 
 std::vector<deep::ConvexPolytope> convexHullDecomposer(const TriangleMesh& mesh) {
   std::vector<deep::ConvexPolytope> out;

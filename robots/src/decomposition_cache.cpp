@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -13,6 +14,8 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <mutex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -195,6 +198,30 @@ bool keyBytes(const std::string& key, unsigned char out[16]) {
   return true;
 }
 
+/// The whole content of the file at `path`; false when it cannot be opened or read (a read error
+/// must not escape: libstdc++ throws from a stream buffer whose read fails, e.g. on a directory).
+bool readWholeFile(const std::string& path, std::string& data) {
+  try {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return !in.bad();
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+/// One line on stderr about the cache: the decomposition goes on without it, but the user should
+/// know why every load recomputes. A write problem is reported once per directory and process
+/// (it would repeat for every mesh).
+void noteCacheProblem(const std::string& text, const std::string& directory, bool once) {
+  static std::mutex mutex;
+  static std::set<std::string> reported;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (once && !reported.insert(directory).second) return;
+  std::fprintf(stderr, "deepcheck: decomposition cache: %s\n", text.c_str());
+}
+
 void setProblem(std::string* problem, const std::string& text) {
   if (problem != nullptr) *problem = text;
 }
@@ -255,17 +282,15 @@ std::optional<ConvexDecomposition> DecompositionCache::load(const std::string& k
   if (!enabled_) return std::nullopt;
   const std::string path = pathFor(key);
   std::error_code ec;
-  if (!fs::exists(path, ec)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    setProblem(problem, "cannot open " + path);
-    return std::nullopt;
-  }
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) return std::nullopt;
   auto bad = [&](const std::string& why) {
     setProblem(problem, path + ": " + why);
     return std::nullopt;
   };
+  if (!fs::is_regular_file(status)) return bad("not a regular file");
+  std::string data;
+  if (!readWholeFile(path, data)) return bad("cannot be read");
   if (data.size() < sizeof kMagic + 8) return bad("truncated");
   // Checksum first: it covers everything, so the fields below are read from intact bytes.
   const std::size_t body = data.size() - 8;
@@ -405,11 +430,13 @@ ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
     hit->report.milliseconds = elapsed();
     return std::move(*hit);
   }
+  if (!problem.empty()) noteCacheProblem(problem + "; decomposing again", cache.directory(), false);
   ConvexDecomposition result = decomposeConvex(mesh, params);
   result.report.cache = problem.empty() ? CacheStatus::Stored : CacheStatus::Replaced;
   result.report.cacheMessage = problem;
   std::string storeProblem;
   if (!cache.store(key, result, &storeProblem)) {
+    noteCacheProblem(storeProblem + "; continuing without storing decompositions there", cache.directory(), true);
     result.report.cache = CacheStatus::StoreFailed;
     result.report.cacheMessage = storeProblem;
   }

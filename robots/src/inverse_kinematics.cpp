@@ -1,6 +1,7 @@
 #include "deepcheck/robots/inverse_kinematics.h"
 
 #include "deepcheck/robots/kinematics.h"
+#include "deepcheck/robots/random_configuration.h"
 
 #include <Eigen/Cholesky>
 
@@ -48,17 +49,6 @@ void applyLimits(const RobotModel& model, Eigen::VectorXd& q) {
       q[v] = std::min(std::max(q[v], model.lowerLimits()[v]), model.upperLimits()[v]);
     }
   }
-}
-
-/// Uniform within the limits, from the raw output of the generator (the same sequence with every
-/// standard library, which std::uniform_real_distribution is not).
-Eigen::VectorXd randomConfiguration(const RobotModel& model, std::mt19937_64& rng) {
-  Eigen::VectorXd q(model.numVariables());
-  for (int v = 0; v < q.size(); ++v) {
-    const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
-    q[v] = model.lowerLimits()[v] + u * (model.upperLimits()[v] - model.lowerLimits()[v]);
-  }
-  return q;
 }
 
 /// The damped least-squares step with the joints that sit at a limit and would be pushed beyond

@@ -77,7 +77,8 @@ void resolvePackage(const std::string& uri, const std::vector<std::string>& root
   const std::string package = body.substr(0, slash);
   const std::string rest = body.substr(slash + 1);
   if (roots.empty()) {
-    out.problem = "no package roots to search (give --package-path or set ROS_PACKAGE_PATH)";
+    out.problem = "no package roots to search (set LoadOptions::packageRoots, or ROS_PACKAGE_PATH with "
+                  "LoadOptions::useRosPackagePath)";
     return;
   }
   for (const std::string& rootString : roots) {

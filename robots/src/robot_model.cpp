@@ -3,6 +3,8 @@
 #include "deepcheck/robots/package_path.h"
 #include "deepcheck/robots/tolerances.h"
 
+#include "xml_text.h"
+
 #include <console_bridge/console.h>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
@@ -86,27 +88,24 @@ class Prepass {
   /// Returns the cleaned XML text for urdfdom; fills jointOrder (joint name -> position in file).
   std::string run(const std::string& xml, std::map<std::string, int>& jointOrder) {
     TiXmlDocument doc;
-    doc.Parse(xml.c_str(), nullptr, TIXML_ENCODING_UTF8);
-    if (doc.Error()) {
-      std::ostringstream msg;
-      msg << context_ << ": malformed XML at line " << doc.ErrorRow() << ", column "
-          << doc.ErrorCol() << ": " << doc.ErrorDesc();
-      throw std::invalid_argument(msg.str());
-    }
+    parseXml(doc, xml, context_);
     TiXmlElement* robot = doc.RootElement();
     if (robot == nullptr || std::string(robot->Value()) != "robot") {
       throw std::invalid_argument(context_ + ": the root element is not <robot>");
     }
     int jointCount = 0;
+    std::map<std::string, JointLinks> parentOf;  // child link -> its joint
     for (TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
       const std::string tag = e->Value();
       if (tag == "link") {
         checkLink(*e);
       } else if (tag == "joint") {
         checkJoint(*e);
+        addToTree(*e, parentOf);
         jointOrder.emplace(attribute(*e, "name"), jointCount++);
       }
     }
+    checkNoLoop(parentOf);
     TiXmlPrinter printer;
     doc.Accept(&printer);
     return printer.CStr();
@@ -194,6 +193,46 @@ class Prepass {
     if (const TiXmlElement* mimic = joint.FirstChildElement("mimic")) {
       checkNumbers(*mimic, "multiplier", 1, owner, "mimic");
       checkNumbers(*mimic, "offset", 1, owner, "mimic");
+    }
+  }
+
+  struct JointLinks {
+    std::string joint;
+    std::string parent;
+  };
+
+  static std::string linkOf(const TiXmlElement& joint, const char* which) {
+    const TiXmlElement* e = joint.FirstChildElement(which);
+    return e == nullptr ? std::string() : attribute(*e, "link");
+  }
+
+  /// urdfdom accepts a link that is the child of two joints, and a joint whose child link is an
+  /// ancestor of its parent (itself included): its tree then holds a cycle (of shared pointers,
+  /// never freed) and walking it never ends. Both are rejected here, naming the joints.
+  void addToTree(const TiXmlElement& joint, std::map<std::string, JointLinks>& parentOf) const {
+    const std::string name = attribute(joint, "name");
+    const std::string child = linkOf(joint, "child");
+    const auto [it, added] = parentOf.emplace(child, JointLinks{name, linkOf(joint, "parent")});
+    if (!added) {
+      throw std::invalid_argument(context_ + ": link " + inQuotes(child) + " is the child of two joints, " +
+                                  inQuotes(it->second.joint) + " and " + inQuotes(name) +
+                                  " (URDF kinematics must be a tree)");
+    }
+  }
+
+  void checkNoLoop(const std::map<std::string, JointLinks>& parentOf) const {
+    for (const auto& [child, j] : parentOf) {
+      std::string link = j.parent;
+      for (std::size_t steps = 0; steps <= parentOf.size(); ++steps) {
+        if (link == child) {
+          throw std::invalid_argument(context_ + ": joint " + inQuotes(j.joint) + " closes a loop: its child link " +
+                                      inQuotes(child) + " is also its parent or an ancestor of it" +
+                                      " (URDF kinematics must be a tree)");
+        }
+        const auto up = parentOf.find(link);
+        if (up == parentOf.end()) break;
+        link = up->second.parent;
+      }
     }
   }
 

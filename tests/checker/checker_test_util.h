@@ -5,6 +5,7 @@
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/robot_model.h"
 
+#include "common/random_configurations.h"
 #include "common/test_paths.h"
 
 #include <boost/test/unit_test.hpp>
@@ -81,22 +82,8 @@ inline robots::RobotModel armRobot() {
   return robots::RobotModel::fromUrdfString(xml, ".", {}, "arm.urdf");
 }
 
-/// A uniformly random configuration within the limits.
-inline Eigen::VectorXd randomConfiguration(const robots::RobotModel& model, std::mt19937& rng) {
-  Eigen::VectorXd q(model.numVariables());
-  for (int v = 0; v < q.size(); ++v) {
-    std::uniform_real_distribution<double> u(model.lowerLimits()[v], model.upperLimits()[v]);
-    q[v] = u(rng);
-  }
-  return q;
-}
-
-/// n uniformly random configurations within the limits.
-inline std::vector<Eigen::VectorXd> randomConfigurations(const robots::RobotModel& model, int n, std::mt19937& rng) {
-  std::vector<Eigen::VectorXd> qs;
-  for (int i = 0; i < n; ++i) qs.push_back(randomConfiguration(model, rng));
-  return qs;
-}
+using deepcheck::test::randomConfiguration;
+using deepcheck::test::randomConfigurations;
 
 inline Eigen::Isometry3d translation(double x, double y, double z) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();

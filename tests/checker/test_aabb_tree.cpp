@@ -1,6 +1,6 @@
 // The static AABB tree against brute force on random boxes.
 
-#include "deepcheck/checker/aabb_tree.h"
+#include "aabb_tree.h"
 
 #include <boost/test/unit_test.hpp>
 

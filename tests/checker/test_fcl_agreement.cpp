@@ -77,15 +77,12 @@ Agreement compare(const World& world, int samples, unsigned seed, bool distances
       ++a.distanceChecks;
     }
   }
-  BOOST_TEST_MESSAGE(a.samples << " configurations: FCL colliding " << a.fclColliding << ", missed " << a.missed
-                               << ", false alarms " << a.falseAlarms << " (worst FCL distance " << a.worstFalseAlarm
-                               << " m, tolerance " << excess << " m, beyond it " << a.falseAlarmsBeyondExcess << ")");
   return a;
 }
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(checker_fcl)
+BOOST_AUTO_TEST_SUITE(checker_fcl_agreement)
 
 BOOST_AUTO_TEST_CASE(arm_with_primitives_and_a_mesh) {
   World world(armRobot(), testWorldOptions());
@@ -106,7 +103,6 @@ BOOST_AUTO_TEST_CASE(bundled_arm_in_the_shelf) {
                                                bundledLoadOptions()),
               options);
   world.addScene(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/scenes/shelf.urdf", bundledLoadOptions()));
-  BOOST_TEST_MESSAGE(world.summary());
   const Agreement a = compare(world, 2000, 33, true);
   BOOST_TEST(a.missed == 0);
   BOOST_TEST(a.falseAlarmsBeyondExcess == 0);
@@ -118,7 +114,6 @@ BOOST_AUTO_TEST_CASE(panda_in_the_kitchen) {
   if (!haveShared("panda_in_the_kitchen")) return;
   World world(loadPanda(), testWorldOptions());
   world.addScene(loadKitchen());
-  BOOST_TEST_MESSAGE(world.summary());
   const Agreement a = compare(world, 2000, 32, true);
   BOOST_TEST(a.missed == 0);
   BOOST_TEST(a.falseAlarmsBeyondExcess == 0);

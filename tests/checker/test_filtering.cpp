@@ -2,10 +2,11 @@
 // pieces far from each other; and what is dropped at load: scene pieces no link can reach.
 
 #include "checker_test_util.h"
+#include "reach.h"
+#include "world_test_access.h"
 
 #include "deepcheck/fcl_reference/fcl_backend.h"
 #include "deepcheck/fcl_reference/fcl_broad_phase.h"
-#include "deepcheck/checker/reach.h"
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/collision_geometry.h"
 #include "deepcheck/robots/kinematics.h"
@@ -21,6 +22,8 @@
 using namespace deepcheck;
 using namespace deepcheck::checker;
 using namespace deepcheck::checker::test;
+using deepcheck::checker::detail::ContextTestAccess;
+using deepcheck::checker::detail::NarrowPhaseEvent;
 
 namespace {
 
@@ -36,9 +39,9 @@ LinkPair ordered(std::string a, std::string b) {
 std::set<LinkPair> narrowPhasePairs(const World& world, int samples, unsigned seed) {
   std::set<LinkPair> seen;
   auto context = world.makeContext();
-  context.onNarrowPhase = [&](const NarrowPhaseEvent& e) {
+  ContextTestAccess::setNarrowPhaseHook(context, [&](const NarrowPhaseEvent& e) {
     seen.insert(ordered(world.robot().link(e.linkA).name, world.bodyName(e.bodyB)));
-  };
+  });
   std::mt19937 rng(seed);
   for (int i = 0; i < samples; ++i) {
     const Eigen::VectorXd q = randomConfiguration(world.robot(), rng);
@@ -84,7 +87,6 @@ BOOST_AUTO_TEST_CASE(filtered_pairs_never_reach_the_narrow_phase) {
   World world(armRobot(), options);
   world.addObstacle(Obstacle::box("table", Eigen::Vector3d(1.2, 1.2, 0.05), translation(0.5, 0, 0.35)));
   const std::set<LinkPair> seen = narrowPhasePairs(world, 400, 5);
-  for (const LinkPair& p : seen) BOOST_TEST_MESSAGE("narrow phase: " << p.first << " / " << p.second);
   for (const LinkPair& p : {ordered("base", "link1"), ordered("link1", "link2"), ordered("link2", "link3"),
                             ordered("link3", "tool"), ordered("base", "tool")}) {
     BOOST_TEST(seen.count(p) == 0u, p.first << " / " << p.second << " is filtered but reached the narrow phase");
@@ -121,7 +123,8 @@ BOOST_AUTO_TEST_CASE(far_pieces_skip_the_narrow_phase) {
   world.addObstacle(Obstacle::box("near", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0.5, 0, 0)));
   auto context = world.makeContext();
   int farCalls = 0;
-  context.onNarrowPhase = [&](const NarrowPhaseEvent& e) { farCalls += world.bodyName(e.bodyB) == "obstacle/far"; };
+  ContextTestAccess::setNarrowPhaseHook(
+      context, [&](const NarrowPhaseEvent& e) { farCalls += world.bodyName(e.bodyB) == "obstacle/far"; });
   Eigen::VectorXd q(1);
   for (int k = 0; k <= 200; ++k) {
     q[0] = -1.0 + 0.01 * k;
@@ -192,7 +195,6 @@ BOOST_AUTO_TEST_CASE(reach_spheres_contain_every_reachable_point) {
         }
       }
     }
-    BOOST_TEST_MESSAGE(model.name() << ": smallest slack of the reach spheres " << worstSlack << " m");
   }
   // The arm's base never moves: its sphere is marked fixed.
   const robots::RobotModel arm = armRobot();

@@ -82,9 +82,6 @@ BOOST_AUTO_TEST_CASE(arm_against_obstacles_and_itself) {
   std::mt19937 rng(20240611);
   GradientStats stats;
   for (int i = 0; i < 300; ++i) checkAt(world, context, randomConfiguration(world.robot(), rng), stats);
-  BOOST_TEST_MESSAGE("arm: " << stats.checked << " of " << stats.components << " components checked; closest pairs "
-                             << stats.separated << " separated, " << stats.penetrating << " penetrating, "
-                             << stats.worldPairs << " robot-world, " << stats.selfPairs << " self");
   // Most configurations are differentiable; both signs and both kinds of pair were exercised.
   BOOST_TEST(stats.checked > stats.components / 2);
   BOOST_TEST(stats.separated > 10);
@@ -99,8 +96,6 @@ BOOST_AUTO_TEST_CASE(self_pairs_move_both_links) {
   std::mt19937 rng(7);
   GradientStats stats;
   for (int i = 0; i < 300; ++i) checkAt(world, context, randomConfiguration(world.robot(), rng), stats);
-  BOOST_TEST_MESSAGE("arm self: " << stats.checked << " of " << stats.components << " checked, " << stats.separated
-                                  << " separated, " << stats.penetrating << " penetrating");
   BOOST_TEST(stats.selfPairs > 50);
   BOOST_TEST(stats.checked > stats.components / 2);
   BOOST_TEST(stats.penetrating > 5);
@@ -137,9 +132,6 @@ BOOST_AUTO_TEST_CASE(panda_in_the_kitchen) {
   std::mt19937 rng(3);
   GradientStats stats;
   for (int i = 0; i < 150; ++i) checkAt(world, context, randomConfiguration(world.robot(), rng), stats);
-  BOOST_TEST_MESSAGE("panda: " << stats.checked << " of " << stats.components << " components checked; "
-                               << stats.separated << " separated, " << stats.penetrating << " penetrating, "
-                               << stats.worldPairs << " robot-world, " << stats.selfPairs << " self");
   BOOST_TEST(stats.checked > stats.components / 3);
   BOOST_TEST(stats.separated > 5);
   BOOST_TEST(stats.penetrating > 5);

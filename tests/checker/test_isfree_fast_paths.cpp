@@ -61,8 +61,6 @@ BOOST_AUTO_TEST_CASE(panda_kitchen_same_answers_with_and_without_centroid_test) 
   const std::vector<Eigen::VectorXd> qs = configurations(with.robot(), 6000, 100, 41);
   int colliding = 0;
   const QueryStats stats = compareAnswers(with, without, qs, &colliding);
-  BOOST_TEST_MESSAGE(qs.size() << " configurations, " << colliding << " colliding; narrow phase "
-                               << stats.narrowPhase << ", decided by the centroid test " << stats.centroidInside);
   BOOST_TEST(colliding > 1000);
   BOOST_TEST(colliding < static_cast<int>(qs.size()) - 1000);
   BOOST_TEST(stats.centroidInside > 300u);                   // the test decides many overlaps
@@ -89,7 +87,6 @@ BOOST_AUTO_TEST_CASE(arm_obstacles_same_answers_with_and_without_centroid_test) 
   }
   int colliding = 0;
   QueryStats stats = compareAnswers(with, without, configurations(with.robot(), 3000, 60, 42), &colliding);
-  BOOST_TEST_MESSAGE("colliding " << colliding << ", decided by the centroid test " << stats.centroidInside);
   BOOST_TEST(colliding > 300);
   BOOST_TEST(stats.centroidInside > 50u);
   // Move the crate and compare again (the test reads the pieces' new poses).
@@ -98,8 +95,6 @@ BOOST_AUTO_TEST_CASE(arm_obstacles_same_answers_with_and_without_centroid_test) 
   with.setObstaclePose(ids[0], moved);
   without.setObstaclePose(ids[1], moved);
   stats = compareAnswers(with, without, configurations(with.robot(), 2000, 30, 43), &colliding);
-  BOOST_TEST_MESSAGE("after the move: colliding " << colliding << ", decided by the centroid test "
-                                                 << stats.centroidInside);
   BOOST_TEST(colliding > 200);
   BOOST_TEST(stats.centroidInside > 20u);
 }

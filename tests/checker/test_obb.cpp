@@ -1,7 +1,7 @@
 // Oriented bounding boxes: they contain their pieces, and the separating-axis test never calls
 // overlapping boxes separated (checked against GJK on the boxes as polytopes).
 
-#include "deepcheck/checker/obb.h"
+#include "obb.h"
 #include "deepcheck/deep/signed_distance.h"
 
 #include <boost/test/unit_test.hpp>

@@ -50,7 +50,6 @@ BOOST_AUTO_TEST_CASE(panda_same_answers_with_and_without_grids) {
   options.selfPairGrids = false;
   World without(loadPanda(), options);
   const std::string text = with.summary();
-  BOOST_TEST_MESSAGE(text);
   BOOST_TEST(text.find("certified-free grid: 2") != std::string::npos, text);
   BOOST_TEST(without.summary().find("certified-free grid") == std::string::npos);
   // panda_joint6 and panda_joint7 move link7 and the hand relative to link5.
@@ -59,8 +58,6 @@ BOOST_AUTO_TEST_CASE(panda_same_answers_with_and_without_grids) {
       configurations(m, m.variableIndex("panda_joint6"), m.variableIndex("panda_joint7"), 17);
   QueryStats stats;
   const int colliding = compareIsFree(with, without, qs, "the grids", &stats);
-  BOOST_TEST_MESSAGE(qs.size() << " configurations, " << colliding << " colliding; self pairs certified free "
-                               << stats.certifiedSelf << ", self narrow phase " << stats.selfNarrowPhase);
   BOOST_TEST(colliding > 500);
   BOOST_TEST(colliding < static_cast<int>(qs.size()) - 500);
   BOOST_TEST(stats.certifiedSelf > qs.size());  // most queries skip both pairs
@@ -79,15 +76,12 @@ BOOST_AUTO_TEST_CASE(bundled_arm_same_answers_with_and_without_grids) {
   World with(robots::RobotModel::fromUrdfFile(urdf, bundledLoadOptions()), options);
   options.selfPairGrids = false;
   World without(robots::RobotModel::fromUrdfFile(urdf, bundledLoadOptions()), options);
-  BOOST_TEST_MESSAGE(with.summary());
   BOOST_TEST(with.summary().find("certified-free grid") != std::string::npos);
   const robots::RobotModel& m = with.robot();
   const int n = m.numVariables();
   const std::vector<Eigen::VectorXd> qs = configurations(m, n - 2, n - 1, 23);
   QueryStats stats;
   const int colliding = compareIsFree(with, without, qs, "the grids", &stats);
-  BOOST_TEST_MESSAGE(qs.size() << " configurations, " << colliding << " colliding; self pairs certified free "
-                               << stats.certifiedSelf << ", self narrow phase " << stats.selfNarrowPhase);
   BOOST_TEST(stats.certifiedSelf > 0u);
   BOOST_TEST(colliding > 0);
 }

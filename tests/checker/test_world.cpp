@@ -144,7 +144,7 @@ BOOST_AUTO_TEST_CASE(scene_links_are_named_scene_slash_link) {
       "<joint name='shelf_slide' type='prismatic'><parent link='floor'/><child link='shelf'/>"
       "<axis xyz='1 0 0'/><limit lower='0' upper='2' effort='1' velocity='1'/></joint></robot>";
   World world(sliderRobot(0.2), testWorldOptions());
-  SceneOptions placement;
+  SceneSpec placement;
   placement.q = Eigen::VectorXd::Constant(1, 0.6);  // the shelf at x = 0.6
   world.addScene(robots::RobotModel::fromUrdfString(sceneXml, ".", {}, "room.urdf"), placement);
   const DistanceResult r = world.signedDistance(at(0.0));
@@ -155,7 +155,7 @@ BOOST_AUTO_TEST_CASE(scene_links_are_named_scene_slash_link) {
   BOOST_TEST(!world.isFree(at(0.45)));  // the shelf at 0.6, edge 0.2: faces at 0.5 and q + 0.1
   BOOST_TEST(world.isFree(at(0.35)));
   // A scene configuration of the wrong size is an error naming the scene.
-  SceneOptions bad;
+  SceneSpec bad;
   bad.q = Eigen::VectorXd::Zero(3);
   checkThrowsWith([&] { world.addScene(robots::RobotModel::fromUrdfString(sceneXml, ".", {}, "room.urdf"), bad); },
                   "room");
@@ -171,7 +171,6 @@ BOOST_AUTO_TEST_CASE(summary_counts_and_text) {
   BOOST_TEST(s.obstacles == 1);
   BOOST_TEST(s.obstaclePieces == 1);
   const std::string text = world.summary();
-  BOOST_TEST_MESSAGE(text);
   for (const char* word : {"robot 'arm'", "6 links", "5 with geometry", "5 pieces", "self pairs", "kept", "dropped",
                            "obstacles: 1"}) {
     BOOST_TEST(text.find(word) != std::string::npos, "summary lacks '" << word << "':\n" << text);

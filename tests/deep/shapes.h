@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -58,6 +59,17 @@ inline std::vector<Eigen::Vector3d> prismPoints(double radius, double length, in
     for (int s = -1; s <= 1; s += 2) pts.emplace_back(radius * std::cos(a), radius * std::sin(a), s * length / 2);
   }
   return pts;
+}
+
+/// Length scale of the depth error measure: the larger bounding radius of the two shapes.
+inline double depthScale(const ConvexPolytope& A, const ConvexPolytope& B) {
+  return std::max(A.boundingRadius(), B.boundingRadius());
+}
+
+/// Error of a signed distance against the exact one: relative to the depth, except that depths
+/// below a thousandth of the shapes' size L are compared in absolute terms at that scale.
+inline double depthError(double sd, double exact, double L) {
+  return std::abs(sd - exact) / std::max(std::abs(exact), 1e-3 * L);
 }
 
 }  // namespace deepcheck::deep::testing

@@ -30,14 +30,6 @@ namespace {
 constexpr double kSingleWalkMinRate = 0.13;
 constexpr double kSingleWalkMaxRate = 0.20;
 
-double pairScale(const ConvexPolytope& A, const ConvexPolytope& B) {
-  return std::max(A.boundingRadius(), B.boundingRadius());
-}
-
-double relError(double sd, double exact, double L) {
-  return std::abs(sd - exact) / std::max(std::abs(exact), 1e-3 * L);
-}
-
 Isometry3d translated(const Isometry3d& X, const Vector3d& d) {
   Isometry3d Y = X;
   Y.translation() += d;
@@ -48,7 +40,7 @@ Isometry3d translated(const Isometry3d& X, const Vector3d& d) {
 std::string checkAnswer(const ConvexPolytope& A, const Isometry3d& X_WA, const ConvexPolytope& B,
                         const Isometry3d& X_WB, const SignedDistanceResult& r) {
   std::ostringstream why;
-  const double L = pairScale(A, B);
+  const double L = depthScale(A, B);
   if (!std::isfinite(r.distance) || !r.normal.allFinite() || !r.pointA.allFinite() || !r.pointB.allFinite())
     why << "non-finite output; ";
   if (std::abs(r.normal.norm() - 1) > 1e-9) why << "normal not unit; ";
@@ -114,26 +106,31 @@ BOOST_AUTO_TEST_CASE(agrees_with_exact_reference_on_10000_pairs) {
   std::mt19937 rng(20021);
   const int kPairs = 10000;
   int overlapping = 0, separated = 0, depthMisses = 0, distanceMisses = 0, invalid = 0;
-  int notConverged = 0, localMinWalks = 0, walks = 0;
+  int notConverged = 0, localMinWalks = 0, walks = 0, uncertified = 0, walkMisses = 0;
+  DeepOptions deepWalk;
+  deepWalk.method = PenetrationMethod::DeepWalk;
   double worstDepthErr = 0, worstDistErr = 0;
   std::vector<double> depthErrors;
   for (int i = 0; i < kPairs; ++i) {
     const RandomPair p = makePair(rng, i);
     const ConvexPolytope A = ConvexPolytope::fromPoints(p.a);
     const ConvexPolytope B = ConvexPolytope::fromPoints(p.b);
-    const double L = pairScale(A, B);
+    const double L = depthScale(A, B);
     const ExactResult exact = exactSignedDistance(A, p.X_WA, B, p.X_WB);
     const SignedDistanceResult r = signedDistance(A, p.X_WA, B, p.X_WB);
-    const double err = relError(r.distance, exact.distance, L);
+    const double err = depthError(r.distance, exact.distance, L);
     const double bound = p.far ? 1e-10 : 1e-12;
     if (exact.distance < 0) {
       ++overlapping;
+      if (!r.certified) ++uncertified;
+      const SignedDistanceResult walk = signedDistance(A, p.X_WA, B, p.X_WB, nullptr, deepWalk);
+      if (depthError(walk.distance, exact.distance, L) > bound) ++walkMisses;
+      walks += walk.deep.starts;
+      localMinWalks += walk.deep.localMinima;
       depthErrors.push_back(err);
       worstDepthErr = std::max(worstDepthErr, err);
       if (err > bound) ++depthMisses;
       if (r.status == SignedDistanceStatus::NotConverged) ++notConverged;
-      walks += r.deep.starts;
-      localMinWalks += r.deep.localMinima;
       const std::string why = checkAnswer(A, p.X_WA, B, p.X_WB, r);
       if (!why.empty()) {
         ++invalid;
@@ -156,15 +153,20 @@ BOOST_AUTO_TEST_CASE(agrees_with_exact_reference_on_10000_pairs) {
   };
   BOOST_TEST_MESSAGE("overlapping " << overlapping << ", separated " << separated << ", depth misses "
                      << depthMisses << ", distance misses " << distanceMisses << ", invalid " << invalid
-                     << ", not converged " << notConverged << ", walks " << walks
+                     << ", not converged " << notConverged << ", uncertified " << uncertified
+                     << ", DEEP walk misses " << walkMisses << ", walks " << walks
                      << " of which ended in a worse local minimum " << localMinWalks
                      << "; depth error median " << pct(0.5) << " p99 " << pct(0.99) << " max "
                      << worstDepthErr << "; distance error max " << worstDistErr);
   // Both outcomes are in the sample, mostly overlapping.
   BOOST_TEST(overlapping > kPairs / 2);
   BOOST_TEST(separated > kPairs / 50);
-  // At least 99.9 % of overlapping pairs exact.
-  BOOST_TEST(depthMisses <= overlapping / 1000);
+  // The certified method: every overlapping pair exact and certified. DEEP's walk: at least
+  // 99.9 % exact.
+  BOOST_TEST(depthMisses == 0);
+  BOOST_TEST(uncertified == 0);
+  BOOST_TEST(notConverged == 0);
+  BOOST_TEST(walkMisses <= overlapping / 1000);
   BOOST_TEST(distanceMisses == 0);
   BOOST_TEST(invalid == 0);
 }
@@ -176,6 +178,7 @@ BOOST_AUTO_TEST_CASE(agrees_with_exact_reference_on_10000_pairs) {
 BOOST_AUTO_TEST_CASE(single_walk_local_minimum_rate_is_in_its_band) {
   std::mt19937 rng(31337);
   DeepOptions single;
+  single.method = PenetrationMethod::DeepWalk;
   single.restarts = false;
   int overlapping = 0, misses = 0;
   for (int i = 0; i < 2000; ++i) {
@@ -186,7 +189,7 @@ BOOST_AUTO_TEST_CASE(single_walk_local_minimum_rate_is_in_its_band) {
     if (exact.distance >= 0) continue;
     ++overlapping;
     const SignedDistanceResult r = signedDistance(A, p.X_WA, B, p.X_WB, nullptr, single);
-    if (relError(r.distance, exact.distance, pairScale(A, B)) > (p.far ? 1e-10 : 1e-12)) ++misses;
+    if (depthError(r.distance, exact.distance, depthScale(A, B)) > (p.far ? 1e-10 : 1e-12)) ++misses;
   }
   const double rate = static_cast<double>(misses) / overlapping;
   BOOST_TEST_MESSAGE("single walk: " << misses << " misses in " << overlapping << " overlapping pairs (" << 100 * rate << " %)");
@@ -203,7 +206,7 @@ BOOST_AUTO_TEST_CASE(swapping_shapes_gives_same_depth_and_opposite_normal) {
     const ConvexPolytope B = ConvexPolytope::fromPoints(p.b);
     const SignedDistanceResult ab = signedDistance(A, p.X_WA, B, p.X_WB);
     const SignedDistanceResult ba = signedDistance(B, p.X_WB, A, p.X_WA);
-    const double L = pairScale(A, B);
+    const double L = depthScale(A, B);
     BOOST_TEST(std::abs(ab.distance - ba.distance) <= (p.far ? 1e-10 : 1e-12) * std::max(std::abs(ab.distance), 1e-3 * L),
                "pair " << i << ": " << ab.distance << " vs " << ba.distance);
     // The swapped answer, read back for (A, B), must be a valid answer too (normals may differ
@@ -222,11 +225,13 @@ BOOST_AUTO_TEST_CASE(swapping_shapes_gives_same_depth_and_opposite_normal) {
 BOOST_AUTO_TEST_CASE(warm_start_along_a_motion_matches_cold) {
   std::mt19937 rng(4242);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
-  int steps = 0, mismatches = 0;
+  int steps = 0, mismatches = 0, walkMismatches = 0;
+  DeepOptions deepWalk;
+  deepWalk.method = PenetrationMethod::DeepWalk;
   for (int trial = 0; trial < 20; ++trial) {
     const ConvexPolytope A = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 100, Vector3d(1, 0.6, 0.4)));
     const ConvexPolytope B = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 100, Vector3d(0.7, 0.5, 0.3)));
-    PairCache cache;
+    PairCache cache, walkCache;
     const Isometry3d X_WA = Isometry3d::Identity();
     Quaterniond q = randomRotation(rng);
     Vector3d t = 0.5 * randomUnit(rng);
@@ -238,13 +243,18 @@ BOOST_AUTO_TEST_CASE(warm_start_along_a_motion_matches_cold) {
       const Isometry3d X_WB = makePose(q, t);
       const SignedDistanceResult warm = signedDistance(A, X_WA, B, X_WB, &cache);
       const SignedDistanceResult cold = signedDistance(A, X_WA, B, X_WB);
+      const SignedDistanceResult walkWarm = signedDistance(A, X_WA, B, X_WB, &walkCache, deepWalk);
+      const SignedDistanceResult walkCold = signedDistance(A, X_WA, B, X_WB, nullptr, deepWalk);
       ++steps;
       if (std::abs(warm.distance - cold.distance) > 1e-12) ++mismatches;
+      if (std::abs(walkWarm.distance - walkCold.distance) > 1e-12) ++walkMismatches;
     }
   }
-  BOOST_TEST_MESSAGE("warm vs cold mismatches: " << mismatches << " of " << steps);
-  // Warm starts may miss a new global minimum right where two facets swap; rare and tiny.
-  BOOST_TEST(mismatches <= steps / 200);
+  BOOST_TEST_MESSAGE("warm vs cold mismatches: certified " << mismatches << ", DEEP walk "
+                     << walkMismatches << " of " << steps);
+  BOOST_TEST(mismatches == 0);
+  // DEEP's warm walks may miss a new global minimum right where two facets swap; rare and tiny.
+  BOOST_TEST(walkMismatches <= steps / 200);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
@@ -259,12 +269,23 @@ namespace {
 /// (when given). Returns the A-B result.
 SignedDistanceResult expectExact(const ConvexPolytope& A, const Isometry3d& X_WA, const ConvexPolytope& B,
                                  const Isometry3d& X_WB, double tolRel = 1e-12) {
-  const double L = pairScale(A, B);
+  const double L = depthScale(A, B);
   const ExactResult exact = exactSignedDistance(A, X_WA, B, X_WB);
   const SignedDistanceResult r = signedDistance(A, X_WA, B, X_WB);
   const SignedDistanceResult s = signedDistance(B, X_WB, A, X_WA);
-  BOOST_TEST(relError(r.distance, exact.distance, L) <= tolRel, "sd " << r.distance << " exact " << exact.distance);
-  BOOST_TEST(relError(s.distance, exact.distance, L) <= tolRel, "swapped sd " << s.distance << " exact " << exact.distance);
+  BOOST_TEST(depthError(r.distance, exact.distance, L) <= tolRel, "sd " << r.distance << " exact " << exact.distance);
+  BOOST_TEST(depthError(s.distance, exact.distance, L) <= tolRel, "swapped sd " << s.distance << " exact " << exact.distance);
+  BOOST_TEST(r.certified);
+  BOOST_TEST(s.certified);
+  // Warm: a second query of the same pair through a cache that saw the first.
+  PairCache cache;
+  signedDistance(A, X_WA, B, X_WB, &cache);
+  const SignedDistanceResult warm = signedDistance(A, X_WA, B, X_WB, &cache);
+  BOOST_TEST(depthError(warm.distance, exact.distance, L) <= tolRel, "warm sd " << warm.distance << " exact " << exact.distance);
+  DeepOptions deepWalk;
+  deepWalk.method = PenetrationMethod::DeepWalk;
+  const SignedDistanceResult walk = signedDistance(A, X_WA, B, X_WB, nullptr, deepWalk);
+  BOOST_TEST(depthError(walk.distance, exact.distance, L) <= tolRel, "DEEP walk sd " << walk.distance << " exact " << exact.distance);
   const std::string why = checkAnswer(A, X_WA, B, X_WB, r);
   BOOST_TEST(why.empty(), why);
   return r;

@@ -1,10 +1,11 @@
 #pragma once
 // The bundled arm and scenes (robots/data) for the planners suite, loaded once per process, the
-// suggested planning problems of robots/data/README.md, and seeded random configurations.
+// suggested planning problems of robots/data/README.md.
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/planners/push_out.h"
 #include "deepcheck/planners/setup.h"
+#include "deepcheck/robots/random_configuration.h"
 
 #include <Eigen/Core>
 
@@ -29,7 +30,7 @@ inline std::string sceneUrdf(const std::string& name) { return dataDir() + "/sce
 /// Package path and SRDF of the bundled arm; ROS_PACKAGE_PATH ignored.
 inline SetupOptions bundledOptions() {
   SetupOptions options;
-  options.packagePaths = {dataDir()};
+  options.packageRoots = {dataDir()};
   options.useRosPackagePath = false;
   options.srdf = armSrdf();
   return options;
@@ -47,18 +48,9 @@ inline std::shared_ptr<const checker::World> bundledWorld(const std::string& sce
   return world;
 }
 
-/// A uniform double in [0, 1) from the raw output of the generator: the same sequence with every
-/// standard library (std::uniform_real_distribution's algorithm is each library's own).
-inline double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
-
-/// A configuration drawn uniformly within the limits, one uniform01 per variable.
-inline Eigen::VectorXd randomConfiguration(const robots::RobotModel& model, std::mt19937_64& rng) {
-  Eigen::VectorXd q(model.numVariables());
-  for (int v = 0; v < q.size(); ++v) {
-    q[v] = model.lowerLimits()[v] + uniform01(rng) * (model.upperLimits()[v] - model.lowerLimits()[v]);
-  }
-  return q;
-}
+/// Seeded random configurations, the same with every standard library.
+using robots::randomConfiguration;
+using robots::uniform01;
 
 /// robots/data/README.md, "Suggested planning problems".
 inline Eigen::VectorXd suggestedStart() {

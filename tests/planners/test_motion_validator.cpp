@@ -62,7 +62,7 @@ bool nearScene(const deepcheck::checker::World& world, const Eigen::VectorXd& q,
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(motion_validator)
+BOOST_AUTO_TEST_SUITE(planners_motion_validator)
 
 BOOST_AUTO_TEST_CASE(link_speed_bound_contains_every_vertex_motion) {
   const auto world = bundledWorld("");
@@ -90,7 +90,6 @@ BOOST_AUTO_TEST_CASE(link_speed_bound_contains_every_vertex_motion) {
       }
     }
   }
-  BOOST_TEST_MESSAGE("largest vertex displacement / bound: " << tightest);
   BOOST_TEST(tightest > 0.3);  // a bound, but not a uselessly loose one
 }
 
@@ -136,6 +135,26 @@ BOOST_AUTO_TEST_CASE(bad_bounds_are_rejected) {
   BOOST_CHECK_THROW(dp::LinkSpeedBound(model, extents, {{0, 99}}), std::invalid_argument);
   const dp::LinkSpeedBound bound(model, extents, {});
   BOOST_CHECK_THROW(bound.pairDisplacement(Eigen::VectorXd::Zero(3)), std::invalid_argument);
+}
+
+BOOST_AUTO_TEST_CASE(the_validator_builds_the_bound_of_its_world_by_default) {
+  const auto world = bundledWorld("shelf");
+  auto si = std::make_shared<ob::SpaceInformation>(dp::makeStateSpace(world->robot()));
+  const dp::StateValidityCheckerPtr checker = std::make_shared<dp::StateValidityChecker>(si, world);
+  si->setStateValidityChecker(checker);
+  si->setup();
+  const dp::ClearanceMotionValidatorPtr validator = std::make_shared<dp::ClearanceMotionValidator>(si, checker);
+  const dp::LinkSpeedBound expected = dp::LinkSpeedBound::forWorld(*world);
+  BOOST_CHECK(validator->bound().speeds() == expected.speeds());
+  BOOST_TEST(validator->bound().linkExtents() == expected.linkExtents(), boost::test_tools::per_element());
+  BOOST_CHECK_THROW(dp::ClearanceMotionValidator(si, nullptr), std::invalid_argument);
+  // The same motion gets the same answer as with the bound given explicitly.
+  const dp::ClearanceMotionValidator explicitBound(si, checker, std::make_shared<const dp::LinkSpeedBound>(expected));
+  ob::ScopedState<> s1(si), s2(si);
+  dp::copyToState(dp::test::suggestedStart(), s1.get());
+  dp::copyToState(dp::test::suggestedGoal("shelf"), s2.get());
+  BOOST_TEST(validator->checkMotion(s1.get(), s2.get()) == explicitBound.checkMotion(s1.get(), s2.get()));
+  BOOST_TEST(validator->stats().distanceQueries == explicitBound.stats().distanceQueries);
 }
 
 namespace {
@@ -209,16 +228,6 @@ Comparison compareValidators(const std::string& scene, bool nearSceneOnly, doubl
       BOOST_TEST(checker->isValid(last.get()));
     }
   }
-  BOOST_TEST_MESSAGE(scene << (nearSceneOnly ? ", motions from within 5 cm of the scene: " : ", random motions: ")
-                           << r.motions << " motions up to " << maxLength << " rad between valid states, "
-                           << r.truthValid << " collision free at " << kTruthResolution
-                           << " rad; clearance validator: " << r.clearanceWrong << " wrongly accepted ("
-                           << r.clearanceWrongCertified << " without fallback steps), " << r.clearanceMissesFree
-                           << " free ones rejected, " << r.certificationRejections
-                           << " rejected by the certification only, " << double(r.clearanceChecks) / r.motions
-                           << " checks and " << double(r.clearanceQueries) / r.motions
-                           << " distance queries per motion; DiscreteMotionValidator: " << r.discreteWrong
-                           << " wrongly accepted, " << double(r.discreteChecks) / r.motions << " checks per motion");
   return r;
 }
 

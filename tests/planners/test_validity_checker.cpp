@@ -55,7 +55,7 @@ ob::SpaceInformationPtr spaceFor(const deepcheck::checker::World& world) {
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(validity_checker)
+BOOST_AUTO_TEST_SUITE(planners_validity_checker)
 
 BOOST_AUTO_TEST_CASE(state_space_has_the_urdf_limits_and_names) {
   const auto world = bundledWorld("shelf");

@@ -121,7 +121,7 @@ double hullVolume(const deepcheck::deep::ConvexPolytope& p) {
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(bundled)
+BOOST_AUTO_TEST_SUITE(robots_bundled)
 
 BOOST_AUTO_TEST_CASE(arm_loads_with_its_package) {
   const RobotModel arm = loadData(kArmUrdf);
@@ -181,7 +181,6 @@ BOOST_AUTO_TEST_CASE(meshes_small_closed_nonconvex) {
       const double volume = closedVolume(mesh, closed);
       const auto hull = deepcheck::deep::ConvexPolytope::fromPoints(mesh.vertices);
       const double ratio = hullVolume(hull) / volume;
-      BOOST_TEST_MESSAGE(c.geometry.meshUri << ": " << mesh.triangles.size() << " triangles, hull / mesh volume " << ratio);
       BOOST_TEST(mesh.triangles.size() <= 400u, c.geometry.meshUri);
       BOOST_TEST(closed, c.geometry.meshUri << " is not closed");
       BOOST_TEST(volume > 0.0, c.geometry.meshUri << " faces inward");
@@ -231,10 +230,6 @@ BOOST_AUTO_TEST_CASE(srdf_is_what_the_filter_computes) {
     for (const DisabledPair& c : committed) found = found || pairKey(c.link1, c.link2) == pairKey(p.link1, p.link2);
     BOOST_TEST(found, p.link1 << " - " << p.link2 << " (" << toString(p.reason) << ") missing from the SRDF");
   }
-  BOOST_TEST_MESSAGE("committed SRDF: " << committed.size() << " pairs, " << never
-                                        << " Never; filter with " << kRegenerateSamples
-                                        << " samples: " << r.count(DisableReason::Never)
-                                        << " Never");
   // Flange (no geometry) makes link7 and hand adjacent.
   BOOST_TEST((now.at(pairKey("link7", "hand")) == DisableReason::Adjacent));
 }

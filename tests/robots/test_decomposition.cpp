@@ -186,9 +186,6 @@ int uncoveredPoints(const TriangleMesh& mesh, const std::vector<ConvexPiece>& pi
 
 void checkDecomposition(const TriangleMesh& mesh, const ConvexDecomposition& d) {
   const DecompositionReport& r = d.report;
-  BOOST_TEST_MESSAGE(mesh.source << ": " << r.numPieces << " pieces, concavity " << r.concavity
-                                 << " (" << 100.0 * r.concavityRelative << " % of the diagonal), target "
-                                 << r.targetConcavity << ", volume ratio " << r.volumeRatio);
   BOOST_CHECK_EQUAL(r.numPieces, static_cast<int>(d.pieces.size()));
   BOOST_CHECK(r.targetMet);
   BOOST_CHECK_LE(r.concavity, r.targetConcavity);
@@ -205,7 +202,7 @@ void checkDecomposition(const TriangleMesh& mesh, const ConvexDecomposition& d) 
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(decomposition)
+BOOST_AUTO_TEST_SUITE(robots_decomposition)
 
 BOOST_AUTO_TEST_CASE(l_u_and_ring_shapes_get_several_pieces_that_cover_them) {
   // Each shape with its volume (cells times cell volume).
@@ -360,6 +357,63 @@ BOOST_AUTO_TEST_CASE(corrupt_or_truncated_cache_files_are_recomputed) {
     BOOST_CHECK_EQUAL(again.pieces.size(), reference.pieces.size());
     BOOST_CHECK(decomposeConvexCached(mesh, {}, cache).report.cache == CacheStatus::Hit);
   }
+}
+
+BOOST_AUTO_TEST_CASE(a_directory_in_place_of_a_cache_file_is_decomposed_again) {
+  TempDir dir;
+  const DecompositionCache cache(dir.path().string());
+  const TriangleMesh mesh = lShape();
+  const ConvexDecomposition reference = decomposeConvex(mesh);
+  const std::string key = DecompositionCache::key(mesh, {});
+  std::filesystem::create_directories(std::filesystem::path(cache.pathFor(key)) / "inside");
+  std::string problem;
+  BOOST_CHECK(!cache.load(key, &problem));
+  BOOST_CHECK_MESSAGE(problem.find("not a regular file") != std::string::npos, problem);
+  BOOST_CHECK_MESSAGE(problem.find(cache.pathFor(key)) != std::string::npos, problem);
+  // Decomposed again; the directory cannot be replaced (it is not ours to delete), which the
+  // report says, and it is left as it was.
+  const ConvexDecomposition again = decomposeConvexCached(mesh, {}, cache);
+  BOOST_CHECK(again.report.cache == CacheStatus::StoreFailed);
+  BOOST_CHECK_MESSAGE(again.report.cacheMessage.find(cache.pathFor(key)) != std::string::npos,
+                      again.report.cacheMessage);
+  BOOST_REQUIRE_EQUAL(again.pieces.size(), reference.pieces.size());
+  for (std::size_t i = 0; i < reference.pieces.size(); ++i) {
+    BOOST_CHECK(again.pieces[i].vertices == reference.pieces[i].vertices);
+  }
+  BOOST_CHECK(std::filesystem::is_directory(std::filesystem::path(cache.pathFor(key)) / "inside"));
+}
+
+BOOST_AUTO_TEST_CASE(a_cache_directory_that_cannot_be_created_leaves_the_decomposition_uncached) {
+  // A regular file where the cache directory should be: creating the directory fails (as root
+  // too, unlike a permission).
+  TempDir dir;
+  const std::string notADirectory = dir.write("cache", "a file, not a directory");
+  const DecompositionCache cache(notADirectory);
+  const TriangleMesh mesh = uShape();
+  const ConvexDecomposition d = decomposeConvexCached(mesh, {}, cache);
+  BOOST_CHECK(d.report.cache == CacheStatus::StoreFailed);
+  BOOST_CHECK_MESSAGE(d.report.cacheMessage.find(notADirectory) != std::string::npos, d.report.cacheMessage);
+  BOOST_CHECK_EQUAL(d.pieces.size(), decomposeConvex(mesh).pieces.size());
+  BOOST_CHECK(std::filesystem::is_regular_file(notADirectory));
+  // And again: still no error, still decomposed.
+  BOOST_CHECK(decomposeConvexCached(mesh, {}, cache).report.cache == CacheStatus::StoreFailed);
+}
+
+BOOST_AUTO_TEST_CASE(an_unreadable_cache_file_is_decomposed_again) {
+  TempDir dir;
+  const DecompositionCache cache(dir.path().string());
+  const TriangleMesh mesh = lShape();
+  const std::string key = DecompositionCache::key(mesh, {});
+  BOOST_REQUIRE(decomposeConvexCached(mesh, {}, cache).report.cache == CacheStatus::Stored);
+  std::filesystem::permissions(cache.pathFor(key), std::filesystem::perms::none);
+  if (std::ifstream(cache.pathFor(key)).good()) {
+    BOOST_TEST_MESSAGE("skipped the unreadable-file case: this user reads files without permission (root)");
+    return;
+  }
+  const ConvexDecomposition again = decomposeConvexCached(mesh, {}, cache);
+  BOOST_CHECK(again.report.cache == CacheStatus::Replaced);
+  BOOST_CHECK_MESSAGE(again.report.cacheMessage.find("cannot be read") != std::string::npos,
+                      again.report.cacheMessage);
 }
 
 BOOST_AUTO_TEST_CASE(parameters_and_content_change_the_key) {

@@ -3,6 +3,8 @@
 
 #include "robots_test_util.h"
 
+#include "common/random_configurations.h"
+
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/robot_model.h"
 
@@ -62,15 +64,6 @@ Eigen::Isometry3d ur5Dh(const Eigen::VectorXd& q) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   for (int i = 0; i < 6; ++i) T = T * rotZ(q[i]) * transZ(d[i]) * transX(a[i]) * rotX(alpha[i]);
   return T;
-}
-
-Eigen::VectorXd randomWithinLimits(const RobotModel& m, std::mt19937& rng) {
-  Eigen::VectorXd q(m.numVariables());
-  for (int v = 0; v < q.size(); ++v) {
-    std::uniform_real_distribution<double> u(m.lowerLimits()[v], m.upperLimits()[v]);
-    q[v] = u(rng);
-  }
-  return q;
 }
 
 /// Compares the point and spatial Jacobians with central differences of forwardKinematics.
@@ -174,9 +167,8 @@ std::vector<Eigen::Isometry3d> referenceKinematics(const RobotModel& m, const Ei
 void checkAgainstReference(const RobotModel& m, std::mt19937& rng, int trials) {
   std::uniform_real_distribution<double> u(-4.0, 4.0);
   std::vector<Eigen::Isometry3d> X_WL;
-  double worst = 0.0;
   for (int trial = 0; trial < trials; ++trial) {
-    Eigen::VectorXd q = randomWithinLimits(m, rng);
+    Eigen::VectorXd q = deepcheck::test::randomConfiguration(m, rng);
     if (trial % 4 == 3) {
       for (int v = 0; v < q.size(); ++v) q[v] = u(rng);
     }
@@ -192,18 +184,16 @@ void checkAgainstReference(const RobotModel& m, std::mt19937& rng, int trials) {
       // Relative to the pose's size: prismatic joints driven 1000 m away round off at 1e-13 m.
       const double scale = std::max(1.0, expected[l].translation().cwiseAbs().maxCoeff());
       const double error = (X_WL[l].matrix() - expected[l].matrix()).cwiseAbs().maxCoeff() / scale;
-      worst = std::max(worst, error);
       BOOST_CHECK_MESSAGE(error <= 1e-12, m.name() << " link " << m.link(l).name << " trial " << trial
                                                    << ": differs from the plain product by " << error);
       BOOST_CHECK(X_WL[l].matrix().row(3) == Eigen::RowVector4d(0, 0, 0, 1));
     }
   }
-  BOOST_TEST_MESSAGE(m.name() << ": largest difference from the plain product " << worst);
 }
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(kinematics)
+BOOST_AUTO_TEST_SUITE(robots_kinematics)
 
 BOOST_AUTO_TEST_CASE(matches_plain_product_every_joint_kind) {
   RobotModel m = RobotModel::fromUrdfString(kAxesUrdf, "", {}, "axes.urdf");
@@ -255,7 +245,6 @@ BOOST_AUTO_TEST_CASE(panda_home_pose_matches_franka_dh) {
   // The flange in the home pose, as published for the Panda's "ready" pose: about
   // (0.307, 0, 0.590) m, pointing down.
   const Eigen::Isometry3d& flange = X_WL[m.linkIndex("panda_link8")];
-  BOOST_TEST_MESSAGE("Panda home flange position " << flange.translation().transpose());
   BOOST_TEST((flange.translation() - Eigen::Vector3d(0.307, 0.0, 0.590)).norm() < 1e-3);
   BOOST_TEST((flange.linear() * Eigen::Vector3d::UnitZ() - Eigen::Vector3d(0, 0, -1)).norm() < 1e-9);
   // The hand is the flange turned by -pi/4 about z; the fingers sit 0.0584 m further, each
@@ -273,7 +262,7 @@ BOOST_AUTO_TEST_CASE(panda_random_poses_match_franka_dh) {
   const RobotModel m = loadPanda();
   std::mt19937 rng(20240611);
   for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::VectorXd q = randomWithinLimits(m, rng);
+    const Eigen::VectorXd q = deepcheck::test::randomConfiguration(m, rng);
     const auto X_WL = forwardKinematics(m, q);
     const auto dh = pandaDh(q);
     const int flange = m.linkIndex("panda_link8");
@@ -294,14 +283,13 @@ BOOST_AUTO_TEST_CASE(ur5_matches_universal_robots_dh) {
     const Eigen::Isometry3d X_BT = X_WL[base].inverse() * X_WL[tool];
     // Zero pose from the DH parameters: (a2 + a3, -(d4 + d6), d1 - d5).
     const Eigen::Vector3d expected(-0.425 - 0.39225, -(0.10915 + 0.0823), 0.089159 - 0.09465);
-    BOOST_TEST_MESSAGE("UR5 zero-pose tool0 in base " << X_BT.translation().transpose());
     BOOST_TEST((X_BT.translation() - expected).norm() < 1e-9);
     BOOST_TEST((X_BT.translation() - ur5Dh(Eigen::VectorXd::Zero(6)).translation()).norm() < 1e-9);
     BOOST_TEST((X_BT.linear() - ur5Dh(Eigen::VectorXd::Zero(6)).linear()).norm() < 1e-9);
   }
   std::mt19937 rng(7);
   for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::VectorXd q = randomWithinLimits(m, rng);
+    const Eigen::VectorXd q = deepcheck::test::randomConfiguration(m, rng);
     const auto X_WL = forwardKinematics(m, q);
     const Eigen::Isometry3d X_BT = X_WL[base].inverse() * X_WL[tool];
     const Eigen::Isometry3d dh = ur5Dh(q);
@@ -322,14 +310,14 @@ BOOST_AUTO_TEST_CASE(jacobians_match_finite_differences) {
   const RobotModel ur5 = loadUr5();
   for (const RobotModel* m : std::vector<const RobotModel*>{&panda, &ur5}) {
     for (int trial = 0; trial < 5; ++trial) {
-      const Eigen::VectorXd q = randomWithinLimits(*m, rng);
+      const Eigen::VectorXd q = deepcheck::test::randomConfiguration(*m, rng);
       for (int link = 0; link < m->numLinks(); ++link) {
         checkJacobians(*m, q, link, Eigen::Vector3d(u(rng), u(rng), u(rng)));
       }
     }
   }
   // The overload that takes q agrees with the one that takes poses.
-  const Eigen::VectorXd q = randomWithinLimits(panda, rng);
+  const Eigen::VectorXd q = deepcheck::test::randomConfiguration(panda, rng);
   const int hand = panda.linkIndex("panda_hand");
   const Eigen::Vector3d p(0.01, 0.02, 0.1);
   BOOST_TEST((pointJacobian(panda, q, hand, p) - pointJacobian(panda, forwardKinematics(panda, q), hand, p)).norm() == 0.0);

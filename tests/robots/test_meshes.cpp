@@ -135,7 +135,7 @@ std::string daeWithUpAxis(const std::string& axis) {
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(meshes)
+BOOST_AUTO_TEST_SUITE(robots_meshes)
 
 BOOST_AUTO_TEST_CASE(stl_ascii_and_binary) {
   TempDir dir;

@@ -85,7 +85,7 @@ const std::string kIdentity = "orientation: [0, 0, 0, 1]";
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(moveit_scene)
+BOOST_AUTO_TEST_SUITE(robots_moveit_scene)
 
 BOOST_AUTO_TEST_CASE(every_motion_bench_maker_scene_loads_as_written) {
   if (!test::haveShared("MotionBenchMaker scenes")) return;

@@ -112,22 +112,7 @@ PairSet collidingInFreshSample(const RobotModel& model,
   return colliding;
 }
 
-struct Agreement {
-  PairSet both, onlyUs, onlyThem;
-};
-
-Agreement compare(const std::vector<DisabledPair>& ours, const std::vector<DisabledPair>& theirs) {
-  const PairSet a = keys(ours), b = keys(theirs);
-  Agreement g;
-  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::inserter(g.both, g.both.end()));
-  std::set_difference(a.begin(), a.end(), b.begin(), b.end(),
-                      std::inserter(g.onlyUs, g.onlyUs.end()));
-  std::set_difference(b.begin(), b.end(), a.begin(), a.end(),
-                      std::inserter(g.onlyThem, g.onlyThem.end()));
-  return g;
-}
-
-/// The comparison with a shipped SRDF, and the properties that must hold whatever the meshes:
+/// Against a shipped SRDF, the properties that must hold whatever the meshes:
 /// their 'Adjacent' pairs are ours too, and no pair we call 'Never' collides in a fresh sample.
 void checkAgainstShipped(const RobotModel& model, const std::string& srdfPath) {
   const auto pieces = collisionPieces(model);
@@ -136,31 +121,7 @@ void checkAgainstShipped(const RobotModel& model, const std::string& srdfPath) {
   BOOST_REQUIRE(!theirs.empty());
   checkDisabledPairs(model, theirs, srdfPath);
 
-  const Agreement g = compare(ours.disabled, theirs);
   const auto ourReasons = byKey(ours.disabled);
-  const auto theirReasons = byKey(theirs);
-  auto describe = [&](const PairSet& s) {
-    std::string out;
-    for (const auto& k : s) {
-      const auto o = ourReasons.find(k);
-      const auto t = theirReasons.find(k);
-      out += "\n    " + k.first + " - " + k.second + "  ours: " +
-             (o == ourReasons.end() ? "checked" : toString(o->second)) + ", theirs: " +
-             (t == theirReasons.end() ? "checked" : (*toString(t->second) ? toString(t->second) : "(no reason)"));
-    }
-    return out.empty() ? std::string(" (none)") : out;
-  };
-  BOOST_TEST_MESSAGE(model.name() << " vs " << srdfPath << ": " << ours.numPairs()
-                                  << " pairs of links with geometry; we disable "
-                                  << ours.disabled.size() << " (Adjacent "
-                                  << ours.count(DisableReason::Adjacent) << ", Default "
-                                  << ours.count(DisableReason::Default) << ", Always "
-                                  << ours.count(DisableReason::Always) << ", Never "
-                                  << ours.count(DisableReason::Never) << "), they disable "
-                                  << theirs.size() << "; both " << g.both.size() << ", only us "
-                                  << g.onlyUs.size() << ", only them " << g.onlyThem.size()
-                                  << "\n  only us:" << describe(g.onlyUs)
-                                  << "\n  only them:" << describe(g.onlyThem));
 
   // Adjacency is structural: their Adjacent pairs are ours.
   for (const auto& k : keys(theirs, DisableReason::Adjacent)) {
@@ -188,7 +149,7 @@ void checkAgainstShipped(const RobotModel& model, const std::string& srdfPath) {
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(srdf)
+BOOST_AUTO_TEST_SUITE(robots_pair_filter)
 
 BOOST_AUTO_TEST_CASE(reason_words) {
   for (int r = 0; r < kNumDisableReasons; ++r) {

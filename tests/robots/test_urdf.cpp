@@ -4,6 +4,7 @@
 
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/package_path.h"
+#include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include <boost/test/unit_test.hpp>
@@ -89,7 +90,7 @@ const char* kMimicUrdf = R"(<robot name="mimic">
 
 }  // namespace
 
-BOOST_AUTO_TEST_SUITE(urdf)
+BOOST_AUTO_TEST_SUITE(robots_urdf)
 
 BOOST_AUTO_TEST_CASE(panda_structure) {
   if (!haveShared("panda_structure")) return;
@@ -362,6 +363,48 @@ BOOST_AUTO_TEST_CASE(error_malformed_xml) {
               {"broken.urdf", "malformed XML", "line"});
 }
 
+BOOST_AUTO_TEST_CASE(error_text_that_is_not_utf8) {
+  // A UTF-8 lead byte cut off by the end of the text made TinyXML read past the end of the buffer
+  // (found by fuzz_urdf); such text, NUL bytes and other invalid UTF-8 are rejected first.
+  const std::string truncated = "<robot name=\"a\"><link name=\"b\xe1";
+  checkThrows([&] { RobotModel::fromUrdfString(truncated, "", rootsOnly({}), "cut.urdf"); },
+              {"cut.urdf", "line 1, byte 29 (0xE1): not UTF-8"});
+  const std::string nul = std::string("<robot name=\"a\">\n<link name=\"b") + '\0' + "\"/></robot>";
+  checkThrows([&] { RobotModel::fromUrdfString(nul, "", rootsOnly({}), "nul.urdf"); },
+              {"nul.urdf", "line 2, byte 30 (0x00): a NUL byte"});
+  const std::string overlong = "<robot name=\"\xc0\xae\"><link name=\"b\"/></robot>";
+  checkThrows([&] { RobotModel::fromUrdfString(overlong, "", rootsOnly({}), "overlong.urdf"); },
+              {"overlong.urdf", "byte 13 (0xC0): not UTF-8"});
+  checkThrows([&] { deepcheck::robots::parseSrdfDisabledPairs("<robot name=\"\xed\xa0\x80\"/>", "surrogate.srdf"); },
+              {"surrogate.srdf", "byte 13 (0xED): not UTF-8"});
+  // Valid multi-byte names load.
+  const RobotModel ok = RobotModel::fromUrdfString("<robot name=\"r\xc3\xa9\xe2\x82\xac\"><link name=\"\xf0\x9f\xa4\x96\"/></robot>",
+                                                   "", rootsOnly({}), "utf8.urdf");
+  BOOST_TEST(ok.name() == "r\xc3\xa9\xe2\x82\xac");
+}
+
+BOOST_AUTO_TEST_CASE(error_joint_closes_a_loop) {
+  // urdfdom accepts a joint whose child is its own parent or an ancestor of it, and a link with two
+  // parent joints; walking the tree then recursed until the stack overflowed (found by fuzz_urdf).
+  const std::string self = R"(<robot name="x"><link name="a"/><link name="b"/>
+    <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+    <joint name="j2" type="fixed"><parent link="a"/><child link="a"/></joint></robot>)";
+  checkThrows([&] { RobotModel::fromUrdfString(self, "", rootsOnly({}), "self.urdf"); },
+              {"self.urdf", "joint 'j2' closes a loop: its child link 'a' is also its parent or an ancestor"});
+  const std::string cycle = R"(<robot name="x"><link name="a"/><link name="b"/><link name="c"/>
+    <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+    <joint name="j2" type="fixed"><parent link="b"/><child link="c"/></joint>
+    <joint name="j3" type="fixed"><parent link="c"/><child link="b"/></joint></robot>)";
+  checkThrows([&] { RobotModel::fromUrdfString(cycle, "", rootsOnly({}), "cycle.urdf"); },
+              {"cycle.urdf", "link 'b' is the child of two joints, 'j1' and 'j3'"});
+  const std::string ring = R"(<robot name="x"><link name="a"/><link name="b"/><link name="c"/>
+    <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+    <joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint>
+    <joint name="j3" type="fixed"><parent link="b"/><child link="c"/></joint></robot>)";
+  checkThrows([&] { RobotModel::fromUrdfString(ring, "", rootsOnly({}), "ring.urdf"); },
+              {"ring.urdf", "closes a loop"});
+}
+
 BOOST_AUTO_TEST_CASE(error_urdfdom_rejects) {
   // Well-formed XML, but the joint names a link that does not exist.
   const std::string xml = R"(<robot name="x"><link name="a"/>
@@ -403,9 +446,10 @@ BOOST_AUTO_TEST_CASE(error_unknown_package) {
   checkThrows([&] { RobotModel::fromUrdfString(xml, "", rootsOnly({root}), "u.urdf"); },
               {"u.urdf", "link 'l'", "package 'no_such_package'",
                (fs::path(root) / "no_such_package/m.stl").string()});
-  // No roots at all: the message says how to give some.
+  // No roots at all: the message names the library's option (not a command-line flag) and the
+  // environment variables.
   checkThrows([&] { RobotModel::fromUrdfString(xml, "", rootsOnly({}), "u.urdf"); },
-              {"no package roots", "--package-path", "ROS_PACKAGE_PATH"});
+              {"no package roots", "LoadOptions::packageRoots", "ROS_PACKAGE_PATH"});
 }
 
 BOOST_AUTO_TEST_CASE(error_mimic_cycle) {

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,13 +62,18 @@ BOOST_AUTO_TEST_CASE(known_distances_and_gradients) {
     const double wall = 0.5 - x;
     const double floor = z + 0.25;
     const std::vector<std::string> f = fields(out[i]);
-    BOOST_TEST_REQUIRE(f.size() == 5u, out[i]);
+    BOOST_TEST_REQUIRE(f.size() == 11u, out[i]);
     const double sd = number(f[0]);
     BOOST_TEST(std::abs(sd - std::min(wall, floor)) < kExact, out[i]);
     BOOST_TEST(f[1] == "cube");
     BOOST_TEST(f[2] == (wall < floor ? "scene/wall" : "scene/floor"));
-    const double gx = number(f[3]);
-    const double gz = number(f[4]);
+    // The scene triple is the same (the scene is nearest); one link has no self pair.
+    BOOST_TEST(number(f[3]) == sd);
+    BOOST_TEST(f[4] == f[1]);
+    BOOST_TEST(f[5] == f[2]);
+    BOOST_TEST((f[6] == "inf" && f[7] == "none" && f[8] == "none"), out[i]);
+    const double gx = number(f[9]);
+    const double gz = number(f[10]);
     BOOST_TEST(std::abs(gx - (wall < floor ? -1.0 : 0.0)) < 1e-9, out[i]);
     BOOST_TEST(std::abs(gz - (wall < floor ? 0.0 : 1.0)) < 1e-9, out[i]);
   }
@@ -89,7 +95,7 @@ BOOST_AUTO_TEST_CASE(scene_pose_and_no_gradient) {
   const std::vector<std::string> out = lines(r.out);
   BOOST_TEST_REQUIRE(out.size() == 2u);
   std::vector<std::string> f = fields(out[0]);
-  BOOST_TEST_REQUIRE(f.size() == 3u);  // no gradient
+  BOOST_TEST_REQUIRE(f.size() == 9u);  // three triples, no gradient
   BOOST_TEST(std::abs(number(f[0]) - 0.3) < kExact);  // wall: -0.3 - (-0.6)
   BOOST_TEST(f[2] == "scene/wall");
   f = fields(out[1]);
@@ -112,7 +118,7 @@ BOOST_AUTO_TEST_CASE(self_pairs_and_srdf) {
   // Both hang from the base (geometry-less): adjacent through it, so disabled by default.
   Run r = runCheck(s, "--robot " + robot, "0 1\n");
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  BOOST_TEST(lines(r.out).at(0) == "inf none none");
+  BOOST_TEST(lines(r.out).at(0) == "inf none none inf none none inf none none");
   BOOST_TEST(r.err.find("0 link pairs checked") != std::string::npos, r.err);
   // An SRDF for another robot's links is an error naming the link.
   const std::string srdf = s.write("bad.srdf", "<robot name='pair'><disable_collisions link1='a' link2='zzz' reason='Never'/></robot>");
@@ -161,10 +167,56 @@ BOOST_AUTO_TEST_CASE(bundled_arm_in_the_shelf) {
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   const std::vector<std::string> out = lines(r.out);
   BOOST_TEST_REQUIRE(out.size() == 2u);
-  for (const std::string& line : out) BOOST_TEST(fields(line).size() == 3u + 7u, line);
+  for (const std::string& line : out) BOOST_TEST(fields(line).size() == 9u + 7u, line);
   BOOST_TEST(number(fields(out[0])[0]) > 0.0, out[0]);
   BOOST_TEST(number(fields(out[1])[0]) < 0.0, out[1]);
   BOOST_TEST(fields(out[1])[2] == "scene/shelf", out[1]);
+  // Straight up, the nearest pair is the wrist (link5, link7, a few centimetres apart in every
+  // configuration); the scene clearance, reported apart, is far larger.
+  const std::vector<std::string> up = fields(out[0]);
+  BOOST_TEST((up[1] == "link5" && up[2] == "link7"), out[0]);
+  BOOST_TEST(up[5] == "scene/shelf", out[0]);
+  BOOST_TEST(number(up[3]) > 0.2, out[0]);
+  BOOST_TEST(number(up[6]) == number(up[0]), out[0]);
+  BOOST_TEST((up[7] == "link5" && up[8] == "link7"), out[0]);
+  // Bent into the shelf: the overall minimum is the scene's, the self clearance still the wrist's.
+  const std::vector<std::string> bent = fields(out[1]);
+  BOOST_TEST(number(bent[3]) == number(bent[0]), out[1]);
+  BOOST_TEST(number(bent[6]) > 0.0, out[1]);
+}
+
+BOOST_AUTO_TEST_CASE(damaged_decomposition_cache_entries_are_recomputed_with_a_note) {
+  // The bundled arm's meshes go through the scratch folder's decomposition cache. Each entry is
+  // then replaced by a directory, then by garbage: the answers stay the same, exit status 0, and
+  // stderr says what was wrong with the cache.
+  Scratch s;
+  const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+  const std::string args = "--robot " + quote(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --package-path " +
+                           quote(data);
+  const std::string input = "0 0.3 0 -1 0 0.5 0\n";
+  const Run first = runCheck(s, args, input);
+  BOOST_TEST_REQUIRE(first.status == 0, first.err);
+  const fs::path cache = fs::path(s.path("cache")) / "deepcheck";
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(cache)) entries.push_back(e.path());
+  BOOST_TEST_REQUIRE(!entries.empty());
+  for (const fs::path& e : entries) {
+    fs::remove(e);
+    fs::create_directory(e);
+  }
+  Run r = runCheck(s, args, input);
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.out == first.out);
+  BOOST_TEST(r.err.find("deepcheck: decomposition cache: " + entries.front().string()) != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("not a regular file") != std::string::npos, r.err);
+  for (const fs::path& e : entries) {
+    fs::remove(e);
+    std::ofstream(e, std::ios::binary) << std::string(100, 'x');  // long enough to have a checksum
+  }
+  r = runCheck(s, args, input);
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.out == first.out);
+  BOOST_TEST(r.err.find("checksum mismatch") != std::string::npos, r.err);
 }
 
 BOOST_AUTO_TEST_CASE(package_roots_from_ros_package_path) {

@@ -43,7 +43,6 @@ BOOST_AUTO_TEST_SUITE(tool_info)
 BOOST_AUTO_TEST_CASE(bundled_arm) {
   Scratch scratch;
   const Run r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "2000"});
-  BOOST_TEST_MESSAGE(r.out);
   BOOST_REQUIRE_MESSAGE(r.status == 0, "exit " << r.status << ": " << r.err);
   BOOST_TEST(r.out.find("robot 'deepcheck_arm'") != std::string::npos);
   BOOST_TEST(r.out.find("12 links (11 with collision geometry), 11 joints, 7 variables") !=

@@ -232,6 +232,18 @@ BOOST_AUTO_TEST_CASE(answers_match_exact_reference) {
   checkAgainstExact(s, "pd --cold");
 }
 
+BOOST_AUTO_TEST_CASE(every_method_matches_exact_reference) {
+  const Scenario s = makeScenario(4343, 60);
+  for (const char* args : {"pd --method certified", "pd --method deep-walk", "pd --cold --method deep-walk"})
+    checkAgainstExact(s, args);
+  // --method exact is --exact.
+  const std::string input = inputText(s.shapes, s.queries);
+  const Run a = runTool("pd --method exact", input), b = runTool("pd --exact", input);
+  BOOST_TEST_REQUIRE(a.status == 0, "stderr: " << a.err);
+  BOOST_TEST(a.out == b.out);
+  checkSummary(a.err, s.queries.size());
+}
+
 BOOST_AUTO_TEST_CASE(far_from_origin_answers_match_exact_reference) {
   checkAgainstExact(makeScenario(8080, 40, Eigen::Vector3d(1e4, -1e4, 1e4)), "pd");
 }
@@ -339,6 +351,52 @@ BOOST_AUTO_TEST_CASE(bad_inputs_are_reported_with_line_numbers) {
   checkError("0 0 0\n", 1, "unknown keyword '0'");
 }
 
+BOOST_AUTO_TEST_CASE(values_outside_the_supported_range_are_rejected) {
+  // deep's range (input_range.h): |coordinate| <= 1e50, point sets spanning 0 or >= 1e-50.
+  const std::string q = " 0 0 0 1 0 0 0 ";
+  checkError("shape a 2\n0 0 0\n1 1e51 0\n", 3, "'1e51' = 1e+51 is out of range (|value| > 1e+50)");
+  checkError("shape a 2\n0 0 0\n-1.0000000000000003e50 0 0\n", 3, "is out of range");
+  checkError("shape a 2\n0 0 0\n1e-300 0 0\n", 1, "the points span only 1e-300");
+  checkError(std::string(kTwoPoints) + "query a 0 0 1e51 1 0 0 0 a" + q + "\n", 4,
+             "pose translation z = 1e+51 is out of range");
+  checkError("shape a 100001\n", 1, "the point count 100001 exceeds the supported 100000 points");
+}
+
+BOOST_AUTO_TEST_CASE(largest_point_count_is_accepted) {
+  // 100000 points, the supported maximum: the corners of a unit cube, repeated (the hull is the
+  // cube; duplicates are dropped before Qhull, so the test stays fast).
+  std::string input = "shape a 100000\n";
+  for (int i = 0; i < 100000; ++i) {
+    input += std::to_string(i & 1) + " " + std::to_string((i >> 1) & 1) + " " + std::to_string((i >> 2) & 1) + "\n";
+  }
+  input += "query a 0 0 0 1 0 0 0 a 3 0 0 1 0 0 0\n";
+  const Run r = runTool("pd", input);
+  BOOST_TEST_REQUIRE(r.status == 0, "stderr: " << r.err);
+  const std::vector<Answer> answers = parseAnswers(r.out);
+  BOOST_TEST_REQUIRE(answers.size() == 1u);
+  BOOST_TEST(std::abs(answers[0].sd - 2.0) <= kNormalAgree);
+}
+
+BOOST_AUTO_TEST_CASE(values_at_the_range_boundary_are_answered) {
+  // Segments 1e50 long along x, 2e50 apart along y; points spanning exactly 1e-50, 1e-50 apart.
+  const Run huge = runTool("pd", "shape a 2\n-1e50 0 0\n1e50 0 0\n"
+                                 "query a 0 -1e50 0 1 0 0 0 a 0 1e50 0 1 0 0 0\n");
+  BOOST_TEST_REQUIRE(huge.status == 0, "stderr: " << huge.err);
+  std::vector<Answer> answers = parseAnswers(huge.out);
+  BOOST_TEST_REQUIRE(answers.size() == 1u);
+  BOOST_TEST(answers[0].sd == 2e50, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(std::abs(answers[0].n.y() - 1.0) <= kNormalAgree);
+  for (const char* flag : {"pd", "pd --exact"}) {
+    const Run tiny = runTool(flag, "shape t 4\n0 0 0\n1e-50 0 0\n0 1e-50 0\n0 0 1e-50\n"
+                                   "query t 0 0 0 1 0 0 0 t 2e-50 0 0 1 0 0 0\n");
+    BOOST_TEST_REQUIRE(tiny.status == 0, "stderr: " << tiny.err);
+    answers = parseAnswers(tiny.out);
+    BOOST_TEST_REQUIRE(answers.size() == 1u);
+    BOOST_TEST(answers[0].sd == 1e-50, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(std::abs(answers[0].n.x() - 1.0) <= kNormalAgree);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(accepted_quaternions_within_tolerance) {
   // A quaternion printed with 8 digits (norm 1 within 1e-6) is accepted.
   const Run r = runTool("pd", std::string(kTwoPoints) +
@@ -355,6 +413,17 @@ BOOST_AUTO_TEST_CASE(command_line_errors) {
   BOOST_TEST(r.status == 2);
   BOOST_TEST(r.err.find("unknown option '--bogus'") != std::string::npos);
   BOOST_TEST(r.err.find("usage: deepcheck pd") != std::string::npos);
+
+  r = runTool("pd --method fastest", "");
+  BOOST_TEST(r.status == 2);
+  BOOST_TEST(r.err.find("unknown --method 'fastest'") != std::string::npos);
+
+  r = runTool("pd --exact --method deep-walk", "");
+  BOOST_TEST(r.status == 2);
+  BOOST_TEST(r.err.find("--exact contradicts --method deep-walk") != std::string::npos);
+
+  r = runTool("pd --method certified --method exact", "");
+  BOOST_TEST(r.status == 2);
 
   r = runTool("pd extra.txt", "");
   BOOST_TEST(r.status == 2);
@@ -376,7 +445,7 @@ BOOST_AUTO_TEST_CASE(command_line_errors) {
 
   r = runTool("pd --help", "");
   BOOST_TEST(r.status == 0);
-  BOOST_TEST(r.out.find("usage: deepcheck pd [--cold] [--exact]") != std::string::npos);
+  BOOST_TEST(r.out.find("usage: deepcheck pd [--cold] [--method certified|deep-walk|exact]") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

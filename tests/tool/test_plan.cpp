@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -33,6 +34,19 @@ const std::string kWorld = armIn("shelf");
 const std::string kStart = " --start 0 -0.4 0 -1.6 0 1.2 0";
 const std::string kGoal = " --goal 1.05 0.75 -1.17 -1.30 0.05 -0.07 -2.79";
 
+/// The world `kWorld` names (the bundled arm with its SRDF in the shelf), to check paths with.
+std::unique_ptr<checker::World> armInTheShelf() {
+  robots::LoadOptions load;
+  load.packageRoots = {kData};
+  load.useRosPackagePath = false;
+  checker::WorldOptions options;
+  options.disabledPairs = robots::readSrdfDisabledPairs(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
+  auto world = std::make_unique<checker::World>(
+      robots::RobotModel::fromUrdfFile(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf", load), options);
+  world->addScene(robots::RobotModel::fromUrdfFile(kData + "/scenes/shelf.urdf", load));
+  return world;
+}
+
 /// Runs `deepcheck plan <args>` in the scratch folder (also its decomposition cache).
 Run plan(const Scratch& scratch, const std::string& args) {
   return scratch.run("plan" + args);
@@ -48,14 +62,8 @@ BOOST_AUTO_TEST_CASE(plans_through_the_shelf_and_every_waypoint_is_free) {
   const Run r = plan(scratch, kWorld + kStart + kGoal + " --seed 3 --time 10 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.err.find("certified") != std::string::npos, r.err);
-  robots::LoadOptions load;
-  load.packageRoots = {kData};
-  load.useRosPackagePath = false;
-  checker::WorldOptions options;
-  options.disabledPairs = robots::readSrdfDisabledPairs(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
-  checker::World world(robots::RobotModel::fromUrdfFile(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf", load),
-                       options);
-  world.addScene(robots::RobotModel::fromUrdfFile(kData + "/scenes/shelf.urdf", load));
+  const std::unique_ptr<checker::World> armWorld = armInTheShelf();
+  const checker::World& world = *armWorld;
   std::ifstream in(out);
   std::string line;
   std::vector<Eigen::VectorXd> waypoints;
@@ -111,10 +119,64 @@ BOOST_AUTO_TEST_CASE(bad_command_lines_and_inputs_are_named) {
   r = plan(scratch, kWorld + kStart + kGoal + out + " --objective fastest");
   BOOST_TEST(r.status == 2);
   BOOST_TEST(r.err.find("fastest") != std::string::npos, r.err);
-  // The goal inside the shelf's board: in collision, named, and no planning without repair.
+  // The goal inside the shelf's board: in collision, the pair named, and no planning without repair.
   r = plan(scratch, kWorld + kStart + " --goal 0 1.2 0 0 0 0 0" + out);
   BOOST_TEST(r.status == 1);
-  BOOST_TEST(r.err.find("goal") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("goal configuration is in collision") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("link6 and scene/shelf") != std::string::npos, r.err);
+  // A goal outside the joint limits: the joint, its value and the limit.
+  r = plan(scratch, kWorld + kStart + " --goal 0 3 0 0 0 0 0" + out);
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("joint 'joint2' = 3 rad is above its upper limit 2.0944 rad") != std::string::npos, r.err);
+  r = plan(scratch, kWorld + " --start 0 -0.4 0 -1.6 0 1.2 -3.1" + kGoal + out + " --repair-start");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("joint 'joint7' = -3.1 rad is below its lower limit -3.05433 rad") != std::string::npos, r.err);
+  // --repair-margin: only with --repair-start, in metres >= 0.
+  r = plan(scratch, kWorld + kStart + kGoal + out + " --repair-margin 0.002");
+  BOOST_TEST(r.status == 2);
+  BOOST_TEST(r.err.find("--repair-start") != std::string::npos, r.err);
+  r = plan(scratch, kWorld + kStart + kGoal + out + " --repair-start --repair-margin -1");
+  BOOST_TEST(r.status == 2);
+}
+
+BOOST_AUTO_TEST_CASE(a_repaired_start_gets_the_margin_and_the_report_splits_scene_and_self_clearance) {
+  // The shelf goal turned about joint 1 until the hand is 2 to 10 mm into the compartment's wall.
+  const std::unique_ptr<checker::World> armWorld = armInTheShelf();
+  const checker::World& world = *armWorld;
+  std::vector<double> start = {1.05, 0.75, -1.17, -1.30, 0.05, -0.07, -2.79};
+  const double joint1 = start[0];
+  double sd = 1.0;
+  for (double turn = 0.0; turn < 0.6 && !(sd < -0.002); turn += 0.002) {
+    start[0] = joint1 + turn;
+    sd = world.signedDistance(Eigen::Map<const Eigen::VectorXd>(start.data(), 7)).closest.distance;
+  }
+  BOOST_TEST_REQUIRE(sd < -0.002);
+  BOOST_TEST_REQUIRE(sd > -0.010);
+  std::string startArg = " --start";
+  for (double v : start) startArg += " " + tool_test::fmt(v);
+  Scratch scratch;
+  const Run r = plan(scratch, kWorld + startArg + " --goal 0 -0.4 0 -1.6 0 1.2 0 --repair-start --repair-margin 0.002" +
+                                  " --seed 4 --time 10 --out " + quote(scratch.path("path.txt")));
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  // "repair start: Repaired, moved X rad, signed distance now Y m (margin 0.002 m)"
+  const std::string key = "repair start: Repaired, moved ";
+  const std::size_t at = r.err.find(key);
+  BOOST_TEST_REQUIRE(at != std::string::npos, r.err);
+  const std::size_t now = r.err.find("signed distance now ", at);
+  BOOST_TEST_REQUIRE(now != std::string::npos, r.err);
+  BOOST_TEST(std::stod(r.err.substr(now + 20)) > 0.002, r.err);
+  BOOST_TEST(r.err.find("(margin 0.002 m)") != std::string::npos, r.err);
+  // The path: scene and self clearance, each with its pair; the planning time with a unit that
+  // shows it (never "0.000 s").
+  BOOST_TEST(r.err.find("scene clearance ") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("scene/shelf)") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("self clearance ") != std::string::npos, r.err);
+  const std::size_t after = r.err.find("Exact solution after ");
+  BOOST_TEST_REQUIRE(after != std::string::npos, r.err);
+  const std::string duration = r.err.substr(after + 21, r.err.find('\n', after) - after - 21);
+  BOOST_TEST(std::stod(duration) > 0.0, duration);
+  const std::string unit = duration.substr(duration.find(' ') + 1);
+  BOOST_TEST((unit == "us" || unit == "ms" || unit == "s"), duration);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -10,7 +10,7 @@
 //             joints fixed (at given values or their default configuration). Their pieces are
 //             posed once, at load, in world coordinates. A scene piece that no robot link can
 //             ever reach (farther than WorldOptions::reachMargin from every link's reach sphere,
-//             reach.h) is DROPPED at load and counted in summary().
+//             checker/src/reach.h) is DROPPED at load and counted in summary().
 //   Obstacles boxes, spheres, cylinders and meshes added, moved and removed at run time by id.
 //             They are not subject to the reach filter.
 //
@@ -24,8 +24,8 @@
 // Names. A robot link is named by its URDF name, a scene link "scene/<link>", an obstacle
 // "obstacle/<name>".
 //
-// Signed distance (DESIGN.md contract, per pair of convex pieces, minimized over pieces and
-// pairs). For a pair (A, B): A is always a robot link; B is a robot link (self pair, B's link
+// Signed distance (per pair of convex pieces the contract of deep/signed_distance.h, minimized
+// over pieces and pairs). For a pair (A, B): A is always a robot link; B is a robot link (self pair, B's link
 // index > A's) or a world body. distance > 0 is the distance, < 0 minus the penetration depth;
 // normal is unit and points from A towards B; pointB - pointA = distance * normal (world frame).
 //
@@ -63,7 +63,6 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -76,9 +75,9 @@ namespace detail {
 struct WorldState;
 }  // namespace detail
 
-/// Which broad phase finds the world pieces near a robot link (see aabb_tree.h).
+/// Which broad phase finds the world pieces near a robot link (see aabb_tree.h in checker/src).
 enum class BroadPhase {
-  AabbTree,  ///< the static AABB tree of aabb_tree.h (default: measured faster)
+  AabbTree,  ///< the static AABB tree of checker/src/aabb_tree.h (default: measured faster)
   FclTree,   ///< FCL's DynamicAABBTreeCollisionManager over the same boxes
   None,      ///< every world piece is a candidate (bounding-volume tests only): for tests
 };
@@ -169,11 +168,9 @@ struct QueryStats {
                                       ///< could beat the best, measured again with all restarts
 };
 
-/// Sent to Context::onNarrowPhase (when set) before every narrow-phase call: for tests and tools.
-struct NarrowPhaseEvent {
-  int linkA = -1;
-  BodyRef bodyB;
-};
+namespace detail {
+struct ContextTestAccess;  // world_test_access.h (checker/src): hooks for the tests
+}  // namespace detail
 
 /// How a World is built.
 struct WorldOptions {
@@ -209,13 +206,22 @@ struct WorldOptions {
   bool centroidTest = true;
 };
 
-/// Placement of a scene (World::addScene).
-struct SceneOptions {
+/// A scene and where it goes: World::addScene takes the loaded model and this placement;
+/// loaders that read the model from a file (planners::loadWorld) take the URDF from `urdf`.
+struct SceneSpec {
+  /// The scene's URDF file (not used by World::addScene, which is given the model).
+  std::string urdf;
   /// Joint values of the scene (its numVariables()); empty: its default configuration.
   Eigen::VectorXd q;
   /// Used as the scene's base pose when overridePose; otherwise the model's own basePose().
   bool overridePose = false;
   Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
+
+  SceneSpec() = default;
+  SceneSpec(std::string path) : urdf(std::move(path)) {}  // NOLINT: implicit on purpose
+  SceneSpec(const char* path) : urdf(path) {}             // NOLINT
+  SceneSpec(std::string path, const Eigen::Isometry3d& pose)
+      : urdf(std::move(path)), overridePose(true), X_WS(pose) {}
 };
 
 class World {
@@ -235,13 +241,11 @@ class World {
     void resetStats();
     /// Forget every warm start (the next queries are cold).
     void resetCaches();
-    /// Called before every narrow-phase call when set (slows queries; for tests).
-    std::function<void(const NarrowPhaseEvent&)> onNarrowPhase;
-
-    struct Impl;  ///< opaque (world_queries.cpp)
+    struct Impl;  ///< opaque (world_queries_internal.h)
 
    private:
     friend class World;
+    friend struct detail::ContextTestAccess;
     explicit Context(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
   };
@@ -253,7 +257,7 @@ class World {
   ~World();
 
   /// Adds a scene; returns its index. Its pieces are posed and filtered by reach here.
-  int addScene(robots::RobotModel scene, const SceneOptions& options = SceneOptions());
+  int addScene(robots::RobotModel scene, const SceneSpec& placement = SceneSpec());
   int addScene(robots::RobotModel scene, const Eigen::Isometry3d& X_WS);
 
   /// Adds an obstacle; returns its id (never reused).

@@ -41,7 +41,20 @@
 
 namespace deepcheck::deep {
 
+/// How signedDistance computes the depth of overlapping shapes.
+enum class PenetrationMethod {
+  Certified,  ///< the expanding surface's certified bracket (certified.h), named by DEEP's facets
+  DeepWalk,   ///< DEEP's walks with restarts (below): fast warm, can stop in a local minimum
+};
+
+const char* toString(PenetrationMethod m);
+
 struct DeepOptions {
+  /// The algorithm for overlapping shapes. The walk options below apply to DeepWalk, and to the
+  /// Certified method only where it falls back on a walk (an expansion that did not converge).
+  PenetrationMethod method = PenetrationMethod::Certified;
+  /// Cap on support points the certified expansion adds to its surface.
+  int maxExpansions = 128;
   /// Use the warm start of the cache when it is valid.
   bool warmStart = true;
   /// Run the restart directions (centroid difference, its opposite, principal axes). Without

@@ -18,7 +18,8 @@ struct PairFrame {
   Eigen::Vector3d t = Eigen::Vector3d::Zero();      ///< position of B's centroid in P
 
   /// Builds the frame for A at X_WA and B at X_WB. Throws std::invalid_argument for a pose with
-  /// NaN/infinite entries or a rotation that is not orthonormal (message names which pose).
+  /// NaN/infinite entries, a translation beyond range::kMaxCoordinate (input_range.h) or a
+  /// rotation that is not orthonormal (message names which pose).
   static PairFrame make(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
                         const ConvexPolytope& B, const Eigen::Isometry3d& X_WB);
   /// make() without the pose checks, for callers whose poses are rigid by construction (the
@@ -42,8 +43,9 @@ struct PairFrame {
   Eigen::Vector3d fromB(const Eigen::Vector3d& dir_B) const { return R * dir_B; }
 };
 
-/// Throws std::invalid_argument unless X has finite entries and an orthonormal rotation
-/// (|R^T R - I| < 1e-6); `what` names the pose in the message.
+/// Throws std::invalid_argument unless X has finite entries, a translation within
+/// range::kMaxCoordinate and an orthonormal rotation (|R^T R - I| < 1e-6); `what` names the pose
+/// in the message.
 void checkPose(const Eigen::Isometry3d& X, const char* what);
 
 }  // namespace deepcheck::deep

@@ -52,8 +52,10 @@ struct IndexRange {
 class ConvexPolytope {
  public:
   /// Builds the convex hull of `points` (in the polytope's own frame).
-  /// Throws std::invalid_argument when the list is empty or a coordinate is NaN or infinite; the
-  /// message names the offending point index and value. `name` is used in messages only.
+  /// Throws std::invalid_argument when the list is empty, a coordinate is NaN, infinite or beyond
+  /// range::kMaxCoordinate, or the points span less than range::kMinExtent without coinciding
+  /// (input_range.h); the message names the offending point index and value. `name` is used in
+  /// messages only.
   static ConvexPolytope fromPoints(const std::vector<Eigen::Vector3d>& points,
                                    const std::string& name = "points");
 

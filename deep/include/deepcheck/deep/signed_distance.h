@@ -1,5 +1,6 @@
 #pragma once
-// One signed-distance call per pair: GJK distance when apart, DEEP penetration depth when overlapping.
+// One signed-distance call per pair: GJK distance when apart, the certified penetration depth
+// (or DEEP's walk, DeepOptions::method) when overlapping.
 //
 // Contract (DESIGN.md): for convex shapes A and B,
 //   distance > 0  is their Euclidean distance;
@@ -14,8 +15,11 @@
 // radius >= 0: a sphere is a point core with a radius, a capsule a segment core with a radius.
 // The radius is handled exactly: sd(A, B) = sd(coreA, coreB) - radiusA - radiusB.
 
+#include "deepcheck/deep/certified.h"
 #include "deepcheck/deep/deep.h"
 #include "deepcheck/deep/gjk.h"
+
+#include <memory>
 
 namespace deepcheck::deep {
 
@@ -50,6 +54,16 @@ struct SignedDistanceResult {
   Feature featureA;
   Feature featureB;
   DeepStats deep;  ///< walk statistics when DEEP ran (zero otherwise)
+  /// Bracket on the penetration depth -distance (radii included): depthLower <= the true depth
+  /// <= depthUpper. Overlapping shapes, Certified method: the expansion's bounds (depthUpper is
+  /// the answer's depth); DeepWalk: [0, depth] (a walk gives no lower bound). Separated shapes:
+  /// both equal -distance.
+  double depthLower = 0.0;
+  double depthUpper = 0.0;
+  /// The answer is certified: the depth is within tol::kCertifyRelative * L of its lower bound
+  /// (or, separated, GJK converged). False for the DeepWalk method on overlapping shapes.
+  bool certified = false;
+  int expansions = 0;  ///< support points the certified expansion added (0 otherwise)
 };
 
 /// Warm-start state for one pair of shapes, owned by the caller (one per pair and thread).
@@ -57,8 +71,35 @@ struct SignedDistanceResult {
 /// answer's validity, only how fast it is found. reset() makes the next query cold.
 struct PairCache {
   GjkCache gjk;
+  /// Scratch space of the certified expansion, owned by the caller; null: a local one is used
+  /// (on the stack, about 60 KB). Share one per thread across pairs to keep the stack small.
+  ExpansionSurface* surface = nullptr;
   DeepCache deep;
-  void reset() { *this = PairCache{}; }
+  /// The certified method's warm start (about 4 KB), allocated by the pair's first overlapping
+  /// query with that method and reused after; copies of the cache copy it.
+  std::unique_ptr<CertifiedWarmStart> certified;
+
+  PairCache() = default;
+  PairCache(const PairCache& other) { *this = other; }
+  PairCache& operator=(const PairCache& other) {
+    if (this == &other) return *this;
+    gjk = other.gjk;
+    surface = other.surface;
+    deep = other.deep;
+    if (!other.certified) certified.reset();
+    else if (certified) *certified = *other.certified;
+    else certified = std::make_unique<CertifiedWarmStart>(*other.certified);
+    return *this;
+  }
+  PairCache(PairCache&&) = default;
+  PairCache& operator=(PairCache&&) = default;
+
+  /// Makes the next query cold (keeps the scratch pointer and the warm start's allocation).
+  void reset() {
+    gjk = GjkCache{};
+    deep = DeepCache{};
+    if (certified) certified->valid = false;
+  }
 };
 
 /// Signed distance between two posed shapes. Throws std::invalid_argument for a null core, a

@@ -50,6 +50,12 @@ constexpr double kParallelSine = 1e-9;
 /// DEEP, whose depth is then ~0: this keeps the signed distance continuous through contact.
 constexpr double kContactRelative = 1e-12;
 
+/// Certified penetration depth: the expansion stops when its upper bound (a support of M) is
+/// within kCertifyRelative * L of its lower bound (the nearest face of the expanding surface), L
+/// the pair's length scale. A few ulps of L above the round-off of a face-plane offset, so that
+/// a certified depth is also within 1e-12 of the depth whenever the depth exceeds L / 100.
+constexpr double kCertifyRelative = 1e-14;
+
 /// A pose is rejected when its rotation R has max |(R^T R - I)_ij| at or above this (dimensionless).
 constexpr double kOrthonormal = 1e-6;
 

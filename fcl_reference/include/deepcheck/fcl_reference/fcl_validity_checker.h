@@ -12,6 +12,7 @@
 
 #include "deepcheck/fcl_reference/fcl_backend.h"
 #include "deepcheck/checker/world.h"
+#include "deepcheck/planners/state_space.h"
 
 #include <Eigen/Core>
 
@@ -25,8 +26,9 @@ namespace deepcheck::fcl_reference {
 
 class FclStateValidityChecker : public ompl::base::StateValidityChecker {
  public:
-  /// Builds the FCL world from `world` (its robot, scenes and obstacles as they are now). Throws
-  /// std::invalid_argument for a dimension mismatch or a mesh FCL cannot load.
+  /// Builds the FCL world from `world` (its robot, scenes and obstacles as they are now). States
+  /// map to configurations by makeStateMapping (state_space.h). Throws std::invalid_argument for
+  /// a state space whose layout is not understood or a mesh FCL cannot load.
   FclStateValidityChecker(ompl::base::SpaceInformation* si, const checker::World& world);
   FclStateValidityChecker(const ompl::base::SpaceInformationPtr& si, const checker::World& world);
   ~FclStateValidityChecker() override;
@@ -40,7 +42,7 @@ class FclStateValidityChecker : public ompl::base::StateValidityChecker {
   double distance(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
  private:
-  int n_ = 0;
+  StateMapping mapping_;
   Eigen::VectorXd lower_;
   Eigen::VectorXd upper_;
   mutable std::mutex mutex_;

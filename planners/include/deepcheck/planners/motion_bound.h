@@ -39,10 +39,15 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <utility>
 #include <vector>
 
 namespace deepcheck::planners {
+
+class LinkSpeedBound;
+/// Shared pointer, named as OMPL names its own.
+using LinkSpeedBoundPtr = std::shared_ptr<LinkSpeedBound>;
 
 class LinkSpeedBound {
  public:

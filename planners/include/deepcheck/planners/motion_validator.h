@@ -9,7 +9,8 @@
 //      about collide, and this rejects them at the discrete validator's price (isFree queries,
 //      cheaper than the distance queries of step 3);
 //   3. certification of the motions that passed, by clearance steps. For the straight motion
-//      q(s) = q1 + s (q2 - q1), s in [0, 1], and each pair p of the World,
+//      q(s) = q1 + s (q2 - q1), s in [0, 1] (angular variables the short way round: the
+//      checker's StateMapping, state_space.h), and each pair p of the World,
 //      sd_p(q(s')) >= sd_p(q(s)) - B_p |s' - s| with B_p the pair's own displacement bound
 //      (motion_bound.h), so with the validity threshold t the whole interval
 //          |s' - s| < min over pairs p of (sd_p(q(s)) - t) / B_p
@@ -68,9 +69,14 @@ struct MotionValidatorStats {
                                               ///< certification found colliding
 };
 
+class ClearanceMotionValidator;
+/// Shared pointer, as OMPL names its own (ompl::base::MotionValidatorPtr).
+using ClearanceMotionValidatorPtr = std::shared_ptr<ClearanceMotionValidator>;
+
 class ClearanceMotionValidator : public ompl::base::MotionValidator {
  public:
-  /// Throws std::invalid_argument for a null checker or bound, or sizes that do not match `si`.
+  /// Throws std::invalid_argument for a null checker or bound, or a bound of another size. States
+  /// of `si` are read through the checker's StateMapping.
   /// `fallbackFraction` in (0, 1]: the fallback step as a fraction of the longest valid segment.
   ClearanceMotionValidator(ompl::base::SpaceInformation* si, std::shared_ptr<const StateValidityChecker> checker,
                            std::shared_ptr<const LinkSpeedBound> bound,
@@ -78,6 +84,13 @@ class ClearanceMotionValidator : public ompl::base::MotionValidator {
   ClearanceMotionValidator(const ompl::base::SpaceInformationPtr& si,
                            std::shared_ptr<const StateValidityChecker> checker,
                            std::shared_ptr<const LinkSpeedBound> bound,
+                           double fallbackFraction = tol::kFallbackStepFraction);
+  /// The same with the bound of the checker's world, built here (LinkSpeedBound::forWorld, which
+  /// loads the robot's meshes): what an OMPL user plugging in the validator wants.
+  ClearanceMotionValidator(ompl::base::SpaceInformation* si, std::shared_ptr<const StateValidityChecker> checker,
+                           double fallbackFraction = tol::kFallbackStepFraction);
+  ClearanceMotionValidator(const ompl::base::SpaceInformationPtr& si,
+                           std::shared_ptr<const StateValidityChecker> checker,
                            double fallbackFraction = tol::kFallbackStepFraction);
 
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;

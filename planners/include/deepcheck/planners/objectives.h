@@ -28,9 +28,9 @@
 //
 // Planner settings: with OMPL's k-nearest RRT* (its default) every new node asks the cost to a
 // number of neighbours that exceeds the whole tree on a 7-joint arm; call
-// prepareForCostlyObjective (planner_factory.h) to use radius neighbours. Measured on a planar
-// arm, 1,500 iterations (printed by tests/planners/test_objectives.cpp): 0.12 s with radius
-// neighbours, 3.7 s with k-nearest.
+// prepareForCostlyObjective (planner_factory.h) to use radius neighbours. Measured on the planar
+// arm of tests/planners/test_objectives.cpp, 1,500 iterations: 0.12 s with radius neighbours,
+// 3.7 s with k-nearest.
 //
 // makeLengthClearanceObjective: OMPL's MultiOptimizationObjective of PathLengthOptimization
 // Objective (weight 1) and the hinge (weight w, 1 / metre; tolerances.h says why 100 by default). Its cost-to-go and motion heuristics
@@ -51,6 +51,10 @@
 #include <memory>
 
 namespace deepcheck::planners {
+
+class ClearanceHingeObjective;
+/// Shared pointer, as OMPL names its own (ompl::base::OptimizationObjectivePtr).
+using ClearanceHingeObjectivePtr = std::shared_ptr<ClearanceHingeObjective>;
 
 class ClearanceHingeObjective : public ompl::base::OptimizationObjective {
  public:
@@ -80,7 +84,6 @@ class ClearanceHingeObjective : public ompl::base::OptimizationObjective {
   double safeDistance_ = 0.0;
   double selfSafeDistance_ = tol::kDefaultSelfSafeDistance;
   double resolution_ = 0.0;
-  int n_ = 0;
 };
 
 /// Path length + weight * hinge (see the header comment); `resolution` as for the hinge (a coarser

@@ -1,8 +1,9 @@
 #pragma once
 // Pose goals: a link of the robot at a pose X_WT (within a position and an orientation tolerance)
 // instead of a joint vector, by inverse kinematics (robots/inverse_kinematics.h) whose solutions
-// must also be valid for the planner's validity checker (collision free, within the bounds, with
-// its safety margin).
+// must also be valid for the planner's validity checker (collision free, within the URDF joint
+// limits, with its safety margin). States are read and written through the checker's
+// StateMapping (state_space.h).
 //
 //   auto goal = std::make_shared<PoseGoal>(ss->getSpaceInformation(), "flange", X_WT, options);
 //   ss->setGoal(goal);  // after setStartState; any planner, bidirectional ones included

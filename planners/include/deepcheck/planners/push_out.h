@@ -104,6 +104,10 @@ struct PushOutResult {
   }
 };
 
+class PushOut;
+/// Shared pointer, named as OMPL names its own.
+using PushOutPtr = std::shared_ptr<PushOut>;
+
 class PushOut {
  public:
   /// Throws std::invalid_argument for bad options (naming them) or a null world.
@@ -123,6 +127,13 @@ class PushOut {
   ValidityOptions validity_;
   PushOutOptions options_;
 };
+
+/// A push-out whose configurations count as valid only `standOff` (metres, >= 0) above the
+/// threshold of `validity`: it pushes slightly colliding configurations that far out of contact
+/// (path repair, endpoint repair) instead of just past it. Throws like the PushOut constructor,
+/// and std::invalid_argument for a negative or non-finite standOff.
+PushOut standOffPushOut(std::shared_ptr<const checker::World> world, const ValidityOptions& validity,
+                        const PushOutOptions& options, double standOff);
 
 struct JiggleOptions {
   /// Each joint moves within +-fraction * (upper - lower) (> 0).

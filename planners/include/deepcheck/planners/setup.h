@@ -27,7 +27,7 @@
 // the clearance validator and, where that fails, repairs it (path_tools.h: push-out and
 // subdivision). The `deepcheck plan` tool does exactly this.
 //
-// Files: package:// URIs are resolved with SetupOptions::packagePaths first, then (unless
+// Files: package:// URIs are resolved with SetupOptions::packageRoots first, then (unless
 // useRosPackagePath is false) ROS_PACKAGE_PATH (robots/package_path.h). Errors are
 // std::invalid_argument naming the file and the problem.
 
@@ -50,21 +50,8 @@
 
 namespace deepcheck::planners {
 
-/// A scene URDF and where it goes.
-struct SceneSpec {
-  std::string urdf;
-  /// Place the scene at X_WS instead of its URDF base pose (the identity).
-  bool overridePose = false;
-  Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
-  /// The scene's joint values (its own variables); empty: its default configuration.
-  Eigen::VectorXd q;
-
-  SceneSpec() = default;
-  SceneSpec(std::string path) : urdf(std::move(path)) {}  // NOLINT: implicit on purpose
-  SceneSpec(const char* path) : urdf(path) {}             // NOLINT
-  SceneSpec(std::string path, const Eigen::Isometry3d& pose)
-      : urdf(std::move(path)), overridePose(true), X_WS(pose) {}
-};
+/// A scene URDF and where it goes (the checker's scene type).
+using SceneSpec = checker::SceneSpec;
 
 enum class MotionValidation {
   Discrete,   ///< OMPL's DiscreteMotionValidator at the state space's resolution
@@ -73,7 +60,7 @@ enum class MotionValidation {
 
 struct SetupOptions {
   /// Package roots for package:// URIs, searched first.
-  std::vector<std::string> packagePaths;
+  std::vector<std::string> packageRoots;
   bool useRosPackagePath = true;
   /// An SRDF whose <disable_collisions> pairs are not checked ("" for none).
   std::string srdf;
@@ -123,14 +110,22 @@ struct PathCertificate {
 /// when that fails.
 PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path);
 
-/// ss.simplifySolution(seconds) (0: OMPL's simplifyMax), keeping the solution as planned when the
-/// simplified path fails the planner's own checks (every waypoint isValid, every motion
-/// checkMotion). OMPL 1.5's PathSimplifier can return such a path: when its shortcuts and B-spline
-/// smoothing leave an invalid motion that checkAndRepair cannot mend, it warns "Solution path may
-/// slightly touch on an invalid region of the state space" and returns it (seen: a 4 rad motion
-/// through the bundled shelf). The simplifier is randomized: up to tol::kSimplifyAttempts
-/// attempts, each from the planned path. Returns true when a simplified path was kept. Throws
-/// std::invalid_argument when `ss` has no solution path.
+/// Simplifies the solution of `ss` without ever making it worse: the simplified path is kept only
+/// when it passes the planner's own checks (every waypoint isValid, every motion checkMotion) and
+/// its cost under the problem's optimization objective (when one is set) is no worse than the
+/// planned path's; otherwise the solution stays as planned. Up to tol::kSimplifyAttempts attempts,
+/// each from the planned path (the simplifier is randomized).
+///   - No objective, or path length: ss.simplifySolution(seconds) (0: OMPL's simplifyMax). OMPL
+///     1.5's PathSimplifier can return a path that fails its own checks: when its shortcuts and
+///     B-spline smoothing leave an invalid motion that checkAndRepair cannot mend, it warns
+///     "Solution path may slightly touch on an invalid region of the state space" and returns it
+///     (seen: a 4 rad motion through the bundled shelf).
+///   - Any other objective (the clearance objectives of objectives.h): OMPL's shortcutting with
+///     the objective (PathSimplifier::shortcutPath), not simplifyMax, whose vertex reduction and
+///     B-spline smoothing ignore the objective and pull a path planned away from the obstacles
+///     back onto them. `seconds` is not used.
+/// Returns true when a simplified path was kept. Throws std::invalid_argument when `ss` has no
+/// solution path.
 bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds = 0.0);
 
 /// Sets one start and one goal state. Throws std::invalid_argument naming the configuration, the
@@ -140,7 +135,9 @@ void setStartAndGoal(ompl::geometric::SimpleSetup& ss, const Eigen::Ref<const Ei
                      const Eigen::Ref<const Eigen::VectorXd>& goal);
 
 /// Push-out of the start states and of a single-state goal (ompl::base::GoalState) that are
-/// invalid, in place, before planning.
+/// invalid, in place, before planning: each is pushed out to at least `margin` (metres, >= 0)
+/// above the validity threshold (standOffPushOut, push_out.h). Valid ones stay where they are
+/// (status AlreadyValid). Throws std::invalid_argument for a negative or non-finite margin.
 struct EndpointRepair {
   std::vector<PushOutResult> starts;  ///< one per start state
   bool goalIsState = false;           ///< the goal is a GoalState (others are left alone)
@@ -148,6 +145,6 @@ struct EndpointRepair {
   /// Every start (and the goal state) is valid now.
   bool ok() const;
 };
-EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss);
+EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss, double margin = tol::kEndpointRepairMargin);
 
 }  // namespace deepcheck::planners

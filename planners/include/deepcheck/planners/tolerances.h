@@ -78,6 +78,12 @@ constexpr double kPushOutMaxDepth = 0.05;
 /// (metres), so that the chords between repaired neighbours clear the edges they wrap around.
 constexpr double kRepairClearance = 0.005;
 
+/// Endpoint repair (setup.h: repairStartAndGoal, `deepcheck plan --repair-start`) pushes an
+/// invalid start or goal out to at least this clearance above the validity threshold (metres), not
+/// just past contact: a start left micrometres from an obstacle makes the first motion of every
+/// path graze it. The default of --repair-margin.
+constexpr double kEndpointRepairMargin = 0.001;
+
 /// Random-jiggle baseline (MoveIt's FixStartStateCollision): each attempt moves every joint
 /// uniformly within +-fraction of its range; kJiggleAttempts attempts.
 constexpr double kJiggleFraction = 0.05;
@@ -94,8 +100,8 @@ constexpr double kDefaultSelfSafeDistance = 0.0;
 
 /// Weight of the hinge objective against path length (1 / metre): with 100, a path that stays
 /// 1 cm inside the safe distance along 0.1 rad of motion costs as much as 0.1 rad more length.
-/// Measured (printed by tests/planners/test_objectives.cpp, RRT* on a planar arm passing a pole,
-/// 5 seeds): with 10, three paths graze the pole as with length alone and two pass 1.1-1.2 cm
+/// Measured (RRT* on the planar arm passing a pole of tests/planners/test_objectives.cpp, 5 seeds,
+/// which asserts the weight-100 side): with 10, three paths graze the pole as with length alone and two pass 1.1-1.2 cm
 /// from it; with 100 all pass 4.3-5.1 cm from it.
 constexpr double kDefaultHingeWeight = 100.0;
 

@@ -24,9 +24,14 @@
 
 namespace deepcheck::planners {
 
+class PushOutValidStateSampler;
+/// Shared pointer, as OMPL names its own (ompl::base::ValidStateSamplerPtr).
+using PushOutValidStateSamplerPtr = std::shared_ptr<PushOutValidStateSampler>;
+
 class PushOutValidStateSampler : public ompl::base::ValidStateSampler {
  public:
-  /// Throws std::invalid_argument for a null checker or a space of another dimension.
+  /// Throws std::invalid_argument for a null checker. States are read and written through the
+  /// checker's StateMapping.
   PushOutValidStateSampler(const ompl::base::SpaceInformation* si, std::shared_ptr<const StateValidityChecker> checker);
 
   bool sample(ompl::base::State* state) override;

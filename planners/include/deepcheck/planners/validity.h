@@ -11,8 +11,8 @@
 // may then cut through slight collisions that a later repair removes, path_tools.h). Setting
 // both is allowed; only their difference matters.
 //
-// Joint limits are not part of this criterion: OMPL checks them (satisfiesBounds) and the
-// StateValidityChecker does too.
+// Joint limits are not part of this criterion: the StateValidityChecker checks the robot's URDF
+// limits before it (validity_checker.h).
 
 #include "deepcheck/checker/world.h"
 

@@ -1,9 +1,11 @@
 #pragma once
 // OMPL state validity checker on a deepcheck World.
 //
-// isValid(state)   the state is within the bounds of the state space AND valid by validity.h
-//                  (sd > safetyMargin - penetrationTolerance; with both 0, World::isFree's early
-//                  exit). Thread safe and const: OMPL's parallel planners may call it from many
+// isValid(state)   the configuration is within the robot's URDF joint limits
+//                  (RobotModel::lowerLimits / upperLimits; the state space's own bounds are not
+//                  read: makeStateSpace sets them to the same limits, a user's space may differ)
+//                  AND valid by validity.h (sd > safetyMargin - penetrationTolerance; with both
+//                  0, World::isFree's early exit). Thread safe and const: OMPL's parallel planners may call it from many
 //                  threads (each uses its own warm-start context of the World).
 // clearance(state) the signed distance sd(q) of the world, metres: positive the distance to the
 //                  nearest obstacle (scene, obstacle or another link of the robot), NEGATIVE
@@ -16,6 +18,11 @@
 //                  and validStateAvailable is true. For a valid state validStateAvailable is false
 //                  (nothing to move away from). clearance(state, validState, available) is the
 //                  same with the clearance as result.
+//
+// States and configurations: the checker reads a state's configuration through its StateMapping
+// (state_space.h), made from the space information's state space by makeStateMapping (a layout
+// it does not understand is rejected, naming it) or given by the user. The motion validator,
+// samplers, objectives, endpoint repair and path tools use the checker's mapping.
 //
 // Specs, set truthfully:
 //   clearanceComputationType = APPROXIMATE. Distances are exact (GJK) for the convex pieces the
@@ -32,6 +39,7 @@
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/planners/push_out.h"
+#include "deepcheck/planners/state_space.h"
 #include "deepcheck/planners/validity.h"
 
 #include <Eigen/Core>
@@ -45,14 +53,26 @@
 
 namespace deepcheck::planners {
 
+class StateValidityChecker;
+/// Shared pointer, as OMPL names its own (ompl::base::StateValidityCheckerPtr).
+using StateValidityCheckerPtr = std::shared_ptr<StateValidityChecker>;
+
 class StateValidityChecker : public ompl::base::StateValidityChecker {
  public:
-  /// `si` must be a space made for world->robot() (state_space.h): its dimension is checked.
-  /// Throws std::invalid_argument for a null world, a dimension mismatch or bad options.
+  /// States of si's state space map to configurations of world->robot() by
+  /// makeStateMapping(space, robot) (state_space.h). Throws std::invalid_argument for a null
+  /// world or space information, a state space whose layout is not understood (naming it) or
+  /// bad options.
   StateValidityChecker(ompl::base::SpaceInformation* si, std::shared_ptr<const checker::World> world,
                        const ValidityOptions& validity = {}, const PushOutOptions& pushOut = {});
   StateValidityChecker(const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const checker::World> world,
                        const ValidityOptions& validity = {}, const PushOutOptions& pushOut = {});
+  /// The same with the user's mapping (e.g. StateMapping::custom); it must have the robot's
+  /// number of variables (std::invalid_argument otherwise).
+  StateValidityChecker(ompl::base::SpaceInformation* si, std::shared_ptr<const checker::World> world,
+                       StateMapping mapping, const ValidityOptions& validity = {}, const PushOutOptions& pushOut = {});
+  StateValidityChecker(const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const checker::World> world,
+                       StateMapping mapping, const ValidityOptions& validity = {}, const PushOutOptions& pushOut = {});
 
   bool isValid(const ompl::base::State* state) const override;
   bool isValid(const ompl::base::State* state, double& dist) const override;
@@ -77,6 +97,8 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
   const ValidityOptions& validityOptions() const { return validity_; }
   const PushOut& pushOut() const { return pushOut_; }
   int dimension() const { return n_; }
+  /// How states of the space are configurations (state_space.h).
+  const StateMapping& mapping() const { return mapping_; }
 
   std::uint64_t validityQueries() const { return validityQueries_.load(std::memory_order_relaxed); }
   std::uint64_t distanceQueries() const { return distanceQueries_.load(std::memory_order_relaxed); }
@@ -86,6 +108,7 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
   bool withinBounds(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
   std::shared_ptr<const checker::World> world_;
+  StateMapping mapping_;
   ValidityOptions validity_;
   PushOut pushOut_;
   int n_ = 0;

@@ -71,6 +71,17 @@ int cylinderSides(double radius, double maxDeviation);
 /// The circumscribed prism of a cylinder along z, centred at the origin (see above).
 deep::ConvexPolytope cylinderPrism(double radius, double length, double maxDeviation);
 
+/// The piece of a primitive geometry (box, sphere or cylinder, as above) in its own frame G
+/// (X_LP identity). `what` names it: the piece's origin is `what` followed by " box", " sphere" or
+/// " cylinder (N-sided prism)". Throws std::invalid_argument, starting with `what`, for a size
+/// that is not positive and finite, or for a mesh geometry (see meshPolytopes).
+CollisionPiece primitivePiece(const Geometry& geometry, const CollisionGeometryOptions& options,
+                              const std::string& what);
+
+/// The convex polytopes of a mesh by options.decomposer (convexHullDecomposer when empty).
+/// Throws std::invalid_argument for an empty mesh, or when the decomposer fails or returns none.
+std::vector<deep::ConvexPolytope> meshPolytopes(const TriangleMesh& mesh, const CollisionGeometryOptions& options);
+
 /// Pieces of one link (empty for a link without collision geometry).
 std::vector<CollisionPiece> linkCollisionPieces(const RobotModel& model, int link,
                                                 const CollisionGeometryOptions& options = {});

@@ -10,9 +10,15 @@
 // File format (little-endian): magic "DCKDECMP", u32 format version, u32 algorithm version, the
 // 16-byte key, the report's numbers, u32 piece count, then per piece u32 vertex count, u32
 // triangle count, the vertices (3 x f64 each), the triangles (3 x u32 each), f64 volume, f64
-// concavity; then a u64 checksum (FNV-1a) of everything before it. A file that is truncated, has a wrong magic,
-// version, key or checksum, or holds an out-of-range index or a non-finite number is treated as
-// absent: the mesh is decomposed again and the file replaced. Reading never throws.
+// concavity; then a u64 checksum (FNV-1a) of everything before it.
+//
+// The cache is never trusted and never an error. An entry that is not a regular file (a directory
+// in its place), cannot be read, is truncated, has a wrong magic, version, key or checksum, or
+// holds an out-of-range index or a non-finite number is treated as absent: the mesh is decomposed
+// again and the file replaced when possible. A directory that cannot be created or written leaves
+// the decomposition uncached. decomposeConvexCached says so in one line on stderr
+// ("deepcheck: decomposition cache: <file or directory>: <why>; ...", a write problem once per
+// directory and process) and in the report (CacheStatus, cacheMessage). Reading never throws.
 //
 // Writes go to a temporary file in the same directory that is then renamed over the final name
 // (atomic on POSIX), so concurrent processes never see a partial file; at worst two of them both

@@ -110,7 +110,8 @@ struct Joint {
 };
 
 struct LoadOptions {
-  /// Package roots searched first for package:// URIs (e.g. --package-path arguments).
+  /// Package roots searched first for package:// URIs (the deepcheck tool fills it from its
+  /// --package-path options).
   std::vector<std::string> packageRoots;
   /// Also search ROS_PACKAGE_PATH (and AMENT_PREFIX_PATH/share).
   bool useRosPackagePath = true;

@@ -1,0 +1,120 @@
+#pragma once
+// Certified penetration depth: an expanding surface of Minkowski vertices (van den Bergen 2001's
+// expanding polytope), run best-first from GJK's simplex.
+//
+// M = B - A contains the origin when A and B overlap. A closed convex surface S of points of M
+// that encloses the origin gives a lower bound on the depth: every ray from the origin leaves M
+// beyond some face of S, so PD >= min over faces of the face-plane distance. Every support query
+// h_M(u) = max u.(b - a), u unit, gives an upper bound: translating B by h_M(u) along -u
+// separates the shapes. The expansion pops the nearest face, queries the support in its normal
+// (lowering the upper bound), and adds that support point to S (raising the lower bound); it
+// stops when the bounds meet within tau = tol::kCertifyRelative * L, L the pair's length scale.
+// The result always carries its bracket [lower, upper]; a cap hit or a degenerate surface returns
+// the bracket with NotConverged, never a silent guess.
+//
+// Starts: GJK's simplex when it is a tetrahedron strictly enclosing the origin; otherwise (the
+// origin on the simplex, identical shapes at one pose, touching contact, a flat simplex) the
+// supports of M in four generic directions, completed to a tetrahedron with supports normal to
+// their span. Faces seen from the origin's far side (negative distance) are expanded first, which
+// encloses the origin. A flat M (no tetrahedron of positive volume) returns NotConverged with
+// lower bound 0: the caller handles flat pairs (their depth is zero).
+
+#include "deepcheck/deep/deep.h"
+#include "deepcheck/deep/expansion_surface.h"
+#include "deepcheck/deep/gjk.h"
+
+namespace deepcheck::deep {
+
+struct CertifiedOptions {
+  /// Cap on support points added to the surface (beyond it: NotConverged with the bracket).
+  int maxExpansions = 128;
+};
+
+enum class CertifiedStatus {
+  Certified,     ///< upper - lower <= tau
+  NotConverged,  ///< cap hit, flat M or a degenerate surface; the bracket is still valid
+};
+
+const char* toString(CertifiedStatus s);
+
+struct CertifiedResult {
+  CertifiedStatus status = CertifiedStatus::NotConverged;
+  double lower = 0.0;  ///< PD >= lower >= 0 (frame P units)
+  double upper = 0.0;  ///< PD <= upper: h_M(direction)
+  double tau = 0.0;    ///< the stopping tolerance, tol::kCertifyRelative * L
+  /// Unit outward normal of M at the upper bound (the answer's normal, from A towards B, is its
+  /// opposite), and the support pair there: A's vertex minimizing direction.a, B's maximizing
+  /// direction.b. Only meaningful when upper is finite.
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  int supportA = 0;
+  int supportB = 0;
+  /// The certifying face (status Certified): its corners' index pairs, unit normal and offset.
+  int faceA[3] = {0, 0, 0};
+  int faceB[3] = {0, 0, 0};
+  Eigen::Vector3d faceNormal = Eigen::Vector3d::UnitZ();
+  int expansions = 0;  ///< support points added to the surface
+  int faces = 0;       ///< live faces at the end
+};
+
+/// Certified penetration depth of A and B (cores, Polygon or Polyhedron; for points and segments
+/// the depth is enumerated directly by deepPenetration) in the pair frame. Meaningful when GJK
+/// found them overlapping or touching: `gjk` is that result (its simplex seeds the surface).
+/// `surface` is the caller's scratch space, overwritten; no allocation.
+CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B,
+                                     const PairFrame& frame, const GjkResult& gjk,
+                                     ExpansionSurface& surface,
+                                     const CertifiedOptions& options = {});
+
+/// Warm start of the certified method for one pair: the surface of a cold query (faces as vertex
+/// index pairs, at most kMaxFaces), kept with its vertices' positions and face offsets at that
+/// query's pose, the reference (certified_warm.cpp).
+///
+/// After a motion, each cached vertex b - a of M has moved by a distance the next query measures
+/// exactly. Moving the vertices straight from their reference positions to their new ones moves
+/// every point of a face by at most the largest move of its corners, so a face whose reference
+/// offset exceeds that never crosses the origin: the moved surface still winds once around it,
+/// and every face's distance to the origin is at least key = offset - move (a valid lower bound
+/// even though the moved surface need not be convex). Faces below the current upper bound are
+/// refreshed from their moved corners (the distance to a triangle is at least the distance to its
+/// plane), one support in the nearest face's normal gives the upper bound, and when the bounds
+/// meet within tau the answer is certified without expanding. Any face whose move could reach the
+/// origin, or a gap that would need an expansion, sends the query cold (which then becomes the
+/// new reference).
+struct CertifiedWarmStart {
+  static constexpr int kMaxFaces = 96;
+  static constexpr int kMaxVertices = kMaxFaces / 2 + 2;  ///< a closed surface of F faces has F/2 + 2 vertices
+  bool valid = false;
+  const ConvexPolytope* A = nullptr;  ///< the pair the surface belongs to (checked before use)
+  const ConvexPolytope* B = nullptr;
+  int numVertices = 0;
+  int numFaces = 0;
+  int a[kMaxVertices];
+  int b[kMaxVertices];
+  Eigen::Vector3d p[kMaxVertices];  ///< positions b - a at the reference pose, frame P
+  int face[kMaxFaces][3];
+  double offset[kMaxFaces];          ///< face-plane offsets at the reference pose (all >= 0)
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< the last answer's direction
+  int hintA = 0;
+  int hintB = 0;
+};
+
+/// Saves the surface of a certified cold query as the reference of the pair's warm start; leaves
+/// `warm` invalid when the surface has more than kMaxFaces faces (the next query runs cold).
+void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const ExpansionSurface& surface,
+                   const CertifiedResult& result, CertifiedWarmStart& warm);
+
+/// The warm query: Certified when the cached surface certifies the depth without expanding,
+/// else NotConverged (the caller runs certifiedPenetration).
+CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
+                              const PairFrame& frame, CertifiedWarmStart& warm);
+
+/// Names the facet of M a certified result converged on, from its certifying face's corners
+/// (certified_facet.cpp): one vertex of A and a face of B (VF), the reverse (FV), or an edge of
+/// each (EE); the facet's exact normal from those features, its offset from one support query in
+/// that normal, witness points from the features. Returns false when the corners
+/// do not name one facet (they span several coplanar features, or the features found do not
+/// support the normal); the caller then names it otherwise (DEEP's walk from the direction).
+bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                    const CertifiedResult& c, DeepResult& out);
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,106 @@
+#pragma once
+// The expanding surface of the certified penetration depth: a closed triangulated surface whose
+// vertices are points b - a of the Minkowski difference M = B - A, stored as vertex-index pairs
+// (a of A, b of B) with the point itself in the pair frame P.
+//
+// The surface is the convex hull of its vertices (the expanding polytope of van den Bergen 2001).
+// While it encloses the origin, every ray from the origin leaves M beyond some face, so the
+// penetration depth is at least the smallest face-plane distance: the lower bound. Faces are kept
+// in a best-first queue ordered by that distance; expanding a face adds the support point of M in
+// its normal and replaces every face that point sees by a cone of faces over the horizon.
+//
+// Fixed capacity, no allocation: the caller owns one surface and reuses it for every query (one
+// per thread). Beyond capacity, expand() refuses and the caller reports the bracket it has.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+
+namespace deepcheck::deep {
+
+class ExpansionSurface {
+ public:
+  static constexpr int kMaxVertices = 160;
+  static constexpr int kMaxFaces = 384;  ///< face slots (dead faces are recycled)
+  static constexpr int kMaxQueue = 1024;
+  static constexpr int kMaxHorizon = 128;  ///< horizon edges of one expansion
+
+  /// A vertex of M: the point b - a in frame P and its index pair.
+  struct Vertex {
+    Eigen::Vector3d p;
+    int a;
+    int b;
+  };
+
+  /// A triangle, counter-clockwise seen from outside. adj[k] is the face across edge
+  /// (v[k], v[k+1 mod 3]) times 4 plus that edge's index in it.
+  struct Face {
+    Eigen::Vector3d n;  ///< unit outward normal
+    double d;           ///< plane offset n.p: the origin's distance to the plane (negative outside)
+    int v[3];
+    int adj[3];
+    std::uint32_t serial;  ///< stamp distinguishing a recycled slot in the queue
+    bool alive;
+  };
+
+  /// Starts from a tetrahedron of four vertices of M (any order, non-zero volume). Returns false
+  /// when the volume is zero (the caller picks other points).
+  bool startTetrahedron(const Vertex* corners);
+
+  /// The live face of smallest plane distance, or -1 when there is none.
+  int bestFace();
+
+  /// Replaces the faces seen from `w` (at least face `from`, which must see it) by a cone over
+  /// their horizon. Returns false, changing nothing, when out of capacity or when the horizon is
+  /// not a single cycle or a new face is degenerate (round-off on a flat region).
+  bool expand(int from, const Vertex& w);
+
+  const Face& face(int f) const { return faces_[f]; }
+  const Vertex& vertex(int v) const { return vertices_[v]; }
+  int numVertices() const { return numVertices_; }
+  int numLiveFaces() const { return live_; }
+  /// Face slots in use (live or recycled): iterate 0..numFaceSlots() and test face(f).alive.
+  int numFaceSlots() const { return numSlots_; }
+  /// True when w's index pair is already a vertex of face f.
+  bool isCorner(int f, const Vertex& w) const;
+
+ private:
+  struct QueueEntry {
+    double d;
+    int face;
+    std::uint32_t serial;
+  };
+  struct HorizonEdge {
+    int face;  ///< the face that stays (does not see w)
+    int edge;  ///< its edge on the horizon
+  };
+
+  int newFace(int v0, int v1, int v2);
+  void freeFace(int f);
+  bool setPlane(Face& f) const;
+  void push(int f);
+  void rebuildQueue();
+  bool collectHorizon(int from, const Eigen::Vector3d& w);
+  bool horizonIsCycle() const;
+  static void link(Face* faces, int f, int e, int g, int h);
+
+  Vertex vertices_[kMaxVertices];
+  Face faces_[kMaxFaces];
+  QueueEntry queue_[kMaxQueue];
+  int freeList_[kMaxFaces];
+  HorizonEdge horizon_[kMaxHorizon];
+  Face cone_[kMaxHorizon];
+  int made_[kMaxHorizon];
+  int seen_[kMaxFaces];          // faces that see the new point (marked dead while expanding)
+  int pending_[2 * kMaxFaces + 3];  // depth-first search stack of (face, edge) codes
+  int numVertices_ = 0;
+  int numSlots_ = 0;
+  int numFree_ = 0;
+  int queueSize_ = 0;
+  int horizonSize_ = 0;
+  int numSeen_ = 0;
+  int live_ = 0;
+  std::uint32_t serial_ = 0;
+};
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,163 @@
+#include "deepcheck/deep/certified.h"
+
+#include "deepcheck/deep/tolerances.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace deepcheck::deep {
+
+const char* toString(CertifiedStatus s) {
+  switch (s) {
+    case CertifiedStatus::Certified: return "certified";
+    case CertifiedStatus::NotConverged: return "not-converged";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Vertex = ExpansionSurface::Vertex;
+
+/// Support points of M = B - A in frame P, by hill climbing from a hint pair.
+class Support {
+ public:
+  Support(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F) : A_(A), B_(B), F_(F) {}
+  Vertex point(int a, int b) const { return {F_.vertexB(B_, b) - A_.localVertex(a), a, b}; }
+  Vertex operator()(const Vec3& u, int hintA, int hintB) const {
+    return point(A_.support(-u, hintA), B_.support(F_.toB(u), hintB));
+  }
+
+ private:
+  const ConvexPolytope& A_;
+  const ConvexPolytope& B_;
+  const PairFrame& F_;
+};
+
+/// Four directions of a regular tetrahedron in a generic orientation (no corner on a coordinate
+/// axis, plane or box diagonal, where symmetric shapes put ties).
+const Vec3* tetrahedronDirections() {
+  static const Vec3* dirs = [] {
+    static Vec3 d[4];
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Vec3(0.4, -0.6, 0.7).normalized()).toRotationMatrix();
+    const double k = 1.0 / std::sqrt(3.0);
+    d[0] = R * Vec3(k, k, k);
+    d[1] = R * Vec3(k, -k, -k);
+    d[2] = R * Vec3(-k, k, -k);
+    d[3] = R * Vec3(-k, -k, k);
+    return d;
+  }();
+  return dirs;
+}
+
+/// A unit vector orthogonal to unit-or-not v (v non-zero).
+Vec3 orthogonal(const Vec3& v) {
+  const Vec3 axis = std::abs(v.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+  return v.cross(axis).normalized();
+}
+
+/// Keeps the affinely independent points of `in` (greedily, a point counting when it lies farther
+/// than `eps` from the span of those kept), then adds supports normal to the span until there are
+/// four. Returns false when M is flat within eps.
+bool completeTetrahedron(const Support& support, const Vertex* in, int n, double eps, Vertex* out) {
+  int k = 0;
+  auto offSpan = [&](const Vec3& p) {
+    if (k == 0) return std::numeric_limits<double>::infinity();
+    const Vec3 r = p - out[0].p;
+    if (k == 1) return r.norm();
+    if (k == 2) {
+      const Vec3 e = (out[1].p - out[0].p).normalized();
+      return (r - r.dot(e) * e).norm();
+    }
+    const Vec3 nrm = (out[1].p - out[0].p).cross(out[2].p - out[0].p).normalized();
+    return std::abs(r.dot(nrm));
+  };
+  for (int i = 0; i < n && k < 4; ++i)
+    if (offSpan(in[i].p) > eps) out[k++] = in[i];
+  while (k < 4) {
+    Vec3 dir;
+    if (k == 1) dir = orthogonal(out[0].p.squaredNorm() > 0 ? out[0].p : Vec3::UnitZ());
+    else if (k == 2) dir = orthogonal(out[1].p - out[0].p);
+    else dir = (out[1].p - out[0].p).cross(out[2].p - out[0].p).normalized();
+    const Vertex plus = support(dir, out[0].a, out[0].b);
+    const Vertex minus = support(-dir, out[0].a, out[0].b);
+    const Vertex& far = offSpan(plus.p) >= offSpan(minus.p) ? plus : minus;
+    if (!(offSpan(far.p) > eps)) return false;
+    out[k++] = far;
+  }
+  return true;
+}
+
+/// The starting tetrahedron: GJK's when it encloses the origin with every face at positive
+/// distance, else supports in generic directions, completed.
+bool startSurface(const Support& support, const GjkResult& gjk, double eps, ExpansionSurface& s) {
+  Vertex pts[4];
+  if (gjk.status == GjkStatus::Overlapping && gjk.simplexSize == 4) {
+    for (int i = 0; i < 4; ++i) pts[i] = support.point(gjk.simplexA[i], gjk.simplexB[i]);
+    bool encloses = s.startTetrahedron(pts);
+    for (int f = 0; encloses && f < 4; ++f) encloses = s.face(f).d > eps;
+    if (encloses) return true;
+  }
+  Vertex probes[4];
+  for (int i = 0; i < 4; ++i) probes[i] = support(tetrahedronDirections()[i], 0, 0);
+  return completeTetrahedron(support, probes, 4, eps, pts) && s.startTetrahedron(pts);
+}
+
+/// The corner of face f highest along its normal: the hill climb's start for the next support.
+const Vertex& hintCorner(const ExpansionSurface& s, int f) {
+  const ExpansionSurface::Face& face = s.face(f);
+  int best = face.v[0];
+  for (int k = 1; k < 3; ++k)
+    if (face.n.dot(s.vertex(face.v[k]).p) > face.n.dot(s.vertex(best).p)) best = face.v[k];
+  return s.vertex(best);
+}
+
+}  // namespace
+
+CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B,
+                                     const PairFrame& frame, const GjkResult& gjk,
+                                     ExpansionSurface& surface, const CertifiedOptions& options) {
+  const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
+  CertifiedResult r;
+  r.tau = tol::kCertifyRelative * L;
+  r.upper = std::numeric_limits<double>::infinity();
+  const Support support(A, B, frame);
+  if (!startSurface(support, gjk, tol::kFlatRelative * L, surface)) return r;
+  while (true) {
+    const int f = surface.bestFace();
+    if (f < 0) break;
+    const ExpansionSurface::Face& face = surface.face(f);
+    r.lower = std::max(r.lower, face.d);
+    const Vertex& hint = hintCorner(surface, f);
+    const Vertex w = support(face.n, hint.a, hint.b);
+    const double h = face.n.dot(w.p);
+    if (h < r.upper) {
+      r.upper = h;
+      r.direction = face.n;
+      r.supportA = w.a;
+      r.supportB = w.b;
+    }
+    if (face.d >= 0 && r.upper - face.d <= r.tau) {
+      r.status = CertifiedStatus::Certified;
+      r.faceNormal = face.n;
+      for (int k = 0; k < 3; ++k) {
+        r.faceA[k] = surface.vertex(face.v[k]).a;
+        r.faceB[k] = surface.vertex(face.v[k]).b;
+      }
+      break;
+    }
+    // A support already on the face cannot raise it (round-off on a sliver); the cap bounds work.
+    if (r.expansions == options.maxExpansions || surface.isCorner(f, w)) break;
+    if (!surface.expand(f, w)) break;
+    ++r.expansions;
+  }
+  r.faces = surface.numLiveFaces();
+  r.lower = std::min(r.lower, r.upper);
+  return r;
+}
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,142 @@
+// Naming the facet of M = B - A under the certified expansion's final face (see certified.h).
+//
+// The face's three corners are vertices b - a of M on (within tau of) the facet of smallest
+// offset. Their index pairs say which facet it is, in DEEP's terms (Kim, Lin, Manocha 2002): all
+// corners share A's vertex (VF: that vertex against a face of B), or B's (FV), or they use two
+// vertices of each (EE: an edge of each). The facet's normal is then computed from those features
+// alone (a face normal, or the cross product of the edges), exactly as DEEP computes it, and its
+// offset is one support query in that normal, so the answer is a support value: a valid
+// separating translation, never below the true depth.
+
+#include "deepcheck/deep/certified.h"
+
+#include "deepcheck/deep/tolerances.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace deepcheck::deep {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+/// Cosine above which a feature's normal counts as the certifying face's: corners on one facet
+/// give a face normal equal to the facet's to round-off, corners on different facets one off by
+/// far more. Only a pre-selection: the support query below decides.
+constexpr double kSameNormalCosine = 1.0 - 1e-6;
+
+/// The distinct values of idx[0..2] in out; returns their count.
+int distinct(const int* idx, int* out) {
+  int m = 0;
+  for (int i = 0; i < 3; ++i)
+    if (std::find(out, out + m, idx[i]) == out + m) out[m++] = idx[i];
+  return m;
+}
+
+bool adjacent(const ConvexPolytope& P, int v, int w) {
+  for (int x : P.neighbors(v))
+    if (x == w) return true;
+  return false;
+}
+
+/// Face of P in vertex v's ring whose normal, mapped by `toP`, is closest to `dir`; -1 if none
+/// agrees to kSameNormalCosine (the corners do not lie on one face).
+template <class Map>
+int ringFaceAlong(const ConvexPolytope& P, int v, const Vec3& dir, Map toP, Vec3& normal) {
+  int best = -1;
+  double bestDot = kSameNormalCosine;
+  for (int f : P.vertexFaces(v)) {
+    const Vec3 n = toP(P.faceNormal(f));
+    const double d = n.dot(dir);
+    if (d > bestDot) {
+      bestDot = d;
+      best = f;
+      normal = n;
+    }
+  }
+  return best;
+}
+
+/// Witness on A for the facet named in `out` with normal u and offset h: A's vertex (VF), B's
+/// vertex moved back by h u (FV), or the point of A's edge on the common perpendicular of the two
+/// edges' lines (EE).
+Vec3 witnessOnA(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
+                const DeepResult& out, const Vec3& u, double h) {
+  switch (out.type) {
+    case DeepResult::FacetType::VF: return A.localVertex(out.featureA);
+    case DeepResult::FacetType::FV: return F.vertexB(B, out.featureB) - h * u;
+    case DeepResult::FacetType::EE: break;
+  }
+  const Vec3 a0 = A.localVertex(out.featureA), ea = A.localVertex(out.featureA2) - a0;
+  const Vec3 b0 = F.vertexB(B, out.featureB), eb = F.vertexB(B, out.featureB2) - b0;
+  // Closest points of the lines a0 + s ea and b0 + t eb (skew: the edges are not parallel).
+  const Vec3 d = a0 - b0;
+  const double aa = ea.dot(ea), ab = ea.dot(eb), bb = eb.dot(eb), ad = ea.dot(d), bd = eb.dot(d);
+  const double det = aa * bb - ab * ab;
+  const double s = std::clamp((ab * bd - bb * ad) / det, 0.0, 1.0);
+  return a0 + s * ea;
+}
+
+/// The facet's type, features and normal u from the corners' index pairs; false if they name none.
+bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
+                    const CertifiedResult& c, DeepResult& out, Vec3& u) {
+  int ia[3], ib[3];
+  const int nA = distinct(c.faceA, ia), nB = distinct(c.faceB, ib);
+  if (nA == 1 && nB == 3) {
+    out.type = DeepResult::FacetType::VF;
+    out.featureA = ia[0];
+    out.featureB = ringFaceAlong(B, ib[0], c.faceNormal, [&](const Vec3& n) { return F.fromB(n); }, u);
+    return out.featureB >= 0;
+  }
+  if (nB == 1 && nA == 3) {
+    out.type = DeepResult::FacetType::FV;
+    out.featureB = ib[0];
+    out.featureA = ringFaceAlong(A, ia[0], c.faceNormal, [](const Vec3& n) { return Vec3(-n); }, u);
+    return out.featureA >= 0;
+  }
+  if (nA == 2 && nB == 2 && adjacent(A, ia[0], ia[1]) && adjacent(B, ib[0], ib[1])) {
+    const Vec3 ea = A.localVertex(ia[1]) - A.localVertex(ia[0]);
+    const Vec3 eb = F.vertexB(B, ib[1]) - F.vertexB(B, ib[0]);
+    u = ea.cross(eb);
+    const double len = u.norm();
+    if (!(len > tol::kParallelSine * ea.norm() * eb.norm())) return false;
+    u /= len;
+    if (u.dot(c.faceNormal) < 0) u = -u;
+    if (u.dot(c.faceNormal) < kSameNormalCosine) return false;
+    out.type = DeepResult::FacetType::EE;
+    out.featureA = ia[0];
+    out.featureA2 = ia[1];
+    out.featureB = ib[0];
+    out.featureB2 = ib[1];
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
+                    const CertifiedResult& c, DeepResult& out) {
+  if (c.status != CertifiedStatus::Certified) return false;
+  Vec3 u = c.faceNormal;
+  if (!facetOfCorners(A, B, F, c, out, u)) return false;
+  // The offset: one support in u from the corners (a support value, hence a valid depth).
+  const int sa = A.support(-u, c.faceA[0]);
+  const int sb = B.support(F.toB(u), c.faceB[0]);
+  const double h = u.dot(F.vertexB(B, sb) - A.localVertex(sa));
+  const double onFacet = u.dot(F.vertexB(B, c.faceB[0]) - A.localVertex(c.faceA[0]));
+  const double L = std::max(A.lengthScale(), B.lengthScale()) + F.t.norm();
+  // The corners must support u (else the features are not the facet's) and the offset must lie
+  // in the bracket.
+  if (h - onFacet > tol::kFeatureRelative * L || h > c.upper + c.tau || h < c.lower - c.tau) return false;
+  out.status = DeepStatus::Converged;
+  out.depth = h;
+  out.normal = -u;
+  out.pointA = witnessOnA(A, B, F, out, u, h);
+  out.pointB = out.pointA + h * u;
+  return true;
+}
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,193 @@
+#include "deepcheck/deep/expansion_surface.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace deepcheck::deep {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+// Min-heap order on the plane distance.
+struct Farther {
+  template <class E>
+  bool operator()(const E& x, const E& y) const { return x.d > y.d; }
+};
+
+}  // namespace
+
+void ExpansionSurface::link(Face* faces, int f, int e, int g, int h) {
+  faces[f].adj[e] = 4 * g + h;
+  faces[g].adj[h] = 4 * f + e;
+}
+
+bool ExpansionSurface::setPlane(Face& f) const {
+  const Vec3& p0 = vertices_[f.v[0]].p;
+  const Vec3& p1 = vertices_[f.v[1]].p;
+  const Vec3& p2 = vertices_[f.v[2]].p;
+  const Vec3 n = (p1 - p0).cross(p2 - p0);
+  const double len = n.norm();
+  if (!(len > 0.0) || !std::isfinite(len)) return false;
+  f.n = n / len;
+  // The mean of the three offsets: the plane through the corners' centroid.
+  f.d = f.n.dot(p0 + p1 + p2) / 3.0;
+  return true;
+}
+
+void ExpansionSurface::push(int f) {
+  if (queueSize_ == kMaxQueue) rebuildQueue();
+  queue_[queueSize_++] = {faces_[f].d, f, faces_[f].serial};
+  std::push_heap(queue_, queue_ + queueSize_, Farther{});
+}
+
+void ExpansionSurface::rebuildQueue() {
+  queueSize_ = 0;
+  for (int f = 0; f < numSlots_; ++f)
+    if (faces_[f].alive) queue_[queueSize_++] = {faces_[f].d, f, faces_[f].serial};
+  std::make_heap(queue_, queue_ + queueSize_, Farther{});
+}
+
+int ExpansionSurface::newFace(int v0, int v1, int v2) {
+  const int f = numFree_ > 0 ? freeList_[--numFree_] : numSlots_++;
+  Face& face = faces_[f];
+  face.v[0] = v0;
+  face.v[1] = v1;
+  face.v[2] = v2;
+  face.serial = ++serial_;
+  face.alive = true;
+  ++live_;
+  return f;
+}
+
+void ExpansionSurface::freeFace(int f) {
+  freeList_[numFree_++] = f;
+  --live_;
+}
+
+bool ExpansionSurface::startTetrahedron(const Vertex* corners) {
+  numVertices_ = numSlots_ = numFree_ = queueSize_ = live_ = 0;
+  for (int i = 0; i < 4; ++i) vertices_[numVertices_++] = corners[i];
+  const Vec3& p0 = corners[0].p;
+  const double volume = (corners[1].p - p0).cross(corners[2].p - p0).dot(corners[3].p - p0);
+  if (!(volume != 0.0) || !std::isfinite(volume)) return false;
+  // With positive volume, (0, 2, 1) is counter-clockwise seen from outside (vertex 3 behind it).
+  const int a = volume > 0 ? 1 : 2, b = volume > 0 ? 2 : 1;
+  const int f0 = newFace(0, b, a), f1 = newFace(0, a, 3), f2 = newFace(a, b, 3), f3 = newFace(b, 0, 3);
+  // Edges: f0 (0,b)(b,a)(a,0); f1 (0,a)(a,3)(3,0); f2 (a,b)(b,3)(3,a); f3 (b,0)(0,3)(3,b).
+  link(faces_, f0, 0, f3, 0);
+  link(faces_, f0, 1, f2, 0);
+  link(faces_, f0, 2, f1, 0);
+  link(faces_, f1, 1, f2, 2);
+  link(faces_, f1, 2, f3, 1);
+  link(faces_, f2, 1, f3, 2);
+  for (int f : {f0, f1, f2, f3}) {
+    if (!setPlane(faces_[f])) return false;
+    push(f);
+  }
+  return true;
+}
+
+int ExpansionSurface::bestFace() {
+  while (queueSize_ > 0) {
+    const QueueEntry& top = queue_[0];
+    const Face& f = faces_[top.face];
+    if (f.alive && f.serial == top.serial) return top.face;
+    std::pop_heap(queue_, queue_ + queueSize_, Farther{});
+    --queueSize_;
+  }
+  return -1;
+}
+
+bool ExpansionSurface::isCorner(int f, const Vertex& w) const {
+  for (int k = 0; k < 3; ++k) {
+    const Vertex& c = vertices_[faces_[f].v[k]];
+    if (c.a == w.a && c.b == w.b) return true;
+  }
+  return false;
+}
+
+// Depth-first search from face `from` over the faces that see w; faces that do not see w but
+// border one that does give the horizon edges. Seen faces are marked dead (restored by the
+// caller on failure) and listed in seen_.
+bool ExpansionSurface::collectHorizon(int from, const Vec3& w) {
+  horizonSize_ = 0;
+  numSeen_ = 0;
+  int numPending = 0;
+  faces_[from].alive = false;
+  seen_[numSeen_++] = from;
+  for (int e = 2; e >= 0; --e) pending_[numPending++] = faces_[from].adj[e];
+  while (numPending > 0) {
+    const int code = pending_[--numPending];
+    const int g = code >> 2, e = code & 3;
+    Face& face = faces_[g];
+    if (!face.alive) continue;
+    if (face.n.dot(w) > face.d) {
+      face.alive = false;
+      seen_[numSeen_++] = g;
+      pending_[numPending++] = face.adj[(e + 2) % 3];
+      pending_[numPending++] = face.adj[(e + 1) % 3];
+    } else {
+      if (horizonSize_ == kMaxHorizon) return false;
+      horizon_[horizonSize_++] = {g, e};
+    }
+  }
+  return horizonSize_ >= 3;
+}
+
+bool ExpansionSurface::horizonIsCycle() const {
+  for (int i = 0; i < horizonSize_; ++i) {
+    const int start = faces_[horizon_[i].face].v[horizon_[i].edge];
+    int matches = 0;
+    for (int j = 0; j < horizonSize_; ++j)
+      matches += faces_[horizon_[j].face].v[(horizon_[j].edge + 1) % 3] == start;
+    if (matches != 1) return false;
+  }
+  return true;
+}
+
+bool ExpansionSurface::expand(int from, const Vertex& w) {
+  numSeen_ = 0;
+  const bool ok = numVertices_ < kMaxVertices && collectHorizon(from, w.p) && horizonIsCycle() &&
+                  numFree_ + numSeen_ + (kMaxFaces - numSlots_) >= horizonSize_;
+  auto restore = [&] {
+    for (int i = 0; i < numSeen_; ++i) faces_[seen_[i]].alive = true;
+    return false;
+  };
+  if (!ok) return restore();
+  // Cone faces (y, x, w) over each horizon edge x -> y; their planes first, so that a
+  // degenerate one leaves the surface untouched.
+  const int iw = numVertices_;
+  vertices_[iw] = w;
+  for (int i = 0; i < horizonSize_; ++i) {
+    const Face& g = faces_[horizon_[i].face];
+    const int e = horizon_[i].edge;
+    cone_[i].v[0] = g.v[(e + 1) % 3];
+    cone_[i].v[1] = g.v[e];
+    cone_[i].v[2] = iw;
+    if (!setPlane(cone_[i])) return restore();
+  }
+  ++numVertices_;
+  for (int i = 0; i < numSeen_; ++i) freeFace(seen_[i]);
+  for (int i = 0; i < horizonSize_; ++i) {
+    made_[i] = newFace(cone_[i].v[0], cone_[i].v[1], cone_[i].v[2]);
+    faces_[made_[i]].n = cone_[i].n;
+    faces_[made_[i]].d = cone_[i].d;
+    link(faces_, made_[i], 0, horizon_[i].face, horizon_[i].edge);
+  }
+  // Edge 1 (x -> w) of cone face i meets edge 2 (w -> x) of the cone face whose y is x.
+  for (int i = 0; i < horizonSize_; ++i) {
+    for (int j = 0; j < horizonSize_; ++j) {
+      if (faces_[made_[j]].v[0] == faces_[made_[i]].v[1]) {
+        link(faces_, made_[i], 1, made_[j], 2);
+        break;
+      }
+    }
+    push(made_[i]);
+  }
+  return true;
+}
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,77 @@
+// Fuzz harness: the command-line and stdin parsers of the `deepcheck` subcommands. The first line
+// of the input is split into arguments and given to the option parsers (--robot/--scene/
+// --scene-pose/--srdf, --package-path, --start/--goal joint vectors, counts and values); the rest is read as configuration
+// lines (`deepcheck check`'s stdin) for the bundled arm, and each accepted configuration is
+// checked against its limits and posed by forward kinematics. Bad input must end in the tool's
+// UsageError/InputError (or the library's std::invalid_argument), never a crash.
+
+#include "common.h"
+#include "load_world.h"
+
+#include "deepcheck/robots/kinematics.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace deepcheck::tools;
+
+const deepcheck::robots::RobotModel& arm() {
+  static const deepcheck::robots::RobotModel model = [] {
+    deepcheck::robots::LoadOptions options;
+    options.packageRoots = {DEEPCHECK_SOURCE_DIR "/robots/data"};
+    options.useRosPackagePath = false;
+    return deepcheck::robots::RobotModel::fromUrdfFile(
+        DEEPCHECK_SOURCE_DIR "/robots/data/deepcheck_arm/urdf/deepcheck_arm.urdf", options);
+  }();
+  return model;
+}
+
+void parseArguments(const std::string& firstLine) {
+  std::vector<std::string> args;
+  std::istringstream words(firstLine);
+  for (std::string w; words >> w;) args.push_back(w);
+  try {
+    takeFlag(args, "--gradient");
+    takeVector(args, "--start");
+    takeVector(args, "--goal");
+    takePackagePaths(args);
+    parseValue(takeSingleOption(args, "--time", "5"), "--time");
+    parseCount(takeSingleOption(args, "--seed", "0"), "--seed", 0, 4294967295u);
+    std::string robot;
+    std::string srdf;
+    std::vector<SceneArg> scenes;
+    takeWorldOptions(args, robot, scenes, srdf);
+    rejectUnknownOptions(args);
+  } catch (const UsageError&) {
+    // Rejected command line: the tool prints the usage and exits 2.
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
+  std::string firstLine;
+  std::getline(in, firstLine);
+  parseArguments(firstLine);
+  try {
+    for (const Eigen::VectorXd& q : readConfigurations(in, arm())) {
+      try {
+        deepcheck::robots::checkConfiguration(arm(), q);
+        deepcheck::robots::forwardKinematics(arm(), q);
+      } catch (const std::invalid_argument&) {
+        // Outside the joint limits: `check` reports it per configuration.
+      }
+    }
+  } catch (const InputError&) {
+    // Rejected line: the tool prints the message and exits 1.
+  }
+  return 0;
+}

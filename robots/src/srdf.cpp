@@ -1,0 +1,135 @@
+#include "deepcheck/robots/srdf.h"
+
+#include "xml_text.h"
+
+#include <tinyxml.h>
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace deepcheck::robots {
+
+const char* toString(DisableReason reason) {
+  switch (reason) {
+    case DisableReason::Adjacent: return "Adjacent";
+    case DisableReason::Default: return "Default";
+    case DisableReason::Always: return "Always";
+    case DisableReason::Never: return "Never";
+    case DisableReason::User: return "User";
+    case DisableReason::Unspecified: return "";
+  }
+  return "";
+}
+
+std::optional<DisableReason> parseDisableReason(const std::string& text) {
+  for (int r = 0; r < kNumDisableReasons; ++r) {
+    const auto reason = static_cast<DisableReason>(r);
+    if (text == toString(reason)) return reason;
+  }
+  return std::nullopt;
+}
+
+std::pair<std::string, std::string> pairKey(const std::string& a, const std::string& b) {
+  return a < b ? std::make_pair(a, b) : std::make_pair(b, a);
+}
+
+namespace {
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+std::string xmlEscape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml,
+                                                 const std::string& sourceName) {
+  const std::string context = "SRDF " + quoted(sourceName.empty() ? "<string>" : sourceName);
+  TiXmlDocument doc;
+  parseXml(doc, xml, context);
+  const TiXmlElement* robot = doc.RootElement();
+  if (robot == nullptr || std::string(robot->Value()) != "robot") {
+    throw std::invalid_argument(context + ": the root element is not <robot>");
+  }
+  std::vector<DisabledPair> pairs;
+  for (const TiXmlElement* e = robot->FirstChildElement("disable_collisions"); e != nullptr;
+       e = e->NextSiblingElement("disable_collisions")) {
+    const std::string where = context + ", line " + std::to_string(e->Row());
+    DisabledPair p;
+    for (const char* attr : {"link1", "link2"}) {
+      const char* value = e->Attribute(attr);
+      if (value == nullptr || *value == '\0') {
+        throw std::invalid_argument(where + ": <disable_collisions> without " + attr);
+      }
+      (std::string(attr) == "link1" ? p.link1 : p.link2) = value;
+    }
+    const char* reasonText = e->Attribute("reason");
+    const std::optional<DisableReason> reason =
+        parseDisableReason(reasonText == nullptr ? "" : reasonText);
+    if (!reason) {
+      throw std::invalid_argument(where + ": <disable_collisions link1=" + quoted(p.link1) +
+                                  " link2=" + quoted(p.link2) + ">: unknown reason " +
+                                  quoted(reasonText) +
+                                  " (expected Adjacent, Default, Always, Never or User)");
+    }
+    p.reason = *reason;
+    pairs.push_back(p);
+  }
+  return pairs;
+}
+
+std::vector<DisabledPair> readSrdfDisabledPairs(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot read the file");
+  return parseSrdfDisabledPairs(text.str(), path);
+}
+
+std::string srdfText(const std::string& robotName, const std::vector<DisabledPair>& pairs,
+                     const std::string& comment) {
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
+  if (!comment.empty()) {
+    // "--" may not appear inside an XML comment.
+    std::string safe = comment;
+    for (std::size_t k = safe.find("--"); k != std::string::npos; k = safe.find("--", k)) {
+      safe.replace(k, 2, "- -");
+    }
+    out << "<!-- " << safe << " -->\n";
+  }
+  out << "<robot name=\"" << xmlEscape(robotName) << "\">\n";
+  for (const DisabledPair& p : pairs) {
+    out << "  <disable_collisions link1=\"" << xmlEscape(p.link1) << "\" link2=\""
+        << xmlEscape(p.link2) << "\"";
+    if (p.reason != DisableReason::Unspecified) out << " reason=\"" << toString(p.reason) << "\"";
+    out << "/>\n";
+  }
+  out << "</robot>\n";
+  return out.str();
+}
+
+void writeSrdf(const std::string& path, const std::string& robotName,
+               const std::vector<DisabledPair>& pairs, const std::string& comment) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot open for writing");
+  out << srdfText(robotName, pairs, comment);
+  out.close();
+  if (!out) throw std::invalid_argument("SRDF " + quoted(path) + ": write failed");
+}
+
+}  // namespace deepcheck::robots

@@ -1,0 +1,301 @@
+// The certified penetration depth (certified.h): exact and certified against the exact
+// reference, the bracket always containing the exact depth, degenerate starts, swap symmetry,
+// warm equal to cold along motions, the cap, and the saved reproducers of DEEP's misses.
+//
+// Error measure as in test_deep.cpp: |sd - sd_exact| / max(|sd_exact|, 1e-3 L).
+
+#include "shapes.h"
+
+#include "deepcheck/deep/certified.h"
+#include "deepcheck/deep/exact.h"
+#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/deep/tolerances.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace deepcheck::deep;
+using namespace deepcheck::deep::testing;
+using Eigen::Isometry3d;
+using Eigen::Quaterniond;
+using Eigen::Vector3d;
+
+namespace {
+
+/// Slack on the bracket's ends beyond the exact reference: both are computed from face planes of
+/// M whose offsets carry a few ulps of the pair's length scale.
+constexpr double kBracketSlackRelative = 1e-14;
+
+/// Pair length scale of the certificate (tolerances.h): larger bounding radius plus the centre
+/// distance.
+double certifyScale(const ConvexPolytope& A, const Isometry3d& X_WA, const ConvexPolytope& B,
+                    const Isometry3d& X_WB) {
+  const Vector3d cA = X_WA * A.center(), cB = X_WB * B.center();
+  return std::max(A.lengthScale(), B.lengthScale()) + (cB - cA).norm();
+}
+
+/// Checks one certified answer against the exact reference; returns "" when it is exact, certified
+/// and its bracket contains the exact depth.
+std::string checkCertified(const ConvexPolytope& A, const Isometry3d& X_WA, const ConvexPolytope& B,
+                           const Isometry3d& X_WB, const SignedDistanceResult& r, double tolRel) {
+  std::ostringstream why;
+  const ExactResult exact = exactSignedDistance(A, X_WA, B, X_WB);
+  const double err = depthError(r.distance, exact.distance, depthScale(A, B));
+  if (!(err <= tolRel)) why << "sd " << r.distance << " exact " << exact.distance << " (error " << err << "); ";
+  if (exact.distance < 0) {
+    if (!r.certified) why << "not certified; ";
+    const double slack = kBracketSlackRelative * certifyScale(A, X_WA, B, X_WB);
+    const double depth = -exact.distance;
+    if (!(r.depthLower <= depth + slack && depth <= r.depthUpper + slack))
+      why << "bracket [" << r.depthLower << ", " << r.depthUpper << "] misses " << depth << "; ";
+  }
+  return why.str();
+}
+
+/// A random overlapping pair of ellipsoid hulls of `n` vertices (aspect up to 1:10).
+struct Pair {
+  ConvexPolytope A, B;
+  Isometry3d X_WA, X_WB;
+};
+
+Pair randomPair(std::mt19937& rng, int nA, int nB, const Vector3d& base) {
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const Vector3d sA(1.0, 0.2 + 0.8 * U(rng), 0.1 + 0.9 * U(rng));
+  const Vector3d sB(0.3 + 0.7 * U(rng), 0.2 + 0.8 * U(rng), 0.1 + 0.5 * U(rng));
+  Pair p{ConvexPolytope::fromPoints(ellipsoidPoints(rng, nA, sA)),
+         ConvexPolytope::fromPoints(ellipsoidPoints(rng, nB, sB)),
+         makePose(randomRotation(rng), base),
+         makePose(randomRotation(rng), base + 0.8 * U(rng) * randomUnit(rng))};
+  return p;
+}
+
+DeepOptions methodOptions(PenetrationMethod m) {
+  DeepOptions o;
+  o.method = m;
+  return o;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(certified)
+
+BOOST_AUTO_TEST_CASE(names) {
+  BOOST_TEST(std::string(toString(CertifiedStatus::Certified)) == "certified");
+  BOOST_TEST(std::string(toString(CertifiedStatus::NotConverged)) == "not-converged");
+  BOOST_TEST(std::string(toString(PenetrationMethod::Certified)) == "certified");
+  BOOST_TEST(std::string(toString(PenetrationMethod::DeepWalk)) == "deep-walk");
+}
+
+// Cold, warm (a cache reused across perturbed re-queries) and swapped, on hulls of 4 to 1,000
+// vertices, near the origin and 1e4 away.
+BOOST_AUTO_TEST_CASE(exact_and_certified_on_random_pairs) {
+  std::mt19937 rng(11);
+  const int sizes[] = {4, 8, 30, 100, 300, 1000};
+  int overlapping = 0;
+  for (int i = 0; i < 240; ++i) {
+    const bool far = i % 4 == 3;
+    const Vector3d base = far ? Vector3d(1e4 * randomUnit(rng)) : Vector3d::Zero();
+    const Pair p = randomPair(rng, sizes[i % 6], sizes[(i / 6) % 6], base);
+    const double tol = far ? 1e-10 : 1e-12;
+    const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, p.X_WB);
+    if (cold.distance >= 0) continue;
+    ++overlapping;
+    std::string why = checkCertified(p.A, p.X_WA, p.B, p.X_WB, cold, tol);
+    BOOST_TEST(why.empty(), "pair " << i << " cold: " << why);
+    BOOST_TEST(cold.expansions > 0);
+    const SignedDistanceResult swapped = signedDistance(p.B, p.X_WB, p.A, p.X_WA);
+    BOOST_TEST(depthError(swapped.distance, cold.distance, depthScale(p.A, p.B)) <= tol,
+               "pair " << i << ": swapped " << swapped.distance << " vs " << cold.distance);
+    BOOST_TEST(swapped.certified);
+    PairCache cache;
+    signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache);
+    const Isometry3d moved = makePose(Quaterniond(p.X_WB.linear()), p.X_WB.translation() + 0.01 * randomUnit(rng));
+    const SignedDistanceResult warm = signedDistance(p.A, p.X_WA, p.B, moved, &cache);
+    why = checkCertified(p.A, p.X_WA, p.B, moved, warm, tol);
+    BOOST_TEST(why.empty(), "pair " << i << " warm: " << why);
+  }
+  BOOST_TEST(overlapping > 120);
+}
+
+// The bracket of the expansion itself, before naming, at every cap: always contains the exact
+// depth; certified exactly when its width is within tau.
+BOOST_AUTO_TEST_CASE(bracket_contains_the_exact_depth_at_every_cap) {
+  std::mt19937 rng(12);
+  ExpansionSurface surface;
+  int checked = 0;
+  for (int i = 0; i < 40; ++i) {
+    const Pair p = randomPair(rng, 100, 60, Vector3d::Zero());
+    const PairFrame frame = PairFrame::make(p.A, p.X_WA, p.B, p.X_WB);
+    const GjkResult g = gjkDistance(p.A, p.B, frame);
+    if (g.status != GjkStatus::Overlapping) continue;
+    const double depth = -exactSignedDistance(p.A, p.X_WA, p.B, p.X_WB).distance;
+    const double slack = kBracketSlackRelative * certifyScale(p.A, p.X_WA, p.B, p.X_WB);
+    for (int cap : {0, 1, 2, 5, 10, 20, 128}) {
+      CertifiedOptions o;
+      o.maxExpansions = cap;
+      const CertifiedResult c = certifiedPenetration(p.A, p.B, frame, g, surface, o);
+      BOOST_TEST(c.lower <= depth + slack, "pair " << i << " cap " << cap);
+      BOOST_TEST(depth <= c.upper + slack, "pair " << i << " cap " << cap);
+      BOOST_TEST(c.expansions <= cap);
+      BOOST_TEST((c.status == CertifiedStatus::Certified) == (c.upper - c.lower <= c.tau));
+      ++checked;
+    }
+  }
+  BOOST_TEST(checked > 100);
+}
+
+// Identical shapes at one pose (the origin on GJK's simplex), touching contact, one shape deep
+// inside the other, stacked boxes: each start has its own path, all exact and certified.
+BOOST_AUTO_TEST_CASE(degenerate_starts) {
+  std::mt19937 rng(13);
+  const ConvexPolytope box = ConvexPolytope::box(Vector3d(0.5, 1.0, 1.5));
+  const ConvexPolytope blob = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 200, Vector3d(1, 0.5, 0.25)));
+  const ConvexPolytope small = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 30, Vector3d(0.1, 0.1, 0.1)));
+  struct Case {
+    const ConvexPolytope* A;
+    Isometry3d X_WA;
+    const ConvexPolytope* B;
+    Isometry3d X_WB;
+    const char* what;
+  };
+  const Isometry3d I = Isometry3d::Identity();
+  const Isometry3d X = makePose(randomRotation(rng), Vector3d(0.3, -0.2, 0.1));
+  std::vector<Case> cases = {
+      {&box, I, &box, I, "identical boxes"},
+      {&blob, X, &blob, X, "identical blobs"},
+      {&box, I, &box, makePose(Quaterniond::Identity(), Vector3d(0, 0, 3.0)), "boxes touching face to face"},
+      {&box, I, &box, makePose(Quaterniond::Identity(), Vector3d(0, 0, 3.0 - 1e-9)), "boxes 1e-9 deep"},
+      {&blob, I, &small, makePose(randomRotation(rng), Vector3d(0.05, 0, 0)), "small inside blob"},
+      {&box, I, &box, makePose(Quaterniond::Identity(), Vector3d(0.3, 0.7, 0.9)), "stacked, offset"},
+  };
+  for (const Case& c : cases) {
+    const SignedDistanceResult r = signedDistance(*c.A, c.X_WA, *c.B, c.X_WB);
+    const std::string why = checkCertified(*c.A, c.X_WA, *c.B, c.X_WB, r, 1e-12);
+    BOOST_TEST(why.empty(), c.what << ": " << why);
+  }
+}
+
+// Warm answers (one cache along the motion) equal cold ones at every step, and the cached surface
+// certifies most steps without an expansion.
+BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int overlapping = 0, withoutExpansion = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
+    PairCache cache;
+    Quaterniond q(p.X_WB.linear());
+    Vector3d t = 0.4 * randomUnit(rng);
+    const Vector3d w = 0.01 * randomUnit(rng), v = 0.005 * randomUnit(rng);
+    for (int k = 0; k < 100; ++k) {
+      q = Quaterniond(Eigen::AngleAxisd(w.norm(), w.normalized())) * q;
+      t += v + 0.002 * Vector3d(U(rng), U(rng), U(rng));
+      const Isometry3d X_WB = makePose(q, t);
+      const SignedDistanceResult warm = signedDistance(p.A, p.X_WA, p.B, X_WB, &cache);
+      const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, X_WB);
+      BOOST_TEST(std::abs(warm.distance - cold.distance) <= 1e-12, "trial " << trial << " step " << k);
+      BOOST_TEST(warm.certified == cold.certified);
+      if (cold.distance < 0) {
+        ++overlapping;
+        withoutExpansion += warm.expansions == 0;
+        BOOST_TEST(cold.expansions > 0);
+      }
+    }
+  }
+  BOOST_TEST(overlapping > 200);
+  BOOST_TEST(withoutExpansion > overlapping / 2);
+}
+
+// A jump far beyond the cached surface's margin (faces that could have swept over the origin)
+// sends the query cold; a cache of another pair is not used.
+BOOST_AUTO_TEST_CASE(warm_start_goes_cold_when_it_cannot_certify) {
+  std::mt19937 rng(17);
+  const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
+  const Pair other = randomPair(rng, 100, 100, Vector3d::Zero());
+  PairCache cache;
+  const SignedDistanceResult first = signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache);
+  BOOST_TEST_REQUIRE(first.distance < 0);
+  BOOST_TEST(first.expansions > 0);
+  // The same pose again: certified from the cache alone.
+  const SignedDistanceResult again = signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache);
+  BOOST_TEST(again.expansions == 0);
+  BOOST_TEST(again.certified);
+  BOOST_TEST(again.distance == first.distance);
+  // B turned half around: every face moves by about the shapes' size.
+  const Isometry3d turned = makePose(Quaterniond(Eigen::AngleAxisd(M_PI, Vector3d::UnitX())) * Quaterniond(p.X_WB.linear()),
+                                     p.X_WB.translation());
+  const SignedDistanceResult jump = signedDistance(p.A, p.X_WA, p.B, turned, &cache);
+  const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, turned);
+  BOOST_TEST(jump.expansions > 0);
+  BOOST_TEST(std::abs(jump.distance - cold.distance) <= 1e-12);
+  // The cache now belongs to (A, B): another pair runs cold.
+  const SignedDistanceResult foreign = signedDistance(other.A, other.X_WA, other.B, other.X_WB, &cache);
+  const SignedDistanceResult foreignCold = signedDistance(other.A, other.X_WA, other.B, other.X_WB);
+  BOOST_TEST(foreign.expansions > 0);
+  BOOST_TEST(foreignCold.expansions > 0);
+  BOOST_TEST(std::abs(foreign.distance - foreignCold.distance) <= 1e-12);
+}
+
+// A 500-vertex sphere against itself, rotated: the surface needs hundreds of expansions. Below
+// that cap the expansion says NotConverged with a valid bracket; signedDistance then falls back on
+// DEEP's walks and still answers exactly.
+BOOST_AUTO_TEST_CASE(cap_on_a_round_pair) {
+  std::mt19937 rng(15);
+  const ConvexPolytope sphere = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 500, Vector3d(1, 1, 1)));
+  const Isometry3d X_WA = Isometry3d::Identity();
+  const Isometry3d X_WB = makePose(randomRotation(rng), Vector3d(0.01, 0.0, 0.0));
+  const PairFrame frame = PairFrame::make(sphere, X_WA, sphere, X_WB);
+  const GjkResult g = gjkDistance(sphere, sphere, frame);
+  BOOST_TEST_REQUIRE((g.status == GjkStatus::Overlapping));
+  const double depth = -exactSignedDistance(sphere, X_WA, sphere, X_WB).distance;
+  const double slack = kBracketSlackRelative * certifyScale(sphere, X_WA, sphere, X_WB);
+  ExpansionSurface surface;
+  CertifiedOptions o;
+  o.maxExpansions = 40;
+  const CertifiedResult c = certifiedPenetration(sphere, sphere, frame, g, surface, o);
+  BOOST_TEST((c.status == CertifiedStatus::NotConverged));
+  BOOST_TEST(c.expansions == 40);
+  BOOST_TEST(c.lower <= depth + slack);
+  BOOST_TEST(depth <= c.upper + slack);
+  BOOST_TEST(c.upper - c.lower > c.tau);
+  // Through signedDistance with the default cap (beyond the surface's capacity for this pair):
+  // NotConverged, the bracket holds, the answer is its upper end, a valid separating translation
+  // (DEEP's walks or the expansion's best support, whichever is shallower).
+  const SignedDistanceResult r = signedDistance(sphere, X_WA, sphere, X_WB);
+  BOOST_TEST(!r.certified);
+  BOOST_TEST((r.status == SignedDistanceStatus::NotConverged));
+  BOOST_TEST(r.expansions > 40);
+  BOOST_TEST(r.depthLower <= depth + slack);
+  BOOST_TEST(depth <= r.depthUpper + slack);
+  BOOST_TEST(r.depthUpper == -r.distance);
+  const ExactResult moved = exactSignedDistance(sphere, X_WA, sphere,
+                                                makePose(Quaterniond(X_WB.linear()), X_WB.translation() + r.depthUpper * r.normal));
+  BOOST_TEST(std::abs(moved.distance) <= 1e-9);
+}
+
+// The two methods on the same pairs: DEEP's walk is selectable and gives no lower bound.
+BOOST_AUTO_TEST_CASE(deep_walk_stays_selectable) {
+  std::mt19937 rng(16);
+  for (int i = 0; i < 30; ++i) {
+    const Pair p = randomPair(rng, 60, 60, Vector3d::Zero());
+    const SignedDistanceResult c = signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::Certified));
+    const SignedDistanceResult w = signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::DeepWalk));
+    if (c.distance >= 0) continue;
+    BOOST_TEST(!w.certified);
+    BOOST_TEST(w.depthLower == 0.0);
+    BOOST_TEST(w.deep.starts > 0);
+    BOOST_TEST(c.expansions > 0);
+    // DEEP's answer is a valid separating translation: never shallower than the certified one.
+    BOOST_TEST(-w.distance >= c.depthLower - 1e-14 * certifyScale(p.A, p.X_WA, p.B, p.X_WB));
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
