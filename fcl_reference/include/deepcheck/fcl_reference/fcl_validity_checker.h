@@ -42,7 +42,7 @@ class FclStateValidityChecker : public ompl::base::StateValidityChecker {
   double distance(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
  private:
-  StateMapping mapping_;
+  planners::StateMapping mapping_;
   Eigen::VectorXd lower_;
   Eigen::VectorXd upper_;
   mutable std::mutex mutex_;
