@@ -108,7 +108,7 @@ void writeProblem(const std::filesystem::path& dir, int index, const planners::P
 
 struct ProblemsArgs {
   std::string robot, srdf, scene, variation, queries, robotConfig, out;
-  PackagePaths packages;
+  PackageRoots packages;
   planners::ProblemOptions options;
   int count = 10;
 };
@@ -117,7 +117,7 @@ ProblemsArgs takeArgs(std::vector<std::string>& args) {
   ProblemsArgs a;
   a.robot = takeSingleOption(args, "--robot");
   a.srdf = takeSingleOption(args, "--srdf");
-  a.packages = takePackagePaths(args);
+  a.packages = takePackageRoots(args);
   a.scene = takeSingleOption(args, "--scene");
   a.variation = takeSingleOption(args, "--variation");
   a.queries = takeSingleOption(args, "--queries");
@@ -149,7 +149,7 @@ int run(std::vector<std::string> args) {
   ProblemsArgs a = takeArgs(args);
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   planners::SetupOptions setup;
-  setup.packagePaths = a.packages.commandLine;
+  setup.packageRoots = a.packages.commandLine;
   setup.srdf = a.srdf;
   const auto world = planners::loadWorld(a.robot, {}, setup);
   const auto ss = planners::makeSimpleSetup(world, setup);

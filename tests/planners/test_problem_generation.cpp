@@ -50,7 +50,7 @@ struct PandaBookshelf {
 
   PandaBookshelf() {
     SetupOptions o;
-    o.packagePaths = {pandaDir()};
+    o.packageRoots = {pandaDir()};
     o.useRosPackagePath = false;
     o.srdf = pandaDir() + "/moveit_resources_panda_moveit_config/config/panda.srdf";
     o.world.decompositionCacheDir = std::string(DEEPCHECK_BINARY_DIR) + "/planners_test_cache";
