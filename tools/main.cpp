@@ -21,6 +21,7 @@ const Subcommand* const kSubcommands[] = {
     &deepcheck::tools::kDecomposeCommand,
     &deepcheck::tools::kPlanCommand,
     &deepcheck::tools::kViewCommand,
+    &deepcheck::tools::kProblemsCommand,
 };
 
 void printUsage(std::FILE* out) {

@@ -23,5 +23,6 @@ extern const Subcommand kCheckCommand;  // check.cpp
 extern const Subcommand kDecomposeCommand;  // decompose.cpp
 extern const Subcommand kPlanCommand;  // plan.cpp
 extern const Subcommand kViewCommand;  // view.cpp
+extern const Subcommand kProblemsCommand;  // problems.cpp
 
 }  // namespace deepcheck::tools

@@ -56,6 +56,7 @@
 #include "deepcheck/deep/signed_distance.h"
 #include "deepcheck/robots/collision_geometry.h"
 #include "deepcheck/robots/decomposition.h"
+#include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
@@ -224,6 +225,14 @@ struct SceneSpec {
       : urdf(std::move(path)), overridePose(true), X_WS(pose) {}
 };
 
+/// Placement of a MoveIt planning scene (World::addPlanningScene).
+struct PlanningSceneOptions {
+  /// Scene frame names mapped to robot links (e.g. base_link -> panda_link0).
+  robots::FrameAliases frameAliases;
+  /// Robot configuration at which the objects' frames are posed; empty: the default one.
+  Eigen::VectorXd q;
+};
+
 class World {
  public:
   using Options = WorldOptions;
@@ -259,6 +268,10 @@ class World {
   /// Adds a scene; returns its index. Its pieces are posed and filtered by reach here.
   int addScene(robots::RobotModel scene, const SceneSpec& placement = SceneSpec());
   int addScene(robots::RobotModel scene, const Eigen::Isometry3d& X_WS);
+  /// Adds every shape of a MoveIt planning scene as an obstacle named "<id>" (an object with one
+  /// shape) or "<id>/<k>" (its k-th shape), posed by robots::shapeWorldPoses; returns their ids in
+  /// file order (world_planning_scene.cpp).
+  std::vector<int> addPlanningScene(const robots::PlanningScene& scene, const PlanningSceneOptions& options = {});
 
   /// Adds an obstacle; returns its id (never reused).
   int addObstacle(const Obstacle& obstacle);

@@ -122,6 +122,14 @@ PlanningScene parsePlanningScene(const std::string& yaml, const std::string& bas
 /// Throws std::invalid_argument unless height, radius and maxDeviation are positive and finite.
 TriangleMesh coneMesh(double height, double radius, double maxDeviation);
 
+/// The scene as planning-scene YAML that loadPlanningScene reads back to the same objects: each
+/// object with its frame_id and id, no `pose` (shape poses are X_FS, the object pose folded in),
+/// its primitives then its meshes (resource: the resolved absolute path), numbers with 17
+/// significant digits, quaternions x y z w. Throws std::invalid_argument naming the object for a
+/// shape that has no file form: a cone (its pyramid is kept, not its dimensions) or another
+/// in-memory mesh.
+std::string writePlanningScene(const PlanningScene& scene);
+
 /// Frame names of a scene file mapped to robot link names, e.g. {"base_link", "panda_link0"}.
 using FrameAliases = std::map<std::string, std::string>;
 

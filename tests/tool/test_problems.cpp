@@ -1,0 +1,105 @@
+// deepcheck problems end to end: the Panda on MotionBenchMaker's small bookshelf; every written
+// problem's scene reads back and its start and goal are collision free in it; a seed repeats.
+
+#include "tool_runner.h"
+
+#include "common/test_paths.h"
+
+#include "deepcheck/checker/world.h"
+#include "deepcheck/robots/moveit_scene.h"
+#include "deepcheck/robots/pair_filter.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+using namespace deepcheck;
+using tool_test::quote;
+using tool_test::Run;
+using tool_test::Scratch;
+
+namespace {
+
+std::string panda() { return test::sharedDir() + "/robots/panda"; }
+std::string srdf() { return panda() + "/moveit_resources_panda_moveit_config/config/panda.srdf"; }
+std::string urdf() { return panda() + "/moveit_resources_panda_description/urdf/panda.urdf"; }
+
+std::string bookshelfArgs(const std::string& out, int count, int seed) {
+  const std::string m = test::sharedDir() + "/scenes/motion_bench_maker/configs";
+  return "problems --robot " + quote(urdf()) + " --srdf " + quote(srdf()) + " --package-path " + quote(panda()) +
+         " --scene " + quote(m + "/scenes/bookshelf/scene_small.yaml") + " --variation " +
+         quote(m + "/scenes/bookshelf/variation_small.yaml") + " --queries " +
+         quote(m + "/scenes/bookshelf/all_queries_small.yaml") + " --robot-config " + quote(m + "/robots/panda.yaml") +
+         " --frame-alias base_link=panda_link0 --count " + std::to_string(count) + " --seed " + std::to_string(seed) +
+         " --out " + quote(out);
+}
+
+/// The "key values..." lines of a problem file.
+std::map<std::string, std::vector<std::string>> readProblem(const std::string& path) {
+  std::map<std::string, std::vector<std::string>> out;
+  for (const std::string& line : tool_test::lines(tool_test::readFile(path))) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> f = tool_test::fields(line);
+    const std::string key = f.front();
+    out[key] = std::vector<std::string>(f.begin() + 1, f.end());
+  }
+  return out;
+}
+
+Eigen::VectorXd values(const std::vector<std::string>& words) {
+  Eigen::VectorXd q(static_cast<Eigen::Index>(words.size()));
+  for (std::size_t i = 0; i < words.size(); ++i) q[static_cast<Eigen::Index>(i)] = std::stod(words[i]);
+  return q;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(tool_problems)
+
+BOOST_AUTO_TEST_CASE(bookshelf_problems_are_collision_free_and_repeat_with_the_seed) {
+  if (!test::haveShared("deepcheck problems on the bookshelf")) return;
+  Scratch scratch;
+  const Run r = scratch.run(bookshelfArgs(scratch.path("a"), 2, 5));
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.out.find("problem 2/2") != std::string::npos, r.out);
+  robots::LoadOptions load;
+  load.packageRoots = {panda()};
+  load.useRosPackagePath = false;
+  checker::WorldOptions options;
+  options.disabledPairs = robots::readSrdfDisabledPairs(srdf());
+  checker::World world(robots::RobotModel::fromUrdfFile(urdf(), load), options);
+  for (const char* k : {"0000", "0001"}) {
+    const auto problem = readProblem(scratch.path(std::string("a/problem_") + k + ".txt"));
+    BOOST_REQUIRE_EQUAL(problem.at("scene").front(), std::string("scene_") + k + ".yaml");
+    BOOST_REQUIRE_EQUAL(problem.at("variables").size(), static_cast<std::size_t>(world.robot().numVariables()));
+    const auto scene = robots::loadPlanningScene(scratch.path("a/" + problem.at("scene").front()));
+    BOOST_CHECK_EQUAL(scene.objects.size(), 7u);
+    checker::PlanningSceneOptions placement;
+    placement.frameAliases = {{"base_link", "panda_link0"}};
+    const std::vector<int> ids = world.addPlanningScene(scene, placement);
+    BOOST_CHECK(world.isFree(values(problem.at("start"))));
+    BOOST_CHECK(world.isFree(values(problem.at("goal"))));
+    for (int id : ids) world.removeObstacle(id);
+  }
+  const Run again = scratch.run(bookshelfArgs(scratch.path("b"), 2, 5));
+  BOOST_TEST_REQUIRE(again.status == 0, again.err);
+  for (const char* name : {"problem_0001.txt", "scene_0001.yaml"}) {
+    BOOST_CHECK(tool_test::readFile(scratch.path(std::string("a/") + name)) ==
+                tool_test::readFile(scratch.path(std::string("b/") + name)));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(missing_and_bad_options_are_reported) {
+  Scratch scratch;
+  const Run missing = scratch.run("problems --robot x.urdf");
+  BOOST_TEST(missing.status == 2);
+  BOOST_TEST(missing.err.find("option --scene is required") != std::string::npos, missing.err);
+  const Run alias = scratch.run("problems --frame-alias base_link");
+  BOOST_TEST(alias.status == 2);
+  BOOST_TEST(alias.err.find("--frame-alias") != std::string::npos, alias.err);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
