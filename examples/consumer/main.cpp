@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   try {
     // The world: the arm (its SRDF's disabled self pairs) in the shelf.
     dp::SetupOptions options;
-    options.packagePaths = {data};  // resolves package://deepcheck_arm/...
+    options.packageRoots = {data};  // resolves package://deepcheck_arm/...
     options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
     std::shared_ptr<const deepcheck::checker::World> world =
         dp::loadWorld(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", {data + "/scenes/shelf.urdf"}, options);

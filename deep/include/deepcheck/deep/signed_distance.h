@@ -2,7 +2,7 @@
 // One signed-distance call per pair: GJK distance when apart, the certified penetration depth
 // (or DEEP's walk, DeepOptions::method) when overlapping.
 //
-// Contract (DESIGN.md): for convex shapes A and B,
+// Contract: for convex shapes A and B,
 //   distance > 0  is their Euclidean distance;
 //   distance < 0  means they overlap, and -distance is the penetration depth: the length of the
 //                 shortest translation that separates them;
