@@ -90,7 +90,6 @@ BOOST_AUTO_TEST_CASE(bookshelf_small_with_the_panda) {
   const Eigen::VectorXd into = pandaArm(panda, {0, 0.5, 0, -0.1, 0, 1.0, 0.785});
   BOOST_CHECK(!world.isFree(into));
   const DistanceResult d = world.signedDistance(into);
-  BOOST_TEST_MESSAGE("deepest: " << d.closest.nameA << " in " << d.closest.nameB << " by " << -d.closest.distance);
   BOOST_CHECK_EQUAL(d.closest.nameB, "obstacle/shelf_bottom");
 }
 

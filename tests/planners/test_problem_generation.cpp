@@ -139,8 +139,6 @@ BOOST_AUTO_TEST_CASE(bookshelf_problems_are_valid_and_reproducible) {
   const robots::RobotModel& panda = setup.world->robot();
   const int hand = panda.linkIndex("panda_hand");
   for (const Problem& p : problems) {
-    BOOST_TEST_MESSAGE(p.goalQuery << " after " << p.attempts << " scenes; goal error " << p.goalError.position
-                                   << " m, " << p.goalError.orientation << " rad");
     // Collision free in its own scene.
     const std::vector<int> ids = setup.world->addPlanningScene(p.scene, {setup.options.frameAliases, {}});
     BOOST_CHECK(checker->isValid(p.start));
