@@ -41,7 +41,7 @@ void parseArguments(const std::string& firstLine) {
     takeFlag(args, "--gradient");
     takeVector(args, "--start");
     takeVector(args, "--goal");
-    takePackagePaths(args);
+    takePackageRoots(args);
     parseValue(takeSingleOption(args, "--time", "5"), "--time");
     parseCount(takeSingleOption(args, "--seed", "0"), "--seed", 0, 4294967295u);
     std::string robot;
