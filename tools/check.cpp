@@ -1,6 +1,7 @@
 // `deepcheck check`: signed distance of a robot in its scenes for configurations read from stdin.
 //
 //   deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...
+//                   [--scene S.yaml]... [--frame-alias NAME=LINK]...
 //                   [--srdf FILE] [--package-path DIR]... [--gradient] < configs.txt
 //
 // Input: one configuration per line, the joint values in configuration order (the order
@@ -9,7 +10,8 @@
 // Output: one line per configuration, three triples "sd linkA linkB" (%.17g) then, with
 // --gradient, the nq components of d sd / dq of the first triple:
 //   1. the minimum signed distance over all checked pairs (< 0 is minus the penetration depth),
-//      its robot link and the other body (a robot link, or "scene/<link>" for a scene link);
+//      its robot link and the other body (a robot link, "scene/<link>" for a URDF scene's link,
+//      "obstacle/<id>" or "obstacle/<id>/<k>" for a planning scene's object or its k-th shape);
 //   2. the same over the robot-scene pairs only (scene clearance);
 //   3. the same over the robot's self pairs only (self clearance).
 // The scene and self clearances are separate because an arm's nearest pair is usually a fixed
@@ -41,38 +43,28 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
+    "                       [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
     "                       [--srdf FILE] [--package-path DIR]... [--gradient] < configs.txt\n"
     "\n"
     "Minimum signed distance of the robot to its scenes and to itself, one configuration per\n"
     "input line (joint values in the order `deepcheck info` prints; '#' comments and blank lines\n"
     "are skipped). Output per line: three triples 'sd linkA linkB' (%.17g; sd < 0 is minus the\n"
-    "penetration depth; scene links are named scene/<link>): the minimum over all pairs, over the\n"
-    "robot-scene pairs, over the robot's self pairs; then with --gradient the components of d sd/dq\n"
-    "of the first.\n"
+    "penetration depth; scene links are named scene/<link>, planning-scene objects obstacle/<id>):\n"
+    "the minimum over all pairs, over the robot-scene pairs, over the robot's self pairs; then\n"
+    "with --gradient the components of d sd/dq of the first.\n"
     "On stderr: the world's summary and a last line 'configurations N total_us T'.\n"
     "\n"
     "options:\n"
-    "  --robot FILE        the robot's URDF (required)\n"
-    "  --scene FILE        a scene URDF, its joints at their default values (repeatable)\n"
-    "  --scene-pose x y z roll pitch yaw\n"
-    "                      places the scene given just before (metres, radians; URDF rpy:\n"
-    "                      R = Rz(yaw) Ry(pitch) Rx(roll)); default: the identity\n"
-    "  --srdf FILE         disable the self-collision pairs of this SRDF\n"
-    "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"
-    "                      also read)\n"
+    DEEPCHECK_WORLD_OPTIONS_HELP
     "  --gradient          append the gradient of sd with respect to the joint values\n";
 
 int run(std::vector<std::string> args) {
   const bool gradient = takeFlag(args, "--gradient");
-  const PackageRoots paths = takePackageRoots(args);
-  std::string robotPath;
-  std::string srdf;
-  std::vector<SceneArg> scenes;
-  takeWorldOptions(args, robotPath, scenes, srdf);
+  const WorldArgs worldArgs = takeWorldArgs(args);
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "'");
 
-  checker::World world = loadWorld(robotPath, scenes, srdf, paths);
+  checker::World world = loadWorld(worldArgs);
   const std::vector<Eigen::VectorXd> configurations = readConfigurations(std::cin, world.robot());
   std::fputs(world.summary().c_str(), stderr);
 

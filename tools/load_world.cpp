@@ -3,6 +3,10 @@
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,23 +29,76 @@ std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::
   return out;
 }
 
-checker::World loadWorld(const std::string& robotPath, const std::vector<SceneArg>& scenes, const std::string& srdf,
-                         const PackageRoots& paths) {
+robots::FrameAliases takeFrameAliases(std::vector<std::string>& args) {
+  robots::FrameAliases aliases;
+  for (const std::string& text : takeOption(args, "--frame-alias")) {
+    std::pair<std::string, std::string> alias;
+    try {
+      alias = robots::parseFrameAlias(text);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--frame-alias: ") + e.what());
+    }
+    const auto [it, added] = aliases.insert(alias);
+    if (!added && it->second != alias.second) {
+      throw UsageError("--frame-alias: frame '" + alias.first + "' mapped twice, to '" + it->second + "' and '" +
+                       alias.second + "'");
+    }
+  }
+  return aliases;
+}
+
+SceneKind sceneKind(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".urdf") return SceneKind::Urdf;
+  if (extension == ".yaml" || extension == ".yml") return SceneKind::PlanningScene;
+  throw UsageError("scene '" + path + "': unknown scene type '" + extension +
+                   "' (expected .urdf for a URDF scene, .yaml or .yml for a MoveIt planning scene)");
+}
+
+WorldArgs takeWorldArgs(std::vector<std::string>& args) {
+  WorldArgs w;
+  takeWorldOptions(args, w.robot, w.scenes, w.srdf);
+  w.packages = takePackageRoots(args);
+  w.frameAliases = takeFrameAliases(args);
+  bool planningScene = false;
+  for (const SceneArg& s : w.scenes) {
+    if (sceneKind(s.path) != SceneKind::PlanningScene) continue;
+    planningScene = true;
+    if (s.posed) {
+      throw UsageError("--scene-pose after planning scene '" + s.path +
+                       "': its objects are posed in the frames they name (header.frame_id); --scene-pose "
+                       "places URDF scenes only");
+    }
+  }
+  if (!w.frameAliases.empty() && !planningScene) {
+    throw UsageError("--frame-alias needs a planning-scene --scene (.yaml or .yml)");
+  }
+  return w;
+}
+
+checker::World loadWorld(const WorldArgs& args) {
   robots::LoadOptions load;
-  load.packageRoots = paths.commandLine;
-  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(robotPath, load);
+  load.packageRoots = args.packages.commandLine;
+  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(args.robot, load);
   checker::WorldOptions options;
-  if (!srdf.empty()) {
-    options.disabledPairs = robots::readSrdfDisabledPairs(srdf);
-    robots::checkDisabledPairs(robot, options.disabledPairs, srdf);
+  if (!args.srdf.empty()) {
+    options.disabledPairs = robots::readSrdfDisabledPairs(args.srdf);
+    robots::checkDisabledPairs(robot, options.disabledPairs, args.srdf);
   }
   checker::World world(std::move(robot), options);
-  for (const SceneArg& s : scenes) {
-    robots::RobotModel scene = robots::RobotModel::fromUrdfFile(s.path, load);
-    if (s.posed) {
-      world.addScene(std::move(scene), s.X_WS);
+  robots::SceneLoadOptions sceneLoad;
+  sceneLoad.packageRoots = args.packages.commandLine;
+  checker::PlanningSceneOptions placement;
+  placement.frameAliases = args.frameAliases;
+  for (const SceneArg& s : args.scenes) {
+    if (sceneKind(s.path) == SceneKind::PlanningScene) {
+      world.addPlanningScene(robots::loadPlanningScene(s.path, sceneLoad), placement);
+    } else if (s.posed) {
+      world.addScene(robots::RobotModel::fromUrdfFile(s.path, load), s.X_WS);
     } else {
-      world.addScene(std::move(scene));
+      world.addScene(robots::RobotModel::fromUrdfFile(s.path, load));
     }
   }
   return world;

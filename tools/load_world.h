@@ -1,10 +1,17 @@
 #pragma once
 // The collision world of the command line (--robot, --scene [--scene-pose], --srdf,
-// --package-path), shared by the subcommands that query it.
+// --package-path, --frame-alias), shared by the subcommands that query it.
+//
+// A scene's kind is chosen by its file's extension: .urdf is a URDF scene (a model whose links
+// are obstacles, placed by --scene-pose); .yaml or .yml is a MoveIt planning scene
+// (robots/moveit_scene.h) whose collision objects are posed in the frames their header.frame_id
+// names: robot links, or names that --frame-alias maps to robot links. A planning scene's objects
+// are already placed by their frames, so --scene-pose after one is an error.
 
 #include "common.h"
 
 #include "deepcheck/checker/world.h"
+#include "deepcheck/robots/moveit_scene.h"
 
 #include <Eigen/Core>
 
@@ -12,15 +19,57 @@
 #include <string>
 #include <vector>
 
+/// The help text of the world options, for the usage text of the subcommands that take them.
+#define DEEPCHECK_WORLD_OPTIONS_HELP                                                                  \
+  "  --robot FILE        the robot's URDF (required)\n"                                               \
+  "  --scene FILE        a scene (repeatable): FILE.urdf is a URDF whose links are obstacles (its\n"  \
+  "                      joints at their default values); FILE.yaml or FILE.yml is a MoveIt\n"        \
+  "                      planning scene, its collision objects posed in the robot links their\n"      \
+  "                      header.frame_id names (at the robot's default configuration)\n"             \
+  "  --scene-pose x y z roll pitch yaw\n"                                                            \
+  "                      places the URDF scene given just before (metres, radians; URDF rpy:\n"       \
+  "                      R = Rz(yaw) Ry(pitch) Rx(roll)); default: the identity. Not after a\n"       \
+  "                      planning scene, whose objects are placed by their frames\n"                 \
+  "  --frame-alias NAME=LINK\n"                                                                      \
+  "                      a planning scene's frame NAME is the robot's link LINK (repeatable),\n"      \
+  "                      e.g. base_link=panda_link0 for MotionBenchMaker scenes with the Panda\n"     \
+  "  --srdf FILE         disable the self-collision pairs of this SRDF\n"                             \
+  "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"    \
+  "                      also read)\n"
+
 namespace deepcheck::tools {
 
 /// Configurations, one per line (joint values in the robot's variable order; '#' comments and
 /// blank lines skipped); throws InputError naming the line (a bad number, a wrong count).
 std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot);
 
+/// Removes every `--frame-alias NAME=LINK` (or `--frame-alias=NAME=LINK`) from `args`: the scene
+/// frame NAME is the robot's link LINK. UsageError for a malformed or repeated NAME.
+robots::FrameAliases takeFrameAliases(std::vector<std::string>& args);
+
+/// The world options of a command line.
+struct WorldArgs {
+  std::string robot;
+  std::vector<SceneArg> scenes;
+  std::string srdf;
+  PackageRoots packages;
+  robots::FrameAliases frameAliases;
+};
+
+/// Removes --robot, --scene [--scene-pose], --srdf, --package-path and --frame-alias from `args`
+/// (takeWorldOptions, takePackageRoots, takeFrameAliases). UsageError for --scene-pose after a
+/// planning-scene YAML, or a --frame-alias without any such scene.
+WorldArgs takeWorldArgs(std::vector<std::string>& args);
+
+/// The kind of a scene file, from its extension (any case).
+enum class SceneKind { Urdf, PlanningScene };
+/// Throws UsageError naming the file and the extensions known for any other extension.
+SceneKind sceneKind(const std::string& path);
+
 /// Loads the robot, disables the SRDF's pairs (an unknown link in it is an error naming the file)
-/// and adds the scenes. Throws std::invalid_argument naming the bad file.
-checker::World loadWorld(const std::string& robotPath, const std::vector<SceneArg>& scenes, const std::string& srdf,
-                         const PackageRoots& paths);
+/// and adds the scenes in command-line order. Throws std::invalid_argument naming the bad file
+/// (for a planning scene, its line, object and frame; an unknown frame's message suggests
+/// --frame-alias).
+checker::World loadWorld(const WorldArgs& args);
 
 }  // namespace deepcheck::tools

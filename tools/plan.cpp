@@ -1,33 +1,47 @@
-// `deepcheck plan`: plan a robot from a start to a goal configuration among its scenes with OMPL
-// and deepcheck's checker, and write the path.
+// `deepcheck plan`: plan a robot from a start configuration to a goal configuration, or to a pose
+// of one of its links, among its scenes with OMPL and deepcheck's checker, and write the path.
 //
 //   deepcheck plan --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...
-//                  [--srdf FILE] [--package-path DIR]... --start q1 ... qn --goal q1 ... qn
+//                  [--scene S.yaml]... [--frame-alias NAME=LINK]...
+//                  [--srdf FILE] [--package-path DIR]... --start q1 ... qn
+//                  (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw
+//                                      [--position-tol M] [--orientation-tol RAD])
 //                  [--planner NAME] [--time SECONDS] [--objective length|clearance]
 //                  [--repair-start [--repair-margin METRES]] [--seed N] --out path.txt
+//
+// A pose goal (planners/pose_goal.h) is reached by inverse kinematics: one collision-free
+// solution is found before planning (none: exit status 1 with the best attempt's error), then
+// more are sampled while the planner runs. The quaternion is in MoveIt's order (x y z w) and is
+// normalized; the pose is of the link's frame in the world frame.
 //
 // The path written is the planner's solution, shortcut by OMPL's simplifier where that does not make
 // the objective's cost worse (planners/setup.h: simplifySolutionChecked), then certified by the
 // clearance motion validator (planners/motion_validator.h: every waypoint and every motion is
 // proved free by conservative advancement, with discrete checks where that cannot conclude) and
 // repaired where that fails (planners/path_tools.h). Exit status 0 only for an exact solution
-// whose every waypoint and motion passed that check; 1 otherwise (no solution, approximate
+// whose every waypoint and motion passed that check (and, for a pose goal, whose last
+// configuration reaches the pose within the tolerances); 1 otherwise (no solution, approximate
 // solution, a start or goal outside the joint limits (naming the joint, its value and limit) or in
-// collision without --repair-start (naming the pair), a failed certification), with one line on
-// stderr saying which; 2 for a bad command line. The report on stderr gives the path's scene
-// clearance and self clearance separately, each with its pair.
+// collision without --repair-start (naming the pair), no collision-free IK solution, a failed
+// certification), with one line on stderr saying which; 2 for a bad command line. The report on
+// stderr gives the path's scene clearance and self clearance separately, each with its pair, and
+// for a pose goal the reached pose's position and orientation errors.
 
 #include "common.h"
+#include "load_world.h"
 #include "subcommands.h"
 
 #include "deepcheck/planners/objectives.h"
 #include "deepcheck/planners/path_tools.h"
 #include "deepcheck/planners/planner_factory.h"
+#include "deepcheck/planners/pose_goal.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/checker/world.h"
+#include "deepcheck/robots/inverse_kinematics.h"
 #include "deepcheck/robots/robot_model.h"
 
+#include <ompl/base/ScopedState.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
@@ -37,6 +51,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,7 +62,10 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: deepcheck plan --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
-    "                      [--srdf FILE] [--package-path DIR]... --start q1 ... qn --goal q1 ... qn\n"
+    "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
+    "                      [--srdf FILE] [--package-path DIR]... --start q1 ... qn\n"
+    "                      (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw\n"
+    "                                          [--position-tol M] [--orientation-tol RAD])\n"
     "                      [--planner NAME] [--time SECONDS] [--objective length|clearance]\n"
     "                      [--repair-start [--repair-margin METRES]] [--seed N] --out path.txt\n"
     "\n"
@@ -56,13 +75,17 @@ constexpr const char* kUsage =
     "that fails). Exit status 0 only for an exact, certified solution.\n"
     "\n"
     "options:\n"
-    "  --robot FILE        the robot's URDF (required)\n"
-    "  --scene FILE        a scene URDF (repeatable), optionally followed by\n"
-    "  --scene-pose x y z roll pitch yaw   its pose (metres, radians, URDF rpy)\n"
-    "  --srdf FILE         disable the self-collision pairs of this SRDF\n"
-    "  --package-path DIR  a root for package:// URIs (repeatable; ROS_PACKAGE_PATH is also read)\n"
+    DEEPCHECK_WORLD_OPTIONS_HELP
     "  --start q1 ... qn   the start configuration (required; n = the robot's variables)\n"
-    "  --goal q1 ... qn    the goal configuration (required)\n"
+    "  --goal q1 ... qn    the goal configuration (this or --goal-pose is required)\n"
+    "  --goal-pose LINK x y z qx qy qz qw\n"
+    "                      the goal is a pose of the robot's link LINK: its frame's origin at\n"
+    "                      (x, y, z) in the world frame (metres), its orientation the quaternion\n"
+    "                      qx qy qz qw (MoveIt's order, normalized; not zero). Reached by inverse\n"
+    "                      kinematics; no collision-free solution is exit status 1\n"
+    "  --position-tol M    how far the link's origin may be from the goal, metres (default 1e-4)\n"
+    "  --orientation-tol RAD  the largest rotation between the link's orientation and the goal's,\n"
+    "                      radians (default 1e-3)\n"
     "  --planner NAME      an OMPL planner (default RRTConnect): RRTConnect, RRT, RRT*,\n"
     "                      InformedRRT*, BIT*, PRM, PRM*, LazyPRM, LazyPRM*, KPIECE1, BKPIECE1,\n"
     "                      EST, BiEST, SBL, FMT, TRRT\n"
@@ -75,15 +98,20 @@ constexpr const char* kUsage =
     "                      (planners/push_out.h)\n"
     "  --repair-margin M   the clearance a repaired start or goal gets, metres (default 0.001)\n"
     "  --seed N            OMPL's random seed, 0 to 4294967295 (default: OMPL's own, different\n"
-    "                      each run)\n"
+    "                      each run), and the first seed of a pose goal's IK (default 0)\n"
     "  --out FILE          where to write the path (required)\n";
 
 Eigen::VectorXd toVector(const std::vector<double>& values) {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
-/// Throws InputError naming the first joint of q outside its limits, its value and the limit.
+/// Throws InputError for a q of the wrong size, or naming the first joint of q outside its limits,
+/// its value and the limit.
 void checkWithinLimits(const robots::RobotModel& model, const Eigen::VectorXd& q, const std::string& what) {
+  if (q.size() != model.numVariables()) {
+    throw InputError("the " + what + " configuration has " + std::to_string(q.size()) + " values, robot '" +
+                     model.name() + "' has " + std::to_string(model.numVariables()) + " variables");
+  }
   for (int v = 0; v < model.numVariables(); ++v) {
     const double lower = model.lowerLimits()[v];
     const double upper = model.upperLimits()[v];
@@ -135,113 +163,283 @@ std::pair<NearestPair, NearestPair> pathClearances(const ompl::geometric::PathGe
   return {scene, self};
 }
 
-int run(std::vector<std::string> args) {
-  std::string robotPath;
-  std::vector<SceneArg> scenes;
-  std::string srdf;
-  takeWorldOptions(args, robotPath, scenes, srdf);
-  const PackageRoots packages = takePackageRoots(args);
-  const std::vector<double> start = takeVector(args, "--start");
-  const std::vector<double> goal = takeVector(args, "--goal");
-  const std::string plannerName = takeSingleOption(args, "--planner", "RRTConnect");
-  const double seconds = parseValue(takeSingleOption(args, "--time", "5"), "--time");
-  const std::string objectiveName = takeSingleOption(args, "--objective", "length");
-  const bool repair = takeFlag(args, "--repair-start");
+/// A quaternion of --goal-pose whose norm is below this (dimensionless) has no direction to
+/// normalize: zero, or so small that its direction is rounding noise. Any other is normalized.
+constexpr double kMinQuaternionNorm = 1e-6;
+
+/// `--goal-pose LINK x y z qx qy qz qw [--position-tol m] [--orientation-tol rad]`.
+struct GoalPoseArg {
+  std::string link;
+  Eigen::Isometry3d X_WT = Eigen::Isometry3d::Identity();
+  double positionTolerance = robots::tol::kIkPositionTolerance;        ///< metres
+  double orientationTolerance = robots::tol::kIkOrientationTolerance;  ///< radians
+};
+
+/// X_WT from x y z qx qy qz qw (MoveIt's quaternion order), the quaternion normalized; UsageError
+/// for a quaternion of norm below kMinQuaternionNorm.
+Eigen::Isometry3d poseOfValues(const std::vector<std::string>& words) {
+  static const char* const names[7] = {"x", "y", "z", "qx", "qy", "qz", "qw"};
+  double v[7];
+  for (int k = 0; k < 7; ++k) v[k] = parseValue(words[static_cast<std::size_t>(k)], std::string("--goal-pose ") + names[k]);
+  const double norm = Eigen::Vector4d(v[3], v[4], v[5], v[6]).norm();
+  if (!(norm >= kMinQuaternionNorm)) {
+    throw UsageError("--goal-pose: the quaternion qx qy qz qw = " + words[3] + " " + words[4] + " " + words[5] + " " +
+                     words[6] + " has no direction (norm " + std::to_string(norm) + ")");
+  }
+  return robots::poseFromQuaternion(Eigen::Vector3d(v[0], v[1], v[2]), v[3] / norm, v[4] / norm, v[5] / norm,
+                                    v[6] / norm);
+}
+
+/// A tolerance option: positive and finite; empty when absent.
+std::optional<double> takeTolerance(std::vector<std::string>& args, const std::string& name, const char* unit) {
+  const std::string text = takeSingleOption(args, name);
+  if (text.empty()) return std::nullopt;
+  const double value = parseValue(text, name);
+  if (!(value > 0.0)) throw UsageError(name + " must be > 0 " + unit + ", got " + text);
+  return value;
+}
+
+/// Removes --goal-pose and its tolerances from `args`; empty when --goal-pose is absent (then the
+/// tolerances are an error).
+std::optional<GoalPoseArg> takeGoalPose(std::vector<std::string>& args) {
+  std::optional<GoalPoseArg> pose;
+  std::vector<std::string> rest;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] != "--goal-pose") {
+      rest.push_back(args[i]);
+      continue;
+    }
+    if (pose) throw UsageError("option --goal-pose given more than once");
+    if (i + 8 >= args.size() || args[i + 1].compare(0, 2, "--") == 0) {
+      throw UsageError("--goal-pose needs a link and 7 numbers: LINK x y z qx qy qz qw");
+    }
+    pose.emplace();
+    pose->link = args[i + 1];
+    pose->X_WT = poseOfValues(std::vector<std::string>(args.begin() + static_cast<std::ptrdiff_t>(i) + 2,
+                                                       args.begin() + static_cast<std::ptrdiff_t>(i) + 9));
+    i += 8;
+  }
+  args = std::move(rest);
+  const std::optional<double> position = takeTolerance(args, "--position-tol", "m");
+  const std::optional<double> orientation = takeTolerance(args, "--orientation-tol", "rad");
+  if (!pose) {
+    if (position || orientation) throw UsageError("--position-tol and --orientation-tol need --goal-pose");
+    return pose;
+  }
+  if (position) pose->positionTolerance = *position;
+  if (orientation) pose->orientationTolerance = *orientation;
+  return pose;
+}
+
+/// The command line of `deepcheck plan`.
+struct PlanArgs {
+  WorldArgs world;
+  std::vector<double> start;
+  std::vector<double> goal;
+  std::optional<GoalPoseArg> goalPose;
+  std::string plannerName;
+  double seconds = 0.0;
+  std::string objectiveName;
+  bool repair = false;
+  double margin = planners::tol::kEndpointRepairMargin;
+  std::uint64_t seed = 0;  ///< of the IK samples of a pose goal (and OMPL's, when seeded)
+  bool seeded = false;
+  std::string out;
+};
+
+/// --repair-start [--repair-margin M].
+void takeRepairOptions(std::vector<std::string>& args, PlanArgs& a) {
+  a.repair = takeFlag(args, "--repair-start");
   const std::string marginText = takeSingleOption(args, "--repair-margin");
-  const std::string seed = takeSingleOption(args, "--seed");
-  const std::string out = takeSingleOption(args, "--out");
+  if (marginText.empty()) return;
+  if (!a.repair) throw UsageError("--repair-margin needs --repair-start");
+  a.margin = parseValue(marginText, "--repair-margin");
+  if (a.margin < 0.0) throw UsageError("--repair-margin must be >= 0 metres, got " + marginText);
+}
+
+PlanArgs takePlanArgs(std::vector<std::string>& args) {
+  PlanArgs a;
+  a.world = takeWorldArgs(args);
+  a.start = takeVector(args, "--start");
+  a.goalPose = takeGoalPose(args);
+  a.goal = takeVector(args, "--goal");
+  a.plannerName = takeSingleOption(args, "--planner", "RRTConnect");
+  a.seconds = parseValue(takeSingleOption(args, "--time", "5"), "--time");
+  a.objectiveName = takeSingleOption(args, "--objective", "length");
+  takeRepairOptions(args, a);
+  if (const std::string seed = takeSingleOption(args, "--seed"); !seed.empty()) {
+    // OMPL seeds a 32-bit generator (and takes 0 as 1).
+    a.seed = parseCount(seed, "--seed", 0, std::numeric_limits<std::uint32_t>::max());
+    a.seeded = true;
+  }
+  a.out = takeSingleOption(args, "--out");
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args.front() + "'");
-  if (start.empty()) throw UsageError("option --start is required");
-  if (goal.empty()) throw UsageError("option --goal is required");
-  if (out.empty()) throw UsageError("option --out is required");
-  if (!(seconds > 0.0)) throw UsageError("--time must be > 0 seconds, got " + std::to_string(seconds));
-  if (objectiveName != "length" && objectiveName != "clearance") {
-    throw UsageError("--objective must be 'length' or 'clearance', got '" + objectiveName + "'");
+  if (a.start.empty()) throw UsageError("option --start is required");
+  if (a.goalPose && !a.goal.empty()) throw UsageError("--goal and --goal-pose exclude each other");
+  if (!a.goalPose && a.goal.empty()) throw UsageError("option --goal (or --goal-pose) is required");
+  if (a.out.empty()) throw UsageError("option --out is required");
+  if (!(a.seconds > 0.0)) throw UsageError("--time must be > 0 seconds, got " + std::to_string(a.seconds));
+  if (a.objectiveName != "length" && a.objectiveName != "clearance") {
+    throw UsageError("--objective must be 'length' or 'clearance', got '" + a.objectiveName + "'");
   }
-  double margin = planners::tol::kEndpointRepairMargin;
-  if (!marginText.empty()) {
-    if (!repair) throw UsageError("--repair-margin needs --repair-start");
-    margin = parseValue(marginText, "--repair-margin");
-    if (margin < 0.0) throw UsageError("--repair-margin must be >= 0 metres, got " + marginText);
-  }
-  if (!seed.empty()) {
-    // OMPL seeds a 32-bit generator (and takes 0 as 1).
-    const std::uint64_t value = parseCount(seed, "--seed", 0, std::numeric_limits<std::uint32_t>::max());
-    ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(value));  // before any OMPL object
-  }
-  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  return a;
+}
 
+/// The PoseGoal options of the command line: its tolerances, and the seed of its IK samples.
+planners::PoseGoalOptions poseGoalOptions(const PlanArgs& a, const Eigen::VectorXd& start) {
+  planners::PoseGoalOptions options;
+  options.ik.positionTolerance = a.goalPose->positionTolerance;
+  options.ik.orientationTolerance = a.goalPose->orientationTolerance;
+  options.ik.seed = a.seed;
+  options.ik.initial = start;  // the first solution near the start
+  return options;
+}
+
+/// Sets the pose goal: one collision-free IK solution first (none: InputError with the best
+/// attempt's error), handed to the goal as its first state, then PoseGoal samples more while the
+/// planner runs. Call after the start state is set.
+std::shared_ptr<planners::PoseGoal> setPoseGoal(ompl::geometric::SimpleSetup& ss, const PlanArgs& a,
+                                                const Eigen::VectorXd& start) {
+  const auto checker = planners::validityCheckerOf(ss);
+  const GoalPoseArg& pose = *a.goalPose;
+  const planners::PoseGoalOptions options = poseGoalOptions(a, start);
+  const robots::IkResult first = planners::solveCollisionFree(*checker, pose.link, pose.X_WT, options.ik);
+  std::fprintf(stderr, "goal pose of %s: IK %s after %d attempt(s), %d solution(s) in collision rejected\n",
+               pose.link.c_str(), robots::toString(first.status), first.attempts, first.rejected);
+  if (!first.converged()) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "; the best attempt is %.4g m and %.4g rad from the pose (tolerances %.4g m, %.4g rad)",
+                  first.error.position, first.error.orientation, pose.positionTolerance, pose.orientationTolerance);
+    throw InputError("no collision-free inverse kinematics solution for link '" + pose.link + "' at the goal pose (" +
+                     robots::toString(first.status) + ")" + text);
+  }
+  auto goal = std::make_shared<planners::PoseGoal>(ss.getSpaceInformation(), pose.link, pose.X_WT, options);
+  ompl::base::ScopedState<> state(ss.getStateSpace());
+  checker->mapping().toState(first.q, state.get());
+  goal->addState(state.get());
+  ss.setGoal(goal);
+  return goal;
+}
+
+/// The start state and a goal configuration (a pose goal is set after the endpoints are checked).
+void setStartAndGoal(ompl::geometric::SimpleSetup& ss, const PlanArgs& a) {
+  const auto checker = planners::validityCheckerOf(ss);
+  const Eigen::VectorXd start = toVector(a.start);
+  checkWithinLimits(checker->world().robot(), start, "start");
+  if (!a.goalPose) {
+    checkWithinLimits(checker->world().robot(), toVector(a.goal), "goal");
+    planners::setStartAndGoal(ss, start, toVector(a.goal));
+    return;
+  }
+  ompl::base::ScopedState<> state(ss.getStateSpace());
+  checker->mapping().toState(start, state.get());
+  ss.setStartState(state);
+}
+/// The world of the command line and a SimpleSetup on it.
+std::shared_ptr<ompl::geometric::SimpleSetup> makeSetup(const PlanArgs& a) {
+  auto world = std::make_shared<checker::World>(loadWorld(a.world));
   planners::SetupOptions options;
-  options.packageRoots = packages.commandLine;
-  options.srdf = srdf;
-  std::vector<planners::SceneSpec> specs;
-  for (const SceneArg& scene : scenes) {
-    specs.push_back(scene.posed ? planners::SceneSpec(scene.path, scene.X_WS) : planners::SceneSpec(scene.path));
-  }
-  auto ss = planners::makeSimpleSetup(robotPath, specs, options);
-  const auto checker = planners::validityCheckerOf(*ss);
-  const auto si = ss->getSpaceInformation();
-  planners::setStartAndGoal(*ss, toVector(start), toVector(goal));
-  // The planner first: an unknown name is reported before any work.
-  auto planner = planners::makePlanner(plannerName, si);
-  std::fprintf(stderr, "%s", checker->world().summary().c_str());
+  options.packageRoots = a.world.packages.commandLine;
+  options.srdf = a.world.srdf;
+  return planners::makeSimpleSetup(world, options);
+}
 
-  checkWithinLimits(checker->world().robot(), toVector(start), "start");
-  checkWithinLimits(checker->world().robot(), toVector(goal), "goal");
-  if (repair) {
-    const planners::EndpointRepair r = planners::repairStartAndGoal(*ss, margin);
+/// With --repair-start: pushes a start (and goal state) in slight collision out, reporting each.
+/// Without: InputError naming the pair of a start or goal configuration in collision.
+void checkOrRepairEndpoints(ompl::geometric::SimpleSetup& ss, const PlanArgs& a) {
+  const auto checker = planners::validityCheckerOf(ss);
+  if (a.repair) {
+    const planners::EndpointRepair r = planners::repairStartAndGoal(ss, a.margin);
     const auto report = [&](const char* what, const planners::PushOutResult& p) {
       // finalDistance is NaN when the push-out did not start (push_out.h): measure it then.
       const double sd = std::isnan(p.finalDistance) ? checker->clearance(p.q) : p.finalDistance;
       std::fprintf(stderr, "repair %s: %s, moved %.4g rad, signed distance now %.4g m (margin %.4g m)\n", what,
-                   planners::toString(p.status), p.jointMotion, sd, margin);
+                   planners::toString(p.status), p.jointMotion, sd, a.margin);
     };
     report("start", r.starts.front());
     if (r.goalIsState) report("goal", r.goal);
     if (!r.ok()) throw InputError("the start or goal could not be pushed out of collision (see above)");
-  } else {
-    for (const auto& [what, q] : {std::pair<const char*, const std::vector<double>*>{"start", &start}, {"goal", &goal}}) {
-      if (checker->isValid(toVector(*q))) continue;
-      const checker::DistanceResult d = checker->world().signedDistance(toVector(*q));
-      char distance[48];
-      std::snprintf(distance, sizeof distance, "%.4g m", d.closest.distance);
-      throw InputError(std::string("the ") + what + " configuration is in collision: signed distance " + distance +
-                       " between " + d.closest.nameA + " and " + d.closest.nameB +
-                       "; --repair-start pushes a slightly colliding one out");
-    }
+    return;
   }
+  std::vector<std::pair<const char*, const std::vector<double>*>> endpoints = {{"start", &a.start}};
+  if (!a.goalPose) endpoints.emplace_back("goal", &a.goal);
+  for (const auto& [what, q] : endpoints) {
+    if (checker->isValid(toVector(*q))) continue;
+    const checker::DistanceResult d = checker->world().signedDistance(toVector(*q));
+    char distance[48];
+    std::snprintf(distance, sizeof distance, "%.4g m", d.closest.distance);
+    throw InputError(std::string("the ") + what + " configuration is in collision: signed distance " + distance +
+                     " between " + d.closest.nameA + " and " + d.closest.nameB +
+                     "; --repair-start pushes a slightly colliding one out");
+  }
+}
 
-  if (objectiveName == "clearance") {
-    ss->setOptimizationObjective(
-        planners::makeLengthClearanceObjective(si, checker, planners::tol::kDefaultSafeDistance,
-                                               planners::tol::kDefaultHingeWeight, planners::linkSpeedBoundOf(*ss)));
-    planners::prepareForCostlyObjective(*planner);  // RRT*: radius neighbours (planner_factory.h)
+void setObjective(ompl::geometric::SimpleSetup& ss, ompl::base::Planner& planner, const std::string& name) {
+  const auto si = ss.getSpaceInformation();
+  if (name == "clearance") {
+    ss.setOptimizationObjective(planners::makeLengthClearanceObjective(
+        si, planners::validityCheckerOf(ss), planners::tol::kDefaultSafeDistance, planners::tol::kDefaultHingeWeight,
+        planners::linkSpeedBoundOf(ss)));
+    planners::prepareForCostlyObjective(planner);  // RRT*: radius neighbours (planner_factory.h)
   } else {
-    ss->setOptimizationObjective(std::make_shared<ompl::base::PathLengthOptimizationObjective>(si));
+    ss.setOptimizationObjective(std::make_shared<ompl::base::PathLengthOptimizationObjective>(si));
   }
-  ss->setPlanner(planner);
-  const ompl::base::PlannerStatus status = ss->solve(seconds);
-  std::fprintf(stderr, "planner %s: %s after %s\n", planner->getName().c_str(), status.asString().c_str(),
-               formatDuration(ss->getLastPlanComputationTime()).c_str());
-  if (status != ompl::base::PlannerStatus::EXACT_SOLUTION) {
-    if (ss->haveSolutionPath()) planners::writePath(ss->getSolutionPath(), out);
-    throw InputError(std::string("no exact solution (") + status.asString() + ")" +
-                     (ss->haveSolutionPath() ? "; the approximate path was written to " + out : std::string()));
-  }
-  if (!planners::simplifySolutionChecked(*ss)) {
+}
+
+/// Solves; InputError unless the solution is exact (an approximate path is written first).
+void solve(ompl::geometric::SimpleSetup& ss, const PlanArgs& a) {
+  const ompl::base::PlannerStatus status = ss.solve(a.seconds);
+  std::fprintf(stderr, "planner %s: %s after %s\n", ss.getPlanner()->getName().c_str(), status.asString().c_str(),
+               formatDuration(ss.getLastPlanComputationTime()).c_str());
+  if (status == ompl::base::PlannerStatus::EXACT_SOLUTION) return;
+  if (ss.haveSolutionPath()) planners::writePath(ss.getSolutionPath(), a.out);
+  throw InputError(std::string("no exact solution (") + status.asString() + ")" +
+                   (ss.haveSolutionPath() ? "; the approximate path was written to " + a.out : std::string()));
+}
+
+/// The reached pose's error at the path's end; InputError when it is outside the tolerances.
+void reportPoseError(const planners::PoseGoal& goal, const ompl::geometric::PathGeometric& path) {
+  const robots::PoseError e = goal.poseError(path.getState(path.getStateCount() - 1));
+  std::fprintf(stderr, "goal pose of %s: reached within %.3g m and %.3g rad\n", goal.linkName().c_str(), e.position,
+               e.orientation);
+  if (!e.within()) throw InputError("the path's last configuration does not reach the goal pose within the tolerances");
+}
+
+/// Simplifies, certifies (repairing where needed) and writes the solution, with its report.
+void finishPath(ompl::geometric::SimpleSetup& ss, const PlanArgs& a, const planners::PoseGoal* goal) {
+  if (!planners::simplifySolutionChecked(ss)) {
     std::fprintf(stderr, "path simplification: no simplified path passed the planner's checks without a worse "
                          "objective cost; the path as planned is kept\n");
   }
-  ompl::geometric::PathGeometric& path = ss->getSolutionPath();
-  const planners::PathCertificate certificate = planners::certifyPath(*ss, path);
-  planners::writePath(path, out);
-  const auto [scene, self] = pathClearances(path, checker->world());
+  ompl::geometric::PathGeometric& path = ss.getSolutionPath();
+  const planners::PathCertificate certificate = planners::certifyPath(ss, path);
+  planners::writePath(path, a.out);
+  const auto [scene, self] = pathClearances(path, planners::validityCheckerOf(ss)->world());
   std::fprintf(stderr, "path: %zu waypoints, length %.4f rad, scene clearance %s, self clearance %s, %s%s, written to %s\n",
                path.getStateCount(), path.length(), scene.describe().c_str(), self.describe().c_str(),
                certificate.valid ? "certified" : "NOT certified",
-               certificate.repaired ? " (after repair)" : "", out.c_str());
+               certificate.repaired ? " (after repair)" : "", a.out.c_str());
+  if (goal != nullptr) reportPoseError(*goal, path);
   if (!certificate.valid) throw InputError("the path could not be certified collision free");
+}
+
+int run(std::vector<std::string> args) {
+  const PlanArgs a = takePlanArgs(args);
+  if (a.seeded) ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(a.seed));  // before any OMPL object
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  const auto ss = makeSetup(a);
+  // The planner first: an unknown name is reported before any work.
+  const auto planner = planners::makePlanner(a.plannerName, ss->getSpaceInformation());
+  std::fprintf(stderr, "%s", planners::validityCheckerOf(*ss)->world().summary().c_str());
+  setStartAndGoal(*ss, a);
+  checkOrRepairEndpoints(*ss, a);
+  const std::shared_ptr<planners::PoseGoal> goal = a.goalPose ? setPoseGoal(*ss, a, toVector(a.start)) : nullptr;
+  setObjective(*ss, *planner, a.objectiveName);
+  ss->setPlanner(planner);
+  solve(*ss, a);
+  finishPath(*ss, a, goal.get());
   return 0;
 }
 

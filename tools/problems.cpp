@@ -2,6 +2,7 @@
 // planning scene, a start and a goal by collision-free inverse kinematics), written to a folder.
 
 #include "common.h"
+#include "load_world.h"
 #include "subcommands.h"
 
 #include "deepcheck/checker/world.h"
@@ -122,13 +123,7 @@ ProblemsArgs takeArgs(std::vector<std::string>& args) {
   a.variation = takeSingleOption(args, "--variation");
   a.queries = takeSingleOption(args, "--queries");
   a.robotConfig = takeSingleOption(args, "--robot-config");
-  for (const std::string& alias : takeOption(args, "--frame-alias")) {
-    try {
-      a.options.frameAliases.insert(robots::parseFrameAlias(alias));
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--frame-alias: ") + e.what());
-    }
-  }
+  a.options.frameAliases = takeFrameAliases(args);
   a.options.tipLink = takeSingleOption(args, "--tip", "panda_hand");
   a.options.eeOffset = parsePose(takeSingleOption(args, "--ee-offset", "0 0 0 0 -0.70710678118654752 0 0.70710678118654752"),
                                  "--ee-offset");

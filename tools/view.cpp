@@ -31,6 +31,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: deepcheck view --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
+    "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
     "                      [--srdf FILE] [--package-path DIR]... [--config q1 ... qn | --path FILE]\n"
     "                      [--hide LINK]... [--step S] --out view.html\n"
     "       deepcheck view --decompose MESH [--package-path DIR]... --out view.html\n"
@@ -43,11 +44,7 @@ constexpr const char* kUsage =
     "and the worst frame marked. The URL hash #t=N or #t=end selects the frame shown first.\n"
     "\n"
     "options:\n"
-    "  --robot FILE        the robot's URDF\n"
-    "  --scene FILE        a scene URDF (repeatable), optionally followed by\n"
-    "  --scene-pose x y z roll pitch yaw   its pose (metres, radians, URDF rpy)\n"
-    "  --srdf FILE         disable the self-collision pairs of this SRDF\n"
-    "  --package-path DIR  a root for package:// URIs (repeatable; ROS_PACKAGE_PATH is also read)\n"
+    DEEPCHECK_WORLD_OPTIONS_HELP
     "  --config q1 ... qn  the configuration shown (default: the robot's default configuration)\n"
     "  --path FILE         a path, one configuration per line (the `deepcheck plan --out` format)\n"
     "  --hide LINK         start with this robot link hidden (repeatable)\n"
@@ -70,11 +67,8 @@ std::vector<Eigen::VectorXd> readPathFile(const std::string& file, const robots:
   return path;
 }
 
-checker::ViewScene worldView(std::vector<std::string>& args, const PackageRoots& packages) {
-  std::string robotPath;
-  std::string srdf;
-  std::vector<SceneArg> scenes;
-  takeWorldOptions(args, robotPath, scenes, srdf);
+checker::ViewScene worldView(std::vector<std::string>& args) {
+  const WorldArgs worldArgs = takeWorldArgs(args);
   const std::vector<double> config = takeVector(args, "--config");
   const std::string pathFile = takeSingleOption(args, "--path");
   checker::WorldViewOptions options;
@@ -87,7 +81,7 @@ checker::ViewScene worldView(std::vector<std::string>& args, const PackageRoots&
   if (!args.empty()) throw UsageError("unexpected argument '" + args.front() + "'");
   if (!config.empty() && !pathFile.empty()) throw UsageError("--config and --path exclude each other");
 
-  const checker::World world = loadWorld(robotPath, scenes, srdf, packages);
+  const checker::World world = loadWorld(worldArgs);
   const robots::RobotModel& robot = world.robot();
   std::vector<Eigen::VectorXd> configurations;
   if (!pathFile.empty()) {
@@ -230,16 +224,16 @@ int run(std::vector<std::string> args) {
   const std::string out = takeSingleOption(args, "--out");
   const std::string decompose = takeSingleOption(args, "--decompose");
   const std::string pd = takeSingleOption(args, "--pd");
-  const PackageRoots packages = takePackageRoots(args);
   if (out.empty()) throw UsageError("option --out is required");
   if (!decompose.empty() && !pd.empty()) throw UsageError("--decompose and --pd exclude each other");
   checker::ViewScene scene;
   if (!decompose.empty() || !pd.empty()) {
+    const PackageRoots packages = takePackageRoots(args);
     rejectUnknownOptions(args);
     if (!args.empty()) throw UsageError("unexpected argument '" + args.front() + "'");
     scene = decompose.empty() ? pdView(pd) : decomposeView(decompose, packages);
   } else {
-    scene = worldView(args, packages);
+    scene = worldView(args);
   }
   checker::writeHtmlView(scene, out);
   std::fprintf(stderr, "wrote %s: %zu bodies, %zu frames\n", out.c_str(), scene.bodies.size(), scene.frames.size());
