@@ -183,8 +183,10 @@ Eigen::Isometry3d poseOfValues(const std::vector<std::string>& words) {
   for (int k = 0; k < 7; ++k) v[k] = parseValue(words[static_cast<std::size_t>(k)], std::string("--goal-pose ") + names[k]);
   const double norm = Eigen::Vector4d(v[3], v[4], v[5], v[6]).norm();
   if (!(norm >= kMinQuaternionNorm)) {
+    char text[48];
+    std::snprintf(text, sizeof text, "%.3g", norm);
     throw UsageError("--goal-pose: the quaternion qx qy qz qw = " + words[3] + " " + words[4] + " " + words[5] + " " +
-                     words[6] + " has no direction (norm " + std::to_string(norm) + ")");
+                     words[6] + " is zero (norm " + text + "): it gives no orientation");
   }
   return robots::poseFromQuaternion(Eigen::Vector3d(v[0], v[1], v[2]), v[3] / norm, v[4] / norm, v[5] / norm,
                                     v[6] / norm);
@@ -210,7 +212,9 @@ std::optional<GoalPoseArg> takeGoalPose(std::vector<std::string>& args) {
       continue;
     }
     if (pose) throw UsageError("option --goal-pose given more than once");
-    if (i + 8 >= args.size() || args[i + 1].compare(0, 2, "--") == 0) {
+    const auto isOption = [](const std::string& word) { return word.compare(0, 2, "--") == 0; };
+    if (i + 8 >= args.size() || std::any_of(args.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                                            args.begin() + static_cast<std::ptrdiff_t>(i) + 9, isOption)) {
       throw UsageError("--goal-pose needs a link and 7 numbers: LINK x y z qx qy qz qw");
     }
     pose.emplace();
@@ -307,13 +311,17 @@ std::shared_ptr<planners::PoseGoal> setPoseGoal(ompl::geometric::SimpleSetup& ss
   const robots::IkResult first = planners::solveCollisionFree(*checker, pose.link, pose.X_WT, options.ik);
   std::fprintf(stderr, "goal pose of %s: IK %s after %d attempt(s), %d solution(s) in collision rejected\n",
                pose.link.c_str(), robots::toString(first.status), first.attempts, first.rejected);
+  if (first.status == robots::IkStatus::Rejected) {
+    throw InputError("no collision-free inverse kinematics solution for link '" + pose.link +
+                     "' at the goal pose: the " + std::to_string(first.rejected) +
+                     " solution(s) found all fail the planner's validity check (a collision, or a joint outside "
+                     "its bounds)");
+  }
   if (!first.converged()) {
-    char text[200];
-    std::snprintf(text, sizeof text,
-                  "; the best attempt is %.4g m and %.4g rad from the pose (tolerances %.4g m, %.4g rad)",
+    char text[160];
+    std::snprintf(text, sizeof text, ": the best attempt is %.4g m and %.4g rad from it (tolerances %.4g m, %.4g rad)",
                   first.error.position, first.error.orientation, pose.positionTolerance, pose.orientationTolerance);
-    throw InputError("no collision-free inverse kinematics solution for link '" + pose.link + "' at the goal pose (" +
-                     robots::toString(first.status) + ")" + text);
+    throw InputError("no inverse kinematics solution for link '" + pose.link + "' reaches the goal pose" + text);
   }
   auto goal = std::make_shared<planners::PoseGoal>(ss.getSpaceInformation(), pose.link, pose.X_WT, options);
   ompl::base::ScopedState<> state(ss.getStateSpace());
