@@ -142,30 +142,37 @@ void printMeshes(const robots::RobotModel& model) {
               "  the mesh is not closed, so it has no volume)\n");
 }
 
-int runInfo(std::vector<std::string> args) {
-  const PackageRoots roots = takePackageRoots(args);
+/// The command line of `deepcheck info`.
+struct InfoArgs {
+  std::string file;
+  PackageRoots roots;
+  robots::PairFilterOptions filter;
+  std::string srdfPath;  ///< --write-srdf
+};
+
+InfoArgs takeInfoArgs(std::vector<std::string>& args) {
+  InfoArgs a;
+  a.roots = takePackageRoots(args);
   const std::string samplesText = takeSingleOption(args, "--samples");
   const std::string seedText = takeSingleOption(args, "--seed");
-  const std::string srdfPath = takeSingleOption(args, "--write-srdf");
+  a.srdfPath = takeSingleOption(args, "--write-srdf");
   rejectUnknownOptions(args);
   if (args.size() != 1) {
     throw UsageError(args.empty() ? "missing ROBOT.urdf" : "expected one ROBOT.urdf, got " +
                                                                std::to_string(args.size()) +
                                                                " arguments");
   }
-  robots::PairFilterOptions filter;
+  a.file = args[0];
   if (!samplesText.empty()) {
-    filter.samples = static_cast<int>(parseCount(samplesText, "--samples", 0, std::numeric_limits<int>::max()));
+    a.filter.samples = static_cast<int>(parseCount(samplesText, "--samples", 0, std::numeric_limits<int>::max()));
   }
   if (!seedText.empty()) {
-    filter.seed = parseCount(seedText, "--seed", 0, std::numeric_limits<std::uint64_t>::max());
+    a.filter.seed = parseCount(seedText, "--seed", 0, std::numeric_limits<std::uint64_t>::max());
   }
+  return a;
+}
 
-  robots::LoadOptions load;
-  load.packageRoots = roots.commandLine;
-  const robots::RobotModel model = robots::RobotModel::fromUrdfFile(args[0], load);
-  const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
-
+void printSummary(const robots::RobotModel& model, const std::vector<std::vector<robots::CollisionPiece>>& pieces) {
   int geometryLinks = 0;
   int numPieces = 0;
   for (const auto& p : pieces) {
@@ -177,7 +184,9 @@ int runInfo(std::vector<std::string> args) {
               "elements, %d convex pieces\n",
               model.numLinks(), geometryLinks, model.numJoints(), model.numVariables(),
               model.numCollisionElements(), numPieces);
+}
 
+void printJoints(const robots::RobotModel& model) {
   std::printf("\nvariables (configuration order):\n");
   std::printf("  %5s  %-24s %-10s %12s %12s %12s\n", "index", "joint", "type", "lower", "upper",
               "velocity");
@@ -195,7 +204,10 @@ int runInfo(std::vector<std::string> args) {
                 model.variableNames()[j.variable].c_str(), j.offset);
   }
   if (!anyMimic) std::printf("  none\n");
+}
 
+void printLinksAndPieces(const robots::RobotModel& model,
+                         const std::vector<std::vector<robots::CollisionPiece>>& pieces) {
   std::printf("\nlinks:\n");
   std::printf("  %5s  %-24s %-24s %-24s %8s %6s\n", "index", "link", "parent", "joint",
               "elements", "pieces");
@@ -208,19 +220,21 @@ int runInfo(std::vector<std::string> args) {
   }
 
   std::printf("\npieces:\n");
-  if (numPieces == 0) std::printf("  none\n");
+  bool anyPiece = false;
   for (int l = 0; l < model.numLinks(); ++l) {
     for (const robots::CollisionPiece& p : pieces[l]) {
+      anyPiece = true;
       std::printf("  %-24s %-10s %4d vertices", model.link(l).name.c_str(),
                   deep::toString(p.core->kind()), p.core->numVertices());
       if (p.radius > 0.0) std::printf(", radius %.6g", p.radius);
       std::printf("  (%s)\n", p.origin.c_str());
     }
   }
+  if (!anyPiece) std::printf("  none\n");
+}
 
-  printMeshes(model);
-
-  const robots::PairFilterResult result = robots::computeDisabledPairs(model, pieces, filter);
+void printCollisionPairs(const robots::RobotModel& model, const robots::PairFilterResult& result,
+                         const robots::PairFilterOptions& filter) {
   std::printf("\ncollision pairs (pair filter: %d random samples, seed %llu):\n", result.samples,
               static_cast<unsigned long long>(filter.seed));
   std::printf("  links with geometry: %d, link pairs: %d\n", result.numGeometryLinks,
@@ -237,16 +251,31 @@ int runInfo(std::vector<std::string> args) {
                 model.link(r.link1).name.c_str(), model.link(r.link2).name.c_str(), r.collisions,
                 result.samples);
   }
+}
 
-  if (!srdfPath.empty()) {
-    const std::string comment =
-        "Disabled collision pairs of " + model.name() + ", written by `deepcheck info " +
-        fileName(args[0]) + "` (pair filter: robots/include/deepcheck/robots/pair_filter.h)\n" +
-        "     on the convex hull of each collision mesh, with " + std::to_string(result.samples) +
-        " random samples, seed " + std::to_string(filter.seed) + ".";
-    robots::writeSrdf(srdfPath, model.name(), result.disabled, comment);
-    std::printf("\nwrote %s (%zu disabled pairs)\n", srdfPath.c_str(), result.disabled.size());
-  }
+void writeDisabledPairs(const robots::RobotModel& model, const robots::PairFilterResult& result, const InfoArgs& a) {
+  const std::string comment =
+      "Disabled collision pairs of " + model.name() + ", written by `deepcheck info " +
+      fileName(a.file) + "` (pair filter: robots/include/deepcheck/robots/pair_filter.h)\n" +
+      "     on the convex hull of each collision mesh, with " + std::to_string(result.samples) +
+      " random samples, seed " + std::to_string(a.filter.seed) + ".";
+  robots::writeSrdf(a.srdfPath, model.name(), result.disabled, comment);
+  std::printf("\nwrote %s (%zu disabled pairs)\n", a.srdfPath.c_str(), result.disabled.size());
+}
+
+int runInfo(std::vector<std::string> args) {
+  const InfoArgs a = takeInfoArgs(args);
+  robots::LoadOptions load;
+  load.packageRoots = a.roots.commandLine;
+  const robots::RobotModel model = robots::RobotModel::fromUrdfFile(a.file, load);
+  const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
+  printSummary(model, pieces);
+  printJoints(model);
+  printLinksAndPieces(model, pieces);
+  printMeshes(model);
+  const robots::PairFilterResult result = robots::computeDisabledPairs(model, pieces, a.filter);
+  printCollisionPairs(model, result, a.filter);
+  if (!a.srdfPath.empty()) writeDisabledPairs(model, result, a);
   return 0;
 }
 
