@@ -14,13 +14,20 @@
 //   pieces:                              one line per piece: <link> <kind> <vertices> <origin>
 //   meshes (...):                        one line per distinct mesh file and scale
 //   collision pairs (...):               the pair filter's counts
+// For a MoveIt planning scene (SCENE.yaml or .yml), the objects as read instead:
+//   planning scene '<file>'
+//   <objects> objects, <shapes> shapes
+//   objects (...):                       per object "<id> (frame <frame_id>, line <n>)", then
+//     one line per shape: <name> <geometry> at <x y z> <qx qy qz qw> (its pose in the frame)
 // Units: metres, radians (limits of prismatic joints in metres), m/s or rad/s.
 
 #include "common.h"
+#include "load_world.h"
 #include "subcommands.h"
 
 #include "deepcheck/robots/collision_geometry.h"
 #include "deepcheck/robots/mesh_loader.h"
+#include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
@@ -40,12 +47,15 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck info ROBOT.urdf [--package-path DIR]... [--samples N] [--seed S]\n"
     "                      [--write-srdf FILE]\n"
+    "       deepcheck info SCENE.yaml [--package-path DIR]...\n"
     "\n"
     "Describes a URDF robot or scene: links with their collision elements and convex pieces,\n"
     "joints in configuration order with their limits, the collision meshes and how well their\n"
     "pieces fit them, and the self-collision pairs left after the pair filter (adjacent links,\n"
     "pairs colliding at the default configuration, always or never colliding in N random\n"
     "configurations, as MoveIt's setup assistant does).\n"
+    "A MoveIt planning scene (.yaml or .yml): its collision objects as read, each with its frame\n"
+    "and its shapes (geometry and pose in the object's frame, quaternions x y z w).\n"
     "\n"
     "options:\n"
     "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"
@@ -148,6 +158,7 @@ struct InfoArgs {
   PackageRoots roots;
   robots::PairFilterOptions filter;
   std::string srdfPath;  ///< --write-srdf
+  bool pairFilterOptions = false;  ///< --samples, --seed or --write-srdf given
 };
 
 InfoArgs takeInfoArgs(std::vector<std::string>& args) {
@@ -158,11 +169,12 @@ InfoArgs takeInfoArgs(std::vector<std::string>& args) {
   a.srdfPath = takeSingleOption(args, "--write-srdf");
   rejectUnknownOptions(args);
   if (args.size() != 1) {
-    throw UsageError(args.empty() ? "missing ROBOT.urdf" : "expected one ROBOT.urdf, got " +
+    throw UsageError(args.empty() ? "missing ROBOT.urdf (or SCENE.yaml)" : "expected one file, got " +
                                                                std::to_string(args.size()) +
                                                                " arguments");
   }
   a.file = args[0];
+  a.pairFilterOptions = !samplesText.empty() || !seedText.empty() || !a.srdfPath.empty();
   if (!samplesText.empty()) {
     a.filter.samples = static_cast<int>(parseCount(samplesText, "--samples", 0, std::numeric_limits<int>::max()));
   }
@@ -263,8 +275,51 @@ void writeDisabledPairs(const robots::RobotModel& model, const robots::PairFilte
   std::printf("\nwrote %s (%zu disabled pairs)\n", a.srdfPath.c_str(), result.disabled.size());
 }
 
+/// "box 0.3 x 0.3 x 0.6 m", "sphere radius 0.1 m", ...
+std::string describe(const robots::SceneShape& shape) {
+  const robots::Geometry& g = shape.geometry;
+  char text[160];
+  switch (g.type) {
+    case robots::GeometryType::Box:
+      std::snprintf(text, sizeof text, "box %.6g x %.6g x %.6g m", g.boxSize.x(), g.boxSize.y(), g.boxSize.z());
+      return text;
+    case robots::GeometryType::Sphere:
+      std::snprintf(text, sizeof text, "sphere radius %.6g m", g.radius);
+      return text;
+    case robots::GeometryType::Cylinder:
+      std::snprintf(text, sizeof text, "cylinder length %.6g m radius %.6g m", g.length, g.radius);
+      return text;
+    default:
+      if (shape.mesh) return "in-memory mesh";
+      std::snprintf(text, sizeof text, " scale %.6g %.6g %.6g", g.meshScale.x(), g.meshScale.y(), g.meshScale.z());
+      return "mesh " + g.meshPath + text;
+  }
+}
+
+int describePlanningScene(const InfoArgs& a) {
+  if (a.pairFilterOptions) throw UsageError("--samples, --seed and --write-srdf describe robots, not planning scenes");
+  robots::SceneLoadOptions load;
+  load.packageRoots = a.roots.commandLine;
+  const robots::PlanningScene scene = robots::loadPlanningScene(a.file, load);
+  std::size_t shapes = 0;
+  for (const robots::SceneObject& o : scene.objects) shapes += o.shapes.size();
+  std::printf("planning scene '%s'\n%zu objects, %zu shapes\n", scene.source.c_str(), scene.objects.size(), shapes);
+  std::printf("\nobjects (shape poses in the object's frame: x y z, quaternion qx qy qz qw):\n");
+  for (const robots::SceneObject& o : scene.objects) {
+    std::printf("  %s (frame %s, line %d)\n", o.id.c_str(), o.frameId.c_str(), o.line);
+    for (const robots::SceneShape& shape : o.shapes) {
+      const Eigen::Vector3d p = shape.X_FS.translation();
+      const Eigen::Quaterniond q(shape.X_FS.rotation());
+      std::printf("    %-34s %s at %.6g %.6g %.6g  %.6g %.6g %.6g %.6g\n", shape.name.c_str(), describe(shape).c_str(),
+                  p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
+    }
+  }
+  return 0;
+}
+
 int runInfo(std::vector<std::string> args) {
   const InfoArgs a = takeInfoArgs(args);
+  if (isPlanningSceneFile(a.file)) return describePlanningScene(a);
   robots::LoadOptions load;
   load.packageRoots = a.roots.commandLine;
   const robots::RobotModel model = robots::RobotModel::fromUrdfFile(a.file, load);
@@ -282,7 +337,7 @@ int runInfo(std::vector<std::string> args) {
 }  // namespace
 
 const Subcommand kInfoCommand = {"info",
-                                 "describe a URDF robot: links, joints, pieces, collision pairs",
+                                 "describe a URDF robot (links, joints, pieces, pairs) or a planning scene",
                                  kUsage, runInfo};
 
 }  // namespace deepcheck::tools

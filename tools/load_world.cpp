@@ -47,12 +47,26 @@ robots::FrameAliases takeFrameAliases(std::vector<std::string>& args) {
   return aliases;
 }
 
-SceneKind sceneKind(const std::string& path) {
+namespace {
+
+std::string lowerCaseExtension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+}  // namespace
+
+bool isPlanningSceneFile(const std::string& path) {
+  const std::string extension = lowerCaseExtension(path);
+  return extension == ".yaml" || extension == ".yml";
+}
+
+SceneKind sceneKind(const std::string& path) {
+  if (isPlanningSceneFile(path)) return SceneKind::PlanningScene;
+  const std::string extension = lowerCaseExtension(path);
   if (extension == ".urdf") return SceneKind::Urdf;
-  if (extension == ".yaml" || extension == ".yml") return SceneKind::PlanningScene;
   throw UsageError("scene '" + path + "': unknown scene type '" + extension +
                    "' (expected .urdf for a URDF scene, .yaml or .yml for a MoveIt planning scene)");
 }

@@ -61,6 +61,9 @@ struct WorldArgs {
 /// planning-scene YAML, or a --frame-alias without any such scene.
 WorldArgs takeWorldArgs(std::vector<std::string>& args);
 
+/// True for a .yaml or .yml file (any case): a MoveIt planning scene.
+bool isPlanningSceneFile(const std::string& path);
+
 /// The kind of a scene file, from its extension (any case).
 enum class SceneKind { Urdf, PlanningScene };
 /// Throws UsageError naming the file and the extensions known for any other extension.

@@ -323,7 +323,11 @@ std::shared_ptr<planners::PoseGoal> setPoseGoal(ompl::geometric::SimpleSetup& ss
                   first.error.position, first.error.orientation, pose.positionTolerance, pose.orientationTolerance);
     throw InputError("no inverse kinematics solution for link '" + pose.link + "' reaches the goal pose" + text);
   }
-  auto goal = std::make_shared<planners::PoseGoal>(ss.getSpaceInformation(), pose.link, pose.X_WT, options);
+  // The first solution is already a goal state: the sampling thread goes on from the next seed.
+  planners::PoseGoalOptions sampling = options;
+  sampling.ik.initial.resize(0);
+  sampling.ik.seed += 1;
+  auto goal = std::make_shared<planners::PoseGoal>(ss.getSpaceInformation(), pose.link, pose.X_WT, sampling);
   ompl::base::ScopedState<> state(ss.getStateSpace());
   checker->mapping().toState(first.q, state.get());
   goal->addState(state.get());

@@ -137,6 +137,9 @@ ProblemsArgs takeArgs(std::vector<std::string>& args) {
                                     {a.queries, "--queries"}, {a.robotConfig, "--robot-config"}, {a.out, "--out"}}) {
     if (value.empty()) throw UsageError(std::string("option ") + name + " is required");
   }
+  if (sceneKind(a.scene) != SceneKind::PlanningScene) {
+    throw UsageError("--scene '" + a.scene + "': problems vary a MoveIt planning scene (.yaml or .yml)");
+  }
   return a;
 }
 

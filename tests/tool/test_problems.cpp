@@ -100,6 +100,10 @@ BOOST_AUTO_TEST_CASE(missing_and_bad_options_are_reported) {
   const Run alias = scratch.run("problems --frame-alias base_link");
   BOOST_TEST(alias.status == 2);
   BOOST_TEST(alias.err.find("--frame-alias") != std::string::npos, alias.err);
+  const Run urdf = scratch.run("problems --robot r.urdf --scene s.urdf --variation v.yaml --queries q.yaml "
+                               "--robot-config c.yaml --out dir");
+  BOOST_TEST(urdf.status == 2);
+  BOOST_TEST(urdf.err.find("--scene 's.urdf': problems vary a MoveIt planning scene") != std::string::npos, urdf.err);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

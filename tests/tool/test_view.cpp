@@ -140,6 +140,21 @@ BOOST_AUTO_TEST_CASE(configuration_page_has_one_frame) {
   BOOST_TEST(page.find("\"name\":\"link3\",\"layer\":\"robot\",\"visible\":false") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(planning_scene_objects_are_shown_as_obstacles) {
+  Scratch scratch;
+  const std::string scene = scratch.write("crate.yaml",
+                                          "world:\n  collision_objects:\n    - header: {frame_id: world}\n"
+                                          "      id: crate\n"
+                                          "      primitives: [{type: box, dimensions: [0.2, 0.2, 0.2]}]\n"
+                                          "      primitive_poses: [{position: [0.6, 0, 0.1], orientation: [0, 0, 0, 1]}]\n");
+  const std::string out = scratch.path("view.html");
+  const Run r = scratch.run("view --robot " + quote(kUrdf) + " --package-path " + quote(kData) + " --scene " +
+                            quote(scene) + " --frame-alias world=base_link --out " + quote(out));
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const std::string page = tool_test::readFile(out);
+  BOOST_TEST(page.find("\"name\":\"obstacle/crate\",\"layer\":\"obstacle\"") != std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(decompose_page_shows_the_mesh_pieces_and_report) {
   Scratch scratch;
   const std::string out = scratch.path("view.html");
