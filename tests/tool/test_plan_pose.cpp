@@ -4,14 +4,13 @@
 // the tolerances and every waypoint is free in the world the library builds from the same files.
 // Bad pose goals are reported.
 
+#include "robot_files.h"
 #include "tool_runner.h"
 
 #include "common/test_paths.h"
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/kinematics.h"
-#include "deepcheck/robots/moveit_scene.h"
-#include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include <boost/test/unit_test.hpp>
@@ -22,13 +21,7 @@
 #include <vector>
 
 using namespace deepcheck;
-using tool_test::fields;
-using tool_test::fmt;
-using tool_test::lines;
-using tool_test::quote;
-using tool_test::readFile;
-using tool_test::Run;
-using tool_test::Scratch;
+using namespace deepcheck::tool_test;
 
 namespace {
 
@@ -50,31 +43,7 @@ const char* kObjects =
     "      primitives: [{type: cylinder, dimensions: [0.4, 0.03]}]\n"
     "      primitive_poses: [{position: [0.35, 0.35, 0.2], orientation: [0, 0, 0, 1]}]\n";
 
-std::string armUrdf() { return test::bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf"; }
-std::string armSrdf() { return test::bundledDataDir() + "/deepcheck_arm/srdf/deepcheck_arm.srdf"; }
 const std::string kArmStart = " --start 0 -0.4 0 -1.6 0 1.2 0";
-
-std::string panda() { return test::sharedDir() + "/robots/panda"; }
-std::string pandaUrdf() { return panda() + "/moveit_resources_panda_description/urdf/panda.urdf"; }
-std::string pandaSrdf() { return panda() + "/moveit_resources_panda_moveit_config/config/panda.srdf"; }
-std::string bookshelf() {
-  return test::sharedDir() + "/scenes/motion_bench_maker/configs/scenes/bookshelf/scene_small.yaml";
-}
-
-/// The robot of `urdf` (SRDF pairs disabled) among the objects of `scene`, built by the library.
-checker::World libraryWorld(const std::string& urdf, const std::string& srdf, const std::string& packages,
-                            const std::string& scene, const robots::FrameAliases& aliases) {
-  robots::LoadOptions load;
-  load.packageRoots = {packages};
-  load.useRosPackagePath = false;
-  checker::WorldOptions options;
-  options.disabledPairs = robots::readSrdfDisabledPairs(srdf);
-  checker::World world(robots::RobotModel::fromUrdfFile(urdf, load), options);
-  checker::PlanningSceneOptions placement;
-  placement.frameAliases = aliases;
-  world.addPlanningScene(robots::loadPlanningScene(scene), placement);
-  return world;
-}
 
 /// " LINK x y z qx qy qz qw" of the link's pose at q.
 std::string poseWords(const robots::RobotModel& robot, const std::string& link, const Eigen::VectorXd& q) {
@@ -142,13 +111,13 @@ BOOST_AUTO_TEST_CASE(the_bundled_arm_reaches_a_pose_among_planning_scene_objects
 BOOST_AUTO_TEST_CASE(the_panda_reaches_a_pose_in_the_bookshelf) {
   if (!test::haveShared("plan --goal-pose in the MotionBenchMaker bookshelf")) return;
   Scratch s;
-  const checker::World world = libraryWorld(pandaUrdf(), pandaSrdf(), panda(), bookshelf(), {{"base_link", "panda_link0"}});
+  const checker::World world = libraryWorld(pandaUrdf(), pandaSrdf(), pandaDir(), bookshelfScene(), {{"base_link", "panda_link0"}});
   Eigen::VectorXd goal(8);
   goal << -2.2643608956862633, -1.7277648984445335, -0.61333232404950022, -1.887547154810622, 2.6237618279716743,
       1.1520985734847371, -1.8950207790478606, 0.02;
   planToPose(s,
-             " --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " + quote(panda()) +
-                 " --scene " + quote(bookshelf()) + " --frame-alias base_link=panda_link0" +
+             " --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " + quote(pandaDir()) +
+                 " --scene " + quote(bookshelfScene()) + " --frame-alias base_link=panda_link0" +
                  " --start 0 -0.785 0 -2.356 0 1.571 0.785 0.04",
              world, "panda_hand", goal);
 }

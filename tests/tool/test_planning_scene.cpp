@@ -2,13 +2,13 @@
 // --frame-alias): `deepcheck check` answers as the library's World::addPlanningScene does, and
 // bad scene arguments are reported clearly.
 
+#include "robot_files.h"
 #include "tool_runner.h"
 
 #include "common/test_paths.h"
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/moveit_scene.h"
-#include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/random_configuration.h"
 #include "deepcheck/robots/robot_model.h"
 
@@ -19,23 +19,9 @@
 #include <vector>
 
 using namespace deepcheck;
-using tool_test::fields;
-using tool_test::fmt;
-using tool_test::lines;
-using tool_test::number;
-using tool_test::quote;
-using tool_test::Run;
-using tool_test::Scratch;
+using namespace deepcheck::tool_test;
 
 namespace {
-
-std::string panda() { return test::sharedDir() + "/robots/panda"; }
-std::string pandaUrdf() { return panda() + "/moveit_resources_panda_description/urdf/panda.urdf"; }
-std::string pandaSrdf() { return panda() + "/moveit_resources_panda_moveit_config/config/panda.srdf"; }
-std::string bookshelf() {
-  return test::sharedDir() + "/scenes/motion_bench_maker/configs/scenes/bookshelf/scene_small.yaml";
-}
-std::string armUrdf() { return test::bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf"; }
 
 /// A scene whose object is given in frame 'world', which the bundled arm does not have.
 const char* kWorldFrameScene =
@@ -64,16 +50,9 @@ BOOST_AUTO_TEST_SUITE(tool_planning_scene)
 
 BOOST_AUTO_TEST_CASE(check_in_a_motion_bench_maker_scene_answers_as_the_library) {
   if (!test::haveShared("check in the MotionBenchMaker bookshelf")) return;
-  robots::LoadOptions load;
-  load.packageRoots = {panda()};
-  load.useRosPackagePath = false;
-  checker::WorldOptions options;
-  options.disabledPairs = robots::readSrdfDisabledPairs(pandaSrdf());
-  checker::World world(robots::RobotModel::fromUrdfFile(pandaUrdf(), load), options);
-  checker::PlanningSceneOptions placement;
-  placement.frameAliases = {{"base_link", "panda_link0"}};
-  const std::vector<int> ids = world.addPlanningScene(robots::loadPlanningScene(bookshelf()), placement);
-  BOOST_TEST_REQUIRE(ids.size() == 7u);
+  checker::World world =
+      libraryWorld(pandaUrdf(), pandaSrdf(), pandaDir(), bookshelfScene(), {{"base_link", "panda_link0"}});
+  BOOST_TEST_REQUIRE(world.obstacleIds().size() == 7u);
 
   std::mt19937_64 rng(7);
   std::vector<Eigen::VectorXd> qs = {world.robot().defaultConfiguration()};
@@ -85,7 +64,7 @@ BOOST_AUTO_TEST_CASE(check_in_a_motion_bench_maker_scene_answers_as_the_library)
   }
   Scratch s;
   const Run r = s.run("check --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " +
-                          quote(panda()) + " --scene " + quote(bookshelf()) + " --frame-alias base_link=panda_link0",
+                          quote(pandaDir()) + " --scene " + quote(bookshelfScene()) + " --frame-alias base_link=panda_link0",
                       input, "ROS_PACKAGE_PATH=");
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(contains(r.err, "obstacles: 7"), r.err);

@@ -1,6 +1,7 @@
 // deepcheck problems end to end: the Panda on MotionBenchMaker's small bookshelf; every written
 // problem's scene reads back and its start and goal are collision free in it; a seed repeats.
 
+#include "robot_files.h"
 #include "tool_runner.h"
 
 #include "common/test_paths.h"
@@ -23,13 +24,13 @@ using tool_test::Scratch;
 
 namespace {
 
-std::string panda() { return test::sharedDir() + "/robots/panda"; }
-std::string srdf() { return panda() + "/moveit_resources_panda_moveit_config/config/panda.srdf"; }
-std::string urdf() { return panda() + "/moveit_resources_panda_description/urdf/panda.urdf"; }
+using tool_test::pandaDir;
+using tool_test::pandaSrdf;
+using tool_test::pandaUrdf;
 
 std::string bookshelfArgs(const std::string& out, int count, int seed) {
   const std::string m = test::sharedDir() + "/scenes/motion_bench_maker/configs";
-  return "problems --robot " + quote(urdf()) + " --srdf " + quote(srdf()) + " --package-path " + quote(panda()) +
+  return "problems --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " + quote(pandaDir()) +
          " --scene " + quote(m + "/scenes/bookshelf/scene_small.yaml") + " --variation " +
          quote(m + "/scenes/bookshelf/variation_small.yaml") + " --queries " +
          quote(m + "/scenes/bookshelf/all_queries_small.yaml") + " --robot-config " + quote(m + "/robots/panda.yaml") +
@@ -65,12 +66,7 @@ BOOST_AUTO_TEST_CASE(bookshelf_problems_are_collision_free_and_repeat_with_the_s
   const Run r = scratch.run(bookshelfArgs(scratch.path("a"), 2, 5));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.out.find("problem 2/2") != std::string::npos, r.out);
-  robots::LoadOptions load;
-  load.packageRoots = {panda()};
-  load.useRosPackagePath = false;
-  checker::WorldOptions options;
-  options.disabledPairs = robots::readSrdfDisabledPairs(srdf());
-  checker::World world(robots::RobotModel::fromUrdfFile(urdf(), load), options);
+  checker::World world = tool_test::libraryWorld(pandaUrdf(), pandaSrdf(), pandaDir());
   for (const char* k : {"0000", "0001"}) {
     const auto problem = readProblem(scratch.path(std::string("a/problem_") + k + ".txt"));
     BOOST_REQUIRE_EQUAL(problem.at("scene").front(), std::string("scene_") + k + ".yaml");
