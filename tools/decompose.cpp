@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace deepcheck::tools {
@@ -85,11 +86,20 @@ void printReport(const robots::DecompositionReport& r) {
   if (!r.cacheMessage.empty()) std::printf("cache note: %s\n", r.cacheMessage.c_str());
 }
 
-int run(std::vector<std::string> args) {
-  const bool report = takeFlag(args, "--report");
-  const bool noCache = takeFlag(args, "--no-cache");
-  const std::string out = takeSingleOption(args, "--out");
-  const std::string cacheDir = takeSingleOption(args, "--cache");
+/// The command line of `deepcheck decompose`.
+struct DecomposeArgs {
+  bool report = false;
+  bool noCache = false;
+  std::string out;
+  std::string cacheDir;
+  robots::DecompositionParams params;
+  PackageRoots packages;
+  std::vector<std::string> meshes;
+};
+
+/// The decomposition parameters given (--max-concavity, --min-concavity-abs, --max-pieces,
+/// --max-vertices); UsageError for a value they do not accept.
+robots::DecompositionParams takeParams(std::vector<std::string>& args) {
   robots::DecompositionParams params;
   if (const std::string v = takeSingleOption(args, "--max-concavity"); !v.empty()) {
     params.maxConcavity = parseValue(v, "option --max-concavity");
@@ -103,35 +113,35 @@ int run(std::vector<std::string> args) {
   if (const std::string v = takeSingleOption(args, "--max-vertices"); !v.empty()) {
     params.maxVerticesPerPiece = static_cast<int>(parseCount(v, "--max-vertices", 1, kMaxCount));
   }
-  const PackageRoots packages = takePackageRoots(args);
+  return params;
+}
+
+DecomposeArgs takeDecomposeArgs(std::vector<std::string>& args) {
+  DecomposeArgs a;
+  a.report = takeFlag(args, "--report");
+  a.noCache = takeFlag(args, "--no-cache");
+  a.out = takeSingleOption(args, "--out");
+  a.cacheDir = takeSingleOption(args, "--cache");
+  a.params = takeParams(args);
+  a.packages = takePackageRoots(args);
   rejectUnknownOptions(args);
-  if (noCache && !cacheDir.empty()) throw UsageError("--cache and --no-cache exclude each other");
+  if (a.noCache && !a.cacheDir.empty()) throw UsageError("--cache and --no-cache exclude each other");
   if (args.empty()) throw UsageError("no mesh given");
-  if (!report && args.size() > 1) throw UsageError("one mesh at a time (or --report for several)");
-  if (report && !out.empty()) throw UsageError("--out writes one mesh: not with --report");
+  if (!a.report && args.size() > 1) throw UsageError("one mesh at a time (or --report for several)");
+  if (a.report && !a.out.empty()) throw UsageError("--out writes one mesh: not with --report");
   try {
-    params.validate();
+    a.params.validate();
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  const robots::DecompositionCache cache =
-      noCache ? robots::DecompositionCache::disabled() : robots::DecompositionCache(cacheDir);
-  const std::vector<std::string> roots = robots::packageRoots(packages.commandLine);
+  a.meshes = std::move(args);
+  return a;
+}
 
-  std::vector<robots::TriangleMesh> meshes;
-  for (const std::string& arg : args) {
-    const std::string path = robots::resolveUriOrThrow(arg, roots, "", "mesh argument");
-    meshes.push_back(robots::loadMesh(path));
-  }
-
-  if (!report) {
-    const robots::ConvexDecomposition d = robots::decomposeConvexCached(meshes[0], params, cache);
-    if (!out.empty()) robots::writePiecesObj(out, d.pieces);
-    printReport(d.report);
-    if (!out.empty()) std::printf("wrote %s\n", out.c_str());
-    return 0;
-  }
-
+/// `--report`: one table line per mesh, a summary, and the time to read them all back from the
+/// cache.
+void printReportTable(const std::vector<robots::TriangleMesh>& meshes, const robots::DecompositionParams& params,
+                      const robots::DecompositionCache& cache) {
   std::printf("%-24s %9s %6s %10s %7s %10s %4s %8s %9s %7s\n", "mesh", "triangles", "pieces",
               "concavity", "%diag", "target", "met", "vol.ratio", "ms", "cache");
   bool allMet = true;
@@ -148,17 +158,35 @@ int run(std::vector<std::string> args) {
   }
   std::printf("meshes %zu, target met by all: %s, this run %.1f ms\n", meshes.size(),
               allMet ? "yes" : "no", totalMs);
-  if (cache.enabled()) {
-    // Reading everything back, as a second load of the same robot does (meshes already parsed).
-    const auto start = std::chrono::steady_clock::now();
-    int hits = 0;
-    for (const robots::TriangleMesh& mesh : meshes) {
-      hits += robots::decomposeConvexCached(mesh, params, cache).report.cache == robots::CacheStatus::Hit;
-    }
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::printf("cached load: %d of %zu meshes from the cache in %.2f ms\n", hits, meshes.size(), ms);
+  if (!cache.enabled()) return;
+  // Reading everything back, as a second load of the same robot does (meshes already parsed).
+  const auto start = std::chrono::steady_clock::now();
+  int hits = 0;
+  for (const robots::TriangleMesh& mesh : meshes) {
+    hits += robots::decomposeConvexCached(mesh, params, cache).report.cache == robots::CacheStatus::Hit;
   }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::printf("cached load: %d of %zu meshes from the cache in %.2f ms\n", hits, meshes.size(), ms);
+}
+
+int run(std::vector<std::string> args) {
+  const DecomposeArgs a = takeDecomposeArgs(args);
+  const robots::DecompositionCache cache =
+      a.noCache ? robots::DecompositionCache::disabled() : robots::DecompositionCache(a.cacheDir);
+  const std::vector<std::string> roots = robots::packageRoots(a.packages.commandLine);
+  std::vector<robots::TriangleMesh> meshes;
+  for (const std::string& arg : a.meshes) {
+    const std::string path = robots::resolveUriOrThrow(arg, roots, "", "mesh argument");
+    meshes.push_back(robots::loadMesh(path));
+  }
+  if (a.report) {
+    printReportTable(meshes, a.params, cache);
+    return 0;
+  }
+  const robots::ConvexDecomposition d = robots::decomposeConvexCached(meshes[0], a.params, cache);
+  if (!a.out.empty()) robots::writePiecesObj(a.out, d.pieces);
+  printReport(d.report);
+  if (!a.out.empty()) std::printf("wrote %s\n", a.out.c_str());
   return 0;
 }
 
