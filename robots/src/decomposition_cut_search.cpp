@@ -90,178 +90,240 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vec
   return result;
 }
 
-std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool quick, double bound,
-                                                         double* bestScore) {
-  // Directions: the axes, then the part's principal axes unless they repeat an axis.
+namespace {
+
+/// The cut directions of a part: the axes, then its principal axes unless they repeat an axis.
+std::vector<Vector3d> cutDirections(const std::vector<Vector3d>& points) {
   std::vector<Vector3d> directions = {Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ()};
-  {
-    Vector3d center = Vector3d::Zero();
-    for (const Vector3d& p : part.points) center += p;
-    center /= static_cast<double>(part.points.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Vector3d& p : part.points) cov += (p - center) * (p - center).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
-    for (int i = 2; i >= 0; --i) {
-      const Vector3d d = solver.eigenvectors().col(i).normalized();
-      bool repeated = false;
-      for (const Vector3d& e : directions) repeated = repeated || std::abs(d.dot(e)) > dt::kSameDirectionCos;
-      if (!repeated && d.allFinite()) directions.push_back(d);
-    }
+  Vector3d center = Vector3d::Zero();
+  for (const Vector3d& p : points) center += p;
+  center /= static_cast<double>(points.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const Vector3d& p : points) cov += (p - center) * (p - center).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+  for (int i = 2; i >= 0; --i) {
+    const Vector3d d = solver.eigenvectors().col(i).normalized();
+    bool repeated = false;
+    for (const Vector3d& e : directions) repeated = repeated || std::abs(d.dot(e)) > dt::kSameDirectionCos;
+    if (!repeated && d.allFinite()) directions.push_back(d);
   }
+  return directions;
+}
+
+}  // namespace
+
+/// One scoreCuts call: the part's cut directions and their extents, the cuts tried so far and
+/// those scored. The steps add candidates in a fixed order (the scores and the random seeds of
+/// the concavity estimates depend on it).
+struct Decomposer::CutSearch {
+  CutSearch(Decomposer& decomposer, const Part& cutPart, bool quickOnly, double scoreBound, double* best)
+      : d(decomposer), part(cutPart), quick(quickOnly), bound(scoreBound), bestScore(*best),
+        directions(cutDirections(cutPart.points)),
+        tie(dt::kTieFraction * decomposer.target_),
+        slab(dt::kMinSlabRelative * decomposer.diagonal_),
+        wallAbove(directions.size(), kInf),
+        wallBelow(directions.size(), -kInf) {
+    for (const Vector3d& n : directions) ranges.push_back(extentAlong(cutPart.points, n));
+    bestScore = kInf;
+  }
+
+  /// Scores the cut along directions[dir] at `offset` unless it is (almost) tried already.
+  void tryCut(int dir, double offset, bool throughWorst);
+  /// Through the worst hull sample and through the mesh point nearest to it.
+  void throughWorstCuts();
+  /// Through the part's points near the worst sample.
+  void nearWorstCuts();
+  /// Through the walls that rays from the worst sample meet, and along the walls' planes.
+  void wallCuts();
+  /// Slabs between the walls on both sides of the worst sample.
+  void slabCuts();
+  /// Evenly spaced offsets along each direction.
+  void evenCuts();
+  /// Refines the offset of the best cut.
+  void refine();
+
+  Decomposer& d;
+  const Part& part;
+  const bool quick;
+  const double bound;
+  double& bestScore;
+  std::vector<Vector3d> directions;
   std::vector<Extent> ranges;
-  for (const Vector3d& d : directions) ranges.push_back(extentAlong(part.points, d));
-
+  const double tie;
+  const double slab;
   std::vector<Candidate> scored;
-  *bestScore = kInf;
-  const double tie = dt::kTieFraction * target_;
-  const double slab = dt::kMinSlabRelative * diagonal_;
   std::vector<std::pair<int, double>> tried;
-  auto tryCut = [&](int dir, double offset, bool throughWorst) {
-    const Extent& r = ranges[dir];
-    if (!(offset > r.lo + slab && offset < r.hi - slab)) return;
-    // A plane (almost) tried already: the same cut.
-    for (const auto& [d, o] : tried) {
-      if (d == dir && std::abs(o - offset) <= dt::kSameOffsetFraction * target_) return;
-    }
-    tried.emplace_back(dir, offset);
-    const Vector3d& n = directions[dir];
-    const CrossSection section(mesh_, n, offset, false);
-    double abortAbove = std::min(*bestScore + tie, bound);
-    if (part.reductionLimited) abortAbove = std::max(abortAbove, target_);
-    const SideResult a = evaluateSide(part, {{{n, offset}, &section}}, abortAbove);
-    if (!a.valid || a.aborted) return;
-    const SideResult b = evaluateSide(part, {{{-n, -offset}, &section}}, abortAbove);
-    if (!b.valid || b.aborted) return;
-    if (part.noSlivers && std::min(a.volume, b.volume) < (1.0 - dt::kSliverVolume) * part.hull.volume) return;
-    const double score = std::max(a.concavity, b.concavity);
-    *bestScore = std::min(*bestScore, score);
-    double faceArea = 0.0;
-    const double onPlane = dt::kOnPlaneRelative * diagonal_;
-    for (const PartPolygon& polygon : part.polygons) {
-      bool inPlane = true;
-      for (const Vector3d& p : polygon.corners) inPlane = inPlane && std::abs(n.dot(p) - offset) <= onPlane;
-      if (!inPlane) continue;
-      faceArea += 0.5 * doubleVectorArea(polygon.corners).norm();
-    }
-    scored.push_back({{n, offset}, score, a.volume + b.volume, std::max(a.vertices, b.vertices), throughWorst,
-                      faceArea, dir});
-  };
+  /// Where the rays from the worst sample meet a wall, per direction (wallCuts).
+  std::vector<double> wallAbove;
+  std::vector<double> wallBelow;
+};
 
-  // Through the worst hull sample (the middle of the deepest concavity: cutting there splits it)
-  // and through the mesh point nearest to it (the bottom of the concavity).
-  if (part.hasWorst) {
-    for (int d = 0; d < static_cast<int>(directions.size()); ++d) {
-      tryCut(d, directions[d].dot(part.worstSample), true);
-      tryCut(d, directions[d].dot(part.worstNearest), false);
-    }
+void Decomposer::CutSearch::tryCut(int dir, double offset, bool throughWorst) {
+  const Extent& r = ranges[dir];
+  if (!(offset > r.lo + slab && offset < r.hi - slab)) return;
+  // A plane (almost) tried already: the same cut.
+  for (const auto& [t, o] : tried) {
+    if (t == dir && std::abs(o - offset) <= dt::kSameOffsetFraction * d.target_) return;
   }
-  // Through the part's points near the worst sample: the walls, floors and edges that bound the
-  // concavity (the walls of a slot, the rim of a hole), which the two planes above may miss.
-  if (part.hasWorst) {
-    const double radius = 1.5 * part.concavity + target_;
-    std::vector<const Vector3d*> near;
-    for (const Vector3d& p : part.points) {
-      if ((p - part.worstSample).norm() <= radius) near.push_back(&p);
-    }
-    for (int d = 0; d < static_cast<int>(directions.size()); ++d) {
-      const double center = directions[d].dot(part.worstSample);
-      std::vector<double> values;
-      for (const Vector3d* p : near) values.push_back(directions[d].dot(*p));
-      std::sort(values.begin(), values.end(), [&](double a, double b) { return std::abs(a - center) < std::abs(b - center); });
-      std::vector<double> chosen;
-      for (double v : values) {
-        bool close = false;
-        for (double c : chosen) close = close || std::abs(c - v) <= dt::kFeatureSpacingFraction * target_;
-        if (!close) chosen.push_back(v);
-        if (static_cast<int>(chosen.size()) >= (quick ? dt::kQuickFeatureOffsets : dt::kFeatureOffsets)) break;
-      }
-      for (double v : chosen) tryCut(d, v, false);
-    }
+  tried.emplace_back(dir, offset);
+  const Vector3d& n = directions[dir];
+  const CrossSection section(d.mesh_, n, offset, false);
+  double abortAbove = std::min(bestScore + tie, bound);
+  if (part.reductionLimited) abortAbove = std::max(abortAbove, d.target_);
+  const SideResult a = d.evaluateSide(part, {{{n, offset}, &section}}, abortAbove);
+  if (!a.valid || a.aborted) return;
+  const SideResult b = d.evaluateSide(part, {{{-n, -offset}, &section}}, abortAbove);
+  if (!b.valid || b.aborted) return;
+  if (part.noSlivers && std::min(a.volume, b.volume) < (1.0 - dt::kSliverVolume) * part.hull.volume) return;
+  const double score = std::max(a.concavity, b.concavity);
+  bestScore = std::min(bestScore, score);
+  double faceArea = 0.0;
+  const double onPlane = dt::kOnPlaneRelative * d.diagonal_;
+  for (const PartPolygon& polygon : part.polygons) {
+    bool inPlane = true;
+    for (const Vector3d& p : polygon.corners) inPlane = inPlane && std::abs(n.dot(p) - offset) <= onPlane;
+    if (!inPlane) continue;
+    faceArea += 0.5 * doubleVectorArea(polygon.corners).norm();
   }
-  // Through the walls around the concavity: the first surface hit by rays from the worst sample
-  // along each direction, both ways (the floor, ceiling and sides of a pocket or slot, which may
-  // be farther than the points above).
-  // The plane of the wall hit is a candidate too (a drafted wall is not axis-aligned).
-  std::vector<double> wallAbove(directions.size(), kInf);
-  std::vector<double> wallBelow(directions.size(), -kInf);
-  if (part.hasWorst) {
-    const int fixedDirections = static_cast<int>(directions.size());
-    for (int d = 0; d < fixedDirections; ++d) {
-      for (double sign : {1.0, -1.0}) {
-        const Vector3d dir = sign * directions[d];
-        double nearest = kInf;
-        const PartPolygon* wall = nullptr;
-        for (const PartPolygon& polygon : part.polygons) {
-          for (std::size_t k = 1; k + 1 < polygon.corners.size(); ++k) {
-            const double t = detail::rayTriangle(part.worstSample, dir, polygon.corners[0],
-                                                 polygon.corners[k], polygon.corners[k + 1]);
-            if (t > 0.0 && t < nearest) {
-              nearest = t;
-              wall = &polygon;
-            }
+  scored.push_back({{n, offset}, score, a.volume + b.volume, std::max(a.vertices, b.vertices), throughWorst,
+                    faceArea, dir});
+}
+
+void Decomposer::CutSearch::throughWorstCuts() {
+  // The worst hull sample is the middle of the deepest concavity: cutting there splits it; the
+  // mesh point nearest to it is the bottom of the concavity.
+  for (int k = 0; k < static_cast<int>(directions.size()); ++k) {
+    tryCut(k, directions[k].dot(part.worstSample), true);
+    tryCut(k, directions[k].dot(part.worstNearest), false);
+  }
+}
+
+void Decomposer::CutSearch::nearWorstCuts() {
+  // The walls, floors and edges that bound the concavity (the walls of a slot, the rim of a
+  // hole), which the planes through the worst sample may miss.
+  const double radius = 1.5 * part.concavity + d.target_;
+  std::vector<const Vector3d*> near;
+  for (const Vector3d& p : part.points) {
+    if ((p - part.worstSample).norm() <= radius) near.push_back(&p);
+  }
+  for (int k = 0; k < static_cast<int>(directions.size()); ++k) {
+    const double center = directions[k].dot(part.worstSample);
+    std::vector<double> values;
+    for (const Vector3d* p : near) values.push_back(directions[k].dot(*p));
+    std::sort(values.begin(), values.end(), [&](double a, double b) { return std::abs(a - center) < std::abs(b - center); });
+    std::vector<double> chosen;
+    for (double v : values) {
+      bool close = false;
+      for (double c : chosen) close = close || std::abs(c - v) <= dt::kFeatureSpacingFraction * d.target_;
+      if (!close) chosen.push_back(v);
+      if (static_cast<int>(chosen.size()) >= (quick ? dt::kQuickFeatureOffsets : dt::kFeatureOffsets)) break;
+    }
+    for (double v : chosen) tryCut(k, v, false);
+  }
+}
+
+void Decomposer::CutSearch::wallCuts() {
+  // The first surface hit by rays from the worst sample along each direction, both ways (the
+  // floor, ceiling and sides of a pocket or slot, which may be farther than the points near the
+  // sample). The plane of the wall hit is a candidate too (a drafted wall is not axis-aligned).
+  const int fixedDirections = static_cast<int>(directions.size());
+  for (int k = 0; k < fixedDirections; ++k) {
+    for (double sign : {1.0, -1.0}) {
+      const Vector3d dir = sign * directions[k];
+      double nearest = kInf;
+      const PartPolygon* wall = nullptr;
+      for (const PartPolygon& polygon : part.polygons) {
+        for (std::size_t c = 1; c + 1 < polygon.corners.size(); ++c) {
+          const double t = detail::rayTriangle(part.worstSample, dir, polygon.corners[0], polygon.corners[c],
+                                               polygon.corners[c + 1]);
+          if (t > 0.0 && t < nearest) {
+            nearest = t;
+            wall = &polygon;
           }
         }
-        if (!std::isfinite(nearest)) continue;
-        const Vector3d hit = part.worstSample + nearest * dir;
-        tryCut(d, directions[d].dot(hit), false);
-        (sign > 0.0 ? wallAbove : wallBelow)[d] = directions[d].dot(hit);
-        Vector3d normal = doubleVectorArea(wall->corners);
-        if (!(normal.norm() > 0.0)) continue;
-        normal.normalize();
-        bool known = false;
-        for (const Vector3d& e : directions) known = known || std::abs(normal.dot(e)) > 1.0 - dt::kOnPlaneNormal;
-        if (known) continue;
-        directions.push_back(normal);
-        ranges.push_back(extentAlong(part.points, normal));
-        tryCut(static_cast<int>(directions.size()) - 1, normal.dot(hit), false);
       }
+      if (!std::isfinite(nearest)) continue;
+      const Vector3d hit = part.worstSample + nearest * dir;
+      tryCut(k, directions[k].dot(hit), false);
+      (sign > 0.0 ? wallAbove : wallBelow)[k] = directions[k].dot(hit);
+      Vector3d normal = doubleVectorArea(wall->corners);
+      if (!(normal.norm() > 0.0)) continue;
+      normal.normalize();
+      bool known = false;
+      for (const Vector3d& e : directions) known = known || std::abs(normal.dot(e)) > 1.0 - dt::kOnPlaneNormal;
+      if (known) continue;
+      directions.push_back(normal);
+      ranges.push_back(extentAlong(part.points, normal));
+      tryCut(static_cast<int>(directions.size()) - 1, normal.dot(hit), false);
     }
   }
-  // Slabs between the walls on both sides of the worst sample: a slot, groove or gap between two
-  // walls is cut out in one step (three parts), which no single cut shows as progress.
-  for (int d = 0; d < static_cast<int>(wallAbove.size()); ++d) {
-    const double lo = wallBelow[d];
-    const double hi = wallAbove[d];
-    const Extent& r = ranges[d];
+}
+
+void Decomposer::CutSearch::slabCuts() {
+  // A slot, groove or gap between two walls is cut out in one step (three parts), which no
+  // single cut shows as progress.
+  for (int k = 0; k < static_cast<int>(wallAbove.size()); ++k) {
+    const double lo = wallBelow[k];
+    const double hi = wallAbove[k];
+    const Extent& r = ranges[k];
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo > r.lo + slab && hi < r.hi - slab && hi - lo > 2.0 * slab)) {
       continue;
     }
-    const Vector3d& n = directions[d];
-    const CrossSection sectionLo(mesh_, n, lo, false);
-    const CrossSection sectionHi(mesh_, n, hi, false);
-    const double abortAbove = std::min(*bestScore + tie, bound);
-    const SideResult a = evaluateSide(part, {{{n, lo}, &sectionLo}}, abortAbove);
+    const Vector3d& n = directions[k];
+    const CrossSection sectionLo(d.mesh_, n, lo, false);
+    const CrossSection sectionHi(d.mesh_, n, hi, false);
+    const double abortAbove = std::min(bestScore + tie, bound);
+    const SideResult a = d.evaluateSide(part, {{{n, lo}, &sectionLo}}, abortAbove);
     if (!a.valid || a.aborted) continue;
-    const SideResult b = evaluateSide(part, {{{-n, -lo}, &sectionLo}, {{n, hi}, &sectionHi}}, abortAbove);
+    const SideResult b = d.evaluateSide(part, {{{-n, -lo}, &sectionLo}, {{n, hi}, &sectionHi}}, abortAbove);
     if (!b.valid || b.aborted) continue;
-    const SideResult c = evaluateSide(part, {{{-n, -hi}, &sectionHi}}, abortAbove);
+    const SideResult c = d.evaluateSide(part, {{{-n, -hi}, &sectionHi}}, abortAbove);
     if (!c.valid || c.aborted) continue;
     const double score = std::max({a.concavity, b.concavity, c.concavity});
-    *bestScore = std::min(*bestScore, score);
+    bestScore = std::min(bestScore, score);
     Candidate slabCut{{n, lo}, score, a.volume + b.volume + c.volume,
-                      std::max({a.vertices, b.vertices, c.vertices}), false, 0.0, d};
+                      std::max({a.vertices, b.vertices, c.vertices}), false, 0.0, k};
     slabCut.slabOffset = hi;
     scored.push_back(slabCut);
   }
-  if (quick) return scored;  // the lookahead's second cut: the planes near the concavity only
+}
+
+void Decomposer::CutSearch::evenCuts() {
   const int offsets = dt::kOffsetsPerDirection;
-  for (int d = 0; d < static_cast<int>(directions.size()); ++d) {
-    const Extent& r = ranges[d];
-    for (int i = 0; i < offsets; ++i) tryCut(d, r.lo + (r.hi - r.lo) * (i + 0.5) / offsets, false);
+  for (int k = 0; k < static_cast<int>(directions.size()); ++k) {
+    const Extent& r = ranges[k];
+    for (int i = 0; i < offsets; ++i) tryCut(k, r.lo + (r.hi - r.lo) * (i + 0.5) / offsets, false);
   }
-  if (scored.empty()) return scored;
-  // Refine the offset of the best cut.
+}
+
+void Decomposer::CutSearch::refine() {
   for (int round = 1; round <= dt::kRefinementRounds; ++round) {
-    const Candidate* pick = pickBest(part, scored, *bestScore);
+    const Candidate* pick = d.pickBest(part, scored, bestScore);
     if (pick->isSlab()) break;
     const int dir = pick->direction;
     const double offset = pick->cut.offset;
     const Extent& r = ranges[dir];
-    const double step = (r.hi - r.lo) / offsets / std::pow(2.0, round);
+    const double step = (r.hi - r.lo) / dt::kOffsetsPerDirection / std::pow(2.0, round);
     tryCut(dir, offset - step, false);
     tryCut(dir, offset + step, false);
   }
-  return scored;
+}
+
+std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool quick, double bound,
+                                                         double* bestScore) {
+  CutSearch search(*this, part, quick, bound, bestScore);
+  if (part.hasWorst) {
+    search.throughWorstCuts();
+    search.nearWorstCuts();
+    search.wallCuts();
+  }
+  search.slabCuts();
+  // The lookahead's second cut: the planes near the concavity only.
+  if (quick) return std::move(search.scored);
+  search.evenCuts();
+  if (search.scored.empty()) return std::move(search.scored);
+  search.refine();
+  return std::move(search.scored);
 }
 
 bool Decomposer::betterTie(const Candidate& a, const Candidate& b) const {

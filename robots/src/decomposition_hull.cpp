@@ -4,6 +4,7 @@
 #include "decomposition_hull.h"
 
 #include "decomposition_bvh.h"
+#include "decomposition_tolerances.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -293,145 +294,194 @@ Hull circumscribedReduction(const Hull& hull, int maxVertices) {
 /// program, solved by enumerating the vertices of its feasible region). The collapse whose p is
 /// nearest to the original hull goes first. Candidates are cached per edge and recomputed when the
 /// neighbourhood of either end changes. Each collapse is checked: u and v must be inside the new
-/// hull. Returns false when it could not reach the budget.
-bool progressiveReduction(const Hull& original, int maxVertices, Hull* out) {
-  constexpr int kMaxConstraints = 24;  // planes around an edge; more (a fan apex) is skipped
-  const double scale = [&] {
-    Eigen::AlignedBox3d box;
-    for (const Vector3d& v : original.vertices) box.extend(v);
-    return box.diagonal().norm();
-  }();
-  // p lies on the original hull's surface or outside it: its distance is a surface distance.
-  std::vector<Triangle> surface;
-  for (const auto& t : original.triangles) {
-    surface.push_back({original.vertices[t[0]], original.vertices[t[1]], original.vertices[t[2]]});
+/// hull.
+class ProgressiveHull {
+ public:
+  explicit ProgressiveHull(const Hull& original) : hull_(original), scale_(diagonalOf(original)) {
+    // p lies on the original hull's surface or outside it: its distance is a surface distance.
+    std::vector<Triangle> surface;
+    for (const auto& t : original.triangles) {
+      surface.push_back({original.vertices[t[0]], original.vertices[t[1]], original.vertices[t[2]]});
+    }
+    bvh_ = TriangleBvh(std::move(surface));
   }
-  const TriangleBvh bvh(std::move(surface));
 
-  std::unordered_map<PositionKey, int, PositionKeyHash> ids;
-  auto idOf = [&](const Vector3d& p) {
-    return ids.emplace(positionKey(p), static_cast<int>(ids.size())).first->second;
-  };
+  /// Collapses edges until the hull has at most `maxVertices` vertices; false when no edge of a
+  /// larger hull can be collapsed.
+  bool reduce(int maxVertices) {
+    while (static_cast<int>(hull_.vertices.size()) > maxVertices) {
+      const Neighbourhoods around = neighbourhoods();
+      if (!collapseFirst(rankEdges(around))) return false;
+    }
+    return true;
+  }
+
+  Hull& hull() { return hull_; }
+
+ private:
+  static constexpr int kMaxConstraints = 24;  ///< planes around an edge; more (a fan apex) is skipped
+  /// A collapse point may violate a face plane by this much, relative to the hull's diagonal
+  /// (round-off of the plane intersection).
+  static constexpr double kSlackRelative = 1e-12;
+
   struct Candidate {
-    std::uint64_t signature;  // neighbourhoods of both ends when computed
+    std::uint64_t signature;  ///< neighbourhoods of both ends when computed
     bool valid;
-    double key;
+    double key;  ///< distance of p to the original hull
     Vector3d p;
   };
-  std::unordered_map<std::uint64_t, Candidate> cache;
+  /// The current hull's vertices: stable ids (by position), the faces around each, and a
+  /// signature of each one's neighbourhood (its id and its neighbours' ids).
+  struct Neighbourhoods {
+    std::vector<int> id;
+    std::vector<std::vector<int>> faces;
+    std::vector<std::uint64_t> signature;
+  };
+  struct Choice {
+    int u, v;
+    std::uint64_t cacheKey;
+  };
 
-  Hull P = original;
-  while (static_cast<int>(P.vertices.size()) > maxVertices) {
-    const int n = static_cast<int>(P.vertices.size());
-    std::vector<int> id(n);
-    for (int i = 0; i < n; ++i) id[i] = idOf(P.vertices[i]);
-    std::vector<std::vector<int>> faces(n);
+  static double diagonalOf(const Hull& hull) {
+    Eigen::AlignedBox3d box;
+    for (const Vector3d& v : hull.vertices) box.extend(v);
+    return box.diagonal().norm();
+  }
+
+  int idOf(const Vector3d& p) { return ids_.emplace(positionKey(p), static_cast<int>(ids_.size())).first->second; }
+
+  Neighbourhoods neighbourhoods() {
+    const int n = static_cast<int>(hull_.vertices.size());
+    Neighbourhoods out;
+    out.id.resize(n);
+    for (int i = 0; i < n; ++i) out.id[i] = idOf(hull_.vertices[i]);
+    out.faces.resize(n);
     std::vector<std::vector<int>> neighbours(n);
-    for (int t = 0; t < static_cast<int>(P.triangles.size()); ++t) {
+    for (int t = 0; t < static_cast<int>(hull_.triangles.size()); ++t) {
       for (int e = 0; e < 3; ++e) {
-        faces[P.triangles[t][e]].push_back(t);
-        neighbours[P.triangles[t][e]].push_back(id[P.triangles[t][(e + 1) % 3]]);
+        out.faces[hull_.triangles[t][e]].push_back(t);
+        neighbours[hull_.triangles[t][e]].push_back(out.id[hull_.triangles[t][(e + 1) % 3]]);
       }
     }
-    std::vector<std::uint64_t> signature(n);
+    out.signature.resize(n);
     for (int i = 0; i < n; ++i) {
       std::sort(neighbours[i].begin(), neighbours[i].end());
-      std::uint64_t h = 0xcbf29ce484222325ULL ^ static_cast<std::uint64_t>(id[i]);
+      std::uint64_t h = 0xcbf29ce484222325ULL ^ static_cast<std::uint64_t>(out.id[i]);
       for (int k : neighbours[i]) h = (h ^ static_cast<std::uint64_t>(k)) * 0x100000001b3ULL;
-      signature[i] = h;
+      out.signature[i] = h;
     }
-    auto solve = [&](int u, int v) {
-      Candidate c{0, false, std::numeric_limits<double>::infinity(), Vector3d::Zero()};
-      std::vector<std::pair<Vector3d, double>> planes;
-      Vector3d objective = Vector3d::Zero();  // area vector of the faces around the edge
-      for (int w : {u, v}) {
-        for (int f : faces[w]) {
-          const auto& t = P.triangles[f];
-          objective += (P.vertices[t[1]] - P.vertices[t[0]]).cross(P.vertices[t[2]] - P.vertices[t[0]]);
-          bool repeated = false;
-          for (const auto& q : planes) repeated = repeated || (q.first == P.normals[f] && q.second == P.offsets[f]);
-          if (!repeated) planes.emplace_back(P.normals[f], P.offsets[f]);
-        }
+    return out;
+  }
+
+  /// The collapse point of edge (u, v): the vertex of the region outside every face plane around
+  /// u and v that adds the least volume.
+  Candidate solve(int u, int v, const Neighbourhoods& around) const {
+    Candidate c{0, false, std::numeric_limits<double>::infinity(), Vector3d::Zero()};
+    std::vector<std::pair<Vector3d, double>> planes;
+    Vector3d objective = Vector3d::Zero();  // area vector of the faces around the edge
+    for (int w : {u, v}) {
+      for (int f : around.faces[w]) {
+        const auto& t = hull_.triangles[f];
+        objective += (hull_.vertices[t[1]] - hull_.vertices[t[0]]).cross(hull_.vertices[t[2]] - hull_.vertices[t[0]]);
+        bool repeated = false;
+        for (const auto& q : planes) repeated = repeated || (q.first == hull_.normals[f] && q.second == hull_.offsets[f]);
+        if (!repeated) planes.emplace_back(hull_.normals[f], hull_.offsets[f]);
       }
-      const int m = static_cast<int>(planes.size());
-      if (m < 3 || m > kMaxConstraints) return c;
-      const double slack = 1e-12 * scale;
-      double bestValue = std::numeric_limits<double>::infinity();
-      for (int a = 0; a < m; ++a) {
-        for (int b = a + 1; b < m; ++b) {
-          for (int d = b + 1; d < m; ++d) {
-            Eigen::Matrix3d A;
-            A.row(0) = planes[a].first;
-            A.row(1) = planes[b].first;
-            A.row(2) = planes[d].first;
-            const double det = A.determinant();
-            if (std::abs(det) < 1e-9) continue;  // unit normals: nearly parallel planes
-            const Vector3d p = A.inverse() * Vector3d(planes[a].second, planes[b].second, planes[d].second);
-            bool feasible = true;
-            for (const auto& q : planes) feasible = feasible && q.first.dot(p) >= q.second - slack;
-            if (!feasible) continue;
-            const double value = objective.dot(p);
-            if (value < bestValue) {
-              bestValue = value;
-              c.p = p;
-              c.valid = true;
-            }
+    }
+    const int m = static_cast<int>(planes.size());
+    if (m < 3 || m > kMaxConstraints) return c;
+    const double slack = kSlackRelative * scale_;
+    double bestValue = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < m; ++a) {
+      for (int b = a + 1; b < m; ++b) {
+        for (int d = b + 1; d < m; ++d) {
+          Eigen::Matrix3d A;
+          A.row(0) = planes[a].first;
+          A.row(1) = planes[b].first;
+          A.row(2) = planes[d].first;
+          if (std::abs(A.determinant()) < decomp::kSingularPlanes) continue;
+          const Vector3d p = A.inverse() * Vector3d(planes[a].second, planes[b].second, planes[d].second);
+          bool feasible = true;
+          for (const auto& q : planes) feasible = feasible && q.first.dot(p) >= q.second - slack;
+          if (!feasible) continue;
+          const double value = objective.dot(p);
+          if (value < bestValue) {
+            bestValue = value;
+            c.p = p;
+            c.valid = true;
           }
         }
       }
-      if (c.valid) c.key = bvh.distance(c.p, nullptr, 0.0);
-      return c;
-    };
+    }
+    if (c.valid) c.key = bvh_.distance(c.p, nullptr, 0.0);
+    return c;
+  }
 
-    // Best cached-or-computed candidate over all edges.
-    struct Choice {
-      int u, v;
-      std::uint64_t cacheKey;
-    };
+  /// Every edge with a valid collapse, nearest collapse point first (cached or computed).
+  std::vector<std::pair<double, Choice>> rankEdges(const Neighbourhoods& around) {
+    const std::vector<int>& id = around.id;
     std::vector<std::pair<double, Choice>> ranked;
-    for (const auto& t : P.triangles) {
+    for (const auto& t : hull_.triangles) {
       for (int e = 0; e < 3; ++e) {
         int u = t[e];
         int v = t[(e + 1) % 3];
         if (id[u] > id[v]) continue;  // each undirected edge once
         const std::uint64_t cacheKey = static_cast<std::uint64_t>(id[u]) << 32 | static_cast<std::uint32_t>(id[v]);
-        const std::uint64_t sig = signature[u] * 31 + signature[v];
-        auto it = cache.find(cacheKey);
-        if (it == cache.end() || it->second.signature != sig) {
-          Candidate c = solve(u, v);
+        const std::uint64_t sig = around.signature[u] * 31 + around.signature[v];
+        auto it = cache_.find(cacheKey);
+        if (it == cache_.end() || it->second.signature != sig) {
+          Candidate c = solve(u, v, around);
           c.signature = sig;
-          it = cache.insert_or_assign(cacheKey, c).first;
+          it = cache_.insert_or_assign(cacheKey, c).first;
         }
         if (it->second.valid) ranked.push_back({it->second.key, {u, v, cacheKey}});
       }
     }
     std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    bool collapsed = false;
+    return ranked;
+  }
+
+  /// Applies the first collapse of `ranked` whose hull holds both ends of the edge; false when
+  /// none does (those failing are marked invalid in the cache).
+  bool collapseFirst(const std::vector<std::pair<double, Choice>>& ranked) {
+    const int n = static_cast<int>(hull_.vertices.size());
     for (const auto& [key, choice] : ranked) {
       std::vector<Vector3d> points;
       points.reserve(n);
       for (int i = 0; i < n; ++i) {
-        if (i != choice.u && i != choice.v) points.push_back(P.vertices[i]);
+        if (i != choice.u && i != choice.v) points.push_back(hull_.vertices[i]);
       }
-      points.push_back(cache[choice.cacheKey].p);
-      Hull Q = convexHull(points);
-      bool contains = Q.volume > 0.0 && static_cast<int>(Q.vertices.size()) < n;
+      points.push_back(cache_[choice.cacheKey].p);
+      Hull collapsed = convexHull(points);
+      bool contains = collapsed.volume > 0.0 && static_cast<int>(collapsed.vertices.size()) < n;
       for (int w : {choice.u, choice.v}) {
-        for (std::size_t f = 0; contains && f < Q.triangles.size(); ++f) {
-          contains = Q.normals[f].dot(P.vertices[w]) - Q.offsets[f] <= 1e-12 * scale;
+        for (std::size_t f = 0; contains && f < collapsed.triangles.size(); ++f) {
+          contains = collapsed.normals[f].dot(hull_.vertices[w]) - collapsed.offsets[f] <= kSlackRelative * scale_;
         }
       }
       if (!contains) {
-        cache[choice.cacheKey].valid = false;
+        cache_[choice.cacheKey].valid = false;
         continue;
       }
-      P = std::move(Q);
-      collapsed = true;
-      break;
+      hull_ = std::move(collapsed);
+      return true;
     }
-    if (!collapsed) return false;
+    return false;
   }
-  *out = std::move(P);
+
+  Hull hull_;
+  const double scale_;
+  TriangleBvh bvh_;
+  std::unordered_map<PositionKey, int, PositionKeyHash> ids_;
+  std::unordered_map<std::uint64_t, Candidate> cache_;
+};
+
+/// The progressive hull of `original` within `maxVertices`; false when it could not reach the
+/// budget.
+bool progressiveReduction(const Hull& original, int maxVertices, Hull* out) {
+  ProgressiveHull progressive(original);
+  if (!progressive.reduce(maxVertices)) return false;
+  *out = std::move(progressive.hull());
   return true;
 }
 

@@ -496,6 +496,8 @@ class Decomposer {
   /// Scores the candidate cuts of `part` (decomposition.h lists them); `quick`: fewer offsets and
   /// no refinement. Cuts scoring above `bound` are dropped early.
   std::vector<Candidate> scoreCuts(const Part& part, bool quick, double bound, double* bestScore);
+  /// The state and steps of one scoreCuts call (decomposition_cut_search.cpp).
+  struct CutSearch;
   const Candidate* pickBest(const Part& part, const std::vector<Candidate>& scored,
                             double bestScore) const;
   /// Tie-break between two cuts of equal score.

@@ -167,10 +167,10 @@ std::vector<std::pair<int, int>> collidingLinkPairs(
   return colliding;
 }
 
-PairFilterResult computeDisabledPairs(const RobotModel& model,
-                                      const std::vector<std::vector<CollisionPiece>>& pieces,
-                                      const PairFilterOptions& options) {
-  checkPieces(model, pieces);
+namespace {
+
+/// Checks the options of computeDisabledPairs; returns the default configuration to use.
+Eigen::VectorXd checkedDefaultConfiguration(const RobotModel& model, const PairFilterOptions& options) {
   if (options.samples < 0) {
     throw std::invalid_argument(robotContext(model) + ": pair filter sample count " +
                                 std::to_string(options.samples) + " is negative");
@@ -191,66 +191,96 @@ PairFilterResult computeDisabledPairs(const RobotModel& model,
       throw std::invalid_argument(std::string("pair filter default configuration: ") + e.what());
     }
   }
+  return q0;
+}
 
-  PairFilterResult result;
-  for (const auto& p : pieces) result.numGeometryLinks += p.empty() ? 0 : 1;
+/// Every pair of links with geometry, in order, the adjacent ones marked.
+std::vector<LinkPairReport> adjacentMarked(const RobotModel& model,
+                                           const std::vector<std::vector<CollisionPiece>>& pieces) {
+  std::vector<LinkPairReport> pairs;
   for (const auto& [i, j] : geometryPairs(pieces)) {
     LinkPairReport r;
     r.link1 = i;
     r.link2 = j;
-    result.pairs.push_back(r);
+    pairs.push_back(r);
   }
-  auto find = [&](int i, int j) -> LinkPairReport& {
-    auto it = std::lower_bound(result.pairs.begin(), result.pairs.end(), std::make_pair(i, j),
+  for (const auto& [i, j] : adjacentLinkPairs(model, pieces)) {
+    auto it = std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(i, j),
                                [](const LinkPairReport& r, const std::pair<int, int>& key) {
                                  return std::make_pair(r.link1, r.link2) < key;
                                });
-    return *it;  // every adjacent pair is a pair of links with geometry, so it is there
-  };
-  for (const auto& [i, j] : adjacentLinkPairs(model, pieces)) {
-    find(i, j).reason = DisableReason::Adjacent;
+    it->reason = DisableReason::Adjacent;  // every adjacent pair is a pair of links with geometry
   }
+  return pairs;
+}
 
-  std::vector<std::vector<PosedPiece>> posed(model.numLinks());
-  std::vector<Eigen::Isometry3d> X_WL(model.numLinks());
-  auto poseAll = [&](const Eigen::VectorXd& q) {
-    forwardKinematics(model, q, X_WL);
-    for (int l = 0; l < model.numLinks(); ++l) posePieces(pieces[l], X_WL[l], posed[l]);
-  };
+/// The robot's pieces posed at one configuration.
+class PosedRobot {
+ public:
+  PosedRobot(const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces)
+      : model_(model), pieces_(pieces), posed_(model.numLinks()), X_WL_(model.numLinks()) {}
 
-  if (options.checkDefault) {
-    poseAll(q0);
-    for (LinkPairReport& r : result.pairs) {
-      if (!r.reason && posedOverlap(posed[r.link1], posed[r.link2])) {
-        r.reason = DisableReason::Default;
-      }
-    }
+  void pose(const Eigen::VectorXd& q) {
+    forwardKinematics(model_, q, X_WL_);
+    for (int l = 0; l < model_.numLinks(); ++l) posePieces(pieces_[l], X_WL_[l], posed_[l]);
   }
+  bool overlap(const LinkPairReport& r) const { return posedOverlap(posed_[r.link1], posed_[r.link2]); }
 
-  result.samples = options.samples;
-  if (options.samples > 0) {
-    // Default pairs are sampled too, for their count (a Default pair that rarely collides in
-    // the sample points at pieces that overlap at the default configuration by approximation).
-    std::vector<LinkPairReport*> sampled;
-    for (LinkPairReport& r : result.pairs) {
-      if (r.reason != DisableReason::Adjacent) sampled.push_back(&r);
-    }
-    std::mt19937_64 rng(options.seed);
-    for (int s = 0; s < options.samples; ++s) {
-      poseAll(randomConfiguration(model, rng));
-      for (LinkPairReport* r : sampled) {
-        if (posedOverlap(posed[r->link1], posed[r->link2])) ++r->collisions;
-      }
-    }
+ private:
+  const RobotModel& model_;
+  const std::vector<std::vector<CollisionPiece>>& pieces_;
+  std::vector<std::vector<PosedPiece>> posed_;
+  std::vector<Eigen::Isometry3d> X_WL_;
+};
+
+/// Counts the collisions of the pairs not adjacent over random configurations, and marks the
+/// unmarked ones that never or almost always collide.
+void sampleCollisions(const RobotModel& model, const PairFilterOptions& options, PosedRobot& robot,
+                      std::vector<LinkPairReport>* pairs) {
+  // Default pairs are sampled too, for their count (a Default pair that rarely collides in
+  // the sample points at pieces that overlap at the default configuration by approximation).
+  std::vector<LinkPairReport*> sampled;
+  for (LinkPairReport& r : *pairs) {
+    if (r.reason != DisableReason::Adjacent) sampled.push_back(&r);
+  }
+  std::mt19937_64 rng(options.seed);
+  for (int s = 0; s < options.samples; ++s) {
+    robot.pose(randomConfiguration(model, rng));
     for (LinkPairReport* r : sampled) {
-      if (r->reason) continue;
-      if (r->collisions == 0) {
-        r->reason = DisableReason::Never;
-      } else if (r->collisions >= options.alwaysFraction * options.samples) {
-        r->reason = DisableReason::Always;
-      }
+      if (robot.overlap(*r)) ++r->collisions;
     }
   }
+  for (LinkPairReport* r : sampled) {
+    if (r->reason) continue;
+    if (r->collisions == 0) {
+      r->reason = DisableReason::Never;
+    } else if (r->collisions >= options.alwaysFraction * options.samples) {
+      r->reason = DisableReason::Always;
+    }
+  }
+}
+
+}  // namespace
+
+PairFilterResult computeDisabledPairs(const RobotModel& model,
+                                      const std::vector<std::vector<CollisionPiece>>& pieces,
+                                      const PairFilterOptions& options) {
+  checkPieces(model, pieces);
+  const Eigen::VectorXd q0 = checkedDefaultConfiguration(model, options);
+
+  PairFilterResult result;
+  for (const auto& p : pieces) result.numGeometryLinks += p.empty() ? 0 : 1;
+  result.pairs = adjacentMarked(model, pieces);
+
+  PosedRobot robot(model, pieces);
+  if (options.checkDefault) {
+    robot.pose(q0);
+    for (LinkPairReport& r : result.pairs) {
+      if (!r.reason && robot.overlap(r)) r.reason = DisableReason::Default;
+    }
+  }
+  result.samples = options.samples;
+  if (options.samples > 0) sampleCollisions(model, options, robot, &result.pairs);
 
   for (const LinkPairReport& r : result.pairs) {
     if (r.reason) {
