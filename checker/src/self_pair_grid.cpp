@@ -27,127 +27,154 @@ double separationAlong(const RobotPiece& a, const Eigen::Isometry3d& X_UA, const
   return minB - maxA - a.radius - b.radius;
 }
 
-}  // namespace
+/// The two link geometries of a self pair, the upper one an ancestor of the lower one.
+struct Chain {
+  int up;             ///< link
+  int down;           ///< link
+  int upGeometry;     ///< index into RobotData::links
+  int downGeometry;   ///< index into RobotData::links
+};
 
-int SelfPairGrid::numFreeCells() const {
-  return static_cast<int>(std::count(free_.begin(), free_.end(), std::uint8_t{1}));
-}
-
-std::shared_ptr<const SelfPairGrid> SelfPairGrid::build(const RobotData& robot, int a, int b) {
+/// The pair (a, b) as a chain, or false when the links are on different branches.
+bool chainOf(const RobotData& robot, int a, int b, Chain* chain) {
   const robots::RobotModel& model = robot.model;
-  int up = robot.links[a].link;
-  int down = robot.links[b].link;
-  int upGeometry = a;
-  int downGeometry = b;
   auto isAncestor = [&](int ancestor, int link) {
     for (int l = link; l >= 0; l = model.link(l).parentLink) {
       if (l == ancestor) return true;
     }
     return false;
   };
-  if (!isAncestor(up, down)) {
-    if (!isAncestor(down, up)) return nullptr;  // on different branches
-    std::swap(up, down);
-    std::swap(upGeometry, downGeometry);
-  }
-  const LinkGeometry& U = robot.links[upGeometry];
-  const LinkGeometry& D = robot.links[downGeometry];
+  *chain = {robot.links[a].link, robot.links[b].link, a, b};
+  if (isAncestor(chain->up, chain->down)) return true;
+  if (!isAncestor(chain->down, chain->up)) return false;
+  std::swap(chain->up, chain->down);
+  std::swap(chain->upGeometry, chain->downGeometry);
+  return true;
+}
 
+/// rho per variable of the joints from D up to U (self_pair_grid.h): the sum over its joints of
+/// |multiplier| times the reach of D's points from the joint. Empty when a prismatic joint lies
+/// between them.
+std::map<int, double> motionRadii(const RobotData& robot, const Chain& chain) {
+  const robots::RobotModel& model = robot.model;
+  const LinkGeometry& D = robot.links[chain.downGeometry];
   // Largest |p| of a point of D's pieces, in D's frame.
   double reachD = 0.0;
   for (int j = D.firstPiece; j < D.firstPiece + D.numPieces; ++j) {
     reachD = std::max(reachD, robot.pieces[j].center_L.norm() + robot.pieces[j].sphereRadius);
   }
-  // Joints from D up to U; rho per variable.
   std::map<int, double> rho;  // variable -> sum of |multiplier| rho_k
   double below = 0.0;         // sum of |X_PJ.translation| of the joints below the current one
-  for (int l = down; l != up; l = model.link(l).parentLink) {
+  for (int l = chain.down; l != chain.up; l = model.link(l).parentLink) {
     const robots::Joint& joint = model.joint(model.link(l).parentJoint);
-    if (joint.type == robots::JointType::Prismatic) return nullptr;
+    if (joint.type == robots::JointType::Prismatic) return {};
     if (joint.moves()) rho[joint.variable] += std::abs(joint.multiplier) * (below + reachD);
     below += joint.X_PJ.translation().norm();
   }
-  if (rho.empty() || rho.size() > 2) return nullptr;
+  return rho;
+}
 
-  auto grid = std::make_shared<SelfPairGrid>();
-  SelfPairGrid& g = *grid;
-  g.dims_ = static_cast<int>(rho.size());
+/// True when every piece pair of U and D (D posed by X_UD in U's frame) is certified apart by
+/// more than delta over the cell. `caches`: one GJK warm start per piece pair.
+bool cellCertified(const RobotData& robot, const LinkGeometry& U, const LinkGeometry& D,
+                   const Eigen::Isometry3d& X_UD, double delta, std::vector<deep::GjkCache>* caches) {
+  for (int i = 0; i < U.numPieces; ++i) {
+    const RobotPiece& pa = robot.pieces[U.firstPiece + i];
+    const Eigen::Isometry3d& X_UA = pa.X_LP;
+    for (int j = 0; j < D.numPieces; ++j) {
+      const RobotPiece& pb = robot.pieces[D.firstPiece + j];
+      const double size = pa.sphereRadius + pb.sphereRadius;
+      const double need = delta + tol::kCertifiedGapRelative * size;
+      const Eigen::Vector3d centerB = X_UD * pb.center_L;
+      if ((centerB - pa.center_L).norm() - size > need) continue;
+      const Eigen::Isometry3d X_UB = X_UD * pb.X_LP;
+      const deep::PairFrame frame = deep::PairFrame::make(*pa.core, X_UA, *pb.core, X_UB);
+      const deep::GjkResult r = deep::gjkDistance(*pa.core, *pb.core, frame, &(*caches)[i * D.numPieces + j]);
+      if (r.status != deep::GjkStatus::Separated || !(r.distance - pa.radius - pb.radius > need)) return false;
+      // GJK's distance is an upper bound; the separation along its normal is a lower bound.
+      const Eigen::Vector3d n = frame.X_WP.linear() * r.normal;
+      if (!(separationAlong(pa, X_UA, pb, X_UB, n) > need)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int SelfPairGrid::numFreeCells() const {
+  return static_cast<int>(std::count(free_.begin(), free_.end(), std::uint8_t{1}));
+}
+
+bool SelfPairGrid::layout(const robots::RobotModel& model, const std::map<int, double>& rho, long long piecePairs,
+                          double step[2]) {
+  dims_ = static_cast<int>(rho.size());
   double weight[2] = {0.0, 0.0};  // rho * range: the motion a variable can cause over its range
   double range[2] = {0.0, 0.0};
   double rhoOf[2] = {0.0, 0.0};
   int d = 0;
   for (const auto& [v, r] : rho) {
-    g.variable_[d] = v;
-    g.lower_[d] = model.lowerLimits()[v];
-    range[d] = model.upperLimits()[v] - g.lower_[d];
-    if (!(range[d] > 0.0) || !std::isfinite(range[d])) return nullptr;
+    variable_[d] = v;
+    lower_[d] = model.lowerLimits()[v];
+    range[d] = model.upperLimits()[v] - lower_[d];
+    if (!(range[d] > 0.0) || !std::isfinite(range[d])) return false;
     rhoOf[d] = r;
     weight[d] = std::max(r * range[d], 1e-300);
     ++d;
   }
-  const long long piecePairs = static_cast<long long>(U.numPieces) * D.numPieces;
   const long long budget = std::min<long long>(tol::kGridMaxCells, tol::kGridMaxPiecePairTests / piecePairs);
-  if (budget < 16) return nullptr;
-  if (g.dims_ == 1) {
-    g.cells_[0] = static_cast<int>(budget);
+  if (budget < 16) return false;
+  if (dims_ == 1) {
+    cells_[0] = static_cast<int>(budget);
   } else {
     // Equal shares of delta: cells proportional to the weights, product within the budget.
     const double n0 = std::sqrt(static_cast<double>(budget) * weight[0] / weight[1]);
-    g.cells_[0] = std::clamp(static_cast<int>(n0), 1, static_cast<int>(budget));
-    g.cells_[1] = std::max(1, static_cast<int>(budget / g.cells_[0]));
+    cells_[0] = std::clamp(static_cast<int>(n0), 1, static_cast<int>(budget));
+    cells_[1] = std::max(1, static_cast<int>(budget / cells_[0]));
   }
-  double step[2] = {1.0, 1.0};
-  double halfWidth[2] = {0.0, 0.0};
-  for (int k = 0; k < g.dims_; ++k) {
-    step[k] = range[k] / g.cells_[k];
-    g.inverseStep_[k] = g.cells_[k] / range[k];
+  for (int k = 0; k < dims_; ++k) {
+    step[k] = range[k] / cells_[k];
+    inverseStep_[k] = cells_[k] / range[k];
     // Padded: q's cell index comes from a rounded division, so q may lie a few ulps outside it.
-    halfWidth[k] = 0.5 * step[k] * (1.0 + 1e-9) + 1e-12 * (1.0 + std::abs(g.lower_[k]) + range[k]);
-    g.delta_ += rhoOf[k] * halfWidth[k];
+    const double halfWidth = 0.5 * step[k] * (1.0 + 1e-9) + 1e-12 * (1.0 + std::abs(lower_[k]) + range[k]);
+    delta_ += rhoOf[k] * halfWidth;
   }
+  return true;
+}
 
+void SelfPairGrid::certifyCells(const RobotData& robot, int up, int down, const LinkGeometry& U,
+                                const LinkGeometry& D, const double step[2]) {
+  const robots::RobotModel& model = robot.model;
   // Each cell: the variables at its centre, the others at the default configuration (they do not
   // change D's pose in U).
   Eigen::VectorXd q = model.defaultConfiguration();
   std::vector<Eigen::Isometry3d> X_WL;
-  std::vector<deep::GjkCache> caches(static_cast<std::size_t>(piecePairs));  // warm along the scan
-  const int total = g.cells_[0] * g.cells_[1];
-  g.free_.assign(total, 0);
-  std::vector<Eigen::Isometry3d> X_UA(U.numPieces), X_UB(D.numPieces);
+  std::vector<deep::GjkCache> caches(static_cast<std::size_t>(U.numPieces) * D.numPieces);  // warm along the scan
+  const int total = cells_[0] * cells_[1];
+  free_.assign(total, 0);
   for (int cell = 0; cell < total; ++cell) {
-    const int i0 = cell / g.cells_[1];
-    int i1 = cell % g.cells_[1];
-    if (i0 % 2 == 1) i1 = g.cells_[1] - 1 - i1;  // boustrophedon: neighbouring cells in a row
-    const int index = g.dims_ == 1 ? i0 : i0 * g.cells_[1] + i1;
-    q[g.variable_[0]] = g.lower_[0] + (i0 + 0.5) * step[0];
-    if (g.dims_ == 2) q[g.variable_[1]] = g.lower_[1] + (i1 + 0.5) * step[1];
+    const int i0 = cell / cells_[1];
+    int i1 = cell % cells_[1];
+    if (i0 % 2 == 1) i1 = cells_[1] - 1 - i1;  // boustrophedon: neighbouring cells in a row
+    const int index = dims_ == 1 ? i0 : i0 * cells_[1] + i1;
+    q[variable_[0]] = lower_[0] + (i0 + 0.5) * step[0];
+    if (dims_ == 2) q[variable_[1]] = lower_[1] + (i1 + 0.5) * step[1];
     robots::forwardKinematics(model, q, X_WL);
     const Eigen::Isometry3d X_UD = X_WL[up].inverse() * X_WL[down];
-    for (int i = 0; i < U.numPieces; ++i) X_UA[i] = robot.pieces[U.firstPiece + i].X_LP;
-    for (int j = 0; j < D.numPieces; ++j) X_UB[j] = X_UD * robot.pieces[D.firstPiece + j].X_LP;
-    bool certified = true;
-    for (int i = 0; i < U.numPieces && certified; ++i) {
-      const RobotPiece& pa = robot.pieces[U.firstPiece + i];
-      const Eigen::Vector3d centerA = pa.center_L;
-      for (int j = 0; j < D.numPieces && certified; ++j) {
-        const RobotPiece& pb = robot.pieces[D.firstPiece + j];
-        const double size = pa.sphereRadius + pb.sphereRadius;
-        const double need = g.delta_ + tol::kCertifiedGapRelative * size;
-        const Eigen::Vector3d centerB = X_UD * pb.center_L;
-        if ((centerB - centerA).norm() - size > need) continue;
-        const deep::PairFrame frame = deep::PairFrame::make(*pa.core, X_UA[i], *pb.core, X_UB[j]);
-        const deep::GjkResult r = deep::gjkDistance(*pa.core, *pb.core, frame, &caches[i * D.numPieces + j]);
-        if (r.status != deep::GjkStatus::Separated || !(r.distance - pa.radius - pb.radius > need)) {
-          certified = false;
-          break;
-        }
-        // GJK's distance is an upper bound; the separation along its normal is a lower bound.
-        const Eigen::Vector3d n = frame.X_WP.linear() * r.normal;
-        certified = separationAlong(pa, X_UA[i], pb, X_UB[j], n) > need;
-      }
-    }
-    g.free_[index] = certified ? 1 : 0;
+    free_[index] = cellCertified(robot, U, D, X_UD, delta_, &caches) ? 1 : 0;
   }
+}
+
+std::shared_ptr<const SelfPairGrid> SelfPairGrid::build(const RobotData& robot, int a, int b) {
+  Chain chain;
+  if (!chainOf(robot, a, b, &chain)) return nullptr;
+  const std::map<int, double> rho = motionRadii(robot, chain);
+  if (rho.empty() || rho.size() > 2) return nullptr;
+  const LinkGeometry& U = robot.links[chain.upGeometry];
+  const LinkGeometry& D = robot.links[chain.downGeometry];
+  auto grid = std::make_shared<SelfPairGrid>();
+  double step[2] = {1.0, 1.0};
+  if (!grid->layout(robot.model, rho, static_cast<long long>(U.numPieces) * D.numPieces, step)) return nullptr;
+  grid->certifyCells(robot, chain.up, chain.down, U, D, step);
   return grid;
 }
 

@@ -35,12 +35,18 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
+
+namespace deepcheck::robots {
+class RobotModel;
+}
 
 namespace deepcheck::checker::detail {
 
 struct RobotData;
+struct LinkGeometry;
 
 class SelfPairGrid {
  public:
@@ -66,6 +72,15 @@ class SelfPairGrid {
   double motionBound() const { return delta_; }
 
  private:
+  /// The grid's variables, cells and delta for the motion radii `rho` (variable -> rho) within
+  /// the cell budget for `piecePairs` piece pairs; the cell widths in `step`. False when the
+  /// limits are degenerate or the budget too small.
+  bool layout(const robots::RobotModel& model, const std::map<int, double>& rho, long long piecePairs,
+              double step[2]);
+  /// Marks each cell free when every piece pair of U and D is certified apart over it.
+  void certifyCells(const RobotData& robot, int up, int down, const LinkGeometry& U, const LinkGeometry& D,
+                    const double step[2]);
+
   int dims_ = 0;
   int variable_[2] = {-1, -1};
   double lower_[2] = {0.0, 0.0};
