@@ -9,84 +9,105 @@
 
 namespace deepcheck::planners {
 
-LinkSpeedBound::LinkSpeedBound(const robots::RobotModel& model, const std::vector<double>& linkExtent,
-                               std::vector<std::pair<int, int>> selfPairs)
-    : extent_(linkExtent), selfPairs_(std::move(selfPairs)) {
+namespace {
+
+void checkBoundInputs(const robots::RobotModel& model, const std::vector<double>& linkExtent,
+                      const std::vector<std::pair<int, int>>& selfPairs) {
   const int numLinks = model.numLinks();
-  const int n = model.numVariables();
   if (static_cast<int>(linkExtent.size()) != numLinks) {
     throw std::invalid_argument("LinkSpeedBound: " + std::to_string(linkExtent.size()) + " link extents for robot '" +
                                 model.name() + "' with " + std::to_string(numLinks) + " links");
   }
-  for (const auto& [a, b] : selfPairs_) {
+  for (const auto& [a, b] : selfPairs) {
     if (a < 0 || b < 0 || a >= numLinks || b >= numLinks) {
       throw std::invalid_argument("LinkSpeedBound: self pair (" + std::to_string(a) + ", " + std::to_string(b) +
                                   ") names a link robot '" + model.name() + "' does not have");
     }
   }
-  speed_ = Eigen::MatrixXd::Zero(numLinks, n);
   for (int i = 0; i < numLinks; ++i) {
     const double rho = linkExtent[static_cast<std::size_t>(i)];
     if (std::isnan(rho) || std::isinf(rho)) {
       throw std::invalid_argument("LinkSpeedBound: link '" + model.link(i).name + "' has a non-finite extent");
     }
+  }
+}
+
+/// Adds to `speed` (one row per variable) how fast the points of link i, within `extent` of its
+/// origin, move per unit of each variable, walking up its chain.
+void addLinkSpeed(const robots::RobotModel& model, int i, double extent, Eigen::RowVectorXd& speed) {
+  // `reach` bounds |p - o| for the points p of link i and the origin o of the joint frame
+  // reached so far.
+  double reach = extent;
+  int link = i;
+  while (model.link(link).parentJoint >= 0) {
+    const robots::Joint& joint = model.joint(model.link(link).parentJoint);
+    double travel = 0.0;
+    if (joint.moves() && joint.variable >= 0) {
+      const double m = std::abs(joint.multiplier);
+      if (joint.type == robots::JointType::Prismatic) {
+        speed[joint.variable] += m;
+        const double lo = joint.multiplier * model.lowerLimits()[joint.variable] + joint.offset;
+        const double hi = joint.multiplier * model.upperLimits()[joint.variable] + joint.offset;
+        travel = std::max(std::abs(lo), std::abs(hi));
+      } else {
+        speed[joint.variable] += m * reach;
+      }
+    }
+    reach += joint.X_PJ.translation().norm() + travel;
+    link = joint.parentLink;
+  }
+}
+
+/// The nearest common ancestor of links a and b (the root at worst).
+int commonAncestor(const robots::RobotModel& model, int a, int b) {
+  std::vector<int> chainB;  // b, its parent, ..., the root
+  for (int l = b; l >= 0; l = model.link(l).parentLink) chainB.push_back(l);
+  for (int l = a; l >= 0; l = model.link(l).parentLink) {
+    if (std::find(chainB.begin(), chainB.end(), l) != chainB.end()) return l;
+  }
+  return 0;
+}
+
+/// Adds to `row` the speeds of `link` in the variables that move it relative to `ancestor`.
+void addRelativeSpeed(const robots::RobotModel& model, const Eigen::MatrixXd& speed, int link, int ancestor,
+                      Eigen::RowVectorXd& row) {
+  const int n = model.numVariables();
+  std::vector<bool> moves(static_cast<std::size_t>(n), false);
+  for (int l = link; l != ancestor; l = model.link(l).parentLink) {
+    const robots::Joint& joint = model.joint(model.link(l).parentJoint);
+    if (joint.moves() && joint.variable >= 0) moves[static_cast<std::size_t>(joint.variable)] = true;
+  }
+  for (int v = 0; v < n; ++v) {
+    if (moves[static_cast<std::size_t>(v)]) row[v] += speed(link, v);
+  }
+}
+
+}  // namespace
+
+LinkSpeedBound::LinkSpeedBound(const robots::RobotModel& model, const std::vector<double>& linkExtent,
+                               std::vector<std::pair<int, int>> selfPairs)
+    : extent_(linkExtent), selfPairs_(std::move(selfPairs)) {
+  checkBoundInputs(model, linkExtent, selfPairs_);
+  const int numLinks = model.numLinks();
+  const int n = model.numVariables();
+  speed_ = Eigen::MatrixXd::Zero(numLinks, n);
+  for (int i = 0; i < numLinks; ++i) {
+    const double rho = linkExtent[static_cast<std::size_t>(i)];
     if (rho < 0.0) continue;  // no geometry
     geometryLinks_.push_back(i);
-    // Walk up the chain; `reach` bounds |p - o| for the points p of link i and the origin o of
-    // the joint frame reached so far.
-    double reach = rho;
-    int link = i;
-    while (model.link(link).parentJoint >= 0) {
-      const robots::Joint& joint = model.joint(model.link(link).parentJoint);
-      double travel = 0.0;
-      if (joint.moves() && joint.variable >= 0) {
-        const double m = std::abs(joint.multiplier);
-        if (joint.type == robots::JointType::Prismatic) {
-          speed_(i, joint.variable) += m;
-          const double lo = joint.multiplier * model.lowerLimits()[joint.variable] + joint.offset;
-          const double hi = joint.multiplier * model.upperLimits()[joint.variable] + joint.offset;
-          travel = std::max(std::abs(lo), std::abs(hi));
-        } else {
-          speed_(i, joint.variable) += m * reach;
-        }
-      }
-      reach += joint.X_PJ.translation().norm() + travel;
-      link = joint.parentLink;
-    }
+    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
+    addLinkSpeed(model, i, rho, row);
+    speed_.row(i) = row;
   }
-
   // Self pairs: the variables that move each link relative to the pair's common ancestor.
-  auto ancestors = [&](int link) {
-    std::vector<int> chain;  // link, its parent, ..., the root
-    for (int l = link; l >= 0; l = model.link(l).parentLink) chain.push_back(l);
-    return chain;
-  };
-  auto relativeSpeed = [&](int link, int ancestor, Eigen::RowVectorXd& row) {
-    std::vector<bool> moves(static_cast<std::size_t>(n), false);
-    for (int l = link; l != ancestor; l = model.link(l).parentLink) {
-      const robots::Joint& joint = model.joint(model.link(l).parentJoint);
-      if (joint.moves() && joint.variable >= 0) moves[static_cast<std::size_t>(joint.variable)] = true;
-    }
-    for (int v = 0; v < n; ++v) {
-      if (moves[static_cast<std::size_t>(v)]) row[v] += speed_(link, v);
-    }
-  };
   selfSpeed_ = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(selfPairs_.size()), n);
   selfPairRow_ = Eigen::MatrixXi::Constant(numLinks, numLinks, -1);
   for (std::size_t p = 0; p < selfPairs_.size(); ++p) {
     const auto [a, b] = selfPairs_[p];
-    const std::vector<int> chainA = ancestors(a);
-    const std::vector<int> chainB = ancestors(b);
-    int common = 0;  // the root is always shared
-    for (int l : chainA) {
-      if (std::find(chainB.begin(), chainB.end(), l) != chainB.end()) {
-        common = l;
-        break;
-      }
-    }
+    const int common = commonAncestor(model, a, b);
     Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
-    relativeSpeed(a, common, row);
-    relativeSpeed(b, common, row);
+    addRelativeSpeed(model, speed_, a, common, row);
+    addRelativeSpeed(model, speed_, b, common, row);
     selfSpeed_.row(static_cast<Eigen::Index>(p)) = row;
     selfPairRow_(a, b) = static_cast<int>(p);
     selfPairRow_(b, a) = static_cast<int>(p);

@@ -76,6 +76,81 @@ ompl::base::Cost ClearanceHingeObjective::stateCost(const ompl::base::State* s) 
   return ompl::base::Cost(hinge(checker_->mapping().configuration(s)));
 }
 
+/// One motion's integral of the hinge: the states it evaluates and the two ways of summing them.
+struct ClearanceHingeObjective::Motion {
+  const ClearanceHingeObjective& objective;
+  const StateMapping& mapping;
+  Eigen::VectorXd q1;
+  Eigen::VectorXd dq;
+  int segments;
+  bool selfTerm;  ///< the self distances are measured
+  double safe;    ///< the larger safe distance measured
+
+  /// The split distance at state k, asked up to the safe distance + B (all the tests of the spans
+  /// that state ends need); `valid` false (and no distance) for an invalid state.
+  SplitDistance evaluate(int k, double B, bool& valid) const {
+    const Eigen::VectorXd q = mapping.along(q1, dq, static_cast<double>(k) / segments);
+    valid = objective.checker_->isValid(q);
+    return valid ? objective.checker_->splitClearanceUpTo(q, safe + B + tol::kDistanceCapMargin, selfTerm)
+                 : SplitDistance{};
+  }
+
+  /// Trapezoid rule on the states k = 0..segments: the sum of h_k with weight 1/2 at the ends
+  /// (times length / segments, the caller's). False when a state is invalid.
+  bool trapezoidSum(double* sum) const {
+    bool valid = false;
+    *sum = 0.0;
+    for (int k = 0; k <= segments; ++k) {
+      const SplitDistance d = evaluate(k, 0.0, valid);
+      if (!valid) return false;
+      *sum += (k == 0 || k == segments ? 0.5 : 1.0) * objective.hinge(d);
+    }
+    return true;
+  }
+
+  /// The same sum, by bisection with the bound. On the states i..j the pair distances move by at
+  /// most B_ij = B(dq (j - i) / segments), so each of sd_world and sd_self stays at least
+  /// (sd_i + sd_j - B_ij) / 2 there; when that is >= its safe distance for both, every h_k in
+  /// between is 0 and is not evaluated. Otherwise the middle state is evaluated and both halves
+  /// looked at. The sum is the full trapezoid sum: only zero terms are skipped.
+  bool bisectionSum(const LinkSpeedBound& bound, double* sum) const {
+    const auto reach = [&](int i, int j) { return bound.pairDisplacement(dq * (static_cast<double>(j - i) / segments)); };
+    const auto zeroBetween = [&](const SplitDistance& a, const SplitDistance& b, double B) {
+      return (a.world + b.world - B) / 2.0 >= objective.safeDistance_ &&
+             (!selfTerm || (a.self + b.self - B) / 2.0 >= objective.selfSafeDistance_);
+    };
+    bool valid = false;
+    const double Btotal = reach(0, segments);
+    const SplitDistance first = evaluate(0, Btotal, valid);
+    if (!valid) return false;
+    const SplitDistance last = evaluate(segments, Btotal, valid);
+    if (!valid) return false;
+    *sum = 0.5 * (objective.hinge(first) + objective.hinge(last));
+    struct Span {
+      int i, j;
+      SplitDistance a, b;
+    };
+    // Depth first: the stack holds at most one pending half per level of the bisection, and there
+    // are at most 31 levels (segments is an int), so a fixed array does (no allocation per motion).
+    std::array<Span, 64> stack;
+    int size = 0;
+    stack[size++] = {0, segments, first, last};
+    while (size > 0) {
+      const Span span = stack[--size];
+      if (span.j - span.i <= 1) continue;
+      const double B = reach(span.i, span.j);
+      if (zeroBetween(span.a, span.b, B)) continue;
+      const int m = (span.i + span.j) / 2;
+      const SplitDistance mid = evaluate(m, B, valid);
+      if (!valid) return false;
+      *sum += objective.hinge(mid);
+      stack[size++] = {span.i, m, span.a, mid};
+      stack[size++] = {m, span.j, mid, span.b};
+    }
+    return true;
+  }
+};
+
 ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1, const ompl::base::State* s2) const {
   const StateMapping& mapping = checker_->mapping();
   const Eigen::VectorXd q1 = mapping.configuration(s1);
@@ -91,70 +166,14 @@ ompl::base::Cost ClearanceHingeObjective::motionCost(const ompl::base::State* s1
   // depths included (optimizing planners ask the cost of many motions before checking them: RRT*
   // of every neighbour). On a valid state the self term is zero whenever d_self <= threshold
   // (sd_self > threshold >= d_self), so the self pairs are then not measured at all: adjacent
-  // links a few millimetres apart would otherwise keep the bisection below from skipping.
+  // links a few millimetres apart would otherwise keep the bisection from skipping.
   const double threshold = checker_->validityOptions().threshold();
   const bool selfTerm = selfSafeDistance_ > threshold;
   const double safe = selfTerm ? std::max(safeDistance_, selfSafeDistance_) : safeDistance_;
-  // The split distance at state k, asked up to the safe distance + B (all the tests of the spans
-  // that state ends need); `valid` false (and no distance) for an invalid state.
-  const auto evaluate = [&](int k, double B, bool& valid) {
-    const Eigen::VectorXd q = mapping.along(q1, dq, static_cast<double>(k) / segments);
-    valid = checker_->isValid(q);
-    return valid ? checker_->splitClearanceUpTo(q, safe + B + tol::kDistanceCapMargin, selfTerm) : SplitDistance{};
-  };
-  const ompl::base::Cost invalid = infiniteCost();
-  bool valid = false;
-
-  // Trapezoid rule on the states k = 0..segments: sum of h_k with weight 1/2 at the ends, times
-  // length / segments.
+  const Motion motion{*this, mapping, q1, dq, segments, selfTerm, safe};
   double sum = 0.0;
-  if (!bound_) {
-    for (int k = 0; k <= segments; ++k) {
-      const SplitDistance d = evaluate(k, 0.0, valid);
-      if (!valid) return invalid;
-      sum += (k == 0 || k == segments ? 0.5 : 1.0) * hinge(d);
-    }
-    return ompl::base::Cost(sum * length / segments);
-  }
-  // With the bound: bisection over the states. On the states i..j the pair distances move by at
-  // most B_ij = B(dq (j - i) / segments), so each of sd_world and sd_self stays at least
-  // (sd_i + sd_j - B_ij) / 2 there; when that is >= its safe distance for both, every h_k in
-  // between is 0 and is not evaluated. Otherwise the middle state is evaluated and both halves
-  // looked at. The sum is the full trapezoid sum: only zero terms are skipped.
-  const auto reach = [&](int i, int j) {
-    return bound_->pairDisplacement(dq * (static_cast<double>(j - i) / segments));
-  };
-  const auto zeroBetween = [&](const SplitDistance& a, const SplitDistance& b, double B) {
-    return (a.world + b.world - B) / 2.0 >= safeDistance_ &&
-           (!selfTerm || (a.self + b.self - B) / 2.0 >= selfSafeDistance_);
-  };
-  const double Btotal = reach(0, segments);
-  const SplitDistance first = evaluate(0, Btotal, valid);
-  if (!valid) return invalid;
-  const SplitDistance last = evaluate(segments, Btotal, valid);
-  if (!valid) return invalid;
-  sum = 0.5 * (hinge(first) + hinge(last));
-  struct Span {
-    int i, j;
-    SplitDistance a, b;
-  };
-  // Depth first: the stack holds at most one pending half per level of the bisection, and there
-  // are at most 31 levels (segments is an int), so a fixed array does (no allocation per motion).
-  std::array<Span, 64> stack;
-  int size = 0;
-  stack[size++] = {0, segments, first, last};
-  while (size > 0) {
-    const Span span = stack[--size];
-    if (span.j - span.i <= 1) continue;
-    const double B = reach(span.i, span.j);
-    if (zeroBetween(span.a, span.b, B)) continue;
-    const int m = (span.i + span.j) / 2;
-    const SplitDistance mid = evaluate(m, B, valid);
-    if (!valid) return invalid;
-    sum += hinge(mid);
-    stack[size++] = {span.i, m, span.a, mid};
-    stack[size++] = {m, span.j, mid, span.b};
-  }
+  const bool valid = bound_ ? motion.bisectionSum(*bound_, &sum) : motion.trapezoidSum(&sum);
+  if (!valid) return infiniteCost();
   return ompl::base::Cost(sum * length / segments);
 }
 

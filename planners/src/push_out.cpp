@@ -96,6 +96,161 @@ Eigen::VectorXd limitedStep(const std::vector<Row>& rows, double target, const E
   return step;
 }
 
+/// The state of one PushOut::run past its trivial exits: the distance query at the iterate, the
+/// bundle of linearizations made at other iterates, and the pattern search.
+class PushOutSearch {
+ public:
+  PushOutSearch(const checker::World& world, const ValidityOptions& validity, const PushOutOptions& options,
+                Eigen::Index size)
+      : world_(world),
+        validity_(validity),
+        options_(options),
+        lower_(world.robot().lowerLimits()),
+        upper_(world.robot().upperLimits()),
+        size_(size),
+        target_(validity.threshold() + options.targetClearance),
+        watch_(target_ + tol::kPushOutLookahead) {}
+
+  /// The contacts within the watched distance, with gradients.
+  checker::DistanceResult query(const Eigen::VectorXd& q) const {
+    checker::DistanceOptions options;
+    options.gradient = true;
+    options.contactMargin = watch_;
+    options.maxDistance = std::max(watch_, 0.0) + tol::kDistanceCapMargin;
+    return world_.signedDistance(q, options);
+  }
+  /// The minimum distance of a query (the watched distance when nothing is nearer).
+  double minimum(const checker::DistanceResult& d) const { return d.found ? d.closest.distance : watch_; }
+
+  /// Iterates from `result->q` (whose query is `d`) until it is valid or the iterations are
+  /// spent; sets result's q and iterations, returns true when q is valid.
+  bool iterate(checker::DistanceResult d, PushOutResult* result);
+
+ private:
+  /// Linearizations made at other iterates (the bundle), newest last.
+  struct Cut {
+    Row row;
+    Eigen::VectorXd at;
+  };
+
+  void remember(const checker::DistanceResult& dAt, const Eigen::VectorXd& at) {
+    for (const checker::Contact& c : dAt.contacts) {
+      if (c.gradient.size() == size_) bundle_.push_back(Cut{Row{c.linkA, c.bodyB, c.distance, c.gradient}, at});
+    }
+    if (bundle_.size() > static_cast<std::size_t>(tol::kPushOutBundleSize)) {
+      bundle_.erase(bundle_.begin(), bundle_.end() - tol::kPushOutBundleSize);
+    }
+  }
+
+  /// The constraints at q: the contacts of its query `d`, and the bundle's cuts near q
+  /// linearized at q.
+  std::vector<Row> rowsAt(const checker::DistanceResult& d, const Eigen::VectorXd& q) const {
+    std::vector<Row> rows;
+    for (const checker::Contact& c : d.contacts) {
+      if (c.gradient.size() == size_) rows.push_back(Row{c.linkA, c.bodyB, c.distance, c.gradient});
+    }
+    for (const Cut& cut : bundle_) {
+      const Eigen::VectorXd offset = q - cut.at;
+      if (offset.cwiseAbs().maxCoeff() > tol::kPushOutBundleRadius) continue;
+      Row row = cut.row;
+      row.distance += row.gradient.dot(offset);  // the cut's linearization, evaluated here
+      rows.push_back(std::move(row));
+    }
+    return rows;
+  }
+
+  /// Pattern search (see tol::kPushOutProbeSteps): the smallest single-joint move that makes q
+  /// valid (then `isValid`), else the one that improves the minimum distance most. False when
+  /// none improves. `d`: q's query.
+  bool probe(const checker::DistanceResult& d, Eigen::VectorXd& q, bool& isValid) const {
+    const double current = minimum(d);
+    double best = current;
+    Eigen::VectorXd bestQ;
+    for (double size : tol::kPushOutProbeSteps) {
+      for (Eigen::Index j = 0; j < size_; ++j) {
+        for (double sign : {1.0, -1.0}) {
+          Eigen::VectorXd candidate = q;
+          candidate[j] = std::clamp(candidate[j] + sign * size, lower_[j], upper_[j]);
+          if (candidate[j] == q[j]) continue;
+          const double sd = signedDistanceUpTo(world_, candidate, watch_);
+          if (sd > validity_.threshold() && isConfigurationValid(world_, candidate, validity_)) {
+            q = candidate;
+            isValid = true;
+            return true;
+          }
+          if (sd > best) {
+            best = sd;
+            bestQ = candidate;
+          }
+        }
+      }
+    }
+    if (!(best > current)) return false;
+    q = bestQ;
+    return true;
+  }
+
+  const checker::World& world_;
+  const ValidityOptions& validity_;
+  const PushOutOptions& options_;
+  const Eigen::VectorXd& lower_;
+  const Eigen::VectorXd& upper_;
+  const Eigen::Index size_;
+  const double target_;
+  const double watch_;
+  std::vector<Cut> bundle_;
+};
+
+bool PushOutSearch::iterate(checker::DistanceResult d, PushOutResult* result) {
+  int rejected = 0;  // consecutive steps that made the minimum distance worse
+  int stalled = 0;   // iterations without kPushOutStallImprovement
+  double bestMinimum = minimum(d);
+  bool valid = false;
+  for (int iteration = 0; iteration < options_.maxIterations && !valid; ++iteration) {
+    result->iterations = iteration + 1;
+    const std::vector<Row> rows = rowsAt(d, result->q);
+    const Eigen::VectorXd dq = rows.empty() ? Eigen::VectorXd::Zero(size_)
+                                            : limitedStep(rows, target_, result->q, lower_, upper_, options_);
+    if (!(dq.cwiseAbs().maxCoeff() > 0.0) || stalled >= tol::kPushOutStallIterations) {
+      // No step from the gradients (every useful joint on its limit, or a flat distance), or no
+      // progress: probe single joints.
+      if (!probe(d, result->q, valid)) break;
+      if (valid) break;
+      bundle_.clear();
+      stalled = 0;
+      rejected = 0;
+      d = query(result->q);
+      bestMinimum = minimum(d);
+      continue;
+    }
+    const Eigen::VectorXd next = result->q + dq;
+    if (isConfigurationValid(world_, next, validity_)) {
+      result->q = next;
+      valid = true;
+      break;
+    }
+    checker::DistanceResult dNext = query(next);
+    if (minimum(dNext) < minimum(d) && rejected < 2) {
+      // Worse than before: stay, but keep what was learned there (its gradients) for the next try.
+      ++rejected;
+      ++stalled;
+      remember(dNext, next);
+      continue;
+    }
+    rejected = 0;
+    remember(d, result->q);
+    result->q = next;
+    d = std::move(dNext);
+    if (minimum(d) > bestMinimum + tol::kPushOutStallImprovement) {
+      bestMinimum = minimum(d);
+      stalled = 0;
+    } else {
+      ++stalled;
+    }
+  }
+  return valid;
+}
+
 }  // namespace
 
 const char* toString(PushOutStatus status) {
@@ -167,128 +322,16 @@ PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& q0) const {
     return result;
   }
 
-  const double target = validity_.threshold() + options_.targetClearance;
-  const double watch = target + tol::kPushOutLookahead;
-  auto query = [&](const Eigen::VectorXd& q, bool gradient) {
-    checker::DistanceOptions options;
-    options.gradient = gradient;
-    options.contactMargin = watch;
-    options.maxDistance = std::max(watch, 0.0) + tol::kDistanceCapMargin;
-    return world_->signedDistance(q, options);
-  };
-  auto minimum = [&](const checker::DistanceResult& d) { return d.found ? d.closest.distance : watch; };
-
-  checker::DistanceResult d = query(result.q, true);
-  result.initialDistance = minimum(d);
+  PushOutSearch search(*world_, validity_, options_, q0.size());
+  checker::DistanceResult d = search.query(result.q);
+  result.initialDistance = search.minimum(d);
   if (result.initialDistance < -options_.maxDepth) {
     result.status = PushOutStatus::TooDeep;
     result.q = q0;
     result.finalDistance = result.initialDistance;
     return result;
   }
-
-  // Linearizations made at other iterates (the bundle), newest last.
-  struct Cut {
-    Row row;
-    Eigen::VectorXd at;
-  };
-  std::vector<Cut> bundle;
-  auto remember = [&](const checker::DistanceResult& dAt, const Eigen::VectorXd& at) {
-    for (const checker::Contact& c : dAt.contacts) {
-      if (c.gradient.size() == q0.size()) bundle.push_back(Cut{Row{c.linkA, c.bodyB, c.distance, c.gradient}, at});
-    }
-    if (bundle.size() > static_cast<std::size_t>(tol::kPushOutBundleSize)) {
-      bundle.erase(bundle.begin(), bundle.end() - tol::kPushOutBundleSize);
-    }
-  };
-
-  // Pattern search (see tol::kPushOutProbeSteps): the smallest single-joint move that makes q
-  // valid, else the one that improves the minimum distance most. False when none improves.
-  auto probe = [&](Eigen::VectorXd& q, bool& isValid) {
-    const double current = minimum(d);
-    double best = current;
-    Eigen::VectorXd bestQ;
-    for (double size : tol::kPushOutProbeSteps) {
-      for (Eigen::Index j = 0; j < q0.size(); ++j) {
-        for (double sign : {1.0, -1.0}) {
-          Eigen::VectorXd candidate = q;
-          candidate[j] = std::clamp(candidate[j] + sign * size, lower[j], upper[j]);
-          if (candidate[j] == q[j]) continue;
-          const double sd = signedDistanceUpTo(*world_, candidate, watch);
-          if (sd > validity_.threshold() && isConfigurationValid(*world_, candidate, validity_)) {
-            q = candidate;
-            isValid = true;
-            return true;
-          }
-          if (sd > best) {
-            best = sd;
-            bestQ = candidate;
-          }
-        }
-      }
-    }
-    if (!(best > current)) return false;
-    q = bestQ;
-    return true;
-  };
-
-  std::vector<Row> rows;
-  int rejected = 0;  // consecutive steps that made the minimum distance worse
-  int stalled = 0;   // iterations without kPushOutStallImprovement
-  double bestMinimum = minimum(d);
-  bool valid = false;
-  for (int iteration = 0; iteration < options_.maxIterations && !valid; ++iteration) {
-    result.iterations = iteration + 1;
-    rows.clear();
-    for (const checker::Contact& c : d.contacts) {
-      if (c.gradient.size() == q0.size()) rows.push_back(Row{c.linkA, c.bodyB, c.distance, c.gradient});
-    }
-    for (const Cut& cut : bundle) {
-      const Eigen::VectorXd offset = result.q - cut.at;
-      if (offset.cwiseAbs().maxCoeff() > tol::kPushOutBundleRadius) continue;
-      Row row = cut.row;
-      row.distance += row.gradient.dot(offset);  // the cut's linearization, evaluated here
-      rows.push_back(std::move(row));
-    }
-    const Eigen::VectorXd dq = rows.empty() ? Eigen::VectorXd::Zero(q0.size())
-                                            : limitedStep(rows, target, result.q, lower, upper, options_);
-    if (!(dq.cwiseAbs().maxCoeff() > 0.0) || stalled >= tol::kPushOutStallIterations) {
-      // No step from the gradients (every useful joint on its limit, or a flat distance), or no
-      // progress: probe single joints.
-      if (!probe(result.q, valid)) break;
-      if (valid) break;
-      bundle.clear();
-      stalled = 0;
-      rejected = 0;
-      d = query(result.q, true);
-      bestMinimum = minimum(d);
-      continue;
-    }
-    const Eigen::VectorXd next = result.q + dq;
-    if (isConfigurationValid(*world_, next, validity_)) {
-      result.q = next;
-      valid = true;
-      break;
-    }
-    checker::DistanceResult dNext = query(next, true);
-    if (minimum(dNext) < minimum(d) && rejected < 2) {
-      // Worse than before: stay, but keep what was learned there (its gradients) for the next try.
-      ++rejected;
-      ++stalled;
-      remember(dNext, next);
-      continue;
-    }
-    rejected = 0;
-    remember(d, result.q);
-    result.q = next;
-    d = std::move(dNext);
-    if (minimum(d) > bestMinimum + tol::kPushOutStallImprovement) {
-      bestMinimum = minimum(d);
-      stalled = 0;
-    } else {
-      ++stalled;
-    }
-  }
+  const bool valid = search.iterate(std::move(d), &result);
   result.status = valid ? PushOutStatus::Repaired : PushOutStatus::NotConverged;
   result.jointMotion = (result.q - q0).norm();
   result.finalDistance = signedDistanceUpTo(*world_, result.q, std::numeric_limits<double>::infinity());

@@ -74,6 +74,8 @@ class ClearanceHingeObjective : public ompl::base::OptimizationObjective {
   void setSelfSafeDistance(double d);
 
  private:
+  /// One motion's integral (objectives.cpp).
+  struct Motion;
   /// The hinge of a split distance.
   double hinge(const SplitDistance& d) const;
   /// The hinge at q, asking the distances only up to the safe distances.
