@@ -183,131 +183,152 @@ struct RunOptions {
   std::string world;  ///< only this world when not empty
 };
 
-void runWorld(const WorldSpec& spec, const RunOptions& run) {
-  const int samples = run.samples;
-  const int motions = run.motions;
+/// One world of the benchmark, with the FCL backend on the same robot and scene, and its query
+/// sets.
+struct BenchWorld {
+  const WorldSpec& spec;
+  robots::LoadOptions load;
+  robots::RobotModel robot;
+  checker::WorldOptions options;
+  checker::World world;
+  fcl_reference::FclWorld fcl;
+  std::vector<Eigen::VectorXd> random;
+  std::vector<Eigen::VectorXd> motion;
+
+  /// The two query sets, named.
+  std::vector<std::pair<std::string, const std::vector<Eigen::VectorXd>*>> sets() const {
+    return {{"random", &random}, {"motions", &motion}};
+  }
+};
+
+robots::LoadOptions loadOptions(const WorldSpec& spec) {
   robots::LoadOptions load;
   load.packageRoots = spec.packageRoots;
   load.useRosPackagePath = false;
-  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(spec.robot, load);
+  return load;
+}
+
+checker::WorldOptions worldOptions(const WorldSpec& spec) {
   checker::WorldOptions options;
   if (!spec.srdf.empty()) options.disabledPairs = robots::readSrdfDisabledPairs(spec.srdf);
-  const auto tLoad = Clock::now();
-  checker::World world(robot, options);
-  world.addScene(robots::RobotModel::fromUrdfFile(spec.scene, load));
-  const double loadSeconds = std::chrono::duration<double>(Clock::now() - tLoad).count();
-  fcl_reference::FclWorld fcl(world);
-  std::printf("\n== %s  (world loaded in %.2f s, decomposition cache included)\n%s", spec.name.c_str(), loadSeconds,
-              world.summary().c_str());
+  return options;
+}
 
-  std::mt19937 rng(2024);
-  std::vector<Eigen::VectorXd> random;
-  for (int i = 0; i < samples; ++i) random.push_back(randomConfiguration(world.robot(), rng));
-  const std::vector<Eigen::VectorXd> motion = shortMotions(world.robot(), motions, rng);
-
+/// Empty call, forward kinematics, and isFree of both backends over both sets.
+void timeIsFree(BenchWorld& b) {
   // An empty call: what the two clock reads add to every per-query time below.
-  addTimes(spec.name, "clock", "random", "empty call", timeEach(random, [](const Eigen::VectorXd&) {}));
+  addTimes(b.spec.name, "clock", "random", "empty call", timeEach(b.random, [](const Eigen::VectorXd&) {}));
   // Forward kinematics alone: a floor under both backends' isFree (both pose every link).
   {
     std::vector<Eigen::Isometry3d> X_WL;
-    addTimes(spec.name, "kinematics", "random", "robots::forwardKinematics",
-             timeEach(random, [&](const Eigen::VectorXd& q) { robots::forwardKinematics(world.robot(), q, X_WL); }));
+    addTimes(b.spec.name, "kinematics", "random", "robots::forwardKinematics",
+             timeEach(b.random, [&](const Eigen::VectorXd& q) { robots::forwardKinematics(b.world.robot(), q, X_WL); }));
   }
   // isFree: ours (one context, warm starts across the set, as a planner thread has) and FCL's.
-  for (const auto& [setName, qs] : {std::pair<std::string, const std::vector<Eigen::VectorXd>*>{"random", &random},
-                                    {"motions", &motion}}) {
-    auto context = world.makeContext();
+  for (const auto& [setName, qs] : b.sets()) {
+    auto context = b.world.makeContext();
     int freeCount = 0;
-    const std::vector<double> ours = timeEach(*qs, [&](const Eigen::VectorXd& q) { freeCount += world.isFree(q, context); });
+    const std::vector<double> ours =
+        timeEach(*qs, [&](const Eigen::VectorXd& q) { freeCount += b.world.isFree(q, context); });
     freeCount /= kRounds;
-    const std::vector<double> theirs = timeEach(*qs, [&](const Eigen::VectorXd& q) { fcl.isFree(q); });
+    const std::vector<double> theirs = timeEach(*qs, [&](const Eigen::VectorXd& q) { b.fcl.isFree(q); });
     const double ratio = percentile(theirs, 0.5) / percentile(ours, 0.5);
     char note[128];
     std::snprintf(note, sizeof note, "free %.1f %%, FCL/ours %.1fx", 100.0 * freeCount / qs->size(), ratio);
-    addTimes(spec.name, "isFree", setName, "deepcheck", ours, note);
-    addTimes(spec.name, "isFree", setName, "fcl-mesh", theirs);
+    addTimes(b.spec.name, "isFree", setName, "deepcheck", ours, note);
+    addTimes(b.spec.name, "isFree", setName, "fcl-mesh", theirs);
   }
-  if (run.isFreeOnly) {
-    auto context = world.makeContext();
-    std::size_t freeCount = 0;
-    for (int r = 0; r < run.repeat; ++r) {
-      for (const Eigen::VectorXd& q : random) freeCount += world.isFree(q, context);
-      for (const Eigen::VectorXd& q : motion) freeCount += world.isFree(q, context);
-    }
-    if (run.repeat > 0) std::printf("  (%d more untimed rounds of isFree, %zu free)\n", run.repeat, freeCount);
-    for (const auto& [setName, qs] : {std::pair<std::string, const std::vector<Eigen::VectorXd>*>{"random", &random},
-                                      {"motions", &motion}}) {
-      auto counted = world.makeContext();
-      for (const Eigen::VectorXd& q : *qs) world.isFree(q, counted);
-      const checker::QueryStats& st = counted.stats();
-      const double n = static_cast<double>(st.queries);
-      std::printf("  isFree %-8s per query: %.2f link candidates, %.2f piece tests, %.2f narrow phase (%.2f self), "
-                  "%.2f self pairs in a certified-free cell, %.2f overlaps decided by a centroid inside a world piece\n",
-                  setName.c_str(), st.linkCandidates / n, st.pieceTests / n, st.narrowPhase / n,
-                  st.selfNarrowPhase / n, st.certifiedSelf / n, st.centroidInside / n);
-    }
-    return;
+}
+
+/// --isfree: `repeat` untimed rounds of isFree, then what one query does on average.
+void isFreeWork(const BenchWorld& b, int repeat) {
+  auto context = b.world.makeContext();
+  std::size_t freeCount = 0;
+  for (int r = 0; r < repeat; ++r) {
+    for (const Eigen::VectorXd& q : b.random) freeCount += b.world.isFree(q, context);
+    for (const Eigen::VectorXd& q : b.motion) freeCount += b.world.isFree(q, context);
   }
-  // signedDistance with gradient (ours), FCL distance (boolean, then distance when free).
-  checker::DistanceOptions withGradient;
-  withGradient.gradient = true;
-  for (const auto& [setName, qs] : {std::pair<std::string, const std::vector<Eigen::VectorXd>*>{"random", &random},
-                                    {"motions", &motion}}) {
-    auto context = world.makeContext();
+  if (repeat > 0) std::printf("  (%d more untimed rounds of isFree, %zu free)\n", repeat, freeCount);
+  for (const auto& [setName, qs] : b.sets()) {
+    auto counted = b.world.makeContext();
+    for (const Eigen::VectorXd& q : *qs) b.world.isFree(q, counted);
+    const checker::QueryStats& st = counted.stats();
+    const double n = static_cast<double>(st.queries);
+    std::printf("  isFree %-8s per query: %.2f link candidates, %.2f piece tests, %.2f narrow phase (%.2f self), "
+                "%.2f self pairs in a certified-free cell, %.2f overlaps decided by a centroid inside a world piece\n",
+                setName.c_str(), st.linkCandidates / n, st.pieceTests / n, st.narrowPhase / n,
+                st.selfNarrowPhase / n, st.certifiedSelf / n, st.centroidInside / n);
+  }
+}
+
+/// signedDistance with gradient (ours), FCL distance (boolean, then distance when free).
+void timeDistance(BenchWorld& b, const checker::DistanceOptions& withGradient) {
+  for (const auto& [setName, qs] : b.sets()) {
+    auto context = b.world.makeContext();
     const std::vector<double> ours =
-        timeEach(*qs, [&](const Eigen::VectorXd& q) { world.signedDistance(q, context, withGradient); });
-    addTimes(spec.name, "sd+grad", setName, "deepcheck", ours);
+        timeEach(*qs, [&](const Eigen::VectorXd& q) { b.world.signedDistance(q, context, withGradient); });
+    addTimes(b.spec.name, "sd+grad", setName, "deepcheck", ours);
     std::vector<Eigen::VectorXd> subset(qs->begin(), qs->begin() + std::min<std::size_t>(qs->size(), 2000));
     std::vector<double> theirs;  // one round: milliseconds per call
     for (const Eigen::VectorXd& q : subset) {
       const auto t0 = Clock::now();
-      fcl.distance(q);
+      b.fcl.distance(q);
       theirs.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
     }
-    addTimes(spec.name, "distance", setName, "fcl-mesh (no depth)", theirs);
+    addTimes(b.spec.name, "distance", setName, "fcl-mesh (no depth)", theirs);
   }
-  // Broad phases (isFree, random set).
+}
+
+/// isFree and signedDistance over the random set with each broad phase.
+void timeBroadPhases(const BenchWorld& b, const checker::DistanceOptions& withGradient) {
   fcl_reference::enableFclBroadPhase();
-  for (checker::BroadPhase b : {checker::BroadPhase::AabbTree, checker::BroadPhase::FclTree, checker::BroadPhase::None}) {
-    checker::WorldOptions o = options;
-    o.broadPhase = b;
-    checker::World w(robot, o);
-    w.addScene(robots::RobotModel::fromUrdfFile(spec.scene, load));
+  for (checker::BroadPhase phase :
+       {checker::BroadPhase::AabbTree, checker::BroadPhase::FclTree, checker::BroadPhase::None}) {
+    checker::WorldOptions o = b.options;
+    o.broadPhase = phase;
+    checker::World w(b.robot, o);
+    w.addScene(robots::RobotModel::fromUrdfFile(b.spec.scene, b.load));
     auto context = w.makeContext();
-    addTimes(spec.name, "isFree", "random", std::string("broad phase ") + checker::toString(b),
-             timeEach(random, [&](const Eigen::VectorXd& q) { w.isFree(q, context); }));
+    addTimes(b.spec.name, "isFree", "random", std::string("broad phase ") + checker::toString(phase),
+             timeEach(b.random, [&](const Eigen::VectorXd& q) { w.isFree(q, context); }));
     auto sdContext = w.makeContext();
-    addTimes(spec.name, "sd+grad", "random", std::string("broad phase ") + checker::toString(b),
-             timeEach(random, [&](const Eigen::VectorXd& q) { w.signedDistance(q, sdContext, withGradient); }));
+    addTimes(b.spec.name, "sd+grad", "random", std::string("broad phase ") + checker::toString(phase),
+             timeEach(b.random, [&](const Eigen::VectorXd& q) { w.signedDistance(q, sdContext, withGradient); }));
   }
-  // Throughput, 1 and 2 threads.
+}
+
+/// Throughput of isFree and signedDistance with 1 and 2 threads.
+void timeThroughput(const BenchWorld& b, const checker::DistanceOptions& withGradient) {
   for (int threads : {1, 2}) {
-    const Throughput isFreeRate = throughput(world, random, threads, 40, [](const checker::World& w, checker::World::Context& c,
+    const Throughput isFreeRate = throughput(b.world, b.random, threads, 40, [](const checker::World& w, checker::World::Context& c,
                                                                         const Eigen::VectorXd& q) { w.isFree(q, c); });
-    const Throughput sdRate = throughput(world, random, threads, 6, [&](const checker::World& w, checker::World::Context& c,
+    const Throughput sdRate = throughput(b.world, b.random, threads, 6, [&](const checker::World& w, checker::World::Context& c,
                                                                      const Eigen::VectorXd& q) { w.signedDistance(q, c, withGradient); });
     std::printf("  throughput %d thread%s: isFree %.0f /s (%.0f per CPU-second), sd+grad %.0f /s (%.0f per CPU-second)\n",
                 threads, threads > 1 ? "s" : " ", isFreeRate.wall, isFreeRate.cpu, sdRate.wall, sdRate.cpu);
     for (const auto& [query, rate] : {std::pair<std::string, Throughput>{"isFree", isFreeRate}, {"sd+grad", sdRate}}) {
-      rows.push_back({spec.name, query, "random", "throughput " + std::to_string(threads) + " thread(s)", 0, 0, 0,
-                      random.size(),
+      rows.push_back({b.spec.name, query, "random", "throughput " + std::to_string(threads) + " thread(s)", 0, 0, 0,
+                      b.random.size(),
                       std::to_string(static_cast<long long>(rate.wall)) + " /s wall, " +
                           std::to_string(static_cast<long long>(rate.cpu)) + " /s per CPU-second"});
     }
   }
-  // Agreement with FCL on the random set.
-  const double tolerance = 2 * world.summaryCounts().geometryExcess;
-  auto context = world.makeContext();
+}
+
+/// Agreement with FCL on the random set.
+void agreement(BenchWorld& b) {
+  const double tolerance = 2 * b.world.summaryCounts().geometryExcess;
+  auto context = b.world.makeContext();
   int fclColliding = 0, missed = 0, falseAlarms = 0, beyond = 0;
   double worst = 0.0;
-  for (const Eigen::VectorXd& q : random) {
-    const bool ours = world.isFree(q, context);
-    const bool theirs = fcl.isFree(q);
+  for (const Eigen::VectorXd& q : b.random) {
+    const bool ours = b.world.isFree(q, context);
+    const bool theirs = b.fcl.isFree(q);
     fclColliding += !theirs;
     missed += !theirs && ours;
     if (theirs && !ours) {
       ++falseAlarms;
-      const double d = fcl.distance(q).distance;
+      const double d = b.fcl.distance(q).distance;
       worst = std::max(worst, d);
       beyond += d > tolerance;
     }
@@ -317,8 +338,38 @@ void runWorld(const WorldSpec& spec, const RunOptions& run) {
                 "FCL colliding %d; missed (FCL colliding, ours free) %d; false alarms %d (largest FCL distance "
                 "%.4g m, tolerance 2 x excess = %.4g m, beyond it %d)",
                 fclColliding, missed, falseAlarms, worst, tolerance, beyond);
-  std::printf("  agreement on %zu random configurations: %s\n", random.size(), note);
-  rows.push_back({spec.name, "agreement", "random", "deepcheck vs fcl-mesh", 0, 0, 0, random.size(), note});
+  std::printf("  agreement on %zu random configurations: %s\n", b.random.size(), note);
+  rows.push_back({b.spec.name, "agreement", "random", "deepcheck vs fcl-mesh", 0, 0, 0, b.random.size(), note});
+}
+
+void runWorld(const WorldSpec& spec, const RunOptions& run) {
+  const robots::LoadOptions load = loadOptions(spec);
+  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(spec.robot, load);
+  const checker::WorldOptions options = worldOptions(spec);
+  const auto tLoad = Clock::now();
+  checker::World world(robot, options);
+  world.addScene(robots::RobotModel::fromUrdfFile(spec.scene, load));
+  const double loadSeconds = std::chrono::duration<double>(Clock::now() - tLoad).count();
+  fcl_reference::FclWorld fcl(world);
+  std::printf("\n== %s  (world loaded in %.2f s, decomposition cache included)\n%s", spec.name.c_str(), loadSeconds,
+              world.summary().c_str());
+  BenchWorld b{spec, load, std::move(robot), options, std::move(world), std::move(fcl), {}, {}};
+
+  std::mt19937 rng(2024);
+  for (int i = 0; i < run.samples; ++i) b.random.push_back(randomConfiguration(b.world.robot(), rng));
+  b.motion = shortMotions(b.world.robot(), run.motions, rng);
+
+  timeIsFree(b);
+  if (run.isFreeOnly) {
+    isFreeWork(b, run.repeat);
+    return;
+  }
+  checker::DistanceOptions withGradient;
+  withGradient.gradient = true;
+  timeDistance(b, withGradient);
+  timeBroadPhases(b, withGradient);
+  timeThroughput(b, withGradient);
+  agreement(b);
 }
 
 }  // namespace

@@ -319,6 +319,175 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
+/// The exact answers of a family's queries (they decide where GJK runs and score everything).
+struct ExactCounts {
+  int overlapping = 0;
+  int separated = 0;
+  double meanVertices = 0.0;
+};
+
+ExactCounts exactAnswers(Family& f) {
+  ExactCounts c;
+  double vertices = 0;
+  for (Query& q : f.queries) {
+    const double sd = exactOf(f, q).distance;
+    c.overlapping += sd < 0;
+    c.separated += sd > 0;
+    vertices += 0.5 * (f.shapes[q.a].numVertices() + f.shapes[q.b].numVertices());
+  }
+  c.meanVertices = vertices / static_cast<double>(f.queries.size());
+  return c;
+}
+
+/// One method's first answer to a query, and the median of its repetitions' times.
+struct Run {
+  Answer answer;
+  WalkStats walk;
+  bool threw = false;
+  double micros = NAN;
+};
+
+/// Runs query qi `reps` times with every method, the order rotated between repetitions (so that
+/// load from other processes hits all methods alike). Methods that do not run on the query are
+/// left with NaN time and a default answer.
+std::vector<Run> runQuery(const Options& opt, const std::vector<std::unique_ptr<Method>>& methods, Family& f, int qi,
+                          double overhead) {
+  const double exact = f.queries[qi].exact->distance;
+  const int nm = static_cast<int>(methods.size());
+  std::vector<Run> runs(nm);
+  std::vector<std::vector<double>> perRep(nm, std::vector<double>(opt.reps));
+  for (int rep = 0; rep < opt.reps; ++rep) {
+    for (int k = 0; k < nm; ++k) {
+      const int mi = (k + rep) % nm;  // rotate the order between repetitions
+      Method& m = *methods[mi];
+      if (m.separatedOnly() && !(exact > 0)) continue;
+      m.beforeRun(f, qi);
+      Answer a;
+      bool failed = false;
+      const auto s0 = Clock::now();
+      try {
+        a = m.run(f, qi);
+      } catch (const std::exception& e) {
+        failed = true;
+        if (rep == 0) std::cerr << "  " << m.name() << " threw on query " << qi << ": " << e.what() << "\n";
+      }
+      const auto s1 = Clock::now();
+      perRep[mi][rep] = std::chrono::duration<double, std::micro>(s1 - s0).count() - overhead;
+      if (rep == 0) runs[mi] = {a, m.lastWalk(), failed, NAN};
+    }
+  }
+  for (int mi = 0; mi < nm; ++mi) runs[mi].micros = median(perRep[mi]);
+  return runs;
+}
+
+/// Adds one method's run of query qi to its tally (and writes a reproducer for a bad DEEP answer).
+void score(const Options& opt, const Family& f, int qi, const std::string& method, const Run& run, Tally& t) {
+  const double exact = f.queries[qi].exact->distance;
+  const double L = f.pairScale(f.queries[qi]);
+  ++t.ran;
+  const Answer& a = run.answer;
+  if (a.kind != Answer::Kind::Skipped) {
+    t.times.push_back(std::max(0.0, run.micros));
+    if (exact < 0) t.overlapTimes.push_back(t.times.back());
+  }
+  double sd = NAN;
+  bool scored = false;
+  if (run.threw || a.kind == Answer::Kind::Failed || a.kind == Answer::Kind::Skipped) {
+    ++t.failed;
+  } else if (a.kind == Answer::Kind::NoContact) {
+    if (exact < 0) {
+      ++t.missing;
+      sd = 0.0;
+      scored = true;
+    }
+  } else if (!std::isfinite(a.sd)) {
+    ++t.nan;
+  } else {
+    sd = a.sd;
+    scored = true;
+    if ((exact < 0 && sd > 0) || (exact > 0 && sd < 0)) ++t.wrongSign;
+  }
+  double rel = NAN;
+  if (scored) {
+    rel = std::abs(sd - exact) / std::max(std::abs(exact), 1e-3 * L);
+    t.rel.push_back(rel);
+    t.abs.push_back(std::abs(sd - exact));
+    t.withinExact += rel <= kExactRelative;
+  }
+  if (!run.walk.valid) return;  // not DEEP
+  const WalkStats& w = run.walk;
+  ++t.walkQueries;
+  t.starts += w.starts;
+  t.hubs += w.hubs;
+  t.steps += w.steps;
+  t.localMinima += w.localMinima;
+  t.warm += w.warm;
+  t.notConverged += w.notConverged;
+  const bool bad = !scored || !(rel <= kReproRelative);
+  if (bad && t.repros < kMaxReprosPerRow) {
+    ++t.repros;
+    writeRepro(opt, f, qi, method, run.threw ? NAN : a.sd, exact, rel);
+  }
+}
+
+/// The exact reference's own row: its time per query.
+Row exactRow(const Family& f, const ExactCounts& counts) {
+  Tally exactTally;
+  for (const Query& q : f.queries) {
+    exactTally.times.push_back(q.exactMicros);
+    if (q.exact->distance < 0) exactTally.overlapTimes.push_back(q.exactMicros);
+  }
+  exactTally.ran = static_cast<int>(exactTally.times.size());
+  return summarize(f, "exact", exactTally, counts.overlapping, counts.separated, counts.meanVertices);
+}
+
+/// Builds, answers exactly, times and scores one family; appends its rows. False when the family
+/// cannot be built here.
+bool runFamily(const Options& opt, const std::string& name, const std::vector<std::unique_ptr<Method>>& methods,
+               double overhead, std::vector<Row>* rows) {
+  const auto [full, quick] = pairCounts(name);
+  const auto t0 = Clock::now();
+  std::optional<Family> fam;
+  try {
+    fam = makeFamily(name, opt.quick ? quick : full, opt.shared);
+  } catch (const std::exception& e) {
+    std::cerr << name << ": cannot build the family: " << e.what() << "\n";
+    return false;
+  }
+  if (!fam) return false;
+  Family& f = *fam;
+  const auto t1 = Clock::now();
+  const ExactCounts counts = exactAnswers(f);
+  const auto t2 = Clock::now();
+  std::cerr << f.name << ": " << f.queries.size() << " queries (" << counts.overlapping << " overlapping, "
+            << counts.separated << " separated), " << f.description << "; built in "
+            << fmt(std::chrono::duration<double>(t1 - t0).count(), "%.1f") << " s, exact answers in "
+            << fmt(std::chrono::duration<double>(t2 - t1).count(), "%.1f") << " s\n";
+
+  for (auto& m : methods) m->beginFamily(f);
+  const int nm = static_cast<int>(methods.size());
+  std::vector<Tally> tally(nm);
+  for (int qi = 0; qi < static_cast<int>(f.queries.size()); ++qi) {
+    const std::vector<Run> runs = runQuery(opt, methods, f, qi, overhead);
+    const double exact = f.queries[qi].exact->distance;
+    for (int mi = 0; mi < nm; ++mi) {
+      if (methods[mi]->separatedOnly() && !(exact > 0)) continue;
+      score(opt, f, qi, methods[mi]->name(), runs[mi], tally[mi]);
+    }
+  }
+  for (int mi = 0; mi < nm; ++mi) {
+    rows->push_back(summarize(f, methods[mi]->name(), tally[mi], counts.overlapping, counts.separated,
+                              counts.meanVertices));
+    printRow(rows->back());
+  }
+  rows->push_back(exactRow(f, counts));
+  printRow(rows->back());
+  for (auto& m : methods) m->endFamily();
+  std::cerr << f.name << ": timed in " << fmt(std::chrono::duration<double>(Clock::now() - t2).count(), "%.1f")
+            << " s\n";
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -343,137 +512,7 @@ int main(int argc, char** argv) {
   printHeader();
   const auto runStart = Clock::now();
   for (const std::string& name : opt.families) {
-    const auto [full, quick] = pairCounts(name);
-    const auto t0 = Clock::now();
-    std::optional<Family> fam;
-    try {
-      fam = makeFamily(name, opt.quick ? quick : full, opt.shared);
-    } catch (const std::exception& e) {
-      std::cerr << name << ": cannot build the family: " << e.what() << "\n";
-      continue;
-    }
-    if (!fam) continue;
-    Family& f = *fam;
-    const auto t1 = Clock::now();
-    // Exact answers first: they decide where GJK runs and score everything.
-    int overlapping = 0, separated = 0;
-    double vertices = 0;
-    for (Query& q : f.queries) {
-      const double sd = exactOf(f, q).distance;
-      overlapping += sd < 0;
-      separated += sd > 0;
-      vertices += 0.5 * (f.shapes[q.a].numVertices() + f.shapes[q.b].numVertices());
-    }
-    const double meanVertices = vertices / static_cast<double>(f.queries.size());
-    const auto t2 = Clock::now();
-    std::cerr << f.name << ": " << f.queries.size() << " queries (" << overlapping << " overlapping, " << separated
-              << " separated), " << f.description << "; built in "
-              << fmt(std::chrono::duration<double>(t1 - t0).count(), "%.1f") << " s, exact answers in "
-              << fmt(std::chrono::duration<double>(t2 - t1).count(), "%.1f") << " s\n";
-
-    for (auto& m : methods) m->beginFamily(f);
-    const int nm = static_cast<int>(methods.size());
-    std::vector<Tally> tally(nm);
-    std::vector<std::vector<double>> perRep(nm, std::vector<double>(opt.reps));
-    for (int qi = 0; qi < static_cast<int>(f.queries.size()); ++qi) {
-      const Query& q = f.queries[qi];
-      const double exact = q.exact->distance;
-      const double L = f.pairScale(q);
-      std::vector<Answer> answers(nm);
-      std::vector<WalkStats> walks(nm);
-      std::vector<bool> threw(nm, false);
-      for (int rep = 0; rep < opt.reps; ++rep) {
-        for (int k = 0; k < nm; ++k) {
-          const int mi = (k + rep) % nm;  // rotate the order between repetitions
-          Method& m = *methods[mi];
-          if (m.separatedOnly() && !(exact > 0)) continue;
-          m.beforeRun(f, qi);
-          Answer a;
-          bool failed = false;
-          const auto s0 = Clock::now();
-          try {
-            a = m.run(f, qi);
-          } catch (const std::exception& e) {
-            failed = true;
-            if (rep == 0) std::cerr << "  " << m.name() << " threw on query " << qi << ": " << e.what() << "\n";
-          }
-          const auto s1 = Clock::now();
-          perRep[mi][rep] = std::chrono::duration<double, std::micro>(s1 - s0).count() - overhead;
-          if (rep == 0) {
-            answers[mi] = a;
-            threw[mi] = failed;
-            walks[mi] = m.lastWalk();
-          }
-        }
-      }
-      for (int mi = 0; mi < nm; ++mi) {
-        Method& m = *methods[mi];
-        if (m.separatedOnly() && !(exact > 0)) continue;
-        Tally& t = tally[mi];
-        ++t.ran;
-        const Answer& a = answers[mi];
-        if (a.kind != Answer::Kind::Skipped) {
-          t.times.push_back(std::max(0.0, median(perRep[mi])));
-          if (exact < 0) t.overlapTimes.push_back(t.times.back());
-        }
-        const bool isDeep = walks[mi].valid;
-        double sd = NAN;
-        bool scored = false;
-        if (threw[mi] || a.kind == Answer::Kind::Failed || a.kind == Answer::Kind::Skipped) {
-          ++t.failed;
-        } else if (a.kind == Answer::Kind::NoContact) {
-          if (exact < 0) {
-            ++t.missing;
-            sd = 0.0;
-            scored = true;
-          }
-        } else if (!std::isfinite(a.sd)) {
-          ++t.nan;
-        } else {
-          sd = a.sd;
-          scored = true;
-          if ((exact < 0 && sd > 0) || (exact > 0 && sd < 0)) ++t.wrongSign;
-        }
-        double rel = NAN;
-        if (scored) {
-          rel = std::abs(sd - exact) / std::max(std::abs(exact), 1e-3 * L);
-          t.rel.push_back(rel);
-          t.abs.push_back(std::abs(sd - exact));
-          t.withinExact += rel <= kExactRelative;
-        }
-        if (isDeep) {
-          const WalkStats& w = walks[mi];
-          ++t.walkQueries;
-          t.starts += w.starts;
-          t.hubs += w.hubs;
-          t.steps += w.steps;
-          t.localMinima += w.localMinima;
-          t.warm += w.warm;
-          t.notConverged += w.notConverged;
-          const bool bad = !scored || !(rel <= kReproRelative);
-          if (bad && t.repros < kMaxReprosPerRow) {
-            ++t.repros;
-            writeRepro(opt, f, qi, m.name(), threw[mi] ? NAN : a.sd, exact, rel);
-          }
-        }
-      }
-    }
-    std::vector<double> exactTimes;
-    for (const Query& q : f.queries) exactTimes.push_back(q.exactMicros);
-    for (int mi = 0; mi < nm; ++mi) {
-      rows.push_back(summarize(f, methods[mi]->name(), tally[mi], overlapping, separated, meanVertices));
-      printRow(rows.back());
-    }
-    Tally exactTally;
-    exactTally.times = exactTimes;
-    for (const Query& q : f.queries)
-      if (q.exact->distance < 0) exactTally.overlapTimes.push_back(q.exactMicros);
-    exactTally.ran = static_cast<int>(exactTimes.size());
-    rows.push_back(summarize(f, "exact", exactTally, overlapping, separated, meanVertices));
-    printRow(rows.back());
-    for (auto& m : methods) m->endFamily();
-    std::cerr << f.name << ": timed in "
-              << fmt(std::chrono::duration<double>(Clock::now() - t2).count(), "%.1f") << " s\n";
+    if (!runFamily(opt, name, methods, overhead, &rows)) continue;
     // After every family, so that a partial run leaves data.
     writeCsv(opt.out + "/pd_bench.csv", rows);
     writeMarkdown(opt.out + "/pd_bench.md", rows);
