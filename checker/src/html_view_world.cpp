@@ -3,6 +3,7 @@
 
 #include "deepcheck/checker/html_view.h"
 
+#include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/mesh_loader.h"
 
@@ -21,8 +22,8 @@ namespace {
 class MeshStore {
  public:
   std::shared_ptr<const robots::TriangleMesh> get(const robots::Geometry& g) {
-    const std::string key = g.meshPath + "|" + std::to_string(g.meshScale.x()) + "," +
-                            std::to_string(g.meshScale.y()) + "," + std::to_string(g.meshScale.z());
+    const std::string key = g.meshPath + "|" + robots::formatNumber(g.meshScale.x()) + "," +
+                            robots::formatNumber(g.meshScale.y()) + "," + robots::formatNumber(g.meshScale.z());
     auto& slot = meshes_[key];
     if (!slot) slot = std::make_shared<const robots::TriangleMesh>(robots::loadMesh(g.meshPath, g.meshScale));
     return slot;

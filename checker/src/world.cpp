@@ -9,6 +9,7 @@
 
 #include "deepcheck/deep/pair_frame.h"
 #include "deepcheck/robots/decomposition_cache.h"
+#include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/pair_filter.h"
@@ -275,7 +276,7 @@ void publish(WorldState& st, std::shared_ptr<Snapshot> snap) {
 
 World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std::make_shared<WorldState>()) {
   if (!(options.reachMargin >= 0)) {
-    throw std::invalid_argument("World: reachMargin must be >= 0, is " + std::to_string(options.reachMargin));
+    throw std::invalid_argument("World: reachMargin must be >= 0, is " + robots::formatNumber(options.reachMargin));
   }
   WorldState& st = *state_;
   st.options = options;

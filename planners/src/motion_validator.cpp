@@ -4,6 +4,7 @@
 
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/planners/tolerances.h"
+#include "deepcheck/robots/format_number.h"
 
 #include <algorithm>
 #include <queue>
@@ -22,7 +23,7 @@ ClearanceMotionValidator::ClearanceMotionValidator(ompl::base::SpaceInformation*
       fallbackFraction_(fallbackFraction) {
   if (!(fallbackFraction > 0.0 && fallbackFraction <= 1.0)) {
     throw std::invalid_argument("ClearanceMotionValidator: fallbackFraction must be in (0, 1], got " +
-                                std::to_string(fallbackFraction));
+                                robots::formatNumber(fallbackFraction));
   }
   if (si == nullptr) throw std::invalid_argument("ClearanceMotionValidator: the space information is null");
   if (!checker_) throw std::invalid_argument("ClearanceMotionValidator: the validity checker is null");

@@ -1,8 +1,7 @@
 #include "deepcheck/planners/objectives.h"
 
 #include "deepcheck/planners/state_space.h"
-
-#include "number.h"
+#include "deepcheck/robots/format_number.h"
 
 #include <ompl/base/goals/GoalRegion.h>
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
@@ -17,8 +16,6 @@
 namespace deepcheck::planners {
 
 namespace {
-
-using detail::number;
 
 /// Path length + weight * hinge, keeping the path length's heuristics (admissible: hinge >= 0).
 class LengthClearanceObjective : public ompl::base::MultiOptimizationObjective {
@@ -47,18 +44,18 @@ ClearanceHingeObjective::ClearanceHingeObjective(const ompl::base::SpaceInformat
   if (!checker_) throw std::invalid_argument("ClearanceHingeObjective: the validity checker is null");
   if (!std::isfinite(safeDistance) || safeDistance < 0.0) {
     throw std::invalid_argument("ClearanceHingeObjective: safe distance must be finite and >= 0, got " +
-                                number(safeDistance));
+                                robots::formatNumber(safeDistance));
   }
   if (std::isnan(resolution) || std::isinf(resolution)) {
-    throw std::invalid_argument("ClearanceHingeObjective: resolution must be finite, got " + number(resolution));
+    throw std::invalid_argument("ClearanceHingeObjective: resolution must be finite, got " + robots::formatNumber(resolution));
   }
-  description_ = "Clearance hinge (d_safe " + number(safeDistance) + " m)";
+  description_ = "Clearance hinge (d_safe " + robots::formatNumber(safeDistance) + " m)";
 }
 
 void ClearanceHingeObjective::setSelfSafeDistance(double d) {
   if (!std::isfinite(d) || d < 0.0) {
     throw std::invalid_argument("ClearanceHingeObjective: self safe distance must be finite and >= 0, got " +
-                                number(d));
+                                robots::formatNumber(d));
   }
   selfSafeDistance_ = d;
 }
@@ -183,7 +180,7 @@ ompl::base::OptimizationObjectivePtr makeLengthClearanceObjective(const ompl::ba
                                                                   std::shared_ptr<const LinkSpeedBound> bound,
                                                                   double resolution) {
   if (!std::isfinite(weight) || weight < 0.0) {
-    throw std::invalid_argument("makeLengthClearanceObjective: weight must be finite and >= 0, got " + number(weight));
+    throw std::invalid_argument("makeLengthClearanceObjective: weight must be finite and >= 0, got " + robots::formatNumber(weight));
   }
   auto objective = std::make_shared<LengthClearanceObjective>(si);
   objective->addObjective(std::make_shared<ompl::base::PathLengthOptimizationObjective>(si), 1.0);

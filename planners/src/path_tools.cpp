@@ -2,8 +2,7 @@
 
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/planners/validity_checker.h"
-
-#include "number.h"
+#include "deepcheck/robots/format_number.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,7 +38,7 @@ StateMapping mappingOf(const ompl::geometric::PathGeometric& path) {
 void forEachState(const ompl::geometric::PathGeometric& path, double resolution,
                   const std::function<bool(const Eigen::VectorXd&, int motion, bool waypoint)>& visit) {
   if (!(resolution > 0.0) || std::isinf(resolution)) {
-    throw std::invalid_argument("path check: resolution must be finite and > 0, got " + std::to_string(resolution));
+    throw std::invalid_argument("path check: resolution must be finite and > 0, got " + robots::formatNumber(resolution));
   }
   const std::size_t count = path.getStateCount();
   if (count == 0) return;
@@ -192,7 +191,7 @@ std::vector<Eigen::VectorXd> pathConfigurations(const ompl::geometric::PathGeome
 
 void writePath(const ompl::geometric::PathGeometric& path, std::ostream& out) {
   for (const Eigen::VectorXd& q : pathConfigurations(path)) {
-    for (Eigen::Index j = 0; j < q.size(); ++j) out << (j > 0 ? " " : "") << detail::number(q[j]);
+    for (Eigen::Index j = 0; j < q.size(); ++j) out << (j > 0 ? " " : "") << robots::formatNumber(q[j]);
     out << '\n';
   }
 }

@@ -3,10 +3,9 @@
 
 #include "deepcheck/planners/push_out.h"
 
+#include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/random_configuration.h"
-
-#include "number.h"
 
 #include <Eigen/Cholesky>
 
@@ -20,8 +19,6 @@
 namespace deepcheck::planners {
 
 namespace {
-
-using detail::number;
 
 using robots::uniform01;
 
@@ -266,7 +263,7 @@ const char* toString(PushOutStatus status) {
 void checkPushOutOptions(const PushOutOptions& options) {
   auto positive = [](double v, const char* name) {
     if (!(v > 0.0) || std::isnan(v)) {
-      throw std::invalid_argument(std::string("PushOutOptions: ") + name + " must be > 0, got " + number(v));
+      throw std::invalid_argument(std::string("PushOutOptions: ") + name + " must be > 0, got " + robots::formatNumber(v));
     }
   };
   positive(options.targetClearance, "targetClearance");
@@ -295,7 +292,7 @@ PushOut standOffPushOut(std::shared_ptr<const checker::World> world, const Valid
                         const PushOutOptions& options, double standOff) {
   if (!std::isfinite(standOff) || standOff < 0.0) {
     throw std::invalid_argument("standOffPushOut: the stand-off must be finite and >= 0 metres, got " +
-                                std::to_string(standOff));
+                                robots::formatNumber(standOff));
   }
   // Only the difference of the two options matters (validity.h): move the threshold up by standOff.
   const double threshold = validity.threshold() + standOff;
@@ -343,7 +340,7 @@ PushOutResult jiggle(const checker::World& world, const ValidityOptions& validit
                      std::mt19937_64& rng) {
   checkValidityOptions(validity);
   if (!(options.fraction > 0.0) || !std::isfinite(options.fraction)) {
-    throw std::invalid_argument("JiggleOptions: fraction must be finite and > 0, got " + number(options.fraction));
+    throw std::invalid_argument("JiggleOptions: fraction must be finite and > 0, got " + robots::formatNumber(options.fraction));
   }
   if (options.attempts < 1) {
     throw std::invalid_argument("JiggleOptions: attempts must be >= 1, got " + std::to_string(options.attempts));

@@ -3,6 +3,7 @@
 #include "deepcheck/planners/motion_validator.h"
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/planners/valid_state_sampler.h"
+#include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/pair_filter.h"
 
@@ -60,7 +61,7 @@ std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(std::shared_ptr<co
   if (!world) throw std::invalid_argument("makeSimpleSetup: the world is null");
   if (!(options.segmentFraction > 0.0 && options.segmentFraction <= 1.0)) {
     throw std::invalid_argument("makeSimpleSetup: segmentFraction must be in (0, 1], got " +
-                                std::to_string(options.segmentFraction));
+                                robots::formatNumber(options.segmentFraction));
   }
   auto space = makeStateSpace(world->robot());
   space->setLongestValidSegmentFraction(options.segmentFraction);

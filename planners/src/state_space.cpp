@@ -1,8 +1,7 @@
 #include "deepcheck/planners/state_space.h"
 
 #include "deepcheck/planners/tolerances.h"
-
-#include "number.h"
+#include "deepcheck/robots/format_number.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -24,7 +23,7 @@ std::shared_ptr<ompl::base::RealVectorStateSpace> makeStateSpace(const robots::R
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
       throw std::invalid_argument("makeStateSpace: robot '" + model.name() + "', variable '" +
                                   model.variableNames()[static_cast<std::size_t>(v)] + "' has limits [" +
-                                  detail::number(lo) + ", " + detail::number(hi) + "] (need finite lower < upper)");
+                                  robots::formatNumber(lo) + ", " + robots::formatNumber(hi) + "] (need finite lower < upper)");
     }
     bounds.setLow(static_cast<unsigned int>(v), lo);
     bounds.setHigh(static_cast<unsigned int>(v), hi);

@@ -1,6 +1,7 @@
 #include "deepcheck/planners/validity.h"
 
 #include "deepcheck/planners/tolerances.h"
+#include "deepcheck/robots/format_number.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,11 +24,11 @@ double cappedMinimum(const checker::DistanceResult& result, double cap) {
 void checkValidityOptions(const ValidityOptions& options) {
   if (!std::isfinite(options.penetrationTolerance) || options.penetrationTolerance < 0.0) {
     throw std::invalid_argument("ValidityOptions: penetrationTolerance must be finite and >= 0, got " +
-                                std::to_string(options.penetrationTolerance));
+                                robots::formatNumber(options.penetrationTolerance));
   }
   if (!std::isfinite(options.safetyMargin) || options.safetyMargin < 0.0) {
     throw std::invalid_argument("ValidityOptions: safetyMargin must be finite and >= 0, got " +
-                                std::to_string(options.safetyMargin));
+                                robots::formatNumber(options.safetyMargin));
   }
 }
 

@@ -1,5 +1,6 @@
 #include "deepcheck/robots/collision_geometry.h"
 
+#include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/mesh_loader.h"
 
 #include <algorithm>
@@ -46,7 +47,7 @@ std::vector<CollisionPiece> piecesOfLink(const RobotModel& model, int link,
                                          MeshCache& cache) {
   if (!(options.cylinderMaxDeviation > 0.0)) {
     throw std::invalid_argument("cylinderMaxDeviation must be positive, is " +
-                                std::to_string(options.cylinderMaxDeviation));
+                                formatNumber(options.cylinderMaxDeviation));
   }
   std::vector<CollisionPiece> out;
   const Link& L = model.link(link);
@@ -90,7 +91,7 @@ CollisionPiece primitivePiece(const Geometry& g, const CollisionGeometryOptions&
       return piece;
     case GeometryType::Sphere:
       if (!positive(g.radius)) {
-        throw std::invalid_argument(what + ": sphere radius " + std::to_string(g.radius) +
+        throw std::invalid_argument(what + ": sphere radius " + formatNumber(g.radius) +
                                     " must be positive and finite");
       }
       piece.origin = what + " sphere";
@@ -100,8 +101,8 @@ CollisionPiece primitivePiece(const Geometry& g, const CollisionGeometryOptions&
       return piece;
     case GeometryType::Cylinder:
       if (!positive(g.radius) || !positive(g.length)) {
-        throw std::invalid_argument(what + ": cylinder radius " + std::to_string(g.radius) + " and length " +
-                                    std::to_string(g.length) + " must be positive and finite");
+        throw std::invalid_argument(what + ": cylinder radius " + formatNumber(g.radius) + " and length " +
+                                    formatNumber(g.length) + " must be positive and finite");
       }
       piece.core = std::make_shared<const deep::ConvexPolytope>(
           cylinderPrism(g.radius, g.length, options.cylinderMaxDeviation));

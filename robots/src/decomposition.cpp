@@ -172,7 +172,6 @@ using Eigen::Vector3d;
 using detail::decomp::CleanMesh;
 using detail::decomp::cleanMesh;
 using detail::decomp::Decomposer;
-using detail::decomp::formatNumber;
 using detail::decomp::kInf;
 
 // ------------------------------------------------------------------------------------------------

@@ -48,6 +48,7 @@
 // decomposition_obj.cpp (OBJ output).
 
 #include "deepcheck/robots/decomposition.h"
+#include "deepcheck/robots/format_number.h"
 
 #include "decomposition_bvh.h"
 #include "decomposition_hull.h"
@@ -85,13 +86,6 @@ inline constexpr double kPi = 3.141592653589793;
 
 inline std::string meshName(const TriangleMesh& mesh) {
   return mesh.source.empty() ? std::string("(generated mesh)") : "'" + mesh.source + "'";
-}
-
-inline std::string formatNumber(double x) {
-  std::ostringstream out;
-  out.precision(17);
-  out << x;
-  return out.str();
 }
 
 /// Twice the vector area of a convex polygon given by its corners in order (the sum of the cross

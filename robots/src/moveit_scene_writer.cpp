@@ -2,6 +2,8 @@
 
 #include "deepcheck/robots/moveit_scene.h"
 
+#include "deepcheck/robots/format_number.h"
+
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -11,16 +13,9 @@ namespace deepcheck::robots {
 
 namespace {
 
-/// A number with 17 significant digits: read back, it is the same double.
-std::string num(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  return buffer;
-}
-
 std::string list(std::initializer_list<double> xs) {
   std::string out = "[";
-  for (double x : xs) out += (out.size() > 1 ? ", " : "") + num(x);
+  for (double x : xs) out += (out.size() > 1 ? ", " : "") + formatNumber(x);
   return out + "]";
 }
 

@@ -1,5 +1,6 @@
 #include "deepcheck/robots/robot_model.h"
 
+#include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/package_path.h"
 #include "deepcheck/robots/tolerances.h"
 
@@ -344,7 +345,7 @@ class UrdfBuilder {
           g.type = GeometryType::Sphere;
           g.radius = static_cast<const urdf::Sphere&>(geometry).radius;
           if (!(g.radius > 0.0)) {
-            throw std::invalid_argument(where + ": sphere radius " + std::to_string(g.radius) +
+            throw std::invalid_argument(where + ": sphere radius " + formatNumber(g.radius) +
                                         " must be positive");
           }
           break;
@@ -355,8 +356,8 @@ class UrdfBuilder {
           g.radius = cylinder.radius;
           g.length = cylinder.length;
           if (!(g.radius > 0.0) || !(g.length > 0.0)) {
-            throw std::invalid_argument(where + ": cylinder radius " + std::to_string(g.radius) +
-                                        " and length " + std::to_string(g.length) +
+            throw std::invalid_argument(where + ": cylinder radius " + formatNumber(g.radius) +
+                                        " and length " + formatNumber(g.length) +
                                         " must be positive");
           }
           break;

@@ -3,6 +3,7 @@
 // data folder (Panda, kitchen), random configurations and exception-message checks.
 
 #include "deepcheck/checker/world.h"
+#include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include "common/random_configurations.h"
@@ -45,9 +46,7 @@ inline WorldOptions testWorldOptions() {
 /// A slider: a cube of edge `edge` on a prismatic joint along x (variable "slide", limits
 /// [-2, 2]); its centre is at (q, 0, 0).
 inline robots::RobotModel sliderRobot(double edge) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", edge);  // std::to_string keeps 6 decimals only
-  const std::string e = buffer;
+  const std::string e = robots::formatNumber(edge);  // std::to_string keeps 6 decimals only
   const std::string xml =
       "<robot name='slider'>"
       "<link name='base'/>"

@@ -52,7 +52,7 @@ BOOST_AUTO_TEST_CASE(known_distances_and_gradients) {
   // (x, z): wall distance 0.5 - x, floor distance z + 0.25.
   const std::vector<std::pair<double, double>> qs = {{0.0, 0.0}, {0.4, 0.1}, {-0.3, -0.2}, {0.55, 0.0}, {0.0, -0.3}};
   std::string input = "# x z\n\n";
-  for (const auto& [x, z] : qs) input += fmt(x) + " " + fmt(z) + "\n";
+  for (const auto& [x, z] : qs) input += formatNumber(x) + " " + formatNumber(z) + "\n";
   const Run r = runCheck(s, "--robot " + robot + " --scene " + scene + " --gradient", input);
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   const std::vector<std::string> out = lines(r.out);

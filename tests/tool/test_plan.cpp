@@ -153,7 +153,7 @@ BOOST_AUTO_TEST_CASE(a_repaired_start_gets_the_margin_and_the_report_splits_scen
   BOOST_TEST_REQUIRE(sd < -0.002);
   BOOST_TEST_REQUIRE(sd > -0.010);
   std::string startArg = " --start";
-  for (double v : start) startArg += " " + tool_test::fmt(v);
+  for (double v : start) startArg += " " + tool_test::formatNumber(v);
   Scratch scratch;
   const Run r = plan(scratch, kWorld + startArg + " --goal 0 -0.4 0 -1.6 0 1.2 0 --repair-start --repair-margin 0.002" +
                                   " --seed 4 --time 10 --out " + quote(scratch.path("path.txt")));

@@ -6,6 +6,8 @@
 // Every run gets the scratch folder's own decomposition cache (XDG_CACHE_HOME), so the tests never
 // write to the user's cache.
 
+#include "deepcheck/robots/format_number.h"
+
 #include <boost/test/unit_test.hpp>
 
 #include <sys/wait.h>
@@ -117,17 +119,13 @@ inline std::vector<std::string> fields(const std::string& line) {
   return out;
 }
 
-/// `v` as the tools print numbers: %.17g.
-inline std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+/// The tools print numbers as the libraries write them: %.17g.
+using robots::formatNumber;
 
 /// Parses a number printed with %.17g (and checks that it was).
 inline double number(const std::string& field) {
   const double v = std::strtod(field.c_str(), nullptr);
-  BOOST_TEST(fmt(v) == field, "'" << field << "' is not printed with %.17g");
+  BOOST_TEST(formatNumber(v) == field, "'" << field << "' is not printed with %.17g");
   return v;
 }
 
