@@ -184,8 +184,6 @@ BOOST_AUTO_TEST_CASE(motion_cost_integrates_the_hinge_and_the_bound_only_skips_z
     skipped += withBound == 0.0;
     positive += withBound > 0.0;
   }
-  BOOST_TEST_MESSAGE("motion costs: " << throughInvalid << " of 60 through invalid states, " << skipped
-                                      << " zero (skipped by the bound), " << positive << " positive");
   BOOST_TEST(skipped > 5);
   BOOST_TEST(positive > 5);
   BOOST_TEST(throughInvalid > 5);
