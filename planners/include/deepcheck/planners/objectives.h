@@ -28,13 +28,12 @@
 //
 // Planner settings: with OMPL's k-nearest RRT* (its default) every new node asks the cost to a
 // number of neighbours that exceeds the whole tree on a 7-joint arm; call
-// prepareForCostlyObjective (planner_factory.h) to use radius neighbours. Measured on the planar
-// arm of tests/planners/test_objectives.cpp, 1,500 iterations: 0.12 s with radius neighbours,
-// 3.7 s with k-nearest.
+// prepareForCostlyObjective (planner_factory.h) to use radius neighbours, which asks the cost of
+// only the motions within its range.
 //
 // makeLengthClearanceObjective: OMPL's MultiOptimizationObjective of PathLengthOptimization
-// Objective (weight 1) and the hinge (weight w, 1 / metre; tolerances.h says why 100 by default). Its cost-to-go and motion heuristics
-// are the path length's (the straight-line distance), admissible since the hinge is >= 0; so
+// Objective (weight 1) and the hinge (weight w, 1 / metre; tolerances.h says why 100 by default).
+// Its cost-to-go and motion heuristics are the path length's (the straight-line distance), admissible since the hinge is >= 0; so
 // BIT* and informed RRT* keep their heuristics.
 //
 // makeMaxMinClearanceObjective: OMPL's MaximizeMinClearanceObjective, unchanged: it reads the
