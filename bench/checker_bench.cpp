@@ -15,8 +15,8 @@
 //
 // Timing: per-query steady_clock times; each set is timed in 3 rounds and the round with the
 // lowest median is kept (the machine is shared; other processes only add time).
-// Output: a table on stdout, the machine load (from /proc/loadavg) before and after, and
-// bench/results/checker_bench.csv. Usage: checker_bench [--quick] [--isfree] [--repeat N]
+// Output: a table on stdout and bench/results/checker_bench.csv.
+// Usage: checker_bench [--quick] [--isfree] [--repeat N] [--world W]
 //   --quick     1,000 random configurations and 30 motions instead of 10,000 and 300;
 //   --isfree    only the empty call, forward kinematics and isFree (ours and FCL's); the CSV is
 //               not written;
@@ -53,7 +53,6 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-using deepcheck::bench::loadAverage;
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return std::nan("");
   std::sort(v.begin(), v.end());
@@ -396,8 +395,7 @@ int main(int argc, char** argv) {
   const int motions = run.motions;
   const std::string shared = DEEPCHECK_SHARED_DIR;
   const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
-  std::printf("checker_bench: %d random configurations, %d short motions (31 states each); load average before: %s\n",
-              samples, motions, loadAverage().c_str());
+  std::printf("checker_bench: %d random configurations, %d short motions (31 states each)\n", samples, motions);
   std::vector<WorldSpec> worlds;
   const bool haveShared = std::filesystem::is_directory(shared + "/robots/panda");
   if (haveShared) {
@@ -414,7 +412,6 @@ int main(int argc, char** argv) {
   for (const WorldSpec& w : worlds) {
     if (run.world.empty() || run.world == w.name) runWorld(w, run);
   }
-  std::printf("\nload average after: %s\n", loadAverage().c_str());
   if (run.isFreeOnly) return 0;
 
   const std::string dir = DEEPCHECK_BENCH_RESULTS_DIR;

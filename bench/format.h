@@ -1,9 +1,8 @@
 #pragma once
-// What the benchmarks print in their tables: numbers, and the machine's load while they ran.
+// How the benchmarks print numbers in their tables.
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 namespace deepcheck::bench {
@@ -14,14 +13,6 @@ inline std::string fmt(double v, const char* f = "%.3g") {
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
-}
-
-/// The 1, 5 and 15 minute load averages, as /proc/loadavg gives them.
-inline std::string loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return a + " " + b + " " + c;
 }
 
 }  // namespace deepcheck::bench

@@ -426,10 +426,9 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(opt.out);
   ompl::RNG::setSeed(opt.seed);
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-  const std::string loadBefore = uptimeLine();
   const auto wallStart = std::chrono::steady_clock::now();
-  std::fprintf(stderr, "plan_bench: %zu problem(s) x 2 checkers x %zu planner(s) x %d run(s), %.3g s each; %s\n",
-               selected.size(), opt.planners.size(), opt.runs, opt.time, loadBefore.c_str());
+  std::fprintf(stderr, "plan_bench: %zu problem(s) x 2 checkers x %zu planner(s) x %d run(s), %.3g s each\n",
+               selected.size(), opt.planners.size(), opt.runs, opt.time);
 
   std::vector<Record> records;
   std::vector<std::string> rejected;
@@ -443,8 +442,6 @@ int main(int argc, char** argv) {
   settings.time = opt.time;
   settings.seed = opt.seed;
   settings.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-  settings.loadBefore = loadBefore;
-  settings.loadAfter = uptimeLine();
   settings.checkers = {"deepcheck", "fcl"};
   writeReport(settings, selected, records, rejected);
   plotReport(opt.out);

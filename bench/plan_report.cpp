@@ -27,17 +27,6 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-std::string uptimeLine() {
-  std::string out;
-  if (FILE* p = popen("uptime 2>/dev/null", "r")) {
-    char buf[256];
-    while (std::fgets(buf, sizeof buf, p) != nullptr) out += buf;
-    pclose(p);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
-  return out.empty() ? "load average: " + loadAverage() : out;
-}
-
 Row summarize(const std::vector<Record>& all, const std::string& problem, const std::string& checker,
               const std::string& planner) {
   Row row{problem, checker, planner};
@@ -91,7 +80,6 @@ void writeReport(const ReportSettings& settings, const std::vector<Problem>& sel
   md << "# Planning benchmark (plan_bench)\n\n";
   md << "Runs per planner, checker and problem: " << settings.runs << ", time limit " << settings.time << " s, OMPL seed "
      << settings.seed << ". Wall time " << fmt(settings.wallSeconds / 60.0, "%.1f") << " min.\n\n";
-  md << "Load before: `" << settings.loadBefore << "`  \nLoad after: `" << settings.loadAfter << "`\n\n";
   md << "success = exact solution within the time limit; medians over all runs (time) or the solved runs (the "
         "rest); first = time to the first exact solution; length = joint-space length of the simplified path "
         "(rad); clearance = minimum of our signed distance along the simplified path every "

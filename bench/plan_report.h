@@ -31,8 +31,6 @@ struct Row {
 Row summarize(const std::vector<Record>& all, const std::string& problem, const std::string& checker,
               const std::string& planner);
 
-/// The `uptime` line (the load average when uptime is missing).
-std::string uptimeLine();
 
 /// What the report says about the run besides its records.
 struct ReportSettings {
@@ -41,7 +39,6 @@ struct ReportSettings {
   double time = 0.0;
   unsigned seed = 0;
   double wallSeconds = 0.0;
-  std::string loadBefore, loadAfter;
   std::vector<const char*> checkers;
 };
 

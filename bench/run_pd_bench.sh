@@ -38,18 +38,10 @@ cmake --build "$build" --target pd_bench -j "$jobs"
 
 mkdir -p "$out"
 rm -f "$out"/repro_pd_*.txt
-{
-  echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"
-  echo "commit: $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
-  echo "cpu: $(lscpu 2>/dev/null | sed -n 's/^Model name:[[:space:]]*//p' | head -1)"
-  echo "cores: $(nproc)"
-  echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)"
-} > "$out/pd_machine.txt"
 
 args=()
 [[ $quick -eq 1 ]] && args+=(--quick)
-"$build/bench/pd_bench" "${args[@]}" --out "$out" "${extra[@]}" | tee "$out/pd_bench.txt"
-echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$out/pd_machine.txt"
+"$build/bench/pd_bench" "${args[@]}" --out "$out" "${extra[@]}"
 
 if command -v gnuplot >/dev/null; then
   gnuplot -e "csv='$out/pd_bench.csv'; outdir='$out'" "$here/pd_plots.gp"
