@@ -50,8 +50,8 @@ std::string poseWords(const robots::RobotModel& robot, const std::string& link, 
   const Eigen::Isometry3d X = robots::forwardKinematics(robot, q)[static_cast<std::size_t>(robot.linkIndex(link))];
   const Eigen::Quaterniond r(X.rotation());
   const Eigen::Vector3d p = X.translation();
-  return " " + link + " " + fmt(p.x()) + " " + fmt(p.y()) + " " + fmt(p.z()) + " " + fmt(r.x()) + " " + fmt(r.y()) +
-         " " + fmt(r.z()) + " " + fmt(r.w());
+  return " " + link + " " + formatNumber(p.x()) + " " + formatNumber(p.y()) + " " + formatNumber(p.z()) + " " + formatNumber(r.x()) + " " + formatNumber(r.y()) +
+         " " + formatNumber(r.z()) + " " + formatNumber(r.w());
 }
 
 /// The waypoints of a path file; each must have the robot's variable count.

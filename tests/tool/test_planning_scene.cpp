@@ -59,7 +59,7 @@ BOOST_AUTO_TEST_CASE(check_in_a_motion_bench_maker_scene_answers_as_the_library)
   for (int k = 0; k < 5; ++k) qs.push_back(robots::randomConfiguration(world.robot(), rng));
   std::string input;
   for (const Eigen::VectorXd& q : qs) {
-    for (int v = 0; v < q.size(); ++v) input += fmt(q[v]) + " ";
+    for (int v = 0; v < q.size(); ++v) input += formatNumber(q[v]) + " ";
     input += "\n";
   }
   Scratch s;
