@@ -1,10 +1,15 @@
 #pragma once
-// What the benchmarks print in their tables: numbers, and the machine's load while they ran.
+// What the benchmarks print in their tables: numbers, quantiles, and the machine's load while they
+// ran; and how they read their list options.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace deepcheck::bench {
 
@@ -16,12 +21,35 @@ inline std::string fmt(double v, const char* f = "%.3g") {
   return buf;
 }
 
+/// The q-quantile (0 <= q <= 1) of `v`, linear between the order statistics (q = 0.5: the
+/// median); NaN for an empty `v`.
+inline double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  const double at = q * static_cast<double>(v.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(at));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+inline double median(std::vector<double> v) { return quantile(std::move(v), 0.5); }
+
 /// The 1, 5 and 15 minute load averages, as /proc/loadavg gives them.
 inline std::string loadAverage() {
   std::ifstream in("/proc/loadavg");
   std::string a, b, c;
   in >> a >> b >> c;
   return a + " " + b + " " + c;
+}
+
+/// The non-empty items of a comma-separated list ("a,b,,c" -> a, b, c).
+inline std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
 }
 
 }  // namespace deepcheck::bench

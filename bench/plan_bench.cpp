@@ -48,6 +48,7 @@
 // Files: plan_problems.* (the problems and the FCL setup), plan_report.* (records, medians,
 // tables and plot), this file (the runs).
 
+#include "ompl_benchmark.h"
 #include "plan_problems.h"
 #include "plan_report.h"
 
@@ -83,34 +84,6 @@ namespace dp = deepcheck::planners;
 using namespace deepcheck::bench;
 
 namespace {
-
-std::vector<std::string> splitList(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
-
-/// Benchmark with access to its recorded data, to merge the two checkers' experiments of a
-/// problem into one log (one experiment, planners named by checker).
-class Bench : public ot::Benchmark {
- public:
-  Bench(og::SimpleSetup& ss, const std::string& name) : ot::Benchmark(ss, name) {}
-  CompleteExperiment& data() { return exp_; }
-};
-
-/// Removes a planner's progress properties (the values Benchmark's collector thread reads every
-/// 50 ms while the planner runs). BIT*'s read its search queue unsynchronized: in this benchmark
-/// OMPL 1.5.2 crashed with a segfault inside libompl during a BIT* run (shelf, run 9 of 10), as in
-/// ompl/ompl#779 ("BIT* is failing when added to a benchmark", traced there to
-/// currentVertexProgressProperty). The member is protected; a pointer to it named through a
-/// derived class is the standard way to reach it.
-struct ProgressPropertyStripper : ob::Planner {
-  static void strip(ob::Planner& planner) { (planner.*(&ProgressPropertyStripper::plannerProgressProperties_)).clear(); }
-};
 
 struct Options {
   int runs = 10;
