@@ -317,7 +317,7 @@ std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std:
   std::vector<dp::Problem> problems;
   try {
     std::vector<std::string> notes;
-    const dp::ProblemOptions options = pandaProblemOptions(world->robot(), opt.seed, &notes);
+    const dp::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, &notes);
     problems = generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems,
                                    [&](int k, const dp::Problem& p) {
                                      std::fprintf(stderr, "[%s] problem %d/%d generated: goal %s%s%s, %d scene(s) drawn\n",
