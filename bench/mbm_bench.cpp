@@ -28,7 +28,8 @@
 // mbm_bench.csv, mbm_bench.md (also printed), mbm_bench_time.png (gnuplot, bench/mbm_plots.gp).
 // Progress on stderr.
 //
-// Usage: mbm_bench [--problems N] [--time S] [--seed S] [--scenes a,b] [--planners a,b] [--out DIR]
+// Usage: mbm_bench [--problems N] [--time S] [--seed S] [--scenes a,b] [--planners a,b] [--checkers a,b]
+//                  [--out DIR]
 //
 // Files: mbm_problems.* (scenes and problems), mbm_report.* (records and tables), this file (runs).
 
@@ -72,6 +73,7 @@ struct Options {
   unsigned seed = 1;
   std::vector<std::string> scenes;  ///< empty: all
   std::vector<std::string> planners{"RRTConnect", "BiEST", "PRM"};
+  std::vector<std::string> checkers{"deepcheck", "fcl"};
   std::string out = std::string(DEEPCHECK_BENCH_RESULTS_DIR) + "/mbm";
 };
 
@@ -79,7 +81,7 @@ struct Options {
   if (!error.empty()) std::fprintf(stderr, "mbm_bench: %s\n", error.c_str());
   std::fprintf(stderr,
                "usage: mbm_bench [--problems N] [--time SECONDS] [--seed S] [--scenes a,b] [--planners a,b]\n"
-               "                 [--out DIR]\n"
+               "                 [--checkers a,b] [--out DIR]\n"
                "  --problems N   generated problems per scene (default 100)\n"
                "  --time S       time limit per planning run, seconds (default 10)\n"
                "  --seed S       seed of problem generation and of OMPL (default 1)\n"
@@ -112,6 +114,12 @@ Options parseOptions(int argc, char** argv) {
       } else if (arg == "--planners") {
         opt.planners.clear();
         for (const std::string& name : splitList(value())) opt.planners.push_back(dp::plannerName(name));
+      } else if (arg == "--checkers") {
+        opt.checkers = splitList(value());
+        for (const std::string& c : opt.checkers) {
+          if (c != "deepcheck" && c != "fcl") usage("unknown checker '" + c + "' (known: deepcheck, fcl)");
+        }
+        if (opt.checkers.empty()) usage("--checkers needs at least one checker");
       } else if (arg == "--out") {
         opt.out = value();
       } else if (arg == "--help" || arg == "-h") {
@@ -334,7 +342,7 @@ std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std:
   for (int k = 0; k < static_cast<int>(problems.size()); ++k) {
     placeScene(*world, problems[static_cast<std::size_t>(k)].scene);
     const ProblemSetups setups = makeSetups(world, problems[static_cast<std::size_t>(k)]);
-    for (const char* checker : {"deepcheck", "fcl"}) benchmarkChecker(ctx, k, opt.problems, setups, checker, carrier);
+    for (const std::string& checker : opt.checkers) benchmarkChecker(ctx, k, opt.problems, setups, checker, carrier);
   }
   for (int id : world->obstacleIds()) world->removeObstacle(id);
   carrier.data().runCount = static_cast<unsigned>(problems.size());
@@ -365,11 +373,11 @@ int main(int argc, char** argv) {
   settings.time = opt.time;
   settings.seed = opt.seed;
   settings.loadBefore = uptimeLine();
-  settings.checkers = {"deepcheck", "fcl"};
+  settings.checkers = opt.checkers;
   settings.planners = opt.planners;
   const auto wallStart = std::chrono::steady_clock::now();
-  std::fprintf(stderr, "mbm_bench: %zu scene(s) x %d problem(s) x 2 checkers x %zu planner(s), %.3g s limit; %s\n",
-               scenes.size(), opt.problems, opt.planners.size(), opt.time, settings.loadBefore.c_str());
+  std::fprintf(stderr, "mbm_bench: %zu scene(s) x %d problem(s) x %zu checker(s) x %zu planner(s), %.3g s limit; %s\n",
+               scenes.size(), opt.problems, opt.checkers.size(), opt.planners.size(), opt.time, settings.loadBefore.c_str());
   const auto world = dp::loadWorld(pandaUrdf(), {}, pandaOptions());
   std::vector<MbmRecord> records;
   std::vector<SceneFailure> failures;
