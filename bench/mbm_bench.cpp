@@ -15,7 +15,7 @@
 // Planners (makePlanner, OMPL defaults): RRTConnect, BiEST, PRM. Every run ends at its first
 // solution: the problem's objective is path length with an infinite cost threshold, which PRM (an
 // optimizing planner in OMPL 1.5, otherwise growing its roadmap to the time limit) takes as met by
-// any path. One run per problem, planner and checker.
+// any path. One run per problem, planner and checker (--runs R: R runs; the tables then count runs).
 //
 // After each solved run (not timed): the path is simplified (simplifySolutionChecked), certified
 // by certifyPath on our setup (the clearance motion validator, repairing where it fails) and the
@@ -28,7 +28,7 @@
 // mbm_bench.csv, mbm_bench.md (also printed), mbm_bench_time.png (gnuplot, bench/mbm_plots.gp).
 // Progress on stderr.
 //
-// Usage: mbm_bench [--problems N] [--time S] [--seed S] [--scenes a,b] [--planners a,b] [--checkers a,b]
+// Usage: mbm_bench [--problems N] [--runs R] [--time S] [--seed S] [--scenes a,b] [--planners a,b] [--checkers a,b]
 //                  [--out DIR]
 //
 // Files: mbm_problems.* (scenes and problems), mbm_report.* (records and tables), this file (runs).
@@ -69,6 +69,7 @@ namespace {
 
 struct Options {
   int problems = 100;
+  int runs = 1;  ///< per problem, planner and checker
   double time = 10.0;
   unsigned seed = 1;
   std::vector<std::string> scenes;  ///< empty: all
@@ -80,7 +81,7 @@ struct Options {
 [[noreturn]] void usage(const std::string& error) {
   if (!error.empty()) std::fprintf(stderr, "mbm_bench: %s\n", error.c_str());
   std::fprintf(stderr,
-               "usage: mbm_bench [--problems N] [--time SECONDS] [--seed S] [--scenes a,b] [--planners a,b]\n"
+               "usage: mbm_bench [--problems N] [--runs R] [--time SECONDS] [--seed S] [--scenes a,b] [--planners a,b]\n"
                "                 [--checkers a,b] [--out DIR]\n"
                "  --problems N   generated problems per scene (default 100)\n"
                "  --time S       time limit per planning run, seconds (default 10)\n"
@@ -104,6 +105,9 @@ Options parseOptions(int argc, char** argv) {
       if (arg == "--problems") {
         opt.problems = std::stoi(value());
         if (opt.problems < 1) usage("--problems must be at least 1");
+      } else if (arg == "--runs") {
+        opt.runs = std::stoi(value());
+        if (opt.runs < 1) usage("--runs must be at least 1");
       } else if (arg == "--time") {
         opt.time = std::stod(value());
         if (!(opt.time > 0.0)) usage("--time must be positive");
@@ -282,7 +286,7 @@ void benchmarkChecker(SceneRun& ctx, int k, int count, const ProblemSetups& setu
                           : "");
     c->records.push_back(r);
   });
-  ot::Benchmark::Request req(ctx.opt.time, 4096.0, 1);
+  ot::Benchmark::Request req(ctx.opt.time, 4096.0, static_cast<unsigned>(ctx.opt.runs));
   req.displayProgress = false;
   req.saveConsoleOutput = false;
   req.simplify = false;  // done in the post-run event, after the checks are read
@@ -345,10 +349,10 @@ std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std:
     for (const std::string& checker : opt.checkers) benchmarkChecker(ctx, k, opt.problems, setups, checker, carrier);
   }
   for (int id : world->obstacleIds()) world->removeObstacle(id);
-  carrier.data().runCount = static_cast<unsigned>(problems.size());
+  carrier.data().runCount = static_cast<unsigned>(problems.size()) * static_cast<unsigned>(opt.runs);
   carrier.data().setupInfo = "MotionBenchMaker " + scene.name + ": scene " + scene.scene + ", variation " + scene.variation +
                              ", queries " + scene.queries + "; planner names end in the checker (deepcheck, fcl); run k "
-                             "of a planner is problem k\n" + carrier.data().setupInfo;
+                             "of a planner is problem k / runs (see the problem property)\n" + carrier.data().setupInfo;
   const std::string log = opt.out + "/mbm_" + scene.name + ".log";
   if (!carrier.saveResultsToFile(log.c_str())) return "cannot write " + log;
   std::fprintf(stderr, "wrote %s\n", log.c_str());
@@ -370,6 +374,7 @@ int main(int argc, char** argv) {
   MbmSettings settings;
   settings.out = opt.out;
   settings.problems = opt.problems;
+  settings.runs = opt.runs;
   settings.time = opt.time;
   settings.seed = opt.seed;
   settings.loadBefore = uptimeLine();
@@ -385,10 +390,11 @@ int main(int argc, char** argv) {
     settings.scenes.push_back(scene.name);
     const std::string reason = benchmarkScene(opt, scene, world, records);
     if (!reason.empty()) failures.push_back({scene.name, reason});
+    // The tables so far after every scene: a long run stopped early keeps its finished scenes.
+    settings.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    settings.loadAfter = uptimeLine();
+    writeMbmReport(settings, records, failures, &scene != &scenes.back());
   }
-  settings.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-  settings.loadAfter = uptimeLine();
-  writeMbmReport(settings, records, failures);
   plotMbmReport(opt.out);
   return 0;
 }

@@ -119,13 +119,13 @@ void writeHeadline(std::ostringstream& md, const MbmSettings& s, const std::vect
 }  // namespace
 
 void writeMbmReport(const MbmSettings& s, const std::vector<MbmRecord>& records,
-                    const std::vector<SceneFailure>& failures) {
+                    const std::vector<SceneFailure>& failures, bool partial) {
   const std::vector<MbmRow> rows = rowsOf(s, records);
   writeCsv(s, records, rows);
   std::ostringstream md;
   md << "# MotionBenchMaker benchmark (mbm_bench)\n\n";
   md << "The Panda, " << s.problems << " generated problems per scene (seed " << s.seed << "), time limit " << s.time
-     << " s per run, one run per problem, planner and checker. Wall time " << fmt(s.wallSeconds / 60.0, "%.1f")
+     << " s per run, " << s.runs << " run(s) per problem, planner and checker. Wall time " << fmt(s.wallSeconds / 60.0, "%.1f")
      << " min.\n\n";
   md << "Load before: `" << s.loadBefore << "`  \nLoad after: `" << s.loadAfter << "`\n\n";
   md << "success = exact solution within the limit; time = planning time (OMPL's, without simplification), median "
@@ -148,7 +148,7 @@ void writeMbmReport(const MbmSettings& s, const std::vector<MbmRecord>& records,
   for (const SceneFailure& f : failures) {
     md << "| " << f.scene << " | - | - | 0 | not run: " << f.reason << " | | | | | | |\n";
   }
-  std::cout << md.str();
+  if (!partial) std::cout << md.str();
   std::ofstream(s.out + "/mbm_bench.md") << md.str();
   std::fprintf(stderr, "wrote %s/mbm_bench.md, mbm_bench.csv and mbm_runs.csv\n", s.out.c_str());
 }

@@ -31,6 +31,7 @@ struct SceneFailure {
 struct MbmSettings {
   std::string out;
   int problems = 0;
+  int runs = 1;  ///< per problem, planner and checker
   double time = 0.0;
   unsigned seed = 0;
   double wallSeconds = 0.0;
@@ -38,9 +39,10 @@ struct MbmSettings {
   std::vector<std::string> scenes, checkers, planners;
 };
 
-/// Writes OUT/mbm_runs.csv, OUT/mbm_bench.csv and OUT/mbm_bench.md (also printed).
+/// Writes OUT/mbm_runs.csv, OUT/mbm_bench.csv and OUT/mbm_bench.md; printed unless `partial` (more
+/// scenes to come).
 void writeMbmReport(const MbmSettings& settings, const std::vector<MbmRecord>& records,
-                    const std::vector<SceneFailure>& failures);
+                    const std::vector<SceneFailure>& failures, bool partial = false);
 
 /// Plots OUT/mbm_bench.csv into OUT/mbm_bench_time.png with gnuplot (skipped when missing).
 void plotMbmReport(const std::string& out);
