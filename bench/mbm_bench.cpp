@@ -36,6 +36,7 @@
 #include "mbm_problems.h"
 #include "mbm_report.h"
 #include "ompl_benchmark.h"
+#include "options.h"
 #include "plan_problems.h"
 #include "plan_report.h"
 
@@ -95,48 +96,33 @@ struct Options {
 
 Options parseOptions(int argc, char** argv) {
   Options opt;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage(arg + " needs a value");
-      return argv[++i];
-    };
-    try {
-      if (arg == "--problems") {
-        opt.problems = std::stoi(value());
-        if (opt.problems < 1) usage("--problems must be at least 1");
-      } else if (arg == "--runs") {
-        opt.runs = std::stoi(value());
-        if (opt.runs < 1) usage("--runs must be at least 1");
-      } else if (arg == "--time") {
-        opt.time = std::stod(value());
-        if (!(opt.time > 0.0)) usage("--time must be positive");
-      } else if (arg == "--seed") {
-        opt.seed = static_cast<unsigned>(std::stoul(value()));
-      } else if (arg == "--scenes") {
-        opt.scenes = splitList(value());
-      } else if (arg == "--planners") {
-        opt.planners.clear();
-        for (const std::string& name : splitList(value())) opt.planners.push_back(dp::plannerName(name));
-      } else if (arg == "--checkers") {
-        opt.checkers = splitList(value());
-        for (const std::string& c : opt.checkers) {
-          if (c != "deepcheck" && c != "fcl") usage("unknown checker '" + c + "' (known: deepcheck, fcl)");
-        }
-        if (opt.checkers.empty()) usage("--checkers needs at least one checker");
-      } else if (arg == "--out") {
-        opt.out = value();
-      } else if (arg == "--help" || arg == "-h") {
-        usage("");
-      } else {
-        usage("unknown option '" + arg + "'");
+  readOptions(argc, argv, usage, [&](const std::string& arg, auto value) {
+    if (arg == "--problems") {
+      opt.problems = positiveCount(value(), arg, usage);
+    } else if (arg == "--runs") {
+      opt.runs = positiveCount(value(), arg, usage);
+    } else if (arg == "--time") {
+      opt.time = positiveValue(value(), arg, usage);
+    } else if (arg == "--seed") {
+      opt.seed = static_cast<unsigned>(std::stoul(value()));
+    } else if (arg == "--scenes") {
+      opt.scenes = splitList(value());
+    } else if (arg == "--planners") {
+      opt.planners.clear();
+      for (const std::string& name : splitList(value())) opt.planners.push_back(dp::plannerName(name));
+    } else if (arg == "--checkers") {
+      opt.checkers = splitList(value());
+      for (const std::string& c : opt.checkers) {
+        if (c != "deepcheck" && c != "fcl") usage("unknown checker '" + c + "' (known: deepcheck, fcl)");
       }
-    } catch (const std::invalid_argument& e) {  // stoi, stod, plannerName (names the known ones)
-      usage("bad value for " + arg + (std::string(e.what()).find(' ') != std::string::npos ? ": " + std::string(e.what()) : ""));
-    } catch (const std::out_of_range&) {
-      usage("bad value for " + arg);
+      if (opt.checkers.empty()) usage("--checkers needs at least one checker");
+    } else if (arg == "--out") {
+      opt.out = value();
+    } else {
+      return false;
     }
-  }
+    return true;
+  });
   return opt;
 }
 

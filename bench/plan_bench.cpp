@@ -49,6 +49,7 @@
 // tables and plot), this file (the runs).
 
 #include "ompl_benchmark.h"
+#include "options.h"
 #include "plan_problems.h"
 #include "plan_report.h"
 
@@ -138,40 +139,28 @@ struct RunContext {
 
 Options parseOptions(int argc, char** argv) {
   Options opt;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage(arg + " needs a value");
-      return argv[++i];
-    };
-    try {
-      if (arg == "--runs") {
-        opt.runs = std::stoi(value());
-        if (opt.runs < 1) usage("--runs must be at least 1");
-      } else if (arg == "--time") {
-        opt.time = std::stod(value());
-        if (!(opt.time > 0.0)) usage("--time must be positive");
-      } else if (arg == "--problems") {
-        opt.wantedProblems = splitList(value());
-      } else if (arg == "--planners") {
-        opt.wantedPlanners = splitList(value());
-      } else if (arg == "--quick") {
-        opt.quick = true;
-      } else if (arg == "--out") {
-        opt.out = value();
-      } else if (arg == "--seed") {
-        opt.seed = static_cast<std::uint32_t>(std::stoul(value()));
-      } else if (arg == "--pick-panda-endpoints") {
-        std::exit(pickPandaEndpoints());
-      } else if (arg == "--help" || arg == "-h") {
-        usage("");
-      } else {
-        usage("unknown option '" + arg + "'");
-      }
-    } catch (const std::logic_error&) {  // stoi / stod
-      usage("bad value for " + arg);
+  readOptions(argc, argv, usage, [&](const std::string& arg, auto value) {
+    if (arg == "--runs") {
+      opt.runs = positiveCount(value(), arg, usage);
+    } else if (arg == "--time") {
+      opt.time = positiveValue(value(), arg, usage);
+    } else if (arg == "--problems") {
+      opt.wantedProblems = splitList(value());
+    } else if (arg == "--planners") {
+      opt.wantedPlanners = splitList(value());
+    } else if (arg == "--quick") {
+      opt.quick = true;
+    } else if (arg == "--out") {
+      opt.out = value();
+    } else if (arg == "--seed") {
+      opt.seed = static_cast<std::uint32_t>(std::stoul(value()));
+    } else if (arg == "--pick-panda-endpoints") {
+      std::exit(pickPandaEndpoints());
+    } else {
+      return false;
     }
-  }
+    return true;
+  });
   if (opt.quick) {
     opt.runs = 2;
     opt.time = 1.0;
