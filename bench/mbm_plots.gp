@@ -33,7 +33,7 @@ do for [i = 1:ns] { set xtics add (word(scenes, i) i) }
 set key top left font ",9"
 do for [j = 1:nl] {
   l = word(planners, j)
-  set title l
+  set title "planner ".l
   plot for [i = 1:ns] csv using (i - 0.18):(pick(word(scenes, i), 'deepcheck', l, $6)) every ::1 \
          with boxes ls 1 title (i == 1 ? 'deepcheck median' : ''), \
        for [i = 1:ns] csv using (i + 0.18):(pick(word(scenes, i), 'fcl', l, $6)) every ::1 \
