@@ -48,6 +48,8 @@
 // Files: plan_problems.* (the problems and the FCL setup), plan_report.* (records, medians,
 // tables and plot), this file (the runs).
 
+#include "ompl_benchmark.h"
+#include "options.h"
 #include "plan_problems.h"
 #include "plan_report.h"
 
@@ -83,34 +85,6 @@ namespace dp = deepcheck::planners;
 using namespace deepcheck::bench;
 
 namespace {
-
-std::vector<std::string> splitList(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
-
-/// Benchmark with access to its recorded data, to merge the two checkers' experiments of a
-/// problem into one log (one experiment, planners named by checker).
-class Bench : public ot::Benchmark {
- public:
-  Bench(og::SimpleSetup& ss, const std::string& name) : ot::Benchmark(ss, name) {}
-  CompleteExperiment& data() { return exp_; }
-};
-
-/// Removes a planner's progress properties (the values Benchmark's collector thread reads every
-/// 50 ms while the planner runs). BIT*'s read its search queue unsynchronized: in this benchmark
-/// OMPL 1.5.2 crashed with a segfault inside libompl during a BIT* run (shelf, run 9 of 10), as in
-/// ompl/ompl#779 ("BIT* is failing when added to a benchmark", traced there to
-/// currentVertexProgressProperty). The member is protected; a pointer to it named through a
-/// derived class is the standard way to reach it.
-struct ProgressPropertyStripper : ob::Planner {
-  static void strip(ob::Planner& planner) { (planner.*(&ProgressPropertyStripper::plannerProgressProperties_)).clear(); }
-};
 
 struct Options {
   int runs = 10;
@@ -165,40 +139,28 @@ struct RunContext {
 
 Options parseOptions(int argc, char** argv) {
   Options opt;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage(arg + " needs a value");
-      return argv[++i];
-    };
-    try {
-      if (arg == "--runs") {
-        opt.runs = std::stoi(value());
-        if (opt.runs < 1) usage("--runs must be at least 1");
-      } else if (arg == "--time") {
-        opt.time = std::stod(value());
-        if (!(opt.time > 0.0)) usage("--time must be positive");
-      } else if (arg == "--problems") {
-        opt.wantedProblems = splitList(value());
-      } else if (arg == "--planners") {
-        opt.wantedPlanners = splitList(value());
-      } else if (arg == "--quick") {
-        opt.quick = true;
-      } else if (arg == "--out") {
-        opt.out = value();
-      } else if (arg == "--seed") {
-        opt.seed = static_cast<std::uint32_t>(std::stoul(value()));
-      } else if (arg == "--pick-panda-endpoints") {
-        std::exit(pickPandaEndpoints());
-      } else if (arg == "--help" || arg == "-h") {
-        usage("");
-      } else {
-        usage("unknown option '" + arg + "'");
-      }
-    } catch (const std::logic_error&) {  // stoi / stod
-      usage("bad value for " + arg);
+  readOptions(argc, argv, usage, [&](const std::string& arg, auto value) {
+    if (arg == "--runs") {
+      opt.runs = positiveCount(value(), arg, usage);
+    } else if (arg == "--time") {
+      opt.time = positiveValue(value(), arg, usage);
+    } else if (arg == "--problems") {
+      opt.wantedProblems = splitList(value());
+    } else if (arg == "--planners") {
+      opt.wantedPlanners = splitList(value());
+    } else if (arg == "--quick") {
+      opt.quick = true;
+    } else if (arg == "--out") {
+      opt.out = value();
+    } else if (arg == "--seed") {
+      opt.seed = static_cast<std::uint32_t>(std::stoul(value()));
+    } else if (arg == "--pick-panda-endpoints") {
+      std::exit(pickPandaEndpoints());
+    } else {
+      return false;
     }
-  }
+    return true;
+  });
   if (opt.quick) {
     opt.runs = 2;
     opt.time = 1.0;

@@ -43,32 +43,6 @@ Eigen::VectorXd vec(std::initializer_list<double> values) {
 
 std::string sourceDir() { return DEEPCHECK_SOURCE_DIR; }
 
-/// The table_bars scene is placed 0.3 m in front of the Panda (+x): the shelves' front edge
-/// (the bars) is at x = -0.06 in the scene's frame, so at the identity the robot's base would be
-/// inside them. MotionBenchMaker's own robot placement for this scene is in its problem files,
-/// which ../shared does not include.
-Eigen::Isometry3d tableBarsPose() {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.translation() = Eigen::Vector3d(0.3, 0.0, 0.0);
-  return X;
-}
-
-std::string pandaUrdf() {
-  return sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf";
-}
-std::string mbmScene(const std::string& name) {
-  return sharedDir() + "/scenes/motion_bench_maker/configs/scenes/" + name + "/" + name + ".urdf";
-}
-
-dp::SetupOptions pandaOptions() {
-  dp::SetupOptions o;
-  o.packageRoots = {sharedDir() + "/robots/panda", sharedDir() + "/scenes"};
-  o.useRosPackagePath = false;
-  o.srdf = sharedDir() + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf";
-  return o;
-}
-
-
 /// The first configuration found, from seeded random starts refined by damped least squares on
 /// the fingertip position (panda_hand origin + 0.1034 m along its z), within 1 cm of `target`, at
 /// least 2 cm from everything by our signed distance, and free for FCL. Finger at 0.035 m.
@@ -112,6 +86,31 @@ Eigen::VectorXd pickEndpoint(const deepcheck::checker::World& world, deepcheck::
 }
 
 }  // namespace
+
+/// The table_bars scene is placed 0.3 m in front of the Panda (+x): the shelves' front edge
+/// (the bars) is at x = -0.06 in the scene's frame, so at the identity the robot's base would be
+/// inside them. MotionBenchMaker's own robot placement for this scene is in its problem files,
+/// which ../shared does not include.
+Eigen::Isometry3d tableBarsPose() {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(0.3, 0.0, 0.0);
+  return X;
+}
+
+std::string pandaUrdf() {
+  return sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf";
+}
+std::string mbmScene(const std::string& name) {
+  return sharedDir() + "/scenes/motion_bench_maker/configs/scenes/" + name + "/" + name + ".urdf";
+}
+
+dp::SetupOptions pandaOptions() {
+  dp::SetupOptions o;
+  o.packageRoots = {sharedDir() + "/robots/panda", sharedDir() + "/scenes"};
+  o.useRosPackagePath = false;
+  o.srdf = sharedDir() + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf";
+  return o;
+}
 
 std::string sharedDir() { return DEEPCHECK_SHARED_DIR; }
 bool haveShared() { return std::filesystem::is_directory(sharedDir() + "/robots/panda"); }

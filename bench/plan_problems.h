@@ -9,6 +9,7 @@
 #include <ompl/geometric/SimpleSetup.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <memory>
 #include <string>
@@ -30,6 +31,14 @@ struct Problem {
 /// ../shared (real robots and scenes), and whether it is there.
 std::string sharedDir();
 bool haveShared();
+
+/// The Panda of ../shared (URDF) and its setup options (package roots, MoveIt SRDF).
+std::string pandaUrdf();
+planners::SetupOptions pandaOptions();
+/// ../shared's MotionBenchMaker scene URDF `name` (kitchen, table_bars).
+std::string mbmScene(const std::string& name);
+/// Where the table_bars scene goes in the Panda's world (see plan_problems.cpp).
+Eigen::Isometry3d tableBarsPose();
 
 /// Every problem, in the order of the tables.
 std::vector<Problem> problems();

@@ -16,17 +16,6 @@ namespace deepcheck::bench {
 
 namespace dp = deepcheck::planners;
 
-namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-}  // namespace
-
 Row summarize(const std::vector<Record>& all, const std::string& problem, const std::string& checker,
               const std::string& planner) {
   Row row{problem, checker, planner};
@@ -108,18 +97,23 @@ void writeReport(const ReportSettings& settings, const std::vector<Problem>& sel
 
 }
 
-void plotReport(const std::string& out) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
-    const std::string cmd = "gnuplot -e \"csv='" + out + "/plan_bench.csv'; outdir='" + out + "'\" '" +
-                            std::string(DEEPCHECK_BENCH_DIR) + "/plan_plots.gp'";
-    if (std::system(cmd.c_str()) == 0) {
-      std::fprintf(stderr, "wrote %s/plan_bench_time.png\n", out.c_str());
-    } else {
-      std::fprintf(stderr, "plan_bench: gnuplot failed (%s)\n", cmd.c_str());
-    }
-  } else {
-    std::fprintf(stderr, "plan_bench: gnuplot not found, no plot\n");
+void runGnuplot(const std::string& csv, const std::string& outdir, const std::string& script, const std::string& png,
+                const char* who) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    std::fprintf(stderr, "%s: gnuplot not found, no plot\n", who);
+    return;
   }
+  const std::string cmd = "gnuplot -e \"csv='" + csv + "'; outdir='" + outdir + "'\" '" + std::string(DEEPCHECK_BENCH_DIR) +
+                          "/" + script + "'";
+  if (std::system(cmd.c_str()) == 0) {
+    std::fprintf(stderr, "wrote %s/%s\n", outdir.c_str(), png.c_str());
+  } else {
+    std::fprintf(stderr, "%s: gnuplot failed (%s)\n", who, cmd.c_str());
+  }
+}
+
+void plotReport(const std::string& out) {
+  runGnuplot(out + "/plan_bench.csv", out, "plan_plots.gp", "plan_bench_time.png", "plan_bench");
 }
 
 }  // namespace deepcheck::bench

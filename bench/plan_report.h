@@ -46,6 +46,11 @@ struct ReportSettings {
 void writeReport(const ReportSettings& settings, const std::vector<Problem>& selected,
                  const std::vector<Record>& records, const std::vector<std::string>& rejected);
 
+/// Runs gnuplot on bench/SCRIPT with the variables csv and outdir set; says on stderr that it
+/// wrote OUTDIR/PNG, or why not (gnuplot missing or failing; `who` names the benchmark).
+void runGnuplot(const std::string& csv, const std::string& outdir, const std::string& script, const std::string& png,
+                const char* who);
+
 /// Plots OUT/plan_bench.csv into OUT/plan_bench_time.png with gnuplot (skipped when missing).
 void plotReport(const std::string& out);
 

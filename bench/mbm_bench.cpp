@@ -1,0 +1,388 @@
+// mbm_bench: the Panda on MotionBenchMaker's scenes (Chamzas et al., RA-L 2022), our checker
+// against the FCL mesh checker, through ompl::tools::Benchmark (logs in OMPL's format, readable by
+// ompl_benchmark_statistics.py and Planner Arena).
+//
+// Scenes (mbm_problems.h): bookshelf_small, bookshelf_tall, bookshelf_thin, cage, box, table_pick,
+// kitchen, table_bars, each with MotionBenchMaker's variation and query files for the Panda. Per
+// scene, N problems are generated (deepcheck::planners::generateProblems, seeded: the same
+// --seed and --problems give the same problems); a scene that cannot be loaded or whose problems
+// cannot be generated is reported in the output and the table, and the run goes on.
+// Checkers, on the same problems (the same state space and segment fraction):
+//   deepcheck  makeSimpleSetup with default options: our validity checker on the convex pieces,
+//              OMPL's DiscreteMotionValidator at the default resolution, the push-out sampler;
+//   fcl        FclStateValidityChecker (FCL on the original meshes), OMPL's DiscreteMotionValidator
+//              and OMPL's default valid state sampler.
+// Planners (makePlanner, OMPL defaults): RRTConnect, BiEST, PRM. Every run ends at its first
+// solution: the problem's objective is path length with an infinite cost threshold, which PRM (an
+// optimizing planner in OMPL 1.5, otherwise growing its roadmap to the time limit) takes as met by
+// any path. One run per problem, planner and checker (--runs R: R runs; the tables then count runs).
+//
+// After each solved run (not timed): the path is simplified (simplifySolutionChecked), certified
+// by certifyPath on our setup (the clearance motion validator, repairing where it fails) and the
+// certified path checked by FCL at tol::kFineResolution (checkPathFine). Checks are the state
+// validity queries made while planning (the discrete motion checks' included).
+//
+// Outputs in OUT (default bench/results/mbm): mbm_<scene>.log (one OMPL experiment per scene, the
+// problems as runs of the planners geometric_<planner>_<checker>; extra run properties: problem,
+// checks, checks per second, simplified length, certified, fcl fine verified), mbm_runs.csv,
+// mbm_bench.csv, mbm_bench.md (also printed), mbm_bench_time.png (gnuplot, bench/mbm_plots.gp).
+// Progress on stderr.
+//
+// Usage: mbm_bench [--problems N] [--runs R] [--time S] [--seed S] [--scenes a,b] [--planners a,b] [--checkers a,b]
+//                  [--out DIR]
+//
+// Files: mbm_problems.* (scenes and problems), mbm_report.* (records and tables), this file (runs).
+
+#include "mbm_problems.h"
+#include "mbm_report.h"
+#include "ompl_benchmark.h"
+#include "options.h"
+#include "plan_problems.h"
+#include "plan_report.h"
+
+#include "deepcheck/planners/path_tools.h"
+#include "deepcheck/planners/planner_factory.h"
+#include "deepcheck/planners/state_space.h"
+#include "deepcheck/planners/tolerances.h"
+
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+namespace ot = ompl::tools;
+namespace dp = deepcheck::planners;
+using namespace deepcheck::bench;
+
+namespace {
+
+struct Options {
+  int problems = 100;
+  int runs = 1;  ///< per problem, planner and checker
+  double time = 10.0;
+  unsigned seed = 1;
+  std::vector<std::string> scenes;  ///< empty: all
+  std::vector<std::string> planners{"RRTConnect", "BiEST", "PRM"};
+  std::vector<std::string> checkers{"deepcheck", "fcl"};
+  std::string out = std::string(DEEPCHECK_BENCH_RESULTS_DIR) + "/mbm";
+};
+
+[[noreturn]] void usage(const std::string& error) {
+  if (!error.empty()) std::fprintf(stderr, "mbm_bench: %s\n", error.c_str());
+  std::fprintf(stderr,
+               "usage: mbm_bench [--problems N] [--runs R] [--time SECONDS] [--seed S] [--scenes a,b] [--planners a,b]\n"
+               "                 [--checkers a,b] [--out DIR]\n"
+               "  --problems N   generated problems per scene (default 100)\n"
+               "  --time S       time limit per planning run, seconds (default 10)\n"
+               "  --seed S       seed of problem generation and of OMPL (default 1)\n"
+               "  --scenes       bookshelf_small, bookshelf_tall, bookshelf_thin, cage, box, table_pick, kitchen,\n"
+               "                 table_bars (default all)\n"
+               "  --planners     names deepcheck::planners::makePlanner knows (default RRTConnect,BiEST,PRM)\n"
+               "  --out DIR      output folder (default bench/results/mbm)\n");
+  std::exit(2);
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options opt;
+  readOptions(argc, argv, usage, [&](const std::string& arg, auto value) {
+    if (arg == "--problems") {
+      opt.problems = positiveCount(value(), arg, usage);
+    } else if (arg == "--runs") {
+      opt.runs = positiveCount(value(), arg, usage);
+    } else if (arg == "--time") {
+      opt.time = positiveValue(value(), arg, usage);
+    } else if (arg == "--seed") {
+      opt.seed = static_cast<unsigned>(std::stoul(value()));
+    } else if (arg == "--scenes") {
+      opt.scenes = splitList(value());
+    } else if (arg == "--planners") {
+      opt.planners.clear();
+      for (const std::string& name : splitList(value())) opt.planners.push_back(dp::plannerName(name));
+    } else if (arg == "--checkers") {
+      opt.checkers = splitList(value());
+      for (const std::string& c : opt.checkers) {
+        if (c != "deepcheck" && c != "fcl") usage("unknown checker '" + c + "' (known: deepcheck, fcl)");
+      }
+      if (opt.checkers.empty()) usage("--checkers needs at least one checker");
+    } else if (arg == "--out") {
+      opt.out = value();
+    } else {
+      return false;
+    }
+    return true;
+  });
+  return opt;
+}
+
+/// The scenes named by --scenes (all when none); an unknown name is a usage error.
+std::vector<MbmScene> selectScenes(const std::vector<std::string>& wanted) {
+  const std::vector<MbmScene> all = mbmScenes();
+  if (wanted.empty()) return all;
+  std::vector<MbmScene> out;
+  for (const std::string& w : wanted) {
+    auto it = std::find_if(all.begin(), all.end(), [&](const MbmScene& s) { return s.name == w; });
+    if (it == all.end()) usage("unknown scene '" + w + "'");
+    out.push_back(*it);
+  }
+  return out;
+}
+
+/// Counts the validity queries of the FCL checker (ours counts its own).
+class CountingChecker : public ob::StateValidityChecker {
+ public:
+  CountingChecker(const ob::SpaceInformationPtr& si, ob::StateValidityCheckerPtr inner)
+      : ob::StateValidityChecker(si), inner_(std::move(inner)) {}
+  bool isValid(const ob::State* state) const override {
+    count_.fetch_add(1, std::memory_order_relaxed);
+    return inner_->isValid(state);
+  }
+  double clearance(const ob::State* state) const override { return inner_->clearance(state); }
+  std::uint64_t count() const { return count_.load(std::memory_order_relaxed); }
+  void reset() { count_.store(0, std::memory_order_relaxed); }
+
+ private:
+  ob::StateValidityCheckerPtr inner_;
+  mutable std::atomic<std::uint64_t> count_{0};
+};
+
+/// One problem's two setups.
+struct ProblemSetups {
+  std::shared_ptr<og::SimpleSetup> ours, fcl;
+  std::shared_ptr<const dp::StateValidityChecker> ourChecker;
+  std::shared_ptr<deepcheck::fcl_reference::FclStateValidityChecker> fclChecker;
+  std::shared_ptr<CountingChecker> fclCounter;
+};
+
+/// Every run ends at its first solution (see the header comment).
+void stopAtFirstSolution(og::SimpleSetup& ss) {
+  auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(ss.getSpaceInformation());
+  objective->setCostThreshold(objective->infiniteCost());
+  ss.setOptimizationObjective(objective);
+}
+
+ProblemSetups makeSetups(const std::shared_ptr<deepcheck::checker::World>& world, const dp::Problem& problem) {
+  ProblemSetups s;
+  s.ours = dp::makeSimpleSetup(world, pandaOptions());
+  dp::setStartAndGoal(*s.ours, problem.start, problem.goal);
+  s.ourChecker = dp::validityCheckerOf(*s.ours);
+  s.fcl = makeFclSetup(*s.ours, *world, &s.fclChecker);
+  s.fclCounter = std::make_shared<CountingChecker>(s.fcl->getSpaceInformation(), s.fclChecker);
+  s.fcl->setStateValidityChecker(s.fclCounter);
+  setEndpoints(*s.fcl, problem.start, problem.goal);
+  for (og::SimpleSetup* ss : {s.ours.get(), s.fcl.get()}) {
+    stopAtFirstSolution(*ss);
+    ss->setup();
+  }
+  return s;
+}
+
+/// `path` (of any state space with the robot's layout) as a path of `si`.
+og::PathGeometric pathIn(const og::PathGeometric& path, const ob::SpaceInformationPtr& si) {
+  og::PathGeometric out(si);
+  ob::State* state = si->allocState();
+  for (const Eigen::VectorXd& q : dp::pathConfigurations(path)) {
+    dp::copyToState(q, state);
+    out.append(state);
+  }
+  si->freeState(state);
+  return out;
+}
+
+/// What the runs of one scene read and add to.
+struct SceneRun {
+  const Options& opt;
+  const MbmScene& scene;
+  std::vector<MbmRecord>& records;
+};
+
+/// The record of a finished run: simplified, certified and checked by FCL when solved.
+MbmRecord measureRun(og::SimpleSetup& ss, const ProblemSetups& setups, const std::string& checker,
+                     ot::Benchmark::RunProperties& run, double checks) {
+  MbmRecord r;
+  r.checker = checker;
+  r.time = std::stod(run["time REAL"]);
+  r.solved = run["solved BOOLEAN"] == "1" && ss.haveExactSolutionPath();
+  r.checks = checks;
+  if (r.solved) {
+    dp::simplifySolutionChecked(ss);
+    og::PathGeometric path = pathIn(ss.getSolutionPath(), setups.ours->getSpaceInformation());
+    r.length = path.length();
+    const dp::PathCertificate cert = dp::certifyPath(*setups.ours, path);
+    r.certifiedAsPlanned = cert.initial.valid;
+    r.certified = cert.valid;
+    const auto* fcl = setups.fclChecker.get();
+    r.fclFine = dp::checkPathFine(path, [fcl](const Eigen::VectorXd& q) { return fcl->isFree(q); }).valid;
+  }
+  run["checks INTEGER"] = fmt(checks, "%.0f");
+  run["checks per second REAL"] = fmt(r.time > 0.0 ? checks / r.time : 0.0, "%.17g");
+  if (r.solved) {
+    run["simplified length REAL"] = fmt(r.length, "%.17g");
+    run["certified as planned BOOLEAN"] = r.certifiedAsPlanned ? "1" : "0";
+    run["certified BOOLEAN"] = r.certified ? "1" : "0";
+    run["fcl fine verified BOOLEAN"] = r.fclFine ? "1" : "0";
+  }
+  return r;
+}
+
+/// Runs every planner on one checker's setup of problem `k`; appends records and the experiment.
+void benchmarkChecker(SceneRun& ctx, int k, int count, const ProblemSetups& setups, const std::string& checker,
+                      Bench& carrier) {
+  og::SimpleSetup& ss = checker == "deepcheck" ? *setups.ours : *setups.fcl;
+  auto bench = std::make_unique<Bench>(ss, "mbm_" + ctx.scene.name);
+  for (const std::string& name : ctx.opt.planners) bench->addPlanner(dp::makePlanner(name, ss.getSpaceInformation()));
+  bench->addExperimentParameter("problems", "INTEGER", std::to_string(ctx.opt.problems));
+  bench->addExperimentParameter("problem_seed", "INTEGER", std::to_string(ctx.opt.seed));
+  bench->addExperimentParameter("fine_resolution", "REAL", fmt(dp::tol::kFineResolution, "%.17g"));
+  auto resetChecks = [&setups, checker]() {
+    if (checker == "deepcheck") {
+      std::const_pointer_cast<dp::StateValidityChecker>(setups.ourChecker)->resetCounters();
+    } else {
+      setups.fclCounter->reset();
+    }
+  };
+  auto checks = [&setups, checker]() {
+    return static_cast<double>(checker == "deepcheck" ? setups.ourChecker->validityQueries() : setups.fclCounter->count());
+  };
+  SceneRun* c = &ctx;
+  og::SimpleSetup* setup = &ss;
+  bench->setPreRunEvent([=](const ob::PlannerPtr&) { resetChecks(); });
+  bench->setPostRunEvent([=, &setups](const ob::PlannerPtr& planner, ot::Benchmark::RunProperties& run) {
+    const double n = checks();  // before simplification and certification
+    MbmRecord r = measureRun(*setup, setups, checker, run, n);
+    r.scene = c->scene.name;
+    r.problem = k;
+    r.planner = planner->getName();
+    run["problem INTEGER"] = std::to_string(k);
+    std::fprintf(stderr, "[%s %d/%d] %-9s %-10s %s %.4f s, %.0f checks%s\n", c->scene.name.c_str(), k + 1, count,
+                 checker.c_str(), r.planner.c_str(), r.solved ? "solved" : "NOT solved", r.time, r.checks,
+                 r.solved ? (r.certified ? (r.fclFine ? ", certified, FCL ok" : ", certified, FCL REJECTS")
+                                         : ", NOT certified")
+                          : "");
+    c->records.push_back(r);
+  });
+  ot::Benchmark::Request req(ctx.opt.time, 4096.0, static_cast<unsigned>(ctx.opt.runs));
+  req.displayProgress = false;
+  req.saveConsoleOutput = false;
+  req.simplify = false;  // done in the post-run event, after the checks are read
+  bench->benchmark(req);
+  // Merge: planners named by checker; the problems are the runs.
+  auto& data = bench->data();
+  for (auto& p : data.planners) p.name += "_" + checker;
+  auto& merged = carrier.data();
+  if (merged.planners.empty()) {
+    merged = data;
+    return;
+  }
+  for (const auto& p : data.planners) {
+    auto it = std::find_if(merged.planners.begin(), merged.planners.end(), [&](const auto& m) { return m.name == p.name; });
+    if (it == merged.planners.end()) {
+      merged.planners.push_back(p);
+    } else {
+      it->runs.insert(it->runs.end(), p.runs.begin(), p.runs.end());
+      it->runsProgressData.insert(it->runsProgressData.end(), p.runsProgressData.begin(), p.runsProgressData.end());
+    }
+  }
+  merged.totalDuration += data.totalDuration;
+}
+
+}  // namespace
+
+namespace {
+
+std::string oneLine(std::string text) {
+  for (char& ch : text) {
+    if (ch == '\n' || ch == '|') ch = ' ';
+  }
+  return text;
+}
+
+/// Generates the scene's problems and runs them; the reason when the scene could not be run.
+std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std::shared_ptr<deepcheck::checker::World>& world,
+                           std::vector<MbmRecord>& records) {
+  auto base = dp::makeSimpleSetup(world, pandaOptions());
+  std::vector<dp::Problem> problems;
+  try {
+    std::vector<std::string> notes;
+    const dp::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, &notes);
+    problems = generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems,
+                                   [&](int k, const dp::Problem& p) {
+                                     std::fprintf(stderr, "[%s] problem %d/%d generated: goal %s%s%s, %d scene(s) drawn\n",
+                                                  scene.name.c_str(), k + 1, opt.problems, p.goalQuery.c_str(),
+                                                  p.startQuery.empty() ? "" : ", start ", p.startQuery.c_str(), p.attempts);
+                                   });
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mbm_bench: scene %s is not run: %s\n", scene.name.c_str(), e.what());
+    for (int id : world->obstacleIds()) world->removeObstacle(id);
+    return oneLine(e.what());
+  }
+  Bench carrier(*base, "mbm_" + scene.name);
+  SceneRun ctx{opt, scene, records};
+  for (int k = 0; k < static_cast<int>(problems.size()); ++k) {
+    placeScene(*world, problems[static_cast<std::size_t>(k)].scene);
+    const ProblemSetups setups = makeSetups(world, problems[static_cast<std::size_t>(k)]);
+    for (const std::string& checker : opt.checkers) benchmarkChecker(ctx, k, opt.problems, setups, checker, carrier);
+  }
+  for (int id : world->obstacleIds()) world->removeObstacle(id);
+  carrier.data().runCount = static_cast<unsigned>(problems.size()) * static_cast<unsigned>(opt.runs);
+  // The log names the scene's files, not where they lie, and describes no machine.
+  const auto fileName = [](const std::string& path) { return std::filesystem::path(path).filename().string(); };
+  carrier.data().host = "-";
+  carrier.data().cpuInfo.clear();
+  carrier.data().setupInfo = "MotionBenchMaker " + scene.name + ": scene " + fileName(scene.scene) + ", variation " +
+                             fileName(scene.variation) + ", queries " + fileName(scene.queries) + "; planner names end in the checker (deepcheck, fcl); run k "
+                             "of a planner is problem k / runs (see the problem property)\n" + carrier.data().setupInfo;
+  const std::string log = opt.out + "/mbm_" + scene.name + ".log";
+  if (!carrier.saveResultsToFile(log.c_str())) return "cannot write " + log;
+  std::fprintf(stderr, "wrote %s\n", log.c_str());
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = parseOptions(argc, argv);
+  const std::vector<MbmScene> scenes = selectScenes(opt.scenes);
+  if (!haveShared()) {
+    std::fprintf(stderr, "mbm_bench: ../shared is absent (%s): no Panda, no MotionBenchMaker scenes\n", sharedDir().c_str());
+    return 1;
+  }
+  std::filesystem::create_directories(opt.out);
+  ompl::RNG::setSeed(opt.seed);
+  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+  MbmSettings settings;
+  settings.out = opt.out;
+  settings.problems = opt.problems;
+  settings.runs = opt.runs;
+  settings.time = opt.time;
+  settings.seed = opt.seed;
+  settings.checkers = opt.checkers;
+  settings.planners = opt.planners;
+  const auto wallStart = std::chrono::steady_clock::now();
+  std::fprintf(stderr, "mbm_bench: %zu scene(s) x %d problem(s) x %zu checker(s) x %zu planner(s), %.3g s limit\n",
+               scenes.size(), opt.problems, opt.checkers.size(), opt.planners.size(), opt.time);
+  const auto world = dp::loadWorld(pandaUrdf(), {}, pandaOptions());
+  std::vector<MbmRecord> records;
+  std::vector<SceneFailure> failures;
+  for (const MbmScene& scene : scenes) {
+    settings.scenes.push_back(scene.name);
+    const std::string reason = benchmarkScene(opt, scene, world, records);
+    if (!reason.empty()) failures.push_back({scene.name, reason});
+    // The tables so far after every scene: a long run stopped early keeps its finished scenes.
+    settings.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    writeMbmReport(settings, records, failures, &scene != &scenes.back());
+  }
+  plotMbmReport(opt.out);
+  return 0;
+}

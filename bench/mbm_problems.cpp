@@ -1,0 +1,147 @@
+// The MotionBenchMaker scenes of mbm_bench and their generated problems (mbm_problems.h).
+
+#include "mbm_problems.h"
+
+#include "plan_problems.h"
+
+#include "deepcheck/robots/kinematics.h"
+#include "deepcheck/robots/robot_model.h"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+namespace deepcheck::bench {
+
+namespace dp = deepcheck::planners;
+
+namespace {
+
+std::string mbmDir() { return sharedDir() + "/scenes/motion_bench_maker/configs"; }
+
+/// x y z qx qy qz qw as a pose; the quaternion, written with 3 digits, normalised.
+Eigen::Isometry3d pose(const std::array<double, 7>& v) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+  X.linear() = Eigen::Quaterniond(v[6], v[3], v[4], v[5]).normalized().toRotationMatrix();
+  return X;
+}
+
+/// A scene of ../shared's MotionBenchMaker folder `dir` from its file names there, its base_offset
+/// and ee_offset.
+MbmScene sceneOf(const std::string& name, const std::string& dir, const std::string& scene,
+                 const std::string& variation, const std::string& queries, const std::array<double, 7>& base,
+                 const std::array<double, 7>& ee) {
+  const std::string d = mbmDir() + "/scenes/" + dir + "/";
+  return {name, d + scene, d + variation, d + queries, pose(base), pose(ee)};
+}
+
+/// Every object of `scene` moved by X in the world frame (the objects' frame is the robot's base).
+void moveAll(robots::PlanningScene& scene, const Eigen::Isometry3d& X) {
+  for (robots::SceneObject& object : scene.objects) {
+    object.X_FO = X * object.X_FO;
+    for (robots::SceneShape& shape : object.shapes) shape.X_FS = X * shape.X_FS;
+  }
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// The links of a scene URDF with collision geometry as planning-scene objects in frame
+/// base_link, posed at the scene's default configuration.
+robots::PlanningScene sceneFromUrdf(const MbmScene& scene) {
+  robots::LoadOptions load;
+  load.packageRoots = pandaOptions().packageRoots;
+  load.useRosPackagePath = false;
+  const robots::RobotModel model = robots::RobotModel::fromUrdfFile(scene.scene, load);
+  const std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(model, model.defaultConfiguration());
+  robots::PlanningScene out;
+  out.source = scene.scene;
+  for (int l = 0; l < model.numLinks(); ++l) {
+    const robots::Link& link = model.link(l);
+    if (link.collisions.empty()) continue;
+    robots::SceneObject object;
+    object.id = link.name;
+    object.frameId = "base_link";
+    for (std::size_t c = 0; c < link.collisions.size(); ++c) {
+      robots::SceneShape shape;
+      shape.geometry = link.collisions[c].geometry;
+      shape.X_FS = X_WL[static_cast<std::size_t>(l)] * link.collisions[c].X_LG;
+      shape.name = "collision " + std::to_string(c) + " of link " + link.name;
+      object.shapes.push_back(shape);
+    }
+    // The object's pose is its first shape's (problem_generation.h): queries are relative to it.
+    out.objects.push_back(object);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<MbmScene> mbmScenes() {
+  // base_offset and ee_offset of MotionBenchMaker's configs/problems/<name>_panda.yaml.
+  const std::array<double, 7> ee{0, 0, -0.08, -0.271, -0.653, -0.271, 0.653};
+  return {
+      sceneOf("bookshelf_small", "bookshelf", "scene_small.yaml", "variation_small.yaml", "all_queries_small.yaml",
+              {0.2, 0, -0.7, 0, 0, 0, 1}, ee),
+      sceneOf("bookshelf_tall", "bookshelf", "scene_tall.yaml", "variation_tall.yaml", "all_queries_tall.yaml",
+              {0.3, 0, -0.7, 0, 0, 0, 1}, ee),
+      sceneOf("bookshelf_thin", "bookshelf", "scene_thin.yaml", "variation_thin.yaml", "all_queries_thin.yaml",
+              {-0.1, 0, -0.7, 0, 0, 0, 1}, ee),
+      sceneOf("cage", "cage", "scene_cage.yaml", "variation_cage.yaml", "queries_cage.yaml", {0, 0, -0.18, 0, 0, 0, 1},
+              {0.13, -0.13, 0.11, 0, 0, 0.924, 0.383}),
+      sceneOf("box", "box", "scene_box.yaml", "variation_box.yaml", "hard_queries_box.yaml",
+              {-0.15, 0, -1.02, 0, 0, 0, 1}, {0, 0, -0.08, -0.653, -0.271, -0.653, 0.271}),
+      sceneOf("table_pick", "table", "scene_table.yaml", "variation_table.yaml", "queries_pick_table.yaml",
+              {0.1, 0.1, -0.5, 0, 0, 0, 1}, ee),
+      sceneOf("kitchen", "kitchen", "kitchen.urdf", "variation.yaml", "hard_queries.yaml", {0.2, 0.4, -0.7, 0, 0, 0, 1},
+              {0.2, 0.2, 0.03, -0.271, -0.653, -0.271, 0.653}),
+      sceneOf("table_bars", "table_bars", "table_bars.urdf", "variation.yaml", "single_arm_queries.yaml",
+              {0.6, 0, -0.6, 0, 0, 0, 1}, {0.29, -0.29, 0.35, -0.271, -0.653, -0.271, 0.653})};
+}
+
+robots::FrameAliases pandaFrameAliases() { return {{"base_link", "panda_link0"}}; }
+
+robots::PlanningScene loadNominalScene(const MbmScene& scene) {
+  robots::PlanningScene out;
+  if (endsWith(scene.scene, ".urdf")) {
+    out = sceneFromUrdf(scene);
+  } else {
+    robots::SceneLoadOptions options;
+    options.packageRoots = pandaOptions().packageRoots;
+    options.useRosPackagePath = false;
+    out = robots::loadPlanningScene(scene.scene, options);
+  }
+  moveAll(out, scene.baseOffset);
+  return out;
+}
+
+dp::ProblemOptions pandaProblemOptions(const MbmScene& scene, const robots::RobotModel& panda, std::uint64_t seed,
+                                       std::vector<std::string>* notes) {
+  dp::ProblemOptions o;
+  o.tipLink = "panda_link8";
+  o.eeOffset = scene.eeOffset;
+  o.frameAliases = pandaFrameAliases();
+  o.start = dp::configurationOf(panda, dp::loadRobotConfig(mbmDir() + "/robots/panda.yaml"), notes);
+  o.seed = seed;
+  return o;
+}
+
+std::vector<dp::Problem> generateMbmProblems(const MbmScene& scene, checker::World& world,
+                                             const dp::StateValidityChecker& checker, const dp::ProblemOptions& options,
+                                             int count, const dp::ProblemProgress& progress) {
+  const robots::PlanningScene nominal = loadNominalScene(scene);
+  const auto variations = dp::loadSceneVariations(scene.variation);
+  const auto queries = dp::loadQueries(scene.queries);
+  return dp::generateProblems(world, checker, nominal, variations, queries, options, count, progress, scene.variation);
+}
+
+void placeScene(checker::World& world, const robots::PlanningScene& scene) {
+  for (int id : world.obstacleIds()) world.removeObstacle(id);
+  checker::PlanningSceneOptions placement;
+  placement.frameAliases = pandaFrameAliases();
+  world.addPlanningScene(scene, placement);
+}
+
+}  // namespace deepcheck::bench

@@ -1,0 +1,68 @@
+#pragma once
+// The MotionBenchMaker scenes of mbm_bench (bench/README.md, "MotionBenchMaker benchmark") and
+// their generated problems.
+//
+// Each scene is MotionBenchMaker's Panda dataset specification: its configs/problems/<name>_panda.yaml
+// (not in ../shared; its values are copied into mbmScenes()) names the scene, variation and query
+// files, read from ../shared, and gives base_offset (where the scene goes relative to the robot)
+// and ee_offset (the query frame relative to the arm's tip). Scenes given as
+// a URDF (kitchen, table_bars) become a planning scene here: one object per link with collision
+// geometry, named as the link (the names the variation and query files use), posed at the scene's
+// default configuration (MotionBenchMaker draws the scene's joints at random instead; here the
+// variation file's object variations move the links). Problems come from deepcheck::planners::generateProblems (the scene
+// varied, the goal and, when the query file has start queries, the start by collision-free
+// inverse kinematics of panda_hand; otherwise MotionBenchMaker's Panda default state).
+
+#include "deepcheck/checker/world.h"
+#include "deepcheck/planners/problem_generation.h"
+#include "deepcheck/planners/validity_checker.h"
+#include "deepcheck/robots/moveit_scene.h"
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace deepcheck::bench {
+
+struct MbmScene {
+  std::string name;       ///< "bookshelf_small"
+  std::string scene;      ///< planning-scene YAML or scene URDF
+  std::string variation;  ///< variation file
+  std::string queries;    ///< query file
+  /// MotionBenchMaker's base_offset: every object is moved by it in the world (X' = base * X).
+  Eigen::Isometry3d baseOffset = Eigen::Isometry3d::Identity();
+  /// MotionBenchMaker's ee_offset: the query frame in the tip's frame (ProblemOptions::eeOffset).
+  Eigen::Isometry3d eeOffset = Eigen::Isometry3d::Identity();
+};
+
+/// Every scene, in the order of the tables.
+std::vector<MbmScene> mbmScenes();
+
+/// The frame aliases of the MotionBenchMaker files for the Panda of ../shared (base_link is
+/// panda_link0).
+robots::FrameAliases pandaFrameAliases();
+
+/// The nominal planning scene: the YAML as read, or the URDF's links as objects (header comment).
+/// Throws std::invalid_argument (naming the file) when it cannot be read.
+robots::PlanningScene loadNominalScene(const MbmScene& scene);
+
+/// Problem generation options for the Panda in `scene`: the tip panda_link8 (the end of
+/// MotionBenchMaker's panda_arm group) with the scene's ee_offset, the start from MotionBenchMaker's
+/// Panda file (`notes` says what was clamped into the limits).
+planners::ProblemOptions pandaProblemOptions(const MbmScene& scene, const robots::RobotModel& panda, std::uint64_t seed,
+                                             std::vector<std::string>* notes);
+
+/// `count` problems of `scene` in `world` (the Panda alone; its obstacles are left empty), through
+/// generateProblems; `progress` after each. Throws what loading and generation throw.
+std::vector<planners::Problem> generateMbmProblems(const MbmScene& scene, checker::World& world,
+                                                   const planners::StateValidityChecker& checker,
+                                                   const planners::ProblemOptions& options, int count,
+                                                   const planners::ProblemProgress& progress);
+
+/// Replaces the obstacles of `world` by the objects of `scene` (frame aliases of the Panda).
+void placeScene(checker::World& world, const robots::PlanningScene& scene);
+
+}  // namespace deepcheck::bench
