@@ -18,11 +18,10 @@
 #include "deepcheck/deep/exact.h"
 
 #include "deepcheck/deep/closest_point.h"
+#include "deepcheck/deep/qhull_hull.h"
 #include "deepcheck/deep/tolerances.h"
 
 #include <Eigen/Geometry>
-
-#include <libqhull_r/qhull_ra.h>
 
 #include <algorithm>
 #include <cmath>
@@ -111,62 +110,17 @@ void facetPlane(MinkowskiFacet& facet, const Eigen::Vector3d& qhullNormal) {
   facet.offset = facet.normal.dot(c);
 }
 
-/// Qhull's error stream, silenced: a null device when available, else an anonymous temp file.
-struct NullStream {
-  std::FILE* file = nullptr;
-  NullStream() {
-    file = std::fopen("/dev/null", "w");
-    if (file == nullptr) file = std::tmpfile();
-  }
-  ~NullStream() {
-    if (file != nullptr) std::fclose(file);
-  }
-  NullStream(const NullStream&) = delete;
-  NullStream& operator=(const NullStream&) = delete;
-};
-
-/// 3-d hull of `points` (flattened xyz) with Qhull: fills vertices and facets of `hull`.
-void qhullSolid(std::vector<double>& points, MinkowskiHull& hull) {
-  NullStream err;
-  qhT qhStorage;
-  qhT* qh = &qhStorage;
-  qh_zero(qh, err.file);
-  // 'Qs': search all points for the initial simplex (robust on thin sets); 'Pp': no precision
-  // warnings. Coplanar facets are merged by Qhull's 3-d default ('C-0').
-  char options[] = "qhull Qs Pp";
-  const int numPoints = static_cast<int>(points.size() / 3);
-  const int status = qh_new_qhull(qh, 3, numPoints, points.data(), False, options, nullptr,
-                                  err.file);
-  if (status == 0) {
-    std::vector<int> vertexIndex(static_cast<std::size_t>(numPoints), -1);
-    vertexT* vertex;
-    FORALLvertices {
-      const int id = qh_pointid(qh, vertex->point);
-      vertexIndex[static_cast<std::size_t>(id)] = static_cast<int>(hull.vertices.size());
-      hull.vertices.emplace_back(vertex->point[0], vertex->point[1], vertex->point[2]);
-    }
-    facetT* facet;
-    FORALLfacets {
-      MinkowskiFacet f;
-      const Eigen::Vector3d u(facet->normal[0], facet->normal[1], facet->normal[2]);
-      vertexT** vertexp;
-      FOREACHvertex_(facet->vertices) {
-        f.vertices.push_back(hull.vertices[static_cast<std::size_t>(
-            vertexIndex[static_cast<std::size_t>(qh_pointid(qh, vertex->point))])]);
-      }
-      sortAround(f.vertices, u);
-      facetPlane(f, u);
-      hull.facets.push_back(std::move(f));
-    }
-  }
-  qh_freeqhull(qh, !qh_ALL);
-  int curlong = 0;
-  int totlong = 0;
-  qh_memfreeshort(qh, &curlong, &totlong);
-  if (status != 0) {
-    throw std::runtime_error("exact: Qhull failed on the Minkowski difference (" +
-                             std::to_string(numPoints) + " points, exit code " +
-                             std::to_string(status) + ")");
+/// 3-d hull of `points` with Qhull: fills vertices and facets of `hull`. Coplanar facets are
+/// merged by Qhull's 3-d default ('C-0'). Throws QhullError when Qhull fails.
+void qhullSolid(const std::vector<Eigen::Vector3d>& points, MinkowskiHull& hull) {
+  const QhullHull q = qhullHull(points, QhullOptions{}, "exact: the Minkowski difference");
+  for (int id : q.vertices) hull.vertices.push_back(points[static_cast<std::size_t>(id)]);
+  for (std::size_t k = 0; k < q.loops.size(); ++k) {
+    MinkowskiFacet f;
+    for (int id : q.loops[k]) f.vertices.push_back(points[static_cast<std::size_t>(id)]);
+    sortAround(f.vertices, q.normals[k]);
+    facetPlane(f, q.normals[k]);
+    hull.facets.push_back(std::move(f));
   }
 }
 
@@ -270,11 +224,7 @@ MinkowskiHull buildHull(std::vector<Eigen::Vector3d> pts, const Eigen::Vector3d&
   }
 
   hull.dimension = 3;
-  std::vector<double> flatPts;
-  flatPts.reserve(3 * pts.size());
-  for (const auto& p : pts) flatPts.insert(flatPts.end(), {p.x(), p.y(), p.z()});
-  pts.clear();
-  qhullSolid(flatPts, hull);
+  qhullSolid(pts, hull);
   return hull;
 }
 

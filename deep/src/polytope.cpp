@@ -35,6 +35,7 @@
 #include "deepcheck/deep/polytope.h"
 
 #include "deepcheck/deep/input_range.h"
+#include "deepcheck/deep/qhull_hull.h"
 #include "deepcheck/deep/tolerances.h"
 
 #include <Eigen/Eigenvalues>
@@ -51,7 +52,6 @@
 #include <unordered_map>
 #include <utility>
 
-#include <libqhull_r/qhull_ra.h>
 
 namespace deepcheck::deep {
 
@@ -259,84 +259,6 @@ class UnionFind {
  private:
   std::vector<int> parent_;
 };
-
-/// Result of running Qhull: facet loops (indices into the caller's point list) and outward normals.
-struct QhullFacets {
-  std::vector<std::vector<int>> loops;
-  std::vector<Vector3d> normals;
-};
-
-std::string readAll(FILE* file) {
-  std::string text;
-  if (file == nullptr) return text;
-  std::rewind(file);
-  char buffer[512];
-  std::size_t got = 0;
-  while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0 && text.size() < 4000) {
-    text.append(buffer, got);
-  }
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  return text;
-}
-
-/// Runs Qhull on the given points (3 coordinates each). Nothing is printed: the output file is
-/// null and diagnostics go to a temporary file whose text ends up in the exception on failure.
-QhullFacets runQhull(const std::vector<Vector3d>& pts, double mergeTol, const std::string& name) {
-  const int n = static_cast<int>(pts.size());
-  std::vector<coordT> coords(3 * static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) coords[3 * i + c] = pts[i][c];
-  }
-  QhullFacets out;
-  bool badId = false;
-  FILE* errFile = std::tmpfile();
-  qhT qhData;
-  qhT* qh = &qhData;
-  qh_zero(qh, errFile);
-  // Qs: search all points for the initial simplex (robust on thin sets). C-m: pre-merge facets
-  // whose centrum is within m of a neighbour's plane, so coplanar triangles come out as one
-  // polygonal facet and, with m our flatness tolerance, no sliver thinner than m survives (C-0,
-  // Qhull's default, merges at round-off level only: noisy coplanar input then leaves facets
-  // whose normals are set by the noise).
-  char options[64];
-  std::snprintf(options, sizeof options, "qhull Qs C-%.17g", mergeTol);
-  int exitCode = qh_new_qhull(qh, 3, n, coords.data(), False, options, nullptr, errFile);
-  if (exitCode == 0) {
-    // qh_facet3vertex may report an error through longjmp; only trivially destructible locals
-    // live between here and the calls below.
-    exitCode = setjmp(qh->errexit);
-    if (exitCode == 0) {
-      qh->NOerrexit = False;
-      facetT* facet;
-      vertexT* vertex;
-      vertexT** vertexp;
-      FORALLfacets {
-        setT* vertices = qh_facet3vertex(qh, facet);
-        out.loops.emplace_back();
-        FOREACHvertex_(vertices) {
-          const int id = qh_pointid(qh, vertex->point);
-          if (id < 0 || id >= n) badId = true;
-          out.loops.back().push_back(id);
-        }
-        qh_settempfree(qh, &vertices);
-        out.normals.emplace_back(facet->normal[0], facet->normal[1], facet->normal[2]);
-      }
-    }
-    qh->NOerrexit = True;
-  }
-  qh_freeqhull(qh, !qh_ALL);
-  int curLong = 0;
-  int totLong = 0;
-  qh_memfreeshort(qh, &curLong, &totLong);
-  const std::string message = exitCode != 0 ? readAll(errFile) : std::string();
-  if (errFile != nullptr) std::fclose(errFile);
-  if (exitCode != 0) {
-    throw std::runtime_error(name + ": Qhull failed (exit code " + std::to_string(exitCode) +
-                             "): " + message);
-  }
-  if (badId) throw std::runtime_error(name + ": Qhull returned an unknown point id");
-  return out;
-}
 
 }  // namespace
 
@@ -684,18 +606,21 @@ ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, doub
   std::vector<Vector3d> kept;
   kept.reserve(ids.size());
   for (int i : ids) kept.push_back(q_[i]);
-  QhullFacets qf = runQhull(kept, qhullMerge, name_);
+  // Qs: search all points for the initial simplex (robust on thin sets). C-m: pre-merge facets
+  // whose centrum is within m of a neighbour's plane, so coplanar triangles come out as one
+  // polygonal facet and, with m our flatness tolerance, no sliver thinner than m survives (C-0,
+  // Qhull's default, merges at round-off level only: noisy coplanar input then leaves facets
+  // whose normals are set by the noise).
+  QhullOptions options;
+  options.mergeDistance = qhullMerge;
+  QhullHull qf = qhullHull(kept, options, name_);
   auto coord = [&](int i) { return q_[i]; };
   std::vector<std::vector<int>>& loops = qf.loops;
   const int numFacets = static_cast<int>(loops.size());
   std::vector<Vector3d> area(numFacets);
   for (int f = 0; f < numFacets; ++f) {
     for (int& v : loops[f]) v = ids[v];
-    area[f] = newellVector(loops[f], coord);
-    if (area[f].dot(qf.normals[f]) < 0.0) {  // make the loop counter-clockwise seen from outside
-      std::reverse(loops[f].begin(), loops[f].end());
-      area[f] = -area[f];
-    }
+    area[f] = newellVector(loops[f], coord);  // loops are counter-clockwise (qhullHull)
   }
 
   // --- Half-edges: directed edge (a, b) of a counter-clockwise loop -> its facet.

@@ -1,4 +1,4 @@
-// Convex hulls for the convex decomposition: Qhull (reentrant) for the hull itself, our own
+// Convex hulls for the convex decomposition: Qhull (deep/qhull_hull.h) for the hull itself, our own
 // greedy vertex reduction on top of it (decomposition.h describes the bound).
 
 #include "decomposition_hull.h"
@@ -10,14 +10,11 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-extern "C" {
-#include <libqhull_r/qhull_ra.h>
-}
+#include <deepcheck/deep/qhull_hull.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -30,42 +27,13 @@ using Eigen::Vector3d;
 
 namespace {
 
-/// Where Qhull's messages go: precision problems on nearly flat parts are expected and handled
-/// by the planar fallback, they must not reach the user's terminal.
-std::FILE* qhullErrorSink() {
-  thread_local std::FILE* sink = std::fopen("/dev/null", "w");
-  return sink != nullptr ? sink : stderr;
+/// Qhull's options here: Qhull's own start (no 'Qs') and merging, triangles when asked.
+deep::QhullOptions qhullOptions(bool triangulate) {
+  deep::QhullOptions options;
+  options.triangulate = triangulate;
+  options.searchAllPoints = false;
+  return options;
 }
-
-/// One Qhull run; frees its memory when it goes out of scope.
-class QhullRun {
- public:
-  QhullRun(const std::vector<Vector3d>& points, const char* options) {
-    coords_.reserve(points.size() * 3);
-    for (const Vector3d& p : points) coords_.insert(coords_.end(), {p.x(), p.y(), p.z()});
-    qh_zero(qh, qhullErrorSink());
-    std::vector<char> flags(options, options + std::char_traits<char>::length(options) + 1);
-    exitCode_ = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coords_.data(), False,
-                             flags.data(), nullptr, qhullErrorSink());
-  }
-  ~QhullRun() {
-    qh_freeqhull(qh, !qh_ALL);
-    int curlong = 0;
-    int totlong = 0;
-    qh_memfreeshort(qh, &curlong, &totlong);
-  }
-  QhullRun(const QhullRun&) = delete;
-  QhullRun& operator=(const QhullRun&) = delete;
-
-  bool ok() const { return exitCode_ == 0; }
-
-  qhT qhStorage_;
-  qhT* qh = &qhStorage_;
-
- private:
-  std::vector<coordT> coords_;
-  int exitCode_ = 1;
-};
 
 /// Unit eigenvectors of the covariance of `points` (columns, largest variance first).
 Eigen::Matrix3d principalAxes(const std::vector<Vector3d>& points, const Vector3d& center) {
@@ -145,16 +113,17 @@ std::vector<Vector3d> halfspaceIntersection(const std::vector<Vector3d>& normals
     if (!(h > 0.0)) return {};
     dual[i] = normals[i] / h;
   }
-  QhullRun run(dual, "qhull Pp");
-  if (!run.ok()) return {};
-  qhT* qh = run.qh;
+  deep::QhullHull polar;
+  try {
+    polar = deep::qhullHull(dual, qhullOptions(false), "halfspace intersection");
+  } catch (const deep::QhullError&) {
+    return {};
+  }
   std::vector<Vector3d> corners;
-  facetT* facet;
-  FORALLfacets {
-    const Vector3d a(facet->normal[0], facet->normal[1], facet->normal[2]);
-    const double b = -facet->offset;  // facet plane: a.q = b, b > 0 when the polar set is bounded
+  for (std::size_t f = 0; f < polar.normals.size(); ++f) {
+    const double b = polar.offsets[f];  // facet plane: a.q = b, b > 0 when the polar set is bounded
     if (!(b > 0.0)) return {};
-    corners.push_back(interior + a / b);
+    corners.push_back(interior + polar.normals[f] / b);
   }
   return corners;
 }
@@ -162,38 +131,27 @@ std::vector<Vector3d> halfspaceIntersection(const std::vector<Vector3d>& normals
 }  // namespace
 
 Hull convexHull(const std::vector<Vector3d>& points) {
-  if (points.size() < 4) return flatHull(points);
-  QhullRun run(points, "qhull Qt Pp");
-  if (!run.ok()) return flatHull(points);
-  qhT* qh = run.qh;
+  if (points.size() < static_cast<std::size_t>(deep::kQhullMinPoints)) return flatHull(points);
+  deep::QhullHull q;
+  try {
+    q = deep::qhullHull(points, qhullOptions(true), "convex decomposition hull");
+  } catch (const deep::QhullError&) {
+    return flatHull(points);  // flat or collinear part: its planar hull
+  }
   Hull hull;
   std::vector<int> index(points.size(), -1);
-  vertexT* vertex;
-  vertexT** vertexp;
-  facetT* facet;
-  FORALLvertices {
-    const int id = qh_pointid(qh, vertex->point);
+  for (int id : q.vertices) {
     index[id] = static_cast<int>(hull.vertices.size());
     hull.vertices.push_back(points[id]);
   }
-  FORALLfacets {
-    std::array<int, 3> tri{};
-    int k = 0;
-    FOREACHvertex_(facet->vertices) {
-      if (k < 3) tri[k] = index[qh_pointid(qh, vertex->point)];
-      ++k;
-    }
-    if (k != 3) continue;  // "Qt" triangulates every facet; anything else is not a triangle
-    const Vector3d n(facet->normal[0], facet->normal[1], facet->normal[2]);
+  for (std::size_t f = 0; f < q.loops.size(); ++f) {
+    if (q.loops[f].size() != 3) continue;  // "Qt" triangulates every facet
+    const std::array<int, 3> tri{index[q.loops[f][0]], index[q.loops[f][1]], index[q.loops[f][2]]};
     const Vector3d& a = hull.vertices[tri[0]];
-    const Vector3d& b = hull.vertices[tri[1]];
-    const Vector3d& c = hull.vertices[tri[2]];
-    const Vector3d areaVector = (b - a).cross(c - a);
-    if (areaVector.dot(n) < 0.0) std::swap(tri[1], tri[2]);
-    hull.triangles.push_back(tri);
-    hull.normals.push_back(n);
-    hull.offsets.push_back(-facet->offset);
-    hull.area += 0.5 * areaVector.norm();
+    hull.triangles.push_back(tri);  // counter-clockwise seen from outside (qhullHull)
+    hull.normals.push_back(q.normals[f]);
+    hull.offsets.push_back(q.offsets[f]);
+    hull.area += 0.5 * (hull.vertices[tri[1]] - a).cross(hull.vertices[tri[2]] - a).norm();
   }
   const Vector3d c = centroid(hull.vertices);
   for (const auto& t : hull.triangles) {

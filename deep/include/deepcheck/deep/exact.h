@@ -42,7 +42,7 @@ struct MinkowskiHull {
 };
 
 /// Builds M = B - A in the pair frame (Qhull of all nA * nB vertex differences). Throws
-/// std::runtime_error when Qhull fails.
+/// QhullError (a std::runtime_error, qhull_hull.h) when Qhull fails.
 MinkowskiHull minkowskiDifferenceHull(const ConvexPolytope& A, const ConvexPolytope& B,
                                       const PairFrame& frame);
 
