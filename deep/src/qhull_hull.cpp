@@ -3,7 +3,7 @@
 
 #include "deepcheck/deep/qhull_hull.h"
 
-#include "deepcheck/deep/input_range.h"
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -62,6 +62,15 @@ class MessageStream {
   std::size_t size_ = 0;
   std::FILE* file_ = nullptr;
 };
+
+[[noreturn]] void badCoordinate(double x, int point, int axis, const std::string& name) {
+  char value[32];
+  std::snprintf(value, sizeof value, "%.17g", x);
+  throw std::invalid_argument(name + ": point " + std::to_string(point) + " coordinate " +
+                              "xyz"[axis] + " = " + value + " is " +
+                              (std::isfinite(x) ? "out of Qhull's range (|value| > 1e+100)"
+                                                : "non-finite"));
+}
 
 std::string optionString(const QhullOptions& options) {
   // Pp: precision problems are not reported as warnings (they are handled by the callers' checks
@@ -132,10 +141,7 @@ QhullHull qhullHull(const std::vector<Eigen::Vector3d>& points, const QhullOptio
   std::vector<coordT> coords(3 * points.size());
   for (int i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) {
-      if (!(std::abs(points[i][c]) <= range::kMaxCoordinate)) {  // the message only when bad
-        range::checkCoordinate(points[i][c], name + ": point " + std::to_string(i) + " coordinate " +
-                                                 "xyz"[c]);
-      }
+      if (!(std::abs(points[i][c]) <= kQhullMaxCoordinate)) badCoordinate(points[i][c], i, c, name);
       coords[3 * i + c] = points[i][c];
     }
   }

@@ -50,9 +50,13 @@ struct QhullHull {
 
 /// Minimum number of points of a 3-d hull (a tetrahedron); fewer throw QhullError.
 constexpr int kQhullMinPoints = 4;
+/// Largest accepted magnitude of a coordinate, in the caller's unit: Qhull's determinants are
+/// cubes of coordinate differences, (2 * 1e100)^3 = 8e300 < DBL_MAX. Twice range::kMaxCoordinate
+/// and more (Minkowski differences of valid shapes) fit.
+constexpr double kQhullMaxCoordinate = 1e100;
 
 /// The convex hull of `points`. Throws std::invalid_argument for a non-finite coordinate or one
-/// beyond range::kMaxCoordinate, QhullError when no solid hull exists (see the header comment).
+/// beyond kQhullMaxCoordinate, QhullError when no solid hull exists (see the header comment).
 /// Duplicated points are allowed (one of them becomes the vertex). `name` is used in messages only.
 QhullHull qhullHull(const std::vector<Eigen::Vector3d>& points, const QhullOptions& options,
                     const std::string& name);
