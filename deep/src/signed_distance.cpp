@@ -113,7 +113,7 @@ struct Penetration {
 /// the facet of M the bracket converged on (VF, FV or EE, witnesses, exact normal). Its depth is a facet offset of M, an upper bound; the
 /// answer is the better of it and the expansion's own upper bound.
 DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                     const CertifiedResult& c) {
+                     const CertifiedResult& c, WalkScratch* walk) {
   DeepCache start;
   start.valid = true;
   start.count = 1;
@@ -123,7 +123,7 @@ DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
   DeepOptions one;
   one.warmCentroidStart = false;
   one.refreshEvery = 0;
-  DeepResult d = deepPenetration(A, B, frame, &start, one);
+  DeepResult d = deepPenetration(A, B, frame, &start, one, walk);
   if (d.depth <= c.upper) return d;
   // The walk found nothing better than the support: answer with the support itself.
   d.status = DeepStatus::Converged;
@@ -146,8 +146,9 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   Penetration p;
   const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
   const double tau = tol::kCertifyRelative * L;
+  WalkScratch* walk = cache ? cache->walk : nullptr;
   if (isLowDim(A) || isLowDim(B)) {
-    p.deep = deepPenetration(A, B, frame, nullptr, options);
+    p.deep = deepPenetration(A, B, frame, nullptr, options, walk);
     p.lower = p.deep.depth;
     p.certified = true;
     return p;
@@ -167,13 +168,13 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   p.lower = c.lower;
   p.expansions = c.expansions;
   if (c.status == CertifiedStatus::Certified) {
-    if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c);
+    if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c, walk);
   } else {
     DeepOptions full = options;
     full.warmStart = false;
     full.restarts = true;
-    p.deep = deepPenetration(A, B, frame, nullptr, full);
-    if (c.upper < p.deep.depth) p.deep = nameFacet(A, B, frame, c);
+    p.deep = deepPenetration(A, B, frame, nullptr, full, walk);
+    if (c.upper < p.deep.depth) p.deep = nameFacet(A, B, frame, c, walk);
   }
   p.certified = p.deep.depth - p.lower <= tau;
   return p;
@@ -217,7 +218,8 @@ SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3
         p = certifiedDepth(a, b, frame, g, surface, options, cache);
       }
     } else {
-      p.deep = deepPenetration(a, b, frame, cache ? &cache->deep : nullptr, options);
+      p.deep = deepPenetration(a, b, frame, cache ? &cache->deep : nullptr, options,
+                               cache ? cache->walk : nullptr);
     }
     const DeepResult& d = p.deep;
     coreSd = -d.depth;

@@ -38,6 +38,7 @@
 //    Minkowski differences with a polytope have O(F + E) facets, enumerated directly.
 
 #include "deepcheck/deep/pair_frame.h"
+#include "deepcheck/deep/walk_scratch.h"
 
 namespace deepcheck::deep {
 
@@ -117,8 +118,10 @@ struct DeepResult {
 
 /// Penetration depth of A and B (cores, no radii) in the pair frame. Meaningful when they overlap
 /// (the caller checks with GJK first); for separated shapes the result is the smallest offset of
-/// a facet reached, possibly negative. `cache` may be null.
+/// a facet reached, possibly negative. `cache` may be null. `scratch` is the caller's scratch space
+/// (walk_scratch.h), overwritten; null: a local one is used (allocating what the query uses).
 DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                           DeepCache* cache = nullptr, const DeepOptions& options = {});
+                           DeepCache* cache = nullptr, const DeepOptions& options = {},
+                           WalkScratch* scratch = nullptr);
 
 }  // namespace deepcheck::deep

@@ -74,6 +74,9 @@ struct PairCache {
   /// Scratch space of the certified expansion, owned by the caller; null: a local one is used
   /// (on the stack, about 60 KB). Share one per thread across pairs to keep the stack small.
   ExpansionSurface* surface = nullptr;
+  /// Scratch space of DEEP's walk (walk_scratch.h), owned by the caller; null: each query that
+  /// walks makes a local one (an allocation). Share one per thread across pairs, like `surface`.
+  WalkScratch* walk = nullptr;
   DeepCache deep;
   /// The certified method's warm start (about 4 KB), allocated by the pair's first overlapping
   /// query with that method and reused after; copies of the cache copy it.
@@ -85,6 +88,7 @@ struct PairCache {
     if (this == &other) return *this;
     gjk = other.gjk;
     surface = other.surface;
+    walk = other.walk;
     deep = other.deep;
     if (!other.certified) certified.reset();
     else if (certified) *certified = *other.certified;
@@ -94,7 +98,7 @@ struct PairCache {
   PairCache(PairCache&&) = default;
   PairCache& operator=(PairCache&&) = default;
 
-  /// Makes the next query cold (keeps the scratch pointer and the warm start's allocation).
+  /// Makes the next query cold (keeps the scratch pointers and the warm start's allocation).
   void reset() {
     gjk = GjkCache{};
     deep = DeepCache{};
