@@ -186,6 +186,11 @@ Vector3d fitNormal(const Loop& loop, const Coord& coord) {
   return fitPlane(loop, coord, newellVector(loop, coord)).normal;
 }
 
+/// The error of a hull whose facets do not form a closed, consistently oriented surface.
+[[noreturn]] inline void throwTopologyError(const std::string& name, const std::string& what) {
+  throw std::runtime_error(name + ": inconsistent hull topology (" + what + ")");
+}
+
 }  // namespace detail
 
 /// Builds polytopes; a friend of ConvexPolytope. One builder per fromPoints call.
@@ -211,8 +216,13 @@ class PolytopeBuilder {
                                 std::vector<int>* vertexIds, std::vector<int>* redundant) const;
   bool covers(const ConvexPolytope& p, const std::vector<int>& vertexIds) const;
   void dropNearDuplicates();
+  ConvexPolytope assembleSolid(const std::vector<std::vector<int>>& faces,
+                               std::vector<int>* vertexIds) const;
+  void buildRings(ConvexPolytope& p) const;
+  void findRedundant(const ConvexPolytope& p, const std::vector<int>& vertexIds,
+                     std::vector<int>* redundant) const;
   [[noreturn]] void topologyError(const std::string& what) const {
-    throw std::runtime_error(name_ + ": inconsistent hull topology (" + what + ")");
+    detail::throwTopologyError(name_, what);
   }
 
   const std::vector<Vector3d>& points_;
