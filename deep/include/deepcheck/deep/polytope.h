@@ -122,6 +122,7 @@ class ConvexPolytope {
   std::string checkInvariants(bool globalConvexity) const;
 
   friend class PolytopeBuilder;
+  friend class PolytopeInvariants;
 
   PolytopeKind kind_ = PolytopeKind::Point;
   std::vector<Eigen::Vector3d> vertices_;
