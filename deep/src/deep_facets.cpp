@@ -72,10 +72,10 @@ int Walker::clip(const Corner* in, int n, Corner* out, double* side, const Vec3&
   return m;
 }
 
-bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
+// The Gauss region of hub pair (ia, ib): B's region of ib clipped by the planes of A's edges at
+// ia. Returns its corners' count (< 3: no region) and sets *poly to them (in the scratch space).
+int Walker::overlayRegion(int ia, int ib, const Corner** poly) {
   const Vec3 a = va(ia);
-  const Vec3 b = vb(ib);
-  const Vec3 ba = b - a;
   const IndexRange nbrA = A_.neighbors(ia);
   // Room for the ring plus one corner per clipping plane, in two buffers used alternately.
   const std::size_t cap = B_.neighbors(ib).size() + nbrA.size() + 4;
@@ -86,78 +86,93 @@ bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
   }
   Corner* cur = s_.poly.data();
   Corner* spare = s_.clipped.data();
-  int n = gaussPolygonB(ib, b, cur);
+  int n = gaussPolygonB(ib, vb(ib), cur);
   for (int k = 0; k < nbrA.size() && n > 0; ++k) {
     const int m = clip(cur, n, spare, s_.side.data(), va(nbrA[k]) - a, labelA(k));
     if (m < 0) continue;
     std::swap(cur, spare);
     n = m;
   }
-  if (n < 3) return false;
-  const Corner* poly = cur;
+  *poly = cur;
+  return n;
+}
 
+// The facet of M at corner i of hub pair (ia, ib)'s region: its type, features and normal in
+// `c` (offset and hub left to the caller). False when the corner is not a vertex of the Gauss-map
+// overlay (inside one arc, or between arcs that do not meet) or the edges are parallel.
+bool Walker::cornerFacet(const Corner* poly, int n, int i, int ia, int ib, Candidate& c) {
+  const int in = poly[(i + n - 1) % n].out;
+  const int out = poly[i].out;
+  if (in == out) return false;  // a corner inside one arc (polygon lune), not a Gauss-map vertex
+  const Vec3& approx = poly[i].u;
+  const IndexRange nbrA = A_.neighbors(ia);
   const IndexRange nbrB = B_.neighbors(ib);
-  const bool polyB = B_.kind() == PolytopeKind::Polyhedron;
-  const bool polyA = A_.kind() == PolytopeKind::Polyhedron;
+  c.fa = ia;
+  c.fa2 = -1;
+  c.fb = ib;
+  c.fb2 = -1;
+  if (!isA(in) && !isA(out)) {
+    // Two arcs of B meet: a face normal of B inside -N_A(a): VF.
+    if (B_.kind() == PolytopeKind::Polyhedron) {
+      const int kIn = labelIndex(in), kOut = labelIndex(out);
+      if (kOut != (kIn + 1) % nbrB.size()) return false;
+      c.fb = B_.vertexFaces(ib)[kIn];
+    } else {
+      c.fb = approx.dot(nb(0)) >= 0 ? 0 : 1;
+    }
+    c.type = DeepResult::FacetType::VF;
+    c.u = nb(c.fb);
+  } else if (isA(in) && isA(out)) {
+    // Two clipping planes of A meet: minus a face normal of A inside N_B(b): FV.
+    if (A_.kind() == PolytopeKind::Polyhedron) {
+      const int m = nbrA.size();
+      const int k1 = labelIndex(in), k2 = labelIndex(out);
+      if (k2 == (k1 + 1) % m) c.fa = A_.vertexFaces(ia)[k1];
+      else if (k1 == (k2 + 1) % m) c.fa = A_.vertexFaces(ia)[k2];
+      else return false;
+    } else {
+      c.fa = approx.dot(na(0)) <= 0 ? 0 : 1;
+    }
+    c.type = DeepResult::FacetType::FV;
+    c.u = -na(c.fa);
+  } else {
+    // An arc of B crosses a plane of A: edge-edge.
+    c.fb2 = nbrB[labelIndex(isA(in) ? out : in)];
+    c.fa2 = nbrA[labelIndex(isA(in) ? in : out)];
+    const Vec3 eB = vb(c.fb2) - vb(ib);
+    const Vec3 eA = va(c.fa2) - va(ia);
+    Vec3 u = eB.cross(eA);
+    const double len2 = u.squaredNorm();
+    // Parallel edges span no facet; the facet there is reported by its VF/FV corners.
+    const double minSine = tol::kParallelSine;
+    if (len2 <= minSine * minSine * eB.squaredNorm() * eA.squaredNorm()) return false;
+    u /= std::sqrt(len2);
+    if (u.dot(approx) < 0) u = -u;
+    c.u = u;
+    c.type = DeepResult::FacetType::EE;
+  }
+  return true;
+}
+
+bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
+  const Corner* poly = nullptr;
+  const int n = overlayRegion(ia, ib, &poly);
+  if (n < 3) return false;
+  const Vec3 ba = vb(ib) - va(ia);
   bool found = false;
   for (int i = 0; i < n; ++i) {
-    const int in = poly[(i + n - 1) % n].out;
-    const int out = poly[i].out;
-    if (in == out) continue;  // a corner inside one arc (polygon lune), not a Gauss-map vertex
-    const Vec3& approx = poly[i].u;
-    DeepResult::FacetType type;
-    Vec3 u;
-    int fa = ia, fa2 = -1, fb = ib, fb2 = -1;
-    if (!isA(in) && !isA(out)) {
-      // Two arcs of B meet: a face normal of B inside -N_A(a): VF.
-      if (polyB) {
-        const int m = nbrB.size();
-        const int kIn = labelIndex(in), kOut = labelIndex(out);
-        if (kOut != (kIn + 1) % m) continue;
-        fb = B_.vertexFaces(ib)[kIn];
-      } else {
-        fb = approx.dot(nb(0)) >= 0 ? 0 : 1;
-      }
-      type = DeepResult::FacetType::VF;
-      u = nb(fb);
-    } else if (isA(in) && isA(out)) {
-      // Two clipping planes of A meet: minus a face normal of A inside N_B(b): FV.
-      if (polyA) {
-        const int m = nbrA.size();
-        const int k1 = labelIndex(in), k2 = labelIndex(out);
-        if (k2 == (k1 + 1) % m) fa = A_.vertexFaces(ia)[k1];
-        else if (k1 == (k2 + 1) % m) fa = A_.vertexFaces(ia)[k2];
-        else continue;
-      } else {
-        fa = approx.dot(na(0)) <= 0 ? 0 : 1;
-      }
-      type = DeepResult::FacetType::FV;
-      u = -na(fa);
-    } else {
-      // An arc of B crosses a plane of A: edge-edge.
-      fb2 = nbrB[labelIndex(isA(in) ? out : in)];
-      fa2 = nbrA[labelIndex(isA(in) ? in : out)];
-      const Vec3 eB = vb(fb2) - b;
-      const Vec3 eA = va(fa2) - a;
-      u = eB.cross(eA);
-      const double len2 = u.squaredNorm();
-      // Parallel edges span no facet; the facet there is reported by its VF/FV corners.
-      const double minSine = tol::kParallelSine;
-      if (len2 <= minSine * minSine * eB.squaredNorm() * eA.squaredNorm()) continue;
-      u /= std::sqrt(len2);
-      if (u.dot(approx) < 0) u = -u;
-      type = DeepResult::FacetType::EE;
-    }
+    Candidate c;
+    if (!cornerFacet(poly, n, i, ia, ib, c)) continue;
     // The facet passes through the vertex b - a of M, so its offset is u . (b - a).
-    const double d = u.dot(ba);
+    const double d = c.u.dot(ba);
     if (d < best.d) {
       best.d = d;
-      best.u = u;
-      best.type = type;
-      best.fa = fa;
-      best.fa2 = fa2;
-      best.fb = fb;
-      best.fb2 = fb2;
+      best.u = c.u;
+      best.type = c.type;
+      best.fa = c.fa;
+      best.fa2 = c.fa2;
+      best.fb = c.fb;
+      best.fb2 = c.fb2;
       best.hubA = ia;
       best.hubB = ib;
       best.featuresKnown = true;
@@ -241,13 +256,11 @@ void Walker::facetFeatures(const Candidate& c) {
   }
 }
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-bool Walker::footInFacet(const Candidate& c, Vec3& pA, Vec3& pB, int next[4]) {
-  next[0] = next[1] = next[2] = next[3] = -1;
+// The facet's points b - a of its supporting features, in in-plane coordinates about the foot
+// point d*u (which is (0, 0)), and their convex hull (Andrew's monotone chain), counter-clockwise,
+// in s_.hull.
+void Walker::facetPolygon(const Candidate& c) {
   facetFeatures(c);
-
-  // In-plane basis; the foot point d*u has in-plane coordinates (0, 0).
   Vec3 e1 = std::abs(c.u.x()) < 0.6 ? Vec3::UnitX().cross(c.u) : Vec3::UnitY().cross(c.u);
   e1.normalize();
   const Vec3 e2 = c.u.cross(e1);
@@ -260,8 +273,6 @@ bool Walker::footInFacet(const Candidate& c, Vec3& pA, Vec3& pB, int next[4]) {
       pts.push_back({Vec2(e1.dot(diff), e2.dot(diff)), ja, jb});
     }
   }
-
-  // Convex hull of the facet's points (Andrew's monotone chain), counter-clockwise.
   auto& hull = s_.hull;
   hull.clear();
   std::sort(pts.begin(), pts.end(), [](const FacetPoint& x, const FacetPoint& y) {
@@ -270,59 +281,65 @@ bool Walker::footInFacet(const Candidate& c, Vec3& pA, Vec3& pB, int next[4]) {
   const int np = static_cast<int>(pts.size());
   if (np == 1) {
     hull.push_back(pts[0]);
-  } else {
-    hull.resize(2 * np);
-    int k = 0;
-    for (int i = 0; i < np; ++i) {
-      while (k >= 2 && cross2(hull[k - 1].q - hull[k - 2].q, pts[i].q - hull[k - 2].q) <= 0) --k;
-      hull[k++] = pts[i];
-    }
-    for (int i = np - 2, lo = k + 1; i >= 0; --i) {
-      while (k >= lo && cross2(hull[k - 1].q - hull[k - 2].q, pts[i].q - hull[k - 2].q) <= 0) --k;
-      hull[k++] = pts[i];
-    }
-    hull.resize(k - 1);
+    return;
   }
+  hull.resize(2 * np);
+  int k = 0;
+  for (int i = 0; i < np; ++i) {
+    while (k >= 2 && cross2(hull[k - 1].q - hull[k - 2].q, pts[i].q - hull[k - 2].q) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  for (int i = np - 2, lo = k + 1; i >= 0; --i) {
+    while (k >= lo && cross2(hull[k - 1].q - hull[k - 2].q, pts[i].q - hull[k - 2].q) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  hull.resize(k - 1);
+}
+
+void Walker::witness(const FacetPoint& x, const FacetPoint& y, const FacetPoint& z, double wx,
+                     double wy, double wz, Vec3& pA, Vec3& pB) const {
+  pA = wx * va(x.ia) + wy * va(y.ia) + wz * va(z.ia);
+  pB = wx * vb(x.ib) + wy * vb(y.ib) + wz * vb(z.ib);
+}
+
+// A degenerate facet (an edge of M seen edge-on, or a vertex): the foot is in it when it is on
+// the segment; otherwise next[] gets the segment's ends, nearest first.
+bool Walker::footOnSegmentFacet(Vec3& pA, Vec3& pB, int next[4]) const {
+  const auto& hull = s_.hull;
   const int nh = static_cast<int>(hull.size());
-
-  auto witness = [&](const FacetPoint& x, const FacetPoint& y, const FacetPoint& z, double wx,
-                     double wy, double wz) {
-    pA = wx * va(x.ia) + wy * va(y.ia) + wz * va(z.ia);
-    pB = wx * vb(x.ib) + wy * vb(y.ib) + wz * vb(z.ib);
-  };
-
-  if (nh <= 2) {
-    // A degenerate facet (an edge of M seen edge-on): the foot is in it when it is on the segment.
-    const FacetPoint& h0 = hull[0];
-    const FacetPoint& h1 = hull[nh - 1];
-    const Vec2 e = h1.q - h0.q;
-    const double ee = e.squaredNorm();
-    const double s = ee > 0 ? std::clamp(-h0.q.dot(e) / ee, 0.0, 1.0) : 0.0;
-    const Vec2 closest = h0.q + s * e;
-    if (closest.norm() <= tolInside_) {
-      witness(h0, h1, h1, 1 - s, s, 0);
-      return true;
-    }
-    next[0] = h0.ia;
-    next[1] = h0.ib;
-    if (nh == 2) {
-      next[2] = h1.ia;
-      next[3] = h1.ib;
-      if (h1.q.squaredNorm() < h0.q.squaredNorm()) {
-        std::swap(next[0], next[2]);
-        std::swap(next[1], next[3]);
-      }
-    }
-    return false;
+  const FacetPoint& h0 = hull[0];
+  const FacetPoint& h1 = hull[nh - 1];
+  const Vec2 e = h1.q - h0.q;
+  const double ee = e.squaredNorm();
+  const double s = ee > 0 ? std::clamp(-h0.q.dot(e) / ee, 0.0, 1.0) : 0.0;
+  const Vec2 closest = h0.q + s * e;
+  if (closest.norm() <= tolInside_) {
+    witness(h0, h1, h1, 1 - s, s, 0, pA, pB);
+    return true;
   }
+  next[0] = h0.ia;
+  next[1] = h0.ib;
+  if (nh == 2) {
+    next[2] = h1.ia;
+    next[3] = h1.ib;
+    if (h1.q.squaredNorm() < h0.q.squaredNorm()) {
+      std::swap(next[0], next[2]);
+      std::swap(next[1], next[3]);
+    }
+  }
+  return false;
+}
 
-  // Most violated edge: signed distance of the origin to each edge line (positive inside).
+// The edge of the facet polygon the origin lies farthest outside of, beyond tolInside_ (signed
+// distance to each edge line, positive inside), or -1 when the origin is inside.
+int Walker::mostViolatedEdge() const {
+  const auto& hull = s_.hull;
+  const int nh = static_cast<int>(hull.size());
   int worst = -1;
   double worstDist = -tolInside_;
   for (int k = 0; k < nh; ++k) {
     const Vec2& p0 = hull[k].q;
-    const Vec2& p1 = hull[(k + 1) % nh].q;
-    const Vec2 e = p1 - p0;
+    const Vec2 e = hull[(k + 1) % nh].q - p0;
     const double len = e.norm();
     if (len == 0) continue;
     const double dist = cross2(e, -p0) / len;
@@ -331,33 +348,51 @@ bool Walker::footInFacet(const Candidate& c, Vec3& pA, Vec3& pB, int next[4]) {
       worst = k;
     }
   }
-  if (worst < 0) {
-    // Inside: barycentric coordinates in the fan triangle (h0, hk, hk+1) containing the origin.
-    int best = 1;
-    double bestMin = -std::numeric_limits<double>::infinity();
-    double bw[3] = {1, 0, 0};
-    for (int k = 1; k + 1 < nh; ++k) {
-      const Vec2 &p0 = hull[0].q, &p1 = hull[k].q, &p2 = hull[k + 1].q;
-      const double area = cross2(p1 - p0, p2 - p0);
-      if (area <= 0) continue;
-      const double w1 = cross2(-p0, p2 - p0) / area;  // weight of p1
-      const double w2 = cross2(p1 - p0, -p0) / area;  // weight of p2
-      const double w0 = 1 - w1 - w2;
-      const double m = std::min({w0, w1, w2});
-      if (m > bestMin) {
-        bestMin = m;
-        best = k;
-        bw[0] = w0;
-        bw[1] = w1;
-        bw[2] = w2;
-      }
+  return worst;
+}
+
+// Witnesses of a foot inside the facet polygon: barycentric coordinates in the fan triangle
+// (h0, hk, hk+1) that holds it best.
+void Walker::insideWitnesses(Vec3& pA, Vec3& pB) const {
+  const auto& hull = s_.hull;
+  const int nh = static_cast<int>(hull.size());
+  int best = 1;
+  double bestMin = -std::numeric_limits<double>::infinity();
+  double bw[3] = {1, 0, 0};
+  for (int k = 1; k + 1 < nh; ++k) {
+    const Vec2 &p0 = hull[0].q, &p1 = hull[k].q, &p2 = hull[k + 1].q;
+    const double area = cross2(p1 - p0, p2 - p0);
+    if (area <= 0) continue;
+    const double w1 = cross2(-p0, p2 - p0) / area;  // weight of p1
+    const double w2 = cross2(p1 - p0, -p0) / area;  // weight of p2
+    const double w0 = 1 - w1 - w2;
+    const double m = std::min({w0, w1, w2});
+    if (m > bestMin) {
+      bestMin = m;
+      best = k;
+      bw[0] = w0;
+      bw[1] = w1;
+      bw[2] = w2;
     }
-    // Clamp tiny negative weights from round-off so the witnesses lie on the shapes.
-    for (double& w : bw) w = std::max(w, 0.0);
-    const double sum = bw[0] + bw[1] + bw[2];
-    witness(hull[0], hull[best], hull[best + 1], bw[0] / sum, bw[1] / sum, bw[2] / sum);
+  }
+  // Clamp tiny negative weights from round-off so the witnesses lie on the shapes.
+  for (double& w : bw) w = std::max(w, 0.0);
+  const double sum = bw[0] + bw[1] + bw[2];
+  witness(hull[0], hull[best], hull[best + 1], bw[0] / sum, bw[1] / sum, bw[2] / sum, pA, pB);
+}
+
+bool Walker::footInFacet(const Candidate& c, Vec3& pA, Vec3& pB, int next[4]) {
+  next[0] = next[1] = next[2] = next[3] = -1;
+  facetPolygon(c);
+  const auto& hull = s_.hull;
+  const int nh = static_cast<int>(hull.size());
+  if (nh <= 2) return footOnSegmentFacet(pA, pB, next);
+  const int worst = mostViolatedEdge();
+  if (worst < 0) {
+    insideWitnesses(pA, pB);
     return true;
   }
+  // Beyond edge `worst`: the hub pairs at its ends, nearest to the foot first.
   const FacetPoint& h0 = hull[worst];
   const FacetPoint& h1 = hull[(worst + 1) % nh];
   const bool firstNearer = h0.q.squaredNorm() <= h1.q.squaredNorm();

@@ -48,6 +48,8 @@ struct Candidate {
   bool valid() const { return std::isfinite(d); }
 };
 
+inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
 /// Vertices of the facet's supporting features, paired: point k of the facet is b[ib] - a[ia].
 struct FacetPoint {
   Vec2 q;  // in-plane coordinates of b - a (the foot point of the origin is q = 0)
@@ -221,8 +223,16 @@ class Walker {
  private:
   int gaussPolygonB(int ib, const Vec3& b, Corner* poly);
   int clip(const Corner* in, int n, Corner* out, double* side, const Vec3& h, int label);
+  int overlayRegion(int ia, int ib, const Corner** poly);
+  bool cornerFacet(const Corner* poly, int n, int i, int ia, int ib, Candidate& c);
   void supportFeature(const ConvexPolytope& P, bool isB, int start, const Vec3& u, std::vector<int>& out) const;
   void facetFeatures(const Candidate& c);
+  void facetPolygon(const Candidate& c);
+  void witness(const FacetPoint& x, const FacetPoint& y, const FacetPoint& z, double wx, double wy,
+               double wz, Vec3& pA, Vec3& pB) const;
+  bool footOnSegmentFacet(Vec3& pA, Vec3& pB, int next[4]) const;
+  int mostViolatedEdge() const;
+  void insideWitnesses(Vec3& pA, Vec3& pB) const;
   bool aloneOnPlaneA(int v, const Vec3& u, int except) const;
   bool aloneOnPlaneB(int v, const Vec3& u, int except) const;
 
