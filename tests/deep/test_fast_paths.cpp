@@ -1,10 +1,12 @@
 // Fast paths used by the checker's isFree: the polytope's direction index (where support() starts
-// its climb), PairFrame::makeUnchecked and overlapsUnchecked. Each must give what the checked or
-// plain path gives.
+// its climb), PairFrame::makeUnchecked and overlapsUnchecked; and the caller's scratch spaces
+// (PairCache::surface and ::walk) shared across pairs. Each must give what the checked or plain
+// path gives.
 
 #include "deepcheck/deep/pair_frame.h"
 #include "deepcheck/deep/polytope.h"
 #include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/deep/walk_scratch.h"
 
 #include "shapes.h"
 
@@ -14,6 +16,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -172,6 +175,52 @@ BOOST_AUTO_TEST_CASE(overlaps_unchecked_equals_overlaps) {
   }
   BOOST_TEST(overlapping > 300);
   BOOST_TEST(apart > 300);
+}
+
+BOOST_AUTO_TEST_CASE(shared_scratch_gives_the_local_scratch_answers) {
+  // One ExpansionSurface and one WalkScratch shared by pairs of different sizes and kinds, queried
+  // in turn along a motion (warm), must give bit for bit what queries with local scratch give.
+  std::mt19937 rng(71);
+  std::vector<ConvexPolytope> cores;
+  for (int n : {8, 40, 300}) cores.push_back(ConvexPolytope::fromPoints(t::ellipsoidPoints(rng, n, Vector3d(1.0, 0.6, 0.3))));
+  cores.push_back(ConvexPolytope::fromPoints({Vector3d(-0.5, 0, 0), Vector3d(0.5, 0.1, 0)}));  // segment
+  cores.push_back(ConvexPolytope::fromPoints({Vector3d(0.2, 0.1, -0.3)}));                     // point
+  cores.push_back(ConvexPolytope::fromPoints(
+      {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(1, 1, 0), Vector3d(0, 1, 0)}));             // polygon
+  auto surface = std::make_unique<deepcheck::deep::ExpansionSurface>();
+  deepcheck::deep::WalkScratch walk;
+  for (auto method : {deepcheck::deep::PenetrationMethod::Certified, deepcheck::deep::PenetrationMethod::DeepWalk}) {
+    deepcheck::deep::DeepOptions options;
+    options.method = method;
+    const int numPairs = static_cast<int>(cores.size() * cores.size());
+    std::vector<PairCache> shared(numPairs);
+    std::vector<PairCache> local(numPairs);
+    for (PairCache& c : shared) {
+      c.surface = surface.get();
+      c.walk = &walk;
+    }
+    std::vector<Eigen::Quaterniond> spin(numPairs);
+    for (auto& q : spin) q = t::randomRotation(rng);
+    int overlapping = 0;
+    for (int step = 0; step < 5; ++step) {
+      for (int k = 0; k < numPairs; ++k) {
+        const ConvexShape A{&cores[k / cores.size()], 0.1};
+        const ConvexShape B{&cores[k % cores.size()], 0.05};
+        const Eigen::Quaterniond q = Eigen::Quaterniond::Identity().slerp(0.02 * step, spin[k]);
+        const auto X_WB = t::makePose(q, Vector3d(0.3 - 0.01 * step, 0.1, 0.05));
+        const auto X_WA = Eigen::Isometry3d::Identity();
+        const auto r1 = deepcheck::deep::signedDistance(A, X_WA, B, X_WB, &shared[k], options);
+        const auto r2 = deepcheck::deep::signedDistance(A, X_WA, B, X_WB, &local[k], options);
+        BOOST_TEST(r1.distance == r2.distance, "pair " << k << " step " << step);
+        BOOST_TEST((r1.normal - r2.normal).norm() == 0.0);
+        BOOST_TEST((r1.pointA - r2.pointA).norm() == 0.0);
+        BOOST_TEST((r1.pointB - r2.pointB).norm() == 0.0);
+        BOOST_TEST(r1.certified == r2.certified);
+        overlapping += r1.distance < 0.0;
+      }
+    }
+    BOOST_TEST(overlapping > numPairs);  // most pairs overlap: the depth paths ran
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
