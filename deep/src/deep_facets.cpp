@@ -164,18 +164,12 @@ bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
     Candidate c;
     if (!cornerFacet(poly, n, i, ia, ib, c)) continue;
     // The facet passes through the vertex b - a of M, so its offset is u . (b - a).
-    const double d = c.u.dot(ba);
-    if (d < best.d) {
-      best.d = d;
-      best.u = c.u;
-      best.type = c.type;
-      best.fa = c.fa;
-      best.fa2 = c.fa2;
-      best.fb = c.fb;
-      best.fb2 = c.fb2;
-      best.hubA = ia;
-      best.hubB = ib;
-      best.featuresKnown = true;
+    c.d = c.u.dot(ba);
+    if (c.d < best.d) {
+      c.hubA = ia;
+      c.hubB = ib;
+      c.featuresKnown = true;
+      best = c;
       found = true;
     }
   }
