@@ -74,7 +74,7 @@ int Walker::clip(const Corner* in, int n, Corner* out, double* side, const Vec3&
 
 // The Gauss region of hub pair (ia, ib): B's region of ib clipped by the planes of A's edges at
 // ia. Returns its corners' count (< 3: no region) and sets *poly to them (in the scratch space).
-int Walker::overlayRegion(int ia, int ib, const Corner** poly) {
+inline int Walker::overlayRegion(int ia, int ib, const Corner** poly) {
   const Vec3 a = va(ia);
   const IndexRange nbrA = A_.neighbors(ia);
   // Room for the ring plus one corner per clipping plane, in two buffers used alternately.
@@ -97,79 +97,82 @@ int Walker::overlayRegion(int ia, int ib, const Corner** poly) {
   return n;
 }
 
-// The facet of M at corner i of hub pair (ia, ib)'s region: its type, features and normal in
-// `c` (offset and hub left to the caller). False when the corner is not a vertex of the Gauss-map
-// overlay (inside one arc, or between arcs that do not meet) or the edges are parallel.
-bool Walker::cornerFacet(const Corner* poly, int n, int i, int ia, int ib, Candidate& c) {
-  const int in = poly[(i + n - 1) % n].out;
-  const int out = poly[i].out;
-  if (in == out) return false;  // a corner inside one arc (polygon lune), not a Gauss-map vertex
-  const Vec3& approx = poly[i].u;
-  const IndexRange nbrA = A_.neighbors(ia);
-  const IndexRange nbrB = B_.neighbors(ib);
-  c.fa = ia;
-  c.fa2 = -1;
-  c.fb = ib;
-  c.fb2 = -1;
-  if (!isA(in) && !isA(out)) {
-    // Two arcs of B meet: a face normal of B inside -N_A(a): VF.
-    if (B_.kind() == PolytopeKind::Polyhedron) {
-      const int kIn = labelIndex(in), kOut = labelIndex(out);
-      if (kOut != (kIn + 1) % nbrB.size()) return false;
-      c.fb = B_.vertexFaces(ib)[kIn];
-    } else {
-      c.fb = approx.dot(nb(0)) >= 0 ? 0 : 1;
-    }
-    c.type = DeepResult::FacetType::VF;
-    c.u = nb(c.fb);
-  } else if (isA(in) && isA(out)) {
-    // Two clipping planes of A meet: minus a face normal of A inside N_B(b): FV.
-    if (A_.kind() == PolytopeKind::Polyhedron) {
-      const int m = nbrA.size();
-      const int k1 = labelIndex(in), k2 = labelIndex(out);
-      if (k2 == (k1 + 1) % m) c.fa = A_.vertexFaces(ia)[k1];
-      else if (k1 == (k2 + 1) % m) c.fa = A_.vertexFaces(ia)[k2];
-      else return false;
-    } else {
-      c.fa = approx.dot(na(0)) <= 0 ? 0 : 1;
-    }
-    c.type = DeepResult::FacetType::FV;
-    c.u = -na(c.fa);
-  } else {
-    // An arc of B crosses a plane of A: edge-edge.
-    c.fb2 = nbrB[labelIndex(isA(in) ? out : in)];
-    c.fa2 = nbrA[labelIndex(isA(in) ? in : out)];
-    const Vec3 eB = vb(c.fb2) - vb(ib);
-    const Vec3 eA = va(c.fa2) - va(ia);
-    Vec3 u = eB.cross(eA);
-    const double len2 = u.squaredNorm();
-    // Parallel edges span no facet; the facet there is reported by its VF/FV corners.
-    const double minSine = tol::kParallelSine;
-    if (len2 <= minSine * minSine * eB.squaredNorm() * eA.squaredNorm()) return false;
-    u /= std::sqrt(len2);
-    if (u.dot(approx) < 0) u = -u;
-    c.u = u;
-    c.type = DeepResult::FacetType::EE;
-  }
-  return true;
-}
-
+// Every corner of the overlay where two arcs meet is a facet of M through b - a: a face normal of
+// B inside -N_A(a) (VF), minus a face normal of A inside N_B(b) (FV), or the crossing of an edge
+// arc of each (EE). The best (smallest offset) goes to `best`.
 bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
   const Corner* poly = nullptr;
   const int n = overlayRegion(ia, ib, &poly);
   if (n < 3) return false;
-  const Vec3 ba = vb(ib) - va(ia);
+  const Vec3 a = va(ia);
+  const Vec3 b = vb(ib);
+  const Vec3 ba = b - a;
+  const IndexRange nbrA = A_.neighbors(ia);
+  const IndexRange nbrB = B_.neighbors(ib);
+  const bool polyB = B_.kind() == PolytopeKind::Polyhedron;
+  const bool polyA = A_.kind() == PolytopeKind::Polyhedron;
   bool found = false;
   for (int i = 0; i < n; ++i) {
-    Candidate c;
-    if (!cornerFacet(poly, n, i, ia, ib, c)) continue;
+    const int in = poly[(i + n - 1) % n].out;
+    const int out = poly[i].out;
+    if (in == out) continue;  // a corner inside one arc (polygon lune), not a Gauss-map vertex
+    const Vec3& approx = poly[i].u;
+    DeepResult::FacetType type;
+    Vec3 u;
+    int fa = ia, fa2 = -1, fb = ib, fb2 = -1;
+    if (!isA(in) && !isA(out)) {
+      // Two arcs of B meet: a face normal of B inside -N_A(a): VF.
+      if (polyB) {
+        const int m = nbrB.size();
+        const int kIn = labelIndex(in), kOut = labelIndex(out);
+        if (kOut != (kIn + 1) % m) continue;
+        fb = B_.vertexFaces(ib)[kIn];
+      } else {
+        fb = approx.dot(nb(0)) >= 0 ? 0 : 1;
+      }
+      type = DeepResult::FacetType::VF;
+      u = nb(fb);
+    } else if (isA(in) && isA(out)) {
+      // Two clipping planes of A meet: minus a face normal of A inside N_B(b): FV.
+      if (polyA) {
+        const int m = nbrA.size();
+        const int k1 = labelIndex(in), k2 = labelIndex(out);
+        if (k2 == (k1 + 1) % m) fa = A_.vertexFaces(ia)[k1];
+        else if (k1 == (k2 + 1) % m) fa = A_.vertexFaces(ia)[k2];
+        else continue;
+      } else {
+        fa = approx.dot(na(0)) <= 0 ? 0 : 1;
+      }
+      type = DeepResult::FacetType::FV;
+      u = -na(fa);
+    } else {
+      // An arc of B crosses a plane of A: edge-edge.
+      fb2 = nbrB[labelIndex(isA(in) ? out : in)];
+      fa2 = nbrA[labelIndex(isA(in) ? in : out)];
+      const Vec3 eB = vb(fb2) - b;
+      const Vec3 eA = va(fa2) - a;
+      u = eB.cross(eA);
+      const double len2 = u.squaredNorm();
+      // Parallel edges span no facet; the facet there is reported by its VF/FV corners.
+      const double minSine = tol::kParallelSine;
+      if (len2 <= minSine * minSine * eB.squaredNorm() * eA.squaredNorm()) continue;
+      u /= std::sqrt(len2);
+      if (u.dot(approx) < 0) u = -u;
+      type = DeepResult::FacetType::EE;
+    }
     // The facet passes through the vertex b - a of M, so its offset is u . (b - a).
-    c.d = c.u.dot(ba);
-    if (c.d < best.d) {
-      c.hubA = ia;
-      c.hubB = ib;
-      c.featuresKnown = true;
-      best = c;
+    const double d = u.dot(ba);
+    if (d < best.d) {
+      best.d = d;
+      best.u = u;
+      best.type = type;
+      best.fa = fa;
+      best.fa2 = fa2;
+      best.fb = fb;
+      best.fb2 = fb2;
+      best.hubA = ia;
+      best.hubB = ib;
+      best.featuresKnown = true;
       found = true;
     }
   }

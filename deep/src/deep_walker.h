@@ -16,6 +16,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <vector>
 
 namespace deepcheck::deep::detail {
@@ -62,51 +65,59 @@ struct HubMemo {
   static constexpr int kSize = 1024;  // power of two
   struct Entry {
     std::uint64_t key = 0;
-    std::uint32_t gen = 0;
     bool evaluated = false;
     bool valid = false;    // the hub has a Gauss region (a best candidate)
     bool visited = false;  // a walk adopted this hub's best candidate
     Candidate best;
   };
-  std::vector<Entry> table;  // kSize entries, allocated by the first insert
+  static_assert(std::is_trivially_destructible_v<Entry>, "slots are reused without destruction");
+  /// Storage of one entry, constructed when the slot is taken in a query: a new table costs an
+  /// allocation, not a pass over kSize entries (a caller without scratch makes one per query).
+  struct Slot {
+    alignas(Entry) unsigned char bytes[sizeof(Entry)];
+  };
+  std::unique_ptr<std::uint32_t[]> stamps;  // query generation that took each slot (0: none)
+  std::unique_ptr<Slot[]> slots;            // both allocated by the first insert
   std::uint32_t gen = 1;
   int used = 0;
 
   void clear() {
-    ++gen;
     used = 0;
+    if (++gen != 0) return;
+    gen = 1;  // wrapped: no slot may look taken
+    if (stamps) std::fill(stamps.get(), stamps.get() + kSize, 0u);
   }
   static std::uint64_t slot(std::uint64_t key) { return (key * 0x9E3779B97F4A7C15ull) >> 54; }
   static constexpr int kMaxProbe = 32;
+  Entry& entry(std::uint64_t h) { return *std::launder(reinterpret_cast<Entry*>(slots[h].bytes)); }
   /// The entry for key, or null when it is not in the table.
   Entry* lookup(std::uint64_t key) {
-    if (table.empty()) return nullptr;
+    if (!stamps) return nullptr;
     std::uint64_t h = slot(key);
     for (int probe = 0; probe < kMaxProbe; ++probe, h = (h + 1) & (kSize - 1)) {
-      Entry& e = table[h];
-      if (e.gen != gen) return nullptr;
-      if (e.key == key) return &e;
+      if (stamps[h] != gen) return nullptr;
+      if (entry(h).key == key) return &entry(h);
     }
     return nullptr;
   }
   /// The entry for key, created (unevaluated, unvisited) if absent; null when the table is too
   /// full, in which case nothing more is memoized in this query.
   Entry* insert(std::uint64_t key) {
-    if (table.empty()) table.resize(kSize);
+    if (!stamps) {
+      stamps = std::make_unique<std::uint32_t[]>(kSize);  // zeroed
+      slots.reset(new Slot[kSize]);                       // left uninitialized
+    }
     std::uint64_t h = slot(key);
     for (int probe = 0; probe < kMaxProbe; ++probe, h = (h + 1) & (kSize - 1)) {
-      Entry& e = table[h];
-      if (e.gen != gen) {
+      if (stamps[h] != gen) {
         if (used >= kSize / 2) return nullptr;
         ++used;
-        e.gen = gen;
-        e.key = key;
-        e.evaluated = false;
-        e.valid = false;
-        e.visited = false;
-        return &e;
+        stamps[h] = gen;
+        Entry* e = new (slots[h].bytes) Entry();
+        e->key = key;
+        return e;
       }
-      if (e.key == key) return &e;
+      if (entry(h).key == key) return &entry(h);
     }
     return nullptr;
   }
@@ -224,7 +235,6 @@ class Walker {
   int gaussPolygonB(int ib, const Vec3& b, Corner* poly);
   int clip(const Corner* in, int n, Corner* out, double* side, const Vec3& h, int label);
   int overlayRegion(int ia, int ib, const Corner** poly);
-  bool cornerFacet(const Corner* poly, int n, int i, int ia, int ib, Candidate& c);
   void supportFeature(const ConvexPolytope& P, bool isB, int start, const Vec3& u, std::vector<int>& out) const;
   void facetFeatures(const Candidate& c);
   void facetPolygon(const Candidate& c);
