@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -86,15 +87,19 @@ std::string optionString(const QhullOptions& options) {
   return s;
 }
 
-/// Makes the loop counter-clockwise about `normal` (Newell's area vector against it).
+/// Makes the loop counter-clockwise about `normal` (Newell's area vector against it): reversed,
+/// or for a triangle of a triangulated hull its last two corners swapped (so that it still starts
+/// at Qhull's first vertex).
 void orientLoop(std::vector<int>& loop, const std::vector<Eigen::Vector3d>& points,
-                const Eigen::Vector3d& normal) {
+                const Eigen::Vector3d& normal, bool triangulated) {
   Eigen::Vector3d area = Eigen::Vector3d::Zero();
   const Eigen::Vector3d& origin = points[loop[0]];
   for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
     area += (points[loop[i]] - origin).cross(points[loop[i + 1]] - origin);
   }
-  if (area.dot(normal) < 0.0) std::reverse(loop.begin(), loop.end());
+  if (!(area.dot(normal) < 0.0)) return;
+  if (triangulated && loop.size() == 3) std::swap(loop[1], loop[2]);
+  else std::reverse(loop.begin(), loop.end());
 }
 
 /// Reads Qhull's facets and vertices into `out`. Returns Qhull's error code (0: fine); a point id
@@ -114,14 +119,16 @@ int collectFacets(qhT* qh, int numPoints, QhullHull& out, bool* badId) {
     out.vertices.push_back(id);
   }
   FORALLfacets {
-    setT* vertices = qh_facet3vertex(qh, facet);
+    // Triangles (option Qt) keep Qhull's own vertex order; other facets are read around.
+    const bool triangle = qh->TRIangulate && facet->simplicial;
+    setT* vertices = triangle ? facet->vertices : qh_facet3vertex(qh, facet);
     out.loops.emplace_back();
     FOREACHvertex_(vertices) {
       const int id = qh_pointid(qh, vertex->point);
       if (id < 0 || id >= numPoints) *badId = true;
       out.loops.back().push_back(id);
     }
-    qh_settempfree(qh, &vertices);
+    if (!triangle) qh_settempfree(qh, &vertices);
     out.normals.emplace_back(facet->normal[0], facet->normal[1], facet->normal[2]);
     out.offsets.push_back(-facet->offset);
   }
@@ -163,7 +170,9 @@ QhullHull qhullHull(const std::vector<Eigen::Vector3d>& points, const QhullOptio
                      std::to_string(code) + "): " + messages.text());
   }
   if (badId) throw QhullError(name + ": Qhull returned an unknown point id");
-  for (std::size_t f = 0; f < out.loops.size(); ++f) orientLoop(out.loops[f], points, out.normals[f]);
+  for (std::size_t f = 0; f < out.loops.size(); ++f) {
+    orientLoop(out.loops[f], points, out.normals[f], options.triangulate);
+  }
   return out;
 }
 

@@ -41,7 +41,8 @@ struct QhullOptions {
 struct QhullHull {
   /// Points that are hull vertices, in Qhull's vertex order.
   std::vector<int> vertices;
-  /// Facet loops, counter-clockwise seen from outside (about the facet's normal).
+  /// Facet loops, counter-clockwise seen from outside (about the facet's normal). Triangles of a
+  /// triangulated hull start at Qhull's first vertex of the facet.
   std::vector<std::vector<int>> loops;
   /// Per facet: Qhull's unit outward normal n and offset d, the facet's plane being n.x = d.
   std::vector<Eigen::Vector3d> normals;
