@@ -6,6 +6,7 @@
 
 #include "deepcheck/deep/gjk.h"
 #include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/deep/walk_scratch.h"
 
 #include <ccd/ccd.h>
 
@@ -52,6 +53,7 @@ class Warm : public Method {
     primed_.assign(f.queries.size(), deep::PairCache{});
     deep::PairCache carried;
     carried.surface = surface_.get();
+    carried.walk = &walk_;
     for (std::size_t i = 0; i < f.queries.size(); ++i) {
       const Query& q = f.queries[i];
       const ConvexPolytope& A = f.shapes[q.a];
@@ -63,6 +65,7 @@ class Warm : public Method {
       } else {
         deep::PairCache c;
         c.surface = surface_.get();
+        c.walk = &walk_;
         deep::signedDistance(A, q.X_WA, B, q.primeB->iso(), &c, options_);
         primed_[i] = c;
       }
@@ -84,6 +87,7 @@ class Warm : public Method {
   deep::DeepOptions options_;
   std::string prefix_;
   std::unique_ptr<deep::ExpansionSurface> surface_ = std::make_unique<deep::ExpansionSurface>();
+  deep::WalkScratch walk_;
   std::vector<deep::PairCache> primed_;
   deep::PairCache cache_;
   deep::SignedDistanceResult last_;
@@ -96,6 +100,7 @@ class Cold : public Method {
  public:
   explicit Cold(deep::PenetrationMethod method) : options_(optionsFor(method)), prefix_(prefixOf(method)) {
     cache_.surface = surface_.get();
+    cache_.walk = &walk_;
   }
   std::string name() const override { return prefix_ + "_cold"; }
   void beginFamily(const Family&) override {}
@@ -111,6 +116,7 @@ class Cold : public Method {
   deep::DeepOptions options_;
   std::string prefix_;
   std::unique_ptr<deep::ExpansionSurface> surface_ = std::make_unique<deep::ExpansionSurface>();
+  deep::WalkScratch walk_;
   deep::PairCache cache_;
   deep::SignedDistanceResult last_;
 };

@@ -23,6 +23,7 @@
 
 #include "deepcheck/deep/exact.h"
 #include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/deep/walk_scratch.h"
 
 #include <Eigen/Geometry>
 
@@ -80,7 +81,9 @@ int runPd(std::vector<std::string> args) {
 
   deep::PairCache cache;
   deep::ExpansionSurface surface;  // the certified method's scratch, shared by every query
+  deep::WalkScratch walk;          // DEEP's walk's scratch, likewise
   cache.surface = &surface;
+  cache.walk = &walk;
   int lastA = -1;
   int lastB = -1;
   std::chrono::steady_clock::duration total{0};

@@ -13,6 +13,8 @@
 // sphere. A pair reaches the narrow phase only when every bounding test passes.
 
 #include "deepcheck/checker/world.h"
+#include "deepcheck/deep/expansion_surface.h"
+#include "deepcheck/deep/walk_scratch.h"
 
 #include "external_broad_phase.h"
 #include "world_internal.h"
@@ -71,6 +73,10 @@ struct World::Context::Impl {
   std::vector<deep::PairCache> selfCaches;
   std::vector<deep::PairCache> sceneCaches;     // robot piece * scene pieces + world piece
   std::vector<deep::PairCache> obstacleCaches;  // robot piece * obstacle pieces + world piece
+  /// Scratch of the certified expansion and of DEEP's walk, shared by every pair of this context
+  /// (a context runs one query at a time): no allocation or large stack frame per pair.
+  std::unique_ptr<deep::ExpansionSurface> surface = std::make_unique<deep::ExpansionSurface>();
+  std::unique_ptr<deep::WalkScratch> walk = std::make_unique<deep::WalkScratch>();
 
   std::vector<Eigen::Isometry3d> X_WL;
   std::vector<Eigen::Isometry3d> X_WP;  // robot pieces, valid when pieceStamp == stamp
@@ -118,6 +124,8 @@ inline void posePiece(Impl& c, const RobotData& robot, int i) {
 /// pair's support climbs start from each hull's direction index (deep::ConvexPolytope::support).
 inline deep::PairCache* warm(const Impl& c, deep::PairCache& cache) {
   if (!c.coherent) cache.reset();
+  cache.surface = c.surface.get();
+  cache.walk = c.walk.get();
   return &cache;
 }
 
