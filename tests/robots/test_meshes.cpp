@@ -371,6 +371,35 @@ BOOST_AUTO_TEST_CASE(error_empty_mesh) {
   checkThrows([&] { loadMesh(zero); }, {zero, "assimp"});
 }
 
+std::string daeWithIndices(const std::string& indices) {
+  std::string s = daeWithUpAxis("Z_UP");
+  const std::string list = "<p>0 1 2</p>";
+  s.replace(s.find(list), list.size(), "<p>" + indices + "</p>");
+  return s;
+}
+
+BOOST_AUTO_TEST_CASE(error_collada_index_list) {
+  TempDir dir;
+  // assimp 5.2 would loop on these, allocating until memory runs out; the loader stops first.
+  const std::string stray = dir.write("stray.dae", daeWithIndices(std::string("0 1 \x13 2")));
+  checkThrows([&] { loadMesh(stray); }, {stray, "line 13", "<p>", "byte 0x13"});
+  const std::string letter = dir.write("letter.dae", daeWithIndices("0 1 x"));
+  checkThrows([&] { loadMesh(letter); }, {letter, "<p>", "'x' (0x78)"});
+  const std::string negative = dir.write("negative.dae", daeWithIndices("0 -1 2"));
+  checkThrows([&] { loadMesh(negative); }, {negative, "'-'"});
+  const std::string cdata = dir.write("cdata.dae", daeWithIndices("<![CDATA[0 1 2]]>"));
+  checkThrows([&] { loadMesh(cdata); }, {cdata, "<p>", "markup"});
+  // Recognised by content, whatever the extension.
+  const std::string named = dir.write("named.mesh", daeWithIndices("0 1 x"));
+  checkThrows([&] { loadMesh(named); }, {named, "'x'"});
+
+  // Whitespace of every XML kind is fine; a wrong count is still assimp's to report.
+  const TriangleMesh spaced = loadMesh(dir.write("spaced.dae", daeWithIndices("\n\t0\r\n 1\t2 ")));
+  BOOST_TEST(spaced.triangles.size() == 1u);
+  const std::string short_ = dir.write("short.dae", daeWithIndices("0 1"));
+  checkThrows([&] { loadMesh(short_); }, {short_, "assimp", "index count"});
+}
+
 BOOST_AUTO_TEST_CASE(error_missing_mesh_file_and_bad_scale) {
   TempDir dir;
   const std::string missing = (dir.path() / "gone.stl").string();
