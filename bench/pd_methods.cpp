@@ -13,6 +13,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <string>
+#include <utility>
 
 namespace deepcheck::bench {
 namespace {
@@ -42,12 +44,15 @@ const char* prefixOf(deep::PenetrationMethod method) {
 }
 
 /// signedDistance() with a PairCache primed as pd_families.h describes (previous step, or the
-/// same pair at a nearby pose): DEEP's walk ("deep_warm") or the certified method
-/// ("certified_warm"). The certified method's scratch surface is the method's own, reused.
+/// same pair at a nearby pose): DEEP's walk ("deep_warm"), the certified method
+/// ("certified_warm"), or the certified method walking first from the last facet, checked by the
+/// cached surface ("certified_walk_warm", DeepOptions::warmWalk). The certified method's scratch
+/// surface is the method's own, reused.
 class Warm : public Method {
  public:
-  explicit Warm(deep::PenetrationMethod method) : options_(optionsFor(method)), prefix_(prefixOf(method)) {}
-  std::string name() const override { return prefix_ + "_warm"; }
+  explicit Warm(deep::PenetrationMethod method) : options_(optionsFor(method)), name_(std::string(prefixOf(method)) + "_warm") {}
+  Warm(const deep::DeepOptions& options, std::string name) : options_(options), name_(std::move(name)) {}
+  std::string name() const override { return name_; }
 
   void beginFamily(const Family& f) override {
     primed_.assign(f.queries.size(), deep::PairCache{});
@@ -85,7 +90,7 @@ class Warm : public Method {
 
  private:
   deep::DeepOptions options_;
-  std::string prefix_;
+  std::string name_;
   std::unique_ptr<deep::ExpansionSurface> surface_ = std::make_unique<deep::ExpansionSurface>();
   deep::WalkScratch walk_;
   std::vector<deep::PairCache> primed_;
@@ -218,6 +223,9 @@ std::vector<std::unique_ptr<Method>> makeMethods() {
   std::vector<std::unique_ptr<Method>> m;
   m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::Certified));
   m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::Certified));
+  deep::DeepOptions walkFirst = optionsFor(deep::PenetrationMethod::Certified);
+  walkFirst.warmWalk = true;
+  m.push_back(std::make_unique<Warm>(walkFirst, "certified_walk_warm"));
   m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::DeepWalk));
   m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::DeepWalk));
   m.push_back(std::make_unique<ProjectGjk>());

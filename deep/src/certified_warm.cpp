@@ -145,4 +145,24 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
   return r;
 }
 
+CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                                  const CertifiedWarmStart& w, double upper) {
+  CertifiedResult r;
+  r.tau = tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
+  r.upper = upper;
+  MovedSurface m;
+  if (!w.valid || w.A != &A || w.B != &B || !std::isfinite(upper) || !moveSurface(A, B, frame, w, m)) return r;
+  for (int pass = 0; pass <= w.numFaces; ++pass) {
+    const int f = static_cast<int>(std::min_element(m.key, m.key + w.numFaces) - m.key);
+    r.lower = m.key[f];
+    if (r.upper - r.lower <= r.tau) {
+      r.status = CertifiedStatus::Certified;
+      return r;
+    }
+    // A fresh face below the bound: only a support query or an expansion could go further.
+    if (m.fresh[f] || !refresh(w, m, f)) return r;
+  }
+  return r;
+}
+
 }  // namespace deepcheck::deep

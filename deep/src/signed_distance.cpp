@@ -137,6 +137,33 @@ DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
   return d;
 }
 
+/// The warm walk of DeepOptions::warmWalk: one DEEP walk from the pair's last facet, its depth
+/// certified by the cached surface. True, with `p` set, when the surface certifies it.
+bool checkedWarmWalk(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                     PairCache& cache, Penetration& p) {
+  DeepOptions one;
+  one.warmCentroidStart = false;
+  one.refreshEvery = 0;
+  const DeepResult d = deepPenetration(A, B, frame, &cache.deep, one, cache.walk);
+  if (d.status != DeepStatus::Converged) return false;
+  const CertifiedResult c = certifyUpperBound(A, B, frame, *cache.certified, d.depth);
+  if (c.status != CertifiedStatus::Certified) return false;
+  p.deep = d;
+  p.lower = c.lower;
+  p.certified = true;
+  return true;
+}
+
+/// Seeds DEEP's warm start with a certified answer's support pair, for the next checked walk.
+void seedWalk(const CertifiedResult& c, DeepCache& deep) {
+  deep.valid = true;
+  deep.count = 1;
+  deep.hubA[0] = c.supportA;
+  deep.hubB[0] = c.supportB;
+  deep.u[0] = c.direction;
+  deep.warmQueries = 0;
+}
+
 /// The certified method: the expansion's bracket, the answer named by DEEP's facets. Points and
 /// segments (M's facets are enumerated exactly) and expansions that did not converge (flat M,
 /// cap) go to DEEP's walks with all restarts; the bracket's lower bound is kept.
@@ -155,6 +182,10 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   }
   CertifiedResult c;
   const bool warm = options.warmStart && cache && cache->certified;
+  // The walk's hub indices are trusted only when the cached surface is this pair's.
+  const bool walkable = warm && options.warmWalk && cache->deep.valid && cache->certified->valid &&
+                        cache->certified->A == &A && cache->certified->B == &B;
+  if (walkable && checkedWarmWalk(A, B, frame, *cache, p)) return p;
   if (warm) c = certifiedWarm(A, B, frame, *cache->certified);
   if (c.status != CertifiedStatus::Certified) {
     CertifiedOptions co;
@@ -169,6 +200,7 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   p.expansions = c.expansions;
   if (c.status == CertifiedStatus::Certified) {
     if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c, walk);
+    if (options.warmWalk && cache) seedWalk(c, cache->deep);
   } else {
     DeepOptions full = options;
     full.warmStart = false;

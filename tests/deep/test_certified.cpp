@@ -214,6 +214,41 @@ BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
   BOOST_TEST(withoutExpansion > overlapping / 2);
 }
 
+// DeepOptions::warmWalk: a warm walk from the last facet, certified by the cached surface, gives
+// the same answers as cold queries, certified, with a bracket around the exact depth; most steps
+// are answered by the walk.
+BOOST_AUTO_TEST_CASE(warm_walk_checked_by_the_surface) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  DeepOptions walkFirst;
+  walkFirst.warmWalk = true;
+  int overlapping = 0, walked = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
+    PairCache cache;
+    Quaterniond q(p.X_WB.linear());
+    Vector3d t = 0.4 * randomUnit(rng);
+    const Vector3d w = 0.01 * randomUnit(rng), v = 0.005 * randomUnit(rng);
+    for (int k = 0; k < 100; ++k) {
+      q = Quaterniond(Eigen::AngleAxisd(w.norm(), w.normalized())) * q;
+      t += v + 0.002 * Vector3d(U(rng), U(rng), U(rng));
+      const Isometry3d X_WB = makePose(q, t);
+      const SignedDistanceResult warm = signedDistance(p.A, p.X_WA, p.B, X_WB, &cache, walkFirst);
+      const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, X_WB);
+      BOOST_TEST(std::abs(warm.distance - cold.distance) <= 1e-12, "trial " << trial << " step " << k);
+      BOOST_TEST(warm.certified == cold.certified);
+      if (cold.distance >= 0) continue;
+      ++overlapping;
+      walked += warm.deep.starts > 0 && warm.expansions == 0;
+      if (k % 10 == 0) {
+        BOOST_TEST(checkCertified(p.A, p.X_WA, p.B, X_WB, warm, 1e-12).empty(), "trial " << trial << " step " << k);
+      }
+    }
+  }
+  BOOST_TEST(overlapping > 150);
+  BOOST_TEST(walked > overlapping / 2);
+}
+
 // A jump far beyond the cached surface's margin (faces that could have swept over the origin)
 // sends the query cold; a cache of another pair is not used.
 BOOST_AUTO_TEST_CASE(warm_start_goes_cold_when_it_cannot_certify) {

@@ -108,6 +108,13 @@ void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const Expan
 CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
                               const PairFrame& frame, CertifiedWarmStart& warm);
 
+/// The cached surface's check of an upper bound found elsewhere (the depth of a facet of M that a
+/// warm DEEP walk reached): Certified when the moved surface bounds the depth from below within tau
+/// of `upper` (faces are refreshed as in certifiedWarm, no support query is made); NotConverged
+/// otherwise. `upper` must be h_M(u) for some unit u (a facet offset of M is).
+CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                                  const CertifiedWarmStart& warm, double upper);
+
 /// Names the facet of M a certified result converged on, from its certifying face's corners
 /// (certified_facet.cpp): one vertex of A and a face of B (VF), the reverse (FV), or an edge of
 /// each (EE); the facet's exact normal from those features, its offset from one support query in

@@ -58,6 +58,11 @@ struct DeepOptions {
   int maxExpansions = 128;
   /// Use the warm start of the cache when it is valid.
   bool warmStart = true;
+  /// Certified method, warm: first walk from the pair's last facet (one DEEP walk, no restarts)
+  /// and ask the cached surface to certify that facet's depth (certifyUpperBound); the surface's
+  /// own support queries run only when it cannot. Off by default: measured slower than the
+  /// surface alone (docs/penetration-depth.md).
+  bool warmWalk = false;
   /// Run the restart directions (centroid difference, its opposite, principal axes). Without
   /// restarts a cold query runs one walk from the centroid difference: faster, can miss.
   bool restarts = true;
