@@ -2,7 +2,7 @@
 
 #include "deepcheck/robots/tolerances.h"
 
-#include "collada_index_lists.h"
+#include "collada_check.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -181,7 +181,7 @@ TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
     throw std::invalid_argument("mesh file " + inQuotes(path) + " cannot be opened for reading");
   }
 
-  checkColladaIndexLists(path);
+  checkColladaFile(path);
   Assimp::Importer importer;
   // Use COLLADA coordinates as written (see the header comment); keep its unit.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);

@@ -378,9 +378,10 @@ std::string daeWithIndices(const std::string& indices) {
   return s;
 }
 
-BOOST_AUTO_TEST_CASE(error_collada_index_list) {
+BOOST_AUTO_TEST_CASE(error_collada_checks) {
   TempDir dir;
-  // assimp 5.2 would loop on these, allocating until memory runs out; the loader stops first.
+  // assimp 5.2 would loop on these, allocating until memory runs out, or crash; the loader stops
+  // first.
   const std::string stray = dir.write("stray.dae", daeWithIndices(std::string("0 1 \x13 2")));
   checkThrows([&] { loadMesh(stray); }, {stray, "line 13", "<p>", "byte 0x13"});
   const std::string letter = dir.write("letter.dae", daeWithIndices("0 1 x"));
@@ -390,8 +391,26 @@ BOOST_AUTO_TEST_CASE(error_collada_index_list) {
   const std::string cdata = dir.write("cdata.dae", daeWithIndices("<![CDATA[0 1 2]]>"));
   checkThrows([&] { loadMesh(cdata); }, {cdata, "<p>", "markup"});
   // Recognised by content, whatever the extension.
-  const std::string named = dir.write("named.mesh", daeWithIndices("0 1 x"));
-  checkThrows([&] { loadMesh(named); }, {named, "'x'"});
+  const std::string byContent = dir.write("named.mesh", daeWithIndices("0 1 x"));
+  checkThrows([&] { loadMesh(byContent); }, {byContent, "'x'"});
+
+  // Arrays need their count, and an accessor must lie inside its array (assimp 5.2 crashed).
+  std::string noCount = daeWithUpAxis("Z_UP");
+  noCount.replace(noCount.find(" count=\"9\""), 10, "");
+  const std::string uncounted = dir.write("uncounted.dae", noCount);
+  checkThrows([&] { loadMesh(uncounted); }, {uncounted, "line 7", "<float_array> 'g-pos-array'", "no count"});
+  std::string longer = daeWithUpAxis("Z_UP");
+  longer.replace(longer.find("count=\"3\" stride"), 9, "count=\"4\"");
+  const std::string beyond = dir.write("beyond.dae", longer);
+  checkThrows([&] { loadMesh(beyond); }, {beyond, "line 8", "<accessor>", "4 x 3", "beyond the array's 9"});
+  std::string empty = daeWithUpAxis("Z_UP");
+  empty.replace(empty.find("count=\"9\""), 9, "count=\"0\"");
+  const std::string zero = dir.write("zero.dae", empty);
+  checkThrows([&] { loadMesh(zero); }, {zero, "beyond the array's 0"});
+  std::string word = daeWithUpAxis("Z_UP");
+  word.replace(word.find("count=\"9\""), 9, "count=\"nine\"");
+  const std::string named = dir.write("word.dae", word);
+  checkThrows([&] { loadMesh(named); }, {named, "count \"nine\""});
 
   // Whitespace of every XML kind is fine; a wrong count is still assimp's to report.
   const TriangleMesh spaced = loadMesh(dir.write("spaced.dae", daeWithIndices("\n\t0\r\n 1\t2 ")));

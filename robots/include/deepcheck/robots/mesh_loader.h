@@ -37,8 +37,10 @@ namespace deepcheck::robots {
 
 /// Loads `path` as described above and returns the merged, cleaned mesh (source = path).
 /// Throws std::invalid_argument, naming the file, when the file is missing or unreadable, when
-/// a COLLADA index list (<p>, <h>, <vcount>) holds anything but digits and whitespace (assimp 5.2
-/// would exhaust memory on it), when assimp fails (assimp's error string is included), when the scale has a zero or non-finite
+/// a COLLADA file has an index list (<p>, <h>, <vcount>) holding anything but digits and
+/// whitespace, an array without a count or an accessor reaching beyond its array (assimp 5.2 would
+/// exhaust memory or crash on them; the line is named), when assimp fails (assimp's error string
+/// is included), when the scale has a zero or non-finite
 /// component, when a vertex is not finite, or when no non-degenerate triangle is left.
 TriangleMesh loadMesh(const std::string& path,
                       const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
