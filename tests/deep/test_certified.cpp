@@ -77,6 +77,38 @@ Pair randomPair(std::mt19937& rng, int nA, int nB, const Vector3d& base) {
   return p;
 }
 
+/// B's poses along a smooth random motion of `steps` steps from near the pair's pose: a turn of
+/// 0.01 rad and a drift of 5 mm per step, plus up to 2 mm of jitter per coordinate.
+std::vector<Isometry3d> randomMotion(std::mt19937& rng, const Pair& p, int steps = 100) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  Quaterniond q(p.X_WB.linear());
+  Vector3d t = 0.4 * randomUnit(rng);
+  const Vector3d w = 0.01 * randomUnit(rng), v = 0.005 * randomUnit(rng);
+  std::vector<Isometry3d> poses;
+  for (int k = 0; k < steps; ++k) {
+    q = Quaterniond(Eigen::AngleAxisd(w.norm(), w.normalized())) * q;
+    t += v + 0.002 * Vector3d(U(rng), U(rng), U(rng));
+    poses.push_back(makePose(q, t));
+  }
+  return poses;
+}
+
+/// Queries the pair along `poses` with one cache (warm, `options`) and without (cold, defaults):
+/// they must agree to 1e-12 and in `certified`; calls onOverlap(step, X_WB, warm, cold) at the
+/// overlapping steps.
+template <class OnOverlap>
+void compareWarmAndCold(const Pair& p, const std::vector<Isometry3d>& poses, const DeepOptions& options, int trial,
+                        OnOverlap&& onOverlap) {
+  PairCache cache;
+  for (int k = 0; k < static_cast<int>(poses.size()); ++k) {
+    const SignedDistanceResult warm = signedDistance(p.A, p.X_WA, p.B, poses[k], &cache, options);
+    const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, poses[k]);
+    BOOST_TEST(std::abs(warm.distance - cold.distance) <= 1e-12, "trial " << trial << " step " << k);
+    BOOST_TEST(warm.certified == cold.certified);
+    if (cold.distance < 0) onOverlap(k, poses[k], warm, cold);
+  }
+}
+
 DeepOptions methodOptions(PenetrationMethod m) {
   DeepOptions o;
   o.method = m;
@@ -187,28 +219,15 @@ BOOST_AUTO_TEST_CASE(degenerate_starts) {
 // certifies most steps without an expansion.
 BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
   std::mt19937 rng(14);
-  std::uniform_real_distribution<double> U(-1.0, 1.0);
   int overlapping = 0, withoutExpansion = 0;
   for (int trial = 0; trial < 8; ++trial) {
     const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
-    PairCache cache;
-    Quaterniond q(p.X_WB.linear());
-    Vector3d t = 0.4 * randomUnit(rng);
-    const Vector3d w = 0.01 * randomUnit(rng), v = 0.005 * randomUnit(rng);
-    for (int k = 0; k < 100; ++k) {
-      q = Quaterniond(Eigen::AngleAxisd(w.norm(), w.normalized())) * q;
-      t += v + 0.002 * Vector3d(U(rng), U(rng), U(rng));
-      const Isometry3d X_WB = makePose(q, t);
-      const SignedDistanceResult warm = signedDistance(p.A, p.X_WA, p.B, X_WB, &cache);
-      const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, X_WB);
-      BOOST_TEST(std::abs(warm.distance - cold.distance) <= 1e-12, "trial " << trial << " step " << k);
-      BOOST_TEST(warm.certified == cold.certified);
-      if (cold.distance < 0) {
-        ++overlapping;
-        withoutExpansion += warm.expansions == 0;
-        BOOST_TEST(cold.expansions > 0);
-      }
-    }
+    compareWarmAndCold(p, randomMotion(rng, p), DeepOptions{}, trial,
+                       [&](int, const Isometry3d&, const SignedDistanceResult& warm, const SignedDistanceResult& cold) {
+                         ++overlapping;
+                         withoutExpansion += warm.expansions == 0;
+                         BOOST_TEST(cold.expansions > 0);
+                       });
   }
   BOOST_TEST(overlapping > 200);
   BOOST_TEST(withoutExpansion > overlapping / 2);
@@ -219,31 +238,20 @@ BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
 // are answered by the walk.
 BOOST_AUTO_TEST_CASE(warm_walk_checked_by_the_surface) {
   std::mt19937 rng(23);
-  std::uniform_real_distribution<double> U(-1.0, 1.0);
   DeepOptions walkFirst;
   walkFirst.warmWalk = true;
   int overlapping = 0, walked = 0;
   for (int trial = 0; trial < 6; ++trial) {
     const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
-    PairCache cache;
-    Quaterniond q(p.X_WB.linear());
-    Vector3d t = 0.4 * randomUnit(rng);
-    const Vector3d w = 0.01 * randomUnit(rng), v = 0.005 * randomUnit(rng);
-    for (int k = 0; k < 100; ++k) {
-      q = Quaterniond(Eigen::AngleAxisd(w.norm(), w.normalized())) * q;
-      t += v + 0.002 * Vector3d(U(rng), U(rng), U(rng));
-      const Isometry3d X_WB = makePose(q, t);
-      const SignedDistanceResult warm = signedDistance(p.A, p.X_WA, p.B, X_WB, &cache, walkFirst);
-      const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, X_WB);
-      BOOST_TEST(std::abs(warm.distance - cold.distance) <= 1e-12, "trial " << trial << " step " << k);
-      BOOST_TEST(warm.certified == cold.certified);
-      if (cold.distance >= 0) continue;
-      ++overlapping;
-      walked += warm.deep.starts > 0 && warm.expansions == 0;
-      if (k % 10 == 0) {
-        BOOST_TEST(checkCertified(p.A, p.X_WA, p.B, X_WB, warm, 1e-12).empty(), "trial " << trial << " step " << k);
-      }
-    }
+    compareWarmAndCold(p, randomMotion(rng, p), walkFirst, trial,
+                       [&](int k, const Isometry3d& X_WB, const SignedDistanceResult& warm, const SignedDistanceResult&) {
+                         ++overlapping;
+                         walked += warm.deep.starts > 0 && warm.expansions == 0;
+                         if (k % 10 == 0) {
+                           BOOST_TEST(checkCertified(p.A, p.X_WA, p.B, X_WB, warm, 1e-12).empty(),
+                                      "trial " << trial << " step " << k);
+                         }
+                       });
   }
   BOOST_TEST(overlapping > 150);
   BOOST_TEST(walked > overlapping / 2);
