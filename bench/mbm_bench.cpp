@@ -25,7 +25,8 @@
 // Outputs in OUT (default bench/results/mbm): mbm_<scene>.log (one OMPL experiment per scene, the
 // problems as runs of the planners geometric_<planner>_<checker>; extra run properties: problem,
 // checks, checks per second, simplified length, certified, fcl fine verified), mbm_runs.csv,
-// mbm_bench.csv, mbm_bench.md (also printed), mbm_bench_time.png (gnuplot, bench/mbm_plots.gp).
+// mbm_bench.csv, mbm_bench.md (also printed), mbm_bench_time.png (gnuplot, bench/mbm_plots.gp), and
+// for a certified path FCL rejects, fcl_rejected_<scene>_<problem>_<planner>_<checker>.{txt,yaml}.
 // Progress on stderr.
 //
 // Usage: mbm_bench [--problems N] [--runs R] [--time S] [--seed S] [--scenes a,b] [--planners a,b] [--checkers a,b]
@@ -44,6 +45,8 @@
 #include "deepcheck/planners/planner_factory.h"
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/planners/tolerances.h"
+#include "deepcheck/robots/format_number.h"
+#include "deepcheck/robots/moveit_scene.h"
 
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/util/Console.h>
@@ -55,6 +58,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -159,6 +163,7 @@ class CountingChecker : public ob::StateValidityChecker {
 
 /// One problem's two setups.
 struct ProblemSetups {
+  const dp::Problem* problem = nullptr;
   std::shared_ptr<og::SimpleSetup> ours, fcl;
   std::shared_ptr<const dp::StateValidityChecker> ourChecker;
   std::shared_ptr<deepcheck::fcl_reference::FclStateValidityChecker> fclChecker;
@@ -174,6 +179,7 @@ void stopAtFirstSolution(og::SimpleSetup& ss) {
 
 ProblemSetups makeSetups(const std::shared_ptr<deepcheck::checker::World>& world, const dp::Problem& problem) {
   ProblemSetups s;
+  s.problem = &problem;
   s.ours = dp::makeSimpleSetup(world, pandaOptions());
   dp::setStartAndGoal(*s.ours, problem.start, problem.goal);
   s.ourChecker = dp::validityCheckerOf(*s.ours);
@@ -207,9 +213,28 @@ struct SceneRun {
   std::vector<MbmRecord>& records;
 };
 
-/// The record of a finished run: simplified, certified and checked by FCL when solved.
+/// Writes a certified path that FCL's fine check rejects, for a look at it: FILE.yaml, the problem's
+/// scene, and FILE.txt, the path (one configuration per line, as `deepcheck plan --out` writes it,
+/// so that `deepcheck view` shows it), after comment lines naming the run and the first motion FCL
+/// rejects.
+void saveRejectedPath(const std::string& file, const dp::Problem& problem, const og::PathGeometric& path,
+                      const dp::PathCheck& fclCheck, const std::string& run) {
+  std::ofstream(file + ".yaml") << deepcheck::robots::writePlanningScene(problem.scene);
+  std::ofstream out(file + ".txt");
+  out << "# " << run << ": certified, rejected by FCL at " << fmt(dp::tol::kFineResolution, "%.17g")
+      << " rad (first rejected motion " << fclCheck.firstInvalidMotion << ", " << fclCheck.invalidMotions
+      << " motion(s))\n# scene " << std::filesystem::path(file).filename().string() << ".yaml\n";
+  for (const Eigen::VectorXd& q : dp::pathConfigurations(path)) {
+    for (int i = 0; i < q.size(); ++i) out << (i ? " " : "") << deepcheck::robots::formatNumber(q[i]);
+    out << "\n";
+  }
+  std::fprintf(stderr, "wrote %s.txt and %s.yaml\n", file.c_str(), file.c_str());
+}
+
+/// The record of a finished run: simplified, certified and checked by FCL when solved. A certified
+/// path FCL rejects is saved as rejectFile.{txt,yaml}.
 MbmRecord measureRun(og::SimpleSetup& ss, const ProblemSetups& setups, const std::string& checker,
-                     ot::Benchmark::RunProperties& run, double checks) {
+                     ot::Benchmark::RunProperties& run, double checks, const std::string& rejectFile) {
   MbmRecord r;
   r.checker = checker;
   r.time = std::stod(run["time REAL"]);
@@ -223,7 +248,15 @@ MbmRecord measureRun(og::SimpleSetup& ss, const ProblemSetups& setups, const std
     r.certifiedAsPlanned = cert.initial.valid;
     r.certified = cert.valid;
     const auto* fcl = setups.fclChecker.get();
-    r.fclFine = dp::checkPathFine(path, [fcl](const Eigen::VectorXd& q) { return fcl->isFree(q); }).valid;
+    const dp::PathCheck fine = dp::checkPathFine(path, [fcl](const Eigen::VectorXd& q) { return fcl->isFree(q); });
+    r.fclFine = fine.valid;
+    if (r.certified && !r.fclFine) {
+      try {
+        saveRejectedPath(rejectFile, *setups.problem, path, fine, rejectFile);
+      } catch (const std::exception& e) {  // a scene without a file form: the run goes on
+        std::fprintf(stderr, "mbm_bench: %s not saved: %s\n", rejectFile.c_str(), e.what());
+      }
+    }
   }
   run["checks INTEGER"] = fmt(checks, "%.0f");
   run["checks per second REAL"] = fmt(r.time > 0.0 ? checks / r.time : 0.0, "%.17g");
@@ -260,7 +293,9 @@ void benchmarkChecker(SceneRun& ctx, int k, int count, const ProblemSetups& setu
   bench->setPreRunEvent([=](const ob::PlannerPtr&) { resetChecks(); });
   bench->setPostRunEvent([=, &setups](const ob::PlannerPtr& planner, ot::Benchmark::RunProperties& run) {
     const double n = checks();  // before simplification and certification
-    MbmRecord r = measureRun(*setup, setups, checker, run, n);
+    const std::string reject = c->opt.out + "/fcl_rejected_" + c->scene.name + "_" + std::to_string(k) + "_" +
+                               planner->getName() + "_" + checker;
+    MbmRecord r = measureRun(*setup, setups, checker, run, n, reject);
     r.scene = c->scene.name;
     r.problem = k;
     r.planner = planner->getName();
