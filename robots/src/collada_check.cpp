@@ -31,9 +31,14 @@ std::string lowercase(std::string s) {
   return s;
 }
 
-bool looksLikeCollada(const std::string& path, const std::string& text) {
+/// True for the .dae extension, or "<COLLADA" among the first bytes; reads no more than those.
+bool looksLikeCollada(const std::string& path) {
   if (lowercase(std::filesystem::path(path).extension().string()) == ".dae") return true;
-  return lowercase(text.substr(0, kColladaSignatureBytes)).find("<collada") != std::string::npos;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(kColladaSignatureBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return lowercase(head).find("<collada") != std::string::npos;
 }
 
 bool isXmlSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
@@ -173,8 +178,8 @@ class Checker {
       if (!n) reject(tag.at, "<accessor> of '" + std::string(*source) + "' has " + std::string(key) + " \"" + std::string(*value) + "\", not a non-negative integer");
       return *n;
     };
-    const std::uint64_t count = number("count", 0), stride = number("stride", 1), offset = number("offset", 0);
     if (!attribute(text_, tag, "count")) reject(tag.at, "<accessor> of '" + std::string(*source) + "' has no count attribute");
+    const std::uint64_t count = number("count", 0), stride = number("stride", 1), offset = number("offset", 0);
     const unsigned __int128 needed = static_cast<unsigned __int128>(count) * stride + offset;
     if (needed > array->second) {
       reject(tag.at, "<accessor> of '" + std::string(*source) + "' reads " + std::to_string(count) + " x " +
@@ -192,9 +197,9 @@ class Checker {
 }  // namespace
 
 void checkColladaFile(const std::string& path) {
+  if (!looksLikeCollada(path)) return;  // an STL or OBJ file is not read a second time
   std::ifstream in(path, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!looksLikeCollada(path, text)) return;
   Checker(path, text).run();
 }
 
