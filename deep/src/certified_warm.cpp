@@ -101,15 +101,34 @@ void setFace(const CertifiedWarmStart& w, const MovedSurface& m, int f, Certifie
   }
 }
 
+/// The warm queries' common start: the tolerance, and the cached surface moved to the current
+/// pose. False when the surface is not this pair's or a face could have crossed the origin.
+bool startWarm(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+               const CertifiedWarmStart& w, CertifiedResult& r, MovedSurface& m) {
+  r.tau = tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
+  return w.belongsTo(A, B) && moveSurface(A, B, frame, w, m);
+}
+
+/// Refreshes the nearest face while it is stale and below r.upper by more than tau; r.lower is
+/// then its key. Returns that face, or -1 for a degenerate face. Each refresh makes one more face
+/// fresh, so this ends.
+int settleNearest(const CertifiedWarmStart& w, MovedSurface& m, CertifiedResult& r) {
+  for (;;) {
+    const int f = static_cast<int>(std::min_element(m.key, m.key + w.numFaces) - m.key);
+    r.lower = m.key[f];
+    if (r.upper - r.lower <= r.tau || m.fresh[f]) return f;
+    if (!refresh(w, m, f)) return -1;
+  }
+}
+
 }  // namespace
 
 CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
                               const PairFrame& frame, CertifiedWarmStart& w) {
   CertifiedResult r;
-  r.tau = tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
   r.upper = std::numeric_limits<double>::infinity();
   MovedSurface m;
-  if (!w.valid || w.A != &A || w.B != &B || !moveSurface(A, B, frame, w, m)) return r;
+  if (!startWarm(A, B, frame, w, r, m)) return r;
   auto supportIn = [&](const Vec3& u) {
     w.hintA = A.support(-u, w.hintA);
     w.hintB = B.support(frame.toB(u), w.hintB);
@@ -122,23 +141,17 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
     }
   };
   supportIn(w.direction);
+  const int f = settleNearest(w, m, r);
+  if (f < 0) return r;
   int named = -1;  // the face whose normal gave the upper bound
-  for (int pass = 0; pass <= w.numFaces; ++pass) {
-    const int f = static_cast<int>(std::min_element(m.key, m.key + w.numFaces) - m.key);
-    r.lower = m.key[f];
-    if (r.upper - r.lower <= r.tau) break;
-    if (!m.fresh[f]) {
-      if (!refresh(w, m, f)) return r;
-      continue;
-    }
+  if (r.upper - r.lower > r.tau) {
     // The nearest face is up to date and still below the upper bound: query its normal once.
-    if (!(m.d[f] > 0) || named == f) return r;
+    if (!(m.d[f] > 0)) return r;
     const double before = r.upper;
     supportIn(m.n[f]);
     if (r.upper < before) named = f;
     if (r.upper - r.lower > r.tau) return r;
   }
-  if (r.upper - r.lower > r.tau) return r;
   r.status = CertifiedStatus::Certified;
   if (named >= 0) setFace(w, m, named, r);
   w.direction = r.direction;
@@ -148,20 +161,11 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
 CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                                   const CertifiedWarmStart& w, double upper) {
   CertifiedResult r;
-  r.tau = tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
   r.upper = upper;
   MovedSurface m;
-  if (!w.valid || w.A != &A || w.B != &B || !std::isfinite(upper) || !moveSurface(A, B, frame, w, m)) return r;
-  for (int pass = 0; pass <= w.numFaces; ++pass) {
-    const int f = static_cast<int>(std::min_element(m.key, m.key + w.numFaces) - m.key);
-    r.lower = m.key[f];
-    if (r.upper - r.lower <= r.tau) {
-      r.status = CertifiedStatus::Certified;
-      return r;
-    }
-    // A fresh face below the bound: only a support query or an expansion could go further.
-    if (m.fresh[f] || !refresh(w, m, f)) return r;
-  }
+  if (!std::isfinite(upper) || !startWarm(A, B, frame, w, r, m)) return r;
+  // No support query: a fresh face still below the bound leaves the depth uncertified.
+  if (settleNearest(w, m, r) >= 0 && r.upper - r.lower <= r.tau) r.status = CertifiedStatus::Certified;
   return r;
 }
 

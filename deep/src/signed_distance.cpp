@@ -109,21 +109,33 @@ struct Penetration {
   int expansions = 0;
 };
 
-/// DEEP's walk from the certified direction, for the faces certifiedFacet() cannot name: it names
-/// the facet of M the bracket converged on (VF, FV or EE, witnesses, exact normal). Its depth is a facet offset of M, an upper bound; the
-/// answer is the better of it and the expansion's own upper bound.
-DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                     const CertifiedResult& c, WalkScratch* walk) {
+/// DEEP's warm start at a certified answer: one basin, at its support pair and direction.
+DeepCache walkStartAt(const CertifiedResult& c) {
   DeepCache start;
   start.valid = true;
   start.count = 1;
   start.hubA[0] = c.supportA;
   start.hubB[0] = c.supportB;
   start.u[0] = c.direction;
+  return start;
+}
+
+/// One walk from the cache's basins: no extra start from the centroid difference, no periodic
+/// cold refresh.
+DeepOptions oneWalk() {
   DeepOptions one;
   one.warmCentroidStart = false;
   one.refreshEvery = 0;
-  DeepResult d = deepPenetration(A, B, frame, &start, one, walk);
+  return one;
+}
+
+/// DEEP's walk from the certified direction, for the faces certifiedFacet() cannot name: it names
+/// the facet of M the bracket converged on (VF, FV or EE, witnesses, exact normal). Its depth is a facet offset of M, an upper bound; the
+/// answer is the better of it and the expansion's own upper bound.
+DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                     const CertifiedResult& c, WalkScratch* walk) {
+  DeepCache start = walkStartAt(c);
+  DeepResult d = deepPenetration(A, B, frame, &start, oneWalk(), walk);
   if (d.depth <= c.upper) return d;
   // The walk found nothing better than the support: answer with the support itself.
   d.status = DeepStatus::Converged;
@@ -141,10 +153,7 @@ DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
 /// certified by the cached surface. True, with `p` set, when the surface certifies it.
 bool checkedWarmWalk(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                      PairCache& cache, Penetration& p) {
-  DeepOptions one;
-  one.warmCentroidStart = false;
-  one.refreshEvery = 0;
-  const DeepResult d = deepPenetration(A, B, frame, &cache.deep, one, cache.walk);
+  const DeepResult d = deepPenetration(A, B, frame, &cache.deep, oneWalk(), cache.walk);
   if (d.status != DeepStatus::Converged) return false;
   const CertifiedResult c = certifyUpperBound(A, B, frame, *cache.certified, d.depth);
   if (c.status != CertifiedStatus::Certified) return false;
@@ -152,16 +161,6 @@ bool checkedWarmWalk(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
   p.lower = c.lower;
   p.certified = true;
   return true;
-}
-
-/// Seeds DEEP's warm start with a certified answer's support pair, for the next checked walk.
-void seedWalk(const CertifiedResult& c, DeepCache& deep) {
-  deep.valid = true;
-  deep.count = 1;
-  deep.hubA[0] = c.supportA;
-  deep.hubB[0] = c.supportB;
-  deep.u[0] = c.direction;
-  deep.warmQueries = 0;
 }
 
 /// The certified method: the expansion's bracket, the answer named by DEEP's facets. Points and
@@ -183,8 +182,7 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   CertifiedResult c;
   const bool warm = options.warmStart && cache && cache->certified;
   // The walk's hub indices are trusted only when the cached surface is this pair's.
-  const bool walkable = warm && options.warmWalk && cache->deep.valid && cache->certified->valid &&
-                        cache->certified->A == &A && cache->certified->B == &B;
+  const bool walkable = warm && options.warmWalk && cache->deep.valid && cache->certified->belongsTo(A, B);
   if (walkable && checkedWarmWalk(A, B, frame, *cache, p)) return p;
   if (warm) c = certifiedWarm(A, B, frame, *cache->certified);
   if (c.status != CertifiedStatus::Certified) {
@@ -200,7 +198,7 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   p.expansions = c.expansions;
   if (c.status == CertifiedStatus::Certified) {
     if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c, walk);
-    if (options.warmWalk && cache) seedWalk(c, cache->deep);
+    if (options.warmWalk && cache) cache->deep = walkStartAt(c);  // the next checked walk starts here
   } else {
     DeepOptions full = options;
     full.warmStart = false;

@@ -257,6 +257,29 @@ BOOST_AUTO_TEST_CASE(warm_walk_checked_by_the_surface) {
   BOOST_TEST(walked > overlapping / 2);
 }
 
+// certifyUpperBound: the cached surface certifies the exact depth as an upper bound, refuses one
+// that is too deep by more than tau, and refuses to speak for another pair.
+BOOST_AUTO_TEST_CASE(surface_checks_an_upper_bound) {
+  std::mt19937 rng(29);
+  const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
+  const Pair other = randomPair(rng, 100, 100, Vector3d::Zero());
+  PairCache cache;
+  const SignedDistanceResult first = signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache);
+  BOOST_TEST_REQUIRE(first.distance < 0);
+  BOOST_TEST_REQUIRE(static_cast<bool>(cache.certified));
+  const PairFrame frame = PairFrame::make(p.A, p.X_WA, p.B, p.X_WB);
+  const CertifiedResult exact = certifyUpperBound(p.A, p.B, frame, *cache.certified, -first.distance);
+  BOOST_TEST((exact.status == CertifiedStatus::Certified));
+  BOOST_TEST(exact.lower <= exact.upper);
+  const double tooDeep = -first.distance + 1e-6 * certifyScale(p.A, p.X_WA, p.B, p.X_WB);
+  const CertifiedResult deeper = certifyUpperBound(p.A, p.B, frame, *cache.certified, tooDeep);
+  BOOST_TEST((deeper.status == CertifiedStatus::NotConverged));
+  BOOST_TEST(deeper.lower <= -first.distance + deeper.tau);
+  const PairFrame otherFrame = PairFrame::make(other.A, other.X_WA, other.B, other.X_WB);
+  const CertifiedResult foreign = certifyUpperBound(other.A, other.B, otherFrame, *cache.certified, 1.0);
+  BOOST_TEST((foreign.status == CertifiedStatus::NotConverged));
+}
+
 // A jump far beyond the cached surface's margin (faces that could have swept over the origin)
 // sends the query cold; a cache of another pair is not used.
 BOOST_AUTO_TEST_CASE(warm_start_goes_cold_when_it_cannot_certify) {

@@ -96,6 +96,8 @@ struct CertifiedWarmStart {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< the last answer's direction
   int hintA = 0;
   int hintB = 0;
+  /// A valid surface of the pair (A, B): only then do its index pairs name vertices of theirs.
+  bool belongsTo(const ConvexPolytope& a, const ConvexPolytope& b) const { return valid && A == &a && B == &b; }
 };
 
 /// Saves the surface of a certified cold query as the reference of the pair's warm start; leaves
