@@ -45,7 +45,6 @@
 #include "deepcheck/planners/planner_factory.h"
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/planners/tolerances.h"
-#include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/moveit_scene.h"
 
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
@@ -214,20 +213,16 @@ struct SceneRun {
 };
 
 /// Writes a certified path that FCL's fine check rejects, for a look at it: FILE.yaml, the problem's
-/// scene, and FILE.txt, the path (one configuration per line, as `deepcheck plan --out` writes it,
-/// so that `deepcheck view` shows it), after comment lines naming the run and the first motion FCL
-/// rejects.
+/// scene, and FILE.txt, the path as `deepcheck plan --out` writes it (so that `deepcheck view`
+/// shows it), after comment lines naming the first motion FCL rejects and the scene file.
 void saveRejectedPath(const std::string& file, const dp::Problem& problem, const og::PathGeometric& path,
-                      const dp::PathCheck& fclCheck, const std::string& run) {
+                      const dp::PathCheck& fclCheck) {
   std::ofstream(file + ".yaml") << deepcheck::robots::writePlanningScene(problem.scene);
   std::ofstream out(file + ".txt");
-  out << "# " << run << ": certified, rejected by FCL at " << fmt(dp::tol::kFineResolution, "%.17g")
-      << " rad (first rejected motion " << fclCheck.firstInvalidMotion << ", " << fclCheck.invalidMotions
-      << " motion(s))\n# scene " << std::filesystem::path(file).filename().string() << ".yaml\n";
-  for (const Eigen::VectorXd& q : dp::pathConfigurations(path)) {
-    for (int i = 0; i < q.size(); ++i) out << (i ? " " : "") << deepcheck::robots::formatNumber(q[i]);
-    out << "\n";
-  }
+  out << "# certified, rejected by FCL at " << fmt(dp::tol::kFineResolution, "%.17g") << " rad (first rejected motion "
+      << fclCheck.firstInvalidMotion << ", " << fclCheck.invalidMotions << " motion(s))\n# scene "
+      << std::filesystem::path(file).filename().string() << ".yaml\n";
+  dp::writePath(path, out);
   std::fprintf(stderr, "wrote %s.txt and %s.yaml\n", file.c_str(), file.c_str());
 }
 
@@ -252,7 +247,7 @@ MbmRecord measureRun(og::SimpleSetup& ss, const ProblemSetups& setups, const std
     r.fclFine = fine.valid;
     if (r.certified && !r.fclFine) {
       try {
-        saveRejectedPath(rejectFile, *setups.problem, path, fine, rejectFile);
+        saveRejectedPath(rejectFile, *setups.problem, path, fine);
       } catch (const std::exception& e) {  // a scene without a file form: the run goes on
         std::fprintf(stderr, "mbm_bench: %s not saved: %s\n", rejectFile.c_str(), e.what());
       }
