@@ -91,9 +91,11 @@ Eigen::Isometry3d queryPose(const robots::PlanningScene& scene, const ObjectQuer
   return robots::shapeWorldPoses(one, robot, q, aliases)[0][0] * query.offset * eeOffset.inverse();
 }
 
-robots::IkOptions queryIkOptions(const ObjectQuery& query, const robots::IkOptions& base) {
+robots::IkOptions queryIkOptions(const ObjectQuery& query, const robots::IkOptions& base,
+                                 const Eigen::Isometry3d& eeOffset) {
   robots::IkOptions o = base;
-  o.positionTolerance = query.positionTolerance.minCoeff() / 2.0;
+  o.positionBox = query.positionTolerance / 2.0;
+  o.boxPose = eeOffset;
   o.orientationTolerance = query.orientationTolerance.minCoeff();
   return o;
 }
@@ -128,31 +130,65 @@ void checkQueries(const QuerySet& queries, const robots::PlanningScene& nominal)
   }
 }
 
+/// What one problem's generation works on.
+struct Generation {
+  checker::World& world;
+  const StateValidityChecker& checker;
+  const robots::PlanningScene& nominal;
+  const std::vector<SceneVariation>& variations;
+  const QuerySet& queries;
+  const ProblemOptions& options;
+  Eigen::VectorXd q0;
+  std::string variationSource;
+};
+
+/// The failed IK that came closest to its query, for the error when a problem cannot be made.
+struct ClosestMiss {
+  std::string query;
+  robots::IkResult result;
+  bool any = false;
+  void offer(const std::string& name, const robots::IkResult& r) {
+    if (!any || r.error.normalized < result.error.normalized) {
+      query = name;
+      result = r;
+      any = true;
+    }
+  }
+  std::string describe() const {
+    if (!any) return "";
+    std::ostringstream m;
+    m << "; closest inverse kinematics: query '" << query << "', " << robots::toString(result.status)
+      << ", normalized error " << result.error.normalized << " (1 = the query's tolerance; the tip "
+      << result.error.position << " m and " << result.error.orientation << " rad from the query pose)";
+    return m.str();
+  }
+};
+
 /// Collision-free IK for `query` in the current scene; true and `q` set on success.
-bool groundQuery(const StateValidityChecker& checker, const robots::PlanningScene& scene, const ObjectQuery& query,
-                 const ProblemOptions& options, const Eigen::VectorXd& q0, std::mt19937_64& rng, Eigen::VectorXd& q,
-                 Eigen::Isometry3d& X_WT) {
-  X_WT = queryPose(scene, query, checker.world().robot(), q0, options.frameAliases, options.eeOffset);
-  robots::IkOptions ik = queryIkOptions(query, options.ik);
+bool groundQuery(const Generation& g, const robots::PlanningScene& scene, const ObjectQuery& query,
+                 std::mt19937_64& rng, Eigen::VectorXd& q, Eigen::Isometry3d& X_WT, ClosestMiss& miss) {
+  X_WT = queryPose(scene, query, g.checker.world().robot(), g.q0, g.options.frameAliases, g.options.eeOffset);
+  robots::IkOptions ik = queryIkOptions(query, g.options.ik, g.options.eeOffset);
   ik.seed = rng();
-  const robots::IkResult r = solveCollisionFree(checker, options.tipLink, X_WT, ik);
-  if (!r.converged()) return false;
+  const robots::IkResult r = solveCollisionFree(g.checker, g.options.tipLink, X_WT, ik);
+  if (!r.converged()) {
+    miss.offer(query.name(), r);
+    return false;
+  }
   q = r.q;
   return true;
 }
 
 /// One try at a problem in a freshly varied scene; true when `p` is complete.
-bool tryProblem(checker::World& world, const StateValidityChecker& checker, const robots::PlanningScene& nominal,
-                const std::vector<SceneVariation>& variations, const QuerySet& queries,
-                const ProblemOptions& options, const Eigen::VectorXd& q0, std::mt19937_64& rng,
-                const std::string& variationSource, Problem& p) {
-  p.scene = varyScene(nominal, variations, rng, variationSource);
-  const SceneInWorld placed(world, p.scene, {options.frameAliases, q0});
+bool tryProblem(const Generation& g, std::mt19937_64& rng, Problem& p, ClosestMiss& miss) {
+  p.scene = varyScene(g.nominal, g.variations, rng, g.variationSource);
+  const SceneInWorld placed(g.world, p.scene, {g.options.frameAliases, g.q0});
+  const QuerySet& queries = g.queries;
   const ObjectQuery& goal = queries.goal[std::uniform_int_distribution<std::size_t>(0, queries.goal.size() - 1)(rng)];
   p.goalQuery = goal.name();
   if (queries.start.empty()) {
-    p.start = options.start;
-    if (!checker.isValid(p.start)) return false;
+    p.start = g.options.start;
+    if (!g.checker.isValid(p.start)) return false;
   } else {
     std::vector<const ObjectQuery*> starts;
     for (const ObjectQuery& s : queries.start) {
@@ -162,12 +198,12 @@ bool tryProblem(checker::World& world, const StateValidityChecker& checker, cons
     const ObjectQuery& start = *starts[std::uniform_int_distribution<std::size_t>(0, starts.size() - 1)(rng)];
     p.startQuery = start.name();
     Eigen::Isometry3d X_WS;
-    if (!groundQuery(checker, p.scene, start, options, q0, rng, p.start, X_WS)) return false;
+    if (!groundQuery(g, p.scene, start, rng, p.start, X_WS, miss)) return false;
   }
-  if (!groundQuery(checker, p.scene, goal, options, q0, rng, p.goal, p.goalPose)) return false;
-  const robots::RobotModel& robot = world.robot();
-  p.goalError = robots::poseError(robot, robots::requireLink(robot, options.tipLink), p.goal, p.goalPose,
-                                  queryIkOptions(goal, options.ik));
+  if (!groundQuery(g, p.scene, goal, rng, p.goal, p.goalPose, miss)) return false;
+  const robots::RobotModel& robot = g.world.robot();
+  p.goalError = robots::poseError(robot, robots::requireLink(robot, g.options.tipLink), p.goal, p.goalPose,
+                                  queryIkOptions(goal, g.options.ik, g.options.eeOffset));
   return true;
 }
 
@@ -188,17 +224,20 @@ std::vector<Problem> generateProblems(checker::World& world, const StateValidity
   }
   if (count < 0 || options.maxAttempts < 1) throw std::invalid_argument("count must be >= 0 and maxAttempts >= 1");
   checkQueries(queries, nominal);
-  const Eigen::VectorXd q0 = options.start.size() == robot.numVariables() ? options.start : robot.defaultConfiguration();
+  const Generation g{world, checker, nominal, variations, queries, options,
+                     options.start.size() == robot.numVariables() ? options.start : robot.defaultConfiguration(),
+                     variationSource};
   std::mt19937_64 rng(options.seed);
   std::vector<Problem> problems;
   for (int n = 0; n < count; ++n) {
     Problem p;
-    while (!tryProblem(world, checker, nominal, variations, queries, options, q0, rng, variationSource, p)) {
+    ClosestMiss miss;
+    while (!tryProblem(g, rng, p, miss)) {
       if (++p.attempts >= options.maxAttempts) {
         std::ostringstream m;
         m << "problem " << n << ": no collision-free start and goal in " << options.maxAttempts
           << " varied scenes (last goal query '" << p.goalQuery << "'" << (p.startQuery.empty() ? "" : ", start query '" + p.startQuery + "'")
-          << ", tip '" << options.tipLink << "')";
+          << ", tip '" << options.tipLink << "')" << miss.describe();
         throw std::runtime_error(m.str());
       }
     }

@@ -17,22 +17,40 @@ namespace {
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 
-/// [rotation vector of R_WT R_WL^T; p_WT - p_WL], in W: the angular rows first, as the spatial
-/// Jacobian's.
-Vector6d errorVector(const Eigen::Isometry3d& X_WL, const Eigen::Isometry3d& X_WT) {
+bool hasBox(const IkOptions& options) { return (options.positionBox.array() > 0.0).all(); }
+
+/// Origin of the box frame B, in B's target frame (see the file comment of the header).
+Eigen::Vector3d boxOffset(const Eigen::Isometry3d& X_WL, const Eigen::Isometry3d& X_WT, const IkOptions& options) {
+  const Eigen::Isometry3d X_WBtarget = X_WT * options.boxPose;
+  return X_WBtarget.inverse() * (X_WL * options.boxPose.translation());
+}
+
+/// [rotation vector of R_WT R_WL^T; position error], in W: the angular rows first, as the spatial
+/// Jacobian's. The position error is p_WT - p_WL, or with a box the step from B's origin to the
+/// box scaled by tol::kIkBoxAimScale.
+Vector6d errorVector(const Eigen::Isometry3d& X_WL, const Eigen::Isometry3d& X_WT, const IkOptions& options) {
   const Eigen::AngleAxisd rotation(X_WT.linear() * X_WL.linear().transpose());
   Vector6d e;
   e.head<3>() = rotation.angle() * rotation.axis();
   e.tail<3>() = X_WT.translation() - X_WL.translation();
+  if (hasBox(options)) {
+    const Eigen::Vector3d d = boxOffset(X_WL, X_WT, options);
+    const Eigen::Vector3d aim = tol::kIkBoxAimScale * options.positionBox;
+    const Eigen::Vector3d outside = d - d.cwiseMax(-aim).cwiseMin(aim);
+    e.tail<3>() = (X_WT.linear() * options.boxPose.linear()) * -outside;
+  }
   return e;
 }
 
-PoseError errorOf(const Vector6d& e, const IkOptions& options) {
+PoseError errorOf(const Eigen::Isometry3d& X_WL, const Eigen::Isometry3d& X_WT, const Vector6d& e,
+                  const IkOptions& options) {
   PoseError error;
   error.orientation = e.head<3>().norm();
-  error.position = e.tail<3>().norm();
-  error.normalized = std::max(error.position / options.positionTolerance,
-                              error.orientation / options.orientationTolerance);
+  error.position = (X_WT.translation() - X_WL.translation()).norm();
+  const double positionPart = hasBox(options)
+                                  ? boxOffset(X_WL, X_WT, options).cwiseAbs().cwiseQuotient(options.positionBox).maxCoeff()
+                                  : error.position / options.positionTolerance;
+  error.normalized = std::max(positionPart, error.orientation / options.orientationTolerance);
   return error;
 }
 
@@ -84,17 +102,18 @@ PoseError runAttempt(const RobotModel& model, int link, const Eigen::Isometry3d&
                      Eigen::VectorXd& q, int& iterations) {
   std::vector<Eigen::Isometry3d> X_WL = forwardKinematics(model, q);
   std::vector<Eigen::Isometry3d> X_WL_trial;
-  Vector6d e = errorVector(X_WL[link], X_WT);
+  Vector6d e = errorVector(X_WL[link], X_WT, options);
+  const Eigen::Vector3d jacobianPoint = hasBox(options) ? Eigen::Vector3d(options.boxPose.translation()) : Eigen::Vector3d::Zero();
   double lambda = options.damping;
   Jacobian J;
   Eigen::VectorXd trial;
-  for (int it = 0; it < options.maxIterations && !errorOf(e, options).within(); ++it) {
+  for (int it = 0; it < options.maxIterations && !errorOf(X_WL[link], X_WT, e, options).within(); ++it) {
     ++iterations;
-    spatialJacobian(model, X_WL, link, Eigen::Vector3d::Zero(), J);
+    spatialJacobian(model, X_WL, link, jacobianPoint, J);
     trial = q + projectedStep(model, J, e, q, lambda, options.maxJointStep);
     applyLimits(model, trial);
     forwardKinematics(model, trial, X_WL_trial);
-    const Vector6d eTrial = errorVector(X_WL_trial[link], X_WT);
+    const Vector6d eTrial = errorVector(X_WL_trial[link], X_WT, options);
     if (eTrial.squaredNorm() < e.squaredNorm()) {
       q.swap(trial);
       X_WL.swap(X_WL_trial);
@@ -105,7 +124,7 @@ PoseError runAttempt(const RobotModel& model, int link, const Eigen::Isometry3d&
       if (lambda > tol::kIkMaxDamping) break;  // stalled: a local minimum of the error
     }
   }
-  return errorOf(e, options);
+  return errorOf(X_WL[link], X_WT, e, options);
 }
 
 [[noreturn]] void badOption(const char* name, double value, const char* requirement) {
@@ -114,13 +133,32 @@ PoseError runAttempt(const RobotModel& model, int link, const Eigen::Isometry3d&
   throw std::invalid_argument(msg.str());
 }
 
-void checkTarget(const RobotModel& model, const std::string& link, const Eigen::Isometry3d& X_WT) {
-  const Eigen::Matrix3d R = X_WT.linear();
+bool isRigid(const Eigen::Isometry3d& X) {
+  const Eigen::Matrix3d R = X.linear();
   const double error = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (!X_WT.matrix().allFinite() || !(error <= tol::kOrthonormality) || R.determinant() < 0.0) {
+  return X.matrix().allFinite() && error <= tol::kOrthonormality && R.determinant() > 0.0;
+}
+
+void checkTarget(const RobotModel& model, const std::string& link, const Eigen::Isometry3d& X_WT) {
+  if (!isRigid(X_WT)) {
     std::ostringstream msg;
     msg << "robot '" << model.name() << "': target pose of link '" << link
         << "' is not a finite rigid transform:\n" << X_WT.matrix();
+    throw std::invalid_argument(msg.str());
+  }
+}
+
+void checkBox(const IkOptions& options) {
+  const Eigen::Vector3d& h = options.positionBox;
+  if (!h.allFinite() || (h.array() < 0.0).any() || ((h.array() == 0.0).any() && (h.array() > 0.0).any())) {
+    std::ostringstream msg;
+    msg << "inverse kinematics: option positionBox (m) is (" << h.x() << ", " << h.y() << ", " << h.z()
+        << "), its half-widths must be all positive and finite, or all zero for the positionTolerance sphere";
+    throw std::invalid_argument(msg.str());
+  }
+  if (!isRigid(options.boxPose)) {
+    std::ostringstream msg;
+    msg << "inverse kinematics: option boxPose is not a finite rigid transform:\n" << options.boxPose.matrix();
     throw std::invalid_argument(msg.str());
   }
 }
@@ -131,6 +169,7 @@ void checkOptions(const RobotModel& model, const IkOptions& options) {
   if (!positive(options.orientationTolerance)) {
     badOption("orientationTolerance (rad)", options.orientationTolerance, "positive");
   }
+  checkBox(options);
   if (!positive(options.damping)) badOption("damping", options.damping, "positive");
   if (!positive(options.maxJointStep)) badOption("maxJointStep", options.maxJointStep, "positive");
   if (options.maxIterations < 1) badOption("maxIterations", options.maxIterations, "at least 1");
@@ -195,7 +234,7 @@ PoseError poseError(const RobotModel& model, int link, const Eigen::Ref<const Ei
     throw std::invalid_argument(msg.str());
   }
   const std::vector<Eigen::Isometry3d> X_WL = forwardKinematics(model, q);
-  return errorOf(errorVector(X_WL[link], X_WT), options);
+  return errorOf(X_WL[link], X_WT, errorVector(X_WL[link], X_WT, options), options);
 }
 
 IkResult solveInverseKinematics(const RobotModel& model, const std::string& linkName, const Eigen::Isometry3d& X_WT,

@@ -95,7 +95,12 @@ BOOST_AUTO_TEST_CASE(files_are_read) {
   BOOST_REQUIRE_EQUAL(q.start.size(), 1u);
   BOOST_REQUIRE_EQUAL(q.goal.size(), 2u);
   BOOST_CHECK_EQUAL(q.goal[1].name(), "b_Front");
-  BOOST_CHECK_SMALL(queryIkOptions(q.start[0], {}).positionTolerance - 0.005, 1e-15);
+  Eigen::Isometry3d eeOffset = Eigen::Isometry3d::Identity();
+  eeOffset.translation() = Eigen::Vector3d(0, 0, 0.1);
+  const deepcheck::robots::IkOptions ik = queryIkOptions(q.start[0], {}, eeOffset);
+  BOOST_CHECK_SMALL((ik.positionBox - Eigen::Vector3d(0.005, 0.01, 0.015)).norm(), 1e-15);
+  BOOST_CHECK(ik.boxPose.isApprox(eeOffset));
+  BOOST_CHECK_SMALL(ik.orientationTolerance - 0.01, 1e-15);
   BOOST_CHECK_SMALL((q.goal[0].offset.translation() - Eigen::Vector3d(-0.2, 0, 0.05)).norm(), 1e-15);
 }
 
@@ -137,21 +142,24 @@ BOOST_AUTO_TEST_CASE(bookshelf_problems_are_valid_and_reproducible) {
   BOOST_REQUIRE_EQUAL(problems.size(), 3u);
   const auto checker = validityCheckerOf(*setup.ss);
   const robots::RobotModel& panda = setup.world->robot();
-  const int hand = panda.linkIndex("panda_hand");
+  const int tip = panda.linkIndex(setup.options.tipLink);
   for (const Problem& p : problems) {
     // Collision free in its own scene.
     const std::vector<int> ids = setup.world->addPlanningScene(p.scene, {setup.options.frameAliases, {}});
     BOOST_CHECK(checker->isValid(p.start));
     BOOST_CHECK(checker->isValid(p.goal));
     for (int id : ids) setup.world->removeObstacle(id);
-    // The hand at the query pose, recomputed from the varied scene's Can3, within the query's
-    // tolerance box (half edge 0.005 m) and orientation tolerance (0.01 rad).
+    // The end effector (the query frame on the tip) at the query pose, recomputed from the
+    // varied scene's Can3: within the query's tolerance box (half edge 0.005 m, along the query
+    // frame's axes) and orientation tolerance (0.01 rad).
     const ObjectQuery& q = setup.queries.goal.front();
+    const Eigen::Isometry3d& ee = setup.options.eeOffset;
     const Eigen::Isometry3d X_WT =
-        queryPose(p.scene, q, panda, setup.options.start, setup.options.frameAliases, setup.options.eeOffset);
-    const Eigen::Isometry3d X_WH = robots::forwardKinematics(panda, p.goal)[static_cast<std::size_t>(hand)];
-    BOOST_CHECK_LE((X_WH.translation() - X_WT.translation()).cwiseAbs().maxCoeff(), 0.005);
-    BOOST_CHECK_LE(Eigen::AngleAxisd(X_WH.linear().transpose() * X_WT.linear()).angle(), 0.01);
+        queryPose(p.scene, q, panda, setup.options.start, setup.options.frameAliases, ee);
+    const Eigen::Isometry3d X_WL = robots::forwardKinematics(panda, p.goal)[static_cast<std::size_t>(tip)];
+    const Eigen::Vector3d inBox = (X_WT * ee).inverse() * (X_WL * ee).translation();
+    BOOST_CHECK_LE(inBox.cwiseAbs().maxCoeff(), 0.005);
+    BOOST_CHECK_LE(Eigen::AngleAxisd(X_WL.linear().transpose() * X_WT.linear()).angle(), 0.01);
     BOOST_CHECK(p.goalError.within());
   }
   PandaBookshelf again;

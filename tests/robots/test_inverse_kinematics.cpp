@@ -100,6 +100,64 @@ BOOST_AUTO_TEST_CASE(unreachable_pose_is_not_converged_with_best_error) {
   BOOST_TEST(result.error.position <= 5.0 - reach + 0.05);
 }
 
+/// One prismatic joint along (1, 1, 1)/sqrt(3), travel [0, 1] m: the tip reaches exactly the
+/// points t (1, 1, 1)/sqrt(3), t in [0, 1], with the world's orientation.
+const char* const kDiagonalSliderUrdf = R"(<robot name="slider">
+  <link name="base"/><link name="tip"/>
+  <joint name="slide" type="prismatic"><parent link="base"/><child link="tip"/>
+    <axis xyz="0.5773502691896258 0.5773502691896258 0.5773502691896258"/>
+    <limit lower="0" upper="1" effort="1" velocity="1"/></joint>
+</robot>)";
+
+BOOST_AUTO_TEST_CASE(position_box_admits_a_corner_the_sphere_does_not) {
+  const RobotModel slider = RobotModel::fromUrdfString(kDiagonalSliderUrdf, "", {}, "slider.urdf");
+  const Eigen::Vector3d u = Eigen::Vector3d::Ones().normalized();
+  const int tip = slider.linkIndex("tip");
+  IkOptions sphere;
+  sphere.positionTolerance = 0.05;
+  sphere.maxRestarts = 2;
+  IkOptions box = sphere;
+  box.positionBox = Eigen::Vector3d::Constant(0.05);
+  // 6 cm beyond the end of travel along the diagonal: out of the 5 cm sphere, inside the box of
+  // half-width 5 cm (3.46 cm per axis).
+  const Eigen::Isometry3d X_WT(Eigen::Translation3d(1.06 * u));
+  const IkResult bySphere = solveInverseKinematics(slider, "tip", X_WT, sphere);
+  BOOST_TEST(bySphere.status == IkStatus::NotConverged);
+  BOOST_TEST(std::abs(bySphere.error.position - 0.06) < 1e-6);
+  const IkResult byBox = solveInverseKinematics(slider, "tip", X_WT, box);
+  BOOST_TEST_REQUIRE(byBox.converged());
+  const Eigen::Vector3d reached = forwardKinematics(slider, byBox.q)[tip].translation();
+  BOOST_TEST((reached - X_WT.translation()).cwiseAbs().maxCoeff() <= 0.05);
+  BOOST_TEST(byBox.error.normalized == poseError(slider, tip, byBox.q, X_WT, box).normalized);
+  // 9 cm beyond: outside the box's corner (8.66 cm away), so no solution, best end of travel.
+  const IkResult tooFar = solveInverseKinematics(slider, "tip", Eigen::Isometry3d(Eigen::Translation3d(1.09 * u)), box);
+  BOOST_TEST(tooFar.status == IkStatus::NotConverged);
+  BOOST_TEST(std::abs(tooFar.q[0] - 1.0) < 1e-6);
+  BOOST_TEST(std::abs(tooFar.error.normalized - 0.09 / std::sqrt(3.0) / 0.05) < 1e-6);
+}
+
+BOOST_AUTO_TEST_CASE(position_box_applies_to_its_frame_on_the_link) {
+  // The box on a frame B 0.2 m along the slider's tip x axis, the box's axes turned 90 degrees
+  // about z: B's origin is constrained, not the tip's, along B's target axes.
+  const RobotModel slider = RobotModel::fromUrdfString(kDiagonalSliderUrdf, "", {}, "slider.urdf");
+  const Eigen::Vector3d u = Eigen::Vector3d::Ones().normalized();
+  const int tip = slider.linkIndex("tip");
+  IkOptions box;
+  box.positionBox = Eigen::Vector3d(0.01, 0.3, 0.3);
+  box.boxPose = Eigen::Translation3d(0.2, 0.0, 0.0) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ());
+  // Target of the tip at 0.5 u: B's target origin at 0.5 u + (0.2, 0, 0); the box is thin along
+  // B's x, which is the world's y. Reaching along u moves B's origin by t u; the thin axis bounds
+  // |t - 0.5| / sqrt(3) <= 0.01.
+  const Eigen::Isometry3d X_WT(Eigen::Translation3d(0.5 * u));
+  box.initial = Eigen::VectorXd::Constant(1, 0.9);
+  const IkResult r = solveInverseKinematics(slider, "tip", X_WT, box);
+  BOOST_TEST_REQUIRE(r.converged());
+  BOOST_TEST(std::abs(r.q[0] - 0.5) / std::sqrt(3.0) <= 0.01);
+  BOOST_TEST(std::abs(r.q[0] - 0.5) > 1e-3);  // stopped at the box, not at the target
+  const Eigen::Vector3d d = (X_WT * box.boxPose).inverse() * (forwardKinematics(slider, r.q)[tip] * box.boxPose.translation());
+  BOOST_TEST(r.error.normalized == d.cwiseAbs().cwiseQuotient(box.positionBox).maxCoeff());
+}
+
 BOOST_AUTO_TEST_CASE(joint_limits_are_respected_when_the_target_needs_more) {
   // Target made with joint 4 beyond its limit: the arm must stay within the limits anyway.
   const RobotModel arm = loadBundledArm();
@@ -181,6 +239,14 @@ BOOST_AUTO_TEST_CASE(bad_input_is_named) {
   options = {};
   options.orientationTolerance = -1e-3;
   checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"orientationTolerance (rad)", "-0.001"});
+  options = {};
+  options.positionBox = Eigen::Vector3d(0.05, 0.0, 0.05);
+  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"positionBox (m)", "(0.05, 0, 0.05)", "all zero"});
+  options.positionBox = Eigen::Vector3d(0.05, std::nan(""), 0.05);
+  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"positionBox (m)", "nan"});
+  options.positionBox = Eigen::Vector3d::Constant(0.05);
+  options.boxPose = sheared;
+  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"boxPose", "not a finite rigid transform"});
   options = {};
   options.maxIterations = 0;
   checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"maxIterations"});

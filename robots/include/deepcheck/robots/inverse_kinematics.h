@@ -19,6 +19,14 @@
 // std::mt19937_64 seeded with IkOptions::seed, so the result is a function of the inputs and the
 // seed. An attempt ends when the pose is reached, after maxIterations, or when it stalls.
 //
+// Position tolerance: a sphere of radius IkOptions::positionTolerance around p_WT, or, when
+// IkOptions::positionBox is set, a box region (MoveIt's and MotionBenchMaker's): the frame B
+// attached to the link at X_LB = IkOptions::boxPose must have its origin within the box of those
+// half-widths along the axes of B's target X_WT X_LB, centred on that target's origin. With
+// boxPose the identity, the link origin within a box along T's axes. With the box, the position
+// rows of e are the gap from B's origin to the box (zero inside it), and the Jacobian is taken at
+// B's origin, so an unreachable centre does not stop a reachable corner.
+//
 // Result: converged() only when the final q, within the limits, reaches the pose within both
 // tolerances (and, when an acceptance test is given, passes it: a collision test, say); otherwise
 // the status says why and q is the end of the attempt with the smallest normalized error (for
@@ -26,7 +34,8 @@
 //
 // Errors: std::invalid_argument naming the value: an unknown link (the message lists the links), a
 // non-finite or non-rigid target pose, a tolerance, iteration count or damping that is not
-// positive and finite, an initial configuration of the wrong size or with a non-finite value.
+// positive and finite, a position box with a negative, non-finite or (among positive ones) zero
+// half-width or a boxPose that is not a finite rigid transform, an initial configuration of the wrong size or with a non-finite value.
 
 #include "deepcheck/robots/robot_model.h"
 #include "deepcheck/robots/tolerances.h"
@@ -43,6 +52,11 @@ namespace deepcheck::robots {
 struct IkOptions {
   double positionTolerance = tol::kIkPositionTolerance;        ///< metres
   double orientationTolerance = tol::kIkOrientationTolerance;  ///< radians
+  /// Half-widths of a position box along T's axes, metres; all zero (the default): the sphere of
+  /// radius positionTolerance instead. Either all zero or all positive.
+  Eigen::Vector3d positionBox = Eigen::Vector3d::Zero();
+  /// X_LB: where on the link the box applies, and the box's axes (see the file comment).
+  Eigen::Isometry3d boxPose = Eigen::Isometry3d::Identity();
   int maxIterations = tol::kIkMaxIterations;                   ///< per attempt
   int maxRestarts = tol::kIkMaxRestarts;                       ///< attempts after the first
   double damping = tol::kIkDamping;                            ///< initial lambda
@@ -56,8 +70,9 @@ struct IkOptions {
 struct PoseError {
   double position = 0.0;     ///< |p_WT - p_WL|, metres
   double orientation = 0.0;  ///< angle of R_WT R_WL^T, radians in [0, pi]
-  /// max(position / positionTolerance, orientation / orientationTolerance): at most 1 exactly
-  /// when the pose is reached. Dimensionless; what "best" means between attempts.
+  /// max(position part, orientation / orientationTolerance): at most 1 exactly when the pose is
+  /// reached. The position part is position / positionTolerance, or with a box max_i |d_i| / h_i
+  /// (d = B's origin in its target's frame, h = positionBox). Dimensionless; what "best" means between attempts.
   double normalized = 0.0;
   bool within() const { return normalized <= 1.0; }
 };

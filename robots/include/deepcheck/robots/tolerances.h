@@ -51,6 +51,10 @@ constexpr double kIkMaxDamping = 1e3;
 /// Largest change of one joint in one iteration, radians (metres for a prismatic joint): the
 /// linearization holds over a fraction of a radian, and a larger step overshoots.
 constexpr double kIkMaxJointStep = 0.5;
+/// With a position box (IkOptions::positionBox), the iterations aim at the box scaled by this
+/// factor (dimensionless): converging from outside onto the box's own face would approach the
+/// acceptance boundary without ever passing it, 1 % inside is passed in one more step.
+constexpr double kIkBoxAimScale = 0.99;
 /// A quaternion given for a pose (poseFromQuaternion) must have |norm - 1| at most this: values
 /// typed with four significant digits (0.7071 for sqrt(1/2): norm 0.99999) are accepted, a
 /// forgotten or mistyped component is not. The quaternion is then normalized.
