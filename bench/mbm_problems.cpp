@@ -5,10 +5,12 @@
 #include "plan_problems.h"
 
 #include "deepcheck/robots/kinematics.h"
+#include "deepcheck/robots/random_configuration.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include <array>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace deepcheck::bench {
@@ -48,14 +50,17 @@ bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-/// The links of a scene URDF with collision geometry as planning-scene objects in frame
-/// base_link, posed at the scene's default configuration.
-robots::PlanningScene sceneFromUrdf(const MbmScene& scene) {
+robots::RobotModel loadSceneUrdf(const MbmScene& scene) {
   robots::LoadOptions load;
   load.packageRoots = pandaOptions().packageRoots;
   load.useRosPackagePath = false;
-  const robots::RobotModel model = robots::RobotModel::fromUrdfFile(scene.scene, load);
-  const std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(model, model.defaultConfiguration());
+  return robots::RobotModel::fromUrdfFile(scene.scene, load);
+}
+
+/// The links of a scene URDF with collision geometry as planning-scene objects in frame
+/// base_link, posed at the scene's configuration q, then moved by the scene's base_offset.
+robots::PlanningScene linksAsScene(const robots::RobotModel& model, const Eigen::VectorXd& q, const MbmScene& scene) {
+  const std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(model, q);
   robots::PlanningScene out;
   out.source = scene.scene;
   for (int l = 0; l < model.numLinks(); ++l) {
@@ -74,6 +79,7 @@ robots::PlanningScene sceneFromUrdf(const MbmScene& scene) {
     // The object's pose is its first shape's (problem_generation.h): queries are relative to it.
     out.objects.push_back(object);
   }
+  moveAll(out, scene.baseOffset);
   return out;
 }
 
@@ -104,15 +110,14 @@ std::vector<MbmScene> mbmScenes() {
 robots::FrameAliases pandaFrameAliases() { return {{"base_link", "panda_link0"}}; }
 
 robots::PlanningScene loadNominalScene(const MbmScene& scene) {
-  robots::PlanningScene out;
   if (endsWith(scene.scene, ".urdf")) {
-    out = sceneFromUrdf(scene);
-  } else {
-    robots::SceneLoadOptions options;
-    options.packageRoots = pandaOptions().packageRoots;
-    options.useRosPackagePath = false;
-    out = robots::loadPlanningScene(scene.scene, options);
+    const robots::RobotModel model = loadSceneUrdf(scene);
+    return linksAsScene(model, model.defaultConfiguration(), scene);
   }
+  robots::SceneLoadOptions options;
+  options.packageRoots = pandaOptions().packageRoots;
+  options.useRosPackagePath = false;
+  robots::PlanningScene out = robots::loadPlanningScene(scene.scene, options);
   moveAll(out, scene.baseOffset);
   return out;
 }
@@ -134,7 +139,14 @@ std::vector<dp::Problem> generateMbmProblems(const MbmScene& scene, checker::Wor
   const robots::PlanningScene nominal = loadNominalScene(scene);
   const auto variations = dp::loadSceneVariations(scene.variation);
   const auto queries = dp::loadQueries(scene.queries);
-  return dp::generateProblems(world, checker, nominal, variations, queries, options, count, progress, scene.variation);
+  dp::ProblemOptions drawing = options;
+  if (endsWith(scene.scene, ".urdf")) {
+    auto model = std::make_shared<const robots::RobotModel>(loadSceneUrdf(scene));
+    drawing.drawScene = [model, scene](std::mt19937_64& rng) {
+      return linksAsScene(*model, robots::randomConfiguration(*model, rng), scene);
+    };
+  }
+  return dp::generateProblems(world, checker, nominal, variations, queries, drawing, count, progress, scene.variation);
 }
 
 void placeScene(checker::World& world, const robots::PlanningScene& scene) {

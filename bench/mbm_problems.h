@@ -7,9 +7,9 @@
 // files, read from ../shared, and gives base_offset (where the scene goes relative to the robot)
 // and ee_offset (the query frame relative to the arm's tip). Scenes given as
 // a URDF (kitchen, table_bars) become a planning scene here: one object per link with collision
-// geometry, named as the link (the names the variation and query files use), posed at the scene's
-// default configuration (MotionBenchMaker draws the scene's joints at random instead; here the
-// variation file's object variations move the links). Problems come from deepcheck::planners::generateProblems (the scene
+// geometry, named as the link (the names the variation and query files use), posed for each
+// attempt at joint values drawn uniformly within their limits (the kitchen's doors, the sliding
+// bars), as MotionBenchMaker does; then the variation file moves the links. Problems come from deepcheck::planners::generateProblems (the scene
 // varied, the goal and, when the query file has start queries, the start by collision-free
 // inverse kinematics of panda_hand; otherwise MotionBenchMaker's Panda default state).
 
@@ -45,7 +45,8 @@ std::vector<MbmScene> mbmScenes();
 /// panda_link0).
 robots::FrameAliases pandaFrameAliases();
 
-/// The nominal planning scene: the YAML as read, or the URDF's links as objects (header comment).
+/// The nominal planning scene: the YAML as read, or the URDF's links as objects at the URDF's
+/// default joint values (header comment).
 /// Throws std::invalid_argument (naming the file) when it cannot be read.
 robots::PlanningScene loadNominalScene(const MbmScene& scene);
 

@@ -181,7 +181,7 @@ bool groundQuery(const Generation& g, const robots::PlanningScene& scene, const 
 
 /// One try at a problem in a freshly varied scene; true when `p` is complete.
 bool tryProblem(const Generation& g, std::mt19937_64& rng, Problem& p, ClosestMiss& miss) {
-  p.scene = varyScene(g.nominal, g.variations, rng, g.variationSource);
+  p.scene = varyScene(g.options.drawScene ? g.options.drawScene(rng) : g.nominal, g.variations, rng, g.variationSource);
   const SceneInWorld placed(g.world, p.scene, {g.options.frameAliases, g.q0});
   const QuerySet& queries = g.queries;
   const ObjectQuery& goal = queries.goal[std::uniform_int_distribution<std::size_t>(0, queries.goal.size() - 1)(rng)];

@@ -172,6 +172,52 @@ BOOST_AUTO_TEST_CASE(bookshelf_problems_are_valid_and_reproducible) {
   BOOST_CHECK(again.generate(1).front().goal != problems.front().goal);
 }
 
+BOOST_AUTO_TEST_CASE(drawn_scenes_are_the_ones_varied) {
+  if (!haveShared("problem generation from drawn scenes")) return;
+  PandaBookshelf setup;
+  // Every draw moves the scene's last object 10 m away, a little further each time: the
+  // problems' scenes are the drawn ones (then varied by at most the variation file's offsets).
+  const std::size_t last = setup.scene.objects.size() - 1;
+  BOOST_REQUIRE(setup.scene.objects[last].id != "Can3");
+  int draws = 0;
+  setup.options.drawScene = [&](std::mt19937_64&) {
+    robots::PlanningScene s = setup.scene;
+    ++draws;
+    for (robots::SceneShape& shape : s.objects[last].shapes) {
+      shape.X_FS.translation() += Eigen::Vector3d(10.0 + 0.001 * draws, 0.0, 0.0);
+    }
+    return s;
+  };
+  const std::vector<Problem> problems = setup.generate(2);
+  BOOST_REQUIRE_EQUAL(problems.size(), 2u);
+  BOOST_CHECK_EQUAL(draws, problems[0].attempts + problems[1].attempts);
+  // The variation turns and shifts the whole scene about the robot's base by centimetres:
+  // compare distances from the base, drawn against nominal.
+  const Eigen::Vector3d nominal = setup.scene.objects[last].shapes[0].X_FS.translation();
+  const double drawn = (nominal + Eigen::Vector3d(10.0, 0.0, 0.0)).norm();
+  for (const Problem& p : problems) {
+    BOOST_CHECK_LT(std::abs(p.scene.objects[last].shapes[0].X_FS.translation().norm() - drawn), 0.5);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(unreachable_queries_name_the_closest_inverse_kinematics) {
+  if (!haveShared("problem generation error for unreachable queries")) return;
+  PandaBookshelf setup;
+  // Every goal 3 m beyond its object: out of the Panda's reach.
+  for (ObjectQuery& q : setup.queries.goal) q.offset.translation().x() -= 3.0;
+  setup.options.maxAttempts = 2;
+  setup.options.ik.maxRestarts = 2;
+  try {
+    setup.generate(1);
+    BOOST_ERROR("expected std::runtime_error");
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    BOOST_CHECK_MESSAGE(what.find("no collision-free start and goal in 2 varied scenes") != std::string::npos, what);
+    BOOST_CHECK_MESSAGE(what.find("closest inverse kinematics: query '") != std::string::npos, what);
+    BOOST_CHECK_MESSAGE(what.find("not converged") != std::string::npos, what);
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 }  // namespace deepcheck::planners

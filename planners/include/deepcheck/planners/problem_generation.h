@@ -30,8 +30,9 @@
 // (MoveIt's older format). Here an object's pose is the pose of its first shape, X_FS[0].
 //
 // Generation: for each problem, until it succeeds or ProblemOptions::maxAttempts: vary the
-// nominal scene, put it in the world, pick a goal query (and a start query when the file has
-// any, on another object or tag) uniformly, solve the IK of ProblemOptions::tipLink at
+// nominal scene (or the one ProblemOptions::drawScene draws), put it in the world, pick a goal
+// query (and a start query when the file has any, on another object or tag) uniformly, solve the
+// IK of ProblemOptions::tipLink at
 //   X_WT = X_WF * X_O * offset * eeOffset^-1
 // with solveCollisionFree (valid for the planner: collision free, within bounds); without start
 // queries the start is ProblemOptions::start, which must be valid. Everything random comes from
@@ -123,6 +124,9 @@ Eigen::Isometry3d queryPose(const robots::PlanningScene& scene, const ObjectQuer
 robots::IkOptions queryIkOptions(const ObjectQuery& query, const robots::IkOptions& base,
                                  const Eigen::Isometry3d& eeOffset);
 
+/// Draws an attempt's scene before the variation file, from the generation's generator.
+using SceneDraw = std::function<robots::PlanningScene(std::mt19937_64& rng)>;
+
 struct ProblemOptions {
   std::string tipLink;  ///< the end effector's link (required)
   Eigen::Isometry3d eeOffset = Eigen::Isometry3d::Identity();  ///< query frame in the tip frame
@@ -131,6 +135,10 @@ struct ProblemOptions {
   std::uint64_t seed = 0;
   int maxAttempts = 100;  ///< per problem
   robots::IkOptions ik;   ///< iterations and restarts (tolerances come from the query)
+  /// When set, each attempt varies the scene this draws instead of the nominal one: a scene given
+  /// as a URDF with its joints (doors, sliding bars) drawn within their limits, as MotionBenchMaker
+  /// does. Its objects carry the nominal scene's names (the queries are checked against those).
+  SceneDraw drawScene;
 };
 
 struct Problem {
