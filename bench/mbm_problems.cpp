@@ -57,28 +57,10 @@ robots::RobotModel loadSceneUrdf(const MbmScene& scene) {
   return robots::RobotModel::fromUrdfFile(scene.scene, load);
 }
 
-/// The links of a scene URDF with collision geometry as planning-scene objects in frame
-/// base_link, posed at the scene's configuration q, then moved by the scene's base_offset.
+/// The links of a scene URDF at configuration q as planning-scene objects in frame base_link,
+/// moved by the scene's base_offset.
 robots::PlanningScene linksAsScene(const robots::RobotModel& model, const Eigen::VectorXd& q, const MbmScene& scene) {
-  const std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(model, q);
-  robots::PlanningScene out;
-  out.source = scene.scene;
-  for (int l = 0; l < model.numLinks(); ++l) {
-    const robots::Link& link = model.link(l);
-    if (link.collisions.empty()) continue;
-    robots::SceneObject object;
-    object.id = link.name;
-    object.frameId = "base_link";
-    for (std::size_t c = 0; c < link.collisions.size(); ++c) {
-      robots::SceneShape shape;
-      shape.geometry = link.collisions[c].geometry;
-      shape.X_FS = X_WL[static_cast<std::size_t>(l)] * link.collisions[c].X_LG;
-      shape.name = "collision " + std::to_string(c) + " of link " + link.name;
-      object.shapes.push_back(shape);
-    }
-    // The object's pose is its first shape's (problem_generation.h): queries are relative to it.
-    out.objects.push_back(object);
-  }
+  robots::PlanningScene out = robots::planningSceneFromUrdf(model, q, "base_link");
   moveAll(out, scene.baseOffset);
   return out;
 }

@@ -9,6 +9,8 @@
 #include "deepcheck/planners/problem_generation.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/robots/moveit_scene.h"
+#include "deepcheck/robots/random_configuration.h"
+#include "deepcheck/robots/robot_model.h"
 
 #include <ompl/util/Console.h>
 
@@ -17,6 +19,8 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <memory>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -26,7 +30,7 @@ namespace deepcheck::tools {
 namespace {
 
 const char kUsage[] =
-    "usage: deepcheck problems --robot URDF [--srdf FILE] [--package-path DIR]... --scene SCENE.yaml\n"
+    "usage: deepcheck problems --robot URDF [--srdf FILE] [--package-path DIR]... --scene SCENE.yaml|SCENE.urdf\n"
     "                          --variation VARIATION.yaml --queries QUERIES.yaml --robot-config ROBOT.yaml\n"
     "                          [--frame-alias NAME=LINK]... [--tip LINK] [--ee-offset \"x y z qx qy qz qw\"]\n"
     "                          [--count N] [--seed S] [--max-attempts N] --out DIR\n"
@@ -39,7 +43,10 @@ const char kUsage[] =
     "  --robot URDF          the robot\n"
     "  --srdf FILE           disable the self-collision pairs of this SRDF\n"
     "  --package-path DIR    search DIR for package:// URIs (repeatable)\n"
-    "  --scene FILE          the nominal MoveIt planning scene (YAML)\n"
+    "  --scene FILE          the nominal MoveIt planning scene (YAML), or a scene URDF: its links\n"
+    "                        become objects named as the links, in the robot's root frame, posed\n"
+    "                        for every draw at joint values drawn within their limits (doors,\n"
+    "                        sliding parts), as MotionBenchMaker does\n"
     "  --variation FILE      MotionBenchMaker variation file\n"
     "  --queries FILE        MotionBenchMaker query file\n"
     "  --robot-config FILE   MotionBenchMaker robot file (its robot_state is the start)\n"
@@ -137,10 +144,26 @@ ProblemsArgs takeArgs(std::vector<std::string>& args) {
                                     {a.queries, "--queries"}, {a.robotConfig, "--robot-config"}, {a.out, "--out"}}) {
     if (value.empty()) throw UsageError(std::string("option ") + name + " is required");
   }
-  if (sceneKind(a.scene) != SceneKind::PlanningScene) {
-    throw UsageError("--scene '" + a.scene + "': problems vary a MoveIt planning scene (.yaml or .yml)");
-  }
+  sceneKind(a.scene);  // a known extension, or a UsageError naming the file
   return a;
+}
+
+/// The nominal scene; for a scene URDF also the draw of its joints (options.drawScene).
+robots::PlanningScene loadNominal(const ProblemsArgs& a, const robots::RobotModel& robot,
+                                  planners::ProblemOptions& options) {
+  if (sceneKind(a.scene) == SceneKind::PlanningScene) {
+    robots::SceneLoadOptions sceneOptions;
+    sceneOptions.packageRoots = a.packages.commandLine;
+    return robots::loadPlanningScene(a.scene, sceneOptions);
+  }
+  robots::LoadOptions load;
+  load.packageRoots = a.packages.commandLine;
+  auto model = std::make_shared<const robots::RobotModel>(robots::RobotModel::fromUrdfFile(a.scene, load));
+  const std::string frame = robot.link(0).name;
+  options.drawScene = [model, frame](std::mt19937_64& rng) {
+    return robots::planningSceneFromUrdf(*model, robots::randomConfiguration(*model, rng), frame);
+  };
+  return robots::planningSceneFromUrdf(*model, model->defaultConfiguration(), frame);
 }
 
 int run(std::vector<std::string> args) {
@@ -151,9 +174,7 @@ int run(std::vector<std::string> args) {
   setup.srdf = a.srdf;
   const auto world = planners::loadWorld(a.robot, {}, setup);
   const auto ss = planners::makeSimpleSetup(world, setup);
-  robots::SceneLoadOptions sceneOptions;
-  sceneOptions.packageRoots = a.packages.commandLine;
-  const robots::PlanningScene nominal = robots::loadPlanningScene(a.scene, sceneOptions);
+  const robots::PlanningScene nominal = loadNominal(a, world->robot(), a.options);
   const auto variations = planners::loadSceneVariations(a.variation);
   const auto queries = planners::loadQueries(a.queries);
   std::vector<std::string> notes;

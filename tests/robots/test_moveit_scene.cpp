@@ -328,6 +328,37 @@ BOOST_AUTO_TEST_CASE(bad_structure_is_reported) {
   BOOST_CHECK(parse("world:\n  collision_objects: []\n").objects.empty());
 }
 
+BOOST_AUTO_TEST_CASE(scene_urdf_becomes_objects_posed_at_its_joints) {
+  const RobotModel scene = RobotModel::fromUrdfString(R"(<robot name="cupboard">
+  <link name="root"/>
+  <link name="body"><collision><origin xyz="0.5 0 1"/><geometry><box size="0.4 1 0.6"/></geometry></collision>
+    <collision><origin xyz="0.5 0 0.6"/><geometry><box size="0.4 1 0.02"/></geometry></collision></link>
+  <link name="door"><collision><origin xyz="0 -0.25 0"/><geometry><box size="0.02 0.5 0.6"/></geometry></collision></link>
+  <link name="marker"/>
+  <joint name="body_joint" type="fixed"><parent link="root"/><child link="body"/></joint>
+  <joint name="door_joint" type="revolute"><origin xyz="0.3 0.5 1"/><parent link="body"/><child link="door"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="0" effort="1" velocity="1"/></joint>
+  <joint name="marker_joint" type="fixed"><parent link="root"/><child link="marker"/></joint>
+</robot>)", "", {}, "cupboard.urdf");
+  Eigen::VectorXd q(1);
+  q << -M_PI / 2;
+  const PlanningScene s = planningSceneFromUrdf(scene, q, "world");
+  BOOST_TEST(s.source == "cupboard.urdf");
+  // Links without collision geometry (root, marker) make no object.
+  BOOST_REQUIRE_EQUAL(s.objects.size(), 2u);
+  BOOST_TEST(s.objects[0].id == "body");
+  BOOST_TEST(s.objects[0].frameId == "world");
+  BOOST_TEST(s.objects[0].shapes.size() == 2u);
+  BOOST_TEST(s.objects[0].X_FO.isApprox(Eigen::Isometry3d::Identity()));
+  // The door turned by -90 degrees about z at its hinge: its centre, 0.25 m along -y of the
+  // door, lies 0.25 m along -x of the hinge.
+  const Eigen::Vector3d centre = s.objects[1].shapes[0].X_FS.translation();
+  BOOST_TEST((centre - Eigen::Vector3d(0.05, 0.5, 1.0)).norm() < 1e-12, centre.transpose());
+  BOOST_TEST(s.objects[1].shapes[0].X_FS.isApprox(forwardKinematics(scene, q)[scene.linkIndex("door")] *
+                                                   scene.link(scene.linkIndex("door")).collisions[0].X_LG));
+  checkThrows([&] { planningSceneFromUrdf(scene, Eigen::VectorXd::Zero(2), "world"); }, {"2 values"});
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 }  // namespace deepcheck::robots

@@ -96,10 +96,54 @@ BOOST_AUTO_TEST_CASE(missing_and_bad_options_are_reported) {
   const Run alias = scratch.run("problems --frame-alias base_link");
   BOOST_TEST(alias.status == 2);
   BOOST_TEST(alias.err.find("--frame-alias") != std::string::npos, alias.err);
-  const Run urdf = scratch.run("problems --robot r.urdf --scene s.urdf --variation v.yaml --queries q.yaml "
+  const Run mesh = scratch.run("problems --robot r.urdf --scene s.obj --variation v.yaml --queries q.yaml "
                                "--robot-config c.yaml --out dir");
-  BOOST_TEST(urdf.status == 2);
-  BOOST_TEST(urdf.err.find("--scene 's.urdf': problems vary a MoveIt planning scene") != std::string::npos, urdf.err);
+  BOOST_TEST(mesh.status == 2);
+  BOOST_TEST(mesh.err.find("s.obj") != std::string::npos, mesh.err);
+}
+
+/// A scene URDF: a fixed table in front of the robot and a flap on a hinge far behind it.
+const char* const kTableAndFlapUrdf = R"(<robot name="table_and_flap">
+  <link name="root"/>
+  <link name="table"><collision><origin xyz="0.6 0 0.2"/><geometry><box size="0.4 0.6 0.05"/></geometry></collision></link>
+  <link name="flap"><collision><origin xyz="0 0.2 0"/><geometry><box size="0.02 0.4 0.3"/></geometry></collision></link>
+  <joint name="table_joint" type="fixed"><parent link="root"/><child link="table"/></joint>
+  <joint name="flap_joint" type="revolute"><origin xyz="-1 0 0.5"/><parent link="root"/><child link="flap"/>
+    <axis xyz="0 0 1"/><limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+</robot>)";
+
+BOOST_AUTO_TEST_CASE(scene_urdf_joints_are_drawn_per_problem) {
+  if (!test::haveShared("deepcheck problems on a scene URDF")) return;
+  Scratch scratch;
+  const std::string m = test::sharedDir() + "/scenes/motion_bench_maker/configs";
+  scratch.write("scene.urdf", kTableAndFlapUrdf);
+  scratch.write("variation.yaml", "- names: [World]\n  position: [0, 0, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n");
+  scratch.write("queries.yaml",
+                "goal_queries:\n  - objects: [table]\n    tag: Above\n    offset:\n      position: [0, 0, 0.25]\n"
+                "      orientation: [0, 0, 0, 1]\n      position_tol: [0.02, 0.02, 0.02]\n"
+                "      orientation_tol: [0.02, 0.02, 0.02]\n    attached: \"False\"\n");
+  const Run r = scratch.run("problems --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) +
+                            " --package-path " + quote(pandaDir()) + " --scene " + quote(scratch.path("scene.urdf")) +
+                            " --variation " + quote(scratch.path("variation.yaml")) + " --queries " +
+                            quote(scratch.path("queries.yaml")) + " --robot-config " + quote(m + "/robots/panda.yaml") +
+                            " --count 2 --seed 3 --out " + quote(scratch.path("out")));
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  checker::World world = tool_test::libraryWorld(pandaUrdf(), pandaSrdf(), pandaDir());
+  std::vector<Eigen::Matrix3d> flapRotations;
+  for (const char* k : {"0000", "0001"}) {
+    const auto problem = readProblem(scratch.path(std::string("out/problem_") + k + ".txt"));
+    const auto scene = robots::loadPlanningScene(scratch.path("out/" + problem.at("scene").front()));
+    BOOST_REQUIRE_EQUAL(scene.objects.size(), 2u);
+    BOOST_CHECK_EQUAL(scene.objects[0].id, "table");
+    BOOST_CHECK_EQUAL(scene.objects[1].id, "flap");
+    BOOST_CHECK_EQUAL(scene.objects[1].frameId, "panda_link0");  // the robot's root: no alias needed
+    flapRotations.push_back(scene.objects[1].shapes[0].X_FS.linear());
+    const std::vector<int> ids = world.addPlanningScene(scene, {});
+    BOOST_CHECK(world.isFree(values(problem.at("goal"))));
+    for (int id : ids) world.removeObstacle(id);
+  }
+  // The flap's joint is drawn for each problem: its two poses differ.
+  BOOST_CHECK(!flapRotations[0].isApprox(flapRotations[1], 1e-6));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -130,6 +130,16 @@ TriangleMesh coneMesh(double height, double radius, double maxDeviation);
 /// in-memory mesh.
 std::string writePlanningScene(const PlanningScene& scene);
 
+/// A scene given as a URDF (MotionBenchMaker's kitchen and table_bars: fixed parts, doors and
+/// sliding bars as links and joints) as a planning scene at the scene's configuration q: one
+/// object per link with collision geometry, its id the link's name, in frame `frameId`, one shape
+/// per collision element posed by forward kinematics (X_FS = X_FL(q) X_LG, the scene's base pose
+/// included); the objects keep the identity pose, so an object's reference pose is its first
+/// shape's, as for MotionBenchMaker's objects. `source` is the URDF's. Throws
+/// std::invalid_argument naming the value for a q of the wrong size or with a non-finite entry.
+PlanningScene planningSceneFromUrdf(const RobotModel& scene, const Eigen::Ref<const Eigen::VectorXd>& q,
+                                    const std::string& frameId);
+
 /// Frame names of a scene file mapped to robot link names, e.g. {"base_link", "panda_link0"}.
 using FrameAliases = std::map<std::string, std::string>;
 
