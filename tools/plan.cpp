@@ -38,6 +38,7 @@
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/checker/world.h"
+#include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/inverse_kinematics.h"
 #include "deepcheck/robots/robot_model.h"
 
@@ -429,10 +430,15 @@ void finishPath(ompl::geometric::SimpleSetup& ss, const PlanArgs& a, const plann
   const planners::PathCertificate certificate = planners::certifyPath(ss, path);
   planners::writePath(path, a.out);
   const auto [scene, self] = pathClearances(path, planners::validityCheckerOf(ss)->world());
-  std::fprintf(stderr, "path: %zu waypoints, length %.4f rad, scene clearance %s, self clearance %s, %s%s, written to %s\n",
+  const std::string uncertified =
+      certificate.valid && certificate.fallbackSteps > 0
+          ? ", except " + std::to_string(certificate.fallbackSteps) + " step(s) within about " +
+                robots::formatNumber(planners::tol::kFallbackDisplacement * 1e3) + " mm of contact, checked discretely"
+          : "";
+  std::fprintf(stderr, "path: %zu waypoints, length %.4f rad, scene clearance %s, self clearance %s, %s%s%s, written to %s\n",
                path.getStateCount(), path.length(), scene.describe().c_str(), self.describe().c_str(),
-               certificate.valid ? "certified" : "NOT certified",
-               certificate.repaired ? " (after repair)" : "", a.out.c_str());
+               certificate.valid ? "certified" : "NOT certified", certificate.repaired ? " (after repair)" : "",
+               uncertified.c_str(), a.out.c_str());
   if (goal != nullptr) reportPoseError(*goal, path);
   if (!certificate.valid) throw InputError("the path could not be certified collision free");
 }

@@ -118,6 +118,7 @@ ompl::base::SpaceInformationPtr certifyingSpaceInformation(const ompl::geometric
 
 PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path) {
   const ompl::base::SpaceInformationPtr si = certifyingSpaceInformation(ss);
+  auto& validator = dynamic_cast<ClearanceMotionValidator&>(*si->getMotionValidator());
   PathCertificate certificate;
   certificate.initial = checkPathWithPlanner(path, si.get());
   certificate.valid = certificate.initial.valid;
@@ -125,7 +126,12 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
     certificate.repaired = true;
     certificate.repair = repairPath(path, si);
     certificate.valid = certificate.repair.valid;
+    if (!certificate.valid) return certificate;
+    // The repair's counts include motions it replaced: check the final path on its own.
+    validator.resetStats();
+    certificate.valid = checkPathWithPlanner(path, si.get()).valid;
   }
+  certificate.fallbackSteps = validator.stats().fallbackSteps;
   return certificate;
 }
 

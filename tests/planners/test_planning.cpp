@@ -9,6 +9,7 @@
 #include "deepcheck/planners/planner_factory.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/state_space.h"
+#include "deepcheck/robots/kinematics.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -286,6 +287,53 @@ BOOST_AUTO_TEST_CASE(paths_are_written_one_configuration_per_line) {
                         [](const std::invalid_argument& e) {
                           return std::string(e.what()).find("/no/such/dir/path.txt") != std::string::npos;
                         });
+}
+
+// A path that starts 0.2 mm from an obstacle and moves away: the clearance validator cannot
+// certify a step of useful size there and falls back to discrete steps, and the certificate says
+// so. The same path with the obstacle gone is certified exactly.
+BOOST_AUTO_TEST_CASE(certificate_counts_the_steps_taken_near_contact) {
+  auto world = dp::loadWorld(dp::test::armUrdf(), {}, dp::test::bundledOptions());
+  const Eigen::VectorXd a = dp::test::suggestedStart();
+  const Eigen::Vector3d flange = deepcheck::robots::forwardKinematics(world->robot(), a)
+                                     [static_cast<std::size_t>(world->robot().linkIndex("flange"))].translation();
+  using deepcheck::checker::Obstacle;
+  int id = world->addObstacle(Obstacle::box("probe", Eigen::Vector3d::Constant(0.1),
+                                            Eigen::Isometry3d(Eigen::Translation3d(flange + Eigen::Vector3d(0.3, 0, 0)))));
+  // Slide the box along the witness normal until 0.2 mm are left (the distance between convex
+  // pieces drops by exactly the translation along their normal).
+  deepcheck::checker::DistanceOptions worldOnly;
+  worldOnly.selfPairs = false;
+  const deepcheck::checker::Contact far = world->signedDistance(a, worldOnly).closest;
+  BOOST_REQUIRE(far.nameB == "obstacle/probe");
+  world->removeObstacle(id);
+  const double gap = 2e-4;
+  id = world->addObstacle(Obstacle::box(
+      "probe", Eigen::Vector3d::Constant(0.1),
+      Eigen::Isometry3d(Eigen::Translation3d(flange + Eigen::Vector3d(0.3, 0, 0) - (far.distance - gap) * far.normal))));
+  worldOnly.gradient = true;
+  const deepcheck::checker::Contact near = world->signedDistance(a, worldOnly).closest;
+  BOOST_REQUIRE_CLOSE(near.distance, gap, 1e-3);
+  // Away from the box along the distance's gradient.
+  const Eigen::VectorXd b = a + 0.3 * near.gradient.normalized();
+  auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
+  og::PathGeometric path(ss->getSpaceInformation());
+  for (const Eigen::VectorXd* q : {&a, &b}) {
+    ob::ScopedState<> state(ss->getSpaceInformation());
+    dp::copyToState(*q, state.get());
+    path.append(state.get());
+  }
+  og::PathGeometric asGiven = path;
+  const dp::PathCertificate nearContact = dp::certifyPath(*ss, path);
+  BOOST_TEST(nearContact.valid);
+  BOOST_TEST(!nearContact.repaired);
+  BOOST_TEST(nearContact.fallbackSteps >= 1u);
+  BOOST_TEST(!nearContact.exact());
+  world->removeObstacle(id);
+  const dp::PathCertificate clear = dp::certifyPath(*ss, asGiven);
+  BOOST_TEST(clear.valid);
+  BOOST_TEST(clear.fallbackSteps == 0u);
+  BOOST_TEST(clear.exact());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

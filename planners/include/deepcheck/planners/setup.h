@@ -44,6 +44,8 @@
 
 #include <ompl/geometric/SimpleSetup.h>
 
+#include <cstdint>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -105,9 +107,15 @@ struct PathCertificate {
   bool repaired = false;    ///< repairPath ran (the initial check failed)
   PathRepair repair;        ///< when repaired
   bool valid = false;       ///< every waypoint and motion (now) passes the clearance validator
+  /// Steps of the final path's motions the clearance validator took without a certificate (its
+  /// fallback within about 0.5 mm of contact, motion_validator.h): there the path is checked only
+  /// as densely as discrete checking. 0 when every motion is certified by clearance.
+  std::uint64_t fallbackSteps = 0;
+  /// Valid with every motion certified by clearance: no fallback step.
+  bool exact() const { return valid && fallbackSteps == 0; }
 };
 /// Certifies `path` (a path of `ss`'s space) with the clearance validator, repairing it in place
-/// when that fails.
+/// when that fails; a repaired path is checked once more to count its own fallback steps.
 PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path);
 
 /// Simplifies the solution of `ss` without ever making it worse: the simplified path is kept only
