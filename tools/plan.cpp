@@ -5,7 +5,7 @@
 //                  [--scene S.yaml]... [--frame-alias NAME=LINK]...
 //                  [--srdf FILE] [--package-path DIR]... --start q1 ... qn
 //                  (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw
-//                                      [--position-tol M] [--orientation-tol RAD])
+//                                      [--position-tol M | --position-box HX HY HZ] [--orientation-tol RAD])
 //                  [--planner NAME] [--time SECONDS] [--objective length|clearance]
 //                  [--repair-start [--repair-margin METRES]] [--seed N] --out path.txt
 //
@@ -66,7 +66,7 @@ constexpr const char* kUsage =
     "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
     "                      [--srdf FILE] [--package-path DIR]... --start q1 ... qn\n"
     "                      (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw\n"
-    "                                          [--position-tol M] [--orientation-tol RAD])\n"
+    "                                          [--position-tol M | --position-box HX HY HZ] [--orientation-tol RAD])\n"
     "                      [--planner NAME] [--time SECONDS] [--objective length|clearance]\n"
     "                      [--repair-start [--repair-margin METRES]] [--seed N] --out path.txt\n"
     "\n"
@@ -85,6 +85,8 @@ constexpr const char* kUsage =
     "                      qx qy qz qw (MoveIt's order, normalized; not zero). Reached by inverse\n"
     "                      kinematics; no collision-free solution is exit status 1\n"
     "  --position-tol M    how far the link's origin may be from the goal, metres (default 1e-4)\n"
+    "  --position-box HX HY HZ  instead, a box: the link's origin within HX, HY, HZ metres of the\n"
+    "                      goal along the goal frame's x, y and z (MoveIt's box region)\n"
     "  --orientation-tol RAD  the largest rotation between the link's orientation and the goal's,\n"
     "                      radians (default 1e-3)\n"
     "  --planner NAME      an OMPL planner (default RRTConnect): RRTConnect, RRT, RRT*,\n"
@@ -174,6 +176,7 @@ struct GoalPoseArg {
   Eigen::Isometry3d X_WT = Eigen::Isometry3d::Identity();
   double positionTolerance = robots::tol::kIkPositionTolerance;        ///< metres
   double orientationTolerance = robots::tol::kIkOrientationTolerance;  ///< radians
+  Eigen::Vector3d positionBox = Eigen::Vector3d::Zero();  ///< half-widths, metres; zero: none
 };
 
 /// X_WT from x y z qx qy qz qw (MoveIt's quaternion order), the quaternion normalized; UsageError
@@ -202,6 +205,28 @@ std::optional<double> takeTolerance(std::vector<std::string>& args, const std::s
   return value;
 }
 
+/// Removes `--position-box HX HY HZ` from `args`; zero when absent. Each half-width > 0 metres.
+Eigen::Vector3d takePositionBox(std::vector<std::string>& args) {
+  Eigen::Vector3d box = Eigen::Vector3d::Zero();
+  const auto at = std::find(args.begin(), args.end(), "--position-box");
+  if (at == args.end()) return box;
+  const auto first = at + 1;
+  const auto isOption = [](const std::string& word) { return word.compare(0, 2, "--") == 0; };
+  if (args.end() - first < 3 || std::any_of(first, first + 3, isOption)) {
+    throw UsageError("--position-box needs 3 half-widths in metres: HX HY HZ");
+  }
+  for (int k = 0; k < 3; ++k) {
+    const std::string& word = *(first + k);
+    box[k] = parseValue(word, "--position-box");
+    if (!(box[k] > 0.0)) throw UsageError("--position-box half-widths must be > 0 m, got " + word);
+  }
+  args.erase(at, first + 3);
+  if (std::find(args.begin(), args.end(), "--position-box") != args.end()) {
+    throw UsageError("option --position-box given more than once");
+  }
+  return box;
+}
+
 /// Removes --goal-pose and its tolerances from `args`; empty when --goal-pose is absent (then the
 /// tolerances are an error).
 std::optional<GoalPoseArg> takeGoalPose(std::vector<std::string>& args) {
@@ -227,10 +252,16 @@ std::optional<GoalPoseArg> takeGoalPose(std::vector<std::string>& args) {
   args = std::move(rest);
   const std::optional<double> position = takeTolerance(args, "--position-tol", "m");
   const std::optional<double> orientation = takeTolerance(args, "--orientation-tol", "rad");
+  const Eigen::Vector3d box = takePositionBox(args);
+  const bool haveBox = box.x() > 0.0;
   if (!pose) {
-    if (position || orientation) throw UsageError("--position-tol and --orientation-tol need --goal-pose");
+    if (position || orientation || haveBox) {
+      throw UsageError("--position-tol, --position-box and --orientation-tol need --goal-pose");
+    }
     return pose;
   }
+  if (position && haveBox) throw UsageError("--position-tol and --position-box exclude each other");
+  pose->positionBox = box;
   if (position) pose->positionTolerance = *position;
   if (orientation) pose->orientationTolerance = *orientation;
   return pose;
@@ -296,6 +327,7 @@ planners::PoseGoalOptions poseGoalOptions(const PlanArgs& a, const Eigen::Vector
   planners::PoseGoalOptions options;
   options.ik.positionTolerance = a.goalPose->positionTolerance;
   options.ik.orientationTolerance = a.goalPose->orientationTolerance;
+  options.ik.positionBox = a.goalPose->positionBox;
   options.ik.seed = a.seed;
   options.ik.initial = start;  // the first solution near the start
   return options;
@@ -319,9 +351,16 @@ std::shared_ptr<planners::PoseGoal> setPoseGoal(ompl::geometric::SimpleSetup& ss
                      "its bounds)");
   }
   if (!first.converged()) {
-    char text[160];
-    std::snprintf(text, sizeof text, ": the best attempt is %.4g m and %.4g rad from it (tolerances %.4g m, %.4g rad)",
-                  first.error.position, first.error.orientation, pose.positionTolerance, pose.orientationTolerance);
+    char position[96];
+    if (pose.positionBox.x() > 0.0) {
+      std::snprintf(position, sizeof position, "box %.4g %.4g %.4g m", pose.positionBox.x(), pose.positionBox.y(),
+                    pose.positionBox.z());
+    } else {
+      std::snprintf(position, sizeof position, "%.4g m", pose.positionTolerance);
+    }
+    char text[240];
+    std::snprintf(text, sizeof text, ": the best attempt is %.4g m and %.4g rad from it (tolerances %s, %.4g rad)",
+                  first.error.position, first.error.orientation, position, pose.orientationTolerance);
     throw InputError("no inverse kinematics solution for link '" + pose.link + "' reaches the goal pose" + text);
   }
   // The first solution is already a goal state: the sampling thread goes on from the next seed.

@@ -122,6 +122,38 @@ BOOST_AUTO_TEST_CASE(the_panda_reaches_a_pose_in_the_bookshelf) {
              world, "panda_hand", goal);
 }
 
+BOOST_AUTO_TEST_CASE(a_position_box_is_met_along_the_goal_axes) {
+  Scratch s;
+  const std::string scene = s.write("objects.yaml", kObjects);
+  const checker::World world =
+      libraryWorld(armUrdf(), armSrdf(), test::bundledDataDir(), scene, {{"world", "base_link"}});
+  Eigen::VectorXd goal(7);
+  goal << -0.14, 0.61, 0.24, -0.77, -0.14, 1.77, -2.23;
+  // The goal pose 8 cm along its own x from a reachable one; the box is 10 cm along x, 1 mm
+  // across: the flange ends inside it, short of the centre.
+  const int flange = world.robot().linkIndex("flange");
+  Eigen::Isometry3d X_WT = robots::forwardKinematics(world.robot(), goal)[static_cast<std::size_t>(flange)];
+  X_WT.translation() += X_WT.rotation() * Eigen::Vector3d(0.08, 0.0, 0.0);
+  const Eigen::Quaterniond r(X_WT.rotation());
+  const Eigen::Vector3d p = X_WT.translation();
+  const std::string out = s.path("path.txt");
+  const Run run = s.run("plan --robot " + quote(armUrdf()) + " --srdf " + quote(armSrdf()) + " --package-path " +
+                            quote(test::bundledDataDir()) + " --scene " + quote(scene) + " --frame-alias world=base_link" +
+                            kArmStart + " --goal-pose flange " + formatNumber(p.x()) + " " + formatNumber(p.y()) + " " +
+                            formatNumber(p.z()) + " " + formatNumber(r.x()) + " " + formatNumber(r.y()) + " " +
+                            formatNumber(r.z()) + " " + formatNumber(r.w()) +
+                            " --position-box 0.1 0.001 0.001 --seed 2 --time 5 --out " + quote(out),
+                        "", "ROS_PACKAGE_PATH=");
+  BOOST_TEST_REQUIRE(run.status == 0, run.err);
+  const std::vector<Eigen::VectorXd> path = readPath(out, world.robot().numVariables());
+  const Eigen::Isometry3d reached = robots::forwardKinematics(world.robot(), path.back())[static_cast<std::size_t>(flange)];
+  const Eigen::Vector3d d = X_WT.inverse() * reached.translation();
+  BOOST_TEST(std::abs(d.x()) <= 0.1);
+  BOOST_TEST(std::abs(d.y()) <= 0.001);
+  BOOST_TEST(std::abs(d.z()) <= 0.001);
+  BOOST_TEST((reached.translation() - p).norm() > robots::tol::kIkPositionTolerance);  // not the sphere's answer
+}
+
 BOOST_AUTO_TEST_CASE(bad_pose_goals_are_reported) {
   Scratch s;
   const std::string scene = s.write("objects.yaml", kObjects);
@@ -137,11 +169,17 @@ BOOST_AUTO_TEST_CASE(bad_pose_goals_are_reported) {
   fails(" --goal-pose flange 0.5 0 0.5 0 0 0 0", 2, "the quaternion qx qy qz qw = 0 0 0 0 is zero");
   fails(" --goal-pose flange 0.5 0 0.5 0 0", 2, "--goal-pose needs a link and 7 numbers");
   fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-tol 0", 2, "--position-tol must be > 0 m");
-  fails(" --goal 0 0 0 0 0 0 0.1 --orientation-tol 0.1", 2, "--position-tol and --orientation-tol need --goal-pose");
+  fails(" --goal 0 0 0 0 0 0 0.1 --orientation-tol 0.1", 2, "--position-tol, --position-box and --orientation-tol need --goal-pose");
+  fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0.1", 2, "--position-box needs 3 half-widths");
+  fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0 0.1", 2, "half-widths must be > 0 m, got 0");
+  fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0.1 0.1 --position-tol 0.1", 2,
+        "--position-tol and --position-box exclude each other");
   fails(" --goal-pose tool0 0.5 0 0.5 0 0 0 1", 1, "no link named 'tool0'");
   // 5 m away: out of reach; the best attempt's error is reported.
   fails(" --goal-pose flange 5 0 0.5 0 0 0 1", 1,
         "no inverse kinematics solution for link 'flange' reaches the goal pose: the best attempt is ");
+  // 5 m away with a 10 cm box: the report names the box.
+  fails(" --goal-pose flange 5 0 0.5 0 0 0 1 --position-box 0.1 0.1 0.1", 1, "(tolerances box 0.1 0.1 0.1 m, 0.001 rad)");
   // Inside the crate: reachable, but only in collision.
   fails(" --goal-pose flange 0 -0.6 0.3 1 0 0 0", 1,
         "no collision-free inverse kinematics solution for link 'flange' at the goal pose: the ");
