@@ -4,42 +4,65 @@
 
 #include "deepcheck/deep/tolerances.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace deepcheck::deep {
 
-void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const ExpansionSurface& surface,
-                   const CertifiedResult& result, CertifiedWarmStart& warm) {
-  using W = CertifiedWarmStart;
-  warm.valid = false;
-  if (result.status != CertifiedStatus::Certified || surface.numLiveFaces() > W::kMaxFaces) return;
-  // Surface vertex -> cached vertex, for the vertices live faces use.
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using W = CertifiedWarmStart;
+
+/// Copies the live faces of `surface` with their corners (renumbered) into `warm`; false when
+/// they do not fit or a face's offset is not positive.
+bool copyFaces(const ExpansionSurface& surface, W& warm) {
   int map[ExpansionSurface::kMaxVertices];
   std::fill(map, map + surface.numVertices(), -1);
   warm.numVertices = warm.numFaces = 0;
+  double nearest = std::numeric_limits<double>::infinity();
   for (int f = 0; f < surface.numFaceSlots(); ++f) {
     const ExpansionSurface::Face& face = surface.face(f);
     if (!face.alive) continue;
-    if (face.d < 0) return;  // not enclosing: nothing to certify from
+    double offset = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 3; ++k) {
       int& m = map[face.v[k]];
+      const ExpansionSurface::Vertex& v = surface.vertex(face.v[k]);
       if (m < 0) {
-        if (warm.numVertices == W::kMaxVertices) return;
-        const ExpansionSurface::Vertex& v = surface.vertex(face.v[k]);
+        if (warm.numVertices == W::kMaxVertices) return false;
         m = warm.numVertices++;
         warm.a[m] = v.a;
         warm.b[m] = v.b;
-        warm.p[m] = v.p;
       }
       warm.face[warm.numFaces][k] = m;
+      offset = std::min(offset, face.n.dot(v.p));
     }
-    warm.offset[warm.numFaces++] = face.d;
+    if (!(offset > 0)) return false;  // not enclosing: nothing to certify from
+    // The certifying face of a cold query is its nearest one.
+    if (face.d < nearest) {
+      nearest = face.d;
+      warm.last = warm.numFaces;
+    }
+    warm.normal[warm.numFaces] = face.n;
+    warm.offset[warm.numFaces++] = offset;
   }
+  return true;
+}
+
+}  // namespace
+
+void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                   const ExpansionSurface& surface, const CertifiedResult& result, W& warm) {
+  warm.valid = false;
+  if (result.status != CertifiedStatus::Certified || surface.numLiveFaces() > W::kMaxFaces) return;
+  if (!copyFaces(surface, warm)) return;
   warm.A = &A;
   warm.B = &B;
-  warm.direction = result.direction;
+  warm.R0 = frame.R;
+  warm.t0 = frame.t;
   warm.hintA = result.supportA;
   warm.hintB = result.supportB;
   warm.valid = true;
@@ -47,89 +70,113 @@ void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const Expan
 
 namespace {
 
-using Vec3 = Eigen::Vector3d;
+/// The cached surface at the current pose: its corners, evaluated on first use, and the bound
+/// on how far any vertex of M has moved since the reference.
+class MovedSurface {
+ public:
+  MovedSurface(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const W& w)
+      : A_(A), B_(B), frame_(frame), w_(w) {
+    motion = (frame.R - w.R0).norm() * B.boundingRadius() + (frame.t - w.t0).norm();
+  }
 
-/// The cached surface moved to the current pose: lower bounds on every face's distance to the
-/// origin, refreshed lazily.
-struct MovedSurface {
-  Vec3 q[CertifiedWarmStart::kMaxVertices];
-  double key[CertifiedWarmStart::kMaxFaces];
-  Vec3 n[CertifiedWarmStart::kMaxFaces];
-  double d[CertifiedWarmStart::kMaxFaces];
-  bool fresh[CertifiedWarmStart::kMaxFaces];
+  double motion;  ///< every vertex of M moved at most this far since the reference
+
+  const Vec3& corner(int f, int k) {
+    const int i = w_.face[f][k];
+    if (!done_[i]) {
+      q_[i] = frame_.vertexB(B_, w_.b[i]) - A_.localVertex(w_.a[i]);
+      done_[i] = true;
+    }
+    return q_[i];
+  }
+
+  /// min_k n0.q_k over face f's moved corners: a lower bound on their face's distance to the
+  /// origin, and (when positive) proof that the face did not cross it.
+  double normalBound(int f) {
+    const Vec3& n0 = w_.normal[f];
+    return std::min({n0.dot(corner(f, 0)), n0.dot(corner(f, 1)), n0.dot(corner(f, 2))});
+  }
+
+  /// Face f's plane through its moved corners (unit normal, offset); false when degenerate.
+  bool plane(int f, Vec3& n, double& d) {
+    const Vec3& p0 = corner(f, 0);
+    const Vec3& p1 = corner(f, 1);
+    const Vec3& p2 = corner(f, 2);
+    const Vec3 c = (p1 - p0).cross(p2 - p0);
+    const double len = c.norm();
+    if (!(len > 0)) return false;
+    n = c / len;
+    d = n.dot(p0 + p1 + p2) / 3.0;
+    return true;
+  }
+
+ private:
+  const ConvexPolytope& A_;
+  const ConvexPolytope& B_;
+  const PairFrame& frame_;
+  const W& w_;
+  Vec3 q_[W::kMaxVertices];
+  bool done_[W::kMaxVertices] = {};
 };
 
-/// Moves the vertices and bounds each face's distance by its reference offset minus its corners'
-/// largest move; false when a face could have crossed the origin.
-bool moveSurface(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                 const CertifiedWarmStart& w, MovedSurface& m) {
-  double move[CertifiedWarmStart::kMaxVertices];
-  for (int i = 0; i < w.numVertices; ++i) {
-    m.q[i] = frame.vertexB(B, w.b[i]) - A.localVertex(w.a[i]);
-    move[i] = (m.q[i] - w.p[i]).norm();
-  }
+/// The moved surface's lower bound on the depth, and its nearest face when that is below the
+/// target: a fresh face (plane through its moved corners).
+struct Bound {
+  double lower = std::numeric_limits<double>::infinity();
+  int nearest = -1;  ///< the nearest face below the target, or -1
+  Vec3 n = Vec3::UnitZ();
+  double d = 0.0;
+};
+
+/// Bounds every face's distance to the origin, working only on faces whose reference offset
+/// minus the motion is below `target` (the others already reach it). False when a face could
+/// have crossed the origin or is degenerate: the surface then certifies nothing.
+bool boundFaces(const W& w, MovedSurface& m, double target, Bound& out) {
   for (int f = 0; f < w.numFaces; ++f) {
-    const int* c = w.face[f];
-    m.key[f] = w.offset[f] - std::max({move[c[0]], move[c[1]], move[c[2]]});
-    if (!(m.key[f] > 0)) return false;
-    m.fresh[f] = false;
+    double key = w.offset[f] - m.motion;
+    if (key < target) {
+      key = m.normalBound(f);
+      if (!(key > 0)) return false;
+      if (key < target) {
+        Vec3 n;
+        double d;
+        if (!m.plane(f, n, d)) return false;
+        key = std::max(key, std::abs(d));
+        if (key < target && key < out.lower) {
+          out.nearest = f;
+          out.n = n;
+          out.d = d;
+        }
+      }
+    }
+    out.lower = std::min(out.lower, key);
   }
   return true;
 }
 
-/// Recomputes face f's plane from its moved corners; the distance to a triangle is at least the
-/// distance to its plane. False for a degenerate face.
-bool refresh(const CertifiedWarmStart& w, MovedSurface& m, int f) {
-  const Vec3& p0 = m.q[w.face[f][0]];
-  const Vec3& p1 = m.q[w.face[f][1]];
-  const Vec3& p2 = m.q[w.face[f][2]];
-  const Vec3 n = (p1 - p0).cross(p2 - p0);
-  const double len = n.norm();
-  if (!(len > 0)) return false;
-  m.n[f] = n / len;
-  m.d[f] = m.n[f].dot(p0 + p1 + p2) / 3.0;
-  m.key[f] = std::max(m.key[f], std::abs(m.d[f]));
-  m.fresh[f] = true;
-  return true;
+double tauOf(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
+  return tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
 }
 
-void setFace(const CertifiedWarmStart& w, const MovedSurface& m, int f, CertifiedResult& r) {
-  r.faceNormal = m.n[f];
+void setFace(const W& w, int f, const Vec3& n, CertifiedResult& r) {
+  r.faceNormal = n;
   for (int k = 0; k < 3; ++k) {
     r.faceA[k] = w.a[w.face[f][k]];
     r.faceB[k] = w.b[w.face[f][k]];
   }
 }
 
-/// The warm queries' common start: the tolerance, and the cached surface moved to the current
-/// pose. False when the surface is not this pair's or a face could have crossed the origin.
-bool startWarm(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-               const CertifiedWarmStart& w, CertifiedResult& r, MovedSurface& m) {
-  r.tau = tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
-  return w.belongsTo(A, B) && moveSurface(A, B, frame, w, m);
-}
-
-/// Refreshes the nearest face while it is stale and below r.upper by more than tau; r.lower is
-/// then its key. Returns that face, or -1 for a degenerate face. Each refresh makes one more face
-/// fresh, so this ends.
-int settleNearest(const CertifiedWarmStart& w, MovedSurface& m, CertifiedResult& r) {
-  for (;;) {
-    const int f = static_cast<int>(std::min_element(m.key, m.key + w.numFaces) - m.key);
-    r.lower = m.key[f];
-    if (r.upper - r.lower <= r.tau || m.fresh[f]) return f;
-    if (!refresh(w, m, f)) return -1;
-  }
-}
-
 }  // namespace
 
 CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
-                              const PairFrame& frame, CertifiedWarmStart& w) {
+                              const PairFrame& frame, W& w) {
   CertifiedResult r;
   r.upper = std::numeric_limits<double>::infinity();
-  MovedSurface m;
-  if (!startWarm(A, B, frame, w, r, m)) return r;
-  auto supportIn = [&](const Vec3& u) {
+  r.tau = tauOf(A, B, frame);
+  if (!w.belongsTo(A, B)) return r;
+  MovedSurface m(A, B, frame, w);
+  int named = -1;  // the face whose normal gave the upper bound
+  auto supportIn = [&](int f, const Vec3& u) {
     w.hintA = A.support(-u, w.hintA);
     w.hintB = B.support(frame.toB(u), w.hintB);
     const double h = u.dot(frame.vertexB(B, w.hintB) - A.localVertex(w.hintA));
@@ -138,34 +185,41 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
       r.direction = u;
       r.supportA = w.hintA;
       r.supportB = w.hintB;
+      named = f;
     }
   };
-  supportIn(w.direction);
-  const int f = settleNearest(w, m, r);
-  if (f < 0) return r;
-  int named = -1;  // the face whose normal gave the upper bound
+  Vec3 n;
+  double d;
+  if (!m.plane(w.last, n, d)) return r;
+  supportIn(w.last, n);
+  Bound bound;
+  if (!boundFaces(w, m, r.upper - r.tau, bound)) return r;
+  r.lower = std::min(bound.lower, r.upper);
   if (r.upper - r.lower > r.tau) {
-    // The nearest face is up to date and still below the upper bound: query its normal once.
-    if (!(m.d[f] > 0)) return r;
-    const double before = r.upper;
-    supportIn(m.n[f]);
-    if (r.upper < before) named = f;
+    // The nearest face is fresh and below the upper bound: query its normal once.
+    if (bound.nearest == w.last || !(bound.d > 0)) return r;
+    supportIn(bound.nearest, bound.n);
+    r.lower = std::min(bound.lower, r.upper);
     if (r.upper - r.lower > r.tau) return r;
   }
   r.status = CertifiedStatus::Certified;
-  if (named >= 0) setFace(w, m, named, r);
-  w.direction = r.direction;
+  setFace(w, named, named == w.last ? n : bound.n, r);
+  w.last = named;
   return r;
 }
 
 CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                                  const CertifiedWarmStart& w, double upper) {
+                                  const W& w, double upper) {
   CertifiedResult r;
   r.upper = upper;
-  MovedSurface m;
-  if (!std::isfinite(upper) || !startWarm(A, B, frame, w, r, m)) return r;
-  // No support query: a fresh face still below the bound leaves the depth uncertified.
-  if (settleNearest(w, m, r) >= 0 && r.upper - r.lower <= r.tau) r.status = CertifiedStatus::Certified;
+  r.tau = tauOf(A, B, frame);
+  if (!std::isfinite(upper) || !w.belongsTo(A, B)) return r;
+  MovedSurface m(A, B, frame, w);
+  Bound bound;
+  if (!boundFaces(w, m, upper - r.tau, bound)) return r;
+  // No support query: a face still below the bound leaves the depth uncertified.
+  r.lower = std::min(bound.lower, upper);
+  if (upper - r.lower <= r.tau) r.status = CertifiedStatus::Certified;
   return r;
 }
 

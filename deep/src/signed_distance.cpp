@@ -163,15 +163,44 @@ bool checkedWarmWalk(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
   return true;
 }
 
+/// Names a certified result's facet (certifiedFacet, else DEEP's walk from its direction) and
+/// fills `p` with it and the bracket's lower bound.
+void nameCertified(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                   const CertifiedResult& c, const DeepOptions& options, PairCache* cache, Penetration& p) {
+  p.lower = c.lower;
+  p.expansions = c.expansions;
+  if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c, cache ? cache->walk : nullptr);
+  if (options.warmWalk && cache) cache->deep = walkStartAt(c);  // the next checked walk starts here
+  p.certified = p.deep.depth - p.lower <= c.tau;
+}
+
+/// Whether the certified warm query runs before GJK (warmPenetration) with these options: the
+/// checked warm walk (DeepOptions::warmWalk) keeps its own order, after GJK.
+bool warmFirst(const DeepOptions& options, const PairCache* cache) {
+  return options.method == PenetrationMethod::Certified && options.warmStart && !options.warmWalk && cache &&
+         cache->certified;
+}
+
+/// The certified method's warm query, tried before GJK: a certified answer from the cached
+/// surface also proves the shapes overlap (the moved surface, made of points of M, winds around
+/// the origin), so GJK is not needed. True, with `p` set, when the surface certifies the depth.
+bool warmPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                     const DeepOptions& options, PairCache* cache, Penetration& p) {
+  if (!warmFirst(options, cache) || isLowDim(A) || isLowDim(B)) return false;
+  const CertifiedResult c = certifiedWarm(A, B, frame, *cache->certified);
+  if (c.status != CertifiedStatus::Certified) return false;
+  nameCertified(A, B, frame, c, options, cache, p);
+  return true;
+}
+
 /// The certified method: the expansion's bracket, the answer named by DEEP's facets. Points and
 /// segments (M's facets are enumerated exactly) and expansions that did not converge (flat M,
-/// cap) go to DEEP's walks with all restarts; the bracket's lower bound is kept.
+/// cap) go to DEEP's walks with all restarts; the bracket's lower bound is kept. `triedWarm`: the
+/// warm query already ran (warmPenetration) and did not certify.
 Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                            const GjkResult& g, ExpansionSurface& surface, const DeepOptions& options,
-                           PairCache* cache) {
+                           PairCache* cache, bool triedWarm) {
   Penetration p;
-  const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
-  const double tau = tol::kCertifyRelative * L;
   WalkScratch* walk = cache ? cache->walk : nullptr;
   if (isLowDim(A) || isLowDim(B)) {
     p.deep = deepPenetration(A, B, frame, nullptr, options, walk);
@@ -184,29 +213,28 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   // The walk's hub indices are trusted only when the cached surface is this pair's.
   const bool walkable = warm && options.warmWalk && cache->deep.valid && cache->certified->belongsTo(A, B);
   if (walkable && checkedWarmWalk(A, B, frame, *cache, p)) return p;
-  if (warm) c = certifiedWarm(A, B, frame, *cache->certified);
+  if (warm && !triedWarm) c = certifiedWarm(A, B, frame, *cache->certified);
   if (c.status != CertifiedStatus::Certified) {
     CertifiedOptions co;
     co.maxExpansions = options.maxExpansions;
     c = certifiedPenetration(A, B, frame, g, surface, co);
     if (cache) {
       if (!cache->certified) cache->certified = std::make_unique<CertifiedWarmStart>();
-      saveWarmStart(A, B, surface, c, *cache->certified);
+      saveWarmStart(A, B, frame, surface, c, *cache->certified);
     }
+  }
+  if (c.status == CertifiedStatus::Certified) {
+    nameCertified(A, B, frame, c, options, cache, p);
+    return p;
   }
   p.lower = c.lower;
   p.expansions = c.expansions;
-  if (c.status == CertifiedStatus::Certified) {
-    if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c, walk);
-    if (options.warmWalk && cache) cache->deep = walkStartAt(c);  // the next checked walk starts here
-  } else {
-    DeepOptions full = options;
-    full.warmStart = false;
-    full.restarts = true;
-    p.deep = deepPenetration(A, B, frame, nullptr, full, walk);
-    if (c.upper < p.deep.depth) p.deep = nameFacet(A, B, frame, c, walk);
-  }
-  p.certified = p.deep.depth - p.lower <= tau;
+  DeepOptions full = options;
+  full.warmStart = false;
+  full.restarts = true;
+  p.deep = deepPenetration(A, B, frame, nullptr, full, walk);
+  if (c.upper < p.deep.depth) p.deep = nameFacet(A, B, frame, c, walk);
+  p.certified = p.deep.depth - p.lower <= c.tau;
   return p;
 }
 
@@ -224,33 +252,38 @@ SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3
   SignedDistanceResult r;
   Eigen::Vector3d n_P, pA_P, pB_P;
   double coreSd;
-  const GjkResult g = gjkDistance(a, b, frame, cache ? &cache->gjk : nullptr);
-  const bool apart = g.status == GjkStatus::Separated ||
-                     (g.status == GjkStatus::MaxIterations && g.distance > 0);
-  if (apart) {
-    coreSd = g.distance;
-    n_P = g.normal;
-    pA_P = g.pointA;
-    pB_P = g.pointB;
-    r.status = g.status == GjkStatus::Separated ? SignedDistanceStatus::Separated
-                                                : SignedDistanceStatus::NotConverged;
-    r.featureA = simplexFeature(a, g.simplexA.data(), g.simplexSize, n_P, Eigen::Matrix3d::Identity());
-    r.featureB = simplexFeature(b, g.simplexB.data(), g.simplexSize, -n_P, frame.R);
-    // The certified warm start stays: its check measures the motion from its own reference.
-    if (cache) cache->deep.valid = false;
-  } else {
-    Penetration p;
-    if (options.method == PenetrationMethod::Certified) {
-      if (cache && cache->surface) {
-        p = certifiedDepth(a, b, frame, g, *cache->surface, options, cache);
+  Penetration p;
+  const bool warmCertified = warmPenetration(a, b, frame, options, cache, p);
+  bool apart = false;
+  if (!warmCertified) {
+    const GjkResult g = gjkDistance(a, b, frame, cache ? &cache->gjk : nullptr);
+    apart = g.status == GjkStatus::Separated || (g.status == GjkStatus::MaxIterations && g.distance > 0);
+    if (apart) {
+      coreSd = g.distance;
+      n_P = g.normal;
+      pA_P = g.pointA;
+      pB_P = g.pointB;
+      r.status = g.status == GjkStatus::Separated ? SignedDistanceStatus::Separated
+                                                  : SignedDistanceStatus::NotConverged;
+      r.featureA = simplexFeature(a, g.simplexA.data(), g.simplexSize, n_P, Eigen::Matrix3d::Identity());
+      r.featureB = simplexFeature(b, g.simplexB.data(), g.simplexSize, -n_P, frame.R);
+      // The certified warm start stays: its check measures the motion from its own reference.
+      if (cache) cache->deep.valid = false;
+    } else if (options.method == PenetrationMethod::Certified) {
+      const bool triedWarm = warmFirst(options, cache);
+      ExpansionSurface* scratch = cache ? cache->surface : nullptr;
+      if (scratch) {
+        p = certifiedDepth(a, b, frame, g, *scratch, options, cache, triedWarm);
       } else {
         ExpansionSurface surface;
-        p = certifiedDepth(a, b, frame, g, surface, options, cache);
+        p = certifiedDepth(a, b, frame, g, surface, options, cache, triedWarm);
       }
     } else {
       p.deep = deepPenetration(a, b, frame, cache ? &cache->deep : nullptr, options,
                                cache ? cache->walk : nullptr);
     }
+  }
+  if (!apart) {
     const DeepResult& d = p.deep;
     coreSd = -d.depth;
     n_P = d.normal;

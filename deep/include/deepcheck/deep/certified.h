@@ -66,20 +66,22 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
                                      const CertifiedOptions& options = {});
 
 /// Warm start of the certified method for one pair: the surface of a cold query (faces as vertex
-/// index pairs, at most kMaxFaces), kept with its vertices' positions and face offsets at that
-/// query's pose, the reference (certified_warm.cpp).
+/// index pairs, at most kMaxFaces), kept with each face's unit normal n0 and offset
+/// min_k n0.p_k over its corners p_k at that query's pose, the reference (certified_warm.cpp).
 ///
-/// After a motion, each cached vertex b - a of M has moved by a distance the next query measures
-/// exactly. Moving the vertices straight from their reference positions to their new ones moves
-/// every point of a face by at most the largest move of its corners, so a face whose reference
-/// offset exceeds that never crosses the origin: the moved surface still winds once around it,
-/// and every face's distance to the origin is at least key = offset - move (a valid lower bound
-/// even though the moved surface need not be convex). Faces below the current upper bound are
-/// refreshed from their moved corners (the distance to a triangle is at least the distance to its
-/// plane), one support in the nearest face's normal gives the upper bound, and when the bounds
-/// meet within tau the answer is certified without expanding. Any face whose move could reach the
-/// origin, or a gap that would need an expansion, sends the query cold (which then becomes the
-/// new reference).
+/// After a motion, every vertex b - a of M has moved by at most delta = |R - R0|_F r_B +
+/// |t - t0| (pair frame: A is fixed, B's vertices lie within r_B of its centroid). Moving the
+/// vertices straight from their reference positions to their new ones keeps n0.x > 0 on a face
+/// whose corners all have n0.q > 0 (their new positions q; at least offset - delta), so that
+/// face never crosses the origin; when none does, the moved surface (closed, though no longer
+/// convex) still winds once around the origin, every ray from it meets the surface at a point of
+/// M, and the depth is at least the smallest lower bound on a face's distance: min_k n0.q_k,
+/// offset - delta, or the distance to the face's plane through its moved corners. A query
+/// queries one support, in the normal of the face that certified last time; faces whose bound
+/// already reaches that upper bound are not touched, the few below are evaluated at their new
+/// corners, and one more support in the nearest face's normal settles most queries without
+/// expanding. A face that could have crossed the origin, or a gap that would need an expansion,
+/// sends the query cold (which then becomes the new reference).
 struct CertifiedWarmStart {
   static constexpr int kMaxFaces = 96;
   static constexpr int kMaxVertices = kMaxFaces / 2 + 2;  ///< a closed surface of F faces has F/2 + 2 vertices
@@ -90,20 +92,23 @@ struct CertifiedWarmStart {
   int numFaces = 0;
   int a[kMaxVertices];
   int b[kMaxVertices];
-  Eigen::Vector3d p[kMaxVertices];  ///< positions b - a at the reference pose, frame P
   int face[kMaxFaces][3];
-  double offset[kMaxFaces];          ///< face-plane offsets at the reference pose (all >= 0)
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< the last answer's direction
+  double offset[kMaxFaces];          ///< min over the face's corners of normal.p at the reference (all > 0)
+  Eigen::Vector3d normal[kMaxFaces];  ///< unit face normals at the reference pose, frame P
+  Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity();  ///< the reference pair frame
+  Eigen::Vector3d t0 = Eigen::Vector3d::Zero();
+  int last = 0;  ///< the face that certified the last answer
   int hintA = 0;
   int hintB = 0;
   /// A valid surface of the pair (A, B): only then do its index pairs name vertices of theirs.
   bool belongsTo(const ConvexPolytope& a, const ConvexPolytope& b) const { return valid && A == &a && B == &b; }
 };
 
-/// Saves the surface of a certified cold query as the reference of the pair's warm start; leaves
-/// `warm` invalid when the surface has more than kMaxFaces faces (the next query runs cold).
-void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const ExpansionSurface& surface,
-                   const CertifiedResult& result, CertifiedWarmStart& warm);
+/// Saves the surface of a certified cold query at `frame`, the reference of the pair's warm start;
+/// leaves `warm` invalid when the surface has more than kMaxFaces faces or a face at non-positive
+/// distance (the next query runs cold).
+void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                   const ExpansionSurface& surface, const CertifiedResult& result, CertifiedWarmStart& warm);
 
 /// The warm query: Certified when the cached surface certifies the depth without expanding,
 /// else NotConverged (the caller runs certifiedPenetration).
@@ -112,7 +117,7 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
 
 /// The cached surface's check of an upper bound found elsewhere (the depth of a facet of M that a
 /// warm DEEP walk reached): Certified when the moved surface bounds the depth from below within tau
-/// of `upper` (faces are refreshed as in certifiedWarm, no support query is made); NotConverged
+/// of `upper` (faces are bounded as in certifiedWarm, no support query is made); NotConverged
 /// otherwise. `upper` must be h_M(u) for some unit u (a facet offset of M is).
 CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                                   const CertifiedWarmStart& warm, double upper);
