@@ -116,17 +116,18 @@ const Vertex& hintCorner(const ExpansionSurface& s, int f) {
   return s.vertex(best);
 }
 
-}  // namespace
-
-CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B,
-                                     const PairFrame& frame, const GjkResult& gjk,
-                                     ExpansionSurface& surface, const CertifiedOptions& options) {
-  const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
+/// A result with an empty bracket [0, inf) and the pair's tolerance.
+CertifiedResult emptyBracket(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
   CertifiedResult r;
-  r.tau = tol::kCertifyRelative * L;
+  r.tau = tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
   r.upper = std::numeric_limits<double>::infinity();
-  const Support support(A, B, frame);
-  if (!startSurface(support, gjk, tol::kFlatRelative * L, surface)) return r;
+  return r;
+}
+
+/// The best-first expansion of a started surface: pops the nearest face, queries the support in
+/// its normal, and stops when the bounds meet, the cap is hit or the surface cannot grow.
+void expandBestFirst(const Support& support, ExpansionSurface& surface, const CertifiedOptions& options,
+                     CertifiedResult& r) {
   while (true) {
     const int f = surface.bestFace();
     if (f < 0) break;
@@ -157,6 +158,25 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
   }
   r.faces = surface.numLiveFaces();
   r.lower = std::min(r.lower, r.upper);
+}
+
+}  // namespace
+
+CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B,
+                                     const PairFrame& frame, const GjkResult& gjk,
+                                     ExpansionSurface& surface, const CertifiedOptions& options) {
+  CertifiedResult r = emptyBracket(A, B, frame);
+  const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
+  const Support support(A, B, frame);
+  if (!startSurface(support, gjk, tol::kFlatRelative * L, surface)) return r;
+  expandBestFirst(support, surface, options, r);
+  return r;
+}
+
+CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                                     ExpansionSurface& surface, const CertifiedOptions& options) {
+  CertifiedResult r = emptyBracket(A, B, frame);
+  expandBestFirst(Support(A, B, frame), surface, options, r);
   return r;
 }
 

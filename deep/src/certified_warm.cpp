@@ -22,6 +22,8 @@ using W = CertifiedWarmStart;
 bool copyFaces(const ExpansionSurface& surface, W& warm) {
   int map[ExpansionSurface::kMaxVertices];
   std::fill(map, map + surface.numVertices(), -1);
+  int index[ExpansionSurface::kMaxFaces];  // face slot -> cached face
+  for (int f = 0, n = 0; f < surface.numFaceSlots(); ++f) index[f] = surface.face(f).alive ? n++ : -1;
   warm.numVertices = warm.numFaces = 0;
   double nearest = std::numeric_limits<double>::infinity();
   for (int f = 0; f < surface.numFaceSlots(); ++f) {
@@ -38,6 +40,7 @@ bool copyFaces(const ExpansionSurface& surface, W& warm) {
         warm.b[m] = v.b;
       }
       warm.face[warm.numFaces][k] = m;
+      warm.adj[warm.numFaces][k] = 4 * index[face.adj[k] >> 2] + (face.adj[k] & 3);
       offset = std::min(offset, face.n.dot(v.p));
     }
     if (!(offset > 0)) return false;  // not enclosing: nothing to certify from
@@ -81,14 +84,15 @@ class MovedSurface {
 
   double motion;  ///< every vertex of M moved at most this far since the reference
 
-  const Vec3& corner(int f, int k) {
-    const int i = w_.face[f][k];
+  /// Cached vertex i at the current pose.
+  const Vec3& vertex(int i) {
     if (!done_[i]) {
       q_[i] = frame_.vertexB(B_, w_.b[i]) - A_.localVertex(w_.a[i]);
       done_[i] = true;
     }
     return q_[i];
   }
+  const Vec3& corner(int f, int k) { return vertex(w_.face[f][k]); }
 
   /// min_k n0.q_k over face f's moved corners: a lower bound on their face's distance to the
   /// origin, and (when positive) proof that the face did not cross it.
@@ -205,6 +209,23 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
   r.status = CertifiedStatus::Certified;
   setFace(w, named, named == w.last ? n : bound.n, r);
   w.last = named;
+  return r;
+}
+
+CertifiedResult expandWarm(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, W& w,
+                           ExpansionSurface& surface, const CertifiedOptions& options) {
+  CertifiedResult r;
+  r.upper = std::numeric_limits<double>::infinity();
+  r.tau = tauOf(A, B, frame);
+  if (!w.belongsTo(A, B)) return r;
+  MovedSurface m(A, B, frame, w);
+  for (int f = 0; f < w.numFaces; ++f)
+    if (!(w.offset[f] - m.motion > 0) && !(m.normalBound(f) > 0)) return r;  // could have crossed
+  ExpansionSurface::Vertex moved[W::kMaxVertices];
+  for (int i = 0; i < w.numVertices; ++i) moved[i] = {m.vertex(i), w.a[i], w.b[i]};
+  if (!surface.load(moved, w.numVertices, w.face, w.adj, w.numFaces)) return r;
+  r = certifiedFromSurface(A, B, frame, surface, options);
+  if (r.status == CertifiedStatus::Certified) saveWarmStart(A, B, frame, surface, r, w);
   return r;
 }
 

@@ -69,6 +69,7 @@ void ExpansionSurface::freeFace(int f) {
 
 bool ExpansionSurface::startTetrahedron(const Vertex* corners) {
   numVertices_ = numSlots_ = numFree_ = queueSize_ = live_ = 0;
+  convex_ = true;
   for (int i = 0; i < 4; ++i) vertices_[numVertices_++] = corners[i];
   const Vec3& p0 = corners[0].p;
   const double volume = (corners[1].p - p0).cross(corners[2].p - p0).dot(corners[3].p - p0);
@@ -87,6 +88,25 @@ bool ExpansionSurface::startTetrahedron(const Vertex* corners) {
     if (!setPlane(faces_[f])) return false;
     push(f);
   }
+  return true;
+}
+
+bool ExpansionSurface::load(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3],
+                            int numFaces) {
+  numVertices_ = numSlots_ = numFree_ = queueSize_ = live_ = 0;
+  convex_ = false;
+  if (numVertices > kMaxVertices || numFaces > kMaxFaces) return false;
+  std::copy(vertices, vertices + numVertices, vertices_);
+  numVertices_ = numVertices;
+  for (int f = 0; f < numFaces; ++f) {
+    Face& face = faces_[newFace(faces[f][0], faces[f][1], faces[f][2])];
+    std::copy(adj[f], adj[f] + 3, face.adj);
+    if (!setPlane(face)) {
+      numVertices_ = numSlots_ = live_ = 0;
+      return false;
+    }
+  }
+  rebuildQueue();
   return true;
 }
 
@@ -138,20 +158,39 @@ bool ExpansionSurface::collectHorizon(int from, const Vec3& w) {
 }
 
 bool ExpansionSurface::horizonIsCycle() const {
+  auto from = [&](int i) { return faces_[horizon_[i].face].v[horizon_[i].edge]; };
+  auto to = [&](int i) { return faces_[horizon_[i].face].v[(horizon_[i].edge + 1) % 3]; };
   for (int i = 0; i < horizonSize_; ++i) {
-    const int start = faces_[horizon_[i].face].v[horizon_[i].edge];
     int matches = 0;
-    for (int j = 0; j < horizonSize_; ++j)
-      matches += faces_[horizon_[j].face].v[(horizon_[j].edge + 1) % 3] == start;
+    for (int j = 0; j < horizonSize_; ++j) matches += to(j) == from(i);
     if (matches != 1) return false;
   }
+  // Follow the edges from the first: one cycle through all of them, or several?
+  int length = 0, i = 0;
+  do {
+    int next = 0;
+    while (next < horizonSize_ && from(next) != to(i)) ++next;
+    if (next == horizonSize_) return false;
+    i = next;
+    ++length;
+  } while (i != 0 && length <= horizonSize_);
+  return length == horizonSize_;
+}
+
+bool ExpansionSurface::keepsOrigin(int from, const Vec3& w) const {
+  if (convex_) return true;
+  const Vec3& n = faces_[from].n;
+  if (!(n.dot(w) > 0)) return false;
+  for (int i = 0; i < numSeen_; ++i)
+    for (int k = 0; k < 3; ++k)
+      if (!(n.dot(vertices_[faces_[seen_[i]].v[k]].p) > 0)) return false;
   return true;
 }
 
 bool ExpansionSurface::expand(int from, const Vertex& w) {
   numSeen_ = 0;
   const bool ok = numVertices_ < kMaxVertices && collectHorizon(from, w.p) && horizonIsCycle() &&
-                  numFree_ + numSeen_ + (kMaxFaces - numSlots_) >= horizonSize_;
+                  keepsOrigin(from, w.p) && numFree_ + numSeen_ + (kMaxFaces - numSlots_) >= horizonSize_;
   auto restore = [&] {
     for (int i = 0; i < numSeen_; ++i) faces_[seen_[i]].alive = true;
     return false;

@@ -185,10 +185,15 @@ bool warmFirst(const DeepOptions& options, const PairCache* cache) {
 /// surface also proves the shapes overlap (the moved surface, made of points of M, winds around
 /// the origin), so GJK is not needed. True, with `p` set, when the surface certifies the depth.
 bool warmPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                     const DeepOptions& options, PairCache* cache, Penetration& p) {
+                     const DeepOptions& options, PairCache* cache, ExpansionSurface& surface, Penetration& p) {
   if (!warmFirst(options, cache) || isLowDim(A) || isLowDim(B)) return false;
-  const CertifiedResult c = certifiedWarm(A, B, frame, *cache->certified);
-  if (c.status != CertifiedStatus::Certified) return false;
+  CertifiedResult c = certifiedWarm(A, B, frame, *cache->certified);
+  if (c.status != CertifiedStatus::Certified) {
+    CertifiedOptions co;
+    co.maxExpansions = options.maxExpansions;
+    c = expandWarm(A, B, frame, *cache->certified, surface, co);
+    if (c.status != CertifiedStatus::Certified) return false;
+  }
   nameCertified(A, B, frame, c, options, cache, p);
   return true;
 }
@@ -240,20 +245,19 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
 
 }  // namespace
 
-SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3d& X_WA,
-                                    const ConvexShape& B, const Eigen::Isometry3d& X_WB,
-                                    PairCache* cache, const DeepOptions& options) {
-  checkShape(A, "A");
-  checkShape(B, "B");
+namespace {
+
+/// signedDistance() in the pair frame, with the certified method's scratch surface (non-null for
+/// that method).
+SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B, const PairFrame& frame,
+                                      PairCache* cache, const DeepOptions& options, ExpansionSurface* surface) {
   const ConvexPolytope& a = *A.core;
   const ConvexPolytope& b = *B.core;
-  const PairFrame frame = PairFrame::make(a, X_WA, b, X_WB);
-
   SignedDistanceResult r;
   Eigen::Vector3d n_P, pA_P, pB_P;
   double coreSd;
   Penetration p;
-  const bool warmCertified = warmPenetration(a, b, frame, options, cache, p);
+  const bool warmCertified = surface && warmPenetration(a, b, frame, options, cache, *surface, p);
   bool apart = false;
   if (!warmCertified) {
     const GjkResult g = gjkDistance(a, b, frame, cache ? &cache->gjk : nullptr);
@@ -270,14 +274,7 @@ SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3
       // The certified warm start stays: its check measures the motion from its own reference.
       if (cache) cache->deep.valid = false;
     } else if (options.method == PenetrationMethod::Certified) {
-      const bool triedWarm = warmFirst(options, cache);
-      ExpansionSurface* scratch = cache ? cache->surface : nullptr;
-      if (scratch) {
-        p = certifiedDepth(a, b, frame, g, *scratch, options, cache, triedWarm);
-      } else {
-        ExpansionSurface surface;
-        p = certifiedDepth(a, b, frame, g, surface, options, cache, triedWarm);
-      }
+      p = certifiedDepth(a, b, frame, g, *surface, options, cache, warmFirst(options, cache));
     } else {
       p.deep = deepPenetration(a, b, frame, cache ? &cache->deep : nullptr, options,
                                cache ? cache->walk : nullptr);
@@ -311,6 +308,21 @@ SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3
   r.pointA = frame.X_WP * (pA_P + A.radius * n_P);
   r.pointB = frame.X_WP * (pB_P - B.radius * n_P);
   return r;
+}
+
+}  // namespace
+
+SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3d& X_WA,
+                                    const ConvexShape& B, const Eigen::Isometry3d& X_WB,
+                                    PairCache* cache, const DeepOptions& options) {
+  checkShape(A, "A");
+  checkShape(B, "B");
+  const PairFrame frame = PairFrame::make(*A.core, X_WA, *B.core, X_WB);
+  ExpansionSurface* scratch = cache ? cache->surface : nullptr;
+  if (scratch || options.method != PenetrationMethod::Certified)
+    return signedDistanceIn(A, B, frame, cache, options, scratch);
+  ExpansionSurface local;  // no scratch from the caller: one on the stack
+  return signedDistanceIn(A, B, frame, cache, options, &local);
 }
 
 SignedDistanceResult signedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,

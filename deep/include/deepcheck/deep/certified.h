@@ -65,6 +65,11 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
                                      ExpansionSurface& surface,
                                      const CertifiedOptions& options = {});
 
+/// The best-first expansion of certifiedPenetration from a surface the caller started (a warm
+/// start's moved surface, ExpansionSurface::load), which must wind once around the origin.
+CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                                     ExpansionSurface& surface, const CertifiedOptions& options = {});
+
 /// Warm start of the certified method for one pair: the surface of a cold query (faces as vertex
 /// index pairs, at most kMaxFaces), kept with each face's unit normal n0 and offset
 /// min_k n0.p_k over its corners p_k at that query's pose, the reference (certified_warm.cpp).
@@ -80,8 +85,9 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
 /// queries one support, in the normal of the face that certified last time; faces whose bound
 /// already reaches that upper bound are not touched, the few below are evaluated at their new
 /// corners, and one more support in the nearest face's normal settles most queries without
-/// expanding. A face that could have crossed the origin, or a gap that would need an expansion,
-/// sends the query cold (which then becomes the new reference).
+/// expanding. When it does not, expandWarm() expands the moved surface best-first as a cold query
+/// would and makes the result the new reference. A face that could have crossed the origin sends
+/// the query cold (which then becomes the new reference).
 struct CertifiedWarmStart {
   static constexpr int kMaxFaces = 96;
   static constexpr int kMaxVertices = kMaxFaces / 2 + 2;  ///< a closed surface of F faces has F/2 + 2 vertices
@@ -93,6 +99,7 @@ struct CertifiedWarmStart {
   int a[kMaxVertices];
   int b[kMaxVertices];
   int face[kMaxFaces][3];
+  int adj[kMaxFaces][3];              ///< neighbours, as ExpansionSurface::Face::adj
   double offset[kMaxFaces];          ///< min over the face's corners of normal.p at the reference (all > 0)
   Eigen::Vector3d normal[kMaxFaces];  ///< unit face normals at the reference pose, frame P
   Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity();  ///< the reference pair frame
@@ -114,6 +121,14 @@ void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const PairF
 /// else NotConverged (the caller runs certifiedPenetration).
 CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
                               const PairFrame& frame, CertifiedWarmStart& warm);
+
+/// The warm query's second stage, when certifiedWarm() did not certify: the cached surface at
+/// the current pose is loaded into `surface` (overwritten) and expanded best-first
+/// (certifiedFromSurface). A certified result becomes the warm start's new reference. NotConverged
+/// when the surface is not this pair's, a face could have crossed the origin, or the expansion
+/// did not converge (the caller then runs certifiedPenetration).
+CertifiedResult expandWarm(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                           CertifiedWarmStart& warm, ExpansionSurface& surface, const CertifiedOptions& options = {});
 
 /// The cached surface's check of an upper bound found elsewhere (the depth of a facet of M that a
 /// warm DEEP walk reached): Certified when the moved surface bounds the depth from below within tau

@@ -3,9 +3,12 @@
 // vertices are points b - a of the Minkowski difference M = B - A, stored as vertex-index pairs
 // (a of A, b of B) with the point itself in the pair frame P.
 //
-// The surface is the convex hull of its vertices (the expanding polytope of van den Bergen 2001).
-// While it encloses the origin, every ray from the origin leaves M beyond some face, so the
-// penetration depth is at least the smallest face-plane distance: the lower bound. Faces are kept
+// Started from a tetrahedron, the surface is the convex hull of its vertices (the expanding
+// polytope of van den Bergen 2001). While it encloses the origin, every ray from the origin leaves
+// M beyond some face, so the penetration depth is at least the smallest face-plane distance: the
+// lower bound. A surface loaded from a warm start (load()) need not be convex; what the bound
+// needs is that it winds once around the origin, and expand() keeps that by refusing any
+// replacement that could sweep over the origin (see expand()). Faces are kept
 // in a best-first queue ordered by that distance; expanding a face adds the support point of M in
 // its normal and replaces every face that point sees by a cone of faces over the horizon.
 //
@@ -47,12 +50,21 @@ class ExpansionSurface {
   /// when the volume is zero (the caller picks other points).
   bool startTetrahedron(const Vertex* corners);
 
+  /// Starts from a closed surface, not necessarily convex: faces (corner indices into `vertices`,
+  /// counter-clockwise seen from outside) and their neighbours (adj as in Face, face indices into
+  /// `faces`). The caller guarantees it winds once around the origin. Returns false, leaving an
+  /// empty surface, when it does not fit or a face is degenerate.
+  bool load(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3], int numFaces);
+
   /// The live face of smallest plane distance, or -1 when there is none.
   int bestFace();
 
   /// Replaces the faces seen from `w` (at least face `from`, which must see it) by a cone over
   /// their horizon. Returns false, changing nothing, when out of capacity or when the horizon is
-  /// not a single cycle or a new face is degenerate (round-off on a flat region).
+  /// not a single cycle or a new face is degenerate (round-off on a flat region). On a loaded
+  /// (possibly non-convex) surface also when the replaced faces and w do not all lie strictly on
+  /// the far side of the plane through the origin normal to face `from`: the old faces and the
+  /// cone then bound a region without the origin, so the surface still winds once around it.
   bool expand(int from, const Vertex& w);
 
   const Face& face(int f) const { return faces_[f]; }
@@ -82,6 +94,7 @@ class ExpansionSurface {
   void rebuildQueue();
   bool collectHorizon(int from, const Eigen::Vector3d& w);
   bool horizonIsCycle() const;
+  bool keepsOrigin(int from, const Eigen::Vector3d& w) const;
   static void link(Face* faces, int f, int e, int g, int h);
 
   Vertex vertices_[kMaxVertices];
@@ -101,6 +114,7 @@ class ExpansionSurface {
   int numSeen_ = 0;
   int live_ = 0;
   std::uint32_t serial_ = 0;
+  bool convex_ = true;  // started from a tetrahedron (expansions keep the convex hull)
 };
 
 }  // namespace deepcheck::deep
