@@ -41,19 +41,16 @@ bool adjacent(const ConvexPolytope& P, int v, int w) {
   return false;
 }
 
-/// Face of P in vertex v's ring whose normal, mapped by `toP`, is closest to `dir`; -1 if none
-/// agrees to kSameNormalCosine (the corners do not lie on one face).
-template <class Map>
-int ringFaceAlong(const ConvexPolytope& P, int v, const Vec3& dir, Map toP, Vec3& normal) {
+/// Face of P in vertex v's ring whose normal (P's own frame) is closest to `dir` (same frame);
+/// -1 if none agrees to kSameNormalCosine (the corners do not lie on one face).
+int ringFaceAlong(const ConvexPolytope& P, int v, const Vec3& dir) {
   int best = -1;
   double bestDot = kSameNormalCosine;
   for (int f : P.vertexFaces(v)) {
-    const Vec3 n = toP(P.faceNormal(f));
-    const double d = n.dot(dir);
+    const double d = P.faceNormal(f).dot(dir);
     if (d > bestDot) {
       bestDot = d;
       best = f;
-      normal = n;
     }
   }
   return best;
@@ -87,13 +84,17 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   if (nA == 1 && nB == 3) {
     out.type = DeepResult::FacetType::VF;
     out.featureA = ia[0];
-    out.featureB = ringFaceAlong(B, ib[0], c.faceNormal, [&](const Vec3& n) { return F.fromB(n); }, u);
+    // B's outward face normal is M's outward normal there (in B's frame).
+    out.featureB = ringFaceAlong(B, ib[0], F.toB(c.faceNormal));
+    if (out.featureB >= 0) u = F.fromB(B.faceNormal(out.featureB));
     return out.featureB >= 0;
   }
   if (nB == 1 && nA == 3) {
     out.type = DeepResult::FacetType::FV;
     out.featureB = ib[0];
-    out.featureA = ringFaceAlong(A, ia[0], c.faceNormal, [](const Vec3& n) { return Vec3(-n); }, u);
+    // A's outward face normal is the opposite of M's.
+    out.featureA = ringFaceAlong(A, ia[0], -c.faceNormal);
+    if (out.featureA >= 0) u = -A.faceNormal(out.featureA);
     return out.featureA >= 0;
   }
   if (nA == 2 && nB == 2 && adjacent(A, ia[0], ia[1]) && adjacent(B, ib[0], ib[1])) {

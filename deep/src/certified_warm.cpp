@@ -132,25 +132,52 @@ struct Bound {
   double d = 0.0;
 };
 
+/// The faces whose reference offset minus the motion is below `target` (they need work) into
+/// `near`, their count returned; `farLower` is the smallest bound of the others. One pass without
+/// branches or a long dependency chain: most faces are far, and this scan is most of a warm query.
+int nearFaces(const W& w, double motion, double target, int* near, double& farLower) {
+  const double limit = target + motion;
+  const double inf = std::numeric_limits<double>::infinity();
+  double far0 = inf, far1 = inf;
+  int k = 0;
+  for (int f = 0; f + 1 < w.numFaces; f += 2) {
+    const double o0 = w.offset[f], o1 = w.offset[f + 1];
+    near[k] = f;
+    k += o0 < limit;
+    near[k] = f + 1;
+    k += o1 < limit;
+    far0 = std::min(far0, o0 < limit ? inf : o0);
+    far1 = std::min(far1, o1 < limit ? inf : o1);
+  }
+  if (w.numFaces % 2 != 0) {
+    const int f = w.numFaces - 1;
+    near[k] = f;
+    k += w.offset[f] < limit;
+    far0 = std::min(far0, w.offset[f] < limit ? inf : w.offset[f]);
+  }
+  farLower = std::min(far0, far1) - motion;
+  return k;
+}
+
 /// Bounds every face's distance to the origin, working only on faces whose reference offset
 /// minus the motion is below `target` (the others already reach it). False when a face could
 /// have crossed the origin or is degenerate: the surface then certifies nothing.
 bool boundFaces(const W& w, MovedSurface& m, double target, Bound& out) {
-  for (int f = 0; f < w.numFaces; ++f) {
-    double key = w.offset[f] - m.motion;
+  int near[W::kMaxFaces];
+  const int count = nearFaces(w, m.motion, target, near, out.lower);
+  for (int i = 0; i < count; ++i) {
+    const int f = near[i];
+    double key = m.normalBound(f);
+    if (!(key > 0)) return false;
     if (key < target) {
-      key = m.normalBound(f);
-      if (!(key > 0)) return false;
-      if (key < target) {
-        Vec3 n;
-        double d;
-        if (!m.plane(f, n, d)) return false;
-        key = std::max(key, std::abs(d));
-        if (key < target && key < out.lower) {
-          out.nearest = f;
-          out.n = n;
-          out.d = d;
-        }
+      Vec3 n;
+      double d;
+      if (!m.plane(f, n, d)) return false;
+      key = std::max(key, std::abs(d));
+      if (key < target && key < out.lower) {
+        out.nearest = f;
+        out.n = n;
+        out.d = d;
       }
     }
     out.lower = std::min(out.lower, key);
