@@ -76,16 +76,17 @@ Vec3 witnessOnA(const ConvexPolytope& A, const ConvexPolytope& B, const PairFram
   return a0 + s * ea;
 }
 
-/// The facet's type, features and normal u from the corners' index pairs; false if they name none.
-bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
-                    const CertifiedResult& c, DeepResult& out, Vec3& u) {
+/// The facet's type, features and normal u from the corners' index pairs of a face with unit
+/// normal `normal`; false if they name none.
+bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F, const int* faceA,
+                    const int* faceB, const Vec3& normal, DeepResult& out, Vec3& u) {
   int ia[3], ib[3];
-  const int nA = distinct(c.faceA, ia), nB = distinct(c.faceB, ib);
+  const int nA = distinct(faceA, ia), nB = distinct(faceB, ib);
   if (nA == 1 && nB == 3) {
     out.type = DeepResult::FacetType::VF;
     out.featureA = ia[0];
     // B's outward face normal is M's outward normal there (in B's frame).
-    out.featureB = ringFaceAlong(B, ib[0], F.toB(c.faceNormal));
+    out.featureB = ringFaceAlong(B, ib[0], F.toB(normal));
     if (out.featureB >= 0) u = F.fromB(B.faceNormal(out.featureB));
     return out.featureB >= 0;
   }
@@ -93,7 +94,7 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
     out.type = DeepResult::FacetType::FV;
     out.featureB = ib[0];
     // A's outward face normal is the opposite of M's.
-    out.featureA = ringFaceAlong(A, ia[0], -c.faceNormal);
+    out.featureA = ringFaceAlong(A, ia[0], -normal);
     if (out.featureA >= 0) u = -A.faceNormal(out.featureA);
     return out.featureA >= 0;
   }
@@ -104,8 +105,8 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
     const double len = u.norm();
     if (!(len > tol::kParallelSine * ea.norm() * eb.norm())) return false;
     u /= len;
-    if (u.dot(c.faceNormal) < 0) u = -u;
-    if (u.dot(c.faceNormal) < kSameNormalCosine) return false;
+    if (u.dot(normal) < 0) u = -u;
+    if (u.dot(normal) < kSameNormalCosine) return false;
     out.type = DeepResult::FacetType::EE;
     out.featureA = ia[0];
     out.featureA2 = ia[1];
@@ -118,14 +119,22 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
 
 }  // namespace
 
+bool facetNormal(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const int* faceA,
+                 const int* faceB, const Vec3& normal, Vec3& u) {
+  DeepResult named;
+  return facetOfCorners(A, B, frame, faceA, faceB, normal, named, u);
+}
+
 bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
                     const CertifiedResult& c, DeepResult& out) {
   if (c.status != CertifiedStatus::Certified) return false;
   Vec3 u = c.faceNormal;
-  if (!facetOfCorners(A, B, F, c, out, u)) return false;
-  // The offset: one support in u from the corners (a support value, hence a valid depth).
-  const int sa = A.support(-u, c.faceA[0]);
-  const int sb = B.support(F.toB(u), c.faceB[0]);
+  if (!facetOfCorners(A, B, F, c.faceA, c.faceB, c.faceNormal, out, u)) return false;
+  // The offset: one support in u from the corners (a support value, hence a valid depth), unless
+  // the bracket's upper bound already is that support (a warm query supports in u).
+  const bool known = u == c.direction;
+  const int sa = known ? c.supportA : A.support(-u, c.faceA[0]);
+  const int sb = known ? c.supportB : B.support(F.toB(u), c.faceB[0]);
   const double h = u.dot(F.vertexB(B, sb) - A.localVertex(sa));
   const double onFacet = u.dot(F.vertexB(B, c.faceB[0]) - A.localVertex(c.faceA[0]));
   const double L = std::max(A.lengthScale(), B.lengthScale()) + F.t.norm();

@@ -189,12 +189,22 @@ double tauOf(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& 
   return tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
 }
 
-void setFace(const W& w, int f, const Vec3& n, CertifiedResult& r) {
-  r.faceNormal = n;
+/// Face f's corners as index pairs.
+void cornerPairs(const W& w, int f, int* faceA, int* faceB) {
   for (int k = 0; k < 3; ++k) {
-    r.faceA[k] = w.a[w.face[f][k]];
-    r.faceB[k] = w.b[w.face[f][k]];
+    faceA[k] = w.a[w.face[f][k]];
+    faceB[k] = w.b[w.face[f][k]];
   }
+}
+
+/// The direction a warm query supports in for face f with moved normal n: the exact normal of the
+/// facet of M its corners name (certifiedFacet then need not query it again), else n.
+Vec3 supportDirection(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const W& w, int f,
+                      const Vec3& n) {
+  int faceA[3], faceB[3];
+  cornerPairs(w, f, faceA, faceB);
+  Vec3 u;
+  return facetNormal(A, B, frame, faceA, faceB, n, u) ? u : n;
 }
 
 }  // namespace
@@ -207,7 +217,8 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
   if (!w.belongsTo(A, B)) return r;
   MovedSurface m(A, B, frame, w);
   int named = -1;  // the face whose normal gave the upper bound
-  auto supportIn = [&](int f, const Vec3& u) {
+  auto supportIn = [&](int f, const Vec3& n) {
+    const Vec3 u = supportDirection(A, B, frame, w, f, n);
     w.hintA = A.support(-u, w.hintA);
     w.hintB = B.support(frame.toB(u), w.hintB);
     const double h = u.dot(frame.vertexB(B, w.hintB) - A.localVertex(w.hintA));
@@ -234,7 +245,8 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
     if (r.upper - r.lower > r.tau) return r;
   }
   r.status = CertifiedStatus::Certified;
-  setFace(w, named, named == w.last ? n : bound.n, r);
+  r.faceNormal = named == w.last ? n : bound.n;
+  cornerPairs(w, named, r.faceA, r.faceB);
   w.last = named;
   return r;
 }

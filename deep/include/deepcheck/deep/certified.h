@@ -146,4 +146,10 @@ CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope&
 bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                     const CertifiedResult& c, DeepResult& out);
 
+/// The exact normal u of the facet of M that a surface face's corners (index pairs faceA[k],
+/// faceB[k]; unit normal `normal`) name, computed as certifiedFacet() computes it; false when they
+/// name none. A warm query supports in u, so that certifiedFacet() need not query it again.
+bool facetNormal(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const int* faceA,
+                 const int* faceB, const Eigen::Vector3d& normal, Eigen::Vector3d& u);
+
 }  // namespace deepcheck::deep
