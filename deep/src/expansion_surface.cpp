@@ -157,15 +157,13 @@ bool ExpansionSurface::collectHorizon(int from, const Vec3& w) {
   return horizonSize_ >= 3;
 }
 
+// Follows the horizon from its first edge, each time to the first edge that starts where the
+// last one ended: one cycle through all edges exactly when it returns to the first after visiting
+// every edge. (A vertex starting two edges sends every walk through the same, lower-numbered one,
+// so the other is never visited; several cycles leave edges unvisited too.)
 bool ExpansionSurface::horizonIsCycle() const {
   auto from = [&](int i) { return faces_[horizon_[i].face].v[horizon_[i].edge]; };
   auto to = [&](int i) { return faces_[horizon_[i].face].v[(horizon_[i].edge + 1) % 3]; };
-  for (int i = 0; i < horizonSize_; ++i) {
-    int matches = 0;
-    for (int j = 0; j < horizonSize_; ++j) matches += to(j) == from(i);
-    if (matches != 1) return false;
-  }
-  // Follow the edges from the first: one cycle through all of them, or several?
   int length = 0, i = 0;
   do {
     int next = 0;

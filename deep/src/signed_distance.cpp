@@ -178,7 +178,18 @@ void nameCertified(const ConvexPolytope& A, const ConvexPolytope& B, const PairF
 /// checked warm walk (DeepOptions::warmWalk) keeps its own order, after GJK.
 bool warmFirst(const DeepOptions& options, const PairCache* cache) {
   return options.method == PenetrationMethod::Certified && options.warmStart && !options.warmWalk && cache &&
-         cache->certified;
+         cache->certified && !cache->apart;
+}
+
+/// The certified warm query: the cached surface's supports (certifiedWarm), else its best-first
+/// expansion (expandWarm).
+CertifiedResult warmCertified(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                              const DeepOptions& options, PairCache& cache, ExpansionSurface& surface) {
+  CertifiedResult c = certifiedWarm(A, B, frame, *cache.certified);
+  if (c.status == CertifiedStatus::Certified) return c;
+  CertifiedOptions co;
+  co.maxExpansions = options.maxExpansions;
+  return expandWarm(A, B, frame, *cache.certified, surface, co);
 }
 
 /// The certified method's warm query, tried before GJK: a certified answer from the cached
@@ -187,13 +198,8 @@ bool warmFirst(const DeepOptions& options, const PairCache* cache) {
 bool warmPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                      const DeepOptions& options, PairCache* cache, ExpansionSurface& surface, Penetration& p) {
   if (!warmFirst(options, cache) || isLowDim(A) || isLowDim(B)) return false;
-  CertifiedResult c = certifiedWarm(A, B, frame, *cache->certified);
-  if (c.status != CertifiedStatus::Certified) {
-    CertifiedOptions co;
-    co.maxExpansions = options.maxExpansions;
-    c = expandWarm(A, B, frame, *cache->certified, surface, co);
-    if (c.status != CertifiedStatus::Certified) return false;
-  }
+  const CertifiedResult c = warmCertified(A, B, frame, options, *cache, surface);
+  if (c.status != CertifiedStatus::Certified) return false;
   nameCertified(A, B, frame, c, options, cache, p);
   return true;
 }
@@ -218,7 +224,7 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   // The walk's hub indices are trusted only when the cached surface is this pair's.
   const bool walkable = warm && options.warmWalk && cache->deep.valid && cache->certified->belongsTo(A, B);
   if (walkable && checkedWarmWalk(A, B, frame, *cache, p)) return p;
-  if (warm && !triedWarm) c = certifiedWarm(A, B, frame, *cache->certified);
+  if (warm && !triedWarm) c = warmCertified(A, B, frame, options, *cache, surface);
   if (c.status != CertifiedStatus::Certified) {
     CertifiedOptions co;
     co.maxExpansions = options.maxExpansions;
@@ -257,9 +263,10 @@ SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B
   Eigen::Vector3d n_P, pA_P, pB_P;
   double coreSd;
   Penetration p;
-  const bool warmCertified = surface && warmPenetration(a, b, frame, options, cache, *surface, p);
+  const bool triedWarm = warmFirst(options, cache);
+  const bool warmDone = surface && warmPenetration(a, b, frame, options, cache, *surface, p);
   bool apart = false;
-  if (!warmCertified) {
+  if (!warmDone) {
     const GjkResult g = gjkDistance(a, b, frame, cache ? &cache->gjk : nullptr);
     apart = g.status == GjkStatus::Separated || (g.status == GjkStatus::MaxIterations && g.distance > 0);
     if (apart) {
@@ -274,12 +281,13 @@ SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B
       // The certified warm start stays: its check measures the motion from its own reference.
       if (cache) cache->deep.valid = false;
     } else if (options.method == PenetrationMethod::Certified) {
-      p = certifiedDepth(a, b, frame, g, *surface, options, cache, warmFirst(options, cache));
+      p = certifiedDepth(a, b, frame, g, *surface, options, cache, triedWarm);
     } else {
       p.deep = deepPenetration(a, b, frame, cache ? &cache->deep : nullptr, options,
                                cache ? cache->walk : nullptr);
     }
   }
+  if (cache) cache->apart = apart;
   if (!apart) {
     const DeepResult& d = p.deep;
     coreSd = -d.depth;

@@ -81,6 +81,9 @@ struct PairCache {
   /// The certified method's warm start (about 4 KB), allocated by the pair's first overlapping
   /// query with that method and reused after; copies of the cache copy it.
   std::unique_ptr<CertifiedWarmStart> certified;
+  /// The last query found the shapes apart: the next one starts with GJK, not with the certified
+  /// warm query (which proves overlap when it certifies, and is wasted work on separated shapes).
+  bool apart = false;
 
   PairCache() = default;
   PairCache(const PairCache& other) { *this = other; }
@@ -90,6 +93,7 @@ struct PairCache {
     surface = other.surface;
     walk = other.walk;
     deep = other.deep;
+    apart = other.apart;
     if (!other.certified) certified.reset();
     else if (certified) *certified = *other.certified;
     else certified = std::make_unique<CertifiedWarmStart>(*other.certified);
@@ -102,6 +106,7 @@ struct PairCache {
   void reset() {
     gjk = GjkCache{};
     deep = DeepCache{};
+    apart = false;
     if (certified) certified->valid = false;
   }
 };
