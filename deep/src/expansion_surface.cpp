@@ -177,12 +177,17 @@ bool ExpansionSurface::horizonIsCycle() const {
 
 bool ExpansionSurface::keepsOrigin(int from, const Vec3& w) const {
   if (convex_) return true;
-  const Vec3& n = faces_[from].n;
-  if (!(n.dot(w) > 0)) return false;
-  for (int i = 0; i < numSeen_; ++i)
-    for (int k = 0; k < 3; ++k)
-      if (!(n.dot(vertices_[faces_[seen_[i]].v[k]].p) > 0)) return false;
-  return true;
+  // Candidate planes through the origin: normal to face `from`, to w, to the removed faces' mean.
+  Vec3 mean = Vec3::Zero();
+  for (int i = 0; i < numSeen_; ++i) mean += faces_[seen_[i]].n;
+  const Vec3 candidates[3] = {faces_[from].n, w, mean};
+  for (const Vec3& n : candidates) {
+    bool beyond = n.dot(w) > 0;
+    for (int i = 0; i < numSeen_ && beyond; ++i)
+      for (int k = 0; k < 3 && beyond; ++k) beyond = n.dot(vertices_[faces_[seen_[i]].v[k]].p) > 0;
+    if (beyond) return true;
+  }
+  return false;
 }
 
 bool ExpansionSurface::expand(int from, const Vertex& w) {

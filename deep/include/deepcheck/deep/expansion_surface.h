@@ -62,9 +62,10 @@ class ExpansionSurface {
   /// Replaces the faces seen from `w` (at least face `from`, which must see it) by a cone over
   /// their horizon. Returns false, changing nothing, when out of capacity or when the horizon is
   /// not a single cycle or a new face is degenerate (round-off on a flat region). On a loaded
-  /// (possibly non-convex) surface also when the replaced faces and w do not all lie strictly on
-  /// the far side of the plane through the origin normal to face `from`: the old faces and the
-  /// cone then bound a region without the origin, so the surface still winds once around it.
+  /// (possibly non-convex) surface also when no plane through the origin (tried: normal to face
+  /// `from`, to w, to the mean normal of the replaced faces) has the replaced faces and w strictly
+  /// on one side; with one, the old faces and the cone bound a region without the origin, so the
+  /// surface still winds once around it.
   bool expand(int from, const Vertex& w);
 
   const Face& face(int f) const { return faces_[f]; }
