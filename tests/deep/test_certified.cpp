@@ -105,6 +105,7 @@ void compareWarmAndCold(const Pair& p, const std::vector<Isometry3d>& poses, con
     const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, poses[k]);
     BOOST_TEST(std::abs(warm.distance - cold.distance) <= 1e-12, "trial " << trial << " step " << k);
     BOOST_TEST(warm.certified == cold.certified);
+    BOOST_TEST(cache.apart == (warm.distance > 0), "trial " << trial << " step " << k);
     if (cold.distance < 0) onOverlap(k, poses[k], warm, cold);
   }
 }
@@ -308,6 +309,80 @@ BOOST_AUTO_TEST_CASE(warm_start_goes_cold_when_it_cannot_certify) {
   BOOST_TEST(foreign.expansions > 0);
   BOOST_TEST(foreignCold.expansions > 0);
   BOOST_TEST(std::abs(foreign.distance - foreignCold.distance) <= 1e-12);
+}
+
+// When the cached surface's supports do not settle a step (the answer moved to a facet the
+// surface has no face on), expandWarm expands the moved surface: certified, its bracket around the
+// exact depth, fewer expansions than a cold query, and the result is the new reference (the same
+// pose again certifies without expanding).
+BOOST_AUTO_TEST_CASE(warm_expansion_of_the_moved_surface) {
+  std::mt19937 rng(31);
+  int expanded = 0, fewer = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
+    PairCache cache;
+    for (const Isometry3d& X_WB : randomMotion(rng, p, 60)) {
+      const PairFrame frame = PairFrame::make(p.A, p.X_WA, p.B, X_WB);
+      const bool usable = cache.certified && cache.certified->belongsTo(p.A, p.B);
+      CertifiedWarmStart warm;
+      if (usable) warm = *cache.certified;
+      const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, X_WB);
+      signedDistance(p.A, p.X_WA, p.B, X_WB, &cache);
+      if (!usable || cold.distance >= 0 || certifiedWarm(p.A, p.B, frame, warm).status == CertifiedStatus::Certified)
+        continue;
+      ExpansionSurface surface;
+      const CertifiedResult c = expandWarm(p.A, p.B, frame, warm, surface);
+      if (c.status != CertifiedStatus::Certified) continue;
+      ++expanded;
+      fewer += c.expansions < cold.expansions;
+      const double depth = -exactSignedDistance(p.A, p.X_WA, p.B, X_WB).distance;
+      const double slack = kBracketSlackRelative * certifyScale(p.A, p.X_WA, p.B, X_WB);
+      BOOST_TEST(c.lower <= depth + slack);
+      BOOST_TEST(depth <= c.upper + slack);
+      BOOST_TEST(c.upper - c.lower <= c.tau);
+      BOOST_TEST(std::abs(c.upper + cold.distance) <= c.tau);
+      BOOST_TEST(warm.belongsTo(p.A, p.B));
+      const CertifiedResult again = certifiedWarm(p.A, p.B, frame, warm);
+      BOOST_TEST((again.status == CertifiedStatus::Certified));
+      BOOST_TEST(again.expansions == 0);
+    }
+  }
+  BOOST_TEST(expanded > 10);
+  BOOST_TEST(fewer > expanded / 2);
+}
+
+// A loaded (possibly non-convex) surface refuses an expansion whose replaced faces and new point
+// no plane through the origin separates from it (the new surface might not wind around the
+// origin); the same expansion of the convex surface it came from is accepted, and so is a loaded
+// one that such a plane does separate.
+BOOST_AUTO_TEST_CASE(loaded_surface_keeps_the_origin_inside) {
+  const Vector3d corners[4] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  ExpansionSurface::Vertex v[4];
+  for (int i = 0; i < 4; ++i) v[i] = {corners[i], i, i};
+  ExpansionSurface convex;
+  BOOST_TEST_REQUIRE(convex.startTetrahedron(v));
+  int faces[4][3], adj[4][3];
+  for (int f = 0; f < 4; ++f)
+    for (int k = 0; k < 3; ++k) {
+      faces[f][k] = convex.face(f).v[k];
+      adj[f][k] = convex.face(f).adj[k];
+    }
+  ExpansionSurface loaded;
+  BOOST_TEST_REQUIRE(loaded.load(v, 4, faces, adj, 4));
+  BOOST_TEST(loaded.numLiveFaces() == 4);
+  // Far beyond face 0 and its first neighbour: both are replaced, and their corners are all four
+  // vertices, which surround the origin.
+  const int g = convex.face(0).adj[0] >> 2;
+  const Vector3d n0 = convex.face(0).n, ng = convex.face(g).n;
+  const ExpansionSurface::Vertex beyondTwo{3.0 * (n0 + ng), 9, 9};
+  BOOST_TEST(!loaded.expand(0, beyondTwo));
+  BOOST_TEST(loaded.numLiveFaces() == 4);
+  BOOST_TEST(convex.expand(0, beyondTwo));
+  BOOST_TEST(convex.numLiveFaces() == 6);
+  // Beyond face 0 alone: its corners and the point lie beyond the plane normal to it.
+  const ExpansionSurface::Vertex beyondOne{3.0 * n0, 9, 9};
+  BOOST_TEST(loaded.expand(0, beyondOne));
+  BOOST_TEST(loaded.numLiveFaces() == 6);
 }
 
 // A 500-vertex sphere against itself, rotated: the surface needs hundreds of expansions. Below
