@@ -79,10 +79,19 @@ class MovedSurface {
  public:
   MovedSurface(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const W& w)
       : A_(A), B_(B), frame_(frame), w_(w) {
-    motion = (frame.R - w.R0).norm() * B.boundingRadius() + (frame.t - w.t0).norm();
+    shift = frame.t - w.t0;
+    turn = (frame.R - w.R0).norm() * B.boundingRadius();
+    motion = turn + shift.norm();
   }
 
   double motion;  ///< every vertex of M moved at most this far since the reference
+  /// Each vertex's move is shift plus a turn of length at most `turn`: n.q >= n.p + n.shift - turn.
+  Vec3 shift;
+  double turn;
+
+  /// A lower bound on n0.q over face f's moved corners from its reference offset and the motion's
+  /// shift along its normal, without evaluating the corners.
+  double shiftBound(int f) const { return w_.offset[f] + w_.normal[f].dot(shift) - turn; }
 
   /// Cached vertex i at the current pose.
   const Vec3& vertex(int i) {
@@ -167,7 +176,12 @@ bool boundFaces(const W& w, MovedSurface& m, double target, Bound& out) {
   const int count = nearFaces(w, m.motion, target, near, out.lower);
   for (int i = 0; i < count; ++i) {
     const int f = near[i];
-    double key = m.normalBound(f);
+    double key = m.shiftBound(f);
+    if (key >= target) {
+      out.lower = std::min(out.lower, key);
+      continue;
+    }
+    key = m.normalBound(f);
     if (!(key > 0)) return false;
     if (key < target) {
       Vec3 n;
