@@ -249,10 +249,6 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   return p;
 }
 
-}  // namespace
-
-namespace {
-
 /// signedDistance() in the pair frame, with the certified method's scratch surface (non-null for
 /// that method).
 SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B, const PairFrame& frame,
