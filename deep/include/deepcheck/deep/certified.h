@@ -74,20 +74,21 @@ CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolyto
 /// index pairs, at most kMaxFaces), kept with each face's unit normal n0 and offset
 /// min_k n0.p_k over its corners p_k at that query's pose, the reference (certified_warm.cpp).
 ///
-/// After a motion, every vertex b - a of M has moved by at most delta = |R - R0|_F r_B +
-/// |t - t0| (pair frame: A is fixed, B's vertices lie within r_B of its centroid). Moving the
-/// vertices straight from their reference positions to their new ones keeps n0.x > 0 on a face
-/// whose corners all have n0.q > 0 (their new positions q; at least offset - delta), so that
-/// face never crosses the origin; when none does, the moved surface (closed, though no longer
+/// After a motion, every vertex b - a of M has moved by the shift t - t0 plus a turn of length at
+/// most |R - R0|_F r_B, in all at most delta = |R - R0|_F r_B + |t - t0| (pair frame: A is fixed,
+/// B's vertices lie within r_B of its centroid). Moving the vertices straight from their reference
+/// positions to their new ones keeps n0.x > 0 on a face whose corners all have n0.q > 0 (their new
+/// positions q; at least offset - delta, and at least offset + n0.(t - t0) - |R - R0|_F r_B), so
+/// that face never crosses the origin; when none does, the moved surface (closed, though no longer
 /// convex) still winds once around the origin, every ray from it meets the surface at a point of
-/// M, and the depth is at least the smallest lower bound on a face's distance: min_k n0.q_k,
-/// offset - delta, or the distance to the face's plane through its moved corners. A query
-/// queries one support, in the normal of the face that certified last time; faces whose bound
-/// already reaches that upper bound are not touched, the few below are evaluated at their new
-/// corners, and one more support in the nearest face's normal settles most queries without
-/// expanding. When it does not, expandWarm() expands the moved surface best-first as a cold query
-/// would and makes the result the new reference. A face that could have crossed the origin sends
-/// the query cold (which then becomes the new reference).
+/// M, and the depth is at least the smallest lower bound on a face's distance: those two, min_k
+/// n0.q_k, or the distance to the face's plane through its moved corners. A query makes one
+/// support query, in the exact normal of the facet of M named by the face that certified last
+/// time (facetNormal); faces whose bound already reaches that upper bound are not touched, the few
+/// below are evaluated at their new corners, and one more support in the nearest face's normal
+/// settles most queries without expanding. When it does not, expandWarm() expands the moved
+/// surface best-first as a cold query would and makes the result the new reference. A face that
+/// could have crossed the origin sends the query cold (which then becomes the new reference).
 struct CertifiedWarmStart {
   static constexpr int kMaxFaces = 96;
   static constexpr int kMaxVertices = kMaxFaces / 2 + 2;  ///< a closed surface of F faces has F/2 + 2 vertices
