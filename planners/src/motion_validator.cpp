@@ -146,6 +146,11 @@ bool ClearanceMotionValidator::checkMotion(const ompl::base::State* s1, const om
       return false;
     }
     if (step < h) {
+      if (refuseFallback_) {
+        nearContactRejections_.fetch_add(1, std::memory_order_relaxed);
+        ++invalid_;
+        return false;
+      }
       step = h;
       fallbackSteps_.fetch_add(1, std::memory_order_relaxed);
     }
@@ -199,6 +204,10 @@ bool ClearanceMotionValidator::checkMotion(const ompl::base::State* s1, const om
       }
       previous = s;
       if (step < h) {
+        if (refuseFallback_) {
+          nearContactRejections_.fetch_add(1, std::memory_order_relaxed);
+          return fail(previous);
+        }
         step = h;
         fallbackSteps_.fetch_add(1, std::memory_order_relaxed);
       }
@@ -215,6 +224,7 @@ MotionValidatorStats ClearanceMotionValidator::stats() const {
   s.distanceQueries = distanceQueries_.load(std::memory_order_relaxed);
   s.validityQueries = validityQueries_.load(std::memory_order_relaxed);
   s.fallbackSteps = fallbackSteps_.load(std::memory_order_relaxed);
+  s.nearContactRejections = nearContactRejections_.load(std::memory_order_relaxed);
   s.certificationRejections = certificationRejections_.load(std::memory_order_relaxed);
   return s;
 }
@@ -224,6 +234,7 @@ void ClearanceMotionValidator::resetStats() {
   distanceQueries_.store(0, std::memory_order_relaxed);
   validityQueries_.store(0, std::memory_order_relaxed);
   fallbackSteps_.store(0, std::memory_order_relaxed);
+  nearContactRejections_.store(0, std::memory_order_relaxed);
   certificationRejections_.store(0, std::memory_order_relaxed);
   resetMotionCounter();
 }

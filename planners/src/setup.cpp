@@ -116,9 +116,41 @@ ompl::base::SpaceInformationPtr certifyingSpaceInformation(const ompl::geometric
   return si;
 }
 
+namespace {
+
+ClearanceMotionValidator& clearanceValidatorOf(const ompl::base::SpaceInformationPtr& si) {
+  return dynamic_cast<ClearanceMotionValidator&>(*si->getMotionValidator());
+}
+
+/// The fallback steps of `path`'s motions, checked once more on their own (a repair's counts
+/// include the motions it replaced); 0 when the path no longer passes.
+std::uint64_t fallbackStepsOf(const ompl::geometric::PathGeometric& path, const ompl::base::SpaceInformationPtr& si) {
+  ClearanceMotionValidator& validator = clearanceValidatorOf(si);
+  validator.resetStats();
+  return checkPathWithPlanner(path, si.get()).valid ? validator.stats().fallbackSteps : 0;
+}
+
+/// A path that passes only with fallback steps: repaired against a validator that refuses them
+/// (the grazing motions split and their midpoints pushed out), kept when that repair certifies
+/// every motion by clearance. Start and goal stay; one of them within the fallback distance of
+/// contact cannot be made exact, and the path stays as it was.
+void repairFallbackSteps(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path,
+                         PathCertificate& certificate) {
+  const ompl::base::SpaceInformationPtr strict = certifyingSpaceInformation(ss);
+  clearanceValidatorOf(strict).setRefuseFallback(true);
+  ompl::geometric::PathGeometric candidate = path;
+  const PathRepair repair = repairPath(candidate, strict);
+  if (!repair.valid) return;
+  path = candidate;
+  certificate.repaired = true;
+  certificate.repair = repair;
+  certificate.fallbackSteps = 0;
+}
+
+}  // namespace
+
 PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path) {
   const ompl::base::SpaceInformationPtr si = certifyingSpaceInformation(ss);
-  auto& validator = dynamic_cast<ClearanceMotionValidator&>(*si->getMotionValidator());
   PathCertificate certificate;
   certificate.initial = checkPathWithPlanner(path, si.get());
   certificate.valid = certificate.initial.valid;
@@ -127,11 +159,9 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
     certificate.repair = repairPath(path, si);
     certificate.valid = certificate.repair.valid;
     if (!certificate.valid) return certificate;
-    // The repair's counts include motions it replaced: check the final path on its own.
-    validator.resetStats();
-    certificate.valid = checkPathWithPlanner(path, si.get()).valid;
   }
-  certificate.fallbackSteps = validator.stats().fallbackSteps;
+  certificate.fallbackSteps = fallbackStepsOf(path, si);
+  if (certificate.fallbackSteps > 0) repairFallbackSteps(ss, path, certificate);
   return certificate;
 }
 

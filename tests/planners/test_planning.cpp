@@ -17,7 +17,10 @@
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -62,6 +65,17 @@ void verifyWithFcl(og::SimpleSetup& ss, const deepcheck::checker::World& world, 
   const dp::PathCheck planner = dp::checkPathWithPlanner(path);
   BOOST_TEST(planner.valid, what << ": the planner's own checks reject the path");
   BOOST_TEST(fine.statesChecked > static_cast<int>(path.getStateCount()));
+}
+
+/// The path of two states a -> b in `ss`'s space.
+og::PathGeometric straightPath(const og::SimpleSetup& ss, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  og::PathGeometric path(ss.getSpaceInformation());
+  for (const Eigen::VectorXd* q : {&a, &b}) {
+    ob::ScopedState<> state(ss.getSpaceInformation());
+    dp::copyToState(*q, state.get());
+    path.append(state.get());
+  }
+  return path;
 }
 
 }  // namespace
@@ -317,12 +331,7 @@ BOOST_AUTO_TEST_CASE(certificate_counts_the_steps_taken_near_contact) {
   // Away from the box along the distance's gradient.
   const Eigen::VectorXd b = a + 0.3 * near.gradient.normalized();
   auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
-  og::PathGeometric path(ss->getSpaceInformation());
-  for (const Eigen::VectorXd* q : {&a, &b}) {
-    ob::ScopedState<> state(ss->getSpaceInformation());
-    dp::copyToState(*q, state.get());
-    path.append(state.get());
-  }
+  og::PathGeometric path = straightPath(*ss, a, b);
   og::PathGeometric asGiven = path;
   const dp::PathCertificate nearContact = dp::certifyPath(*ss, path);
   BOOST_TEST(nearContact.valid);
@@ -334,6 +343,54 @@ BOOST_AUTO_TEST_CASE(certificate_counts_the_steps_taken_near_contact) {
   BOOST_TEST(clear.valid);
   BOOST_TEST(clear.fallbackSteps == 0u);
   BOOST_TEST(clear.exact());
+}
+
+// A block on an x-y slider moved 1 m along x past a ball whose nearest point it misses by
+// 0.2 mm half-way: the clearance validator accepts the motion only with fallback steps;
+// certifyPath repairs it against the validator refusing them (the middle pushed out along y), and
+// the repaired path is certified by clearance everywhere.
+BOOST_AUTO_TEST_CASE(a_grazing_motion_is_repaired_until_exact) {
+  const std::string urdf = std::string(DEEPCHECK_BINARY_DIR) + "/planners_xy_slider.urdf";
+  std::ofstream(urdf) << R"(<robot name="xy_slider"><link name="base"/><link name="carriage"/>
+  <link name="block"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <joint name="x" type="prismatic"><parent link="base"/><child link="carriage"/><axis xyz="1 0 0"/>
+    <limit lower="-1" upper="2" effort="1" velocity="1"/></joint>
+  <joint name="y" type="prismatic"><parent link="carriage"/><child link="block"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>)";
+  dp::SetupOptions options;
+  options.useRosPackagePath = false;
+  auto world = dp::loadWorld(urdf, {}, options);
+  const Eigen::Vector2d a(0.0, 0.0), b(1.0, 0.0);
+  using deepcheck::checker::Obstacle;
+  const auto along = [&](double t) { return Eigen::VectorXd(a + (b - a) * t); };
+  const auto nearestAlong = [&] {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= 1000; ++k) nearest = std::min(nearest, world->signedDistance(along(k / 1000.0)).closest.distance);
+    return nearest;
+  };
+  int id = world->addObstacle(Obstacle::sphere("ball", 0.05, Eigen::Isometry3d(Eigen::Translation3d(0.5, 0.2, 0.0))));
+  const double gap = nearestAlong() - 2e-4;
+  world->removeObstacle(id);
+  id = world->addObstacle(Obstacle::sphere("ball", 0.05, Eigen::Isometry3d(Eigen::Translation3d(0.5, 0.2 - gap, 0.0))));
+  const double nearest = nearestAlong();
+  BOOST_REQUIRE(nearest > 0.0);  // a graze, not a collision
+  BOOST_REQUIRE(nearest < 2.1e-4);
+  auto ss = dp::makeSimpleSetup(world, options);
+  og::PathGeometric path = straightPath(*ss, along(0.0), along(1.0));
+  const auto checker = dp::validityCheckerOf(*ss);
+  const dp::ClearanceMotionValidator lenient(ss->getSpaceInformation(), checker);
+  BOOST_TEST(lenient.checkMotion(path.getState(0), path.getState(1)));
+  BOOST_TEST(lenient.stats().fallbackSteps >= 1u);
+  dp::ClearanceMotionValidator refusing(ss->getSpaceInformation(), checker);
+  refusing.setRefuseFallback(true);
+  BOOST_TEST(!refusing.checkMotion(path.getState(0), path.getState(1)));
+  BOOST_TEST(refusing.stats().nearContactRejections == 1u);
+  const dp::PathCertificate certificate = dp::certifyPath(*ss, path);
+  BOOST_TEST(certificate.valid);
+  BOOST_TEST(certificate.repaired);
+  BOOST_TEST(certificate.exact());
+  BOOST_TEST(path.getStateCount() > 2u);
+  BOOST_TEST(refusing.checkMotion(path.getState(0), path.getState(1)));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

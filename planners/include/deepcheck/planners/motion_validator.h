@@ -32,6 +32,9 @@
 //      0.5 mm unchecked, so only a collision shorter than 0.5 mm of motion can be stepped over.
 //      This happens only where some pair's clearance is below its bound over h, i.e. within
 //      about 0.5 mm of contact (sliding along a surface); fallbackSteps counts these steps.
+//      With setRefuseFallback(true) such a step rejects the motion instead (nearContactRejections
+//      counts these): every motion the validator then accepts is certified by clearance, and a
+//      motion that passes within about 0.5 mm of contact is refused even when it does not touch.
 // So the validator is never less careful than DiscreteMotionValidator, and exact wherever the
 // clearance allows. It costs the discrete checks plus the certification of the accepted motions,
 // and a contact list up to the cap measures every pair within it: a certification query costs
@@ -67,6 +70,8 @@ struct MotionValidatorStats {
   std::uint64_t fallbackSteps = 0;            ///< uncertified steps (see the header comment)
   std::uint64_t certificationRejections = 0;  ///< motions the discrete pass accepted and the
                                               ///< certification found colliding
+  std::uint64_t nearContactRejections = 0;    ///< motions refused instead of a fallback step
+                                              ///< (setRefuseFallback)
 };
 
 class ClearanceMotionValidator;
@@ -100,6 +105,11 @@ class ClearanceMotionValidator : public ompl::base::MotionValidator {
   MotionValidatorStats stats() const;
   void resetStats();
 
+  /// Refuse a motion where a fallback step would be needed (see the header comment); off by
+  /// default.
+  void setRefuseFallback(bool refuse) { refuseFallback_ = refuse; }
+  bool refusesFallback() const { return refuseFallback_; }
+
   const LinkSpeedBound& bound() const { return *bound_; }
 
  private:
@@ -115,12 +125,14 @@ class ClearanceMotionValidator : public ompl::base::MotionValidator {
   std::shared_ptr<const StateValidityChecker> checker_;
   std::shared_ptr<const LinkSpeedBound> bound_;
   double fallbackFraction_ = tol::kFallbackStepFraction;
+  bool refuseFallback_ = false;
   int n_ = 0;
   mutable std::atomic<std::uint64_t> motions_{0};
   mutable std::atomic<std::uint64_t> distanceQueries_{0};
   mutable std::atomic<std::uint64_t> validityQueries_{0};
   mutable std::atomic<std::uint64_t> fallbackSteps_{0};
   mutable std::atomic<std::uint64_t> certificationRejections_{0};
+  mutable std::atomic<std::uint64_t> nearContactRejections_{0};
 };
 
 }  // namespace deepcheck::planners

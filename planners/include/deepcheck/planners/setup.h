@@ -115,7 +115,10 @@ struct PathCertificate {
   bool exact() const { return valid && fallbackSteps == 0; }
 };
 /// Certifies `path` (a path of `ss`'s space) with the clearance validator, repairing it in place
-/// when that fails; a repaired path is checked once more to count its own fallback steps.
+/// when that fails. A path that passes only with fallback steps (motions within about 0.5 mm of
+/// contact) is then repaired against the validator refusing them (setRefuseFallback), and that
+/// repair is kept when it certifies every motion by clearance: exact() is true then. Otherwise
+/// (a start or goal itself that close to contact) the path stays, valid with its fallbackSteps.
 PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path);
 
 /// Simplifies the solution of `ss` without ever making it worse: the simplified path is kept only
