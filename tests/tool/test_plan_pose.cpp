@@ -45,13 +45,30 @@ const char* kObjects =
 
 const std::string kArmStart = " --start 0 -0.4 0 -1.6 0 1.2 0";
 
-/// " LINK x y z qx qy qz qw" of the link's pose at q.
-std::string poseWords(const robots::RobotModel& robot, const std::string& link, const Eigen::VectorXd& q) {
-  const Eigen::Isometry3d X = robots::forwardKinematics(robot, q)[static_cast<std::size_t>(robot.linkIndex(link))];
+/// The bundled arm's goal of robots/data/README.md's table problem.
+Eigen::VectorXd armGoal() {
+  Eigen::VectorXd goal(7);
+  goal << -0.14, 0.61, 0.24, -0.77, -0.14, 1.77, -2.23;
+  return goal;
+}
+
+/// The command-line words of the bundled arm among the objects of `scene`, from kArmStart.
+std::string armArgs(const std::string& scene) {
+  return " --robot " + quote(armUrdf()) + " --srdf " + quote(armSrdf()) + " --package-path " +
+         quote(test::bundledDataDir()) + " --scene " + quote(scene) + " --frame-alias world=base_link" + kArmStart;
+}
+
+/// " LINK x y z qx qy qz qw" of the pose X of `link`.
+std::string poseWords(const std::string& link, const Eigen::Isometry3d& X) {
   const Eigen::Quaterniond r(X.rotation());
   const Eigen::Vector3d p = X.translation();
   return " " + link + " " + formatNumber(p.x()) + " " + formatNumber(p.y()) + " " + formatNumber(p.z()) + " " + formatNumber(r.x()) + " " + formatNumber(r.y()) +
          " " + formatNumber(r.z()) + " " + formatNumber(r.w());
+}
+
+/// " LINK x y z qx qy qz qw" of the link's pose at q.
+std::string poseWords(const robots::RobotModel& robot, const std::string& link, const Eigen::VectorXd& q) {
+  return poseWords(link, robots::forwardKinematics(robot, q)[static_cast<std::size_t>(robot.linkIndex(link))]);
 }
 
 /// The waypoints of a path file; each must have the robot's variable count.
@@ -99,13 +116,7 @@ BOOST_AUTO_TEST_CASE(the_bundled_arm_reaches_a_pose_among_planning_scene_objects
   const std::string scene = s.write("objects.yaml", kObjects);
   const checker::World world =
       libraryWorld(armUrdf(), armSrdf(), test::bundledDataDir(), scene, {{"world", "base_link"}});
-  Eigen::VectorXd goal(7);
-  goal << -0.14, 0.61, 0.24, -0.77, -0.14, 1.77, -2.23;
-  planToPose(s,
-             " --robot " + quote(armUrdf()) + " --srdf " + quote(armSrdf()) + " --package-path " +
-                 quote(test::bundledDataDir()) + " --scene " + quote(scene) + " --frame-alias world=base_link" +
-                 kArmStart,
-             world, "flange", goal);
+  planToPose(s, armArgs(scene), world, "flange", armGoal());
 }
 
 BOOST_AUTO_TEST_CASE(the_panda_reaches_a_pose_in_the_bookshelf) {
@@ -127,21 +138,14 @@ BOOST_AUTO_TEST_CASE(a_position_box_is_met_along_the_goal_axes) {
   const std::string scene = s.write("objects.yaml", kObjects);
   const checker::World world =
       libraryWorld(armUrdf(), armSrdf(), test::bundledDataDir(), scene, {{"world", "base_link"}});
-  Eigen::VectorXd goal(7);
-  goal << -0.14, 0.61, 0.24, -0.77, -0.14, 1.77, -2.23;
   // The goal pose 8 cm along its own x from a reachable one; the box is 10 cm along x, 1 mm
   // across: the flange ends inside it, short of the centre.
   const int flange = world.robot().linkIndex("flange");
-  Eigen::Isometry3d X_WT = robots::forwardKinematics(world.robot(), goal)[static_cast<std::size_t>(flange)];
+  Eigen::Isometry3d X_WT = robots::forwardKinematics(world.robot(), armGoal())[static_cast<std::size_t>(flange)];
   X_WT.translation() += X_WT.rotation() * Eigen::Vector3d(0.08, 0.0, 0.0);
-  const Eigen::Quaterniond r(X_WT.rotation());
   const Eigen::Vector3d p = X_WT.translation();
   const std::string out = s.path("path.txt");
-  const Run run = s.run("plan --robot " + quote(armUrdf()) + " --srdf " + quote(armSrdf()) + " --package-path " +
-                            quote(test::bundledDataDir()) + " --scene " + quote(scene) + " --frame-alias world=base_link" +
-                            kArmStart + " --goal-pose flange " + formatNumber(p.x()) + " " + formatNumber(p.y()) + " " +
-                            formatNumber(p.z()) + " " + formatNumber(r.x()) + " " + formatNumber(r.y()) + " " +
-                            formatNumber(r.z()) + " " + formatNumber(r.w()) +
+  const Run run = s.run("plan" + armArgs(scene) + " --goal-pose" + poseWords("flange", X_WT) +
                             " --position-box 0.1 0.001 0.001 --seed 2 --time 5 --out " + quote(out),
                         "", "ROS_PACKAGE_PATH=");
   BOOST_TEST_REQUIRE(run.status == 0, run.err);
@@ -157,9 +161,7 @@ BOOST_AUTO_TEST_CASE(a_position_box_is_met_along_the_goal_axes) {
 BOOST_AUTO_TEST_CASE(bad_pose_goals_are_reported) {
   Scratch s;
   const std::string scene = s.write("objects.yaml", kObjects);
-  const std::string arm = " --robot " + quote(armUrdf()) + " --srdf " + quote(armSrdf()) + " --package-path " +
-                          quote(test::bundledDataDir()) + " --scene " + quote(scene) +
-                          " --frame-alias world=base_link" + kArmStart + " --out " + quote(s.path("path.txt"));
+  const std::string arm = armArgs(scene) + " --out " + quote(s.path("path.txt"));
   const auto fails = [&](const std::string& args, int status, const std::string& part) {
     const Run r = s.run("plan" + arm + args, "", "ROS_PACKAGE_PATH=");
     BOOST_TEST(r.status == status, args << ": " << r.err);
