@@ -124,7 +124,8 @@ ClearanceMotionValidator& clearanceValidatorOf(const ompl::base::SpaceInformatio
 
 /// The fallback steps of `path`'s motions, checked once more on their own (a repair's counts
 /// include the motions it replaced); 0 when the path no longer passes.
-std::uint64_t fallbackStepsOf(const ompl::geometric::PathGeometric& path, const ompl::base::SpaceInformationPtr& si) {
+std::uint64_t recheckFallbackSteps(const ompl::geometric::PathGeometric& path,
+                                   const ompl::base::SpaceInformationPtr& si) {
   ClearanceMotionValidator& validator = clearanceValidatorOf(si);
   validator.resetStats();
   return checkPathWithPlanner(path, si.get()).valid ? validator.stats().fallbackSteps : 0;
@@ -160,7 +161,9 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
     certificate.valid = certificate.repair.valid;
     if (!certificate.valid) return certificate;
   }
-  certificate.fallbackSteps = fallbackStepsOf(path, si);
+  // Unrepaired, the initial check went through exactly the path's motions: its counts stand.
+  certificate.fallbackSteps = certificate.repaired ? recheckFallbackSteps(path, si)
+                                                   : clearanceValidatorOf(si).stats().fallbackSteps;
   if (certificate.fallbackSteps > 0) repairFallbackSteps(ss, path, certificate);
   return certificate;
 }
