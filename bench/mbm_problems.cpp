@@ -91,10 +91,15 @@ std::vector<MbmScene> mbmScenes() {
 
 robots::FrameAliases pandaFrameAliases() { return {{"base_link", "panda_link0"}}; }
 
-robots::PlanningScene loadNominalScene(const MbmScene& scene) {
+robots::PlanningScene loadNominalScene(const MbmScene& scene, dp::SceneDraw* draw) {
   if (endsWith(scene.scene, ".urdf")) {
-    const robots::RobotModel model = loadSceneUrdf(scene);
-    return linksAsScene(model, model.defaultConfiguration(), scene);
+    auto model = std::make_shared<const robots::RobotModel>(loadSceneUrdf(scene));
+    if (draw != nullptr) {
+      *draw = [model, scene](std::mt19937_64& rng) {
+        return linksAsScene(*model, robots::randomConfiguration(*model, rng), scene);
+      };
+    }
+    return linksAsScene(*model, model->defaultConfiguration(), scene);
   }
   robots::SceneLoadOptions options;
   options.packageRoots = pandaOptions().packageRoots;
@@ -118,16 +123,10 @@ dp::ProblemOptions pandaProblemOptions(const MbmScene& scene, const robots::Robo
 std::vector<dp::Problem> generateMbmProblems(const MbmScene& scene, checker::World& world,
                                              const dp::StateValidityChecker& checker, const dp::ProblemOptions& options,
                                              int count, const dp::ProblemProgress& progress) {
-  const robots::PlanningScene nominal = loadNominalScene(scene);
+  dp::ProblemOptions drawing = options;
+  const robots::PlanningScene nominal = loadNominalScene(scene, &drawing.drawScene);
   const auto variations = dp::loadSceneVariations(scene.variation);
   const auto queries = dp::loadQueries(scene.queries);
-  dp::ProblemOptions drawing = options;
-  if (endsWith(scene.scene, ".urdf")) {
-    auto model = std::make_shared<const robots::RobotModel>(loadSceneUrdf(scene));
-    drawing.drawScene = [model, scene](std::mt19937_64& rng) {
-      return linksAsScene(*model, robots::randomConfiguration(*model, rng), scene);
-    };
-  }
   return dp::generateProblems(world, checker, nominal, variations, queries, drawing, count, progress, scene.variation);
 }
 

@@ -46,9 +46,10 @@ std::vector<MbmScene> mbmScenes();
 robots::FrameAliases pandaFrameAliases();
 
 /// The nominal planning scene: the YAML as read, or the URDF's links as objects at the URDF's
-/// default joint values (header comment).
-/// Throws std::invalid_argument (naming the file) when it cannot be read.
-robots::PlanningScene loadNominalScene(const MbmScene& scene);
+/// default joint values (header comment); for a URDF, `draw` (when not null) is set to draw its
+/// joints, from the same model. Throws std::invalid_argument (naming the file) when it cannot be
+/// read.
+robots::PlanningScene loadNominalScene(const MbmScene& scene, planners::SceneDraw* draw = nullptr);
 
 /// Problem generation options for the Panda in `scene`: the tip panda_link8 (the end of
 /// MotionBenchMaker's panda_arm group) with the scene's ee_offset, the start from MotionBenchMaker's
