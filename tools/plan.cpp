@@ -176,7 +176,7 @@ struct GoalPoseArg {
   Eigen::Isometry3d X_WT = Eigen::Isometry3d::Identity();
   double positionTolerance = robots::tol::kIkPositionTolerance;        ///< metres
   double orientationTolerance = robots::tol::kIkOrientationTolerance;  ///< radians
-  Eigen::Vector3d positionBox = Eigen::Vector3d::Zero();  ///< half-widths, metres; zero: none
+  std::optional<Eigen::Vector3d> positionBox;  ///< half-widths, metres (--position-box)
 };
 
 /// X_WT from x y z qx qy qz qw (MoveIt's quaternion order), the quaternion normalized; UsageError
@@ -205,11 +205,11 @@ std::optional<double> takeTolerance(std::vector<std::string>& args, const std::s
   return value;
 }
 
-/// Removes `--position-box HX HY HZ` from `args`; zero when absent. Each half-width > 0 metres.
-Eigen::Vector3d takePositionBox(std::vector<std::string>& args) {
-  Eigen::Vector3d box = Eigen::Vector3d::Zero();
+/// Removes `--position-box HX HY HZ` from `args`; empty when absent. Each half-width > 0 metres.
+std::optional<Eigen::Vector3d> takePositionBox(std::vector<std::string>& args) {
   const auto at = std::find(args.begin(), args.end(), "--position-box");
-  if (at == args.end()) return box;
+  if (at == args.end()) return std::nullopt;
+  Eigen::Vector3d box;
   const auto first = at + 1;
   const auto isOption = [](const std::string& word) { return word.compare(0, 2, "--") == 0; };
   if (args.end() - first < 3 || std::any_of(first, first + 3, isOption)) {
@@ -252,15 +252,14 @@ std::optional<GoalPoseArg> takeGoalPose(std::vector<std::string>& args) {
   args = std::move(rest);
   const std::optional<double> position = takeTolerance(args, "--position-tol", "m");
   const std::optional<double> orientation = takeTolerance(args, "--orientation-tol", "rad");
-  const Eigen::Vector3d box = takePositionBox(args);
-  const bool haveBox = box.x() > 0.0;
+  const std::optional<Eigen::Vector3d> box = takePositionBox(args);
   if (!pose) {
-    if (position || orientation || haveBox) {
+    if (position || orientation || box) {
       throw UsageError("--position-tol, --position-box and --orientation-tol need --goal-pose");
     }
     return pose;
   }
-  if (position && haveBox) throw UsageError("--position-tol and --position-box exclude each other");
+  if (position && box) throw UsageError("--position-tol and --position-box exclude each other");
   pose->positionBox = box;
   if (position) pose->positionTolerance = *position;
   if (orientation) pose->orientationTolerance = *orientation;
@@ -327,7 +326,7 @@ planners::PoseGoalOptions poseGoalOptions(const PlanArgs& a, const Eigen::Vector
   planners::PoseGoalOptions options;
   options.ik.positionTolerance = a.goalPose->positionTolerance;
   options.ik.orientationTolerance = a.goalPose->orientationTolerance;
-  options.ik.positionBox = a.goalPose->positionBox;
+  if (a.goalPose->positionBox) options.ik.positionBox = *a.goalPose->positionBox;
   options.ik.seed = a.seed;
   options.ik.initial = start;  // the first solution near the start
   return options;
@@ -352,9 +351,9 @@ std::shared_ptr<planners::PoseGoal> setPoseGoal(ompl::geometric::SimpleSetup& ss
   }
   if (!first.converged()) {
     char position[96];
-    if (pose.positionBox.x() > 0.0) {
-      std::snprintf(position, sizeof position, "box %.4g %.4g %.4g m", pose.positionBox.x(), pose.positionBox.y(),
-                    pose.positionBox.z());
+    if (pose.positionBox) {
+      const Eigen::Vector3d& h = *pose.positionBox;
+      std::snprintf(position, sizeof position, "box %.4g %.4g %.4g m", h.x(), h.y(), h.z());
     } else {
       std::snprintf(position, sizeof position, "%.4g m", pose.positionTolerance);
     }
