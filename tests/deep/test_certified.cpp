@@ -258,14 +258,26 @@ BOOST_AUTO_TEST_CASE(warm_walk_checked_by_the_surface) {
   BOOST_TEST(walked > overlapping / 2);
 }
 
+/// Two random overlapping 100-vertex pairs from `seed`: `p`, queried once into `cache`
+/// (`first`), and `other`.
+struct PrimedPair {
+  explicit PrimedPair(unsigned seed) : rng(seed), p(randomPair(rng, 100, 100, Vector3d::Zero())),
+        other(randomPair(rng, 100, 100, Vector3d::Zero())), first(signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache)) {}
+  std::mt19937 rng;
+  Pair p;
+  Pair other;
+  PairCache cache;
+  SignedDistanceResult first;
+};
+
 // certifyUpperBound: the cached surface certifies the exact depth as an upper bound, refuses one
 // that is too deep by more than tau, and refuses to speak for another pair.
 BOOST_AUTO_TEST_CASE(surface_checks_an_upper_bound) {
-  std::mt19937 rng(29);
-  const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
-  const Pair other = randomPair(rng, 100, 100, Vector3d::Zero());
-  PairCache cache;
-  const SignedDistanceResult first = signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache);
+  PrimedPair primed(29);
+  const Pair& p = primed.p;
+  const Pair& other = primed.other;
+  PairCache& cache = primed.cache;
+  const SignedDistanceResult& first = primed.first;
   BOOST_TEST_REQUIRE(first.distance < 0);
   BOOST_TEST_REQUIRE(static_cast<bool>(cache.certified));
   const PairFrame frame = PairFrame::make(p.A, p.X_WA, p.B, p.X_WB);
@@ -284,11 +296,11 @@ BOOST_AUTO_TEST_CASE(surface_checks_an_upper_bound) {
 // A jump far beyond the cached surface's margin (faces that could have swept over the origin)
 // sends the query cold; a cache of another pair is not used.
 BOOST_AUTO_TEST_CASE(warm_start_goes_cold_when_it_cannot_certify) {
-  std::mt19937 rng(17);
-  const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
-  const Pair other = randomPair(rng, 100, 100, Vector3d::Zero());
-  PairCache cache;
-  const SignedDistanceResult first = signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache);
+  PrimedPair primed(17);
+  const Pair& p = primed.p;
+  const Pair& other = primed.other;
+  PairCache& cache = primed.cache;
+  const SignedDistanceResult& first = primed.first;
   BOOST_TEST_REQUIRE(first.distance < 0);
   BOOST_TEST(first.expansions > 0);
   // The same pose again: certified from the cache alone.
