@@ -290,6 +290,7 @@ World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std
   }
   auto snap = std::make_shared<Snapshot>();
   snap->robot = buildRobot(std::move(robot), st.geometry);
+  st.robot = snap->robot;
   robots::checkDisabledPairs(snap->robot->model, options.disabledPairs, "WorldOptions::disabledPairs");
   for (const robots::DisabledPair& p : options.disabledPairs) {
     snap->userDisabled.push_back(linkPairByName(snap->robot->model, p.link1, p.link2));
@@ -350,7 +351,7 @@ void World::disablePair(const std::string& linkA, const std::string& linkB) {
   publish(st, snap);
 }
 
-const robots::RobotModel& World::robot() const { return state_->snapshot()->robot->model; }
+const robots::RobotModel& World::robot() const { return state_->robot->model; }
 
 int World::numScenes() const { return static_cast<int>(state_->snapshot()->scenes.size()); }
 

@@ -136,6 +136,9 @@ struct WorldState {
   /// `mutex` or in the constructor); NaN when unknown.
   std::shared_ptr<double> excessSink;
   robots::CollisionGeometryOptions geometry;  // with the decomposer resolved
+  /// The robot, the same in every snapshot: read without the mutex (World::robot() is called on
+  /// every validity query).
+  std::shared_ptr<const RobotData> robot;
 
   std::shared_ptr<const Snapshot> snapshot() const {
     std::lock_guard<std::mutex> lock(mutex);
