@@ -20,6 +20,8 @@ struct MbmRecord {
   double length = std::nan("");  ///< joint-space length of the simplified path, rad
   bool certifiedAsPlanned = false;  ///< certifyPath accepted the simplified path without repair
   bool certified = false;           ///< ... after repair
+  bool certifiedExact = false;      ///< ... with every motion certified by clearance (no fallback
+                                    ///< step near contact: PathCertificate::exact())
   bool fclFine = false;             ///< the certified path passes the fine FCL check
 };
 

@@ -32,6 +32,9 @@ def main(path):
     refused = [r for r in done if r["certified"] != "1"]
     print(f"paths returned {len(done)}; certified as planned {sum(r['certified_as_planned'] == '1' for r in done)}, "
           f"after repair {len(certified)}; FCL fine check accepts {sum(r['fcl_fine_ok'] == '1' for r in certified)} of the certified")
+    if certified and "certified_exact" in certified[0]:
+        print(f"certified with every motion certified by clearance (no fallback step): "
+              f"{sum(r['certified_exact'] == '1' for r in certified)} of {len(certified)}")
     for checker in ("deepcheck", "fcl"):
         mine = [r for r in done if r["checker"] == checker]
         if mine:
