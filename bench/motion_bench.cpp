@@ -1,0 +1,289 @@
+// motion_bench: the motion checks a planner asks for, timed one by one, our checker against FCL.
+//
+// On MotionBenchMaker problems (the scenes and problems of mbm_bench: the same --seed and
+// --problems give the same problems), RRTConnect runs once per problem to its first solution on
+// our checker, recording every motion it asks the motion validator about. The recorded motions are
+// then replayed, alternating, in --rounds rounds, through OMPL's DiscreteMotionValidator on two
+// checkers of the same state space: ours (the convex pieces) and FCL on the original meshes (the
+// FclStateValidityChecker of mbm_bench). Both answer the same motions in the same order, so the
+// comparison is free of the planner's randomness that mbm_bench's planning times carry. Each motion
+// is timed alone and its fastest round kept (the machine is shared: other processes only add time).
+// The answers are compared: ours may reject a motion FCL accepts (the pieces contain the meshes and
+// stick out by the geometry excess), never the other way round; such motions are counted.
+//
+// Output: a table on stdout (per scene: motions, share valid, states per motion and per motion
+// tested, mean and median microseconds per motion for both, microseconds per tested state for
+// ours, and FCL / ours by the means) and bench/results/motion_bench.csv.
+// Usage: motion_bench [--problems N] [--rounds R] [--seed S] [--scenes a,b] [--out FILE]
+
+#include "format.h"
+#include "mbm_problems.h"
+#include "options.h"
+#include "plan_problems.h"
+
+#include "deepcheck/planners/planner_factory.h"
+#include "deepcheck/planners/setup.h"
+#include "deepcheck/planners/state_space.h"
+#include "deepcheck/fcl_reference/fcl_validity_checker.h"
+
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace deepcheck::bench;
+namespace dp = deepcheck::planners;
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+struct Options {
+  int problems = 10;
+  int rounds = 5;
+  unsigned seed = 1;
+  std::vector<std::string> scenes;  ///< empty: all
+  std::string out = std::string(DEEPCHECK_BENCH_RESULTS_DIR) + "/motion_bench.csv";
+};
+
+[[noreturn]] void usage(const std::string& error) {
+  if (!error.empty()) std::fprintf(stderr, "motion_bench: %s\n", error.c_str());
+  std::fprintf(stderr,
+               "usage: motion_bench [--problems N] [--rounds R] [--seed S] [--scenes a,b] [--out FILE]\n"
+               "  --problems N   MotionBenchMaker problems per scene (default 10; as mbm_bench generates them)\n"
+               "  --rounds R     replays of the recorded motions per validator (default 5; fastest kept)\n"
+               "  --seed S       seed of problem generation and of OMPL (default 1)\n"
+               "  --scenes       mbm_bench's scene names (default all)\n"
+               "  --out FILE     CSV (default bench/results/motion_bench.csv)\n");
+  std::exit(2);
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options opt;
+  readOptions(argc, argv, usage, [&](const std::string& arg, auto value) {
+    if (arg == "--problems") {
+      opt.problems = positiveCount(value(), arg, usage);
+    } else if (arg == "--rounds") {
+      opt.rounds = positiveCount(value(), arg, usage);
+    } else if (arg == "--seed") {
+      opt.seed = static_cast<unsigned>(std::stoul(value()));
+    } else if (arg == "--scenes") {
+      opt.scenes = splitList(value());
+    } else if (arg == "--out") {
+      opt.out = value();
+    } else {
+      return false;
+    }
+    return true;
+  });
+  return opt;
+}
+
+using Motion = std::pair<Eigen::VectorXd, Eigen::VectorXd>;
+
+/// Answers with `inner` and records every motion it is asked about.
+class RecordingValidator : public ob::MotionValidator {
+ public:
+  RecordingValidator(ob::SpaceInformation* si, ob::MotionValidatorPtr inner, std::vector<Motion>* motions)
+      : ob::MotionValidator(si), inner_(std::move(inner)), motions_(motions) {}
+  bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
+    motions_->emplace_back(dp::mapState(s1, dim()), dp::mapState(s2, dim()));
+    return inner_->checkMotion(s1, s2);
+  }
+  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& lastValid) const override {
+    motions_->emplace_back(dp::mapState(s1, dim()), dp::mapState(s2, dim()));
+    return inner_->checkMotion(s1, s2, lastValid);
+  }
+
+ private:
+  int dim() const { return static_cast<int>(si_->getStateDimension()); }
+  ob::MotionValidatorPtr inner_;
+  std::vector<Motion>* motions_;
+};
+
+/// The motions RRTConnect asks about on one problem (its first solution, at most 10 s).
+std::vector<Motion> recordMotions(const std::shared_ptr<deepcheck::checker::World>& world, const dp::Problem& problem) {
+  auto ss = dp::makeSimpleSetup(world, pandaOptions());
+  dp::setStartAndGoal(*ss, problem.start, problem.goal);
+  const ob::SpaceInformationPtr& si = ss->getSpaceInformation();
+  std::vector<Motion> motions;
+  si->setMotionValidator(std::make_shared<RecordingValidator>(si.get(), si->getMotionValidator(), &motions));
+  ss->setPlanner(dp::makePlanner("RRTConnect", si));
+  ss->setup();
+  ss->solve(10.0);
+  return motions;
+}
+
+struct Replay {
+  std::vector<double> micros;  ///< per motion, the fastest round
+  std::vector<char> valid;
+};
+
+/// Times every motion through `validator`, keeping each motion's fastest time over the rounds
+/// already in `replay`.
+void replayOnce(const ob::MotionValidator& validator, const ob::SpaceInformationPtr& si,
+                const std::vector<Motion>& motions, Replay& replay) {
+  ob::ScopedState<> s1(si), s2(si);
+  const bool first = replay.micros.empty();
+  if (first) {
+    replay.micros.assign(motions.size(), 1e300);
+    replay.valid.assign(motions.size(), 0);
+  }
+  for (std::size_t k = 0; k < motions.size(); ++k) {
+    dp::copyToState(motions[k].first, s1.get());
+    dp::copyToState(motions[k].second, s2.get());
+    const auto t0 = Clock::now();
+    const bool valid = validator.checkMotion(s1.get(), s2.get());
+    const double us = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+    replay.micros[k] = std::min(replay.micros[k], us);
+    replay.valid[k] = valid ? 1 : 0;
+  }
+}
+
+struct SceneResult {
+  std::string scene;
+  std::vector<double> ours, fcl;  ///< microseconds per motion
+  long states = 0;                ///< states of the motions at the space's resolution
+  long tested = 0;                ///< states our checker tested (motions stop at the first invalid one)
+  int valid = 0;                  ///< motions valid for our checker
+  int oursOnlyInvalid = 0;        ///< motions FCL accepts and ours rejects
+  int fclOnlyInvalid = 0;         ///< motions ours accepts and FCL rejects (must be 0)
+};
+
+/// Replays one problem's motions through our checker and FCL's, alternating.
+void replayProblem(const std::shared_ptr<deepcheck::checker::World>& world, const std::vector<Motion>& motions,
+                   int rounds, SceneResult& result) {
+  auto ours = dp::makeSimpleSetup(world, pandaOptions());
+  std::shared_ptr<deepcheck::fcl_reference::FclStateValidityChecker> fclChecker;
+  auto fcl = makeFclSetup(*ours, *world, &fclChecker);
+  const ob::SpaceInformationPtr& si = ours->getSpaceInformation();
+  const ob::SpaceInformationPtr& fclSi = fcl->getSpaceInformation();
+  fclSi->setup();
+  const auto checker = dp::validityCheckerOf(*ours);
+  ob::DiscreteMotionValidator ourValidator(si);
+  ob::DiscreteMotionValidator fclValidator(fclSi);
+  Replay a, b;
+  for (int r = 0; r < rounds; ++r) {
+    const std::uint64_t before = checker->validityQueries();
+    replayOnce(ourValidator, si, motions, a);
+    if (r == 0) result.tested += static_cast<long>(checker->validityQueries() - before);
+    replayOnce(fclValidator, fclSi, motions, b);
+  }
+  ob::ScopedState<> s1(si), s2(si);
+  for (std::size_t k = 0; k < motions.size(); ++k) {
+    dp::copyToState(motions[k].first, s1.get());
+    dp::copyToState(motions[k].second, s2.get());
+    result.states += std::max(1u, si->getStateSpace()->validSegmentCount(s1.get(), s2.get()));
+    result.valid += a.valid[k];
+    if (!a.valid[k] && b.valid[k]) ++result.oursOnlyInvalid;
+    if (a.valid[k] && !b.valid[k]) {
+      ++result.fclOnlyInvalid;
+      std::fprintf(stderr, "motion_bench: %s: motion %zu accepted by ours, rejected by FCL\n", result.scene.c_str(), k);
+    }
+  }
+  result.ours.insert(result.ours.end(), a.micros.begin(), a.micros.end());
+  result.fcl.insert(result.fcl.end(), b.micros.begin(), b.micros.end());
+}
+
+double meanOf(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+void printRow(const SceneResult& r) {
+  const double n = static_cast<double>(r.ours.size());
+  std::printf("| %s | %zu | %.0f %% | %d | %.1f | %.1f | %s | %s | %s | %s | %s | %.1fx |\n", r.scene.c_str(),
+              r.ours.size(), 100.0 * r.valid / n, r.oursOnlyInvalid, r.states / n, r.tested / n,
+              fmt(meanOf(r.ours)).c_str(), fmt(median(r.ours)).c_str(), fmt(meanOf(r.ours) * n / r.tested).c_str(),
+              fmt(meanOf(r.fcl)).c_str(), fmt(median(r.fcl)).c_str(), meanOf(r.fcl) / meanOf(r.ours));
+}
+
+void writeCsv(const std::string& path, const std::vector<SceneResult>& results) {
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  std::ofstream out(path);
+  out << "scene,checker,motions,valid_share,ours_only_invalid,states_per_motion,tested_per_motion,mean_us,median_us,"
+         "p90_us\n";
+  for (const SceneResult& r : results) {
+    const double n = static_cast<double>(r.ours.size());
+    for (int v = 0; v < 2; ++v) {
+      const std::vector<double>& t = v == 0 ? r.ours : r.fcl;
+      out << r.scene << ',' << (v == 0 ? "deepcheck" : "fcl") << ',' << r.ours.size() << ',' << r.valid / n << ','
+          << r.oursOnlyInvalid << ',' << r.states / n << ',' << r.tested / n << ',' << meanOf(t) << ',' << median(t)
+          << ',' << quantile(t, 0.9) << '\n';
+    }
+  }
+  std::fprintf(stderr, "wrote %s\n", path.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = parseOptions(argc, argv);
+  if (!haveShared()) {
+    std::fprintf(stderr, "motion_bench: ../shared is absent (%s): no Panda, no MotionBenchMaker scenes\n",
+                 sharedDir().c_str());
+    return 1;
+  }
+  ompl::RNG::setSeed(opt.seed);
+  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+  const auto world = dp::loadWorld(pandaUrdf(), {}, pandaOptions());
+  std::vector<SceneResult> results;
+  for (const MbmScene& scene : mbmScenes()) {
+    if (!opt.scenes.empty() && std::find(opt.scenes.begin(), opt.scenes.end(), scene.name) == opt.scenes.end()) continue;
+    auto base = dp::makeSimpleSetup(world, pandaOptions());
+    const dp::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, nullptr);
+    const std::vector<dp::Problem> problems =
+        generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems, [&](int k, const dp::Problem&) {
+          std::fprintf(stderr, "[%s] problem %d/%d generated\n", scene.name.c_str(), k + 1, opt.problems);
+        });
+    SceneResult result;
+    result.scene = scene.name;
+    for (std::size_t k = 0; k < problems.size(); ++k) {
+      placeScene(*world, problems[k].scene);
+      const std::vector<Motion> motions = recordMotions(world, problems[k]);
+      replayProblem(world, motions, opt.rounds, result);
+      std::fprintf(stderr, "[%s] problem %zu/%zu: %zu motions\n", scene.name.c_str(), k + 1, problems.size(),
+                   motions.size());
+    }
+    for (int id : world->obstacleIds()) world->removeObstacle(id);
+    results.push_back(std::move(result));
+  }
+  std::printf("# Motion checks of RRTConnect on MotionBenchMaker problems (motion_bench)\n\n"
+              "%d problem(s) per scene (seed %u), fastest of %d round(s); OMPL's DiscreteMotionValidator on both "
+              "checkers; times in microseconds.\n\n"
+              "| scene | motions | valid | rejected by ours only | states per motion | tested by ours | ours: mean | "
+              "median | per tested state | FCL: mean | median | FCL / ours |\n"
+              "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n",
+              opt.problems, opt.seed, opt.rounds);
+  SceneResult all;
+  all.scene = "all";
+  for (const SceneResult& r : results) {
+    printRow(r);
+    all.ours.insert(all.ours.end(), r.ours.begin(), r.ours.end());
+    all.fcl.insert(all.fcl.end(), r.fcl.begin(), r.fcl.end());
+    all.states += r.states;
+    all.tested += r.tested;
+    all.valid += r.valid;
+    all.oursOnlyInvalid += r.oursOnlyInvalid;
+    all.fclOnlyInvalid += r.fclOnlyInvalid;
+  }
+  if (!all.ours.empty()) printRow(all);
+  results.push_back(all);
+  writeCsv(opt.out, results);
+  const int disagreements = all.fclOnlyInvalid;
+  if (disagreements > 0) std::fprintf(stderr, "motion_bench: %d motion(s) accepted by ours and rejected by FCL\n", disagreements);
+  return disagreements > 0 ? 1 : 0;
+}
