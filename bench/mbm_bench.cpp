@@ -129,19 +129,6 @@ Options parseOptions(int argc, char** argv) {
   return opt;
 }
 
-/// The scenes named by --scenes (all when none); an unknown name is a usage error.
-std::vector<MbmScene> selectScenes(const std::vector<std::string>& wanted) {
-  const std::vector<MbmScene> all = mbmScenes();
-  if (wanted.empty()) return all;
-  std::vector<MbmScene> out;
-  for (const std::string& w : wanted) {
-    auto it = std::find_if(all.begin(), all.end(), [&](const MbmScene& s) { return s.name == w; });
-    if (it == all.end()) usage("unknown scene '" + w + "'");
-    out.push_back(*it);
-  }
-  return out;
-}
-
 /// Counts the validity queries of the FCL checker (ours counts its own).
 class CountingChecker : public ob::StateValidityChecker {
  public:
@@ -385,7 +372,7 @@ std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std:
 
 int main(int argc, char** argv) {
   const Options opt = parseOptions(argc, argv);
-  const std::vector<MbmScene> scenes = selectScenes(opt.scenes);
+  const std::vector<MbmScene> scenes = selectScenes(opt.scenes, usage);
   if (!haveShared()) {
     std::fprintf(stderr, "mbm_bench: ../shared is absent (%s): no Panda, no MotionBenchMaker scenes\n", sharedDir().c_str());
     return 1;

@@ -8,6 +8,7 @@
 #include "deepcheck/robots/random_configuration.h"
 #include "deepcheck/robots/robot_model.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -135,6 +136,18 @@ void placeScene(checker::World& world, const robots::PlanningScene& scene) {
   checker::PlanningSceneOptions placement;
   placement.frameAliases = pandaFrameAliases();
   world.addPlanningScene(scene, placement);
+}
+
+std::vector<MbmScene> selectScenes(const std::vector<std::string>& wanted, Usage usage) {
+  const std::vector<MbmScene> all = mbmScenes();
+  if (wanted.empty()) return all;
+  std::vector<MbmScene> out;
+  for (const std::string& w : wanted) {
+    auto it = std::find_if(all.begin(), all.end(), [&](const MbmScene& s) { return s.name == w; });
+    if (it == all.end()) usage("unknown scene '" + w + "'");
+    out.push_back(*it);
+  }
+  return out;
 }
 
 }  // namespace deepcheck::bench

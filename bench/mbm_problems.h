@@ -13,6 +13,8 @@
 // varied, the goal and, when the query file has start queries, the start by collision-free
 // inverse kinematics of panda_hand; otherwise MotionBenchMaker's Panda default state).
 
+#include "options.h"
+
 #include "deepcheck/checker/world.h"
 #include "deepcheck/planners/problem_generation.h"
 #include "deepcheck/planners/validity_checker.h"
@@ -40,6 +42,9 @@ struct MbmScene {
 
 /// Every scene, in the order of the tables.
 std::vector<MbmScene> mbmScenes();
+
+/// The scenes named (all when none), in the order named; an unknown name is a usage error.
+std::vector<MbmScene> selectScenes(const std::vector<std::string>& wanted, Usage usage);
 
 /// The frame aliases of the MotionBenchMaker files for the Panda of ../shared (base_link is
 /// panda_link0).

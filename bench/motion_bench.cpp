@@ -241,8 +241,7 @@ int main(int argc, char** argv) {
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   const auto world = dp::loadWorld(pandaUrdf(), {}, pandaOptions());
   std::vector<SceneResult> results;
-  for (const MbmScene& scene : mbmScenes()) {
-    if (!opt.scenes.empty() && std::find(opt.scenes.begin(), opt.scenes.end(), scene.name) == opt.scenes.end()) continue;
+  for (const MbmScene& scene : selectScenes(opt.scenes, usage)) {
     auto base = dp::makeSimpleSetup(world, pandaOptions());
     const dp::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, nullptr);
     const std::vector<dp::Problem> problems =
