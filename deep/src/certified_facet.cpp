@@ -130,11 +130,13 @@ bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   if (c.status != CertifiedStatus::Certified) return false;
   Vec3 u = c.faceNormal;
   if (!facetOfCorners(A, B, F, c.faceA, c.faceB, c.faceNormal, out, u)) return false;
-  // The offset: one support in u from the corners (a support value, hence a valid depth), unless
-  // the bracket's upper bound already is that support (a warm query supports in u).
+  // The offset: one support in u (a support value, hence a valid depth), unless the bracket's
+  // upper bound already is that support (a warm query supports in u). The climb starts from the
+  // bracket's support pair, as the pair's next warm query does: on a facet whose vertices tie
+  // along u to round-off, cold and warm then reach the same vertex and the same depth.
   const bool known = u == c.direction;
-  const int sa = known ? c.supportA : A.support(-u, c.faceA[0]);
-  const int sb = known ? c.supportB : B.support(F.toB(u), c.faceB[0]);
+  const int sa = known ? c.supportA : A.support(-u, c.supportA);
+  const int sb = known ? c.supportB : B.support(F.toB(u), c.supportB);
   const double h = u.dot(F.vertexB(B, sb) - A.localVertex(sa));
   const double onFacet = u.dot(F.vertexB(B, c.faceB[0]) - A.localVertex(c.faceA[0]));
   const double L = std::max(A.lengthScale(), B.lengthScale()) + F.t.norm();
