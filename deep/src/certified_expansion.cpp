@@ -141,6 +141,7 @@ void expandBestFirst(const Support& support, ExpansionSurface& surface, const Ce
       r.direction = face.n;
       r.supportA = w.a;
       r.supportB = w.b;
+      surface.setQueueLimit(r.upper - r.tau);  // faces beyond it are never expanded
     }
     if (face.d >= 0 && r.upper - face.d <= r.tau) {
       r.status = CertifiedStatus::Certified;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 namespace deepcheck::deep {
 namespace {
@@ -38,6 +39,7 @@ bool ExpansionSurface::setPlane(Face& f) const {
 }
 
 void ExpansionSurface::push(int f) {
+  if (!(faces_[f].d < queueLimit_)) return;  // never expanded; bestFace() finds it when nearest
   if (queueSize_ == kMaxQueue) rebuildQueue();
   queue_[queueSize_++] = {faces_[f].d, f, faces_[f].serial};
   std::push_heap(queue_, queue_ + queueSize_, Farther{});
@@ -46,7 +48,7 @@ void ExpansionSurface::push(int f) {
 void ExpansionSurface::rebuildQueue() {
   queueSize_ = 0;
   for (int f = 0; f < numSlots_; ++f)
-    if (faces_[f].alive) queue_[queueSize_++] = {faces_[f].d, f, faces_[f].serial};
+    if (faces_[f].alive && faces_[f].d < queueLimit_) queue_[queueSize_++] = {faces_[f].d, f, faces_[f].serial};
   std::make_heap(queue_, queue_ + queueSize_, Farther{});
 }
 
@@ -69,6 +71,7 @@ void ExpansionSurface::freeFace(int f) {
 
 bool ExpansionSurface::startTetrahedron(const Vertex* corners) {
   numVertices_ = numSlots_ = numFree_ = queueSize_ = live_ = 0;
+  queueLimit_ = std::numeric_limits<double>::infinity();
   convex_ = true;
   for (int i = 0; i < 4; ++i) vertices_[numVertices_++] = corners[i];
   const Vec3& p0 = corners[0].p;
@@ -94,6 +97,7 @@ bool ExpansionSurface::startTetrahedron(const Vertex* corners) {
 bool ExpansionSurface::load(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3],
                             int numFaces) {
   numVertices_ = numSlots_ = numFree_ = queueSize_ = live_ = 0;
+  queueLimit_ = std::numeric_limits<double>::infinity();
   convex_ = false;
   if (numVertices > kMaxVertices || numFaces > kMaxFaces) return false;
   std::copy(vertices, vertices + numVertices, vertices_);
@@ -114,12 +118,22 @@ int ExpansionSurface::bestFace() {
   while (queueSize_ > 0) {
     const QueueEntry& top = queue_[0];
     const Face& f = faces_[top.face];
-    if (f.alive && f.serial == top.serial) return top.face;
+    if (f.alive && f.serial == top.serial) {
+      if (top.d < queueLimit_) return top.face;
+      break;
+    }
     std::pop_heap(queue_, queue_ + queueSize_, Farther{});
     --queueSize_;
   }
-  return -1;
+  // Every face left, queued or not, is at or beyond the limit: the nearest of them all (usually
+  // once per query, when the caller is about to stop).
+  int best = -1;
+  for (int f = 0; f < numSlots_; ++f)
+    if (faces_[f].alive && (best < 0 || faces_[f].d < faces_[best].d)) best = f;
+  return best;
 }
+
+void ExpansionSurface::setQueueLimit(double limit) { queueLimit_ = std::min(queueLimit_, limit); }
 
 bool ExpansionSurface::isCorner(int f, const Vertex& w) const {
   for (int k = 0; k < 3; ++k) {

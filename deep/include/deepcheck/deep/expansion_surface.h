@@ -59,6 +59,11 @@ class ExpansionSurface {
   /// The live face of smallest plane distance, or -1 when there is none.
   int bestFace();
 
+  /// Faces at or beyond `limit` (the caller's upper bound minus its tolerance: it stops before
+  /// expanding them) are kept out of the queue from now on; bestFace() still returns the nearest
+  /// face once none below the limit is left. The limit only decreases; start and load reset it.
+  void setQueueLimit(double limit);
+
   /// Replaces the faces seen from `w` (at least face `from`, which must see it) by a cone over
   /// their horizon. Returns false, changing nothing, when out of capacity or when the horizon is
   /// not a single cycle or a new face is degenerate (round-off on a flat region). On a loaded
@@ -111,6 +116,7 @@ class ExpansionSurface {
   int numSlots_ = 0;
   int numFree_ = 0;
   int queueSize_ = 0;
+  double queueLimit_ = 0.0;  // faces at or beyond it are not queued (setQueueLimit)
   int horizonSize_ = 0;
   int numSeen_ = 0;
   int live_ = 0;
