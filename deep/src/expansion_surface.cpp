@@ -41,8 +41,17 @@ bool ExpansionSurface::setPlane(Face& f) const {
 void ExpansionSurface::push(int f) {
   if (!(faces_[f].d < queueLimit_)) return;  // never expanded; bestFace() finds it when nearest
   if (queueSize_ == kMaxQueue) rebuildQueue();
-  queue_[queueSize_++] = {faces_[f].d, f, faces_[f].serial};
-  std::push_heap(queue_, queue_ + queueSize_, Farther{});
+  // std::push_heap's sift-up, the new entry kept in registers (storing it first and reading it
+  // back stalls on store forwarding): the same heap as std::push_heap makes.
+  const QueueEntry e{faces_[f].d, f, faces_[f].serial};
+  int i = queueSize_++;
+  while (i > 0) {
+    const int parent = (i - 1) / 2;
+    if (!Farther{}(queue_[parent], e)) break;
+    queue_[i] = queue_[parent];
+    i = parent;
+  }
+  queue_[i] = e;
 }
 
 void ExpansionSurface::rebuildQueue() {
