@@ -31,6 +31,28 @@ class Support {
   Vertex operator()(const Vec3& u, int hintA, int hintB) const {
     return point(A_.support(-u, hintA), B_.support(F_.toB(u), hintB));
   }
+  /// The support in the normal of face f of s. Each shape's climb starts from the face's corner
+  /// whose vertex of that shape is highest along that shape's direction (A's along -n, B's along
+  /// n): the corners lie near the support, but the corner highest in M need not be in either.
+  Vertex inNormalOf(const ExpansionSurface& s, int f) const {
+    const ExpansionSurface::Face& face = s.face(f);
+    const Vec3 nB = F_.toB(face.n);
+    int a = s.vertex(face.v[0]).a, b = s.vertex(face.v[0]).b;
+    double va = -face.n.dot(A_.localVertex(a)), vb = nB.dot(B_.localVertex(b));
+    for (int k = 1; k < 3; ++k) {
+      const Vertex& c = s.vertex(face.v[k]);
+      const double sa = -face.n.dot(A_.localVertex(c.a)), sb = nB.dot(B_.localVertex(c.b));
+      if (sa > va) {
+        va = sa;
+        a = c.a;
+      }
+      if (sb > vb) {
+        vb = sb;
+        b = c.b;
+      }
+    }
+    return point(A_.support(-face.n, a), B_.support(nB, b));
+  }
 
  private:
   const ConvexPolytope& A_;
@@ -107,15 +129,6 @@ bool startSurface(const Support& support, const GjkResult& gjk, double eps, Expa
   return completeTetrahedron(support, probes, 4, eps, pts) && s.startTetrahedron(pts);
 }
 
-/// The corner of face f highest along its normal: the hill climb's start for the next support.
-const Vertex& hintCorner(const ExpansionSurface& s, int f) {
-  const ExpansionSurface::Face& face = s.face(f);
-  int best = face.v[0];
-  for (int k = 1; k < 3; ++k)
-    if (face.n.dot(s.vertex(face.v[k]).p) > face.n.dot(s.vertex(best).p)) best = face.v[k];
-  return s.vertex(best);
-}
-
 /// A result with an empty bracket [0, inf) and the pair's tolerance.
 CertifiedResult emptyBracket(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
   CertifiedResult r;
@@ -133,8 +146,7 @@ void expandBestFirst(const Support& support, ExpansionSurface& surface, const Ce
     if (f < 0) break;
     const ExpansionSurface::Face& face = surface.face(f);
     r.lower = std::max(r.lower, face.d);
-    const Vertex& hint = hintCorner(surface, f);
-    const Vertex w = support(face.n, hint.a, hint.b);
+    const Vertex w = support.inNormalOf(surface, f);
     const double h = face.n.dot(w.p);
     if (h < r.upper) {
       r.upper = h;
