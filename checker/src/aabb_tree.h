@@ -44,9 +44,10 @@ struct Aabb {
     return b;
   }
   /// Euclidean distance from p to the box (0 inside).
-  double distance(const Eigen::Vector3d& p) const {
-    const Eigen::Vector3d d = (lo - p).cwiseMax(p - hi).cwiseMax(0.0);
-    return d.norm();
+  double distance(const Eigen::Vector3d& p) const { return std::sqrt(squaredDistance(p)); }
+  /// Its square: what a test against a radius needs (no square root on the query's path).
+  double squaredDistance(const Eigen::Vector3d& p) const {
+    return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
   }
   bool overlaps(const Aabb& b) const {
     return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all();

@@ -87,7 +87,7 @@ bool linkHitsSet(Impl& c, const Snapshot& s, const PieceSet& set,
   return forEachOverlapping(set, c.state->options.broadPhase, Aabb::ofSphere(center, lg.radius), [&](int wp) {
     const WorldPiece& w = set.pieces[wp];
     ++c.stats.linkCandidates;
-    if (w.box.distance(center) > lg.radius) return false;
+    if (fartherThan(w.box.squaredDistance(center), lg.radius)) return false;
     for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
       posePiece(c, robot, i);
       ++c.stats.pieceTests;
@@ -105,7 +105,7 @@ bool selfPairHits(Impl& c, const RobotData& robot, const SelfPair& sp) {
     ++c.stats.certifiedSelf;
     return false;
   }
-  if ((c.linkCenter[sp.a] - c.linkCenter[sp.b]).norm() > la.radius + lb.radius) return false;
+  if (fartherThan((c.linkCenter[sp.a] - c.linkCenter[sp.b]).squaredNorm(), la.radius + lb.radius)) return false;
   return forEachSelfPiecePair(c, robot, sp, [&](int i, int j, int cache) {
     return selfBoundsMeet(c, robot, i, j) && overlapSelf(c, robot, i, j, cache);
   });

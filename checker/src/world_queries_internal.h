@@ -136,15 +136,25 @@ inline double pieceWorldLowerBound(const Impl& c, const RobotPiece& p, int i, co
   return std::max(toBox, toSphere);
 }
 
+/// True when spheres (or a sphere and a box) at squared distance d2 are farther apart than r:
+/// the bounding tests compare squares, with no square root on isFree's path.
+inline bool fartherThan(double d2, double r) { return d2 > r * r; }
+
 /// The bounding tests of robot piece i (posed) against world piece w: false when its bounding
-/// sphere's lower bound is positive or the oriented boxes are apart.
+/// sphere's lower bound is positive (pieceWorldLowerBound, compared in squares) or the oriented
+/// boxes are apart.
 inline bool worldBoundsMeet(const Impl& c, const RobotData& robot, int i, const WorldPiece& w) {
-  return !(pieceWorldLowerBound(c, robot.pieces[i], i, w) > 0) && !separated(c.pieceObb[i], w.obb_W);
+  const RobotPiece& p = robot.pieces[i];
+  const Eigen::Vector3d& x = c.pieceCenter[i];
+  return !fartherThan(w.box.squaredDistance(x), p.sphereRadius) &&
+         !fartherThan((x - w.center_W).squaredNorm(), p.sphereRadius + w.sphereRadius) &&
+         !separated(c.pieceObb[i], w.obb_W);
 }
 
 /// The bounding tests of robot pieces i and j (both posed): spheres, then oriented boxes.
 inline bool selfBoundsMeet(const Impl& c, const RobotData& robot, int i, int j) {
-  return !((c.pieceCenter[i] - c.pieceCenter[j]).norm() > robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius) &&
+  return !fartherThan((c.pieceCenter[i] - c.pieceCenter[j]).squaredNorm(),
+                      robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius) &&
          !separated(c.pieceObb[i], c.pieceObb[j]);
 }
 
