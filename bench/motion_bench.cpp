@@ -168,6 +168,19 @@ struct SceneResult {
   int fclOnlyInvalid = 0;         ///< motions ours accepts and FCL rejects (must be 0)
   long passingStates = 0;         ///< states of the motions valid for ours
   long passingDistanceQueries = 0;  ///< distance queries the clearance validator certifies them with
+
+  /// Adds another scene's motions (the "all" row).
+  void add(const SceneResult& r) {
+    ours.insert(ours.end(), r.ours.begin(), r.ours.end());
+    fcl.insert(fcl.end(), r.fcl.begin(), r.fcl.end());
+    states += r.states;
+    tested += r.tested;
+    valid += r.valid;
+    oursOnlyInvalid += r.oursOnlyInvalid;
+    fclOnlyInvalid += r.fclOnlyInvalid;
+    passingStates += r.passingStates;
+    passingDistanceQueries += r.passingDistanceQueries;
+  }
 };
 
 /// Counts what the clearance motion validator (exact distances over each pair's displacement
@@ -300,15 +313,7 @@ int main(int argc, char** argv) {
   all.scene = "all";
   for (const SceneResult& r : results) {
     printRow(r);
-    all.ours.insert(all.ours.end(), r.ours.begin(), r.ours.end());
-    all.fcl.insert(all.fcl.end(), r.fcl.begin(), r.fcl.end());
-    all.states += r.states;
-    all.tested += r.tested;
-    all.valid += r.valid;
-    all.oursOnlyInvalid += r.oursOnlyInvalid;
-    all.fclOnlyInvalid += r.fclOnlyInvalid;
-    all.passingStates += r.passingStates;
-    all.passingDistanceQueries += r.passingDistanceQueries;
+    all.add(r);
   }
   if (!all.ours.empty()) printRow(all);
   results.push_back(all);
