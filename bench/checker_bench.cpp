@@ -59,10 +59,6 @@ double percentile(std::vector<double> v, double p) {
   return v[static_cast<std::size_t>(p * (v.size() - 1))];
 }
 
-double mean(const std::vector<double>& v) {
-  return v.empty() ? std::nan("") : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
-}
-
 struct Row {
   std::string world, query, set, backend;
   double median = 0, p90 = 0, average = 0;
@@ -74,7 +70,7 @@ std::vector<Row> rows;
 
 void addTimes(const std::string& world, const std::string& query, const std::string& set,
               const std::string& backend, const std::vector<double>& us, const std::string& note = "") {
-  rows.push_back({world, query, set, backend, percentile(us, 0.5), percentile(us, 0.9), mean(us), us.size(), note});
+  rows.push_back({world, query, set, backend, percentile(us, 0.5), percentile(us, 0.9), bench::mean(us), us.size(), note});
   std::printf("  %-10s %-8s %-22s median %8.2f us  p90 %8.2f us  mean %8.2f us  (%zu)%s%s\n", query.c_str(),
               set.c_str(), backend.c_str(), rows.back().median, rows.back().p90, rows.back().average, us.size(),
               note.empty() ? "" : "  ", note.c_str());

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -31,6 +32,10 @@ inline double quantile(std::vector<double> v, double q) {
   return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 inline double median(std::vector<double> v) { return quantile(std::move(v), 0.5); }
+/// The arithmetic mean of `v`; NaN for an empty `v`.
+inline double mean(const std::vector<double>& v) {
+  return v.empty() ? std::nan("") : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
 
 /// The non-empty items of a comma-separated list ("a,b,,c" -> a, b, c).
 inline std::vector<std::string> splitList(const std::string& s) {

@@ -26,15 +26,14 @@
 #include "options.h"
 #include "plan_problems.h"
 
+#include "deepcheck/fcl_reference/fcl_validity_checker.h"
+#include "deepcheck/planners/motion_validator.h"
 #include "deepcheck/planners/planner_factory.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/state_space.h"
-#include "deepcheck/fcl_reference/fcl_validity_checker.h"
-#include "deepcheck/planners/motion_validator.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
-#include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -51,7 +50,6 @@
 using namespace deepcheck::bench;
 namespace dp = deepcheck::planners;
 namespace ob = ompl::base;
-namespace og = ompl::geometric;
 using Clock = std::chrono::steady_clock;
 
 namespace {
@@ -142,8 +140,7 @@ struct Replay {
 void replayOnce(const ob::MotionValidator& validator, const ob::SpaceInformationPtr& si,
                 const std::vector<Motion>& motions, Replay& replay) {
   ob::ScopedState<> s1(si), s2(si);
-  const bool first = replay.micros.empty();
-  if (first) {
+  if (replay.micros.empty()) {
     replay.micros.assign(motions.size(), 1e300);
     replay.valid.assign(motions.size(), 0);
   }
@@ -187,14 +184,15 @@ struct SceneResult {
 /// bound) needs to certify the motions valid for our checker: how many of their states a
 /// clearance could skip at best. Not timed.
 void countClearanceSteps(const ob::SpaceInformationPtr& si, const std::shared_ptr<const dp::StateValidityChecker>& checker,
-                         const std::vector<Motion>& motions, const std::vector<char>& valid, SceneResult& result) {
+                         const std::vector<Motion>& motions, const std::vector<char>& valid,
+                         const std::vector<unsigned>& states, SceneResult& result) {
   dp::ClearanceMotionValidator clearance(si, checker);
   ob::ScopedState<> s1(si), s2(si);
   for (std::size_t k = 0; k < motions.size(); ++k) {
     if (!valid[k]) continue;
     dp::copyToState(motions[k].first, s1.get());
     dp::copyToState(motions[k].second, s2.get());
-    result.passingStates += std::max(1u, si->getStateSpace()->validSegmentCount(s1.get(), s2.get()));
+    result.passingStates += states[k];
     const std::uint64_t before = clearance.stats().distanceQueries;
     clearance.checkMotion(s1.get(), s2.get());
     result.passingDistanceQueries += static_cast<long>(clearance.stats().distanceQueries - before);
@@ -221,10 +219,12 @@ void replayProblem(const std::shared_ptr<deepcheck::checker::World>& world, cons
     replayOnce(fclValidator, fclSi, motions, b);
   }
   ob::ScopedState<> s1(si), s2(si);
+  std::vector<unsigned> states(motions.size());  // at the space's resolution
   for (std::size_t k = 0; k < motions.size(); ++k) {
     dp::copyToState(motions[k].first, s1.get());
     dp::copyToState(motions[k].second, s2.get());
-    result.states += std::max(1u, si->getStateSpace()->validSegmentCount(s1.get(), s2.get()));
+    states[k] = std::max(1u, si->getStateSpace()->validSegmentCount(s1.get(), s2.get()));
+    result.states += states[k];
     result.valid += a.valid[k];
     if (!a.valid[k] && b.valid[k]) ++result.oursOnlyInvalid;
     if (a.valid[k] && !b.valid[k]) {
@@ -232,23 +232,17 @@ void replayProblem(const std::shared_ptr<deepcheck::checker::World>& world, cons
       std::fprintf(stderr, "motion_bench: %s: motion %zu accepted by ours, rejected by FCL\n", result.scene.c_str(), k);
     }
   }
-  countClearanceSteps(si, checker, motions, a.valid, result);
+  countClearanceSteps(si, checker, motions, a.valid, states, result);
   result.ours.insert(result.ours.end(), a.micros.begin(), a.micros.end());
   result.fcl.insert(result.fcl.end(), b.micros.begin(), b.micros.end());
-}
-
-double meanOf(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double x : v) s += x;
-  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
 }
 
 void printRow(const SceneResult& r) {
   const double n = static_cast<double>(r.ours.size());
   std::printf("| %s | %zu | %.0f %% | %d | %.1f | %.1f | %s | %s | %s | %s | %s | %.1fx | %.1f | %.1f |\n",
               r.scene.c_str(), r.ours.size(), 100.0 * r.valid / n, r.oursOnlyInvalid, r.states / n, r.tested / n,
-              fmt(meanOf(r.ours)).c_str(), fmt(median(r.ours)).c_str(), fmt(meanOf(r.ours) * n / r.tested).c_str(),
-              fmt(meanOf(r.fcl)).c_str(), fmt(median(r.fcl)).c_str(), meanOf(r.fcl) / meanOf(r.ours),
+              fmt(mean(r.ours)).c_str(), fmt(median(r.ours)).c_str(), fmt(mean(r.ours) * n / r.tested).c_str(),
+              fmt(mean(r.fcl)).c_str(), fmt(median(r.fcl)).c_str(), mean(r.fcl) / mean(r.ours),
               static_cast<double>(r.passingStates) / r.valid, static_cast<double>(r.passingDistanceQueries) / r.valid);
 }
 
@@ -262,7 +256,7 @@ void writeCsv(const std::string& path, const std::vector<SceneResult>& results) 
     for (int v = 0; v < 2; ++v) {
       const std::vector<double>& t = v == 0 ? r.ours : r.fcl;
       out << r.scene << ',' << (v == 0 ? "deepcheck" : "fcl") << ',' << r.ours.size() << ',' << r.valid / n << ','
-          << r.oursOnlyInvalid << ',' << r.states / n << ',' << r.tested / n << ',' << meanOf(t) << ',' << median(t)
+          << r.oursOnlyInvalid << ',' << r.states / n << ',' << r.tested / n << ',' << mean(t) << ',' << median(t)
           << ',' << quantile(t, 0.9) << ',' << static_cast<double>(r.passingStates) / r.valid << ','
           << static_cast<double>(r.passingDistanceQueries) / r.valid << '\n';
     }
