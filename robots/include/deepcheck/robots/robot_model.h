@@ -37,6 +37,13 @@
 // joint(variableJoint(v)).type == JointType::Continuous. Forward kinematics accepts any finite
 // value; limits are not enforced there.
 //
+// Locked joints. withLockedVariables() gives a copy of the model in which chosen variables are
+// held at given values, as a planning group holds the joints outside it: each of their joints
+// (mimic joints included) becomes a fixed joint whose X_PJ includes its motion at that value
+// (Joint::locked, Joint::lockedValue keep what it was), and the remaining variables are
+// renumbered in joint order. Everything built on the copy (kinematics, Jacobians, IK, the
+// checker, state spaces) then sees only the remaining variables.
+//
 // Floating and planar joints are rejected (the message names the joint) unless
 // LoadOptions::fixFloatingJoints, in which case they become fixed joints at their origin
 // (Joint::urdfType keeps the word written in the file).
@@ -47,6 +54,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -105,6 +113,10 @@ struct Joint {
   double multiplier = 1.0;
   double offset = 0.0;
   int mimicJoint = -1;  ///< the joint this one mimics directly (-1 when not a mimic)
+  /// A moving URDF joint held fixed by RobotModel::withLockedVariables (type is Fixed, X_PJ
+  /// includes its motion at lockedValue, rad or m).
+  bool locked = false;
+  double lockedValue = 0.0;
   bool isMimic() const { return mimicJoint >= 0; }
   bool moves() const { return type != JointType::Fixed; }
 };
@@ -157,6 +169,12 @@ class RobotModel {
   const Eigen::VectorXd& upperLimits() const { return upper_; }
   /// Zero clamped into the limits: a configuration that is always within them.
   Eigen::VectorXd defaultConfiguration() const;
+
+  /// A copy with the variables named in `values` (variable name -> rad or m) held at those
+  /// values (header comment). Throws std::invalid_argument naming the robot, the name and the
+  /// value for a name that is not a variable (a mimic or fixed joint: the message says which),
+  /// a non-finite value, or a value outside the variable's limits.
+  RobotModel withLockedVariables(const std::map<std::string, double>& values) const;
 
   /// X_WR, the pose of the root link in the world (identity unless set).
   const Eigen::Isometry3d& basePose() const { return X_WR_; }
