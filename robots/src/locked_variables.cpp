@@ -90,3 +90,30 @@ RobotModel RobotModel::withLockedVariables(const std::map<std::string, double>& 
 }
 
 }  // namespace deepcheck::robots
+
+namespace deepcheck::robots {
+
+RobotModel lockAllBut(const RobotModel& model, const std::vector<int>& keep,
+                      const std::map<std::string, double>& values, const std::string& keepName) {
+  std::vector<bool> kept(static_cast<std::size_t>(model.numVariables()), false);
+  for (int v : keep) {
+    if (v < 0 || v >= model.numVariables()) {
+      throw std::invalid_argument("robot '" + model.name() + "': " + keepName + " has variable index " +
+                                  std::to_string(v) + ", the robot has " + std::to_string(model.numVariables()));
+    }
+    kept[static_cast<std::size_t>(v)] = true;
+  }
+  std::map<std::string, double> locked = values;
+  const Eigen::VectorXd q0 = model.defaultConfiguration();
+  for (int v = 0; v < model.numVariables(); ++v) {
+    const std::string& name = model.variableNames()[static_cast<std::size_t>(v)];
+    if (kept[static_cast<std::size_t>(v)] && values.count(name) > 0) {
+      throw std::invalid_argument("robot '" + model.name() + "': cannot lock '" + name + "': it is a variable of " +
+                                  keepName);
+    }
+    if (!kept[static_cast<std::size_t>(v)]) locked.emplace(name, q0[v]);
+  }
+  return model.withLockedVariables(locked);
+}
+
+}  // namespace deepcheck::robots

@@ -146,4 +146,25 @@ BOOST_AUTO_TEST_CASE(bad_requests_are_named) {
   checkThrows([&] { panda.withLockedVariables({{"panda_joint8", 0.0}}); }, {"fixed joint"});
 }
 
+BOOST_AUTO_TEST_CASE(lock_all_but_a_kept_set) {
+  const RobotModel arm = loadBundledArm();
+  BOOST_REQUIRE(arm.numVariables() >= 4);
+  const std::string held = arm.variableNames()[1];
+  const double value = 0.5 * (arm.lowerLimits()[1] + arm.upperLimits()[1]) + 0.1;
+  const RobotModel kept = lockAllBut(arm, {0, 2}, {{held, value}}, "group 'test'");
+  BOOST_TEST(kept.numVariables() == 2);
+  BOOST_TEST(kept.variableNames()[0] == arm.variableNames()[0]);
+  BOOST_TEST(kept.variableNames()[1] == arm.variableNames()[2]);
+  BOOST_TEST(kept.joint(kept.jointIndex(held)).lockedValue == value);
+  // The others are held at their defaults.
+  const Eigen::VectorXd q0 = arm.defaultConfiguration();
+  for (int v = 3; v < arm.numVariables(); ++v) {
+    const std::string& name = arm.variableNames()[static_cast<std::size_t>(v)];
+    BOOST_TEST(kept.joint(kept.jointIndex(name)).lockedValue == q0[v]);
+  }
+  checkThrows([&] { lockAllBut(arm, {0, 1}, {{held, value}}, "group 'test'"); },
+              {"cannot lock '" + held + "'", "a variable of group 'test'"});
+  checkThrows([&] { lockAllBut(arm, {0, 99}, {}, "group 'test'"); }, {"group 'test' has variable index 99"});
+}
+
 BOOST_AUTO_TEST_SUITE_END()

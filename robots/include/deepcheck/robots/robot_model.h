@@ -197,4 +197,12 @@ class RobotModel {
   Eigen::Isometry3d X_WR_ = Eigen::Isometry3d::Identity();
 };
 
+/// `model` with every variable except those in `keep` (variable indices, e.g. a planning group's)
+/// locked: at its value in `values` (variable name -> rad or m) when given, else at its default
+/// (zero clamped into its limits). `keepName` names the kept set in messages ("group
+/// 'panda_arm'"). Throws std::invalid_argument for a kept variable named in `values` (it would
+/// be both planned and held), an index out of range, and what withLockedVariables throws.
+RobotModel lockAllBut(const RobotModel& model, const std::vector<int>& keep,
+                      const std::map<std::string, double>& values, const std::string& keepName);
+
 }  // namespace deepcheck::robots
