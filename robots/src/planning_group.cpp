@@ -1,0 +1,240 @@
+#include "deepcheck/robots/planning_group.h"
+
+#include "xml_text.h"
+
+#include <tinyxml.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace deepcheck::robots {
+
+namespace {
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+std::string srdfContext(const std::string& source) {
+  return "SRDF " + quoted(source.empty() ? "<string>" : source);
+}
+
+/// The value of `attr`; throws naming `where` and `element` when it is absent or empty.
+std::string requiredAttribute(const TiXmlElement* e, const char* attr, const std::string& where,
+                              const std::string& element) {
+  const char* value = e->Attribute(attr);
+  if (value == nullptr || *value == '\0') {
+    throw std::invalid_argument(where + ": " + element + " without " + attr);
+  }
+  return value;
+}
+
+/// One <group> element and what it holds.
+SrdfGroup parseGroup(const TiXmlElement* g, const std::string& context) {
+  SrdfGroup group;
+  group.line = g->Row();
+  group.name = requiredAttribute(g, "name", context + ", line " + std::to_string(g->Row()),
+                                 "<group>");
+  for (const TiXmlElement* e = g->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+    const std::string tag = e->Value();
+    const std::string where =
+        context + ", line " + std::to_string(e->Row()) + ", group " + quoted(group.name);
+    if (tag == "joint") {
+      group.joints.push_back(requiredAttribute(e, "name", where, "<joint>"));
+    } else if (tag == "link") {
+      group.links.push_back(requiredAttribute(e, "name", where, "<link>"));
+    } else if (tag == "chain") {
+      std::string base = requiredAttribute(e, "base_link", where, "<chain>");
+      group.chains.emplace_back(std::move(base), requiredAttribute(e, "tip_link", where, "<chain>"));
+    } else if (tag == "group") {
+      group.subgroups.push_back(requiredAttribute(e, "name", where, "<group>"));
+    } else if (tag != "passive_joint") {
+      throw std::invalid_argument(where + ": unexpected element <" + tag +
+                                  "> (a group holds joint, link, chain, group and passive_joint "
+                                  "elements)");
+    }
+  }
+  return group;
+}
+
+}  // namespace
+
+std::vector<SrdfGroup> parseSrdfGroups(const std::string& xml, const std::string& sourceName) {
+  const std::string context = srdfContext(sourceName);
+  TiXmlDocument doc;
+  parseXml(doc, xml, context);
+  const TiXmlElement* robot = doc.RootElement();
+  if (robot == nullptr || std::string(robot->Value()) != "robot") {
+    throw std::invalid_argument(context + ": the root element is not <robot>");
+  }
+  std::vector<SrdfGroup> groups;
+  for (const TiXmlElement* g = robot->FirstChildElement("group"); g != nullptr;
+       g = g->NextSiblingElement("group")) {
+    SrdfGroup group = parseGroup(g, context);
+    for (const SrdfGroup& earlier : groups) {
+      if (earlier.name == group.name) {
+        throw std::invalid_argument(context + ", line " + std::to_string(group.line) +
+                                    ": group " + quoted(group.name) +
+                                    " is defined twice (first at line " +
+                                    std::to_string(earlier.line) + ")");
+      }
+    }
+    groups.push_back(std::move(group));
+  }
+  return groups;
+}
+
+std::vector<SrdfGroup> readSrdfGroups(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument(srdfContext(path) + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw std::invalid_argument(srdfContext(path) + ": cannot read the file");
+  return parseSrdfGroups(text.str(), path);
+}
+
+namespace {
+
+/// Collects the joints of a group and of its subgroups, depth first, detecting cycles.
+class GroupResolver {
+ public:
+  GroupResolver(const RobotModel& model, const std::vector<SrdfGroup>& groups,
+                const std::string& srdfSource)
+      : model_(model),
+        groups_(groups),
+        context_(srdfContext(srdfSource)),
+        state_(groups.size(), State::Unvisited),
+        inGroup_(model.numJoints(), false) {}
+
+  /// Index of the group called `name` in `groups`, -1 when there is none.
+  int find(const std::string& name) const {
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      if (groups_[g].name == name) return static_cast<int>(g);
+    }
+    return -1;
+  }
+
+  /// Adds the joints of group g and of its subgroups.
+  void add(int g) {
+    const SrdfGroup& group = groups_[g];
+    state_[g] = State::InProgress;
+    path_.push_back(g);
+    for (const std::string& joint : group.joints) addJoint(group, joint);
+    for (const std::string& link : group.links) {
+      const int parent = model_.link(linkIndex(group, link)).parentJoint;
+      if (parent >= 0) inGroup_[parent] = true;
+    }
+    for (const auto& [base, tip] : group.chains) addChain(group, base, tip);
+    for (const std::string& name : group.subgroups) {
+      const int s = find(name);
+      if (s < 0) {
+        throw std::invalid_argument(where(group) + ": subgroup " + quoted(name) +
+                                    " is not a group of the file");
+      }
+      if (state_[s] == State::InProgress) throwCycle(group, s);
+      if (state_[s] == State::Unvisited) add(s);
+    }
+    path_.pop_back();
+    state_[g] = State::Done;
+  }
+
+  /// The variables of the collected joints, ascending; throws naming group g when there are none.
+  std::vector<int> variables(int g) const {
+    std::vector<int> result;
+    std::string joints;
+    for (int j = 0; j < model_.numJoints(); ++j) {
+      if (!inGroup_[j]) continue;
+      const Joint& joint = model_.joint(j);
+      if (joint.moves() && !joint.isMimic()) result.push_back(joint.variable);
+      joints += (joints.empty() ? "" : ", ") + joint.name;
+    }
+    if (result.empty()) {
+      throw std::invalid_argument(
+          where(groups_[g]) + ": the group moves no variable of " + robot() +
+          (joints.empty() ? std::string(": it has no joint")
+                          : ": its joints " + joints + " are fixed or mimic joints"));
+    }
+    std::sort(result.begin(), result.end());
+    return result;
+  }
+
+ private:
+  enum class State { Unvisited, InProgress, Done };
+
+  std::string where(const SrdfGroup& group) const {
+    return context_ + ", line " + std::to_string(group.line) + ", group " + quoted(group.name);
+  }
+  std::string robot() const {
+    return "robot " + quoted(model_.name()) + " (" + model_.source() + ")";
+  }
+
+  void addJoint(const SrdfGroup& group, const std::string& name) {
+    const int j = model_.jointIndex(name);
+    if (j < 0) {
+      throw std::invalid_argument(where(group) + ": joint " + quoted(name) + " is not in " +
+                                  robot());
+    }
+    inGroup_[j] = true;
+  }
+
+  int linkIndex(const SrdfGroup& group, const std::string& name) const {
+    const int l = model_.linkIndex(name);
+    if (l < 0) {
+      throw std::invalid_argument(where(group) + ": link " + quoted(name) + " is not in " +
+                                  robot());
+    }
+    return l;
+  }
+
+  /// The parent joints of the links from tip up to base, base excluded.
+  void addChain(const SrdfGroup& group, const std::string& base, const std::string& tip) {
+    const int b = linkIndex(group, base);
+    std::vector<int> joints;
+    int l = linkIndex(group, tip);
+    for (; l >= 0 && l != b; l = model_.link(l).parentLink) {
+      joints.push_back(model_.link(l).parentJoint);
+    }
+    if (l != b) {
+      throw std::invalid_argument(where(group) + ": <chain base_link=" + quoted(base) +
+                                  " tip_link=" + quoted(tip) + ">: " + quoted(base) +
+                                  " is not an ancestor of " + quoted(tip) + " in " + robot());
+    }
+    for (int j : joints) inGroup_[j] = true;
+  }
+
+  [[noreturn]] void throwCycle(const SrdfGroup& group, int s) const {
+    std::string cycle;
+    std::size_t k = 0;
+    while (path_[k] != s) ++k;
+    for (; k < path_.size(); ++k) cycle += groups_[path_[k]].name + " -> ";
+    throw std::invalid_argument(where(group) + ": subgroups form a cycle: " + cycle +
+                                groups_[s].name);
+  }
+
+  const RobotModel& model_;
+  const std::vector<SrdfGroup>& groups_;
+  std::string context_;
+  std::vector<State> state_;
+  std::vector<int> path_;  ///< the groups being added, outermost first
+  std::vector<bool> inGroup_;
+};
+
+}  // namespace
+
+std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfGroup>& groups,
+                                const std::string& name, const std::string& srdfSource) {
+  GroupResolver resolver(model, groups, srdfSource);
+  const int g = resolver.find(name);
+  if (g < 0) {
+    std::string defined;
+    for (const SrdfGroup& group : groups) defined += (defined.empty() ? "" : ", ") + quoted(group.name);
+    throw std::invalid_argument(srdfContext(srdfSource) + ": no group " + quoted(name) +
+                                (defined.empty() ? " (the file defines no group)"
+                                                 : " (the file defines " + defined + ")"));
+  }
+  resolver.add(g);
+  return resolver.variables(g);
+}
+
+}  // namespace deepcheck::robots
