@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace deepcheck::robots {
 
@@ -69,16 +70,15 @@ std::vector<SrdfGroup> parseSrdfGroups(const std::string& xml, const std::string
     throw std::invalid_argument(context + ": the root element is not <robot>");
   }
   std::vector<SrdfGroup> groups;
+  std::unordered_map<std::string, int> lineOf;
   for (const TiXmlElement* g = robot->FirstChildElement("group"); g != nullptr;
        g = g->NextSiblingElement("group")) {
     SrdfGroup group = parseGroup(g, context);
-    for (const SrdfGroup& earlier : groups) {
-      if (earlier.name == group.name) {
-        throw std::invalid_argument(context + ", line " + std::to_string(group.line) +
-                                    ": group " + quoted(group.name) +
-                                    " is defined twice (first at line " +
-                                    std::to_string(earlier.line) + ")");
-      }
+    const auto [earlier, isNew] = lineOf.emplace(group.name, group.line);
+    if (!isNew) {
+      throw std::invalid_argument(context + ", line " + std::to_string(group.line) + ": group " +
+                                  quoted(group.name) + " is defined twice (first at line " +
+                                  std::to_string(earlier->second) + ")");
     }
     groups.push_back(std::move(group));
   }
@@ -96,7 +96,8 @@ std::vector<SrdfGroup> readSrdfGroups(const std::string& path) {
 
 namespace {
 
-/// Collects the joints of a group and of its subgroups, depth first, detecting cycles.
+/// Collects the joints of a group and of its subgroups, depth first with an explicit stack (a
+/// file may nest subgroups deeper than the call stack could), detecting cycles.
 class GroupResolver {
  public:
   GroupResolver(const RobotModel& model, const std::vector<SrdfGroup>& groups,
@@ -105,38 +106,36 @@ class GroupResolver {
         groups_(groups),
         context_(srdfContext(srdfSource)),
         state_(groups.size(), State::Unvisited),
-        inGroup_(model.numJoints(), false) {}
-
-  /// Index of the group called `name` in `groups`, -1 when there is none.
-  int find(const std::string& name) const {
-    for (std::size_t g = 0; g < groups_.size(); ++g) {
-      if (groups_[g].name == name) return static_cast<int>(g);
-    }
-    return -1;
+        inGroup_(model.numJoints(), false) {
+    for (std::size_t g = 0; g < groups.size(); ++g) index_.emplace(groups[g].name, static_cast<int>(g));
   }
 
-  /// Adds the joints of group g and of its subgroups.
+  /// Index of the group called `name` in `groups` (the first one), -1 when there is none.
+  int find(const std::string& name) const {
+    const auto it = index_.find(name);
+    return it == index_.end() ? -1 : it->second;
+  }
+
+  /// Adds the joints of group g and of its subgroups, recursively.
   void add(int g) {
-    const SrdfGroup& group = groups_[g];
-    state_[g] = State::InProgress;
-    path_.push_back(g);
-    for (const std::string& joint : group.joints) addJoint(group, joint);
-    for (const std::string& link : group.links) {
-      const int parent = model_.link(linkIndex(group, link)).parentJoint;
-      if (parent >= 0) inGroup_[parent] = true;
-    }
-    for (const auto& [base, tip] : group.chains) addChain(group, base, tip);
-    for (const std::string& name : group.subgroups) {
+    enter(g);
+    while (!path_.empty()) {
+      const SrdfGroup& group = groups_[path_.back().group];
+      std::size_t& next = path_.back().nextSubgroup;
+      if (next == group.subgroups.size()) {
+        state_[path_.back().group] = State::Done;
+        path_.pop_back();
+        continue;
+      }
+      const std::string& name = group.subgroups[next++];
       const int s = find(name);
       if (s < 0) {
         throw std::invalid_argument(where(group) + ": subgroup " + quoted(name) +
                                     " is not a group of the file");
       }
       if (state_[s] == State::InProgress) throwCycle(group, s);
-      if (state_[s] == State::Unvisited) add(s);
+      if (state_[s] == State::Unvisited) enter(s);
     }
-    path_.pop_back();
-    state_[g] = State::Done;
   }
 
   /// The variables of the collected joints, ascending; throws naming group g when there are none.
@@ -161,6 +160,23 @@ class GroupResolver {
 
  private:
   enum class State { Unvisited, InProgress, Done };
+  struct Visit {
+    int group;
+    std::size_t nextSubgroup;  ///< the subgroup to visit next
+  };
+
+  /// Marks group g in progress and adds its own joints, links and chains.
+  void enter(int g) {
+    const SrdfGroup& group = groups_[g];
+    state_[g] = State::InProgress;
+    path_.push_back({g, 0});
+    for (const std::string& joint : group.joints) addJoint(group, joint);
+    for (const std::string& link : group.links) {
+      const int parent = model_.link(linkIndex(group, link)).parentJoint;
+      if (parent >= 0) inGroup_[parent] = true;
+    }
+    for (const auto& [base, tip] : group.chains) addChain(group, base, tip);
+  }
 
   std::string where(const SrdfGroup& group) const {
     return context_ + ", line " + std::to_string(group.line) + ", group " + quoted(group.name);
@@ -206,8 +222,8 @@ class GroupResolver {
   [[noreturn]] void throwCycle(const SrdfGroup& group, int s) const {
     std::string cycle;
     std::size_t k = 0;
-    while (path_[k] != s) ++k;
-    for (; k < path_.size(); ++k) cycle += groups_[path_[k]].name + " -> ";
+    while (path_[k].group != s) ++k;
+    for (; k < path_.size(); ++k) cycle += groups_[path_[k].group].name + " -> ";
     throw std::invalid_argument(where(group) + ": subgroups form a cycle: " + cycle +
                                 groups_[s].name);
   }
@@ -216,7 +232,8 @@ class GroupResolver {
   const std::vector<SrdfGroup>& groups_;
   std::string context_;
   std::vector<State> state_;
-  std::vector<int> path_;  ///< the groups being added, outermost first
+  std::unordered_map<std::string, int> index_;  ///< group name -> first group of that name
+  std::vector<Visit> path_;  ///< the groups being added, outermost first
   std::vector<bool> inGroup_;
 };
 

@@ -201,7 +201,7 @@ BOOST_AUTO_TEST_CASE(panda_groups_of_its_moveit_config) {
 
 BOOST_AUTO_TEST_CASE(malformed_groups_are_rejected_when_read) {
   checkThrows([] { parseSrdfGroups("<robot>\n<group name=\"a\">\n</robot>", "bad.srdf"); },
-              {"SRDF 'bad.srdf'", "malformed XML", "line"});
+              {"SRDF 'bad.srdf'", "malformed XML at line 3"});
   checkThrows([] { parseSrdfGroups("<robt/>", "bad.srdf"); }, {"bad.srdf", "root element"});
   checkThrows([] { parseSrdfGroups(srdfWith("<group>\n<joint name=\"j1\"/>\n</group>"), "bad.srdf"); },
               {"SRDF 'bad.srdf'", "line 2", "<group> without name"});
@@ -259,6 +259,25 @@ BOOST_AUTO_TEST_CASE(groups_that_move_nothing_are_rejected) {
               {"bad.srdf", "line 32", "group 'empty'", "moves no variable", "no joint"});
   checkThrows([] { railGroup(kRailSrdf, "one_link_chain"); },
               {"bad.srdf", "line 34", "group 'one_link_chain'", "moves no variable"});
+}
+
+BOOST_AUTO_TEST_CASE(deeply_nested_subgroups_are_resolved) {
+  // Each group holds the next as its subgroup; the last one holds j2. Following one group per
+  // call-stack frame this deep would risk overflowing the stack.
+  constexpr int kDepth = 200000;
+  std::vector<SrdfGroup> groups(kDepth);
+  for (int k = 0; k < kDepth; ++k) {
+    groups[k].name = "g" + std::to_string(k);
+    groups[k].line = k + 2;
+    if (k + 1 < kDepth) groups[k].subgroups = {"g" + std::to_string(k + 1)};
+  }
+  groups.back().joints = {"j2"};
+  const RobotModel model = loadRail();
+  BOOST_TEST(groupVariables(model, groups, "g0", "deep.srdf") == variablesOf(model, {"j2"}),
+             boost::test_tools::per_element());
+  groups.back().subgroups = {"g0"};
+  checkThrows([&] { groupVariables(model, groups, "g0", "deep.srdf"); },
+              {"deep.srdf", "line " + std::to_string(kDepth + 1), "cycle: g0 -> g1 -> g2 -> "});
 }
 
 BOOST_AUTO_TEST_SUITE_END()
