@@ -47,7 +47,8 @@ SrdfGroup parseGroup(const TiXmlElement* g, const std::string& context) {
       group.links.push_back(requiredAttribute(e, "name", where, "<link>"));
     } else if (tag == "chain") {
       std::string base = requiredAttribute(e, "base_link", where, "<chain>");
-      group.chains.emplace_back(std::move(base), requiredAttribute(e, "tip_link", where, "<chain>"));
+      std::string tip = requiredAttribute(e, "tip_link", where, "<chain>");
+      group.chains.emplace_back(std::move(base), std::move(tip));
     } else if (tag == "group") {
       group.subgroups.push_back(requiredAttribute(e, "name", where, "<group>"));
     } else if (tag != "passive_joint") {
@@ -107,7 +108,9 @@ class GroupResolver {
         context_(srdfContext(srdfSource)),
         state_(groups.size(), State::Unvisited),
         inGroup_(model.numJoints(), false) {
-    for (std::size_t g = 0; g < groups.size(); ++g) index_.emplace(groups[g].name, static_cast<int>(g));
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      index_.emplace(groups[g].name, static_cast<int>(g));
+    }
   }
 
   /// Index of the group called `name` in `groups` (the first one), -1 when there is none.
@@ -245,7 +248,9 @@ std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfG
   const int g = resolver.find(name);
   if (g < 0) {
     std::string defined;
-    for (const SrdfGroup& group : groups) defined += (defined.empty() ? "" : ", ") + quoted(group.name);
+    for (const SrdfGroup& group : groups) {
+      defined += (defined.empty() ? "" : ", ") + quoted(group.name);
+    }
     throw std::invalid_argument(srdfContext(srdfSource) + ": no group " + quoted(name) +
                                 (defined.empty() ? " (the file defines no group)"
                                                  : " (the file defines " + defined + ")"));
