@@ -166,7 +166,7 @@ void stopAtFirstSolution(og::SimpleSetup& ss) {
 ProblemSetups makeSetups(const std::shared_ptr<deepcheck::checker::World>& world, const dp::Problem& problem) {
   ProblemSetups s;
   s.problem = &problem;
-  s.ours = dp::makeSimpleSetup(world, pandaOptions());
+  s.ours = dp::makeSimpleSetup(world, pandaArmOptions());
   dp::setStartAndGoal(*s.ours, problem.start, problem.goal);
   s.ourChecker = dp::validityCheckerOf(*s.ours);
   s.fcl = makeFclSetup(*s.ours, *world, &s.fclChecker);
@@ -330,7 +330,7 @@ std::string oneLine(std::string text) {
 /// Generates the scene's problems and runs them; the reason when the scene could not be run.
 std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std::shared_ptr<deepcheck::checker::World>& world,
                            std::vector<MbmRecord>& records) {
-  auto base = dp::makeSimpleSetup(world, pandaOptions());
+  auto base = dp::makeSimpleSetup(world, pandaArmOptions());
   std::vector<dp::Problem> problems;
   try {
     std::vector<std::string> notes;
@@ -391,7 +391,7 @@ int main(int argc, char** argv) {
   const auto wallStart = std::chrono::steady_clock::now();
   std::fprintf(stderr, "mbm_bench: %zu scene(s) x %d problem(s) x %zu checker(s) x %zu planner(s), %.3g s limit\n",
                scenes.size(), opt.problems, opt.checkers.size(), opt.planners.size(), opt.time);
-  const auto world = dp::loadWorld(pandaUrdf(), {}, pandaOptions());
+  const auto world = dp::loadWorld(pandaUrdf(), {}, pandaArmOptions());
   std::vector<MbmRecord> records;
   std::vector<SceneFailure> failures;
   for (const MbmScene& scene : scenes) {

@@ -92,6 +92,20 @@ std::vector<MbmScene> mbmScenes() {
 
 robots::FrameAliases pandaFrameAliases() { return {{"base_link", "panda_link0"}}; }
 
+dp::SetupOptions pandaArmOptions() {
+  static const dp::SetupOptions options = [] {
+    dp::SetupOptions o = pandaOptions();
+    robots::LoadOptions load;
+    load.packageRoots = o.packageRoots;
+    load.useRosPackagePath = false;
+    o.group = "panda_arm";
+    o.lockedVariables = dp::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(pandaUrdf(), load),
+                                               dp::loadRobotConfig(mbmDir() + "/robots/panda.yaml"), o.srdf, o.group);
+    return o;
+  }();
+  return options;
+}
+
 robots::PlanningScene loadNominalScene(const MbmScene& scene, dp::SceneDraw* draw) {
   if (endsWith(scene.scene, ".urdf")) {
     auto model = std::make_shared<const robots::RobotModel>(loadSceneUrdf(scene));

@@ -17,6 +17,7 @@
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/planners/problem_generation.h"
+#include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/validity_checker.h"
 #include "deepcheck/robots/moveit_scene.h"
 
@@ -49,6 +50,10 @@ std::vector<MbmScene> selectScenes(const std::vector<std::string>& wanted, Usage
 /// The frame aliases of the MotionBenchMaker files for the Panda of ../shared (base_link is
 /// panda_link0).
 robots::FrameAliases pandaFrameAliases();
+
+/// The Panda as MotionBenchMaker plans it: its SRDF's panda_arm group (the seven arm joints),
+/// the fingers held at MotionBenchMaker's default state (clamped into this Panda's limits).
+planners::SetupOptions pandaArmOptions();
 
 /// The nominal planning scene: the YAML as read, or the URDF's links as objects at the URDF's
 /// default joint values (header comment); for a URDF, `draw` (when not null) is set to draw its

@@ -119,7 +119,7 @@ class RecordingValidator : public ob::MotionValidator {
 
 /// The motions RRTConnect asks about on one problem (its first solution, at most 10 s).
 std::vector<Motion> recordMotions(const std::shared_ptr<deepcheck::checker::World>& world, const dp::Problem& problem) {
-  auto ss = dp::makeSimpleSetup(world, pandaOptions());
+  auto ss = dp::makeSimpleSetup(world, pandaArmOptions());
   dp::setStartAndGoal(*ss, problem.start, problem.goal);
   const ob::SpaceInformationPtr& si = ss->getSpaceInformation();
   std::vector<Motion> motions;
@@ -202,7 +202,7 @@ void countClearanceSteps(const ob::SpaceInformationPtr& si, const std::shared_pt
 /// Replays one problem's motions through our checker and FCL's, alternating.
 void replayProblem(const std::shared_ptr<deepcheck::checker::World>& world, const std::vector<Motion>& motions,
                    int rounds, SceneResult& result) {
-  auto ours = dp::makeSimpleSetup(world, pandaOptions());
+  auto ours = dp::makeSimpleSetup(world, pandaArmOptions());
   std::shared_ptr<deepcheck::fcl_reference::FclStateValidityChecker> fclChecker;
   auto fcl = makeFclSetup(*ours, *world, &fclChecker);
   const ob::SpaceInformationPtr& si = ours->getSpaceInformation();
@@ -275,10 +275,10 @@ int main(int argc, char** argv) {
   }
   ompl::RNG::setSeed(opt.seed);
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
-  const auto world = dp::loadWorld(pandaUrdf(), {}, pandaOptions());
+  const auto world = dp::loadWorld(pandaUrdf(), {}, pandaArmOptions());
   std::vector<SceneResult> results;
   for (const MbmScene& scene : selectScenes(opt.scenes, usage)) {
-    auto base = dp::makeSimpleSetup(world, pandaOptions());
+    auto base = dp::makeSimpleSetup(world, pandaArmOptions());
     const dp::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, nullptr);
     const std::vector<dp::Problem> problems =
         generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems, [&](int k, const dp::Problem&) {

@@ -1,6 +1,7 @@
 #include "load_world.h"
 
 #include "deepcheck/robots/pair_filter.h"
+#include "deepcheck/robots/planning_group.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include <algorithm>
@@ -47,6 +48,20 @@ robots::FrameAliases takeFrameAliases(std::vector<std::string>& args) {
   return aliases;
 }
 
+std::map<std::string, double> takeLocks(std::vector<std::string>& args) {
+  std::map<std::string, double> locks;
+  for (const std::string& text : takeOption(args, "--lock")) {
+    const std::size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
+      throw UsageError("--lock needs JOINT=VALUE, got '" + text + "'");
+    }
+    const std::string joint = text.substr(0, eq);
+    const double value = parseValue(text.substr(eq + 1), "--lock " + joint);
+    if (!locks.emplace(joint, value).second) throw UsageError("--lock: joint '" + joint + "' given twice");
+  }
+  return locks;
+}
+
 namespace {
 
 std::string lowerCaseExtension(const std::string& path) {
@@ -76,6 +91,11 @@ WorldArgs takeWorldArgs(std::vector<std::string>& args) {
   takeWorldOptions(args, w.robot, w.scenes, w.srdf);
   w.packages = takePackageRoots(args);
   w.frameAliases = takeFrameAliases(args);
+  w.group = takeSingleOption(args, "--group");
+  w.locks = takeLocks(args);
+  if (!w.group.empty() && w.srdf.empty()) {
+    throw UsageError("--group " + w.group + " needs --srdf: the planning groups are the SRDF's");
+  }
   bool planningScene = false;
   for (const SceneArg& s : w.scenes) {
     if (sceneKind(s.path) != SceneKind::PlanningScene) continue;
@@ -95,7 +115,8 @@ WorldArgs takeWorldArgs(std::vector<std::string>& args) {
 checker::World loadWorld(const WorldArgs& args) {
   robots::LoadOptions load;
   load.packageRoots = args.packages.commandLine;
-  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(args.robot, load);
+  robots::RobotModel robot =
+      robots::planningGroupModel(robots::RobotModel::fromUrdfFile(args.robot, load), args.srdf, args.group, args.locks);
   checker::WorldOptions options;
   if (!args.srdf.empty()) {
     options.disabledPairs = robots::readSrdfDisabledPairs(args.srdf);

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include <istream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@
   "                      a planning scene's frame NAME is the robot's link LINK (repeatable),\n"      \
   "                      e.g. base_link=panda_link0 for MotionBenchMaker scenes with the Panda\n"     \
   "  --srdf FILE         disable the self-collision pairs of this SRDF\n"                             \
+  "  --group NAME        move only the variables of the SRDF's planning group NAME (needs --srdf);\n" \
+  "                      the others are held at their --lock value, else their default\n"          \
+  "  --lock JOINT=VALUE  hold JOINT at VALUE (rad or m; repeatable); configurations then omit it\n"   \
   "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"    \
   "                      also read)\n"
 
@@ -54,11 +58,18 @@ struct WorldArgs {
   std::string srdf;
   PackageRoots packages;
   robots::FrameAliases frameAliases;
+  std::string group;                     ///< --group
+  std::map<std::string, double> locks;   ///< --lock
 };
 
-/// Removes --robot, --scene [--scene-pose], --srdf, --package-path and --frame-alias from `args`
-/// (takeWorldOptions, takePackageRoots, takeFrameAliases). UsageError for --scene-pose after a
-/// planning-scene YAML, or a --frame-alias without any such scene.
+/// Removes every `--lock JOINT=VALUE` from `args`. UsageError for a malformed one, a value that is
+/// not a finite number, or a joint given twice.
+std::map<std::string, double> takeLocks(std::vector<std::string>& args);
+
+/// Removes --robot, --scene [--scene-pose], --srdf, --group, --lock, --package-path and
+/// --frame-alias from `args`
+/// (takeWorldOptions, takePackageRoots, takeFrameAliases, takeLocks). UsageError for --scene-pose
+/// after a planning-scene YAML, a --frame-alias without any such scene, or --group without --srdf.
 WorldArgs takeWorldArgs(std::vector<std::string>& args);
 
 /// True for a .yaml or .yml file (any case): a MoveIt planning scene.
@@ -69,7 +80,7 @@ enum class SceneKind { Urdf, PlanningScene };
 /// Throws UsageError naming the file and the extensions known for any other extension.
 SceneKind sceneKind(const std::string& path);
 
-/// Loads the robot, disables the SRDF's pairs (an unknown link in it is an error naming the file)
+/// Loads the robot (its --group's variables only, its --lock joints held), disables the SRDF's pairs (an unknown link in it is an error naming the file)
 /// and adds the scenes in command-line order. Throws std::invalid_argument naming the bad file
 /// (for a planning scene, its line, object and frame; an unknown frame's message suggests
 /// --frame-alias).

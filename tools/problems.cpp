@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -30,7 +31,8 @@ namespace deepcheck::tools {
 namespace {
 
 const char kUsage[] =
-    "usage: deepcheck problems --robot URDF [--srdf FILE] [--package-path DIR]... --scene SCENE.yaml|SCENE.urdf\n"
+    "usage: deepcheck problems --robot URDF [--srdf FILE [--group NAME]] [--lock JOINT=VALUE]...\n"
+    "                          [--package-path DIR]... --scene SCENE.yaml|SCENE.urdf\n"
     "                          --variation VARIATION.yaml --queries QUERIES.yaml --robot-config ROBOT.yaml\n"
     "                          [--frame-alias NAME=LINK]... [--tip LINK] [--ee-offset \"x y z qx qy qz qw\"]\n"
     "                          [--count N] [--seed S] [--max-attempts N] --out DIR\n"
@@ -42,6 +44,9 @@ const char kUsage[] =
     "\n"
     "  --robot URDF          the robot\n"
     "  --srdf FILE           disable the self-collision pairs of this SRDF\n"
+    "  --group NAME          plan only the SRDF's planning group NAME (e.g. panda_arm); the other\n"
+    "                        variables are held at the robot configuration file's values\n"
+    "  --lock JOINT=VALUE    hold JOINT at VALUE (rad or m; repeatable; overrides the file's value)\n"
     "  --package-path DIR    search DIR for package:// URIs (repeatable)\n"
     "  --scene FILE          the nominal MoveIt planning scene (YAML), or a scene URDF: its links\n"
     "                        become objects named as the links, in the robot's root frame, posed\n"
@@ -115,7 +120,8 @@ void writeProblem(const std::filesystem::path& dir, int index, const planners::P
 }
 
 struct ProblemsArgs {
-  std::string robot, srdf, scene, variation, queries, robotConfig, out;
+  std::string robot, srdf, group, scene, variation, queries, robotConfig, out;
+  std::map<std::string, double> locks;
   PackageRoots packages;
   planners::ProblemOptions options;
   int count = 10;
@@ -125,6 +131,8 @@ ProblemsArgs takeArgs(std::vector<std::string>& args) {
   ProblemsArgs a;
   a.robot = takeSingleOption(args, "--robot");
   a.srdf = takeSingleOption(args, "--srdf");
+  a.group = takeSingleOption(args, "--group");
+  a.locks = takeLocks(args);
   a.packages = takePackageRoots(args);
   a.scene = takeSingleOption(args, "--scene");
   a.variation = takeSingleOption(args, "--variation");
@@ -144,6 +152,7 @@ ProblemsArgs takeArgs(std::vector<std::string>& args) {
                                     {a.queries, "--queries"}, {a.robotConfig, "--robot-config"}, {a.out, "--out"}}) {
     if (value.empty()) throw UsageError(std::string("option ") + name + " is required");
   }
+  if (!a.group.empty() && a.srdf.empty()) throw UsageError("--group " + a.group + " needs --srdf: the planning groups are the SRDF's");
   sceneKind(a.scene);  // a known extension, or a UsageError naming the file
   return a;
 }
@@ -172,13 +181,22 @@ int run(std::vector<std::string> args) {
   planners::SetupOptions setup;
   setup.packageRoots = a.packages.commandLine;
   setup.srdf = a.srdf;
+  const planners::RobotConfig config = planners::loadRobotConfig(a.robotConfig);
+  setup.group = a.group;
+  setup.lockedVariables = a.locks;
+  if (!a.group.empty()) {
+    robots::LoadOptions load;
+    load.packageRoots = a.packages.commandLine;
+    const auto outside = planners::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(a.robot, load), config, a.srdf, a.group);
+    setup.lockedVariables.insert(outside.begin(), outside.end());  // --lock's values first
+  }
   const auto world = planners::loadWorld(a.robot, {}, setup);
   const auto ss = planners::makeSimpleSetup(world, setup);
   const robots::PlanningScene nominal = loadNominal(a, world->robot(), a.options);
   const auto variations = planners::loadSceneVariations(a.variation);
   const auto queries = planners::loadQueries(a.queries);
   std::vector<std::string> notes;
-  a.options.start = planners::configurationOf(world->robot(), planners::loadRobotConfig(a.robotConfig), &notes);
+  a.options.start = planners::configurationOf(world->robot(), config, &notes);
   for (const std::string& note : notes) std::fprintf(stderr, "note: %s\n", note.c_str());
   const std::filesystem::path dir(a.out);
   std::filesystem::create_directories(dir);

@@ -2,6 +2,7 @@
 // every error naming the file, the line and the value.
 
 #include "deepcheck/planners/problem_generation.h"
+#include "deepcheck/robots/planning_group.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <map>
 #include <stdexcept>
 
 namespace deepcheck::planners {
@@ -208,8 +210,14 @@ Eigen::VectorXd configurationOf(const robots::RobotModel& robot, const RobotConf
     const int joint = robot.jointIndex(name);
     if (joint < 0) throw std::invalid_argument(where + ": the robot has no joint '" + name + "'");
     const int v = robot.variableIndex(name);
-    if (v < 0) continue;  // a mimic joint follows its variable
     const double x = config.jointPositions[i];
+    const robots::Joint& j = robot.joint(joint);
+    if (j.locked && x != j.lockedValue && notes) {
+      std::ostringstream m;
+      m << where << ": joint '" << name << "' = " << x << " is held at " << j.lockedValue << " (locked)";
+      notes->push_back(m.str());
+    }
+    if (v < 0) continue;  // a mimic joint follows its variable; a locked one keeps its value
     q[v] = std::clamp(x, robot.lowerLimits()[v], robot.upperLimits()[v]);
     if (q[v] != x && notes) {
       std::ostringstream m;
@@ -219,6 +227,19 @@ Eigen::VectorXd configurationOf(const robots::RobotModel& robot, const RobotConf
     }
   }
   return q;
+}
+
+std::map<std::string, double> lockedOutsideGroup(const robots::RobotModel& robot, const RobotConfig& config,
+                                                 const std::string& srdf, const std::string& group) {
+  const std::vector<int> moved = robots::groupVariables(robot, robots::readSrdfGroups(srdf), group, srdf);
+  const Eigen::VectorXd q = configurationOf(robot, config);
+  std::map<std::string, double> locked;
+  for (int v = 0; v < robot.numVariables(); ++v) {
+    if (std::find(moved.begin(), moved.end(), v) == moved.end()) {
+      locked.emplace(robot.variableNames()[static_cast<std::size_t>(v)], q[v]);
+    }
+  }
+  return locked;
 }
 
 }  // namespace deepcheck::planners

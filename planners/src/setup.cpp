@@ -6,6 +6,7 @@
 #include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/pair_filter.h"
+#include "deepcheck/robots/planning_group.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/goals/GoalState.h>
@@ -41,7 +42,8 @@ void checkConfigurationNamed(const robots::RobotModel& model, const Eigen::Ref<c
 std::shared_ptr<checker::World> loadWorld(const std::string& robotUrdf, const std::vector<SceneSpec>& scenes,
                                           const SetupOptions& options) {
   const robots::LoadOptions load = loadOptions(options);
-  robots::RobotModel robot = robots::RobotModel::fromUrdfFile(robotUrdf, load);
+  robots::RobotModel robot = robots::planningGroupModel(robots::RobotModel::fromUrdfFile(robotUrdf, load),
+                                                        options.srdf, options.group, options.lockedVariables);
   checker::WorldOptions worldOptions = options.world;
   if (!options.srdf.empty()) {
     const std::vector<robots::DisabledPair> pairs = robots::readSrdfDisabledPairs(options.srdf);

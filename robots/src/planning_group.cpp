@@ -259,4 +259,15 @@ std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfG
   return resolver.variables(g);
 }
 
+RobotModel planningGroupModel(const RobotModel& model, const std::string& srdfPath, const std::string& group,
+                              const std::map<std::string, double>& locked) {
+  if (group.empty()) return model.withLockedVariables(locked);
+  if (srdfPath.empty()) {
+    throw std::invalid_argument("robot '" + model.name() + "': planning group '" + group +
+                                "' asked for without an SRDF (the groups are the SRDF's)");
+  }
+  const std::vector<int> moved = groupVariables(model, readSrdfGroups(srdfPath), group, srdfPath);
+  return lockAllBut(model, moved, locked, "group '" + group + "' of SRDF '" + srdfPath + "'");
+}
+
 }  // namespace deepcheck::robots

@@ -23,6 +23,7 @@ using deepcheck::test::sharedDir;
 
 std::string mbm() { return sharedDir() + "/scenes/motion_bench_maker/configs"; }
 std::string pandaDir() { return sharedDir() + "/robots/panda"; }
+std::string pandaUrdf() { return pandaDir() + "/moveit_resources_panda_description/urdf/panda.urdf"; }
 
 void checkThrows(const std::function<void()>& f, const std::string& part) {
   try {
@@ -48,13 +49,22 @@ struct PandaBookshelf {
   QuerySet queries;
   ProblemOptions options;
 
-  PandaBookshelf() {
+  /// The Panda's variables, or only those of `group` (the others at the robot file's values).
+  explicit PandaBookshelf(const std::string& group = "") {
     SetupOptions o;
     o.packageRoots = {pandaDir()};
     o.useRosPackagePath = false;
     o.srdf = pandaDir() + "/moveit_resources_panda_moveit_config/config/panda.srdf";
+    if (!group.empty()) {
+      robots::LoadOptions load;
+      load.packageRoots = o.packageRoots;
+      load.useRosPackagePath = false;
+      const robots::RobotModel full = robots::RobotModel::fromUrdfFile(pandaUrdf(), load);
+      o.group = group;
+      o.lockedVariables = lockedOutsideGroup(full, loadRobotConfig(mbm() + "/robots/panda.yaml"), o.srdf, group);
+    }
     o.world.decompositionCacheDir = std::string(DEEPCHECK_BINARY_DIR) + "/planners_test_cache";
-    world = loadWorld(pandaDir() + "/moveit_resources_panda_description/urdf/panda.urdf", {}, o);
+    world = loadWorld(pandaUrdf(), {}, o);
     ss = makeSimpleSetup(world, o);
     scene = robots::loadPlanningScene(mbm() + "/scenes/bookshelf/scene_small.yaml");
     variations = loadSceneVariations(mbm() + "/scenes/bookshelf/variation_small.yaml");
@@ -170,6 +180,44 @@ BOOST_AUTO_TEST_CASE(bookshelf_problems_are_valid_and_reproducible) {
   }
   again.options.seed = 8;
   BOOST_CHECK(again.generate(1).front().goal != problems.front().goal);
+}
+
+BOOST_AUTO_TEST_CASE(a_planning_group_moves_its_joints_only, *boost::unit_test::label("integration")) {
+  if (!haveShared("problem generation for the panda_arm group")) return;
+  PandaBookshelf setup("panda_arm");
+  const robots::RobotModel& arm = setup.world->robot();
+  BOOST_REQUIRE_EQUAL(arm.numVariables(), 7);
+  // The fingers are held at the robot file's 0.065 m, clamped to this Panda's 0.04 m.
+  const robots::Joint& finger = arm.joint(arm.jointIndex("panda_finger_joint1"));
+  BOOST_CHECK(finger.locked);
+  BOOST_CHECK_EQUAL(finger.lockedValue, 0.04);
+  const std::vector<Problem> problems = setup.generate(2);
+  const auto checker = validityCheckerOf(*setup.ss);
+  for (const Problem& p : problems) {
+    BOOST_REQUIRE_EQUAL(p.goal.size(), 7);
+    const std::vector<int> ids = setup.world->addPlanningScene(p.scene, {setup.options.frameAliases, {}});
+    BOOST_CHECK(checker->isValid(p.start));
+    BOOST_CHECK(checker->isValid(p.goal));
+    // The 7-variable setup plans it, and the path is certified.
+    setStartAndGoal(*setup.ss, p.start, p.goal);
+    setup.ss->setup();
+    BOOST_REQUIRE(setup.ss->solve(10.0) == ompl::base::PlannerStatus::EXACT_SOLUTION);
+    BOOST_CHECK(certifyPath(*setup.ss, setup.ss->getSolutionPath()).valid);
+    setup.ss->clear();
+    for (int id : ids) setup.world->removeObstacle(id);
+  }
+  // A group variable cannot also be held.
+  checkThrows(
+      [&] {
+        SetupOptions o;
+        o.packageRoots = {pandaDir()};
+        o.useRosPackagePath = false;
+        o.srdf = pandaDir() + "/moveit_resources_panda_moveit_config/config/panda.srdf";
+        o.group = "panda_arm";
+        o.lockedVariables = {{"panda_joint4", -2.0}};
+        loadWorld(pandaUrdf(), {}, o);
+      },
+      "cannot lock 'panda_joint4': it is a variable of group 'panda_arm'");
 }
 
 BOOST_AUTO_TEST_CASE(drawn_scenes_are_the_ones_varied) {

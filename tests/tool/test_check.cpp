@@ -155,6 +155,56 @@ BOOST_AUTO_TEST_CASE(bad_input_and_command_lines) {
   BOOST_TEST(r.err.find("none.urdf") != std::string::npos, r.err);
 }
 
+BOOST_AUTO_TEST_CASE(locked_joints_and_planning_groups) {
+  // The cube's lift held at 0.1 (by --lock, or as the joint outside the SRDF group "slide_only"
+  // held at its --lock value): configurations are the slide alone, the floor 0.35 below.
+  Scratch s;
+  const std::string robot = s.write("slider.urdf", kRobot);
+  const std::string scene = s.write("room.urdf", kScene);
+  const std::string srdf = s.write("slider.srdf",
+                                   "<robot name='slider'>\n<group name='slide_only'><joint name='slide'/></group>\n"
+                                   "<group name='both'><group name='slide_only'/><joint name='lift'/></group>\n</robot>");
+  for (const std::string& how : {std::string("--lock lift=0.1"), "--srdf " + srdf + " --group slide_only --lock lift=0.1"}) {
+    const Run r = runCheck(s, "--robot " + robot + " --scene " + scene + " --gradient " + how, "0\n0.4\n");
+    BOOST_TEST_REQUIRE(r.status == 0, how << ": " << r.err);
+    const std::vector<std::string> out = lines(r.out);
+    BOOST_TEST_REQUIRE(out.size() == 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+      const std::vector<std::string> f = fields(out[i]);
+      BOOST_TEST_REQUIRE(f.size() == 10u, out[i]);  // three triples and one gradient component
+      BOOST_TEST(std::abs(number(f[0]) - std::min(0.5 - 0.4 * static_cast<double>(i), 0.35)) < kExact, out[i]);
+    }
+  }
+  // Without --lock the joint outside the group is held at its default, 0: the floor 0.25 below.
+  Run r = runCheck(s, "--robot " + robot + " --scene " + scene + " --srdf " + srdf + " --group slide_only", "0\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(std::abs(number(fields(lines(r.out).at(0)).at(0)) - 0.25) < kExact, r.out);
+  // Two values where the group has one: the count is named.
+  r = runCheck(s, "--robot " + robot + " --srdf " + srdf + " --group slide_only", "0 0\n");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("1 variables") != std::string::npos, r.err);
+  // Errors naming the group, the joint, the value.
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"--srdf " + srdf + " --group nosuch", "group 'nosuch'"},
+      {"--srdf " + srdf + " --group slide_only --lock slide=0", "it is a variable of group 'slide_only'"},
+      {"--lock lift=5", "outside its limits [-1, 1]"},
+      {"--lock cube=0", "cannot lock 'cube'"},
+      {"--srdf " + srdf + " --group both --lock lift=0", "a variable of group 'both'"}};
+  for (const auto& [args, message] : bad) {
+    r = runCheck(s, "--robot " + robot + " " + args, "0\n");
+    BOOST_TEST(r.status == 1, args);
+    BOOST_TEST(r.err.find(message) != std::string::npos, args << ": " << r.err);
+  }
+  r = runCheck(s, "--robot " + robot + " --srdf " + srdf + " --group nosuch", "0\n");
+  BOOST_TEST(r.err.find("slide_only") != std::string::npos, r.err);  // the groups the file has
+  // Command-line errors: exit 2.
+  for (const std::string& args : {std::string("--group slide_only"), std::string("--lock lift"),
+                                  std::string("--lock lift=x"), std::string("--lock lift=0 --lock lift=0.1")}) {
+    r = runCheck(s, "--robot " + robot + " " + args, "0\n");
+    BOOST_TEST(r.status == 2, args << ": " << r.err);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(bundled_arm_in_the_shelf) {
   // The project's own arm and shelf: runs on a fresh clone.
   Scratch s;

@@ -88,6 +88,32 @@ BOOST_AUTO_TEST_CASE(bookshelf_problems_are_collision_free_and_repeat_with_the_s
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_planning_group_plans_the_arm_with_the_fingers_held) {
+  if (!test::haveShared("deepcheck problems --group panda_arm")) return;
+  Scratch scratch;
+  const Run r = scratch.run(bookshelfArgs(scratch.path("g"), 1, 3) + " --group panda_arm");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const auto problem = readProblem(scratch.path("g/problem_0000.txt"));
+  const std::vector<std::string> variables = problem.at("variables");
+  BOOST_TEST_REQUIRE(variables.size() == 7u);
+  for (int j = 0; j < 7; ++j) BOOST_TEST(variables[static_cast<std::size_t>(j)] == "panda_joint" + std::to_string(j + 1));
+  // The start is the robot file's default state of the arm; its finger opening (0.065, beyond
+  // this Panda's 0.04) is clamped, and the fingers are held there.
+  const Eigen::VectorXd start = values(problem.at("start"));
+  const Eigen::VectorXd expected = (Eigen::VectorXd(7) << 0, -0.785, 0, -2.356, 0, 1.571, 0.785).finished();
+  BOOST_TEST((start - expected).cwiseAbs().maxCoeff() == 0.0);
+  BOOST_TEST(r.err.find("'panda_finger_joint1' = 0.065 is held at 0.04") != std::string::npos, r.err);
+  BOOST_TEST(values(problem.at("goal")).size() == 7);
+  // --group needs the SRDF; a group variable cannot be locked.
+  const Run noSrdf = scratch.run("problems --robot r.urdf --group panda_arm --scene s.yaml --variation v.yaml "
+                                 "--queries q.yaml --robot-config c.yaml --out d");
+  BOOST_TEST(noSrdf.status == 2);
+  BOOST_TEST(noSrdf.err.find("--group panda_arm needs --srdf") != std::string::npos, noSrdf.err);
+  const Run locked = scratch.run(bookshelfArgs(scratch.path("h"), 1, 3) + " --group panda_arm --lock panda_joint1=0");
+  BOOST_TEST(locked.status == 1);
+  BOOST_TEST(locked.err.find("a variable of group 'panda_arm'") != std::string::npos, locked.err);
+}
+
 BOOST_AUTO_TEST_CASE(missing_and_bad_options_are_reported) {
   Scratch scratch;
   const Run missing = scratch.run("problems --robot x.urdf");

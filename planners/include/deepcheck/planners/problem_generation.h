@@ -101,12 +101,21 @@ RobotConfig loadRobotConfig(const std::string& path);
 RobotConfig parseRobotConfig(const std::string& yaml, const std::string& sourceName);
 
 /// The robot's default configuration with the config's joint positions set. Mimic joints are
-/// skipped; a joint the robot lacks is an error naming it. A value outside the robot's limits (the
+/// skipped, and so are locked joints (robot_model.h; a note says so when the file's value is not
+/// the locked one); a joint the robot lacks is an error naming it. A value outside the robot's limits (the
 /// file may have been written for another model of the robot: MotionBenchMaker's Panda opens its
 /// fingers 0.065 m, the moveit_resources Panda 0.04 m) is clamped into them and, when `notes` is
 /// given, a line saying so is added to it.
 Eigen::VectorXd configurationOf(const robots::RobotModel& robot, const RobotConfig& config,
                                 std::vector<std::string>* notes = nullptr);
+
+/// The variables of `robot` outside the planning group `group` of the SRDF `srdf`, at their
+/// values in `config` (clamped into the limits, as configurationOf does): what
+/// SetupOptions::lockedVariables holds when a MotionBenchMaker robot is planned by group, the
+/// other joints at the robot file's default state, as MoveIt holds them. Throws what
+/// readSrdfGroups and groupVariables throw (robots/planning_group.h).
+std::map<std::string, double> lockedOutsideGroup(const robots::RobotModel& robot, const RobotConfig& config,
+                                                 const std::string& srdf, const std::string& group);
 
 /// The nominal scene with `variations` applied (draws from `rng`). Throws std::invalid_argument
 /// naming the variation file's line for an object the scene lacks.

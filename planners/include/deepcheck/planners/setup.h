@@ -46,6 +46,7 @@
 
 #include <cstdint>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,6 +67,13 @@ struct SetupOptions {
   bool useRosPackagePath = true;
   /// An SRDF whose <disable_collisions> pairs are not checked ("" for none).
   std::string srdf;
+  /// Plan only the variables of this planning group of the SRDF (MoveIt's <group>; "" for all
+  /// variables). Every other variable is held fixed (robots/robot_model.h, "Locked joints") at
+  /// its lockedVariables value, else at its default; configurations are then vectors of the
+  /// group's variables, in the robot's order.
+  std::string group;
+  /// Variables held fixed (name -> rad or m), with or without a group.
+  std::map<std::string, double> lockedVariables;
   /// How the World is built (decomposition, broad phase, ...); its disabledPairs are extended by
   /// the SRDF's.
   checker::WorldOptions world;
@@ -78,7 +86,10 @@ struct SetupOptions {
   double segmentFraction = tol::kDefaultSegmentFraction;
 };
 
-/// The World: the robot (with the SRDF's pairs disabled) and the scenes.
+/// The World: the robot (its group's variables only when SetupOptions::group is set, its locked
+/// variables held; the SRDF's pairs disabled) and the scenes. Throws std::invalid_argument naming
+/// the SRDF, the group or the joint for an unknown group, a group without an SRDF, or a variable
+/// that cannot be locked.
 std::shared_ptr<checker::World> loadWorld(const std::string& robotUrdf, const std::vector<SceneSpec>& scenes,
                                           const SetupOptions& options = {});
 

@@ -27,6 +27,7 @@
 
 #include "deepcheck/robots/robot_model.h"
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -53,5 +54,13 @@ std::vector<SrdfGroup> readSrdfGroups(const std::string& path);
 /// group `name` of `groups` moves. `srdfSource` names the SRDF in messages.
 std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfGroup>& groups,
                                 const std::string& name, const std::string& srdfSource);
+
+/// The model a planner of group `group` of the SRDF at `srdfPath` sees: lockAllBut(model,
+/// groupVariables(...), locked, ...) (robot_model.h), every variable outside the group held at its
+/// `locked` value (variable name -> rad or m), else at its default. With no group (""), `model`
+/// with `locked` held (withLockedVariables). Throws std::invalid_argument for a group without an
+/// SRDF, and what readSrdfGroups, groupVariables and lockAllBut throw.
+RobotModel planningGroupModel(const RobotModel& model, const std::string& srdfPath, const std::string& group,
+                              const std::map<std::string, double>& locked);
 
 }  // namespace deepcheck::robots
