@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -65,14 +63,10 @@ SrdfGroup parseGroup(const TiXmlElement* g, const std::string& context) {
 std::vector<SrdfGroup> parseSrdfGroups(const std::string& xml, const std::string& sourceName) {
   const std::string context = srdfContext(sourceName);
   TiXmlDocument doc;
-  parseXml(doc, xml, context);
-  const TiXmlElement* robot = doc.RootElement();
-  if (robot == nullptr || std::string(robot->Value()) != "robot") {
-    throw std::invalid_argument(context + ": the root element is not <robot>");
-  }
+  const TiXmlElement& robot = parseSrdfRoot(doc, xml, context);
   std::vector<SrdfGroup> groups;
   std::unordered_map<std::string, int> lineOf;
-  for (const TiXmlElement* g = robot->FirstChildElement("group"); g != nullptr;
+  for (const TiXmlElement* g = robot.FirstChildElement("group"); g != nullptr;
        g = g->NextSiblingElement("group")) {
     SrdfGroup group = parseGroup(g, context);
     const auto [earlier, isNew] = lineOf.emplace(group.name, group.line);
@@ -87,12 +81,7 @@ std::vector<SrdfGroup> parseSrdfGroups(const std::string& xml, const std::string
 }
 
 std::vector<SrdfGroup> readSrdfGroups(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(srdfContext(path) + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw std::invalid_argument(srdfContext(path) + ": cannot read the file");
-  return parseSrdfGroups(text.str(), path);
+  return parseSrdfGroups(readSrdfText(path), path);
 }
 
 namespace {

@@ -59,13 +59,9 @@ std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml,
                                                  const std::string& sourceName) {
   const std::string context = "SRDF " + quoted(sourceName.empty() ? "<string>" : sourceName);
   TiXmlDocument doc;
-  parseXml(doc, xml, context);
-  const TiXmlElement* robot = doc.RootElement();
-  if (robot == nullptr || std::string(robot->Value()) != "robot") {
-    throw std::invalid_argument(context + ": the root element is not <robot>");
-  }
+  const TiXmlElement& robot = parseSrdfRoot(doc, xml, context);
   std::vector<DisabledPair> pairs;
-  for (const TiXmlElement* e = robot->FirstChildElement("disable_collisions"); e != nullptr;
+  for (const TiXmlElement* e = robot.FirstChildElement("disable_collisions"); e != nullptr;
        e = e->NextSiblingElement("disable_collisions")) {
     const std::string where = context + ", line " + std::to_string(e->Row());
     DisabledPair p;
@@ -92,12 +88,7 @@ std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml,
 }
 
 std::vector<DisabledPair> readSrdfDisabledPairs(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot read the file");
-  return parseSrdfDisabledPairs(text.str(), path);
+  return parseSrdfDisabledPairs(readSrdfText(path), path);
 }
 
 std::string srdfText(const std::string& robotName, const std::vector<DisabledPair>& pairs,

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -67,6 +68,24 @@ void parseXml(TiXmlDocument& doc, const std::string& xml, const std::string& con
         << ": " << doc.ErrorDesc();
     throw std::invalid_argument(msg.str());
   }
+}
+
+const TiXmlElement& parseSrdfRoot(TiXmlDocument& doc, const std::string& xml, const std::string& context) {
+  parseXml(doc, xml, context);
+  const TiXmlElement* robot = doc.RootElement();
+  if (robot == nullptr || std::string(robot->Value()) != "robot") {
+    throw std::invalid_argument(context + ": the root element is not <robot>");
+  }
+  return *robot;
+}
+
+std::string readSrdfText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("SRDF '" + path + "': cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw std::invalid_argument("SRDF '" + path + "': cannot read the file");
+  return text.str();
 }
 
 }  // namespace deepcheck::robots

@@ -15,4 +15,12 @@ namespace deepcheck::robots {
 ///  - for malformed XML, with TinyXML's line, column and message.
 void parseXml(TiXmlDocument& doc, const std::string& xml, const std::string& context);
 
+/// parseXml, then the <robot> root element of SRDF text; throws std::invalid_argument starting
+/// with `context` when the root is another element.
+const TiXmlElement& parseSrdfRoot(TiXmlDocument& doc, const std::string& xml, const std::string& context);
+
+/// The whole of an SRDF file as text; throws std::invalid_argument ("SRDF '<path>': cannot open
+/// the file" / "cannot read the file").
+std::string readSrdfText(const std::string& path);
+
 }  // namespace deepcheck::robots
