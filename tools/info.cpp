@@ -9,6 +9,8 @@
 //   variables (configuration order):     one line per variable:
 //     <index> <joint name> <type> <lower> <upper> <velocity limit>
 //   mimic joints:                        "<joint> = <multiplier> * <variable> + <offset>" or none
+//   locked joints:                       "<joint> (<URDF type>) held at <value>" or none (--group,
+//                                        --lock)
 //   links:                               one line per link, in link order:
 //     <index> <link> <parent link> <parent joint> <collision elements> <pieces>
 //   pieces:                              one line per piece: <link> <kind> <vertices> <origin>
@@ -29,6 +31,7 @@
 #include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/pair_filter.h"
+#include "deepcheck/robots/planning_group.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include <cmath>
@@ -46,7 +49,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: deepcheck info ROBOT.urdf [--package-path DIR]... [--samples N] [--seed S]\n"
-    "                      [--write-srdf FILE]\n"
+    "                      [--write-srdf FILE] [--srdf FILE --group NAME] [--lock JOINT=VALUE]...\n"
     "       deepcheck info SCENE.yaml [--package-path DIR]...\n"
     "\n"
     "Describes a URDF robot or scene: links with their collision elements and convex pieces,\n"
@@ -63,7 +66,12 @@ constexpr const char* kUsage =
     "  --samples N         random configurations for the pair filter (default 10000; 0 skips the\n"
     "                      'Always' and 'Never' tests)\n"
     "  --seed S            seed of the random configurations (default 1)\n"
-    "  --write-srdf FILE   write the disabled pairs as an SRDF file\n";
+    "  --write-srdf FILE   write the disabled pairs as an SRDF file\n"
+    "  --srdf FILE --group NAME\n"
+    "                      describe the robot as planning group NAME of the SRDF moves it: its\n"
+    "                      variables only, the other joints held (at --lock's value, else their\n"
+    "                      default) and listed as locked\n"
+    "  --lock JOINT=VALUE  hold JOINT at VALUE (rad or m; repeatable)\n";
 
 /// Volume enclosed by a closed, consistently wound mesh (divergence theorem); NaN otherwise.
 double closedMeshVolume(const robots::TriangleMesh& mesh) {
@@ -159,6 +167,8 @@ struct InfoArgs {
   robots::PairFilterOptions filter;
   std::string srdfPath;  ///< --write-srdf
   bool pairFilterOptions = false;  ///< --samples, --seed or --write-srdf given
+  std::string groupSrdf, group;          ///< --srdf, --group
+  std::map<std::string, double> locks;   ///< --lock
 };
 
 InfoArgs takeInfoArgs(std::vector<std::string>& args) {
@@ -167,6 +177,12 @@ InfoArgs takeInfoArgs(std::vector<std::string>& args) {
   const std::string samplesText = takeSingleOption(args, "--samples");
   const std::string seedText = takeSingleOption(args, "--seed");
   a.srdfPath = takeSingleOption(args, "--write-srdf");
+  a.groupSrdf = takeSingleOption(args, "--srdf");
+  a.group = takeSingleOption(args, "--group");
+  a.locks = takeLocks(args);
+  if (a.group.empty() != a.groupSrdf.empty()) {
+    throw UsageError("--srdf and --group go together: the planning group NAME of the SRDF FILE");
+  }
   rejectUnknownOptions(args);
   if (args.size() != 1) {
     throw UsageError(args.empty() ? "missing ROBOT.urdf (or SCENE.yaml)" : "expected one file, got " +
@@ -216,6 +232,14 @@ void printJoints(const robots::RobotModel& model) {
                 model.variableNames()[j.variable].c_str(), j.offset);
   }
   if (!anyMimic) std::printf("  none\n");
+  std::printf("\nlocked joints:\n");
+  bool anyLocked = false;
+  for (const robots::Joint& j : model.joints()) {
+    if (!j.locked) continue;
+    anyLocked = true;
+    std::printf("  %s (%s) held at %.17g\n", j.name.c_str(), j.urdfType.c_str(), j.lockedValue);
+  }
+  if (!anyLocked) std::printf("  none\n");
 }
 
 void printLinksAndPieces(const robots::RobotModel& model,
@@ -297,7 +321,9 @@ std::string describe(const robots::SceneShape& shape) {
 }
 
 int describePlanningScene(const InfoArgs& a) {
-  if (a.pairFilterOptions) throw UsageError("--samples, --seed and --write-srdf describe robots, not planning scenes");
+  if (a.pairFilterOptions || !a.group.empty() || !a.locks.empty()) {
+    throw UsageError("--samples, --seed, --write-srdf, --group and --lock describe robots, not planning scenes");
+  }
   robots::SceneLoadOptions load;
   load.packageRoots = a.roots.commandLine;
   const robots::PlanningScene scene = robots::loadPlanningScene(a.file, load);
@@ -322,7 +348,8 @@ int runInfo(std::vector<std::string> args) {
   if (isPlanningSceneFile(a.file)) return describePlanningScene(a);
   robots::LoadOptions load;
   load.packageRoots = a.roots.commandLine;
-  const robots::RobotModel model = robots::RobotModel::fromUrdfFile(a.file, load);
+  const robots::RobotModel model =
+      robots::planningGroupModel(robots::RobotModel::fromUrdfFile(a.file, load), a.groupSrdf, a.group, a.locks);
   const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
   printSummary(model, pieces);
   printJoints(model);

@@ -104,6 +104,35 @@ BOOST_AUTO_TEST_CASE(writes_srdf) {
   BOOST_TEST(text.find("500 random samples, seed 3") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(locked_joints_and_a_planning_group) {
+  Scratch scratch;
+  const std::string srdf = scratch.write("arm_group.srdf",
+                                         "<robot name='deepcheck_arm'>\n"
+                                         "  <group name='shoulder'><chain base_link='base_link' tip_link='link2'/></group>\n"
+                                         "</robot>\n");
+  // --lock: joint7 leaves the variables and is listed as held.
+  Run r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "0", "--lock", "joint7=0.5"});
+  BOOST_REQUIRE_MESSAGE(r.status == 0, r.err);
+  BOOST_TEST(section(r.out, "variables (configuration order):").size() == 7u);  // a header and 6 rows
+  const std::vector<std::string> held = section(r.out, "locked joints:");
+  BOOST_REQUIRE_EQUAL(held.size(), 1u);
+  BOOST_TEST(held[0] == "  joint7 (revolute) held at 0.5");
+  // --group: joint1 and joint2 move; joints 3 to 7 are held at their defaults.
+  r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "0", "--srdf", srdf, "--group", "shoulder"});
+  BOOST_REQUIRE_MESSAGE(r.status == 0, r.err);
+  const std::vector<std::string> vars = section(r.out, "variables (configuration order):");
+  BOOST_REQUIRE_EQUAL(vars.size(), 3u);
+  BOOST_TEST(vars[1].find("joint1") != std::string::npos);
+  BOOST_TEST(vars[2].find("joint2") != std::string::npos);
+  BOOST_TEST(section(r.out, "locked joints:").size() == 5u);
+  // Errors: the group without its SRDF (usage), an unknown group (named, with the file's groups).
+  BOOST_TEST(runInfo(scratch, {kArm, "--group", "shoulder"}).status == 2);
+  r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "0", "--srdf", srdf, "--group", "elbow"});
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("elbow") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("shoulder") != std::string::npos, r.err);
+}
+
 BOOST_AUTO_TEST_CASE(bad_input) {
   Scratch scratch;
   // A missing file: exit 1, one error line naming it.
