@@ -58,9 +58,36 @@ std::shared_ptr<checker::World> loadWorld(const std::string& robotUrdf, const st
   return world;
 }
 
+namespace {
+
+/// Throws std::invalid_argument when the world's robot is not the one `options` describes: a
+/// variable of lockedVariables that it does not hold at that value, or a variable outside
+/// `options.group` that it still moves (a world built without the options).
+void checkGroupOfWorld(const robots::RobotModel& robot, const SetupOptions& options) {
+  const std::string hint = " (build the world with loadWorld(urdf, scenes, options), or leave the group and the "
+                           "locked variables out of the options)";
+  for (const auto& [name, value] : options.lockedVariables) {
+    const int j = robot.jointIndex(name);
+    if (j < 0 || !robot.joint(j).locked || robot.joint(j).lockedValue != value) {
+      throw std::invalid_argument("makeSimpleSetup: the options hold '" + name + "' at " + robots::formatNumber(value) +
+                                  ", the world's robot '" + robot.name() + "' does not" + hint);
+    }
+  }
+  if (options.group.empty()) return;
+  const robots::RobotModel check = robots::planningGroupModel(robot, options.srdf, options.group, {});
+  if (check.numVariables() != robot.numVariables()) {
+    throw std::invalid_argument("makeSimpleSetup: the world's robot '" + robot.name() + "' moves " +
+                                std::to_string(robot.numVariables()) + " variables, group '" + options.group +
+                                "' only " + std::to_string(check.numVariables()) + hint);
+  }
+}
+
+}  // namespace
+
 std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(std::shared_ptr<const checker::World> world,
                                                               const SetupOptions& options) {
   if (!world) throw std::invalid_argument("makeSimpleSetup: the world is null");
+  checkGroupOfWorld(world->robot(), options);
   if (!(options.segmentFraction > 0.0 && options.segmentFraction <= 1.0)) {
     throw std::invalid_argument("makeSimpleSetup: segmentFraction must be in (0, 1], got " +
                                 robots::formatNumber(options.segmentFraction));

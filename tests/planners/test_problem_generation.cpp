@@ -218,6 +218,17 @@ BOOST_AUTO_TEST_CASE(a_planning_group_moves_its_joints_only, *boost::unit_test::
         loadWorld(pandaUrdf(), {}, o);
       },
       "cannot lock 'panda_joint4': it is a variable of group 'panda_arm'");
+  // A world built without the group does not pass for one built with it.
+  PandaBookshelf full;
+  SetupOptions o;
+  o.srdf = pandaDir() + "/moveit_resources_panda_moveit_config/config/panda.srdf";
+  o.group = "panda_arm";
+  checkThrows([&] { makeSimpleSetup(full.world, o); }, "moves 8 variables, group 'panda_arm' only 7");
+  o.group.clear();
+  o.lockedVariables = {{"panda_finger_joint1", 0.04}};
+  checkThrows([&] { makeSimpleSetup(full.world, o); }, "the options hold 'panda_finger_joint1' at 0.04");
+  o.lockedVariables = {{"panda_finger_joint1", 0.03}};  // the group's world holds it at 0.04
+  checkThrows([&] { makeSimpleSetup(setup.world, o); }, "hold 'panda_finger_joint1' at 0.0299");
 }
 
 BOOST_AUTO_TEST_CASE(drawn_scenes_are_the_ones_varied) {

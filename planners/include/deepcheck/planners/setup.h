@@ -93,7 +93,9 @@ struct SetupOptions {
 std::shared_ptr<checker::World> loadWorld(const std::string& robotUrdf, const std::vector<SceneSpec>& scenes,
                                           const SetupOptions& options = {});
 
-/// A SimpleSetup on an existing world.
+/// A SimpleSetup on an existing world. With SetupOptions::group or lockedVariables set, the
+/// world's robot must be the one they describe (as loadWorld builds it); otherwise
+/// std::invalid_argument says what differs.
 std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(std::shared_ptr<const checker::World> world,
                                                               const SetupOptions& options = {});
 /// loadWorld + makeSimpleSetup.
