@@ -1,6 +1,7 @@
 // Fuzz harness: the command-line and stdin parsers of the `deepcheck` subcommands. The first line
 // of the input is split into arguments and given to the option parsers (--robot/--scene/
-// --scene-pose/--srdf, --package-path, --start/--goal joint vectors, counts and values); the rest is read as configuration
+// --scene-pose/--srdf, --lock, --package-path, --start/--goal joint vectors, counts and values; the
+// --lock joints are then held on the bundled arm); the rest is read as configuration
 // lines (`deepcheck check`'s stdin) for the bundled arm, and each accepted configuration is
 // checked against its limits and posed by forward kinematics. Bad input must end in the tool's
 // UsageError/InputError (or the library's std::invalid_argument), never a crash.
@@ -14,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -33,6 +35,16 @@ const deepcheck::robots::RobotModel& arm() {
   return model;
 }
 
+/// The bundled arm with the --lock joints held, posed at its default configuration.
+void lockJoints(const std::map<std::string, double>& locks) {
+  try {
+    const deepcheck::robots::RobotModel locked = arm().withLockedVariables(locks);
+    deepcheck::robots::forwardKinematics(locked, locked.defaultConfiguration());
+  } catch (const std::invalid_argument&) {
+    // Not a variable of the arm, or outside its limits: the tool reports it and exits 1.
+  }
+}
+
 void parseArguments(const std::string& firstLine) {
   std::vector<std::string> args;
   std::istringstream words(firstLine);
@@ -48,7 +60,9 @@ void parseArguments(const std::string& firstLine) {
     std::string srdf;
     std::vector<SceneArg> scenes;
     takeWorldOptions(args, robot, scenes, srdf);
+    const std::map<std::string, double> locks = takeLocks(args);
     rejectUnknownOptions(args);
+    lockJoints(locks);
   } catch (const UsageError&) {
     // Rejected command line: the tool prints the usage and exits 2.
   }

@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <sstream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 
 namespace deepcheck::planners {
