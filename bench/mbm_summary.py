@@ -7,6 +7,7 @@ Usage: bench/mbm_summary.py [results/mbm/mbm_runs.csv]
 """
 import collections
 import csv
+import os
 import statistics
 import sys
 
@@ -20,7 +21,7 @@ def main(path):
     by_planner = collections.defaultdict(dict)
     for r in runs:
         by_planner[r["planner"]][(r["scene"], r["problem"], r["checker"])] = r
-    print(f"{path}: {len(runs)} runs")
+    print(f"{os.path.basename(path)}: {len(runs)} runs")
     for planner, table in by_planner.items():
         ratios = [float(table[(s, p, "fcl")]["time_s"]) / float(r["time_s"])
                   for (s, p, c), r in table.items()
