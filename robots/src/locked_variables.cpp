@@ -1,5 +1,5 @@
-// RobotModel::withLockedVariables: a copy of a model with some variables held at given values
-// (robot_model.h, "Locked joints").
+// RobotModel::withLockedVariables and lockAllBut: a copy of a model with some variables held at
+// given values (robot_model.h, "Locked joints").
 
 #include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/robot_model.h"
@@ -88,10 +88,6 @@ RobotModel RobotModel::withLockedVariables(const std::map<std::string, double>& 
   }
   return out;
 }
-
-}  // namespace deepcheck::robots
-
-namespace deepcheck::robots {
 
 RobotModel lockAllBut(const RobotModel& model, const std::vector<int>& keep,
                       const std::map<std::string, double>& values, const std::string& keepName) {

@@ -130,7 +130,6 @@ BOOST_AUTO_TEST_CASE(mimic_chain_follows_the_remaining_variable) {
 BOOST_AUTO_TEST_CASE(bad_requests_are_named) {
   const RobotModel arm = loadBundledArm();
   const std::string name = arm.variableNames()[1];
-  const std::string hi = std::to_string(arm.upperLimits()[1] + 0.5);
   checkThrows([&] { arm.withLockedVariables({{"no_such_joint", 0.0}}); },
               {"cannot lock 'no_such_joint'", "no joint of the robot", arm.name()});
   checkThrows([&] { arm.withLockedVariables({{name, arm.upperLimits()[1] + 0.5}}); },
