@@ -1,6 +1,7 @@
 // mbm_bench: the Panda on MotionBenchMaker's scenes (Chamzas et al., RA-L 2022), our checker
 // against the FCL mesh checker, through ompl::tools::Benchmark (logs in OMPL's format, readable by
-// ompl_benchmark_statistics.py and Planner Arena).
+// ompl_benchmark_statistics.py and Planner Arena), each run timed as the planner's solve() alone
+// (SolveTimedBenchmark, ompl_benchmark.h).
 //
 // Scenes (mbm_problems.h): bookshelf_small, bookshelf_tall, bookshelf_thin, cage, box, table_pick,
 // kitchen, table_bars, each with MotionBenchMaker's variation and query files for the Panda. Per
@@ -257,7 +258,7 @@ MbmRecord measureRun(og::SimpleSetup& ss, const ProblemSetups& setups, const std
 void benchmarkChecker(SceneRun& ctx, int k, int count, const ProblemSetups& setups, const std::string& checker,
                       Bench& carrier) {
   og::SimpleSetup& ss = checker == "deepcheck" ? *setups.ours : *setups.fcl;
-  auto bench = std::make_unique<Bench>(ss, "mbm_" + ctx.scene.name);
+  auto bench = std::make_unique<SolveTimedBenchmark>(ss, "mbm_" + ctx.scene.name);
   for (const std::string& name : ctx.opt.planners) bench->addPlanner(dp::makePlanner(name, ss.getSpaceInformation()));
   bench->addExperimentParameter("problems", "INTEGER", std::to_string(ctx.opt.problems));
   bench->addExperimentParameter("problem_seed", "INTEGER", std::to_string(ctx.opt.seed));
