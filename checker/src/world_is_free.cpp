@@ -48,6 +48,19 @@ inline bool centroidInside(const WorldPiece& w, const Eigen::Vector3d& x_W) {
   return true;
 }
 
+/// The narrow phase of a pair: first the tetrahedron that enclosed the origin when the pair last
+/// overlapped (the same four vertex pairs usually still enclose it at a nearby configuration:
+/// four vertex transforms instead of a GJK run), then GJK.
+bool overlapPair(Impl& c, const deep::ConvexShape& A, const Eigen::Isometry3d& X_WA, const deep::ConvexShape& B,
+                 const Eigen::Isometry3d& X_WB, deep::PairCache& pairCache) {
+  deep::PairCache* cache = warm(c, pairCache);
+  if (cache->gjk.enclosed && deep::enclosesOrigin(A, X_WA, B, X_WB, cache->gjk.enclosing)) {
+    ++c.stats.enclosedAgain;
+    return true;
+  }
+  return deep::overlapsUnchecked(A, X_WA, B, X_WB, cache);
+}
+
 /// Narrow phase of robot piece i against world piece wp of `set` (after the bounding tests).
 bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set,
                   std::vector<deep::PairCache>& caches, PairKey::Kind kind, int i, int wp) {
@@ -60,8 +73,8 @@ bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set,
     c.lastHit = PairKey{kind, i, wp, -1};
     return true;
   }
-  const bool hit = deep::overlapsUnchecked(shapeOf(p), c.X_WP[i], shapeOf(w), w.X_WP,
-                                           warm(c, caches[static_cast<std::size_t>(i) * set.pieces.size() + wp]));
+  const bool hit = overlapPair(c, shapeOf(p), c.X_WP[i], shapeOf(w), w.X_WP,
+                               caches[static_cast<std::size_t>(i) * set.pieces.size() + wp]);
   if (hit) c.lastHit = PairKey{kind, i, wp, -1};
   return hit;
 }
@@ -72,7 +85,7 @@ bool overlapSelf(Impl& c, const RobotData& robot, int i, int j, int cache) {
   ++c.stats.narrowPhase;
   ++c.stats.selfNarrowPhase;
   notify(c, a.link, robotBody(b.link));
-  const bool hit = deep::overlapsUnchecked(shapeOf(a), c.X_WP[i], shapeOf(b), c.X_WP[j], warm(c, c.selfCaches[cache]));
+  const bool hit = overlapPair(c, shapeOf(a), c.X_WP[i], shapeOf(b), c.X_WP[j], c.selfCaches[cache]);
   if (hit) c.lastHit = PairKey{PairKey::Kind::Self, i, j, cache};
   return hit;
 }

@@ -122,8 +122,16 @@ inline void posePiece(Impl& c, const RobotData& robot, int i) {
 /// reset first otherwise (a start from an unrelated configuration is worse than a cold start:
 /// measured 20 % slower on random configurations, and DEEP runs fewer restarts when warm). A cold
 /// pair's support climbs start from each hull's direction index (deep::ConvexPolytope::support).
+/// The tetrahedron that last enclosed the origin is kept either way: isFree tests it afresh
+/// (deep::enclosesOrigin, a certificate), never trusts it.
 inline deep::PairCache* warm(const Impl& c, deep::PairCache& cache) {
-  if (!c.coherent) cache.reset();
+  if (!c.coherent) {
+    const deep::MinkowskiTetrahedron enclosing = cache.gjk.enclosing;
+    const bool enclosed = cache.gjk.enclosed;
+    cache.reset();
+    cache.gjk.enclosing = enclosing;
+    cache.gjk.enclosed = enclosed;
+  }
   cache.surface = c.surface.get();
   cache.walk = c.walk.get();
   return &cache;

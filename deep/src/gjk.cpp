@@ -249,31 +249,47 @@ Closest onTriangle(const Vector3d* s, int i, int j, int k) {
 
 constexpr int kTetraFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};  // opposite vertex i
 
-Closest onTetrahedron(const Vector3d* s) {
+/// The signed volumes of a tetrahedron s[0..3] and of the four with one vertex replaced by the
+/// origin.
+struct TetrahedronVolumes {
+  double det = 0.0;             ///< 6 * signed volume
+  std::array<double, 4> c{};    ///< det with vertex i replaced by the origin; they sum to det
+  bool flat = true;             ///< coplanar points, or worse: the signs are noise
+
+  /// The origin strictly inside. A flat tetrahedron never claims this: it could only enclose the
+  /// origin within round-off of its plane anyway.
+  bool enclosesOrigin() const {
+    return !flat && c[0] * det > 0.0 && c[1] * det > 0.0 && c[2] * det > 0.0 && c[3] * det > 0.0;
+  }
+};
+
+TetrahedronVolumes tetrahedronVolumes(const Vector3d* s) {
   const Vector3d e1 = s[1] - s[0];
   const Vector3d e2 = s[2] - s[0];
   const Vector3d e3 = s[3] - s[0];
-  const double det = e1.dot(e2.cross(e3));
+  TetrahedronVolumes t;
+  t.det = e1.dot(e2.cross(e3));
   const double longest2 =
       std::max({e1.squaredNorm(), e2.squaredNorm(), e3.squaredNorm(), (s[2] - s[1]).squaredNorm(),
                 (s[3] - s[1]).squaredNorm(), (s[3] - s[2]).squaredNorm()});
-  // Flat (coplanar points, or worse): |det| = 6 * volume is below kParallelSine * longest^3.
-  const bool flat = !(std::abs(det) > tol::kParallelSine * longest2 * std::sqrt(longest2));
-  // c[i]: det with vertex i replaced by the origin (6 * signed volume); the c[i] sum to det and
+  // Flat: |det| = 6 * volume is below kParallelSine * longest^3.
+  t.flat = !(std::abs(t.det) > tol::kParallelSine * longest2 * std::sqrt(longest2));
   // c[i] / det is the origin's barycentric weight. Each is computed on differences from a vertex,
   // so that operands have the size of the simplex: e.g. c[3] = det[e1, e2, 0 - s0].
   const Vector3d o0 = -s[0];
-  const std::array<double, 4> c = {s[1].dot((s[2] - s[1]).cross(s[3] - s[1])),
-                                   o0.dot(e2.cross(e3)), e1.dot(o0.cross(e3)),
-                                   e1.dot(e2.cross(o0))};
-  if (!flat && c[0] * det > 0.0 && c[1] * det > 0.0 && c[2] * det > 0.0 && c[3] * det > 0.0) {
-    // The origin is inside: M overlaps it. (A flat tetrahedron never claims this: its signs are
-    // noise, and it could only enclose the origin within round-off of its plane anyway.)
+  t.c = {s[1].dot((s[2] - s[1]).cross(s[3] - s[1])), o0.dot(e2.cross(e3)), e1.dot(o0.cross(e3)),
+         e1.dot(e2.cross(o0))};
+  return t;
+}
+
+Closest onTetrahedron(const Vector3d* s) {
+  const TetrahedronVolumes t = tetrahedronVolumes(s);
+  if (t.enclosesOrigin()) {  // M overlaps the origin
     Closest out;
     out.n = 4;
     out.idx = {0, 1, 2, 3};
-    const double sum = c[0] + c[1] + c[2] + c[3];
-    for (int i = 0; i < 4; ++i) out.lam[i] = c[i] / sum;
+    const double sum = t.c[0] + t.c[1] + t.c[2] + t.c[3];
+    for (int i = 0; i < 4; ++i) out.lam[i] = t.c[i] / sum;
     out.v = Vector3d::Zero();
     out.vv = 0.0;
     return out;
@@ -282,7 +298,7 @@ Closest onTetrahedron(const Vector3d* s) {
   // positive). When flat, search every face.
   Closest best;
   for (int i = 0; i < 4; ++i) {
-    if (flat || !(c[i] * det > 0.0)) {
+    if (t.flat || !(t.c[i] * t.det > 0.0)) {
       keepCloser(best, onTriangle(s, kTetraFace[i][0], kTetraFace[i][1], kTetraFace[i][2]));
     }
   }
@@ -493,6 +509,12 @@ void updateCache(GjkCache* cache, const Run& r, const MinkowskiSupport& support)
   cache->direction = r.lastDir;
   cache->hintA = support.hintA();
   cache->hintB = support.hintB();
+  cache->enclosed = r.exit == Exit::Enclosed;
+  if (!cache->enclosed) return;
+  for (int i = 0; i < 4; ++i) {
+    cache->enclosing.a[i] = r.pts[i].a;
+    cache->enclosing.b[i] = r.pts[i].b;
+  }
 }
 
 }  // namespace
@@ -542,6 +564,13 @@ GjkResult gjkDistance(const ConvexPolytope& A, const ConvexPolytope& B, const Pa
   }
   updateCache(cache, r, support);
   return res;
+}
+
+bool enclosesOrigin(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                    const MinkowskiTetrahedron& t) {
+  std::array<Vector3d, 4> s;
+  for (int i = 0; i < 4; ++i) s[i] = frame.vertexB(B, t.b[i]) - PairFrame::vertexA(A, t.a[i]);
+  return tetrahedronVolumes(s.data()).enclosesOrigin();
 }
 
 bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,

@@ -344,6 +344,11 @@ bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexS
   return overlapsUnchecked(A, X_WA, B, X_WB, cache);
 }
 
+bool enclosesOrigin(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
+                    const Eigen::Isometry3d& X_WB, const MinkowskiTetrahedron& t) {
+  return enclosesOrigin(*A.core, *B.core, PairFrame::makeUnchecked(*A.core, X_WA, *B.core, X_WB), t);
+}
+
 bool overlapsUnchecked(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
                        const Eigen::Isometry3d& X_WB, PairCache* cache) {
   const PairFrame frame = PairFrame::makeUnchecked(*A.core, X_WA, *B.core, X_WB);

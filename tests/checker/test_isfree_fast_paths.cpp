@@ -1,8 +1,10 @@
 // isFree's fast paths: the centroid test (WorldOptions::centroidTest: a robot piece's centroid
 // inside a world piece decides an overlap without GJK) gives the same answers as GJK alone, on
 // random configurations and short motions of the Panda in the kitchen and of the arm among
-// primitive and mesh obstacles; and a robot pose that left the doubles is reported, not
-// answered (the narrow phase no longer checks poses itself).
+// primitive and mesh obstacles; the tetrahedron kept from a pair's last overlap (re-tested
+// before GJK) gives the answers of contexts that never saw an earlier query; and a robot pose
+// that left the doubles is reported, not answered (the narrow phase no longer checks poses
+// itself).
 
 #include "checker_test_util.h"
 
@@ -97,6 +99,29 @@ BOOST_AUTO_TEST_CASE(arm_obstacles_same_answers_with_and_without_centroid_test) 
   stats = compareAnswers(with, without, configurations(with.robot(), 2000, 30, 43), &colliding);
   BOOST_TEST(colliding > 200);
   BOOST_TEST(stats.centroidInside > 20u);
+}
+
+BOOST_AUTO_TEST_CASE(kept_enclosing_tetrahedra_give_the_answers_of_fresh_contexts) {
+  // Motions through the obstacles, queried with one context (its pairs' tetrahedra kept from
+  // query to query, even between incoherent ones) and, as the reference, each with a new context.
+  WorldOptions options = testWorldOptions();
+  options.centroidTest = false;  // every overlap decided by GJK or by a kept tetrahedron
+  World world(armRobot(), options);
+  world.addObstacle(Obstacle::box("crate", Eigen::Vector3d(0.4, 0.5, 0.45), translation(0.35, 0.1, 0.55)));
+  world.addObstacle(Obstacle::box("lid", Eigen::Vector3d(0.6, 0.6, 0.2), translation(0.0, 0.0, 1.05)));
+  world.addObstacle(Obstacle::fromMesh("tetra", tetrahedronMesh(), translation(-0.4, 0.3, 0.2)));
+  const std::vector<Eigen::VectorXd> qs = configurations(world.robot(), 200, 60, 44);
+  World::Context kept = world.makeContext();
+  int colliding = 0;
+  for (const Eigen::VectorXd& q : qs) {
+    World::Context fresh = world.makeContext();
+    const bool reference = world.isFree(q, fresh);
+    BOOST_CHECK_MESSAGE(world.isFree(q, kept) == reference, "q = " << q.transpose() << ": reference " << reference);
+    BOOST_TEST(fresh.stats().enclosedAgain == 0u);
+    colliding += !reference;
+  }
+  BOOST_TEST(colliding > 300);
+  BOOST_TEST(kept.stats().enclosedAgain > 100u);
 }
 
 BOOST_AUTO_TEST_CASE(link_pose_beyond_the_doubles_is_reported) {

@@ -727,6 +727,44 @@ BOOST_AUTO_TEST_CASE(overlap_agrees_with_distance) {
   BOOST_TEST(overlaps < 0.7 * trials);
 }
 
+// The tetrahedron a run that enclosed the origin leaves in the cache: at the same pose it encloses
+// the origin again; along a motion it is re-tested at the next pose, and whenever it still
+// encloses the origin the pair overlaps (a certificate: it never claims a separated pair).
+BOOST_AUTO_TEST_CASE(enclosing_tetrahedron_certifies_overlap_at_nearby_poses) {
+  std::mt19937 rng(67);
+  int confirmed = 0, notConfirmed = 0;
+  for (int path = 0; path < 12; ++path) {
+    const ConvexPolytope A = randomHull(rng, 8 + 15 * path, 1.0, Vector3d::Zero());
+    const ConvexPolytope B = path % 3 == 0 ? ConvexPolytope::box(Vector3d(0.9, 0.4, 0.6))
+                                           : randomHull(rng, 120 - 9 * path, 0.7, Vector3d::Zero());
+    const Vector3d start = randomUnit(rng) * 2.5;
+    const Vector3d axis = randomUnit(rng);
+    const Eigen::Matrix3d R0 = randomRotation(rng);
+    GjkCache cache;
+    for (int step = 0; step <= 200; ++step) {
+      const double s = step / 100.0;  // through B and out the other side
+      PairFrame frame;
+      frame.R = R0 * Eigen::AngleAxisd(0.8 * s, axis).toRotationMatrix();
+      frame.t = (1.0 - s) * start;
+      const bool apart = gjkDistance(A, B, frame).status == GjkStatus::Separated;
+      BOOST_TEST_CONTEXT("path " << path << " step " << step) {
+        if (cache.enclosed && deepcheck::deep::enclosesOrigin(A, B, frame, cache.enclosing)) {
+          BOOST_TEST(!apart);
+          ++confirmed;
+        } else if (cache.enclosed && !apart) {
+          ++notConfirmed;
+        }
+        const bool hit = gjkOverlap(A, B, frame, &cache);
+        BOOST_TEST(hit == !apart);
+        if (apart) BOOST_TEST(!cache.enclosed);
+        if (cache.enclosed) BOOST_TEST(deepcheck::deep::enclosesOrigin(A, B, frame, cache.enclosing));
+      }
+    }
+  }
+  BOOST_TEST(confirmed > 300);    // the usual case along a motion
+  BOOST_TEST(notConfirmed > 10);  // and a certificate only: then GJK decides
+}
+
 // A cache from another pair (hints out of range, any direction) is harmless, and is updated.
 BOOST_AUTO_TEST_CASE(foreign_cache_is_harmless) {
   std::mt19937 rng(83);

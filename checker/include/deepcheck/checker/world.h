@@ -165,6 +165,10 @@ struct QueryStats {
   std::uint64_t centroidInside = 0;   ///< isFree: the part of narrowPhase decided without GJK,
                                       ///< a robot piece's centroid inside a world piece
                                       ///< (WorldOptions::centroidTest)
+  std::uint64_t enclosedAgain = 0;    ///< isFree: the part of narrowPhase decided without GJK,
+                                      ///< the four vertex pairs that enclosed the origin when the
+                                      ///< pair last overlapped enclosing it again
+                                      ///< (deep::enclosesOrigin)
   std::uint64_t fullDepth = 0;        ///< signedDistance: overlapping pairs whose one-walk depth
                                       ///< could beat the best, measured again with all restarts
 };

@@ -42,10 +42,20 @@ const char* toString(GjkStatus s);
 /// A query starts from `direction` when it is finite and non-zero, else from the centroid
 /// difference t, else from +x; on exit it stores there the last v (the current closest point of
 /// M, pointing from A towards B) whose support in -v was taken, and the last support vertices.
+/// Four points of M = B - A, as vertex index pairs (a[i] of A, b[i] of B).
+struct MinkowskiTetrahedron {
+  std::array<int, 4> a{};
+  std::array<int, 4> b{};
+};
+
 struct GjkCache {
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< last search direction (frame P), zero = none
   int hintA = 0;
   int hintB = 0;
+  /// The tetrahedron that enclosed the origin when the last query ended enclosing it
+  /// (`enclosed`), for enclosesOrigin at a nearby pose.
+  MinkowskiTetrahedron enclosing;
+  bool enclosed = false;
 };
 
 struct GjkResult {
@@ -66,6 +76,13 @@ struct GjkResult {
 /// No heap allocation.
 GjkResult gjkDistance(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                       GjkCache* cache = nullptr);
+
+/// True when the points of M named by t, at this frame's poses, form a tetrahedron that encloses
+/// the origin, by the test GJK's own enclosing step makes: A and B then overlap. A certificate
+/// only (false says nothing): four vertex pairs, no support query, for a pair that overlapped at
+/// a nearby pose (GjkCache::enclosing). The indices must be vertices of A and B.
+bool enclosesOrigin(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                    const MinkowskiTetrahedron& t);
 
 /// Fast boolean: true when A and B overlap or touch within kContactRelative * L. Stops as soon as
 /// a separating axis or an enclosing simplex is found. Returns true (the safe answer) in the

@@ -133,4 +133,11 @@ bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexS
 bool overlapsUnchecked(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
                        const Eigen::Isometry3d& X_WB, PairCache* cache = nullptr);
 
+/// True when the points of the cores' Minkowski difference named by t enclose its origin at these
+/// poses (gjk.h, enclosesOrigin): the shapes overlap. t is the GjkCache::enclosing of an earlier
+/// overlap of the same pair, so a pair that still overlaps at a nearby pose is confirmed without
+/// a GJK run. A certificate only: false says nothing. Unchecked arguments, as overlapsUnchecked.
+bool enclosesOrigin(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
+                    const Eigen::Isometry3d& X_WB, const MinkowskiTetrahedron& t);
+
 }  // namespace deepcheck::deep
