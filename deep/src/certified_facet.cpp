@@ -79,7 +79,7 @@ Vec3 witnessOnA(const ConvexPolytope& A, const ConvexPolytope& B, const PairFram
 /// The facet's type, features and normal u from the corners' index pairs of a face with unit
 /// normal `normal`; false if they name none.
 bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F, const int* faceA,
-                    const int* faceB, const Vec3& normal, DeepResult& out, Vec3& u) {
+                    const int* faceB, const Vec3& normal, NamedFacet& out) {
   int ia[3], ib[3];
   const int nA = distinct(faceA, ia), nB = distinct(faceB, ib);
   if (nA == 1 && nB == 3) {
@@ -87,7 +87,7 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
     out.featureA = ia[0];
     // B's outward face normal is M's outward normal there (in B's frame).
     out.featureB = ringFaceAlong(B, ib[0], F.toB(normal));
-    if (out.featureB >= 0) u = F.fromB(B.faceNormal(out.featureB));
+    if (out.featureB >= 0) out.u = F.fromB(B.faceNormal(out.featureB));
     return out.featureB >= 0;
   }
   if (nB == 1 && nA == 3) {
@@ -95,13 +95,13 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
     out.featureB = ib[0];
     // A's outward face normal is the opposite of M's.
     out.featureA = ringFaceAlong(A, ia[0], -normal);
-    if (out.featureA >= 0) u = -A.faceNormal(out.featureA);
+    if (out.featureA >= 0) out.u = -A.faceNormal(out.featureA);
     return out.featureA >= 0;
   }
   if (nA == 2 && nB == 2 && adjacent(A, ia[0], ia[1]) && adjacent(B, ib[0], ib[1])) {
     const Vec3 ea = A.localVertex(ia[1]) - A.localVertex(ia[0]);
     const Vec3 eb = F.vertexB(B, ib[1]) - F.vertexB(B, ib[0]);
-    u = ea.cross(eb);
+    Vec3 u = ea.cross(eb);
     const double len = u.norm();
     if (!(len > tol::kParallelSine * ea.norm() * eb.norm())) return false;
     u /= len;
@@ -112,24 +112,41 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
     out.featureA2 = ia[1];
     out.featureB = ib[0];
     out.featureB2 = ib[1];
+    out.u = u;
     return true;
   }
   return false;
 }
 
+/// Writes a named facet's type and features into `out`, as DeepResult holds them.
+void setFeatures(const NamedFacet& facet, DeepResult& out) {
+  out.type = facet.type;
+  out.featureA = facet.featureA;
+  out.featureB = facet.featureB;
+  if (facet.type != DeepResult::FacetType::EE) return;
+  out.featureA2 = facet.featureA2;
+  out.featureB2 = facet.featureB2;
+}
+
 }  // namespace
 
-bool facetNormal(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const int* faceA,
-                 const int* faceB, const Vec3& normal, Vec3& u) {
-  DeepResult named;
-  return facetOfCorners(A, B, frame, faceA, faceB, normal, named, u);
+NamedFacet facetOfFace(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const int* faceA,
+                       const int* faceB, const Vec3& normal) {
+  NamedFacet facet;
+  facet.state = facetOfCorners(A, B, frame, faceA, faceB, normal, facet) ? NamedFacet::State::Named
+                                                                          : NamedFacet::State::None;
+  return facet;
 }
 
 bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
                     const CertifiedResult& c, DeepResult& out) {
   if (c.status != CertifiedStatus::Certified) return false;
-  Vec3 u = c.faceNormal;
-  if (!facetOfCorners(A, B, F, c.faceA, c.faceB, c.faceNormal, out, u)) return false;
+  const NamedFacet facet = c.facet.state == NamedFacet::State::Unknown
+                               ? facetOfFace(A, B, F, c.faceA, c.faceB, c.faceNormal)
+                               : c.facet;
+  if (facet.state != NamedFacet::State::Named) return false;
+  setFeatures(facet, out);
+  const Vec3& u = facet.u;
   // The offset: one support in u (a support value, hence a valid depth), unless the bracket's
   // upper bound already is that support (a warm query supports in u). The climb starts from the
   // bracket's support pair, as the pair's next warm query does: on a facet whose vertices tie

@@ -211,14 +211,13 @@ void cornerPairs(const W& w, int f, int* faceA, int* faceB) {
   }
 }
 
-/// The direction a warm query supports in for face f with moved normal n: the exact normal of the
-/// facet of M its corners name (certifiedFacet then need not query it again), else n.
-Vec3 supportDirection(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const W& w, int f,
-                      const Vec3& n) {
+/// The facet of M that face f's corners name, with moved normal n: a warm query supports in its
+/// exact normal (certifiedFacet then need not query it again), else in n.
+NamedFacet facetOf(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const W& w, int f,
+                   const Vec3& n) {
   int faceA[3], faceB[3];
   cornerPairs(w, f, faceA, faceB);
-  Vec3 u;
-  return facetNormal(A, B, frame, faceA, faceB, n, u) ? u : n;
+  return facetOfFace(A, B, frame, faceA, faceB, n);
 }
 
 }  // namespace
@@ -232,7 +231,8 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
   MovedSurface m(A, B, frame, w);
   int named = -1;  // the face whose normal gave the upper bound
   auto supportIn = [&](int f, const Vec3& n) {
-    const Vec3 u = supportDirection(A, B, frame, w, f, n);
+    const NamedFacet facet = facetOf(A, B, frame, w, f, n);
+    const Vec3& u = facet.state == NamedFacet::State::Named ? facet.u : n;
     w.hintA = A.support(-u, w.hintA);
     w.hintB = B.support(frame.toB(u), w.hintB);
     const double h = u.dot(frame.vertexB(B, w.hintB) - A.localVertex(w.hintA));
@@ -241,6 +241,7 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
       r.direction = u;
       r.supportA = w.hintA;
       r.supportB = w.hintB;
+      r.facet = facet;
       named = f;
     }
   };

@@ -37,6 +37,23 @@ enum class CertifiedStatus {
 
 const char* toString(CertifiedStatus s);
 
+/// The facet of M that a surface face's corners name (certifiedFacet): DEEP's facet type and
+/// features, set as DeepResult sets them, and the facet's exact unit outward normal u.
+struct NamedFacet {
+  enum class State {
+    Unknown,  ///< not looked up yet
+    Named,    ///< the corners name this facet
+    None,     ///< the corners name no facet
+  };
+  State state = State::Unknown;
+  DeepResult::FacetType type = DeepResult::FacetType::VF;
+  int featureA = 0;
+  int featureA2 = -1;
+  int featureB = 0;
+  int featureB2 = -1;
+  Eigen::Vector3d u = Eigen::Vector3d::UnitZ();
+};
+
 struct CertifiedResult {
   CertifiedStatus status = CertifiedStatus::NotConverged;
   double lower = 0.0;  ///< PD >= lower >= 0 (frame P units)
@@ -52,6 +69,9 @@ struct CertifiedResult {
   int faceA[3] = {0, 0, 0};
   int faceB[3] = {0, 0, 0};
   Eigen::Vector3d faceNormal = Eigen::Vector3d::UnitZ();
+  /// The facet the certifying face's corners name, when the query looked it up already (a warm
+  /// query supports in its normal); Unknown: certifiedFacet() looks it up.
+  NamedFacet facet;
   int expansions = 0;  ///< support points added to the surface
   int faces = 0;       ///< live faces at the end
 };
@@ -84,7 +104,7 @@ CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolyto
 /// M, and the depth is at least the smallest lower bound on a face's distance: those two, min_k
 /// n0.q_k, or the distance to the face's plane through its moved corners. A query makes one
 /// support query, in the exact normal of the facet of M named by the face that certified last
-/// time (facetNormal); faces whose bound already reaches that upper bound are not touched, the few
+/// time (facetOfFace); faces whose bound already reaches that upper bound are not touched, the few
 /// below are evaluated at their new corners, and one more support in the nearest face's normal
 /// settles most queries without expanding. When it does not, expandWarm() expands the moved
 /// surface best-first as a cold query would and makes the result the new reference. A face that
@@ -147,10 +167,11 @@ CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope&
 bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                     const CertifiedResult& c, DeepResult& out);
 
-/// The exact normal u of the facet of M that a surface face's corners (index pairs faceA[k],
-/// faceB[k]; unit normal `normal`) name, computed as certifiedFacet() computes it; false when they
-/// name none. A warm query supports in u, so that certifiedFacet() need not query it again.
-bool facetNormal(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const int* faceA,
-                 const int* faceB, const Eigen::Vector3d& normal, Eigen::Vector3d& u);
+/// The facet of M that a surface face's corners (index pairs faceA[k], faceB[k]; unit normal
+/// `normal`) name, looked up as certifiedFacet() looks it up: state Named with its type, features
+/// and exact normal u, or None. A warm query supports in u and hands the facet on in
+/// CertifiedResult::facet, so that certifiedFacet() need not look it up or query u again.
+NamedFacet facetOfFace(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const int* faceA,
+                       const int* faceB, const Eigen::Vector3d& normal);
 
 }  // namespace deepcheck::deep
