@@ -12,7 +12,29 @@
 
 namespace deepcheck::deep {
 
+namespace {
+
+/// Whether pose X passes checkPose()'s tests, by a short computation with margins (every pose it
+/// accepts passes them; a pose it rejects is checked again in full, which names the failure).
+bool clearlyValid(const Eigen::Isometry3d& X) {
+  const Eigen::Matrix4d& M = X.matrix();
+  const Eigen::Vector3d c0 = M.col(0).head<3>(), c1 = M.col(1).head<3>(), c2 = M.col(2).head<3>();
+  bool ok = true;
+  for (int r = 0; r < 3; ++r) ok = ok && std::abs(M(r, 3)) <= range::kMaxCoordinate;  // false on NaN
+  // R^T R - I within half the tolerance (round-off of the full test is far below the margin),
+  // entry by entry; non-finite rotation entries fail these comparisons.
+  const double half = 0.5 * tol::kOrthonormal;
+  ok = ok && std::abs(c0.dot(c0) - 1.0) < half && std::abs(c1.dot(c1) - 1.0) < half &&
+       std::abs(c2.dot(c2) - 1.0) < half && std::abs(c0.dot(c1)) < half && std::abs(c0.dot(c2)) < half &&
+       std::abs(c1.dot(c2)) < half;
+  // Orthonormal within the tolerance: det R is +-1 to far better than 0.5.
+  return ok && c0.dot(c1.cross(c2)) > 0.5;
+}
+
+}  // namespace
+
 void checkPose(const Eigen::Isometry3d& X, const char* what) {
+  if (clearlyValid(X)) return;
   const Eigen::Matrix3d R = X.linear();
   const Eigen::Vector3d p = X.translation();
   for (int r = 0; r < 3; ++r) {

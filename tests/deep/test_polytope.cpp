@@ -650,6 +650,16 @@ BOOST_AUTO_TEST_CASE(pair_frame_rejects_bad_poses) {
   Eigen::Isometry3d slightly = Eigen::Isometry3d::Identity();
   slightly.linear() *= 1.0 + 1e-9;
   BOOST_CHECK_NO_THROW(deepcheck::deep::checkPose(slightly, "almost"));
+  // Around the tolerance on R^T R - I (1e-6): 8e-7 off is accepted, 1.2e-6 off is not.
+  Eigen::Isometry3d near = Eigen::Isometry3d::Identity();
+  near.linear() *= 1.0 + 4e-7;
+  BOOST_CHECK_NO_THROW(deepcheck::deep::checkPose(near, "near"));
+  near.linear() = Eigen::Matrix3d::Identity() * (1.0 + 6e-7);
+  BOOST_CHECK_EXCEPTION(deepcheck::deep::checkPose(near, "near"), std::invalid_argument,
+                        [](const std::exception& e) { return messageHas(e, {"near", "orthonormal"}); });
+  Eigen::Isometry3d far = Eigen::Isometry3d::Identity();
+  far.translation().x() = 1e51;
+  BOOST_CHECK_THROW(deepcheck::deep::checkPose(far, "far"), std::invalid_argument);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
