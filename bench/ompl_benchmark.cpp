@@ -21,7 +21,7 @@ void SolveTimedBenchmark::benchmark(const Request& req) {
   exp_.maxTime = req.maxTime;
   exp_.maxMem = req.maxMem;
   exp_.runCount = req.runCount;
-  exp_.host = ompl::machine::getHostname();
+  exp_.host = "-";  // the log describes no machine
   exp_.seed = ompl::RNG::getSeed();
   exp_.startTime = ompl::time::now();
   exp_.planners.assign(planners_.size(), PlannerExperiment{});
