@@ -37,17 +37,17 @@ enum class GjkStatus {
 
 const char* toString(GjkStatus s);
 
-/// Warm-start state for one pair: the last separating direction and support vertices. The caller
-/// owns it (one per pair and per thread); a default-constructed cache means "cold".
-/// A query starts from `direction` when it is finite and non-zero, else from the centroid
-/// difference t, else from +x; on exit it stores there the last v (the current closest point of
-/// M, pointing from A towards B) whose support in -v was taken, and the last support vertices.
 /// Four points of M = B - A, as vertex index pairs (a[i] of A, b[i] of B).
 struct MinkowskiTetrahedron {
   std::array<int, 4> a{};
   std::array<int, 4> b{};
 };
 
+/// Warm-start state for one pair: the last separating direction and support vertices. The caller
+/// owns it (one per pair and per thread); a default-constructed cache means "cold".
+/// A query starts from `direction` when it is finite and non-zero, else from the centroid
+/// difference t, else from +x; on exit it stores there the last v (the current closest point of
+/// M, pointing from A towards B) whose support in -v was taken, and the last support vertices.
 struct GjkCache {
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< last search direction (frame P), zero = none
   int hintA = 0;
