@@ -36,10 +36,33 @@ cmake --build build-asan -j "$jobs" --target test_deep test_robots test_checker 
 
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# suite <name> <args...>: runs one sanitized suite and prints its output, as one block, when it ends.
+suite() {
+  local out status=0
+  out=$("build-asan/tests/$1" "${@:2}" 2>&1) || status=$?
+  printf -- '-- %s (exit status %d)\n%s\n' "$1" "$status" "$out"
+  return "$status"
+}
+
 step "ASan+UBSan unit tests"
-build-asan/tests/test_deep --report_level=short "--run_test=$SANITIZE_DEEP_SKIP"
-build-asan/tests/test_robots --report_level=short
-build-asan/tests/test_checker --report_level=short
+# With two cores or more, test_deep (the longest) runs beside test_robots and test_checker.
+failed=0
+deep_args=(--report_level=short "--run_test=$SANITIZE_DEEP_SKIP")
+if (( jobs >= 2 )); then
+  suite test_deep "${deep_args[@]}" &
+  deep_pid=$!
+else
+  suite test_deep "${deep_args[@]}" || failed=1
+fi
+suite test_robots --report_level=short || failed=1
+suite test_checker --report_level=short || failed=1
+if [[ -n "${deep_pid:-}" ]]; then
+  wait "$deep_pid" || failed=1
+fi
+if (( failed )); then
+  echo "sanitize: a sanitized suite failed; its output is above" >&2
+  exit 1
+fi
 step "ASan+UBSan corpus replay"
 ctest --test-dir build-asan -R '^fuzz_replay_' --output-on-failure
 
