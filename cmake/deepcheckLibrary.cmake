@@ -19,6 +19,15 @@ function(deepcheck_add_library name)
     SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}
     INSTALL_RPATH "$ORIGIN")
   target_compile_features(${target} PUBLIC cxx_std_17)
+  # Eigen and the standard headers most sources include, parsed once per library instead of once
+  # per source: a library of several sources compiles in about three quarters of the time. Every
+  # source includes what it uses all the same; the sanitizer stage's ThreadSanitizer build compiles
+  # deep, robots and checker with CMAKE_DISABLE_PRECOMPILE_HEADERS=ON to keep that true.
+  list(LENGTH arg_SOURCES num_sources)
+  if(num_sources GREATER 3)
+    target_precompile_headers(${target} PRIVATE
+      <Eigen/Core> <Eigen/Geometry> <algorithm> <cmath> <map> <sstream> <stdexcept> <string> <vector>)
+  endif()
   set(include_dir ${CMAKE_CURRENT_SOURCE_DIR}/include)
   if(EXISTS ${include_dir})
     target_include_directories(${target} PUBLIC

@@ -67,7 +67,8 @@ step "ASan+UBSan corpus replay"
 ctest --test-dir build-asan -R '^fuzz_replay_' --output-on-failure
 
 step "TSan build"
-cmake -S . -B build-tsan "${common[@]}" -DDEEPCHECK_TSAN=ON >/dev/null
+# Without precompiled headers: deep, robots and checker's sources must compile on their own includes.
+cmake -S . -B build-tsan "${common[@]}" -DDEEPCHECK_TSAN=ON -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON >/dev/null
 cmake --build build-tsan -j "$jobs" --target test_checker_concurrency
 step "TSan concurrency test"
 TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \
