@@ -98,7 +98,7 @@ struct DistanceSearch {
   deep::SignedDistanceResult pairDistance(const deep::ConvexShape& A, const Eigen::Isometry3d& X_WA,
                                           const deep::ConvexShape& B, const Eigen::Isometry3d& X_WB,
                                           deep::PairCache& cache) {
-    warm(c, cache);
+    warm(c, cache, FarStep::KeepEnclosing);
     // The certified method runs no restarts: one call is the whole query.
     if (!options.deep.restarts || options.deep.method == deep::PenetrationMethod::Certified)
       return deep::signedDistance(A, X_WA, B, X_WB, &cache, options.deep);

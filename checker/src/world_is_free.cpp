@@ -53,7 +53,7 @@ inline bool centroidInside(const WorldPiece& w, const Eigen::Vector3d& x_W) {
 /// four vertex transforms instead of a GJK run), then GJK.
 bool overlapPair(Impl& c, const deep::ConvexShape& A, const Eigen::Isometry3d& X_WA, const deep::ConvexShape& B,
                  const Eigen::Isometry3d& X_WB, deep::PairCache& pairCache) {
-  deep::PairCache* cache = warm(c, pairCache);
+  deep::PairCache* cache = warm(c, pairCache, FarStep::KeepGjk);
   if (cache->gjk.enclosed && deep::enclosesOrigin(A, X_WA, B, X_WB, cache->gjk.enclosing)) {
     ++c.stats.enclosedAgain;
     return true;

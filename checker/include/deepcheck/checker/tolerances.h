@@ -18,11 +18,11 @@ constexpr double kBoundingRelative = 1e-9;
 /// (dimensionless).
 constexpr double kObbParallel = 1e-9;
 
-/// Warm starts are used only between consecutive queries of a context whose configurations differ
-/// by at most this in every variable (radians or metres), the steps of motion validation and
-/// of optimizers; a query further from the previous one starts every pair cold. Unrelated
-/// configurations make poor warm starts: measured 20 % slower isFree on random Panda
-/// configurations, and DEEP runs fewer restarts when warm, so a stale start costs accuracy too.
+/// signedDistance's warm starts are used only between consecutive queries of a context whose
+/// configurations differ by at most this in every variable (radians or metres), the steps of
+/// motion validation and of optimizers; a query further from the previous one starts every pair
+/// cold: DEEP runs fewer restarts when warm, so a stale start would cost accuracy. isFree keeps
+/// GJK's warm start across any step (its answer does not depend on it).
 constexpr double kWarmStartMaxStep = 0.1;
 
 /// Default margin of the reachability filter, metres: a scene piece is dropped at load time when
