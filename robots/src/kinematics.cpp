@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -29,6 +31,18 @@ inline void rotateAboutCoordinateAxis(Eigen::Matrix3d& R, int k, double c, doubl
     case 1: rotateAbout<1>(R, c, s); break;
     default: rotateAbout<2>(R, c, s); break;
   }
+}
+
+inline std::uint64_t bitsOf(double x) {
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+inline double doubleOf(std::uint64_t b) {
+  double x;
+  std::memcpy(&x, &b, sizeof x);
+  return x;
 }
 
 /// sin x and cos x, to a few ulps, without a library call for |x| < 2^20 (joint values): x is
@@ -65,12 +79,15 @@ inline void sinCos(double x, double& sine, double& cosine) {
   const double pc = ((f2 - f4 * r2) + r4 * (f6 - f8 * r2)) + r8 * ((f10 - f12 * r2) + r4 * (f14 - f16 * r2) + r8 * f18);
   const double s = r + (r * r2) * ps;
   const double c = 1.0 - r2 * pc;
-  switch (k & 3) {
-    case 0: sine = s; cosine = c; break;
-    case 1: sine = c; cosine = -s; break;
-    case 2: sine = -s; cosine = -c; break;
-    default: sine = -c; cosine = s; break;
-  }
+  // The quadrant without branches (random joint values make its branch unpredictable): odd k
+  // swaps s and c, then sine is negated for k = 2, 3 and cosine for k = 1, 2 (mod 4).
+  const std::uint64_t swap = std::uint64_t{0} - static_cast<std::uint64_t>(k & 1);
+  const std::uint64_t sBits = bitsOf(s), cBits = bitsOf(c);
+  constexpr std::uint64_t kSignBit = std::uint64_t{1} << 63;
+  const std::uint64_t sineSign = static_cast<std::uint64_t>((static_cast<unsigned>(k) >> 1) & 1u) << 63;
+  const std::uint64_t cosineSign = static_cast<std::uint64_t>((static_cast<unsigned>(k + 1) >> 1) & 1u) << 63;
+  sine = doubleOf(((sBits & ~swap) | (cBits & swap)) ^ (sineSign & kSignBit));
+  cosine = doubleOf(((cBits & ~swap) | (sBits & swap)) ^ (cosineSign & kSignBit));
 }
 
 /// The coordinate axis (0, 1, 2) that `axis` is, exactly, or -1; `sign` is +1 or -1.
