@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -33,61 +32,78 @@ inline void rotateAboutCoordinateAxis(Eigen::Matrix3d& R, int k, double c, doubl
   }
 }
 
-inline std::uint64_t bitsOf(double x) {
-  std::uint64_t b;
-  std::memcpy(&b, &x, sizeof b);
-  return b;
-}
+/// Two doubles in one SSE2 register (GCC's and Clang's vector extensions): the sines of two
+/// joints cost about as much as one (measured 89 -> 45 ns for the Panda's seven, same bits).
+using Pair = double __attribute__((vector_size(16)));
+using PairBits = std::int64_t __attribute__((vector_size(16)));
+using PairInt = std::int32_t __attribute__((vector_size(8)));
 
-inline double doubleOf(std::uint64_t b) {
-  double x;
-  std::memcpy(&x, &b, sizeof x);
-  return x;
-}
+/// sinCos below is exact in its reduction for |x| under this (joint values); beyond it the
+/// library's functions are used.
+constexpr double kSinCosRange = 1048576.0;
 
-/// sin x and cos x, to a few ulps, without a library call for |x| < 2^20 (joint values): x is
-/// reduced to r = x - k pi/2, |r| <= pi/4 (Cody and Waite: pi/2 in three parts, the first two
-/// short enough that k times them is exact, so the reduction loses nothing), then the
-/// Taylor series of sin and cos to degree 17 and 18, whose truncation error on |r| <= pi/4 is
-/// below 1e-19, and the quadrant k mod 4 swaps and negates them.
-inline void sinCos(double x, double& sine, double& cosine) {
-  if (!(std::abs(x) < 1048576.0)) {
-    sine = std::sin(x);
-    cosine = std::cos(x);
-    return;
-  }
+/// sin x and cos x for both lanes of x, |x| < kSinCosRange, to a few ulps: x is reduced to
+/// r = x - k pi/2, |r| <= pi/4 (Cody and Waite: pi/2 in three parts, the first two short enough
+/// that k times them is exact, so the reduction loses nothing), then the Taylor series of sin and
+/// cos to degree 17 and 18, whose truncation error on |r| <= pi/4 is below 1e-19, and the
+/// quadrant k mod 4 swaps and negates them.
+inline void sinCos(Pair x, Pair& sine, Pair& cosine) {
   constexpr double kTwoOverPi = 0.63661977236758134308;
   constexpr double kHalfPiHigh = 1.5707963267948965579989817342720925807952880859375;  // double(pi/2), exact
   // double(pi/2) with its low 21 bits cleared, and the rest of pi/2 (to 1e-33).
   constexpr double kHalfPi1 = 1.57079632673412561416625976562500;
   constexpr double kHalfPi2 = kHalfPiHigh - kHalfPi1;  // exact: the cleared bits
   constexpr double kHalfPi3 = 6.123233995736766035868820147292e-17;  // pi/2 - double(pi/2)
-  const int k = static_cast<int>(x * kTwoOverPi + (x >= 0.0 ? 0.5 : -0.5));
-  const double kd = k;
-  const double r = ((x - kd * kHalfPi1) - kd * kHalfPi2) - kd * kHalfPi3;
-  const double r2 = r * r;
+  constexpr std::int64_t kSignBit = std::int64_t{1} << 63;  // wraps to the sign bit
+  // k = x 2/pi rounded half away from zero: 0.5 with the sign of x, then truncation.
+  const Pair half = reinterpret_cast<Pair>((reinterpret_cast<PairBits>(x) & kSignBit) |
+                                           reinterpret_cast<PairBits>(Pair{0.5, 0.5}));
+  const PairInt k = __builtin_convertvector(x * kTwoOverPi + half, PairInt);
+  const Pair kd = __builtin_convertvector(k, Pair);
+  const Pair r = ((x - kd * kHalfPi1) - kd * kHalfPi2) - kd * kHalfPi3;
+  const Pair r2 = r * r;
   // 1/n! for n = 3 .. 18.
   constexpr double f3 = 1.0 / 6, f5 = f3 / 20, f7 = f5 / 42, f9 = f7 / 72, f11 = f9 / 110, f13 = f11 / 156,
                    f15 = f13 / 210, f17 = f15 / 272;
   constexpr double f2 = 0.5, f4 = f2 / 12, f6 = f4 / 30, f8 = f6 / 56, f10 = f8 / 90, f12 = f10 / 132,
                    f14 = f12 / 182, f16 = f14 / 240, f18 = f16 / 306;
-  // Estrin's scheme (pairs, then pairs of pairs): a short dependency chain, so that the sines of
-  // consecutive joints overlap in the processor.
-  const double r4 = r2 * r2;
-  const double r8 = r4 * r4;
-  const double ps = ((-f3 + f5 * r2) + r4 * (-f7 + f9 * r2)) + r8 * ((-f11 + f13 * r2) + r4 * (-f15 + f17 * r2));
-  const double pc = ((f2 - f4 * r2) + r4 * (f6 - f8 * r2)) + r8 * ((f10 - f12 * r2) + r4 * (f14 - f16 * r2) + r8 * f18);
-  const double s = r + (r * r2) * ps;
-  const double c = 1.0 - r2 * pc;
-  // The quadrant without branches (random joint values make its branch unpredictable): odd k
-  // swaps s and c, then sine is negated for k = 2, 3 and cosine for k = 1, 2 (mod 4).
-  const std::uint64_t swap = std::uint64_t{0} - static_cast<std::uint64_t>(k & 1);
-  const std::uint64_t sBits = bitsOf(s), cBits = bitsOf(c);
-  constexpr std::uint64_t kSignBit = std::uint64_t{1} << 63;
-  const std::uint64_t sineSign = static_cast<std::uint64_t>((static_cast<unsigned>(k) >> 1) & 1u) << 63;
-  const std::uint64_t cosineSign = static_cast<std::uint64_t>((static_cast<unsigned>(k + 1) >> 1) & 1u) << 63;
-  sine = doubleOf(((sBits & ~swap) | (cBits & swap)) ^ (sineSign & kSignBit));
-  cosine = doubleOf(((cBits & ~swap) | (sBits & swap)) ^ (cosineSign & kSignBit));
+  // Estrin's scheme (pairs, then pairs of pairs): a short dependency chain.
+  const Pair r4 = r2 * r2;
+  const Pair r8 = r4 * r4;
+  const Pair ps = ((-f3 + f5 * r2) + r4 * (-f7 + f9 * r2)) + r8 * ((-f11 + f13 * r2) + r4 * (-f15 + f17 * r2));
+  const Pair pc = ((f2 - f4 * r2) + r4 * (f6 - f8 * r2)) + r8 * ((f10 - f12 * r2) + r4 * (f14 - f16 * r2) + r8 * f18);
+  const PairBits s = reinterpret_cast<PairBits>(r + (r * r2) * ps);
+  const PairBits c = reinterpret_cast<PairBits>(1.0 - r2 * pc);
+  // The quadrant without branches: odd k swaps s and c, then sine is negated for k = 2, 3 and
+  // cosine for k = 1, 2 (mod 4; bit 1 of k and of k + 1 in two's complement).
+  const PairBits k64 = __builtin_convertvector(k, PairBits);
+  const PairBits swap = -(k64 & 1);
+  sine = reinterpret_cast<Pair>(((s & ~swap) | (c & swap)) ^ (((k64 >> 1) & 1) << 63));
+  cosine = reinterpret_cast<Pair>(((c & ~swap) | (s & swap)) ^ ((((k64 + 1) >> 1) & 1) << 63));
+}
+
+/// sine[i] and cosine[i] of angle[i] for i < n, two at a time.
+void sinCosAll(const double* angle, int n, double* sine, double* cosine) {
+  for (int i = 0; i < n; i += 2) {
+    const bool two = i + 1 < n;
+    const double a = angle[i];
+    const double b = two ? angle[i + 1] : 0.0;
+    if (std::abs(a) < kSinCosRange && std::abs(b) < kSinCosRange) {
+      Pair s, c;
+      sinCos(Pair{a, b}, s, c);
+      sine[i] = s[0];
+      cosine[i] = c[0];
+      if (two) {
+        sine[i + 1] = s[1];
+        cosine[i + 1] = c[1];
+      }
+    } else {
+      for (int j = i; j < (two ? i + 2 : i + 1); ++j) {
+        sine[j] = std::sin(angle[j]);
+        cosine[j] = std::cos(angle[j]);
+      }
+    }
+  }
 }
 
 /// The coordinate axis (0, 1, 2) that `axis` is, exactly, or -1; `sign` is +1 or -1.
@@ -178,10 +194,12 @@ void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::Ve
   // sequential): the processor overlaps them.
   const std::vector<Joint>& joints = model.joints();
   constexpr int kBlock = 16;
-  double sines[kBlock], cosines[kBlock];
-  int axes[kBlock];  // the coordinate axis of a revolute joint (coordinateAxis), else -1
+  double angles[kBlock], sines[kBlock], cosines[kBlock];
+  int axes[kBlock];   // the coordinate axis of a revolute joint (coordinateAxis), else -1
+  int slots[kBlock];  // where its sine is, when it has an axis
   for (int first = 0; first < static_cast<int>(joints.size()); first += kBlock) {
     const int end = std::min(first + kBlock, static_cast<int>(joints.size()));
+    int n = 0;
     for (int i = first; i < end; ++i) {
       const Joint& joint = joints[i];
       axes[i - first] = -1;
@@ -189,8 +207,10 @@ void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::Ve
       double sign = 1.0;
       axes[i - first] = coordinateAxis(joint.axis, sign);
       if (axes[i - first] < 0) continue;
-      sinCos(sign * (joint.multiplier * q[joint.variable] + joint.offset), sines[i - first], cosines[i - first]);
+      slots[i - first] = n;
+      angles[n++] = sign * (joint.multiplier * q[joint.variable] + joint.offset);
     }
+    sinCosAll(angles, n, sines, cosines);
     for (int i = first; i < end; ++i) {
       const Joint& joint = joints[i];
       const Eigen::Isometry3d& X_WP = X_WL[joint.parentLink];
@@ -205,7 +225,7 @@ void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::Ve
         case JointType::Continuous: {
           const int k = axes[i - first];
           if (k >= 0) {
-            rotateAboutCoordinateAxis(R, k, cosines[i - first], sines[i - first]);
+            rotateAboutCoordinateAxis(R, k, cosines[slots[i - first]], sines[slots[i - first]]);
           } else {
             const double value = joint.multiplier * q[joint.variable] + joint.offset;
             R = R * Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();

@@ -162,7 +162,7 @@ std::vector<Eigen::Isometry3d> referenceKinematics(const RobotModel& m, const Ei
 }
 
 /// forwardKinematics against referenceKinematics on random configurations (beyond the limits
-/// too, up to +-1200: any finite value is accepted), to 1e-12 per entry of each pose (relative to
+/// too, up to +-1200 and +-1.6e7: any finite value is accepted), to 1e-12 per entry of each pose (relative to
 /// the size of its translation when that is above 1 m).
 void checkAgainstReference(const RobotModel& m, std::mt19937& rng, int trials) {
   std::uniform_real_distribution<double> u(-4.0, 4.0);
@@ -174,6 +174,9 @@ void checkAgainstReference(const RobotModel& m, std::mt19937& rng, int trials) {
     }
     if (trial % 8 == 5) {  // far beyond the limits: the argument reduction of the sines
       for (int v = 0; v < q.size(); ++v) q[v] = 300.0 * u(rng);
+    }
+    if (trial % 16 == 9) {  // every other value beyond 2^20, where the library's sines take over
+      for (int v = 0; v < q.size(); ++v) q[v] = (v % 2 == 0 ? 1.0 : 4.0e6) * u(rng);
     }
     if (trial == 1) {  // on and next to the quadrant boundaries of the sines
       for (int v = 0; v < q.size(); ++v) q[v] = std::nextafter((v - 3) * M_PI / 4, v % 2 ? 10.0 : -10.0);
