@@ -162,8 +162,8 @@ std::vector<Eigen::Isometry3d> referenceKinematics(const RobotModel& m, const Ei
 }
 
 /// forwardKinematics against referenceKinematics on random configurations (beyond the limits
-/// too, up to +-1200 and +-1.6e7: any finite value is accepted), to 1e-12 per entry of each pose (relative to
-/// the size of its translation when that is above 1 m).
+/// too, up to +-1200 and +-1.6e7: any finite value is accepted), to 1e-12 per entry of each pose
+/// (relative to the size of its translation when that is above 1 m).
 void checkAgainstReference(const RobotModel& m, std::mt19937& rng, int trials) {
   std::uniform_real_distribution<double> u(-4.0, 4.0);
   std::vector<Eigen::Isometry3d> X_WL;
