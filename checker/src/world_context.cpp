@@ -63,6 +63,7 @@ void refresh(Impl& c) {
     c.pieceCenter.assign(nRobot, Eigen::Vector3d::Zero());
     c.pieceObb.assign(nRobot, Obb{});
     c.pieceStamp.assign(nRobot, 0);
+    c.transformStamp.assign(nRobot, 0);
     c.linkCenter.assign(robot.links.size(), Eigen::Vector3d::Zero());
     c.J_A.resize(3, robot.model.numVariables());
     c.J_B.resize(3, robot.model.numVariables());
@@ -72,9 +73,13 @@ void refresh(Impl& c) {
   for (std::size_t i = 0; sameSelf && i < next->selfPairs.size(); ++i) {
     sameSelf = prev->selfPairs[i].a == next->selfPairs[i].a && prev->selfPairs[i].b == next->selfPairs[i].b;
   }
-  if (!sameSelf) c.selfCaches.assign(next->selfCacheSize, deep::PairCache{});
+  if (!sameSelf) {
+    c.selfCaches.assign(next->selfCacheSize, deep::PairCache{});
+    c.selfAxes.assign(next->selfCacheSize, 0);
+  }
   if (prev == nullptr || prev->scenePieces != next->scenePieces) {
     c.sceneCaches.assign(nRobot * next->scenePieces->pieces.size(), deep::PairCache{});
+    c.sceneAxes.assign(c.sceneCaches.size(), 0);
   }
   if (prev == nullptr || prev->obstaclePieces != next->obstaclePieces) {
     // Obstacle pieces are renumbered by every change; carry the caches over by piece uid.
@@ -93,6 +98,7 @@ void refresh(Impl& c) {
       }
     }
     c.obstacleCaches = std::move(caches);
+    c.obstacleAxes.assign(c.obstacleCaches.size(), 0);
   }
   c.lastHit = PairKey{};
   c.lastClosest = PairKey{};
@@ -117,6 +123,7 @@ const Snapshot& prepare(const WorldState& state, Impl& c,
   }
   if (++c.stamp == 0) {
     std::fill(c.pieceStamp.begin(), c.pieceStamp.end(), 0);
+    std::fill(c.transformStamp.begin(), c.transformStamp.end(), 0);
     c.stamp = 1;
   }
   ++c.stats.queries;

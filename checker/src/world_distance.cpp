@@ -120,7 +120,8 @@ struct DistanceSearch {
       ++c.stats.selfNarrowPhase;
       notify(c, a.link, robotBody(b.link));
       const deep::SignedDistanceResult r =
-          pairDistance(shapeOf(a), c.X_WP[k.robotPiece], shapeOf(b), c.X_WP[k.other], c.selfCaches[k.cache]);
+          pairDistance(shapeOf(a), pieceTransform(c, robot, k.robotPiece), shapeOf(b),
+                       pieceTransform(c, robot, k.other), c.selfCaches[k.cache]);
       record(k, a.link, 0, b.link, r);
       return;
     }
@@ -128,8 +129,8 @@ struct DistanceSearch {
     const WorldPiece& w = set.pieces[k.other];
     notify(c, a.link, bodyOfWorldPiece(set, w));
     const deep::SignedDistanceResult r =
-        pairDistance(shapeOf(a), c.X_WP[k.robotPiece], shapeOf(w), w.X_WP,
-                     cachesOf(k.kind)[static_cast<std::size_t>(k.robotPiece) * set.pieces.size() + k.other]);
+        pairDistance(shapeOf(a), pieceTransform(c, robot, k.robotPiece), shapeOf(w), w.X_WP,
+                     cachesOf(k.kind)[pairIndex(set, k.robotPiece, k.other)]);
     record(k, a.link, k.kind == PairKey::Kind::Scene ? 1 : 2, w.body, r);
   }
 
@@ -138,7 +139,7 @@ struct DistanceSearch {
   double supportBound(const PairKey& k) const {
     const RobotData& robot = *s.robot;
     const RobotPiece& a = robot.pieces[k.robotPiece];
-    const Eigen::Isometry3d& X_WA = c.X_WP[k.robotPiece];
+    const Eigen::Isometry3d& X_WA = pieceTransform(c, robot, k.robotPiece);
     const deep::ConvexPolytope* coreB;
     const Eigen::Isometry3d* X_WB;
     double rB;
@@ -146,7 +147,7 @@ struct DistanceSearch {
     if (k.kind == PairKey::Kind::Self) {
       const RobotPiece& b = robot.pieces[k.other];
       coreB = b.core.get();
-      X_WB = &c.X_WP[k.other];
+      X_WB = &pieceTransform(c, robot, k.other);
       rB = b.radius;
       centerB = c.pieceCenter[k.other];
     } else {

@@ -73,8 +73,8 @@ bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set,
     c.lastHit = PairKey{kind, i, wp, -1};
     return true;
   }
-  const bool hit = overlapPair(c, shapeOf(p), c.X_WP[i], shapeOf(w), w.X_WP,
-                               caches[static_cast<std::size_t>(i) * set.pieces.size() + wp]);
+  const bool hit =
+      overlapPair(c, shapeOf(p), pieceTransform(c, robot, i), shapeOf(w), w.X_WP, caches[pairIndex(set, i, wp)]);
   if (hit) c.lastHit = PairKey{kind, i, wp, -1};
   return hit;
 }
@@ -85,14 +85,16 @@ bool overlapSelf(Impl& c, const RobotData& robot, int i, int j, int cache) {
   ++c.stats.narrowPhase;
   ++c.stats.selfNarrowPhase;
   notify(c, a.link, robotBody(b.link));
-  const bool hit = overlapPair(c, shapeOf(a), c.X_WP[i], shapeOf(b), c.X_WP[j], c.selfCaches[cache]);
+  const bool hit = overlapPair(c, shapeOf(a), pieceTransform(c, robot, i), shapeOf(b), pieceTransform(c, robot, j),
+                               c.selfCaches[cache]);
   if (hit) c.lastHit = PairKey{PairKey::Kind::Self, i, j, cache};
   return hit;
 }
 
 /// The robot link `g` against the world pieces of `set` near it: true at the first overlap.
 bool linkHitsSet(Impl& c, const Snapshot& s, const PieceSet& set,
-                 std::vector<deep::PairCache>& caches, PairKey::Kind kind, int g) {
+                 std::vector<deep::PairCache>& caches, std::vector<std::uint8_t>& axes, PairKey::Kind kind,
+                 int g) {
   if (set.pieces.empty()) return false;
   const RobotData& robot = *s.robot;
   const LinkGeometry& lg = robot.links[g];
@@ -104,7 +106,10 @@ bool linkHitsSet(Impl& c, const Snapshot& s, const PieceSet& set,
     for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
       posePiece(c, robot, i);
       ++c.stats.pieceTests;
-      if (worldBoundsMeet(c, robot, i, w) && overlapWorld(c, robot, set, caches, kind, i, wp)) return true;
+      if (worldBoundsMeet(c, robot, i, w, axes[pairIndex(set, i, wp)]) &&
+          overlapWorld(c, robot, set, caches, kind, i, wp)) {
+        return true;
+      }
     }
     return false;
   });
@@ -120,7 +125,7 @@ bool selfPairHits(Impl& c, const RobotData& robot, const SelfPair& sp) {
   }
   if (fartherThan((c.linkCenter[sp.a] - c.linkCenter[sp.b]).squaredNorm(), la.radius + lb.radius)) return false;
   return forEachSelfPiecePair(c, robot, sp, [&](int i, int j, int cache) {
-    return selfBoundsMeet(c, robot, i, j) && overlapSelf(c, robot, i, j, cache);
+    return selfBoundsMeet(c, robot, i, j, c.selfAxes[cache]) && overlapSelf(c, robot, i, j, cache);
   });
 }
 
@@ -132,14 +137,14 @@ bool lastHitStillHits(Impl& c, const Snapshot& s) {
   posePiece(c, robot, k.robotPiece);
   if (k.kind == PairKey::Kind::Self) {
     posePiece(c, robot, k.other);
-    return selfBoundsMeet(c, robot, k.robotPiece, k.other) &&
+    return selfBoundsMeet(c, robot, k.robotPiece, k.other, c.selfAxes[k.cache]) &&
            overlapSelf(c, robot, k.robotPiece, k.other, k.cache);
   }
   const bool scene = k.kind == PairKey::Kind::Scene;
   const PieceSet& set = scene ? *s.scenePieces : *s.obstaclePieces;
-  return worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other]) &&
-         overlapWorld(c, robot, set, scene ? c.sceneCaches : c.obstacleCaches, k.kind, k.robotPiece,
-                      k.other);
+  std::uint8_t& axis = (scene ? c.sceneAxes : c.obstacleAxes)[pairIndex(set, k.robotPiece, k.other)];
+  return worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other], axis) &&
+         overlapWorld(c, robot, set, scene ? c.sceneCaches : c.obstacleCaches, k.kind, k.robotPiece, k.other);
 }
 
 }  // namespace
@@ -156,8 +161,10 @@ bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context)
   // Links from the tip of the tree to the root: the distal links sweep the most space and meet
   // the world most often, so a colliding configuration is found sooner (the answer is the same).
   for (int g = static_cast<int>(robot.links.size()) - 1; g >= 0; --g) {
-    if (linkHitsSet(c, s, *s.scenePieces, c.sceneCaches, PairKey::Kind::Scene, g)) return false;
-    if (linkHitsSet(c, s, *s.obstaclePieces, c.obstacleCaches, PairKey::Kind::Obstacle, g)) return false;
+    if (linkHitsSet(c, s, *s.scenePieces, c.sceneCaches, c.sceneAxes, PairKey::Kind::Scene, g)) return false;
+    if (linkHitsSet(c, s, *s.obstaclePieces, c.obstacleCaches, c.obstacleAxes, PairKey::Kind::Obstacle, g)) {
+      return false;
+    }
   }
   for (const SelfPair& sp : s.selfPairs) {
     if (selfPairHits(c, robot, sp)) return false;

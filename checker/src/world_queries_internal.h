@@ -6,7 +6,8 @@
 // Both queries share one preparation step: refresh the context when the world changed (one
 // atomic load otherwise), forward kinematics into the context's scratch poses, and the world
 // centres of the links' bounding spheres. Robot pieces are posed lazily (a stamp per piece), so a
-// query only poses the pieces whose link came near something.
+// query only poses the pieces whose link came near something, and only the pieces that reach a
+// narrow phase get their full pose (most stop at the bounding tests).
 //
 // Bounding volumes: a robot piece has a sphere (centre in its link frame); a robot link the sphere
 // around its pieces' spheres; a world piece a box (of its vertices, grown by its radius) and a
@@ -73,16 +74,19 @@ struct World::Context::Impl {
   std::vector<deep::PairCache> selfCaches;
   std::vector<deep::PairCache> sceneCaches;     // robot piece * scene pieces + world piece
   std::vector<deep::PairCache> obstacleCaches;  // robot piece * obstacle pieces + world piece
+  /// Per pair, indexed as the caches above: the oriented-box axis that last separated it (obb.h).
+  std::vector<std::uint8_t> selfAxes, sceneAxes, obstacleAxes;
   /// Scratch of the certified expansion and of DEEP's walk, shared by every pair of this context
   /// (a context runs one query at a time): no allocation or large stack frame per pair.
   std::unique_ptr<deep::ExpansionSurface> surface = std::make_unique<deep::ExpansionSurface>();
   std::unique_ptr<deep::WalkScratch> walk = std::make_unique<deep::WalkScratch>();
 
   std::vector<Eigen::Isometry3d> X_WL;
-  std::vector<Eigen::Isometry3d> X_WP;  // robot pieces, valid when pieceStamp == stamp
-  std::vector<Eigen::Vector3d> pieceCenter;
+  std::vector<Eigen::Isometry3d> X_WP;  // robot pieces, valid when transformStamp == stamp
+  std::vector<Eigen::Vector3d> pieceCenter;  // valid when pieceStamp == stamp, as pieceObb
   std::vector<Obb> pieceObb;
   std::vector<std::uint32_t> pieceStamp;
+  std::vector<std::uint32_t> transformStamp;
   std::uint32_t stamp = 0;
   std::vector<Eigen::Vector3d> linkCenter;  // per LinkGeometry
 
@@ -108,14 +112,23 @@ void refresh(Impl& c);
 /// Refresh, check q, forward kinematics, link sphere centres; a new stamp for piece poses.
 const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q);
 
-/// World pose and sphere centre of robot piece i (computed once per query).
+/// Bounding volumes of robot piece i in the world: its sphere centre and oriented box (computed
+/// once per query).
 inline void posePiece(Impl& c, const RobotData& robot, int i) {
   if (c.pieceStamp[i] == c.stamp) return;
   const RobotPiece& p = robot.pieces[i];
-  c.X_WP[i] = c.X_WL[p.link] * p.X_LP;
   c.pieceCenter[i] = c.X_WL[p.link] * p.center_L;
   c.pieceObb[i] = p.obb_L.transformed(c.X_WL[p.link]);
   c.pieceStamp[i] = c.stamp;
+}
+
+/// World pose of robot piece i, for the narrow phase (computed once per query).
+inline const Eigen::Isometry3d& pieceTransform(Impl& c, const RobotData& robot, int i) {
+  if (c.transformStamp[i] != c.stamp) {
+    c.X_WP[i] = c.X_WL[robot.pieces[i].link] * robot.pieces[i].X_LP;
+    c.transformStamp[i] = c.stamp;
+  }
+  return c.X_WP[i];
 }
 
 /// How much of a pair's cache a query far from the previous one keeps (warm()).
@@ -152,6 +165,12 @@ inline deep::PairCache* warm(const Impl& c, deep::PairCache& cache, FarStep far)
   return &cache;
 }
 
+/// Index of the pair (robot piece i, world piece wp of `set`) in the per-pair vectors of that set
+/// (sceneCaches, sceneAxes; obstacleCaches, obstacleAxes).
+inline std::size_t pairIndex(const PieceSet& set, int i, int wp) {
+  return static_cast<std::size_t>(i) * set.pieces.size() + static_cast<std::size_t>(wp);
+}
+
 /// Lower bound on the distance between robot piece i (posed) and world piece w.
 inline double pieceWorldLowerBound(const Impl& c, const RobotPiece& p, int i, const WorldPiece& w) {
   const double toBox = w.box.distance(c.pieceCenter[i]) - p.sphereRadius;
@@ -165,20 +184,20 @@ inline bool fartherThan(double d2, double r) { return d2 > r * r; }
 
 /// The bounding tests of robot piece i (posed) against world piece w: false when its bounding
 /// sphere's lower bound is positive (pieceWorldLowerBound, compared in squares) or the oriented
-/// boxes are apart.
-inline bool worldBoundsMeet(const Impl& c, const RobotData& robot, int i, const WorldPiece& w) {
+/// boxes are apart (`axis`: the pair's last separating axis).
+inline bool worldBoundsMeet(const Impl& c, const RobotData& robot, int i, const WorldPiece& w, std::uint8_t& axis) {
   const RobotPiece& p = robot.pieces[i];
   const Eigen::Vector3d& x = c.pieceCenter[i];
   return !fartherThan(w.box.squaredDistance(x), p.sphereRadius) &&
          !fartherThan((x - w.center_W).squaredNorm(), p.sphereRadius + w.sphereRadius) &&
-         !separated(c.pieceObb[i], w.obb_W);
+         !separated(c.pieceObb[i], w.obb_W, axis);
 }
 
 /// The bounding tests of robot pieces i and j (both posed): spheres, then oriented boxes.
-inline bool selfBoundsMeet(const Impl& c, const RobotData& robot, int i, int j) {
+inline bool selfBoundsMeet(const Impl& c, const RobotData& robot, int i, int j, std::uint8_t& axis) {
   return !fartherThan((c.pieceCenter[i] - c.pieceCenter[j]).squaredNorm(),
                       robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius) &&
-         !separated(c.pieceObb[i], c.pieceObb[j]);
+         !separated(c.pieceObb[i], c.pieceObb[j], axis);
 }
 
 /// Calls f(i, j, cache) for the piece pairs of the self pair sp (both pieces posed; cache indexes

@@ -1,5 +1,6 @@
 // Oriented bounding boxes: they contain their pieces, and the separating-axis test never calls
-// overlapping boxes separated (checked against GJK on the boxes as polytopes).
+// overlapping boxes separated (checked against GJK on the boxes as polytopes), whether it tests
+// all axes, one axis alone, or a remembered axis first.
 
 #include "obb.h"
 #include "deepcheck/deep/signed_distance.h"
@@ -81,6 +82,17 @@ BOOST_AUTO_TEST_CASE(separated_boxes_never_overlap) {
     }
     // Symmetric.
     BOOST_TEST(separated(b, a) == sep);
+    // One axis alone never separates overlapping boxes, the axis found separates by itself, and
+    // the test with a remembered axis gives the same answer whatever axis it remembers.
+    const int found = separatingAxis(a, b);
+    BOOST_TEST((found >= 0) == sep);
+    if (found >= 0) BOOST_TEST(separatedAlong(a, b, found), "axis " << found << " (case " << k << ")");
+    for (int axis = 0; axis < kObbAxes; ++axis) {
+      if (overlap) BOOST_TEST(!separatedAlong(a, b, axis), "axis " << axis << " (case " << k << ")");
+      std::uint8_t hint = static_cast<std::uint8_t>(axis);
+      BOOST_TEST(separated(a, b, hint) == sep, "remembered axis " << axis << " (case " << k << ")");
+      if (sep) BOOST_TEST(separatedAlong(a, b, hint));
+    }
   }
   BOOST_TEST(separatedCount > 300);
   BOOST_TEST(overlapping > 300);
