@@ -180,6 +180,23 @@ bool ExpansionSurface::collectHorizon(int from, const Vec3& w) {
   return horizonSize_ >= 3;
 }
 
+// The search walks the seen region's boundary in order, so edge i + 1 usually ends where edge i
+// starts (the edges listed clockwise seen from outside). When every consecutive pair, the last and
+// the first included, chains so and no vertex starts two edges, the horizon is one cycle in that
+// order: checked in one pass, with a flag per vertex (cleared again before returning).
+bool ExpansionSurface::horizonChains() {
+  auto from = [&](int i) { return faces_[horizon_[i].face].v[horizon_[i].edge]; };
+  auto to = [&](int i) { return faces_[horizon_[i].face].v[(horizon_[i].edge + 1) % 3]; };
+  bool chains = to(0) == from(horizonSize_ - 1);
+  for (int i = 0; i + 1 < horizonSize_ && chains; ++i) chains = to(i + 1) == from(i);
+  if (!chains) return false;
+  int i = 0;
+  for (; i < horizonSize_ && !onHorizon_[from(i)]; ++i) onHorizon_[from(i)] = true;
+  const bool simple = i == horizonSize_;
+  for (int k = 0; k < i; ++k) onHorizon_[from(k)] = false;
+  return simple;
+}
+
 // Follows the horizon from its first edge, each time to the first edge that starts where the
 // last one ended: one cycle through all edges exactly when it returns to the first after visiting
 // every edge. (A vertex starting two edges sends every walk through the same, lower-numbered one,
@@ -215,8 +232,10 @@ bool ExpansionSurface::keepsOrigin(int from, const Vec3& w) const {
 
 bool ExpansionSurface::expand(int from, const Vertex& w) {
   numSeen_ = 0;
-  const bool ok = numVertices_ < kMaxVertices && collectHorizon(from, w.p) && horizonIsCycle() &&
-                  keepsOrigin(from, w.p) && numFree_ + numSeen_ + (kMaxFaces - numSlots_) >= horizonSize_;
+  const bool collected = numVertices_ < kMaxVertices && collectHorizon(from, w.p);
+  const bool chained = collected && horizonChains();
+  const bool ok = collected && (chained || horizonIsCycle()) && keepsOrigin(from, w.p) &&
+                  numFree_ + numSeen_ + (kMaxFaces - numSlots_) >= horizonSize_;
   auto restore = [&] {
     for (int i = 0; i < numSeen_; ++i) faces_[seen_[i]].alive = true;
     return false;
@@ -242,14 +261,15 @@ bool ExpansionSurface::expand(int from, const Vertex& w) {
     faces_[made_[i]].d = cone_[i].d;
     link(faces_, made_[i], 0, horizon_[i].face, horizon_[i].edge);
   }
-  // Edge 1 (x -> w) of cone face i meets edge 2 (w -> x) of the cone face whose y is x.
+  // Edge 1 (x -> w) of cone face i meets edge 2 (w -> x) of the cone face whose y is x: on a
+  // chained horizon the next one (its edge ends at x), else found by search.
   for (int i = 0; i < horizonSize_; ++i) {
-    for (int j = 0; j < horizonSize_; ++j) {
-      if (faces_[made_[j]].v[0] == faces_[made_[i]].v[1]) {
-        link(faces_, made_[i], 1, made_[j], 2);
-        break;
-      }
+    int j = i + 1 < horizonSize_ ? i + 1 : 0;
+    if (!chained) {
+      j = 0;
+      while (j < horizonSize_ && faces_[made_[j]].v[0] != faces_[made_[i]].v[1]) ++j;
     }
+    if (j < horizonSize_) link(faces_, made_[i], 1, made_[j], 2);
     push(made_[i]);
   }
   return true;

@@ -99,6 +99,7 @@ class ExpansionSurface {
   void push(int f);
   void rebuildQueue();
   bool collectHorizon(int from, const Eigen::Vector3d& w);
+  bool horizonChains();
   bool horizonIsCycle() const;
   bool keepsOrigin(int from, const Eigen::Vector3d& w) const;
   static void link(Face* faces, int f, int e, int g, int h);
@@ -112,6 +113,7 @@ class ExpansionSurface {
   int made_[kMaxHorizon];
   int seen_[kMaxFaces];          // faces that see the new point (marked dead while expanding)
   int pending_[2 * kMaxFaces + 3];  // depth-first search stack of (face, edge) codes
+  bool onHorizon_[kMaxVertices] = {};  // horizonChains()' per-vertex flags, false between calls
   int numVertices_ = 0;
   int numSlots_ = 0;
   int numFree_ = 0;
