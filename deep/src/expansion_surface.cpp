@@ -25,19 +25,38 @@ void ExpansionSurface::link(Face* faces, int f, int e, int g, int h) {
   faces[g].adj[h] = 4 * f + e;
 }
 
-bool ExpansionSurface::setPlane(Face& f) const {
-  const Vec3& p0 = vertices_[f.v[0]].p;
-  const Vec3& p1 = vertices_[f.v[1]].p;
-  const Vec3& p2 = vertices_[f.v[2]].p;
-  const Vec3 n = (p1 - p0).cross(p2 - p0);
-  const double len = n.norm();
-  if (!(len > 0.0) || !std::isfinite(len)) return false;
-  // One division, then products: each result within two ulps of the quotient it stands for,
-  // far inside the certification tolerance. The offset's dot product does not wait for it.
-  const double inv = 1.0 / len;
-  f.n = n * inv;
-  // The mean of the three offsets: the plane through the corners' centroid.
-  f.d = n.dot(p0 + p1 + p2) * (inv * (1.0 / 3.0));
+// In passes over the faces, a chunk at a time: the normals (cross products) and the squares of
+// their lengths, then the square roots and reciprocals two at a time (vector instructions), then
+// the products. Long-latency operations of different faces overlap instead of each face waiting
+// for its own. One division per face, then products: each result within two ulps of the quotient
+// it stands for, far inside the certification tolerance.
+bool ExpansionSurface::setPlanes(Face* faces, int count) const {
+  constexpr int kChunk = 32;
+  double lengths[kChunk];
+  Vec3 sums[kChunk];
+  for (int first = 0; first < count; first += kChunk) {
+    const int m = std::min(kChunk, count - first);
+    Face* chunk = faces + first;
+    for (int i = 0; i < m; ++i) {
+      const Vec3& p0 = vertices_[chunk[i].v[0]].p;
+      const Vec3& p1 = vertices_[chunk[i].v[1]].p;
+      const Vec3& p2 = vertices_[chunk[i].v[2]].p;
+      chunk[i].n = (p1 - p0).cross(p2 - p0);
+      sums[i] = p0 + p1 + p2;
+      lengths[i] = chunk[i].n.squaredNorm();
+    }
+    // A zero or non-finite square is a zero or non-finite length: a degenerate face.
+    bool ok = true;
+    for (int i = 0; i < m; ++i) ok &= lengths[i] > 0.0 && lengths[i] <= std::numeric_limits<double>::max();
+    if (!ok) return false;
+    Eigen::Map<Eigen::ArrayXd> inverse(lengths, m);
+    inverse = inverse.sqrt().inverse();
+    for (int i = 0; i < m; ++i) {
+      // The mean of the three offsets: the plane through the corners' centroid.
+      chunk[i].d = chunk[i].n.dot(sums[i]) * (lengths[i] * (1.0 / 3.0));
+      chunk[i].n *= lengths[i];
+    }
+  }
   return true;
 }
 
@@ -99,10 +118,8 @@ bool ExpansionSurface::startTetrahedron(const Vertex* corners) {
   link(faces_, f1, 1, f2, 2);
   link(faces_, f1, 2, f3, 1);
   link(faces_, f2, 1, f3, 2);
-  for (int f : {f0, f1, f2, f3}) {
-    if (!setPlane(faces_[f])) return false;
-    push(f);
-  }
+  if (!setPlanes(faces_, 4)) return false;  // the four were the first slots
+  for (int f : {f0, f1, f2, f3}) push(f);
   return true;
 }
 
@@ -115,12 +132,12 @@ bool ExpansionSurface::load(const Vertex* vertices, int numVertices, const int (
   std::copy(vertices, vertices + numVertices, vertices_);
   numVertices_ = numVertices;
   for (int f = 0; f < numFaces; ++f) {
-    Face& face = faces_[newFace(faces[f][0], faces[f][1], faces[f][2])];
+    Face& face = faces_[newFace(faces[f][0], faces[f][1], faces[f][2])];  // slot f
     std::copy(adj[f], adj[f] + 3, face.adj);
-    if (!setPlane(face)) {
-      numVertices_ = numSlots_ = live_ = 0;
-      return false;
-    }
+  }
+  if (!setPlanes(faces_, numFaces)) {
+    numVertices_ = numSlots_ = live_ = 0;
+    return false;
   }
   rebuildQueue();
   return true;
@@ -254,8 +271,8 @@ bool ExpansionSurface::expand(int from, const Vertex& w) {
     cone_[i].v[0] = g.v[(e + 1) % 3];
     cone_[i].v[1] = g.v[e];
     cone_[i].v[2] = iw;
-    if (!setPlane(cone_[i])) return restore();
   }
+  if (!setPlanes(cone_, horizonSize_)) return restore();
   ++numVertices_;
   for (int i = 0; i < numSeen_; ++i) freeFace(seen_[i]);
   for (int i = 0; i < horizonSize_; ++i) {

@@ -95,7 +95,8 @@ class ExpansionSurface {
 
   int newFace(int v0, int v1, int v2);
   void freeFace(int f);
-  bool setPlane(Face& f) const;
+  /// Sets n and d of faces[0..count) from their corners; false when one is degenerate.
+  bool setPlanes(Face* faces, int count) const;
   void push(int f);
   void rebuildQueue();
   bool collectHorizon(int from, const Eigen::Vector3d& w);
