@@ -194,7 +194,7 @@ bool ExpansionSurface::collectHorizon(int from, const Vec3& w) {
       pending_[numPending++] = face.adj[(e + 1) % 3];
     } else {
       if (horizonSize_ == kMaxHorizon) return false;
-      horizon_[horizonSize_++] = {g, e};
+      horizon_[horizonSize_++] = {g, e, face.v[e], face.v[e == 2 ? 0 : e + 1]};
     }
   }
   return horizonSize_ >= 3;
@@ -205,15 +205,15 @@ bool ExpansionSurface::collectHorizon(int from, const Vec3& w) {
 // the first included, chains so and no vertex starts two edges, the horizon is one cycle in that
 // order: checked in one pass, with a flag per vertex (cleared again before returning).
 bool ExpansionSurface::horizonChains() {
-  auto from = [&](int i) { return faces_[horizon_[i].face].v[horizon_[i].edge]; };
-  auto to = [&](int i) { return faces_[horizon_[i].face].v[(horizon_[i].edge + 1) % 3]; };
-  bool chains = to(0) == from(horizonSize_ - 1);
-  for (int i = 0; i + 1 < horizonSize_ && chains; ++i) chains = to(i + 1) == from(i);
+  const HorizonEdge* h = horizon_;
+  const int n = horizonSize_;
+  bool chains = h[0].to == h[n - 1].from;
+  for (int i = 0; i + 1 < n; ++i) chains &= h[i + 1].to == h[i].from;
   if (!chains) return false;
   int i = 0;
-  for (; i < horizonSize_ && !onHorizon_[from(i)]; ++i) onHorizon_[from(i)] = true;
-  const bool simple = i == horizonSize_;
-  for (int k = 0; k < i; ++k) onHorizon_[from(k)] = false;
+  for (; i < n && !onHorizon_[h[i].from]; ++i) onHorizon_[h[i].from] = true;
+  const bool simple = i == n;
+  for (int k = 0; k < i; ++k) onHorizon_[h[k].from] = false;
   return simple;
 }
 
@@ -222,12 +222,10 @@ bool ExpansionSurface::horizonChains() {
 // every edge. (A vertex starting two edges sends every walk through the same, lower-numbered one,
 // so the other is never visited; several cycles leave edges unvisited too.)
 bool ExpansionSurface::horizonIsCycle() const {
-  auto from = [&](int i) { return faces_[horizon_[i].face].v[horizon_[i].edge]; };
-  auto to = [&](int i) { return faces_[horizon_[i].face].v[(horizon_[i].edge + 1) % 3]; };
   int length = 0, i = 0;
   do {
     int next = 0;
-    while (next < horizonSize_ && from(next) != to(i)) ++next;
+    while (next < horizonSize_ && horizon_[next].from != horizon_[i].to) ++next;
     if (next == horizonSize_) return false;
     i = next;
     ++length;
@@ -266,10 +264,8 @@ bool ExpansionSurface::expand(int from, const Vertex& w) {
   const int iw = numVertices_;
   vertices_[iw] = w;
   for (int i = 0; i < horizonSize_; ++i) {
-    const Face& g = faces_[horizon_[i].face];
-    const int e = horizon_[i].edge;
-    cone_[i].v[0] = g.v[(e + 1) % 3];
-    cone_[i].v[1] = g.v[e];
+    cone_[i].v[0] = horizon_[i].to;
+    cone_[i].v[1] = horizon_[i].from;
     cone_[i].v[2] = iw;
   }
   if (!setPlanes(cone_, horizonSize_)) return restore();

@@ -91,6 +91,8 @@ class ExpansionSurface {
   struct HorizonEdge {
     int face;  ///< the face that stays (does not see w)
     int edge;  ///< its edge on the horizon
+    int from;  ///< the edge's first vertex in that face
+    int to;    ///< its second
   };
 
   int newFace(int v0, int v1, int v2);
