@@ -176,28 +176,35 @@ bool ExpansionSurface::isCorner(int f, const Vertex& w) const {
 // border one that does give the horizon edges. Seen faces are marked dead (restored by the
 // caller on failure) and listed in seen_.
 bool ExpansionSurface::collectHorizon(int from, const Vec3& w) {
-  horizonSize_ = 0;
-  numSeen_ = 0;
-  int numPending = 0;
+  // Counters in locals, stored once at the end: the members could alias the arrays written in
+  // the loop, which would keep them in memory on its dependency chain.
+  int numSeen = 0, numHorizon = 0, numPending = 0;
+  bool fits = true;
   faces_[from].alive = false;
-  seen_[numSeen_++] = from;
+  seen_[numSeen++] = from;
   for (int e = 2; e >= 0; --e) pending_[numPending++] = faces_[from].adj[e];
   while (numPending > 0) {
     const int code = pending_[--numPending];
     const int g = code >> 2, e = code & 3;
     Face& face = faces_[g];
     if (!face.alive) continue;
+    const int next = e == 2 ? 0 : e + 1, previous = e == 0 ? 2 : e - 1;
     if (face.n.dot(w) > face.d) {
       face.alive = false;
-      seen_[numSeen_++] = g;
-      pending_[numPending++] = face.adj[(e + 2) % 3];
-      pending_[numPending++] = face.adj[(e + 1) % 3];
+      seen_[numSeen++] = g;
+      pending_[numPending++] = face.adj[previous];
+      pending_[numPending++] = face.adj[next];
     } else {
-      if (horizonSize_ == kMaxHorizon) return false;
-      horizon_[horizonSize_++] = {g, e, face.v[e], face.v[e == 2 ? 0 : e + 1]};
+      if (numHorizon == kMaxHorizon) {
+        fits = false;
+        break;
+      }
+      horizon_[numHorizon++] = {g, e, face.v[e], face.v[next]};
     }
   }
-  return horizonSize_ >= 3;
+  numSeen_ = numSeen;
+  horizonSize_ = numHorizon;
+  return fits && numHorizon >= 3;
 }
 
 // The search walks the seen region's boundary in order, so edge i + 1 usually ends where edge i
