@@ -32,7 +32,7 @@ void ExpansionSurface::link(Face* faces, int f, int e, int g, int h) {
 // it stands for, far inside the certification tolerance.
 bool ExpansionSurface::setPlanes(Face* faces, int count) const {
   constexpr int kChunk = 32;
-  double lengths[kChunk];
+  double scale[kChunk];  // squared normal lengths, then (in place) the lengths' reciprocals
   Vec3 sums[kChunk];
   for (int first = 0; first < count; first += kChunk) {
     const int m = std::min(kChunk, count - first);
@@ -43,18 +43,18 @@ bool ExpansionSurface::setPlanes(Face* faces, int count) const {
       const Vec3& p2 = vertices_[chunk[i].v[2]].p;
       chunk[i].n = (p1 - p0).cross(p2 - p0);
       sums[i] = p0 + p1 + p2;
-      lengths[i] = chunk[i].n.squaredNorm();
+      scale[i] = chunk[i].n.squaredNorm();
     }
     // A zero or non-finite square is a zero or non-finite length: a degenerate face.
     bool ok = true;
-    for (int i = 0; i < m; ++i) ok &= lengths[i] > 0.0 && lengths[i] <= std::numeric_limits<double>::max();
+    for (int i = 0; i < m; ++i) ok &= scale[i] > 0.0 && scale[i] <= std::numeric_limits<double>::max();
     if (!ok) return false;
-    Eigen::Map<Eigen::ArrayXd> inverse(lengths, m);
-    inverse = inverse.sqrt().inverse();
+    Eigen::Map<Eigen::ArrayXd> inverseLengths(scale, m);
+    inverseLengths = inverseLengths.sqrt().inverse();
     for (int i = 0; i < m; ++i) {
       // The mean of the three offsets: the plane through the corners' centroid.
-      chunk[i].d = chunk[i].n.dot(sums[i]) * (lengths[i] * (1.0 / 3.0));
-      chunk[i].n *= lengths[i];
+      chunk[i].d = chunk[i].n.dot(sums[i]) * (scale[i] * (1.0 / 3.0));
+      chunk[i].n *= scale[i];
     }
   }
   return true;
@@ -208,9 +208,9 @@ bool ExpansionSurface::collectHorizon(int from, const Vec3& w) {
 }
 
 // The search walks the seen region's boundary in order, so edge i + 1 usually ends where edge i
-// starts (the edges listed clockwise seen from outside). When every consecutive pair, the last and
-// the first included, chains so and no vertex starts two edges, the horizon is one cycle in that
-// order: checked in one pass, with a flag per vertex (cleared again before returning).
+// starts. When every consecutive pair, the last and the first included, chains so and no vertex
+// starts two edges, the horizon is one cycle in that order: checked in one pass, with a flag per
+// vertex (cleared again before returning). Otherwise horizonIsCycle() decides.
 bool ExpansionSurface::horizonChains() {
   const HorizonEdge* h = horizon_;
   const int n = horizonSize_;
