@@ -112,15 +112,7 @@ class MovedSurface {
 
   /// Face f's plane through its moved corners (unit normal, offset); false when degenerate.
   bool plane(int f, Vec3& n, double& d) {
-    const Vec3& p0 = corner(f, 0);
-    const Vec3& p1 = corner(f, 1);
-    const Vec3& p2 = corner(f, 2);
-    const Vec3 c = (p1 - p0).cross(p2 - p0);
-    const double len = c.norm();
-    if (!(len > 0)) return false;
-    n = c / len;
-    d = n.dot(p0 + p1 + p2) / 3.0;
-    return true;
+    return ExpansionSurface::planeThrough(corner(f, 0), corner(f, 1), corner(f, 2), n, d);
   }
 
  private:

@@ -25,11 +25,22 @@ void ExpansionSurface::link(Face* faces, int f, int e, int g, int h) {
   faces[g].adj[h] = 4 * f + e;
 }
 
-// In passes over the faces, a chunk at a time: the normals (cross products) and the squares of
-// their lengths, then the square roots and reciprocals two at a time (vector instructions), then
-// the products. Long-latency operations of different faces overlap instead of each face waiting
-// for its own. One division per face, then products: each result within two ulps of the quotient
-// it stands for, far inside the certification tolerance.
+bool ExpansionSurface::planeThrough(const Vec3& p0, const Vec3& p1, const Vec3& p2, Vec3& n, double& d) {
+  n = (p1 - p0).cross(p2 - p0);
+  const double square = n.squaredNorm();
+  if (!(square > 0.0 && square <= std::numeric_limits<double>::max())) return false;
+  const double inverse = 1.0 / std::sqrt(square);
+  d = n.dot(p0 + p1 + p2) * (inverse * (1.0 / 3.0));
+  n *= inverse;
+  return true;
+}
+
+// planeThrough() for many faces, the same operations in passes over them, a chunk at a time: the
+// normals (cross products) and the squares of their lengths, then the square roots and
+// reciprocals two at a time (vector instructions, rounded as the scalar ones), then the products.
+// Long-latency operations of different faces overlap instead of each face waiting for its own.
+// One division per face, then products: each result within two ulps of the quotient it stands
+// for, far inside the certification tolerance.
 bool ExpansionSurface::setPlanes(Face* faces, int count) const {
   constexpr int kChunk = 32;
   double scale[kChunk];  // squared normal lengths, then (in place) the lengths' reciprocals

@@ -323,6 +323,64 @@ BOOST_AUTO_TEST_CASE(warm_start_goes_cold_when_it_cannot_certify) {
   BOOST_TEST(std::abs(foreign.distance - foreignCold.distance) <= 1e-12);
 }
 
+// A query at the pose of the previous one, warm from its cache, gives the cold answer to the bit:
+// both name the same facet from the same face planes (ExpansionSurface::planeThrough), so ties
+// between support vertices on that facet break alike. Prisms and boxes tie on every cap and side.
+BOOST_AUTO_TEST_CASE(warm_at_the_same_pose_equals_cold_to_the_bit) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  int overlapping = 0, fromCache = 0;
+  for (int i = 0; i < 200; ++i) {
+    const ConvexPolytope A = ConvexPolytope::fromPoints(prismPoints(0.2 + 0.8 * U(rng), 0.5 + U(rng), 6 + i % 20));
+    const ConvexPolytope B =
+        ConvexPolytope::fromPoints(i % 2 == 0 ? boxCorners(Vector3d(0.2 + U(rng), 0.2 + U(rng), 0.2 + U(rng)))
+                                              : prismPoints(0.2 + 0.5 * U(rng), 0.3 + U(rng), 5 + i % 13));
+    const Isometry3d X_WA = makePose(randomRotation(rng), Vector3d::Zero());
+    const Isometry3d X_WB = makePose(randomRotation(rng), 0.6 * U(rng) * randomUnit(rng));
+    PairCache cache;
+    const SignedDistanceResult cold = signedDistance(A, X_WA, B, X_WB, &cache);
+    if (!(cold.distance < 0)) continue;
+    ++overlapping;
+    const SignedDistanceResult warm = signedDistance(A, X_WA, B, X_WB, &cache);
+    BOOST_TEST(warm.distance == cold.distance, "pair " << i);
+    BOOST_TEST((warm.normal == cold.normal), "pair " << i);
+    fromCache += warm.expansions == 0;
+  }
+  BOOST_TEST(overlapping > 120);
+  BOOST_TEST(fromCache > overlapping * 9 / 10);
+}
+
+// Every face of an expanded surface has the plane planeThrough() gives for its corners, to the bit.
+BOOST_AUTO_TEST_CASE(surface_planes_are_plane_through_their_corners) {
+  std::mt19937 rng(32);
+  ExpansionSurface surface;
+  int faces = 0;
+  for (int i = 0; i < 20; ++i) {
+    const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
+    const PairFrame frame = PairFrame::make(p.A, p.X_WA, p.B, p.X_WB);
+    const GjkResult g = gjkDistance(p.A, p.B, frame);
+    if (g.status != GjkStatus::Overlapping) continue;
+    const CertifiedResult c = certifiedPenetration(p.A, p.B, frame, g, surface, CertifiedOptions{});
+    BOOST_TEST_REQUIRE(c.expansions > 0);
+    for (int f = 0; f < surface.numFaceSlots(); ++f) {
+      const ExpansionSurface::Face& face = surface.face(f);
+      if (!face.alive) continue;
+      Vector3d n;
+      double d;
+      BOOST_TEST_REQUIRE(ExpansionSurface::planeThrough(surface.vertex(face.v[0]).p, surface.vertex(face.v[1]).p,
+                                                        surface.vertex(face.v[2]).p, n, d));
+      BOOST_TEST((n == face.n), "pair " << i << " face " << f);
+      BOOST_TEST(d == face.d, "pair " << i << " face " << f);
+      ++faces;
+    }
+  }
+  BOOST_TEST(faces > 400);
+  // Collinear corners have no plane.
+  Vector3d n;
+  double d;
+  BOOST_TEST(!ExpansionSurface::planeThrough(Vector3d(0, 0, 0), Vector3d(1, 1, 1), Vector3d(2, 2, 2), n, d));
+}
+
 // When the cached surface's supports do not settle a step (the answer moved to a facet the
 // surface has no face on), expandWarm expands the moved surface: certified, its bracket around the
 // exact depth, fewer expansions than a cold query, and the result is the new reference (the same

@@ -46,6 +46,14 @@ class ExpansionSurface {
     bool alive;
   };
 
+  /// The plane through p0, p1, p2 (counter-clockwise seen from outside): unit normal n and
+  /// offset d, the mean of the corners' offsets. False when the corners are collinear or the
+  /// normal's length is not finite. The surface's own faces get the same values, to the bit
+  /// (computed many at a time); the warm start's moved faces use this, so that cold and warm
+  /// queries at one pose break ties between support vertices alike and agree to the bit.
+  static bool planeThrough(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
+                           Eigen::Vector3d& n, double& d);
+
   /// Starts from a tetrahedron of four vertices of M (any order, non-zero volume). Returns false
   /// when the volume is zero (the caller picks other points).
   bool startTetrahedron(const Vertex* corners);
