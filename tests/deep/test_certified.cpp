@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -75,6 +76,21 @@ Pair randomPair(std::mt19937& rng, int nA, int nB, const Vector3d& base) {
          makePose(randomRotation(rng), base),
          makePose(randomRotation(rng), base + 0.8 * U(rng) * randomUnit(rng))};
   return p;
+}
+
+/// A random overlapping pair as the certified expansion starts from it: the pair, its frame and
+/// GJK's enclosing answer; nothing when GJK finds the pair apart.
+struct StartedPair {
+  Pair p;
+  PairFrame frame;
+  GjkResult gjk;
+};
+std::optional<StartedPair> startedPair(std::mt19937& rng, int nA, int nB) {
+  Pair p = randomPair(rng, nA, nB, Vector3d::Zero());
+  const PairFrame frame = PairFrame::make(p.A, p.X_WA, p.B, p.X_WB);
+  const GjkResult gjk = gjkDistance(p.A, p.B, frame);
+  if (gjk.status != GjkStatus::Overlapping) return std::nullopt;
+  return StartedPair{std::move(p), frame, gjk};
 }
 
 /// B's poses along a smooth random motion of `steps` steps from near the pair's pose: a turn of
@@ -165,10 +181,11 @@ BOOST_AUTO_TEST_CASE(bracket_contains_the_exact_depth_at_every_cap) {
   ExpansionSurface surface;
   int checked = 0;
   for (int i = 0; i < 40; ++i) {
-    const Pair p = randomPair(rng, 100, 60, Vector3d::Zero());
-    const PairFrame frame = PairFrame::make(p.A, p.X_WA, p.B, p.X_WB);
-    const GjkResult g = gjkDistance(p.A, p.B, frame);
-    if (g.status != GjkStatus::Overlapping) continue;
+    const std::optional<StartedPair> started = startedPair(rng, 100, 60);
+    if (!started) continue;
+    const Pair& p = started->p;
+    const PairFrame& frame = started->frame;
+    const GjkResult& g = started->gjk;
     const double depth = -exactSignedDistance(p.A, p.X_WA, p.B, p.X_WB).distance;
     const double slack = kBracketSlackRelative * certifyScale(p.A, p.X_WA, p.B, p.X_WB);
     for (int cap : {0, 1, 2, 5, 10, 20, 128}) {
@@ -356,11 +373,10 @@ BOOST_AUTO_TEST_CASE(surface_planes_are_plane_through_their_corners) {
   ExpansionSurface surface;
   int faces = 0;
   for (int i = 0; i < 20; ++i) {
-    const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
-    const PairFrame frame = PairFrame::make(p.A, p.X_WA, p.B, p.X_WB);
-    const GjkResult g = gjkDistance(p.A, p.B, frame);
-    if (g.status != GjkStatus::Overlapping) continue;
-    const CertifiedResult c = certifiedPenetration(p.A, p.B, frame, g, surface, CertifiedOptions{});
+    const std::optional<StartedPair> started = startedPair(rng, 100, 100);
+    if (!started) continue;
+    const Pair& p = started->p;
+    const CertifiedResult c = certifiedPenetration(p.A, p.B, started->frame, started->gjk, surface, CertifiedOptions{});
     BOOST_TEST_REQUIRE(c.expansions > 0);
     for (int f = 0; f < surface.numFaceSlots(); ++f) {
       const ExpansionSurface::Face& face = surface.face(f);
