@@ -35,38 +35,10 @@ bool ExpansionSurface::planeThrough(const Vec3& p0, const Vec3& p1, const Vec3& 
   return true;
 }
 
-// planeThrough() for many faces, the same operations in passes over them, a chunk at a time: the
-// normals (cross products) and the squares of their lengths, then the square roots and
-// reciprocals two at a time (vector instructions, rounded as the scalar ones), then the products.
-// Long-latency operations of different faces overlap instead of each face waiting for its own.
-// One division per face, then products: each result within two ulps of the quotient it stands
-// for, far inside the certification tolerance.
 bool ExpansionSurface::setPlanes(Face* faces, int count) const {
-  constexpr int kChunk = 32;
-  double scale[kChunk];  // squared normal lengths, then (in place) the lengths' reciprocals
-  Vec3 sums[kChunk];
-  for (int first = 0; first < count; first += kChunk) {
-    const int m = std::min(kChunk, count - first);
-    Face* chunk = faces + first;
-    for (int i = 0; i < m; ++i) {
-      const Vec3& p0 = vertices_[chunk[i].v[0]].p;
-      const Vec3& p1 = vertices_[chunk[i].v[1]].p;
-      const Vec3& p2 = vertices_[chunk[i].v[2]].p;
-      chunk[i].n = (p1 - p0).cross(p2 - p0);
-      sums[i] = p0 + p1 + p2;
-      scale[i] = chunk[i].n.squaredNorm();
-    }
-    // A zero or non-finite square is a zero or non-finite length: a degenerate face.
-    bool ok = true;
-    for (int i = 0; i < m; ++i) ok &= scale[i] > 0.0 && scale[i] <= std::numeric_limits<double>::max();
-    if (!ok) return false;
-    Eigen::Map<Eigen::ArrayXd> inverseLengths(scale, m);
-    inverseLengths = inverseLengths.sqrt().inverse();
-    for (int i = 0; i < m; ++i) {
-      // The mean of the three offsets: the plane through the corners' centroid.
-      chunk[i].d = chunk[i].n.dot(sums[i]) * (scale[i] * (1.0 / 3.0));
-      chunk[i].n *= scale[i];
-    }
+  for (int i = 0; i < count; ++i) {
+    Face& f = faces[i];
+    if (!planeThrough(vertices_[f.v[0]].p, vertices_[f.v[1]].p, vertices_[f.v[2]].p, f.n, f.d)) return false;
   }
   return true;
 }

@@ -48,9 +48,9 @@ class ExpansionSurface {
 
   /// The plane through p0, p1, p2 (counter-clockwise seen from outside): unit normal n and
   /// offset d, the mean of the corners' offsets. False when the corners are collinear or the
-  /// normal's length is not finite. The surface's own faces get the same values, to the bit
-  /// (computed many at a time); the warm start's moved faces use this, so that cold and warm
-  /// queries at one pose break ties between support vertices alike and agree to the bit.
+  /// normal's length is not finite. One reciprocal of the normal's length, then products. The
+  /// surface's faces and the warm start's moved faces both get their planes here, so that cold
+  /// and warm queries at one pose break ties between support vertices alike and agree to the bit.
   static bool planeThrough(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
                            Eigen::Vector3d& n, double& d);
 
@@ -105,7 +105,8 @@ class ExpansionSurface {
 
   int newFace(int v0, int v1, int v2);
   void freeFace(int f);
-  /// Sets n and d of faces[0..count) from their corners; false when one is degenerate.
+  /// Sets n and d of faces[0..count) from their corners (planeThrough); false when one is
+  /// degenerate.
   bool setPlanes(Face* faces, int count) const;
   void push(int f);
   void rebuildQueue();
