@@ -83,13 +83,6 @@ struct DistanceSearch {
     c.bodyPairs.push_back(BodyPairBest{linkA, setKind, body, key, r});
   }
 
-  const PieceSet& setOf(PairKey::Kind kind) const {
-    return kind == PairKey::Kind::Scene ? *s.scenePieces : *s.obstaclePieces;
-  }
-  std::vector<deep::PairCache>& cachesOf(PairKey::Kind kind) const {
-    return kind == PairKey::Kind::Scene ? c.sceneCaches : c.obstacleCaches;
-  }
-
   /// Measures the pair (both pieces posed).
   /// Signed distance of a pair. When the shapes overlap and the full DEEP (several walks) is
   /// asked for, one walk runs first: its depth is a valid separating translation, an upper bound
@@ -125,12 +118,12 @@ struct DistanceSearch {
       record(k, a.link, 0, b.link, r);
       return;
     }
-    const PieceSet& set = setOf(k.kind);
+    const PieceSet& set = worldPieces(s, k.kind);
     const WorldPiece& w = set.pieces[k.other];
     notify(c, a.link, bodyOfWorldPiece(set, w));
     const deep::SignedDistanceResult r =
         pairDistance(shapeOf(a), pieceTransform(c, robot, k.robotPiece), shapeOf(w), w.X_WP,
-                     cachesOf(k.kind)[pairIndex(set, k.robotPiece, k.other)]);
+                     worldCaches(c, k.kind)[pairIndex(set, k.robotPiece, k.other)]);
     record(k, a.link, k.kind == PairKey::Kind::Scene ? 1 : 2, w.body, r);
   }
 
@@ -151,7 +144,7 @@ struct DistanceSearch {
       rB = b.radius;
       centerB = c.pieceCenter[k.other];
     } else {
-      const WorldPiece& w = setOf(k.kind).pieces[k.other];
+      const WorldPiece& w = worldPieces(s, k.kind).pieces[k.other];
       coreB = w.core.get();
       X_WB = &w.X_WP;
       rB = w.radius;
@@ -168,7 +161,7 @@ struct DistanceSearch {
   }
 
   void gatherWorld(PairKey::Kind kind, int g) {
-    const PieceSet& set = setOf(kind);
+    const PieceSet& set = worldPieces(s, kind);
     if (set.pieces.empty()) return;
     const RobotData& robot = *s.robot;
     const LinkGeometry& lg = robot.links[g];

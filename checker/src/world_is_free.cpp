@@ -61,9 +61,9 @@ bool overlapPair(Impl& c, const deep::ConvexShape& A, const Eigen::Isometry3d& X
   return deep::overlapsUnchecked(A, X_WA, B, X_WB, cache);
 }
 
-/// Narrow phase of robot piece i against world piece wp of `set` (after the bounding tests).
-bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set,
-                  std::vector<deep::PairCache>& caches, PairKey::Kind kind, int i, int wp) {
+/// Narrow phase of robot piece i against world piece wp of `set`, of pair kind `kind` (after the
+/// bounding tests).
+bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set, PairKey::Kind kind, int i, int wp) {
   const RobotPiece& p = robot.pieces[i];
   const WorldPiece& w = set.pieces[wp];
   ++c.stats.narrowPhase;
@@ -73,8 +73,8 @@ bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set,
     c.lastHit = PairKey{kind, i, wp, -1};
     return true;
   }
-  const bool hit =
-      overlapPair(c, shapeOf(p), pieceTransform(c, robot, i), shapeOf(w), w.X_WP, caches[pairIndex(set, i, wp)]);
+  const bool hit = overlapPair(c, shapeOf(p), pieceTransform(c, robot, i), shapeOf(w), w.X_WP,
+                               worldCaches(c, kind)[pairIndex(set, i, wp)]);
   if (hit) c.lastHit = PairKey{kind, i, wp, -1};
   return hit;
 }
@@ -91,11 +91,12 @@ bool overlapSelf(Impl& c, const RobotData& robot, int i, int j, int cache) {
   return hit;
 }
 
-/// The robot link `g` against the world pieces of `set` near it: true at the first overlap.
-bool linkHitsSet(Impl& c, const Snapshot& s, const PieceSet& set,
-                 std::vector<deep::PairCache>& caches, std::vector<std::uint8_t>& axes, PairKey::Kind kind,
-                 int g) {
+/// The robot link `g` against the world pieces of pair kind `kind` near it: true at the first
+/// overlap.
+bool linkHitsSet(Impl& c, const Snapshot& s, PairKey::Kind kind, int g) {
+  const PieceSet& set = worldPieces(s, kind);
   if (set.pieces.empty()) return false;
+  std::vector<std::uint8_t>& axes = worldAxes(c, kind);
   const RobotData& robot = *s.robot;
   const LinkGeometry& lg = robot.links[g];
   const Eigen::Vector3d& center = c.linkCenter[g];
@@ -107,7 +108,7 @@ bool linkHitsSet(Impl& c, const Snapshot& s, const PieceSet& set,
       posePiece(c, robot, i);
       ++c.stats.pieceTests;
       if (worldBoundsMeet(c, robot, i, w, axes[pairIndex(set, i, wp)]) &&
-          overlapWorld(c, robot, set, caches, kind, i, wp)) {
+          overlapWorld(c, robot, set, kind, i, wp)) {
         return true;
       }
     }
@@ -140,11 +141,10 @@ bool lastHitStillHits(Impl& c, const Snapshot& s) {
     return selfBoundsMeet(c, robot, k.robotPiece, k.other, c.selfAxes[k.cache]) &&
            overlapSelf(c, robot, k.robotPiece, k.other, k.cache);
   }
-  const bool scene = k.kind == PairKey::Kind::Scene;
-  const PieceSet& set = scene ? *s.scenePieces : *s.obstaclePieces;
-  std::uint8_t& axis = (scene ? c.sceneAxes : c.obstacleAxes)[pairIndex(set, k.robotPiece, k.other)];
+  const PieceSet& set = worldPieces(s, k.kind);
+  std::uint8_t& axis = worldAxes(c, k.kind)[pairIndex(set, k.robotPiece, k.other)];
   return worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other], axis) &&
-         overlapWorld(c, robot, set, scene ? c.sceneCaches : c.obstacleCaches, k.kind, k.robotPiece, k.other);
+         overlapWorld(c, robot, set, k.kind, k.robotPiece, k.other);
 }
 
 }  // namespace
@@ -161,10 +161,8 @@ bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context)
   // Links from the tip of the tree to the root: the distal links sweep the most space and meet
   // the world most often, so a colliding configuration is found sooner (the answer is the same).
   for (int g = static_cast<int>(robot.links.size()) - 1; g >= 0; --g) {
-    if (linkHitsSet(c, s, *s.scenePieces, c.sceneCaches, c.sceneAxes, PairKey::Kind::Scene, g)) return false;
-    if (linkHitsSet(c, s, *s.obstaclePieces, c.obstacleCaches, c.obstacleAxes, PairKey::Kind::Obstacle, g)) {
-      return false;
-    }
+    if (linkHitsSet(c, s, PairKey::Kind::Scene, g)) return false;
+    if (linkHitsSet(c, s, PairKey::Kind::Obstacle, g)) return false;
   }
   for (const SelfPair& sp : s.selfPairs) {
     if (selfPairHits(c, robot, sp)) return false;

@@ -165,6 +165,18 @@ inline deep::PairCache* warm(const Impl& c, deep::PairCache& cache, FarStep far)
   return &cache;
 }
 
+/// The world pieces of a robot-world pair kind (Scene or Obstacle), and the context's per-pair
+/// vectors of that kind, indexed by pairIndex().
+inline const PieceSet& worldPieces(const Snapshot& s, PairKey::Kind kind) {
+  return kind == PairKey::Kind::Scene ? *s.scenePieces : *s.obstaclePieces;
+}
+inline std::vector<deep::PairCache>& worldCaches(Impl& c, PairKey::Kind kind) {
+  return kind == PairKey::Kind::Scene ? c.sceneCaches : c.obstacleCaches;
+}
+inline std::vector<std::uint8_t>& worldAxes(Impl& c, PairKey::Kind kind) {
+  return kind == PairKey::Kind::Scene ? c.sceneAxes : c.obstacleAxes;
+}
+
 /// Index of the pair (robot piece i, world piece wp of `set`) in the per-pair vectors of that set
 /// (sceneCaches, sceneAxes; obstacleCaches, obstacleAxes).
 inline std::size_t pairIndex(const PieceSet& set, int i, int wp) {
