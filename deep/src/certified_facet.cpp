@@ -138,6 +138,13 @@ NamedFacet facetOfFace(const ConvexPolytope& A, const ConvexPolytope& B, const P
   return facet;
 }
 
+void facetSupports(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F, const NamedFacet& facet,
+                   int& a, int& b) {
+  const bool vf = facet.type == DeepResult::FacetType::VF, fv = facet.type == DeepResult::FacetType::FV;
+  a = fv ? A.faceSupport(facet.featureA) : A.support(-facet.u, a);
+  b = vf ? B.faceSupport(facet.featureB) : B.support(F.toB(facet.u), b);
+}
+
 bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
                     const CertifiedResult& c, DeepResult& out) {
   if (c.status != CertifiedStatus::Certified) return false;
@@ -151,9 +158,8 @@ bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   // upper bound already is that support (a warm query supports in u). The climb starts from the
   // bracket's support pair, as the pair's next warm query does: on a facet whose vertices tie
   // along u to round-off, cold and warm then reach the same vertex and the same depth.
-  const bool known = u == c.direction;
-  const int sa = known ? c.supportA : A.support(-u, c.supportA);
-  const int sb = known ? c.supportB : B.support(F.toB(u), c.supportB);
+  int sa = c.supportA, sb = c.supportB;
+  if (u != c.direction) facetSupports(A, B, F, facet, sa, sb);
   const double h = u.dot(F.vertexB(B, sb) - A.localVertex(sa));
   const double onFacet = u.dot(F.vertexB(B, c.faceB[0]) - A.localVertex(c.faceA[0]));
   const double L = std::max(A.lengthScale(), B.lengthScale()) + F.t.norm();

@@ -224,9 +224,14 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
   int named = -1;  // the face whose normal gave the upper bound
   auto supportIn = [&](int f, const Vec3& n) {
     const NamedFacet facet = facetOf(A, B, frame, w, f, n);
-    const Vec3& u = facet.state == NamedFacet::State::Named ? facet.u : n;
-    w.hintA = A.support(-u, w.hintA);
-    w.hintB = B.support(frame.toB(u), w.hintB);
+    const bool isNamed = facet.state == NamedFacet::State::Named;
+    const Vec3& u = isNamed ? facet.u : n;
+    if (isNamed) {
+      facetSupports(A, B, frame, facet, w.hintA, w.hintB);
+    } else {
+      w.hintA = A.support(-u, w.hintA);
+      w.hintB = B.support(frame.toB(u), w.hintB);
+    }
     const double h = u.dot(frame.vertexB(B, w.hintB) - A.localVertex(w.hintA));
     if (h < r.upper) {
       r.upper = h;

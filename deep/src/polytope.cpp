@@ -87,6 +87,7 @@ void ConvexPolytope::finish() {
     faceOffsets_[f] = nrm.dot(center_) + mean;
   }
   buildDirectionIndex();
+  buildFaceSupports();
 }
 
 }  // namespace deepcheck::deep

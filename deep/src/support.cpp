@@ -97,6 +97,11 @@ void ConvexPolytope::buildDirectionIndex() {
   directionIndex_ = std::move(index);
 }
 
+void ConvexPolytope::buildFaceSupports() {
+  faceSupport_.resize(faceNormals_.size());
+  for (int f = 0; f < numFaces(); ++f) faceSupport_[f] = support(faceNormals_[f], faceVertices(f)[0]);
+}
+
 int ConvexPolytope::supportStart(const Vector3d& dir) const {
   if (directionIndex_.empty()) return -1;
   const int cell = cubeCell(dir, kDirectionGrid);

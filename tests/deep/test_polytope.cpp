@@ -121,6 +121,16 @@ void checkHull(const ConvexPolytope& poly, const std::vector<Vector3d>& input, s
     }
     BOOST_TEST(badClimb == 0);
     BOOST_TEST(badHull == 0);
+
+    // Each face's stored support is as high along the face's normal as brute force finds.
+    int badFace = 0;
+    for (int f = 0; f < poly.numFaces(); ++f) {
+      const Vector3d& n = poly.faceNormal(f);
+      const double hs = n.dot(poly.localVertex(poly.faceSupport(f)));
+      const double hb = n.dot(poly.localVertex(poly.supportBruteForce(n)));
+      if (hs < hb - tol) ++badFace;
+    }
+    BOOST_TEST(badFace == 0);
   }
 }
 

@@ -174,4 +174,11 @@ bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
 NamedFacet facetOfFace(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const int* faceA,
                        const int* faceB, const Eigen::Vector3d& normal);
 
+/// The support pair of M in a named facet's normal u, each index in/out (in: the climb's hint):
+/// the side whose face the facet is (B's for VF, A's for FV) from ConvexPolytope::faceSupport,
+/// the other side (both for EE) by support() from its hint. certifiedFacet() and the warm query
+/// both query u here, so that they reach the same vertices.
+void facetSupports(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const NamedFacet& facet,
+                   int& a, int& b);
+
 }  // namespace deepcheck::deep

@@ -110,6 +110,10 @@ class ConvexPolytope {
   int supportStart(const Eigen::Vector3d& dir) const;
   /// Brute-force support, for tests.
   int supportBruteForce(const Eigen::Vector3d& dir) const;
+  /// A vertex maximizing faceNormal(f).x: support() in face f's own normal, computed once when
+  /// the hull is built. That normal ties a whole face's vertices, which support() would search
+  /// as a plateau on every call; penetration depth queries support in it once per answer.
+  int faceSupport(int f) const { return faceSupport_[f]; }
 
   /// Checks the internal invariants (Euler characteristic, ring order, convexity within
   /// tolerance). Returns an empty string when they hold, else a description. For tests.
@@ -144,6 +148,8 @@ class ConvexPolytope {
   static constexpr int kDirectionGrid = 8;
   std::vector<int> directionIndex_;
   void buildDirectionIndex();
+  std::vector<int> faceSupport_;  // faceSupport(f), one per face
+  void buildFaceSupports();
 };
 
 }  // namespace deepcheck::deep
