@@ -155,9 +155,10 @@ bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   setFeatures(facet, out);
   const Vec3& u = facet.u;
   // The offset: one support in u (a support value, hence a valid depth), unless the bracket's
-  // upper bound already is that support (a warm query supports in u). The climb starts from the
-  // bracket's support pair, as the pair's next warm query does: on a facet whose vertices tie
-  // along u to round-off, cold and warm then reach the same vertex and the same depth.
+  // upper bound already is that support (a warm query supports in u). facetSupports reads the
+  // face side from the hull's table and climbs the other side from the bracket's support pair, as
+  // the pair's next warm query does: on a facet whose vertices tie along u to round-off, cold and
+  // warm then reach the same vertices and the same depth.
   int sa = c.supportA, sb = c.supportB;
   if (u != c.direction) facetSupports(A, B, F, facet, sa, sb);
   const double h = u.dot(F.vertexB(B, sb) - A.localVertex(sa));

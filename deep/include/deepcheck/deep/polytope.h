@@ -121,7 +121,9 @@ class ConvexPolytope {
 
  private:
   ConvexPolytope() = default;
-  void finish();  // computes center, local vertices, radius, axes, face offsets
+  // Computes center, local vertices, radius, axes, face offsets, the direction index and the
+  // face supports.
+  void finish();
   // validate(); the O(V F) test of every vertex against every face plane only when asked.
   std::string checkInvariants(bool globalConvexity) const;
 
