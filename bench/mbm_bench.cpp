@@ -13,6 +13,10 @@
 //              OMPL's DiscreteMotionValidator at the default resolution, the push-out sampler;
 //   fcl        FclStateValidityChecker (FCL on the original meshes), OMPL's DiscreteMotionValidator
 //              and OMPL's default valid state sampler.
+// OMPL's random numbers are reseeded before a problem's setups are made, before each planner is
+// made, before each run and before its simplification, from --seed, the scene, the problem, the
+// planner and the run only (runSeed): a run plans with the same numbers whichever scenes, planners
+// and checkers run beside it, and both checkers' runs of a problem start from the same numbers.
 // Planners (makePlanner, OMPL defaults): RRTConnect, BiEST, PRM. Every run ends at its first
 // solution: the problem's objective is path length with an infinite cost threshold, which PRM (an
 // optimizing planner in OMPL 1.5, otherwise growing its roadmap to the time limit) takes as met by
@@ -55,10 +59,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -90,7 +96,7 @@ struct Options {
                "                 [--checkers a,b] [--out DIR]\n"
                "  --problems N   generated problems per scene (default 100)\n"
                "  --time S       time limit per planning run, seconds (default 10)\n"
-               "  --seed S       seed of problem generation and of OMPL (default 1)\n"
+               "  --seed S       seed of problem generation and of every run's random numbers (default 1)\n"
                "  --scenes       bookshelf_small, bookshelf_tall, bookshelf_thin, cage, box, table_pick, kitchen,\n"
                "                 table_bars (default all)\n"
                "  --planners     names deepcheck::planners::makePlanner knows (default RRTConnect,BiEST,PRM)\n"
@@ -254,12 +260,52 @@ MbmRecord measureRun(og::SimpleSetup& ss, const ProblemSetups& setups, const std
   return r;
 }
 
+/// What the random numbers are drawn for: a problem's setups (their path simplifiers keep the
+/// generator they are made with), the planner's own generator (made with the planner), the
+/// planning (samplers made in solve()) and the simplification and certification after it.
+enum class RunStage : std::uint64_t { Setups = 0, MakePlanner = 1, Solve = 2, Simplify = 3 };
+
+/// The seed of OMPL's random numbers at one stage of one run: a function of --seed, the scene, the
+/// problem, the planner, the run and the stage only. A run then draws the same numbers whichever
+/// scenes, planners and checkers run beside it, and both checkers' runs of a problem draw alike:
+/// while their answers agree they grow the same trees, and two versions of the checker pair run
+/// for run.
+std::uint_fast32_t runSeed(unsigned seed, const std::string& scene, int problem, const std::string& planner, int run,
+                           RunStage stage) {
+  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the names
+  for (const char ch : scene + '/' + planner) h = (h ^ static_cast<unsigned char>(ch)) * 1099511628211ULL;
+  for (const std::uint64_t v : {std::uint64_t{seed}, static_cast<std::uint64_t>(problem), static_cast<std::uint64_t>(run),
+                                static_cast<std::uint64_t>(stage)}) {
+    h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+  }
+  h ^= h >> 31;
+  h *= 0xbf58476d1ce4e5b9ULL;
+  h ^= h >> 29;
+  return static_cast<std::uint_fast32_t>(h % 4294967295ULL) + 1;  // OMPL takes seed 0 as "pick one"
+}
+
+/// Reseeds OMPL's generator of seeds: every ompl::RNG made from now on draws from `seed`. OMPL
+/// reports an error when numbers were drawn already (reseeding is the intent here), so its log is
+/// silenced for the call.
+void reseedOmpl(std::uint_fast32_t seed) {
+  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  ompl::RNG::setSeed(seed);
+  ompl::msg::setLogLevel(level);
+}
+
 /// Runs every planner on one checker's setup of problem `k`; appends records and the experiment.
 void benchmarkChecker(SceneRun& ctx, int k, int count, const ProblemSetups& setups, const std::string& checker,
                       Bench& carrier) {
   og::SimpleSetup& ss = checker == "deepcheck" ? *setups.ours : *setups.fcl;
   auto bench = std::make_unique<SolveTimedBenchmark>(ss, "mbm_" + ctx.scene.name);
-  for (const std::string& name : ctx.opt.planners) bench->addPlanner(dp::makePlanner(name, ss.getSpaceInformation()));
+  const auto seedOf = [&ctx, k](const std::string& planner, int run, RunStage stage) {
+    return runSeed(ctx.opt.seed, ctx.scene.name, k, planner, run, stage);
+  };
+  for (const std::string& name : ctx.opt.planners) {
+    reseedOmpl(seedOf(name, 0, RunStage::MakePlanner));
+    bench->addPlanner(dp::makePlanner(name, ss.getSpaceInformation()));
+  }
   bench->addExperimentParameter("problems", "INTEGER", std::to_string(ctx.opt.problems));
   bench->addExperimentParameter("problem_seed", "INTEGER", std::to_string(ctx.opt.seed));
   bench->addExperimentParameter("fine_resolution", "REAL", fmt(dp::tol::kFineResolution, "%.17g"));
@@ -275,9 +321,15 @@ void benchmarkChecker(SceneRun& ctx, int k, int count, const ProblemSetups& setu
   };
   SceneRun* c = &ctx;
   og::SimpleSetup* setup = &ss;
-  bench->setPreRunEvent([=](const ob::PlannerPtr&) { resetChecks(); });
+  // Runs of each planner so far (--runs R > 1 runs a planner R times on the problem).
+  auto runsOf = std::make_shared<std::map<std::string, int>>();
+  bench->setPreRunEvent([=](const ob::PlannerPtr& planner) {
+    resetChecks();
+    reseedOmpl(seedOf(planner->getName(), (*runsOf)[planner->getName()], RunStage::Solve));
+  });
   bench->setPostRunEvent([=, &setups](const ob::PlannerPtr& planner, ot::Benchmark::RunProperties& run) {
     const double n = checks();  // before simplification and certification
+    reseedOmpl(seedOf(planner->getName(), (*runsOf)[planner->getName()]++, RunStage::Simplify));
     const std::string reject = c->opt.out + "/fcl_rejected_" + c->scene.name + "_" + std::to_string(k) + "_" +
                                planner->getName() + "_" + checker;
     MbmRecord r = measureRun(*setup, setups, checker, run, n, reject);
@@ -351,6 +403,7 @@ std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std:
   SceneRun ctx{opt, scene, records};
   for (int k = 0; k < static_cast<int>(problems.size()); ++k) {
     placeScene(*world, problems[static_cast<std::size_t>(k)].scene);
+    reseedOmpl(runSeed(opt.seed, scene.name, k, "", 0, RunStage::Setups));
     const ProblemSetups setups = makeSetups(world, problems[static_cast<std::size_t>(k)]);
     for (const std::string& checker : opt.checkers) benchmarkChecker(ctx, k, opt.problems, setups, checker, carrier);
   }
