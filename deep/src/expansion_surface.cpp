@@ -106,11 +106,10 @@ bool ExpansionSurface::startTetrahedron(const Vertex* corners) {
   return true;
 }
 
-bool ExpansionSurface::load(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3],
-                            int numFaces) {
+bool ExpansionSurface::loadFaces(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3],
+                                 int numFaces) {
   numVertices_ = numSlots_ = numFree_ = queueSize_ = live_ = 0;
   queueLimit_ = std::numeric_limits<double>::infinity();
-  convex_ = false;
   if (numVertices > kMaxVertices || numFaces > kMaxFaces) return false;
   std::copy(vertices, vertices + numVertices, vertices_);
   numVertices_ = numVertices;
@@ -122,7 +121,40 @@ bool ExpansionSurface::load(const Vertex* vertices, int numVertices, const int (
     numVertices_ = numSlots_ = live_ = 0;
     return false;
   }
+  return true;
+}
+
+bool ExpansionSurface::load(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3],
+                            int numFaces) {
+  convex_ = false;
+  if (!loadFaces(vertices, numVertices, faces, adj, numFaces)) return false;
   rebuildQueue();
+  return true;
+}
+
+bool ExpansionSurface::startConvex(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3],
+                                   int numFaces, double eps) {
+  convex_ = true;
+  if (!loadFaces(vertices, numVertices, faces, adj, numFaces) || !enclosesConvexly(eps)) {
+    numVertices_ = numSlots_ = live_ = 0;
+    return false;
+  }
+  rebuildQueue();
+  return true;
+}
+
+// Every face plane beyond eps from the origin, every vertex on or inside every face plane. A
+// vertex of the face itself may be off its plane by round-off (the plane's offset is the mean of
+// its corners'), so the test compares with the face's own corners' largest offset.
+bool ExpansionSurface::enclosesConvexly(double eps) const {
+  for (int f = 0; f < numSlots_; ++f) {
+    const Face& face = faces_[f];
+    if (!(face.d > eps)) return false;
+    double top = face.d;
+    for (int k = 0; k < 3; ++k) top = std::max(top, face.n.dot(vertices_[face.v[k]].p));
+    for (int v = 0; v < numVertices_; ++v)
+      if (face.n.dot(vertices_[v].p) > top) return false;
+  }
   return true;
 }
 

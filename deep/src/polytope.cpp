@@ -79,15 +79,18 @@ void ConvexPolytope::finish() {
   axes_.col(2) = axes_.col(0).cross(axes_.col(1)).normalized();
 
   faceOffsets_.resize(faceNormals_.size());
+  insideRadius_ = kind_ == PolytopeKind::Polyhedron ? std::numeric_limits<double>::infinity() : 0.0;
   for (int f = 0; f < numFaces(); ++f) {
     const Vector3d& nrm = faceNormals_[f];
     double mean = 0.0;
     for (int v : faceVertices(f)) mean += nrm.dot(local_[v]);
     mean /= static_cast<double>(faceVertices(f).size());
     faceOffsets_[f] = nrm.dot(center_) + mean;
+    insideRadius_ = std::min(insideRadius_, std::max(mean, 0.0));
   }
   buildDirectionIndex();
   buildFaceSupports();
+  buildProbeSupports();
 }
 
 }  // namespace deepcheck::deep

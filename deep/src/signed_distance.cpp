@@ -204,6 +204,31 @@ bool warmPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
   return true;
 }
 
+/// The certified method's cold query without GJK (certifiedFromProbes), for polyhedra whose
+/// inscribed balls about their centroids overlap: they overlap for certain, so GJK has nothing to
+/// decide, and supports in twelve directions start the surface better than its simplex. Not while
+/// a warm start waits to be tried (it comes first). True, with `p` set and the warm start saved,
+/// when that certifies the depth; otherwise the caller goes on with GJK.
+bool probedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                       const DeepOptions& options, PairCache* cache, bool triedWarm, ExpansionSurface& surface,
+                       Penetration& p) {
+  if (options.method != PenetrationMethod::Certified || A.kind() != PolytopeKind::Polyhedron ||
+      B.kind() != PolytopeKind::Polyhedron)
+    return false;
+  if (options.warmStart && cache && cache->certified && cache->certified->valid && !triedWarm) return false;
+  if (!(frame.t.norm() < A.insideRadius() + B.insideRadius())) return false;
+  CertifiedOptions co;
+  co.maxExpansions = options.maxExpansions;
+  CertifiedResult c;
+  if (!certifiedFromProbes(A, B, frame, surface, co, c) || c.status != CertifiedStatus::Certified) return false;
+  if (cache) {
+    if (!cache->certified) cache->certified = std::make_unique<CertifiedWarmStart>();
+    saveWarmStart(A, B, frame, surface, c, *cache->certified);
+  }
+  nameCertified(A, B, frame, c, options, cache, p);
+  return true;
+}
+
 /// The certified method: the expansion's bracket, the answer named by DEEP's facets. Points and
 /// segments (M's facets are enumerated exactly) and expansions that did not converge (flat M,
 /// cap) go to DEEP's walks with all restarts; the bracket's lower bound is kept. `triedWarm`: the
@@ -260,9 +285,10 @@ SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B
   double coreSd;
   Penetration p;
   const bool triedWarm = warmFirst(options, cache);
-  const bool warmDone = surface && warmPenetration(a, b, frame, options, cache, *surface, p);
+  const bool done = surface && (warmPenetration(a, b, frame, options, cache, *surface, p) ||
+                                probedPenetration(a, b, frame, options, cache, triedWarm, *surface, p));
   bool apart = false;
-  if (!warmDone) {
+  if (!done) {
     const GjkResult g = gjkDistance(a, b, frame, cache ? &cache->gjk : nullptr);
     apart = g.status == GjkStatus::Separated || (g.status == GjkStatus::MaxIterations && g.distance > 0);
     if (apart) {

@@ -3,6 +3,8 @@
 
 #include "deepcheck/deep/polytope.h"
 
+#include "probe_icosahedron.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -95,6 +97,12 @@ void ConvexPolytope::buildDirectionIndex() {
     }
   }
   directionIndex_ = std::move(index);
+}
+
+void ConvexPolytope::buildProbeSupports() {
+  const probe::Icosahedron& ico = probe::icosahedron();
+  int previous = 0;
+  for (int i = 0; i < kProbeDirections; ++i) probeSupport_[i] = previous = support(ico.direction[i], previous);
 }
 
 void ConvexPolytope::buildFaceSupports() {

@@ -472,6 +472,95 @@ BOOST_AUTO_TEST_CASE(loaded_surface_keeps_the_origin_inside) {
   BOOST_TEST(loaded.numLiveFaces() == 6);
 }
 
+/// A double pyramid about the x axis, its faces counter-clockwise seen from outside with their
+/// neighbours: apexes `plus` and (-1, 0, 0), a square ring at x = 0.5 of corners (0.5, ±1, 0),
+/// (0.5, 0, ±1).
+struct DoublePyramid {
+  ExpansionSurface::Vertex v[6];
+  int faces[8][3];
+  int adj[8][3];
+  explicit DoublePyramid(const Vector3d& plus) {
+    const Vector3d p[6] = {plus, {-1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}, {0.5, 0, -1}};
+    for (int i = 0; i < 6; ++i) v[i] = {p[i], i, i};
+    const int f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    for (int g = 0; g < 8; ++g)
+      for (int k = 0; k < 3; ++k) faces[g][k] = f[g][k];
+    for (int g = 0; g < 8; ++g)  // edge (a, b) of face g is edge (b, a) of its neighbour
+      for (int k = 0; k < 3; ++k)
+        for (int h = 0; h < 8; ++h)
+          for (int e = 0; e < 3; ++e)
+            if (f[h][e] == f[g][(k + 1) % 3] && f[h][(e + 1) % 3] == f[g][k]) adj[g][k] = 4 * h + e;
+  }
+};
+
+// startConvex takes a convex surface holding the origin strictly inside and refuses one with a
+// dent (every face still facing away from the origin) or with the origin outside.
+BOOST_AUTO_TEST_CASE(convex_start_is_checked) {
+  ExpansionSurface s;
+  const DoublePyramid convex(Vector3d(1, 0, 0));
+  BOOST_TEST(s.startConvex(convex.v, 6, convex.faces, convex.adj, 8, 1e-12));
+  BOOST_TEST(s.numLiveFaces() == 8);
+  const int f = s.bestFace();
+  BOOST_TEST_REQUIRE(f >= 0);
+  BOOST_TEST(s.expand(f, {2.0 * s.face(f).n, 9, 9}));  // a convex surface grows as a hull
+  // The +x apex pushed in below its ring: the faces around it still face away from the origin,
+  // but the ring's corners lie outside their planes.
+  const DoublePyramid dented(Vector3d(0.3, 0, 0));
+  for (int g = 0; g < 4; ++g) {
+    Vector3d n;
+    double d;
+    const auto& c = dented.faces[g];
+    BOOST_TEST_REQUIRE(ExpansionSurface::planeThrough(dented.v[c[0]].p, dented.v[c[1]].p, dented.v[c[2]].p, n, d));
+    BOOST_TEST(d > 0.0);
+  }
+  BOOST_TEST(!s.startConvex(dented.v, 6, dented.faces, dented.adj, 8, 1e-12));
+  BOOST_TEST(s.numLiveFaces() == 0);
+  // The origin outside (the pyramid moved by 2 along x), and on the plane of face (0, 2, 4),
+  // whose normal is along (1, 0.5, 0.5) at distance 1 / |(1, 0.5, 0.5)|.
+  DoublePyramid outside(Vector3d(1, 0, 0));
+  for (auto& v : outside.v) v.p.x() += 2.0;
+  BOOST_TEST(!s.startConvex(outside.v, 6, outside.faces, outside.adj, 8, 1e-12));
+  DoublePyramid onFace(Vector3d(1, 0, 0));
+  for (auto& v : onFace.v) v.p -= Vector3d(1, 0.5, 0.5) / 1.5;
+  BOOST_TEST(!s.startConvex(onFace.v, 6, onFace.faces, onFace.adj, 8, 1e-12));
+  BOOST_TEST(s.startConvex(convex.v, 6, convex.faces, convex.adj, 8, 1e-12));
+}
+
+// The start without GJK: on overlapping pairs whose inscribed balls overlap it starts on most, and
+// its answer is that of GJK's start, exact and certified; two directions sharing a support (two
+// boxes at one pose) or the origin outside (a pair apart) are no start.
+BOOST_AUTO_TEST_CASE(probe_start) {
+  std::mt19937 rng(17);
+  ExpansionSurface surface;
+  int tried = 0, started = 0;
+  for (int i = 0; i < 80; ++i) {
+    const std::optional<StartedPair> sp = startedPair(rng, 100, 300);
+    if (!sp) continue;
+    const Pair& p = sp->p;
+    if (!(sp->frame.t.norm() < p.A.insideRadius() + p.B.insideRadius())) continue;
+    ++tried;
+    CertifiedResult c;
+    if (!certifiedFromProbes(p.A, p.B, sp->frame, surface, {}, c)) continue;
+    ++started;
+    BOOST_TEST((c.status == CertifiedStatus::Certified), "pair " << i);
+    const CertifiedResult g = certifiedPenetration(p.A, p.B, sp->frame, sp->gjk, surface);
+    BOOST_TEST(std::abs(c.upper - g.upper) <= c.tau, "pair " << i << ": " << c.upper << " vs " << g.upper);
+    const double depth = -exactSignedDistance(p.A, p.X_WA, p.B, p.X_WB).distance;
+    const double slack = kBracketSlackRelative * certifyScale(p.A, p.X_WA, p.B, p.X_WB);
+    BOOST_TEST(c.lower <= depth + slack, "pair " << i);
+    BOOST_TEST(depth <= c.upper + slack, "pair " << i);
+  }
+  BOOST_TEST(tried > 30);
+  BOOST_TEST(started >= tried * 9 / 10);
+  const ConvexPolytope box = ConvexPolytope::box(Vector3d(0.5, 1.0, 1.5));
+  const Isometry3d I = Isometry3d::Identity();
+  CertifiedResult unused;
+  BOOST_TEST(!certifiedFromProbes(box, box, PairFrame::make(box, I, box, I), surface, {}, unused));
+  const ConvexPolytope blob = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 200, Vector3d(1, 0.5, 0.25)));
+  const Isometry3d apart = makePose(Quaterniond::Identity(), Vector3d(5, 0, 0));
+  BOOST_TEST(!certifiedFromProbes(blob, blob, PairFrame::make(blob, I, blob, apart), surface, {}, unused));
+}
+
 // A 500-vertex sphere against itself, rotated: the surface needs hundreds of expansions. Below
 // that cap the expansion says NotConverged with a valid bracket; signedDistance then falls back on
 // DEEP's walks and still answers exactly.

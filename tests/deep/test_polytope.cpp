@@ -131,6 +131,23 @@ void checkHull(const ConvexPolytope& poly, const std::vector<Vector3d>& input, s
       if (hs < hb - tol) ++badFace;
     }
     BOOST_TEST(badFace == 0);
+
+    // Each probe direction's stored support is as high as brute force finds.
+    int badProbe = 0;
+    for (int i = 0; i < ConvexPolytope::kProbeDirections; ++i) {
+      const Vector3d& d = ConvexPolytope::probeDirection(i);
+      const double hs = d.dot(poly.localVertex(poly.probeSupport(i)));
+      const double hb = d.dot(poly.localVertex(poly.supportBruteForce(d)));
+      if (hs < hb - tol) ++badProbe;
+    }
+    BOOST_TEST(badProbe == 0);
+
+    // The inside radius: the centre's smallest distance to a face plane of a solid, else 0.
+    double inside = poly.kind() == PolytopeKind::Polyhedron ? std::numeric_limits<double>::infinity() : 0.0;
+    if (poly.kind() == PolytopeKind::Polyhedron)
+      for (int f = 0; f < poly.numFaces(); ++f)
+        inside = std::min(inside, poly.faceOffset(f) - poly.faceNormal(f).dot(c));
+    BOOST_TEST(std::abs(poly.insideRadius() - inside) <= tol);
   }
 }
 
@@ -337,6 +354,7 @@ BOOST_AUTO_TEST_CASE(box_and_cube_ring_order) {
   BOOST_TEST(box.center().norm() < 1e-16);
   BOOST_TEST(std::abs(box.boundingRadius() - e.norm()) < 1e-15);
   BOOST_TEST(box.lengthScale() == box.boundingRadius());
+  BOOST_TEST(box.insideRadius() == 0.25);  // the smallest half extent
   for (int f = 0; f < 6; ++f) {
     BOOST_TEST(box.faceVertices(f).size() == 4);
     const Vector3d& n = box.faceNormal(f);
@@ -372,6 +390,29 @@ BOOST_AUTO_TEST_CASE(box_and_cube_ring_order) {
     }
   }
   checkHull(box, box.vertices(), rng, "box");
+}
+
+// The probe directions are the vertices of a regular icosahedron: unit, in opposite pairs, each
+// with five nearest neighbours at the icosahedron's edge angle, atan(2).
+BOOST_AUTO_TEST_CASE(probe_directions_are_an_icosahedron) {
+  const int n = ConvexPolytope::kProbeDirections;
+  BOOST_TEST(n == 12);
+  const double edgeAngle = std::atan(2.0);
+  for (int i = 0; i < n; ++i) {
+    const Vector3d& d = ConvexPolytope::probeDirection(i);
+    BOOST_TEST(std::abs(d.norm() - 1.0) < 1e-15);
+    int opposite = 0, nearest = 0;
+    for (int j = 0; j < n; ++j) {
+      if (j == i) continue;
+      const Vector3d& e = ConvexPolytope::probeDirection(j);
+      const double angle = std::atan2(d.cross(e).norm(), d.dot(e));
+      opposite += (d + e).norm() < 1e-15;
+      nearest += std::abs(angle - edgeAngle) < 1e-12;
+      BOOST_TEST(angle > edgeAngle - 1e-12, "directions " << i << " and " << j);
+    }
+    BOOST_TEST(opposite == 1, "direction " << i);
+    BOOST_TEST(nearest == 5, "direction " << i);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(box_surface_samples_merge_into_six_faces) {

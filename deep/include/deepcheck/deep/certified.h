@@ -1,6 +1,6 @@
 #pragma once
 // Certified penetration depth: an expanding surface of Minkowski vertices (van den Bergen 2001's
-// expanding polytope), run best-first from GJK's simplex.
+// expanding polytope), run best-first from GJK's simplex or from supports in twelve directions.
 //
 // M = B - A contains the origin when A and B overlap. A closed convex surface S of points of M
 // that encloses the origin gives a lower bound on the depth: every ray from the origin leaves M
@@ -12,12 +12,15 @@
 // The result always carries its bracket [lower, upper]; a cap hit or a degenerate surface returns
 // the bracket with NotConverged, never a silent guess.
 //
-// Starts: GJK's simplex when it is a tetrahedron strictly enclosing the origin; otherwise (the
-// origin on the simplex, identical shapes at one pose, touching contact, a flat simplex) the
-// supports of M in four generic directions, completed to a tetrahedron with supports normal to
-// their span. Faces seen from the origin's far side (negative distance) are expanded first, which
-// encloses the origin. A flat M (no tetrahedron of positive volume) returns NotConverged with
-// lower bound 0: the caller handles flat pairs (their depth is zero).
+// Starts: for pairs known to overlap, the supports of M in twelve directions joined as an
+// icosahedron, when that surface is convex and holds the origin strictly inside
+// (certifiedFromProbes: no GJK). Otherwise GJK's simplex when it is a tetrahedron strictly
+// enclosing the origin; otherwise (the origin on the simplex, identical shapes at one pose,
+// touching contact, a flat simplex) the supports of M in four generic directions, completed to a
+// tetrahedron with supports normal to their span. Faces seen from the origin's far side (negative
+// distance) are expanded first, which encloses the origin. A flat M (no tetrahedron of positive
+// volume) returns NotConverged with lower bound 0: the caller handles flat pairs (their depth is
+// zero).
 
 #include "deepcheck/deep/deep.h"
 #include "deepcheck/deep/expansion_surface.h"
@@ -89,6 +92,14 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
 /// start's moved surface, ExpansionSurface::load), which must wind once around the origin.
 CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                                      ExpansionSurface& surface, const CertifiedOptions& options = {});
+
+/// certifiedPenetration without GJK, for polyhedra the caller knows overlap: the surface starts
+/// from the supports of M in the twelve probe directions (ConvexPolytope::probeSupport), joined as
+/// an icosahedron's faces. False, with `result` untouched, when that is no start: two directions
+/// share a support, or the surface is not convex or does not hold the origin strictly inside (the
+/// caller then runs GJK and certifiedPenetration). True with the expansion's result otherwise.
+bool certifiedFromProbes(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                         ExpansionSurface& surface, const CertifiedOptions& options, CertifiedResult& result);
 
 /// Warm start of the certified method for one pair: the surface of a cold query (faces as vertex
 /// index pairs, at most kMaxFaces), kept with each face's unit normal n0 and offset

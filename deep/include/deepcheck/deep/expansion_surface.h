@@ -64,6 +64,13 @@ class ExpansionSurface {
   /// empty surface, when it does not fit or a face is degenerate.
   bool load(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3], int numFaces);
 
+  /// Starts from a closed triangulated surface (as load()) that must be convex and hold the
+  /// origin strictly inside: every face plane farther than `eps` from it and no vertex outside a
+  /// face's plane. Both are checked; false, leaving an empty surface, when either fails or a face
+  /// is degenerate.
+  bool startConvex(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3], int numFaces,
+                   double eps);
+
   /// The live face of smallest plane distance, or -1 when there is none.
   int bestFace();
 
@@ -103,6 +110,9 @@ class ExpansionSurface {
     int to;    ///< its second
   };
 
+  /// load() and startConvex(): the faces and their planes, the queue left to the caller.
+  bool loadFaces(const Vertex* vertices, int numVertices, const int (*faces)[3], const int (*adj)[3], int numFaces);
+  bool enclosesConvexly(double eps) const;
   int newFace(int v0, int v1, int v2);
   void freeFace(int f);
   /// Sets n and d of faces[0..count) from their corners (planeThrough); false when one is
@@ -135,7 +145,7 @@ class ExpansionSurface {
   int numSeen_ = 0;
   int live_ = 0;
   std::uint32_t serial_ = 0;
-  bool convex_ = true;  // started from a tetrahedron (expansions keep the convex hull)
+  bool convex_ = true;  // started convex (expansions keep the convex hull)
 };
 
 }  // namespace deepcheck::deep

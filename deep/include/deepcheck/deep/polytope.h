@@ -114,6 +114,16 @@ class ConvexPolytope {
   /// the hull is built. That normal ties a whole face's vertices, which support() would search
   /// as a plateau on every call; penetration depth queries support in it once per answer.
   int faceSupport(int f) const { return faceSupport_[f]; }
+  /// The certified method's probe directions: twelve unit vectors, the vertices of a regular
+  /// icosahedron in a generic orientation, fixed in every polytope's frame.
+  static constexpr int kProbeDirections = 12;
+  static const Eigen::Vector3d& probeDirection(int i);
+  /// A vertex maximizing probeDirection(i), computed once when the hull is built: a query's start
+  /// without GJK reads the first shape's supports here instead of climbing.
+  int probeSupport(int i) const { return probeSupport_[i]; }
+  /// Radius of the largest ball about center() inside the hull: the smallest distance from the
+  /// centre to a face plane (0 for points, segments and polygons).
+  double insideRadius() const { return insideRadius_; }
 
   /// Checks the internal invariants (Euler characteristic, ring order, convexity within
   /// tolerance). Returns an empty string when they hold, else a description. For tests.
@@ -121,8 +131,8 @@ class ConvexPolytope {
 
  private:
   ConvexPolytope() = default;
-  // Computes center, local vertices, radius, axes, face offsets, the direction index and the
-  // face supports.
+  // Computes center, local vertices, radius, axes, face offsets, the inside radius, the direction
+  // index, the face supports and the probe supports.
   void finish();
   // validate(); the O(V F) test of every vertex against every face plane only when asked.
   std::string checkInvariants(bool globalConvexity) const;
@@ -152,6 +162,9 @@ class ConvexPolytope {
   void buildDirectionIndex();
   std::vector<int> faceSupport_;  // faceSupport(f), one per face
   void buildFaceSupports();
+  int probeSupport_[kProbeDirections] = {};
+  void buildProbeSupports();
+  double insideRadius_ = 0.0;
 };
 
 }  // namespace deepcheck::deep
