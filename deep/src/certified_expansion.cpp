@@ -132,7 +132,7 @@ bool startSurface(const Support& support, const GjkResult& gjk, double eps, Expa
 /// A result with an empty bracket [0, inf) and the pair's tolerance.
 CertifiedResult emptyBracket(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
   CertifiedResult r;
-  r.tau = tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
+  r.tau = tol::kCertifyRelative * pairLengthScale(A, B, frame);
   r.upper = std::numeric_limits<double>::infinity();
   return r;
 }
@@ -179,7 +179,7 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
                                      const PairFrame& frame, const GjkResult& gjk,
                                      ExpansionSurface& surface, const CertifiedOptions& options) {
   CertifiedResult r = emptyBracket(A, B, frame);
-  const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
+  const double L = pairLengthScale(A, B, frame);
   const Support support(A, B, frame);
   if (!startSurface(support, gjk, tol::kFlatRelative * L, surface)) return r;
   expandBestFirst(support, surface, options, r);

@@ -163,7 +163,7 @@ bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   if (u != c.direction) facetSupports(A, B, F, facet, sa, sb);
   const double h = u.dot(F.vertexB(B, sb) - A.localVertex(sa));
   const double onFacet = u.dot(F.vertexB(B, c.faceB[0]) - A.localVertex(c.faceA[0]));
-  const double L = std::max(A.lengthScale(), B.lengthScale()) + F.t.norm();
+  const double L = pairLengthScale(A, B, F);
   // The corners must support u (else the features are not the facet's) and the offset must lie
   // in the bracket.
   if (h - onFacet > tol::kFeatureRelative * L || h > c.upper + c.tau || h < c.lower - c.tau) return false;

@@ -27,7 +27,7 @@ bool certifiedFromProbes(const ConvexPolytope& A, const ConvexPolytope& B, const
     for (int j = 0; j < i; ++j)
       if (w[j].a == a && w[j].b == b) return false;  // two directions tie: the surface would pinch
   }
-  const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
+  const double L = pairLengthScale(A, B, frame);
   if (!surface.startConvex(w, probe::kDirections, ico.face, ico.adj, probe::kFaces, tol::kFlatRelative * L))
     return false;
   result = certifiedFromSurface(A, B, frame, surface, options);

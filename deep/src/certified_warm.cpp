@@ -192,7 +192,7 @@ bool boundFaces(const W& w, MovedSurface& m, double target, Bound& out) {
 }
 
 double tauOf(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
-  return tol::kCertifyRelative * (std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm());
+  return tol::kCertifyRelative * pairLengthScale(A, B, frame);
 }
 
 /// Face f's corners as index pairs.

@@ -156,7 +156,7 @@ class Walker {
       s_.bNormalGen.resize(B.numFaces(), 0);
     }
     s_.memo.clear();
-    L_ = std::max(A.lengthScale(), B.lengthScale()) + F.t.norm();
+    L_ = pairLengthScale(A, B, F);
     tolFeature_ = tol::kFeatureRelative * L_;
     tolImprove_ = tol::kImproveRelative * L_;
     tolInside_ = tol::kInsideRelative * L_;

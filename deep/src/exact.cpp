@@ -275,8 +275,7 @@ ExactResult exactSignedDistance(const ConvexPolytope& A, const Eigen::Isometry3d
   const Eigen::Vector3d mean = meanDifference(A, B, frame);
   const MinkowskiHull hull = buildHull(differencePoints(A, B, frame), mean);
 
-  // Pair length scale (tolerances.h): larger bounding radius plus the centre distance.
-  const double L = std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
+  const double L = pairLengthScale(A, B, frame);
   const double contact = tol::kContactRelative * L;
 
   double distance = 0.0;

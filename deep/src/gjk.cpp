@@ -461,11 +461,6 @@ Run runGjk(MinkowskiSupport& support, const Vector3d& dir0, bool earlyExit, doub
   return r;
 }
 
-/// Pair length scale L (see tolerances.h): the larger bounding radius plus the centre distance.
-double pairLengthScale(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
-  return std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
-}
-
 Vector3d initialDirection(const PairFrame& frame, const GjkCache* cache) {
   if (cache != nullptr && cache->direction.allFinite() && cache->direction.squaredNorm() > 0.0) {
     return cache->direction;

@@ -5,6 +5,7 @@
 #include "deepcheck/deep/input_range.h"
 #include "deepcheck/deep/tolerances.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -84,6 +85,10 @@ PairFrame PairFrame::makeUnchecked(const ConvexPolytope& A, const Eigen::Isometr
   frame.t = R_WA.transpose() * p_AB_W + (frame.R * B.center() - A.center());
   frame.X_WP = X_WA * Eigen::Translation3d(A.center());
   return frame;
+}
+
+double pairLengthScale(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
+  return std::max(A.lengthScale(), B.lengthScale()) + frame.t.norm();
 }
 
 }  // namespace deepcheck::deep

@@ -43,6 +43,10 @@ struct PairFrame {
   Eigen::Vector3d fromB(const Eigen::Vector3d& dir_B) const { return R * dir_B; }
 };
 
+/// The pair's length scale L, which relative tolerances scale by (tolerances.h): the larger
+/// bounding radius plus the centre distance.
+double pairLengthScale(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame);
+
 /// Throws std::invalid_argument unless X has finite entries, a translation within
 /// range::kMaxCoordinate and an orthonormal rotation (|R^T R - I| < 1e-6); `what` names the pose
 /// in the message.
