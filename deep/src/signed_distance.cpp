@@ -181,15 +181,28 @@ bool warmFirst(const DeepOptions& options, const PairCache* cache) {
          cache->certified && !cache->apart;
 }
 
+/// The certified expansion's options from the query's.
+CertifiedOptions expansionOptions(const DeepOptions& options) {
+  CertifiedOptions co;
+  co.maxExpansions = options.maxExpansions;
+  return co;
+}
+
+/// Keeps a cold query's surface as the pair's warm start (allocated by the pair's first).
+void keepWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                   const ExpansionSurface& surface, const CertifiedResult& c, PairCache* cache) {
+  if (!cache) return;
+  if (!cache->certified) cache->certified = std::make_unique<CertifiedWarmStart>();
+  saveWarmStart(A, B, frame, surface, c, *cache->certified);
+}
+
 /// The certified warm query: the cached surface's supports (certifiedWarm), else its best-first
 /// expansion (expandWarm).
 CertifiedResult warmCertified(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                               const DeepOptions& options, PairCache& cache, ExpansionSurface& surface) {
   CertifiedResult c = certifiedWarm(A, B, frame, *cache.certified);
   if (c.status == CertifiedStatus::Certified) return c;
-  CertifiedOptions co;
-  co.maxExpansions = options.maxExpansions;
-  return expandWarm(A, B, frame, *cache.certified, surface, co);
+  return expandWarm(A, B, frame, *cache.certified, surface, expansionOptions(options));
 }
 
 /// The certified method's warm query, tried before GJK: a certified answer from the cached
@@ -209,8 +222,8 @@ bool warmPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
 /// than this each (on smaller ones two directions often share a support: boxes, 8-vertex hulls)...
 constexpr int kMinProbedVertices = 17;
 /// ...and on pairs whose inside radii add up to at least this share of their bounding radii: the
-/// supports of an elongated pair rarely form a convex surface (started on 14 % of pairs below 0.1,
-/// 61 % from 0.2 to 0.4, 99 % above 0.5), and a failed try costs about what a success saves.
+/// supports of an elongated pair rarely form a convex surface (most pairs below 0.2 fail, nearly
+/// all above 0.5 start), and a failed try costs about what a success saves.
 constexpr double kMinProbedRoundness = 0.2;
 
 /// The certified method's cold query without GJK (certifiedFromProbes), for polyhedra whose
@@ -229,14 +242,11 @@ bool probedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const P
   const double inside = A.insideRadius() + B.insideRadius();
   if (!(frame.t.norm() < inside) || inside < kMinProbedRoundness * (A.boundingRadius() + B.boundingRadius()))
     return false;
-  CertifiedOptions co;
-  co.maxExpansions = options.maxExpansions;
   CertifiedResult c;
-  if (!certifiedFromProbes(A, B, frame, surface, co, c) || c.status != CertifiedStatus::Certified) return false;
-  if (cache) {
-    if (!cache->certified) cache->certified = std::make_unique<CertifiedWarmStart>();
-    saveWarmStart(A, B, frame, surface, c, *cache->certified);
-  }
+  if (!certifiedFromProbes(A, B, frame, surface, expansionOptions(options), c) ||
+      c.status != CertifiedStatus::Certified)
+    return false;
+  keepWarmStart(A, B, frame, surface, c, cache);
   nameCertified(A, B, frame, c, options, cache, p);
   return true;
 }
@@ -263,13 +273,8 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   if (walkable && checkedWarmWalk(A, B, frame, *cache, p)) return p;
   if (warm && !triedWarm) c = warmCertified(A, B, frame, options, *cache, surface);
   if (c.status != CertifiedStatus::Certified) {
-    CertifiedOptions co;
-    co.maxExpansions = options.maxExpansions;
-    c = certifiedPenetration(A, B, frame, g, surface, co);
-    if (cache) {
-      if (!cache->certified) cache->certified = std::make_unique<CertifiedWarmStart>();
-      saveWarmStart(A, B, frame, surface, c, *cache->certified);
-    }
+    c = certifiedPenetration(A, B, frame, g, surface, expansionOptions(options));
+    keepWarmStart(A, B, frame, surface, c, cache);
   }
   if (c.status == CertifiedStatus::Certified) {
     nameCertified(A, B, frame, c, options, cache, p);
