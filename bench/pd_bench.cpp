@@ -15,7 +15,8 @@
 //                    call would abort the process: not timed), and the share of scored
 //                    queries within 1e-12 relative;
 //   DEEP walks       local-minimum rate (walks that ended deeper than the final answer / walks
-//                    started), mean starts, hub pairs and steps per query, not-converged count.
+//                    started), mean starts, hub pairs and steps per query, not-converged count;
+//                    for the certified method, mean expansions per query (CSV only).
 // Penetration-only methods on separated pairs: a "no contact" answer is right and not scored.
 // The project's GJK runs on separated pairs only.
 //
@@ -112,6 +113,7 @@ struct Row {
   // DEEP only
   bool walks = false;
   double localMinRate = NAN, startsMean = NAN, hubsMean = NAN, stepsMean = NAN, warmShare = NAN;
+  double expansionsMean = NAN;
   int notConverged = 0;
 };
 
@@ -119,7 +121,7 @@ struct Row {
 struct Tally {
   std::vector<double> times, overlapTimes, rel, abs;
   int ran = 0, wrongSign = 0, missing = 0, nan = 0, failed = 0, withinExact = 0;
-  long starts = 0, hubs = 0, steps = 0, localMinima = 0, warm = 0, walkQueries = 0;
+  long starts = 0, hubs = 0, steps = 0, localMinima = 0, warm = 0, expansions = 0, walkQueries = 0;
   int notConverged = 0, repros = 0;
 };
 
@@ -204,6 +206,7 @@ Row summarize(const Family& f, const std::string& method, const Tally& t, int ov
     r.hubsMean = static_cast<double>(t.hubs) / static_cast<double>(t.walkQueries);
     r.stepsMean = static_cast<double>(t.steps) / static_cast<double>(t.walkQueries);
     r.warmShare = static_cast<double>(t.warm) / static_cast<double>(t.walkQueries);
+    r.expansionsMean = static_cast<double>(t.expansions) / static_cast<double>(t.walkQueries);
     r.notConverged = t.notConverged;
   }
   return r;
@@ -228,7 +231,7 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
   std::ofstream out(path);
   out << "family,method,queries,overlapping,separated,mean_vertices,t_med_us,t_p90_us,scored,rel_med,rel_p99,"
          "rel_max,abs_med,abs_p99,abs_max,exact_share,wrong_sign,missing,nan,failed,local_min_rate,starts_mean,"
-         "hubs_mean,steps_mean,warm_share,not_converged,t_med_overlap_us,t_p90_overlap_us\n";
+         "hubs_mean,steps_mean,warm_share,not_converged,t_med_overlap_us,t_p90_overlap_us,expansions_mean\n";
   auto num = [](double x) { return std::isnan(x) ? std::string("") : fmt(x, "%.6g"); };
   for (const Row& r : rows) {
     out << r.family << ',' << r.method << ',' << r.queries << ',' << r.overlapping << ',' << r.separated << ','
@@ -239,7 +242,7 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
         << (r.walks ? num(r.startsMean) : "") << ',' << (r.walks ? num(r.hubsMean) : "") << ','
         << (r.walks ? num(r.stepsMean) : "") << ',' << (r.walks ? num(r.warmShare) : "") << ','
         << (r.walks ? std::to_string(r.notConverged) : "") << ',' << num(r.tMedOverlap) << ','
-        << num(r.tP90Overlap) << '\n';
+        << num(r.tP90Overlap) << ',' << (r.walks ? num(r.expansionsMean) : "") << '\n';
   }
 }
 
@@ -420,6 +423,7 @@ void score(const Options& opt, const Family& f, int qi, const std::string& metho
   t.starts += w.starts;
   t.hubs += w.hubs;
   t.steps += w.steps;
+  t.expansions += w.expansions;
   t.localMinima += w.localMinima;
   t.warm += w.warm;
   t.notConverged += w.notConverged;

@@ -28,6 +28,7 @@ WalkStats walkOf(const deep::SignedDistanceResult& r) {
   w.hubs = r.deep.hubs;
   w.steps = r.deep.steps;
   w.localMinima = r.deep.localMinima;
+  w.expansions = r.expansions;
   w.warm = r.deep.warm;
   w.notConverged = r.status == deep::SignedDistanceStatus::NotConverged;
   return w;

@@ -34,10 +34,11 @@ struct Answer {
   double sd = 0.0;
 };
 
-/// Walk statistics of a DEEP query (copied from DeepStats), and whether it converged.
+/// Walk statistics of a DEEP query (copied from DeepStats), the certified expansion's support
+/// points added to its surface, and whether it converged.
 struct WalkStats {
   bool valid = false;
-  int starts = 0, hubs = 0, steps = 0, localMinima = 0;
+  int starts = 0, hubs = 0, steps = 0, localMinima = 0, expansions = 0;
   bool warm = false;
   bool notConverged = false;
 };
