@@ -1,6 +1,8 @@
 // DEEP's walks and the query: walks from the warm start's basins or the cold start directions,
-// the best end is the answer, the best distinct ends are the next warm query's basins.
-// Vocabulary in deep_walker.h; the facets a walk moves over come from deep_facets.cpp.
+// the best end is the answer, the best distinct ends are the next warm query's basins. Also the
+// facet at one direction without a walk (facetInDirection: a walk's first facet), with which the
+// certified method names answers on parallel faces. Vocabulary in deep_walker.h; the facets a walk
+// moves over come from deep_facets.cpp.
 
 #include "deep_walker.h"
 
@@ -177,12 +179,8 @@ void Walks::coldStarts() {
   }
 }
 
-void Walks::answer(DeepResult& result) {
-  for (int k = 0; k < ended_; ++k) {
-    if (ends_[k].d > best_.facet.d + w_.tolImprove()) ++stats_.localMinima;
-  }
-  const Candidate& f = best_.facet;
-  result.status = best_.converged ? DeepStatus::Converged : DeepStatus::NotConverged;
+/// The answer's depth, normal, type and features from facet f.
+void setFacet(const Candidate& f, DeepResult& result) {
   result.depth = f.d;
   result.normal = -f.u;
   result.type = f.type;
@@ -190,6 +188,15 @@ void Walks::answer(DeepResult& result) {
   result.featureA2 = f.fa2;
   result.featureB = f.fb;
   result.featureB2 = f.fb2;
+}
+
+void Walks::answer(DeepResult& result) {
+  for (int k = 0; k < ended_; ++k) {
+    if (ends_[k].d > best_.facet.d + w_.tolImprove()) ++stats_.localMinima;
+  }
+  const Candidate& f = best_.facet;
+  result.status = best_.converged ? DeepStatus::Converged : DeepStatus::NotConverged;
+  setFacet(f, result);
   int next[4];
   if (best_.witnessed) {
     result.pointA = best_.pA;
@@ -237,6 +244,21 @@ DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, con
   else walks.coldStarts();
   walks.answer(result);
   if (cache) walks.rememberBasins(*cache, warm);
+  return result;
+}
+
+DeepResult facetInDirection(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                            const Eigen::Vector3d& u, int hintA, int hintB, WalkScratch* scratch) {
+  detail::WalkScratchData local;
+  DeepResult result;
+  detail::Walker w(A, B, frame, scratch ? scratch->data() : local);
+  int ia = 0, ib = 0;
+  w.hubFor(u, ia, ib, hintA, hintB);
+  detail::Candidate c;
+  int next[4];
+  if (!w.hub(ia, ib, c, result.stats) || !w.footInFacet(c, result.pointA, result.pointB, next)) return result;
+  result.status = DeepStatus::Converged;
+  detail::setFacet(c, result);
   return result;
 }
 

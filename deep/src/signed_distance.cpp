@@ -129,13 +129,18 @@ DeepOptions oneWalk() {
   return one;
 }
 
-/// DEEP's walk from the certified direction, for the faces certifiedFacet() cannot name: it names
-/// the facet of M the bracket converged on (VF, FV or EE, witnesses, exact normal). Its depth is a facet offset of M, an upper bound; the
-/// answer is the better of it and the expansion's own upper bound.
+/// Names the facet of M the bracket converged on, for the faces certifiedFacet() cannot name
+/// (parallel faces or edges: the face's corners span a facet larger than a VF, FV or EE one):
+/// DEEP's facet at the certified direction (VF, FV or EE, witnesses, exact normal) when its depth
+/// is certified by the bracket's lower bound, else DEEP's walk from that direction. A facet's
+/// depth is a facet offset of M, an upper bound; the walk's answer is the better of it and the
+/// expansion's own upper bound.
 DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                      const CertifiedResult& c, WalkScratch* walk) {
+  DeepResult d = facetInDirection(A, B, frame, c.direction, c.supportA, c.supportB, walk);
+  if (d.status == DeepStatus::Converged && d.depth - c.lower <= c.tau) return d;
   DeepCache start = walkStartAt(c);
-  DeepResult d = deepPenetration(A, B, frame, &start, oneWalk(), walk);
+  d = deepPenetration(A, B, frame, &start, oneWalk(), walk);
   if (d.depth <= c.upper) return d;
   // The walk found nothing better than the support: answer with the support itself.
   d.status = DeepStatus::Converged;

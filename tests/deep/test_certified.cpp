@@ -17,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -559,6 +560,57 @@ BOOST_AUTO_TEST_CASE(probe_start) {
   const ConvexPolytope blob = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 200, Vector3d(1, 0.5, 0.25)));
   const Isometry3d apart = makePose(Quaterniond::Identity(), Vector3d(5, 0, 0));
   BOOST_TEST(!certifiedFromProbes(blob, blob, PairFrame::make(blob, I, blob, apart), surface, {}, unused));
+}
+
+/// Largest signed distance of world point p_W beyond P's face planes (P posed at X_WP): 0 on
+/// P's boundary, negative inside, positive outside.
+double beyondFaces(const ConvexPolytope& P, const Isometry3d& X_WP, const Vector3d& p_W) {
+  const Vector3d p = X_WP.inverse() * p_W;
+  double beyond = -std::numeric_limits<double>::infinity();
+  for (int f = 0; f < P.numFaces(); ++f) beyond = std::max(beyond, P.faceNormal(f).dot(p) - P.faceOffset(f));
+  return beyond;
+}
+
+// Parallel faces (a box on another, one turned by a quarter turn, both turned alike far from the
+// origin, side by side with coplanar tops): the certifying face's corners span several features
+// of each box, and DEEP's facet at the certified direction names the answer without a walk. The
+// depth is exact and certified, the normal is a face normal of A, and the witness points lie on
+// both boxes' boundaries; warm and swapped queries agree.
+BOOST_AUTO_TEST_CASE(parallel_faces_named_without_a_walk) {
+  std::mt19937 rng(31);
+  const ConvexPolytope A = ConvexPolytope::box(Vector3d(0.5, 1.0, 1.5));
+  const ConvexPolytope B = ConvexPolytope::box(Vector3d(0.4, 0.3, 0.6));
+  const Quaterniond quarter(Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ()));
+  const Quaterniond R = randomRotation(rng);
+  const Vector3d far(1e4, -1e4, 1e4);
+  struct Case {
+    Isometry3d X_WA, X_WB;
+    const char* what;
+  };
+  const std::vector<Case> cases = {
+      {Isometry3d::Identity(), makePose(Quaterniond::Identity(), Vector3d(0.2, -0.3, 2.0)), "stacked"},
+      {Isometry3d::Identity(), makePose(Quaterniond::Identity(), Vector3d(0.2, -0.3, 2.1 - 1e-3)), "stacked, 1e-3 deep"},
+      {Isometry3d::Identity(), makePose(quarter, Vector3d(-0.1, 0.4, 1.95)), "stacked, a quarter turn"},
+      {makePose(R, far), makePose(R, far + R * Vector3d(0.2, -0.3, 2.0)), "both turned, far"},
+      {Isometry3d::Identity(), makePose(Quaterniond::Identity(), Vector3d(0.85, 0.2, 0.9)), "side by side"},
+  };
+  for (const Case& c : cases) {
+    const SignedDistanceResult r = signedDistance(A, c.X_WA, B, c.X_WB);
+    const std::string why = checkCertified(A, c.X_WA, B, c.X_WB, r, 1e-12);
+    BOOST_TEST(why.empty(), c.what << ": " << why);
+    BOOST_TEST(r.deep.starts == 0, c.what);
+    const double L = depthScale(A, B);
+    BOOST_TEST(std::abs(beyondFaces(A, c.X_WA, r.pointA)) <= 1e-12 * (L + far.norm()), c.what);
+    BOOST_TEST(std::abs(beyondFaces(B, c.X_WB, r.pointB)) <= 1e-12 * (L + far.norm()), c.what);
+    const Vector3d n_A = c.X_WA.linear().transpose() * r.normal;
+    BOOST_TEST(n_A.cwiseAbs().maxCoeff() >= 1.0 - 1e-12, c.what << ": normal " << n_A.transpose());
+    PairCache cache;
+    signedDistance(A, c.X_WA, B, c.X_WB, &cache);
+    const SignedDistanceResult warm = signedDistance(A, c.X_WA, B, c.X_WB, &cache);
+    const SignedDistanceResult swapped = signedDistance(B, c.X_WB, A, c.X_WA);
+    BOOST_TEST(std::abs(warm.distance - r.distance) <= 1e-12 * L, c.what);
+    BOOST_TEST(std::abs(swapped.distance - r.distance) <= 1e-12 * L, c.what);
+  }
 }
 
 // A 500-vertex sphere against itself, rotated: the surface needs hundreds of expansions. Below

@@ -174,7 +174,8 @@ CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope&
 /// each (EE); the facet's exact normal from those features, its offset from one support query in
 /// that normal, witness points from the features. Returns false when the corners
 /// do not name one facet (they span several coplanar features, or the features found do not
-/// support the normal); the caller then names it otherwise (DEEP's walk from the direction).
+/// support the normal); the caller then names it otherwise (DEEP's facet at the direction,
+/// facetInDirection in deep.h, or DEEP's walk from it).
 bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                     const CertifiedResult& c, DeepResult& out);
 

@@ -129,4 +129,11 @@ DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, con
                            DeepCache* cache = nullptr, const DeepOptions& options = {},
                            WalkScratch* scratch = nullptr);
 
+/// The facet of M at the vertex of M extreme in direction u (found by climbing from the hint
+/// vertices), without walking: the nearest facet around that vertex, Converged with its witness
+/// points when the origin's foot lies in it, else NotConverged. For naming a facet whose depth is
+/// already certified (the certified method's faces that name none, such as parallel faces).
+DeepResult facetInDirection(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                            const Eigen::Vector3d& u, int hintA, int hintB, WalkScratch* scratch = nullptr);
+
 }  // namespace deepcheck::deep
