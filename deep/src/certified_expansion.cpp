@@ -114,12 +114,12 @@ bool completeTetrahedron(const Support& support, const Vertex* in, int n, double
   return true;
 }
 
-/// The starting tetrahedron: GJK's when it encloses the origin with every face at positive
-/// distance, else supports in generic directions, completed.
-bool startSurface(const Support& support, const GjkResult& gjk, double eps, ExpansionSurface& s) {
+/// The starting tetrahedron: GJK's (when given) when it encloses the origin with every face at
+/// positive distance, else supports in generic directions, completed.
+bool startSurface(const Support& support, const GjkResult* gjk, double eps, ExpansionSurface& s) {
   Vertex pts[4];
-  if (gjk.status == GjkStatus::Overlapping && gjk.simplexSize == 4) {
-    for (int i = 0; i < 4; ++i) pts[i] = support.point(gjk.simplexA[i], gjk.simplexB[i]);
+  if (gjk && gjk->status == GjkStatus::Overlapping && gjk->simplexSize == 4) {
+    for (int i = 0; i < 4; ++i) pts[i] = support.point(gjk->simplexA[i], gjk->simplexB[i]);
     bool encloses = s.startTetrahedron(pts);
     for (int f = 0; encloses && f < 4; ++f) encloses = s.face(f).d > eps;
     if (encloses) return true;
@@ -173,17 +173,27 @@ void expandBestFirst(const Support& support, ExpansionSurface& surface, const Ce
   r.lower = std::min(r.lower, r.upper);
 }
 
+/// The expansion from startSurface (GJK's simplex when `gjk` is given).
+CertifiedResult startAndExpand(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                               const GjkResult* gjk, ExpansionSurface& surface, const CertifiedOptions& options) {
+  CertifiedResult r = emptyBracket(A, B, frame);
+  const Support support(A, B, frame);
+  if (!startSurface(support, gjk, tol::kFlatRelative * pairLengthScale(A, B, frame), surface)) return r;
+  expandBestFirst(support, surface, options, r);
+  return r;
+}
+
 }  // namespace
 
 CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B,
                                      const PairFrame& frame, const GjkResult& gjk,
                                      ExpansionSurface& surface, const CertifiedOptions& options) {
-  CertifiedResult r = emptyBracket(A, B, frame);
-  const double L = pairLengthScale(A, B, frame);
-  const Support support(A, B, frame);
-  if (!startSurface(support, gjk, tol::kFlatRelative * L, surface)) return r;
-  expandBestFirst(support, surface, options, r);
-  return r;
+  return startAndExpand(A, B, frame, &gjk, surface, options);
+}
+
+CertifiedResult certifiedWithoutGjk(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                                    ExpansionSurface& surface, const CertifiedOptions& options) {
+  return startAndExpand(A, B, frame, nullptr, surface, options);
 }
 
 CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,

@@ -222,20 +222,32 @@ bool warmPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
   return true;
 }
 
-/// The start without GJK (certifiedFromProbes) is tried where it mostly succeeds, as measured on
-/// pd_bench's families (bench/README.md, "The certified cold query"): on hulls of more vertices
+/// The twelve-direction start (certifiedFromProbes) is tried where it mostly succeeds, as measured
+/// on pd_bench's families (bench/README.md, "The certified cold query"): on hulls of more vertices
 /// than this each (on smaller ones two directions often share a support: boxes, 8-vertex hulls)...
 constexpr int kMinProbedVertices = 17;
 /// ...and on pairs whose inside radii add up to at least this share of their bounding radii: the
 /// supports of an elongated pair rarely form a convex surface (most pairs below 0.2 fail, nearly
-/// all above 0.5 start), and a failed try costs about what a success saves.
+/// all above 0.5 start).
 constexpr double kMinProbedRoundness = 0.2;
 
-/// The certified method's cold query without GJK (certifiedFromProbes), for polyhedra whose
-/// inscribed balls about their centroids overlap: they overlap for certain, so GJK has nothing to
-/// decide, and supports in twelve directions start the surface better than its simplex. Not while
-/// a warm start waits to be tried (it comes first). True, with `p` set and the warm start saved,
-/// when that certifies the depth; otherwise the caller goes on with GJK.
+/// The twelve-direction start where it is tried (above): false when it makes no start, else true
+/// with the expansion's result in `c`.
+bool twelveDirectionStart(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                          const DeepOptions& options, ExpansionSurface& surface, CertifiedResult& c) {
+  if (A.numVertices() < kMinProbedVertices || B.numVertices() < kMinProbedVertices) return false;
+  if (A.insideRadius() + B.insideRadius() < kMinProbedRoundness * (A.boundingRadius() + B.boundingRadius()))
+    return false;
+  return certifiedFromProbes(A, B, frame, surface, expansionOptions(options), c);
+}
+
+/// The certified method's cold query without GJK, for polyhedra whose inscribed balls about their
+/// centroids overlap: they overlap for certain, so GJK has nothing to decide. The surface starts
+/// from the supports in twelve directions where that start is tried and made (it leaves fewer
+/// expansions than GJK's simplex), else from four generic directions (as many expansions as
+/// GJK's simplex, without GJK's run). Not while a warm start waits to be tried (it comes first).
+/// True, with `p` set and the warm start saved, when the expansion certifies the depth; otherwise
+/// (a cap hit) the caller goes on with GJK.
 bool probedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                        const DeepOptions& options, PairCache* cache, bool triedWarm, ExpansionSurface& surface,
                        Penetration& p) {
@@ -243,14 +255,11 @@ bool probedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const P
       B.kind() != PolytopeKind::Polyhedron)
     return false;
   if (options.warmStart && cache && cache->certified && cache->certified->valid && !triedWarm) return false;
-  if (A.numVertices() < kMinProbedVertices || B.numVertices() < kMinProbedVertices) return false;
-  const double inside = A.insideRadius() + B.insideRadius();
-  if (!(frame.t.norm() < inside) || inside < kMinProbedRoundness * (A.boundingRadius() + B.boundingRadius()))
-    return false;
+  if (!(frame.t.norm() < A.insideRadius() + B.insideRadius())) return false;
   CertifiedResult c;
-  if (!certifiedFromProbes(A, B, frame, surface, expansionOptions(options), c) ||
-      c.status != CertifiedStatus::Certified)
-    return false;
+  if (!twelveDirectionStart(A, B, frame, options, surface, c))
+    c = certifiedWithoutGjk(A, B, frame, surface, expansionOptions(options));
+  if (c.status != CertifiedStatus::Certified) return false;
   keepWarmStart(A, B, frame, surface, c, cache);
   nameCertified(A, B, frame, c, options, cache, p);
   return true;

@@ -14,10 +14,11 @@
 //
 // Starts: for pairs known to overlap, the supports of M in twelve directions joined as an
 // icosahedron, when that surface is convex and holds the origin strictly inside
-// (certifiedFromProbes: no GJK). Otherwise GJK's simplex when it is a tetrahedron strictly
-// enclosing the origin; otherwise (the origin on the simplex, identical shapes at one pose,
-// touching contact, a flat simplex) the supports of M in four generic directions, completed to a
-// tetrahedron with supports normal to their span. Faces seen from the origin's far side (negative
+// (certifiedFromProbes: no GJK), or the four generic directions below (certifiedWithoutGjk).
+// Otherwise GJK's simplex when it is a tetrahedron strictly enclosing the origin; otherwise (the
+// origin on the simplex, identical shapes at one pose, touching contact, a flat simplex) the
+// supports of M in four generic directions, completed to a tetrahedron with supports normal to
+// their span. Faces seen from the origin's far side (negative
 // distance) are expanded first, which encloses the origin. A flat M (no tetrahedron of positive
 // volume) returns NotConverged with lower bound 0: the caller handles flat pairs (their depth is
 // zero).
@@ -88,6 +89,12 @@ CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolyto
                                      ExpansionSurface& surface,
                                      const CertifiedOptions& options = {});
 
+/// certifiedPenetration without GJK, for polyhedra the caller knows overlap: the surface starts
+/// from the supports of M in four generic directions, completed to a tetrahedron (faces the
+/// origin lies beyond are expanded first, which encloses it).
+CertifiedResult certifiedWithoutGjk(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                                    ExpansionSurface& surface, const CertifiedOptions& options = {});
+
 /// The best-first expansion of certifiedPenetration from a surface the caller started (a warm
 /// start's moved surface, ExpansionSurface::load), which must wind once around the origin.
 CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
@@ -97,7 +104,7 @@ CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolyto
 /// from the supports of M in the twelve probe directions (ConvexPolytope::probeSupport), joined as
 /// an icosahedron's faces. False, with `result` untouched, when that is no start: two directions
 /// share a support, or the surface is not convex or does not hold the origin strictly inside (the
-/// caller then runs GJK and certifiedPenetration). True with the expansion's result otherwise.
+/// caller then starts otherwise: certifiedWithoutGjk). True with the expansion's result otherwise.
 bool certifiedFromProbes(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                          ExpansionSurface& surface, const CertifiedOptions& options, CertifiedResult& result);
 
