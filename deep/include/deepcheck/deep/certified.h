@@ -18,10 +18,9 @@
 // Otherwise GJK's simplex when it is a tetrahedron strictly enclosing the origin; otherwise (the
 // origin on the simplex, identical shapes at one pose, touching contact, a flat simplex) the
 // supports of M in four generic directions, completed to a tetrahedron with supports normal to
-// their span. Faces seen from the origin's far side (negative
-// distance) are expanded first, which encloses the origin. A flat M (no tetrahedron of positive
-// volume) returns NotConverged with lower bound 0: the caller handles flat pairs (their depth is
-// zero).
+// their span. Faces seen from the origin's far side (negative distance) are expanded first, which
+// encloses the origin. A flat M (no tetrahedron of positive volume) returns NotConverged with
+// lower bound 0: the caller handles flat pairs (their depth is zero).
 
 #include "deepcheck/deep/deep.h"
 #include "deepcheck/deep/expansion_surface.h"
