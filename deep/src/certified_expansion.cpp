@@ -2,6 +2,8 @@
 
 #include "deepcheck/deep/tolerances.h"
 
+#include "probe_icosahedron.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -60,12 +62,11 @@ class Support {
   const PairFrame& F_;
 };
 
-/// Four directions of a regular tetrahedron in a generic orientation (no corner on a coordinate
-/// axis, plane or box diagonal, where symmetric shapes put ties).
+/// Four directions of a regular tetrahedron in the probes' generic orientation.
 const Vec3* tetrahedronDirections() {
   static const Vec3* dirs = [] {
     static Vec3 d[4];
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Vec3(0.4, -0.6, 0.7).normalized()).toRotationMatrix();
+    const Eigen::Matrix3d& R = probe::genericOrientation();
     const double k = 1.0 / std::sqrt(3.0);
     d[0] = R * Vec3(k, k, k);
     d[1] = R * Vec3(k, -k, -k);
@@ -129,10 +130,10 @@ bool startSurface(const Support& support, const GjkResult* gjk, double eps, Expa
   return completeTetrahedron(support, probes, 4, eps, pts) && s.startTetrahedron(pts);
 }
 
-/// A result with an empty bracket [0, inf) and the pair's tolerance.
-CertifiedResult emptyBracket(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
+/// A result with an empty bracket [0, inf) and the tolerance of a pair of length scale L.
+CertifiedResult emptyBracket(double L) {
   CertifiedResult r;
-  r.tau = tol::kCertifyRelative * pairLengthScale(A, B, frame);
+  r.tau = tol::kCertifyRelative * L;
   r.upper = std::numeric_limits<double>::infinity();
   return r;
 }
@@ -176,9 +177,10 @@ void expandBestFirst(const Support& support, ExpansionSurface& surface, const Ce
 /// The expansion from startSurface (GJK's simplex when `gjk` is given).
 CertifiedResult startAndExpand(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                                const GjkResult* gjk, ExpansionSurface& surface, const CertifiedOptions& options) {
-  CertifiedResult r = emptyBracket(A, B, frame);
+  const double L = pairLengthScale(A, B, frame);
+  CertifiedResult r = emptyBracket(L);
   const Support support(A, B, frame);
-  if (!startSurface(support, gjk, tol::kFlatRelative * pairLengthScale(A, B, frame), surface)) return r;
+  if (!startSurface(support, gjk, tol::kFlatRelative * L, surface)) return r;
   expandBestFirst(support, surface, options, r);
   return r;
 }
@@ -198,7 +200,7 @@ CertifiedResult certifiedWithoutGjk(const ConvexPolytope& A, const ConvexPolytop
 
 CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                                      ExpansionSurface& surface, const CertifiedOptions& options) {
-  CertifiedResult r = emptyBracket(A, B, frame);
+  CertifiedResult r = emptyBracket(pairLengthScale(A, B, frame));
   expandBestFirst(Support(A, B, frame), surface, options, r);
   return r;
 }

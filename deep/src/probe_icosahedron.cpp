@@ -46,10 +46,7 @@ Icosahedron build() {
           if (ico.face[o][x] == w && ico.face[o][(x + 1) % 3] == u) ico.adj[h][e] = 4 * o + x;
     }
   }
-  // A generic orientation: no direction on a coordinate axis, plane or box diagonal, where
-  // symmetric shapes put ties.
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.4, -0.6, 0.7).normalized()).toRotationMatrix();
-  for (int i = 0; i < kDirections; ++i) ico.direction[i] = R * v[i].normalized();
+  for (int i = 0; i < kDirections; ++i) ico.direction[i] = genericOrientation() * v[i].normalized();
   for (int i = 0; i < kDirections; ++i)
     for (int j = 0; j < kDirections; ++j)
       if ((v[i] + v[j]).squaredNorm() < 1e-18) ico.opposite[i] = j;
@@ -61,6 +58,12 @@ Icosahedron build() {
 const Icosahedron& icosahedron() {
   static const Icosahedron ico = build();
   return ico;
+}
+
+const Eigen::Matrix3d& genericOrientation() {
+  static const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.4, -0.6, 0.7).normalized()).toRotationMatrix();
+  return R;
 }
 
 }  // namespace deepcheck::deep::probe

@@ -23,4 +23,9 @@ struct Icosahedron {
 /// The icosahedron, built once (thread-safe).
 const Icosahedron& icosahedron();
 
+/// The rotation that puts probe directions in a generic orientation: none on a coordinate axis,
+/// plane or box diagonal, where symmetric shapes put ties. The icosahedron's directions and the
+/// certified expansion's four fallback directions (certified_expansion.cpp) are both turned by it.
+const Eigen::Matrix3d& genericOrientation();
+
 }  // namespace deepcheck::deep::probe
