@@ -227,8 +227,7 @@ bool warmPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
 /// than this each (on smaller ones two directions often share a support: boxes, 8-vertex hulls)...
 constexpr int kMinProbedVertices = 17;
 /// ...and on pairs whose inside radii add up to at least this share of their bounding radii: the
-/// supports of an elongated pair rarely form a convex surface (most pairs below 0.2 fail, nearly
-/// all above 0.5 start).
+/// supports of an elongated pair rarely form a convex surface.
 constexpr double kMinProbedRoundness = 0.2;
 
 /// The twelve-direction start where it is tried (above): false when it makes no start, else true
