@@ -76,26 +76,29 @@ class Warm : public Method {
         primed_[i] = c;
       }
     }
+    working_ = primed_;
   }
-
-  void beforeRun(const Family&, int q) override { cache_ = primed_[q]; }
 
   Answer run(const Family& f, int qi) override {
     const Query& q = f.queries[qi];
-    last_ = deep::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB, &cache_, options_);
+    last_ = deep::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB, &working_[qi], options_);
     return {Answer::Kind::SignedDistance, last_.distance};
   }
+  void afterRun(const Family&, int q) override { working_[q] = primed_[q]; }
 
   WalkStats lastWalk() const override { return walkOf(last_); }
-  void endFamily() override { primed_.clear(); }
+  void endFamily() override {
+    primed_.clear();
+    working_.clear();
+  }
 
  private:
   deep::DeepOptions options_;
   std::string name_;
   std::unique_ptr<deep::ExpansionSurface> surface_ = std::make_unique<deep::ExpansionSurface>();
   deep::WalkScratch walk_;
-  std::vector<deep::PairCache> primed_;
-  deep::PairCache cache_;
+  std::vector<deep::PairCache> primed_;   // each query's cache as primed, kept unchanged
+  std::vector<deep::PairCache> working_;  // the caches the timed queries use, reset after each
   deep::SignedDistanceResult last_;
 };
 

@@ -51,8 +51,11 @@ class Method {
   virtual bool separatedOnly() const { return false; }
   /// Untimed preparation for a family (per-shape data, warm-start priming).
   virtual void beginFamily(const Family& family) = 0;
-  /// Untimed, before every timed run of query q (restores warm-start state).
+  /// Untimed, before every timed run of query q.
   virtual void beforeRun(const Family& /*family*/, int /*q*/) {}
+  /// Untimed, after every timed run of query q (restores warm-start state for the next run, so
+  /// that nothing of the pair is touched just before its next timed run).
+  virtual void afterRun(const Family& /*family*/, int /*q*/) {}
   /// The timed query.
   virtual Answer run(const Family& family, int q) = 0;
   /// Statistics of the last run (DEEP only).
