@@ -210,6 +210,14 @@ CertifiedResult warmCertified(const ConvexPolytope& A, const ConvexPolytope& B, 
   return expandWarm(A, B, frame, *cache.certified, surface, expansionOptions(options));
 }
 
+/// Before a cold expansion (tens of support climbs over both hulls): their support data
+/// requested at once, so that on hulls out of cache the climbs do not each wait on memory. Not
+/// before the warm query, which climbs once or twice.
+void prefetchForExpansion(const ConvexPolytope& A, const ConvexPolytope& B) {
+  A.prefetchSupportData();
+  B.prefetchSupportData();
+}
+
 /// The certified method's warm query, tried before GJK: a certified answer from the cached
 /// surface also proves the shapes overlap (the moved surface, made of points of M, winds around
 /// the origin), so GJK is not needed. True, with `p` set, when the surface certifies the depth.
@@ -255,6 +263,7 @@ bool probedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const P
     return false;
   if (options.warmStart && cache && cache->certified && cache->certified->valid && !triedWarm) return false;
   if (!(frame.t.norm() < A.insideRadius() + B.insideRadius())) return false;
+  prefetchForExpansion(A, B);
   CertifiedResult c;
   if (!twelveDirectionStart(A, B, frame, options, surface, c))
     c = certifiedWithoutGjk(A, B, frame, surface, expansionOptions(options));
@@ -286,6 +295,7 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
   if (walkable && checkedWarmWalk(A, B, frame, *cache, p)) return p;
   if (warm && !triedWarm) c = warmCertified(A, B, frame, options, *cache, surface);
   if (c.status != CertifiedStatus::Certified) {
+    prefetchForExpansion(A, B);
     c = certifiedPenetration(A, B, frame, g, surface, expansionOptions(options));
     keepWarmStart(A, B, frame, surface, c, cache);
   }

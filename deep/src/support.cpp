@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <vector>
 
@@ -19,6 +20,13 @@ namespace {
 
 /// support() scans all vertices up to this count; hill climbing only pays off beyond.
 constexpr int kBruteForceMaxVertices = 16;
+/// prefetchSupportData() requests hulls whose support arrays take at most this many bytes whole
+/// (about 250 vertices). A cold expansion's climbs reach most of such a hull. On larger ones
+/// they reach a part, and requesting every line cost more on hulls in cache (3-7 % at 1,000
+/// vertices) than it saved on hulls out of it.
+constexpr std::size_t kPrefetchMaxBytes = 16 * 1024;
+/// Bytes of a cache line, the step between requests.
+constexpr std::size_t kCacheLineBytes = 64;
 /// support() searches plateaus of vertices within hullTolerance * |dir| of the best value (the
 /// hull is convex within hullTolerance), up to kMaxPlateau vertices.
 constexpr int kMaxPlateau = 64;
@@ -108,6 +116,29 @@ void ConvexPolytope::buildProbeSupports() {
 void ConvexPolytope::buildFaceSupports() {
   faceSupport_.resize(faceNormals_.size());
   for (int f = 0; f < numFaces(); ++f) faceSupport_[f] = support(faceNormals_[f], faceVertices(f)[0]);
+}
+
+namespace {
+
+template <class T>
+std::size_t bytesOf(const std::vector<T>& v) {
+  return v.size() * sizeof(T);
+}
+
+template <class T>
+void prefetchArray(const std::vector<T>& v) {
+  const char* p = reinterpret_cast<const char*>(v.data());
+  for (std::size_t offset = 0; offset < bytesOf(v); offset += kCacheLineBytes) __builtin_prefetch(p + offset);
+}
+
+}  // namespace
+
+void ConvexPolytope::prefetchSupportData() const {
+  if (bytesOf(local_) + bytesOf(adjStart_) + bytesOf(adjVerts_) + bytesOf(directionIndex_) > kPrefetchMaxBytes) return;
+  prefetchArray(local_);
+  prefetchArray(adjStart_);
+  prefetchArray(adjVerts_);
+  prefetchArray(directionIndex_);
 }
 
 int ConvexPolytope::supportStart(const Vector3d& dir) const {

@@ -105,6 +105,11 @@ class ConvexPolytope {
   /// (any vertex index; out-of-range hints start at vertex 0) or from the direction index's
   /// vertex for dir, whichever is higher along dir; brute force on small hulls.
   int support(const Eigen::Vector3d& dir, int hint = 0) const;
+  /// Asks the processor to bring the arrays support() reads (vertices, vertex rings, direction
+  /// index) towards its caches, without waiting for them. A query about to climb many times
+  /// calls it first, so that on a hull out of cache the loads overlap instead of each climb
+  /// step waiting on memory in turn.
+  void prefetchSupportData() const;
   /// The direction index's starting vertex for dir (a vertex whose support region is near dir),
   /// or -1 when the hull has no index (small hulls) or dir is zero or not finite. For tests.
   int supportStart(const Eigen::Vector3d& dir) const;
