@@ -4,7 +4,9 @@
 //   time per query   each query is run `reps` times, interleaved across methods (so that load
 //                    from other processes hits all methods alike); a query's time is the median
 //                    of its repetitions, minus the calibrated cost of reading the clock; the
-//                    table gives the median and the 90th percentile over the family's queries;
+//                    table gives the median and the 90th percentile over the family's queries.
+//                    With --sweep each repetition instead runs one method through all queries
+//                    (sweepQueries), so that a pair's data is out of cache when it is timed;
 //   error            against the exact reference (exactSignedDistance, computed once per query):
 //                    relative |sd - sd_exact| / max(|sd_exact|, 1e-3 L), L the larger bounding
 //                    radius (as tests/deep/test_deep.cpp), and absolute |sd - sd_exact|;
@@ -20,7 +22,8 @@
 // Penetration-only methods on separated pairs: a "no contact" answer is right and not scored.
 // The project's GJK runs on separated pairs only.
 //
-// Usage: pd_bench [--quick] [--families a,b,...] [--methods a,b,...] [--reps N] [--out DIR] [--shared DIR]
+// Usage: pd_bench [--quick] [--families a,b,...] [--methods a,b,...] [--reps N] [--sweep] [--out DIR]
+//                 [--shared DIR]
 // Writes DIR/pd_bench.csv, the table as Markdown in DIR/pd_bench.md and, for DEEP answers off by more than 1e-9 relative (or NaN,
 // failed, thrown), reproducers DIR/repro_pd_<family>_<query>_<method>.txt in the input format of
 // `deepcheck pd` (DESIGN.md).
