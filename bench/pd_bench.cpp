@@ -336,10 +336,14 @@ Options parse(int argc, char** argv) {
 /// offsets and vertex lists, vertex rings): against the core's cache sizes, whether a swept run
 /// (--sweep) finds a pair's hulls out of cache.
 double hullMegabytes(const Family& f) {
+  // Per vertex: the vertex and its centred copy. Per face: normal, offset, start in the face
+  // list, support. Per edge: two ring entries (vertex and face) and two face-list entries.
+  constexpr double perVertex = 2 * sizeof(Eigen::Vector3d);
+  constexpr double perFace = sizeof(Eigen::Vector3d) + sizeof(double) + 2 * sizeof(int);
+  constexpr double perEdge = 6 * sizeof(int);
   double bytes = 0;
-  for (const deepcheck::deep::ConvexPolytope& p : f.shapes) {
-    bytes += 48.0 * p.numVertices() + 40.0 * p.numFaces() + 24.0 * p.numEdges();
-  }
+  for (const deepcheck::deep::ConvexPolytope& p : f.shapes)
+    bytes += perVertex * p.numVertices() + perFace * p.numFaces() + perEdge * p.numEdges();
   return bytes / (1024.0 * 1024.0);
 }
 
