@@ -6,11 +6,12 @@
 // Started from a tetrahedron or from a checked convex surface (startConvex), the surface is the
 // convex hull of its vertices (the expanding polytope of van den Bergen 2001). While it encloses
 // the origin, every ray from the origin leaves M beyond some face, so the penetration depth is at
-// least the smallest face-plane distance: the lower bound. A surface loaded from a warm start (load()) need not be convex; what the bound
-// needs is that it winds once around the origin, and expand() keeps that by refusing any
-// replacement that could sweep over the origin (see expand()). Faces are kept
-// in a best-first queue ordered by that distance; expanding a face adds the support point of M in
-// its normal and replaces every face that point sees by a cone of faces over the horizon.
+// least the smallest face-plane distance: the lower bound. A surface loaded from a warm start
+// (load()) need not be convex; what the bound needs is that it winds once around the origin, and
+// expand() keeps that by refusing any replacement that could sweep over the origin (see
+// expand()). Faces are kept in a best-first queue ordered by that distance; expanding a face adds
+// the support point of M in its normal and replaces every face that point sees by a cone of faces
+// over the horizon.
 //
 // Fixed capacity, no allocation: the caller owns one surface and reuses it for every query (one
 // per thread). Beyond capacity, expand() refuses and the caller reports the bracket it has.
