@@ -50,8 +50,9 @@ class ExpansionSurface {
   /// The plane through p0, p1, p2 (counter-clockwise seen from outside): unit normal n and
   /// offset d, the mean of the corners' offsets. False when the corners are collinear or the
   /// normal's length is not finite. One reciprocal of the normal's length, then products. The
-  /// surface's faces and the warm start's moved faces both get their planes here, so that cold
-  /// and warm queries at one pose break ties between support vertices alike and agree to the bit.
+  /// surface's faces (setPlanes, the same arithmetic two faces at a time) and the warm start's
+  /// moved faces both get these planes, so that cold and warm queries at one pose break ties
+  /// between support vertices alike and agree to the bit.
   static bool planeThrough(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
                            Eigen::Vector3d& n, double& d);
 
@@ -116,8 +117,8 @@ class ExpansionSurface {
   bool enclosesConvexly(double eps) const;
   int newFace(int v0, int v1, int v2);
   void freeFace(int f);
-  /// Sets n and d of faces[0..count) from their corners (planeThrough); false when one is
-  /// degenerate.
+  /// Sets n and d of faces[0..count) from their corners, the bits planeThrough() gives; false
+  /// when one is degenerate.
   bool setPlanes(Face* faces, int count) const;
   void push(int f);
   void rebuildQueue();
