@@ -4,8 +4,6 @@
 
 #include "deepcheck/deep/tolerances.h"
 
-#include "prefetch.h"
-
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -214,20 +212,6 @@ NamedFacet facetOf(const ConvexPolytope& A, const ConvexPolytope& B, const PairF
   return facetOfFace(A, B, frame, faceA, faceB, n);
 }
 
-/// Out of cache, a warm query is a chain of reads that each wait on the one before: the face it
-/// starts from, that face's corners' index pairs, their vertices; the hint vertices' rings; the
-/// offsets, then the near faces. Requesting the head of each chain first lets them overlap
-/// (pd_bench --sweep, bench/README.md). The requests are few, one per cache line of the offsets
-/// and index pairs and five more, so that pairs in cache do not pay for them measurably.
-void prefetchWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const W& w) {
-  __builtin_prefetch(&w.face[w.last]);
-  A.prefetchVertex(w.hintA);
-  B.prefetchVertex(w.hintB);
-  prefetchBytes(w.offset, w.numFaces * sizeof(w.offset[0]));
-  prefetchBytes(w.a, w.numVertices * sizeof(w.a[0]));
-  prefetchBytes(w.b, w.numVertices * sizeof(w.b[0]));
-}
-
 }  // namespace
 
 CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
@@ -236,7 +220,6 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
   r.upper = std::numeric_limits<double>::infinity();
   r.tau = tauOf(A, B, frame);
   if (!w.belongsTo(A, B)) return r;
-  prefetchWarmStart(A, B, w);
   MovedSurface m(A, B, frame, w);
   int named = -1;  // the face whose normal gave the upper bound
   auto supportIn = [&](int f, const Vec3& n) {

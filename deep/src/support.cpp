@@ -3,7 +3,6 @@
 
 #include "deepcheck/deep/polytope.h"
 
-#include "prefetch.h"
 #include "probe_icosahedron.h"
 
 #include <algorithm>
@@ -26,6 +25,8 @@ constexpr int kBruteForceMaxVertices = 16;
 /// they reach a part: requesting every line of 1,000-vertex hulls made cold queries 5-7 %
 /// slower on hulls in cache and saved nothing measurable on hulls out of it.
 constexpr std::size_t kPrefetchMaxBytes = 16 * 1024;
+/// Bytes of a cache line, the step between requests.
+constexpr std::size_t kCacheLineBytes = 64;
 /// support() searches plateaus of vertices within hullTolerance * |dir| of the best value (the
 /// hull is convex within hullTolerance), up to kMaxPlateau vertices.
 constexpr int kMaxPlateau = 64;
@@ -126,7 +127,8 @@ std::size_t bytesOf(const std::vector<T>& v) {
 
 template <class T>
 void prefetchArray(const std::vector<T>& v) {
-  prefetchBytes(v.data(), bytesOf(v));
+  const char* p = reinterpret_cast<const char*>(v.data());
+  for (std::size_t offset = 0; offset < bytesOf(v); offset += kCacheLineBytes) __builtin_prefetch(p + offset);
 }
 
 }  // namespace
@@ -137,11 +139,6 @@ void ConvexPolytope::prefetchSupportData() const {
   prefetchArray(adjStart_);
   prefetchArray(adjVerts_);
   prefetchArray(directionIndex_);
-}
-
-void ConvexPolytope::prefetchVertex(int v) const {
-  __builtin_prefetch(&local_[v]);
-  __builtin_prefetch(&adjStart_[v]);
 }
 
 int ConvexPolytope::supportStart(const Vector3d& dir) const {

@@ -110,9 +110,6 @@ class ConvexPolytope {
   /// calls it first, so that on a hull out of cache the loads overlap instead of each climb
   /// step waiting on memory in turn.
   void prefetchSupportData() const;
-  /// The same for vertex v alone (0 <= v < numVertices()): its coordinates and where its ring
-  /// starts, the first reads of a climb from v.
-  void prefetchVertex(int v) const;
   /// The direction index's starting vertex for dir (a vertex whose support region is near dir),
   /// or -1 when the hull has no index (small hulls) or dir is zero or not finite. For tests.
   int supportStart(const Eigen::Vector3d& dir) const;
