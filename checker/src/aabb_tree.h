@@ -45,6 +45,16 @@ struct Aabb {
   }
   /// Euclidean distance from p to the box (0 inside).
   double distance(const Eigen::Vector3d& p) const { return std::sqrt(squaredDistance(p)); }
+  /// Signed distance from p to the box: the Euclidean distance outside, minus the distance to the
+  /// nearest face inside. signedDistance(c) - r is the exact signed distance between the ball
+  /// (c, r) and the box, so a lower bound on the signed distance between anything inside the
+  /// ball and anything inside the box, overlapping or not (containment only shrinks a depth).
+  /// distance(c) - r is not: inside the box it ignores how deep c lies.
+  double signedDistance(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d outside = (lo - p).cwiseMax(p - hi);  // > 0 on an axis whose slab p leaves
+    if ((outside.array() > 0.0).any()) return outside.cwiseMax(0.0).norm();
+    return outside.maxCoeff();
+  }
   /// Its square: what a test against a radius needs (no square root on the query's path).
   double squaredDistance(const Eigen::Vector3d& p) const {
     return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
@@ -72,8 +82,9 @@ class AabbTree {
   bool visitOverlapping(const Aabb& query, Visit&& visit) const;
 
   /// Branch and bound around a sphere (centre c, radius r): calls visit(item, lowerBound) for the
-  /// items whose box is within bound() of the sphere (lowerBound = the item box's distance from c
-  /// minus r, may be negative), nearer subtrees first. bound() is read again before every node, so visit
+  /// items whose box is within bound() of the sphere (lowerBound = the item box's signed distance
+  /// from c minus r, Aabb::signedDistance: a lower bound on the signed distance of anything in the
+  /// sphere to anything in the box, however deep), nearer subtrees first. bound() is read again before every node, so visit
   /// may tighten it (a best-so-far distance).
   template <class Bound, class Visit>
   void visitNear(const Eigen::Vector3d& c, double r, Bound&& bound, Visit&& visit) const;
@@ -124,22 +135,22 @@ void AabbTree::visitNear(const Eigen::Vector3d& c, double r, Bound&& bound, Visi
   };
   Entry stack[kMaxDepth];
   int top = 0;
-  stack[top++] = {0, nodes_[0].box.distance(c) - r};
+  stack[top++] = {0, nodes_[0].box.signedDistance(c) - r};
   while (top > 0) {
     const Entry e = stack[--top];
     if (e.lowerBound >= bound()) continue;
     const Node& node = nodes_[e.node];
     if (node.count > 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
-        const double lowerBound = itemBoxes_[i].distance(c) - r;
+        const double lowerBound = itemBoxes_[i].signedDistance(c) - r;
         if (lowerBound < bound()) visit(items_[i], lowerBound);
       }
       continue;
     }
     const int left = e.node + 1;
     const int right = node.first;
-    const double dl = nodes_[left].box.distance(c) - r;
-    const double dr = nodes_[right].box.distance(c) - r;
+    const double dl = nodes_[left].box.signedDistance(c) - r;
+    const double dr = nodes_[right].box.signedDistance(c) - r;
     // Push the farther child first so the nearer one is visited first.
     if (dl <= dr) {
       stack[top++] = {right, dr};

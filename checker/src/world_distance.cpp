@@ -17,21 +17,6 @@ using namespace detail;  // NOLINT: the queries' own internals
 
 namespace {
 
-/// Lower bound on sd(A, B) from the support functions in direction u (unit, world frame):
-/// with M = B - A (cores), h_M(u) = h_B(u) + h_A(-u) >= |m| for no m in general, but
-///   - if the cores overlap, the penetration depth is min over unit v of h_M(v) <= h_M(u);
-///   - if they are apart, every m in M has u.m <= h_M(u), so |m| >= -h_M(u) when h_M(u) < 0;
-/// in both cases the core signed distance is >= -h_M(u). Radii are subtracted as usual.
-inline double supportLowerBound(const deep::ConvexPolytope& A, const Eigen::Isometry3d& X_WA, double rA,
-                                const deep::ConvexPolytope& B, const Eigen::Isometry3d& X_WB, double rB,
-                                const Eigen::Vector3d& u) {
-  const Eigen::Vector3d uA = X_WA.linear().transpose() * u;
-  const Eigen::Vector3d uB = X_WB.linear().transpose() * u;
-  const double hB = uB.dot(B.vertex(B.support(uB))) + u.dot(X_WB.translation());
-  const double minA = uA.dot(A.vertex(A.support(-uA))) + u.dot(X_WA.translation());
-  return -(hB - minA) - rA - rB;
-}
-
 /// State of one signedDistance query: candidates are gathered with their bounding-volume lower
 /// bounds (and the cheap upper bound of their centres' distance), sorted, and measured nearest
 /// first until the lower bound reaches the best distance found.

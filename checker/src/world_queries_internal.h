@@ -183,11 +183,28 @@ inline std::size_t pairIndex(const PieceSet& set, int i, int wp) {
   return static_cast<std::size_t>(i) * set.pieces.size() + static_cast<std::size_t>(wp);
 }
 
-/// Lower bound on the distance between robot piece i (posed) and world piece w.
+/// Lower bound on the signed distance between robot piece i (posed) and world piece w, however
+/// deep they overlap: the exact signed distances of the piece's bounding sphere to w's box and
+/// to w's bounding sphere, each containing its piece.
 inline double pieceWorldLowerBound(const Impl& c, const RobotPiece& p, int i, const WorldPiece& w) {
-  const double toBox = w.box.distance(c.pieceCenter[i]) - p.sphereRadius;
+  const double toBox = w.box.signedDistance(c.pieceCenter[i]) - p.sphereRadius;
   const double toSphere = (c.pieceCenter[i] - w.center_W).norm() - p.sphereRadius - w.sphereRadius;
   return std::max(toBox, toSphere);
+}
+
+/// Lower bound on sd(A, B) from the support functions in direction u (unit, world frame):
+/// with M = B - A (cores), h_M(u) = h_B(u) + h_A(-u) >= |m| for no m in general, but
+///   - if the cores overlap, the penetration depth is min over unit v of h_M(v) <= h_M(u);
+///   - if they are apart, every m in M has u.m <= h_M(u), so |m| >= -h_M(u) when h_M(u) < 0;
+/// in both cases the core signed distance is >= -h_M(u). Radii are subtracted as usual.
+inline double supportLowerBound(const deep::ConvexPolytope& A, const Eigen::Isometry3d& X_WA, double rA,
+                                const deep::ConvexPolytope& B, const Eigen::Isometry3d& X_WB, double rB,
+                                const Eigen::Vector3d& u) {
+  const Eigen::Vector3d uA = X_WA.linear().transpose() * u;
+  const Eigen::Vector3d uB = X_WB.linear().transpose() * u;
+  const double hB = uB.dot(B.vertex(B.support(uB))) + u.dot(X_WB.translation());
+  const double minA = uA.dot(A.vertex(A.support(-uA))) + u.dot(X_WA.translation());
+  return -(hB - minA) - rA - rB;
 }
 
 /// True when spheres (or a sphere and a box) at squared distance d2 are farther apart than r:
@@ -262,7 +279,7 @@ void forEachNear(const PieceSet& set, BroadPhase broadPhase, const Eigen::Vector
       return;
     case BroadPhase::None:
       for (int i = 0; i < static_cast<int>(set.pieces.size()); ++i) {
-        const double lb = set.pieces[i].box.distance(center) - r;
+        const double lb = set.pieces[i].box.signedDistance(center) - r;
         if (lb < bound()) visit(i, lb);
       }
       return;

@@ -6,7 +6,9 @@
 #include <fcl/geometry/shape/box.h>
 #include <fcl/narrowphase/collision_object.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -45,9 +47,11 @@ struct NearData {
 bool nearCallback(fcl::CollisionObjectd* item, fcl::CollisionObjectd* /*query*/, void* data, double& dist) {
   auto* d = static_cast<NearData*>(data);
   const int index = static_cast<int>(reinterpret_cast<std::intptr_t>(item->getUserData()));
-  const double lowerBound = (*d->boxes)[index].distance(*d->center) - d->radius;
+  const double lowerBound = (*d->boxes)[index].signedDistance(*d->center) - d->radius;
   if (lowerBound < (*d->bound)()) (*d->visit)(index, lowerBound);
-  dist = (*d->bound)();
+  // FCL skips a node whose box is at least `dist` from the query's box, and overlapping boxes are
+  // at distance 0: a bound at or below zero (a penetration found) must still visit them all.
+  dist = std::max((*d->bound)(), std::numeric_limits<double>::min());
   return false;
 }
 

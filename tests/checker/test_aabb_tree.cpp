@@ -60,6 +60,27 @@ BOOST_AUTO_TEST_CASE(overlap_queries_match_brute_force) {
   }
 }
 
+// Outside a box the signed distance is the Euclidean one; inside, minus the distance to the
+// nearest face; on a face, zero.
+BOOST_AUTO_TEST_CASE(signed_distance_of_a_point) {
+  Aabb box;
+  box.lo = Eigen::Vector3d(-1, -2, -3);
+  box.hi = Eigen::Vector3d(1, 2, 3);
+  BOOST_TEST(box.signedDistance(Eigen::Vector3d(0, 0, 0)) == -1.0);
+  BOOST_TEST(box.signedDistance(Eigen::Vector3d(0.5, 1.9, 0)) == -0.1, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(box.signedDistance(Eigen::Vector3d(1, 0, 0)) == 0.0);
+  BOOST_TEST(box.signedDistance(Eigen::Vector3d(4, 6, 3)) == 5.0);
+  BOOST_TEST(box.signedDistance(Eigen::Vector3d(0, 0, -3.5)) == 0.5);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> position(-5.0, 5.0);
+  for (int k = 0; k < 1000; ++k) {
+    const Eigen::Vector3d p(position(rng), position(rng), position(rng));
+    const double sd = box.signedDistance(p);
+    if (sd > 0) BOOST_TEST(sd == box.distance(p));
+    if (box.distance(p) == 0) BOOST_TEST(sd <= 0.0);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(near_queries_match_brute_force) {
   std::mt19937 rng(42);
   const std::vector<Aabb> boxes = randomBoxes(300, rng);
@@ -72,18 +93,18 @@ BOOST_AUTO_TEST_CASE(near_queries_match_brute_force) {
     const double bound = 0.5;
     std::set<int> expected, got;
     for (int i = 0; i < 300; ++i) {
-      if (boxes[i].distance(c) - r < bound) expected.insert(i);
+      if (boxes[i].signedDistance(c) - r < bound) expected.insert(i);
     }
     tree.visitNear(c, r, [&] { return bound; }, [&](int i, double lowerBound) {
-      BOOST_TEST(lowerBound == boxes[i].distance(c) - r);
+      BOOST_TEST(lowerBound == boxes[i].signedDistance(c) - r);
       got.insert(i);
     });
     BOOST_TEST((got == expected));
-    // A shrinking bound (nearest-box search): finds the nearest box.
+    // A shrinking bound (nearest-box search): finds the nearest box, or the one c is deepest in.
     double best = std::numeric_limits<double>::infinity();
-    tree.visitNear(c, 0.0, [&] { return best; }, [&](int i, double) { best = std::min(best, boxes[i].distance(c)); });
+    tree.visitNear(c, 0.0, [&] { return best; }, [&](int i, double) { best = std::min(best, boxes[i].signedDistance(c)); });
     double nearest = std::numeric_limits<double>::infinity();
-    for (const Aabb& b : boxes) nearest = std::min(nearest, b.distance(c));
+    for (const Aabb& b : boxes) nearest = std::min(nearest, b.signedDistance(c));
     BOOST_TEST(best == nearest);
   }
 }
