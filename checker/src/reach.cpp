@@ -46,6 +46,7 @@ std::vector<ReachSphere> linkReachSpheres(const robots::RobotModel& model,
     for (int link = l; model.link(link).parentJoint >= 0; link = model.link(link).parentLink) {
       const robots::Joint& joint = model.joint(model.link(link).parentJoint);
       pendingOffsets += prismaticTravel(model, joint);
+      s.withinLimitsOnly = s.withinLimitsOnly || (joint.type == robots::JointType::Prismatic && joint.variable >= 0);
       if (joint.moves()) {
         topMoving = model.link(link).parentJoint;
         chain += pendingOffsets;
@@ -80,6 +81,39 @@ std::vector<ReachSphere> linkReachSpheres(const robots::RobotModel& model,
     s.center_W = (X_WL[j0.parentLink] * j0.X_PJ).translation();
     s.radius = chain + extent;
   }
+  return out;
+}
+
+std::vector<std::pair<int, int>> pairsWithinReach(const std::vector<ReachSphere>& spheres, const std::vector<int>& links,
+                                                  double margin) {
+  const int n = static_cast<int>(links.size());
+  std::vector<Aabb> boxes;
+  std::vector<int> unbounded;  // positions in `links` of the spheres that hold within the limits only
+  boxes.reserve(links.size());
+  for (int i = 0; i < n; ++i) {
+    const ReachSphere& s = spheres[links[i]];
+    boxes.push_back(Aabb::ofSphere(s.center_W, s.radius));
+    if (s.withinLimitsOnly) unbounded.push_back(i);
+  }
+  const AabbTree tree(boxes);
+  std::vector<std::pair<int, int>> out;
+  for (int i = 0; i < n; ++i) {
+    const ReachSphere& a = spheres[links[i]];
+    if (a.withinLimitsOnly) continue;
+    tree.visitOverlapping(Aabb::ofSphere(a.center_W, a.radius + margin), [&](int j) {
+      const ReachSphere& b = spheres[links[j]];
+      if (j > i && !b.withinLimitsOnly && (a.center_W - b.center_W).norm() - a.radius - b.radius <= margin) {
+        out.emplace_back(i, j);
+      }
+      return false;
+    });
+  }
+  for (int i : unbounded) {
+    for (int j = 0; j < n; ++j) {
+      if (j != i && (j > i || !spheres[links[j]].withinLimitsOnly)) out.emplace_back(std::min(i, j), std::max(i, j));
+    }
+  }
+  std::sort(out.begin(), out.end());
   return out;
 }
 

@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 
+#include <utility>
 #include <vector>
 
 namespace deepcheck::checker {
@@ -32,11 +33,22 @@ struct ReachSphere {
   Eigen::Vector3d center_W = Eigen::Vector3d::Zero();
   double radius = 0.0;
   bool fixed = false;  ///< the link never moves (no moving joint between it and the root)
+  /// A prismatic joint's travel is in the radius: the sphere holds within the joint limits only.
+  bool withinLimitsOnly = false;
 };
 
 /// One sphere per link (index by link). `pieces` is robots::collisionPieces(model) (one entry per
 /// link). Throws std::invalid_argument when `pieces` does not have one entry per link.
 std::vector<ReachSphere> linkReachSpheres(const robots::RobotModel& model,
                                           const std::vector<std::vector<robots::CollisionPiece>>& pieces);
+
+/// The pairs (i, j), i < j, of `links` (link indices, each with a valid sphere in `spheres`) whose
+/// reach spheres come within `margin` (metres) of each other, in increasing order: the only link
+/// pairs that can ever be nearer than `margin`, at any configuration. A link whose sphere holds
+/// within the joint limits only is paired with every other (configurations beyond the limits are
+/// accepted by the queries). A tree over the spheres' boxes finds the pairs: the time grows with
+/// their number, not with the square of the links'.
+std::vector<std::pair<int, int>> pairsWithinReach(const std::vector<ReachSphere>& spheres, const std::vector<int>& links,
+                                                  double margin);
 
 }  // namespace deepcheck::checker

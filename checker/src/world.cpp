@@ -211,44 +211,51 @@ std::shared_ptr<const PieceSet> appendScenePieces(const PieceSet& old, const Rob
   return set;
 }
 
-/// Self pairs of `robot` minus the adjacent and rigid ones (when asked) and the user's.
+/// Counts the disabled link pairs of `s` by reason (adjacent before rigid before by name), over
+/// the pairs of links with geometry, and returns them as one set.
+std::set<std::pair<int, int>> countDisabledPairs(Snapshot& s, const WorldOptions& options) {
+  const RobotData& robot = *s.robot;
+  std::vector<bool> hasGeometry(robot.model.numLinks(), false);
+  for (const LinkGeometry& g : robot.links) hasGeometry[g.link] = true;
+  std::set<std::pair<int, int>> disabled;
+  auto add = [&](const std::vector<std::pair<int, int>>& pairs, int& count) {
+    for (const auto& [a, b] : pairs) {
+      if (hasGeometry[a] && hasGeometry[b] && disabled.insert({std::min(a, b), std::max(a, b)}).second) ++count;
+    }
+  };
+  s.disabledAdjacent = 0;
+  s.disabledRigid = 0;
+  s.disabledByUser = 0;
+  if (options.disableAdjacent) add(robot.adjacent, s.disabledAdjacent);
+  if (options.disableRigid) add(robot.rigid, s.disabledRigid);
+  add(s.userDisabled, s.disabledByUser);
+  return disabled;
+}
+
+/// Self pairs of `robot` that can come within the reach margin (reach.h), minus the adjacent and
+/// rigid ones (when asked) and the user's.
 void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
   const RobotData& robot = *s.robot;
   // Grids depend on the robot only: those of pairs already built are kept.
   std::map<std::pair<int, int>, std::shared_ptr<const detail::SelfPairGrid>> grids;
   for (const SelfPair& p : s.selfPairs) grids[{p.a, p.b}] = p.grid;
-  std::set<std::pair<int, int>> adjacent(robot.adjacent.begin(), robot.adjacent.end());
-  std::set<std::pair<int, int>> rigid(robot.rigid.begin(), robot.rigid.end());
-  std::set<std::pair<int, int>> user(s.userDisabled.begin(), s.userDisabled.end());
+  const std::set<std::pair<int, int>> disabled = countDisabledPairs(s, options);
+  std::vector<int> links;
+  for (const LinkGeometry& g : robot.links) links.push_back(g.link);
   s.selfPairs.clear();
   s.selfCacheSize = 0;
-  s.disabledAdjacent = 0;
-  s.disabledRigid = 0;
-  s.disabledByUser = 0;
-  const int n = static_cast<int>(robot.links.size());
-  for (int a = 0; a < n; ++a) {
-    for (int b = a + 1; b < n; ++b) {
-      const std::pair<int, int> links(robot.links[a].link, robot.links[b].link);
-      if (options.disableAdjacent && adjacent.count(links)) {
-        ++s.disabledAdjacent;
-        continue;
-      }
-      if (options.disableRigid && rigid.count(links)) {
-        ++s.disabledRigid;
-        continue;
-      }
-      if (user.count(links)) {
-        ++s.disabledByUser;
-        continue;
-      }
-      auto known = grids.find({a, b});
-      s.selfPairs.push_back({a, b, s.selfCacheSize,
-                             known != grids.end()    ? known->second
-                             : options.selfPairGrids ? detail::SelfPairGrid::build(robot, a, b)
-                                                     : nullptr});
-      s.selfCacheSize += robot.links[a].numPieces * robot.links[b].numPieces;
-    }
+  for (const auto& [a, b] : pairsWithinReach(robot.reach, links, options.reachMargin)) {
+    if (disabled.count({links[a], links[b]})) continue;
+    auto known = grids.find({a, b});
+    s.selfPairs.push_back({a, b, s.selfCacheSize,
+                           known != grids.end()    ? known->second
+                           : options.selfPairGrids ? detail::SelfPairGrid::build(robot, a, b)
+                                                   : nullptr});
+    s.selfCacheSize += robot.links[a].numPieces * robot.links[b].numPieces;
   }
+  const long long n = static_cast<long long>(links.size());
+  s.unreachablePairs = static_cast<int>(n * (n - 1) / 2 - static_cast<long long>(disabled.size()) -
+                                        static_cast<long long>(s.selfPairs.size()));
 }
 
 std::pair<int, int> linkPairByName(const robots::RobotModel& model, const std::string& a, const std::string& b) {

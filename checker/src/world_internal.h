@@ -119,6 +119,7 @@ struct Snapshot {
   int disabledAdjacent = 0;
   int disabledRigid = 0;
   int disabledByUser = 0;
+  int unreachablePairs = 0;  // link pairs neither disabled nor checked: never within the reach margin
   std::vector<std::pair<int, int>> userDisabled;  // link pairs, first < second
   double excess = 0.0;
 };
@@ -159,6 +160,8 @@ WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry
 /// Builds the broad phase of `set` (its AABB tree, and FCL's tree when asked).
 void finishPieceSet(PieceSet& set, BroadPhase broadPhase);
 
+/// Appends obstacle o's body and world pieces to `set` (finishPieceSet rebuilds its tree).
+void appendObstacle(PieceSet& set, const ObstacleData& o);
 /// The pieces of the obstacles, in their order (world_obstacles.cpp).
 std::shared_ptr<const PieceSet> buildObstaclePieces(const std::vector<std::shared_ptr<const ObstacleData>>& obstacles,
                                                     BroadPhase broadPhase);

@@ -112,21 +112,24 @@ std::vector<robots::CollisionPiece> piecesOfGeometry(const robots::Geometry& g, 
 
 namespace detail {
 
+/// The body and the world pieces of obstacle o, appended to `set` (its tree not rebuilt).
+void appendObstacle(PieceSet& set, const ObstacleData& o) {
+  const int body = static_cast<int>(set.bodies.size());
+  WorldBody b;
+  b.ref.kind = BodyRef::Kind::Obstacle;
+  b.ref.index = o.id;
+  b.name = "obstacle/" + o.source.name;
+  set.bodies.push_back(b);
+  for (std::size_t i = 0; i < o.pieces.size(); ++i) {
+    const std::uint64_t uid = (static_cast<std::uint64_t>(o.id) << 24) | i;
+    set.pieces.push_back(makeWorldPiece(o.pieces[i], o.source.X_WO, body, uid));
+  }
+}
+
 std::shared_ptr<const PieceSet> buildObstaclePieces(const std::vector<std::shared_ptr<const ObstacleData>>& obstacles,
                                                     BroadPhase broadPhase) {
   auto set = std::make_shared<PieceSet>();
-  for (const auto& o : obstacles) {
-    const int body = static_cast<int>(set->bodies.size());
-    WorldBody b;
-    b.ref.kind = BodyRef::Kind::Obstacle;
-    b.ref.index = o->id;
-    b.name = "obstacle/" + o->source.name;
-    set->bodies.push_back(b);
-    for (std::size_t i = 0; i < o->pieces.size(); ++i) {
-      const std::uint64_t uid = (static_cast<std::uint64_t>(o->id) << 24) | i;
-      set->pieces.push_back(makeWorldPiece(o->pieces[i], o->source.X_WO, body, uid));
-    }
-  }
+  for (const auto& o : obstacles) appendObstacle(*set, *o);
   finishPieceSet(*set, broadPhase);
   return set;
 }
@@ -150,21 +153,38 @@ std::size_t findObstacle(const Snapshot& s, int id) {
 
 }  // namespace
 
-int World::addObstacle(const Obstacle& obstacle) {
+int World::addObstacle(const Obstacle& obstacle) { return addObstacles({obstacle}).front(); }
+
+std::vector<int> World::addObstacles(const std::vector<Obstacle>& obstacles) {
   WorldState& st = *state_;
-  if (obstacle.name.empty()) throw std::invalid_argument("addObstacle: the obstacle has no name");
-  checkObstaclePose(obstacle.X_WO, obstacle.name);
+  // Every obstacle's pieces are made before the world changes: a bad one leaves it as it was.
+  std::vector<std::shared_ptr<ObstacleData>> added;
+  added.reserve(obstacles.size());
+  for (const Obstacle& obstacle : obstacles) {
+    if (obstacle.name.empty()) throw std::invalid_argument("addObstacle: the obstacle has no name");
+    checkObstaclePose(obstacle.X_WO, obstacle.name);
+    auto data = std::make_shared<ObstacleData>();
+    data->source = obstacle;
+    data->pieces = detail::piecesOfGeometry(obstacle.geometry, obstacle.mesh.get(), st.geometry,
+                                            "obstacle '" + obstacle.name + "'");
+    added.push_back(std::move(data));
+  }
   std::lock_guard<std::mutex> lock(st.mutex);
-  auto data = std::make_shared<ObstacleData>();
-  data->source = obstacle;
-  data->pieces = detail::piecesOfGeometry(obstacle.geometry, obstacle.mesh.get(), st.geometry,
-                                          "obstacle '" + obstacle.name + "'");
-  data->id = st.nextObstacleId++;
   auto snap = std::make_shared<Snapshot>(*st.current);
-  snap->obstacles.push_back(data);
-  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.broadPhase);
+  // The pieces of the obstacles already there are kept as they are; only the tree is rebuilt.
+  auto pieces = std::make_shared<PieceSet>(*snap->obstaclePieces);
+  pieces->fclTree.reset();
+  std::vector<int> ids;
+  for (const auto& data : added) {
+    data->id = st.nextObstacleId++;
+    ids.push_back(data->id);
+    snap->obstacles.push_back(data);
+    detail::appendObstacle(*pieces, *data);
+  }
+  detail::finishPieceSet(*pieces, st.options.broadPhase);
+  snap->obstaclePieces = pieces;
   publish(st, snap);
-  return data->id;
+  return ids;
 }
 
 void World::removeObstacle(int id) {

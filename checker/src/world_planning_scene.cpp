@@ -4,7 +4,6 @@
 #include "deepcheck/checker/world.h"
 
 #include <cstddef>
-#include <exception>
 #include <string>
 #include <vector>
 
@@ -28,21 +27,16 @@ std::vector<int> World::addPlanningScene(const robots::PlanningScene& scene, con
   const Eigen::VectorXd q = options.q.size() == 0 ? robot().defaultConfiguration() : options.q;
   // Every frame is resolved before anything is added: a bad frame leaves the world unchanged.
   const auto poses = robots::shapeWorldPoses(scene, robot(), q, options.frameAliases);
-  std::vector<int> ids;
-  try {
-    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-      const robots::SceneObject& object = scene.objects[i];
-      for (std::size_t k = 0; k < object.shapes.size(); ++k) {
-        const std::string name = object.shapes.size() == 1 ? object.id : object.id + "/" + std::to_string(k);
-        ids.push_back(addObstacle(obstacleOfShape(object.shapes[k], name, poses[i][k])));
-      }
+  std::vector<Obstacle> obstacles;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const robots::SceneObject& object = scene.objects[i];
+    for (std::size_t k = 0; k < object.shapes.size(); ++k) {
+      const std::string name = object.shapes.size() == 1 ? object.id : object.id + "/" + std::to_string(k);
+      obstacles.push_back(obstacleOfShape(object.shapes[k], name, poses[i][k]));
     }
-  } catch (...) {
-    // A shape that cannot become pieces (an unreadable mesh): take back the ones added.
-    for (int id : ids) removeObstacle(id);
-    throw;
   }
-  return ids;
+  // All at once: one change of the world, and none added when a shape cannot become pieces.
+  return addObstacles(obstacles);
 }
 
 }  // namespace deepcheck::checker

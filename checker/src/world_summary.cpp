@@ -53,6 +53,7 @@ World::Summary World::summaryCounts() const {
   s.disabledAdjacent = snap->disabledAdjacent;
   s.disabledRigid = snap->disabledRigid;
   s.disabledByUser = snap->disabledByUser;
+  s.unreachablePairs = snap->unreachablePairs;
   s.scenes = static_cast<int>(snap->scenes.size());
   for (const auto& sc : snap->scenes) {
     s.sceneLinksWithGeometry += sc->linksWithGeometry;
@@ -74,7 +75,9 @@ std::string World::summary() const {
       << " with geometry), " << m.numVariables() << " variables, " << s.robotPieces << " pieces\n";
   out << "self pairs: " << s.selfPairs << " link pairs checked (" << s.selfPiecePairs << " piece pairs), "
       << s.disabledAdjacent << " disabled as adjacent, " << s.disabledRigid << " as rigidly attached, "
-      << s.disabledByUser << " by name (SRDF)\n";
+      << s.disabledByUser << " by name (SRDF)";
+  if (s.unreachablePairs > 0) out << ", " << s.unreachablePairs << " never within reach";
+  out << "\n";
   for (std::size_t i = 0; i < snap->scenes.size(); ++i) {
     const SceneData& sc = *snap->scenes[i];
     out << "scene " << i << " '" << sc.model.name() << "': " << sc.model.numLinks() << " links ("

@@ -117,19 +117,18 @@ std::vector<std::pair<int, int>> adjacentLinkPairs(
   }
   std::set<std::pair<int, int>> adjacent;
   std::vector<int> stack;
-  std::vector<char> seen(n);
+  std::vector<int> seenBy(n, -1);  // the walk that last met each link: no clearing per walk
   for (int a = 0; a < n; ++a) {
     if (pieces[a].empty()) continue;
     // Walk from a through links without geometry; every link with geometry met is adjacent to a.
-    std::fill(seen.begin(), seen.end(), 0);
-    seen[a] = 1;
+    seenBy[a] = a;
     stack.assign(1, a);
     while (!stack.empty()) {
       const int l = stack.back();
       stack.pop_back();
       for (int m : neighbours[l]) {
-        if (seen[m]) continue;
-        seen[m] = 1;
+        if (seenBy[m] == a) continue;
+        seenBy[m] = a;
         if (pieces[m].empty()) {
           stack.push_back(m);
         } else {

@@ -15,7 +15,9 @@
 //             They are not subject to the reach filter.
 //
 // Pairs. Robot-world pairs: every robot link with geometry against every scene and obstacle
-// piece. Self pairs: every pair of robot links with geometry except the disabled ones: adjacent
+// piece. Self pairs: every pair of robot links with geometry that can ever come within
+// WorldOptions::reachMargin of each other (their reach spheres, checker/src/reach.h; on an arm,
+// every pair), except the disabled ones: adjacent
 // links (robots/pair_filter.h), rigidly attached links (rigidLinkPairs) and the pairs listed in
 // WorldOptions::disabledPairs (typically an SRDF's <disable_collisions>, read with
 // robots::readSrdfDisabledPairs or computed by robots::computeDisabledPairs). A disabled pair
@@ -196,8 +198,9 @@ struct WorldOptions {
   /// More self pairs to disable, e.g. an SRDF's (robots::readSrdfDisabledPairs); the reasons are
   /// not used. A pair naming a link the robot lacks is an error (robots::checkDisabledPairs).
   std::vector<robots::DisabledPair> disabledPairs;
-  /// Scene pieces farther than this from every reach sphere are dropped (metres, >= 0; infinity
-  /// keeps everything).
+  /// Scene pieces farther than this from every reach sphere are dropped, and so are the self
+  /// pairs of links whose reach spheres stay farther apart than this (metres, >= 0; infinity
+  /// keeps everything). Distances below it are exact.
   double reachMargin = tol::kDefaultReachMargin;
   BroadPhase broadPhase = BroadPhase::AabbTree;
   /// Certified-free grids for the self pairs whose relative pose depends on one or two variables
@@ -279,6 +282,10 @@ class World {
 
   /// Adds an obstacle; returns its id (never reused).
   int addObstacle(const Obstacle& obstacle);
+  /// Adds several obstacles at once, all or none (a bad one throws before any is added); returns
+  /// their ids in order. One change of the world however many there are: adding n obstacles
+  /// one by one rebuilds the broad phase n times, adding them together once.
+  std::vector<int> addObstacles(const std::vector<Obstacle>& obstacles);
   /// Throws std::invalid_argument for an unknown id.
   void removeObstacle(int id);
   void setObstaclePose(int id, const Eigen::Isometry3d& X_WO);
@@ -338,6 +345,7 @@ class World {
     int disabledAdjacent = 0;     ///< link pairs with geometry disabled as adjacent
     int disabledRigid = 0;        ///< ... as rigidly attached (and not adjacent)
     int disabledByUser = 0;       ///< ... by WorldOptions::disabledPairs or disablePair()
+    int unreachablePairs = 0;     ///< ... not checked: they can never come within reachMargin
     int scenes = 0;
     int sceneLinksWithGeometry = 0;
     int scenePiecesKept = 0;

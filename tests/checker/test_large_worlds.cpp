@@ -1,0 +1,135 @@
+// Worlds with many obstacles or links: obstacles added together (all or none), and self pairs
+// found through the links' reach spheres (pairsWithinReach) instead of every pair of links.
+
+#include "checker_test_util.h"
+
+#include "reach.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+using namespace deepcheck;
+using namespace deepcheck::checker;
+using namespace deepcheck::checker::test;
+
+namespace {
+
+/// Two revolute arms (a 0.4 m box on each) with their bases `apart` metres apart along x, and a
+/// cube on a prismatic joint (travel +-0.5 m) between them when `slider`.
+robots::RobotModel twoArms(double apart, bool slider) {
+  auto arm = [&](const std::string& n, double x) {
+    return "<link name='" + n + "_base'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
+           "<joint name='" + n + "_fix' type='fixed'><parent link='root'/><child link='" + n + "_base'/><origin xyz='" +
+           robots::formatNumber(x) + " 0 0'/></joint>"
+           "<link name='" + n + "_arm'><collision><origin xyz='0 0 0.25'/><geometry><box size='0.05 0.05 0.4'/></geometry></collision></link>"
+           "<joint name='" + n + "_j' type='revolute'><parent link='" + n + "_base'/><child link='" + n + "_arm'/>"
+           "<origin xyz='0 0 0.05'/><axis xyz='0 1 0'/><limit lower='-3' upper='3' effort='1' velocity='1'/></joint>";
+  };
+  std::string xml = "<robot name='two_arms'><link name='root'/>" + arm("left", -apart / 2) + arm("right", apart / 2);
+  if (slider) {
+    xml += "<link name='cube'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
+           "<joint name='slide' type='prismatic'><parent link='root'/><child link='cube'/><origin xyz='0 2 0'/>"
+           "<axis xyz='1 0 0'/><limit lower='-0.5' upper='0.5' effort='1' velocity='1'/></joint>";
+  }
+  return robots::RobotModel::fromUrdfString(xml + "</robot>", ".", {}, "two_arms.urdf");
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(large_worlds)
+
+// addObstacles: ids in order, the same answers as adding one by one, and a bad obstacle anywhere
+// in the list leaves the world as it was, with an error naming it.
+BOOST_AUTO_TEST_CASE(obstacles_added_together) {
+  World one(armRobot(), testWorldOptions());
+  World together(armRobot(), testWorldOptions());
+  std::vector<Obstacle> obstacles;
+  for (int i = 0; i < 50; ++i) {
+    obstacles.push_back(Obstacle::box("b" + std::to_string(i), Eigen::Vector3d(0.05, 0.05, 0.05),
+                                      translation(0.3 + 0.02 * i, -0.4 + 0.016 * i, 0.1 + 0.015 * i)));
+  }
+  std::vector<int> ids;
+  for (const Obstacle& o : obstacles) ids.push_back(one.addObstacle(o));
+  BOOST_TEST((together.addObstacles(obstacles) == ids));
+  std::mt19937 rng(5);
+  for (const Eigen::VectorXd& q : randomConfigurations(one.robot(), 200, rng)) {
+    BOOST_TEST(one.isFree(q) == together.isFree(q));
+    BOOST_TEST(one.signedDistance(q).closest.distance == together.signedDistance(q).closest.distance);
+  }
+  std::vector<Obstacle> bad = {obstacles[0], obstacles[1]};
+  bad.push_back(Obstacle::sphere("negative", -1.0, translation(0, 0, 0)));
+  checkThrowsWith([&] { together.addObstacles(bad); }, "negative");
+  BOOST_TEST(together.obstacleIds().size() == obstacles.size());
+  bad.back() = Obstacle::box("", Eigen::Vector3d::Ones(), translation(0, 0, 0));
+  checkThrowsWith([&] { together.addObstacles(bad); }, "no name");
+  BOOST_TEST(together.obstacleIds().size() == obstacles.size());
+}
+
+// Links whose reach spheres never come within the margin are not paired; within it, and with a
+// link on a prismatic joint (whose sphere holds within its limits only), they are.
+BOOST_AUTO_TEST_CASE(self_pairs_within_reach) {
+  WorldOptions options = testWorldOptions();
+  options.disableAdjacent = true;
+  // Arms 3 m apart: reach spheres of radius ~0.5 never meet. The cross pairs but the bases (adjacent
+  // through the geometry-less root) are left out.
+  World far(twoArms(3.0, false), options);
+  BOOST_TEST(far.allowedSelfPairs().empty());
+  BOOST_TEST(far.summaryCounts().unreachablePairs == 3);
+  BOOST_TEST(far.summary().find("3 never within reach") != std::string::npos);
+  // Arms 0.9 m apart: the arms can touch, and are checked.
+  World near(twoArms(0.9, false), options);
+  BOOST_TEST(near.summaryCounts().unreachablePairs < 3);
+  BOOST_TEST(!near.allowedSelfPairs().empty());
+  // An infinite margin keeps every pair.
+  options.reachMargin = std::numeric_limits<double>::infinity();
+  World all(twoArms(3.0, false), options);
+  BOOST_TEST(all.summaryCounts().unreachablePairs == 0);
+  BOOST_TEST(all.allowedSelfPairs().size() == 3u);
+  // The prismatic cube is paired with every link but the bases it is adjacent to (its sphere
+  // holds within its limits only).
+  options.reachMargin = tol::kDefaultReachMargin;
+  World slider(twoArms(3.0, true), options);
+  const robots::RobotModel& m = slider.robot();
+  const int cube = m.linkIndex("cube");
+  int cubePairs = 0;
+  for (const auto& [a, b] : slider.allowedSelfPairs()) cubePairs += (a == cube || b == cube);
+  BOOST_TEST(cubePairs == 2);
+}
+
+// pairsWithinReach against every pair, on random spheres, some of which hold within limits only.
+BOOST_AUTO_TEST_CASE(pairs_within_reach_equal_brute_force) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + trial % 40;
+    std::vector<ReachSphere> spheres(n + 3);
+    std::vector<int> links;
+    for (int l = 3; l < n + 3; ++l) {  // links 0..2 have no sphere
+      spheres[l].valid = true;
+      spheres[l].center_W = Eigen::Vector3d(4 * u(rng), 4 * u(rng), 4 * u(rng));
+      spheres[l].radius = 0.5 * u(rng);
+      spheres[l].withinLimitsOnly = u(rng) < 0.1;
+      links.push_back(l);
+    }
+    const double margin = 0.2 * u(rng);
+    std::vector<std::pair<int, int>> expected;
+    for (int i = 0; i < n; ++i) {
+      for (int j = i + 1; j < n; ++j) {
+        const ReachSphere& a = spheres[links[i]];
+        const ReachSphere& b = spheres[links[j]];
+        if (a.withinLimitsOnly || b.withinLimitsOnly || (a.center_W - b.center_W).norm() - a.radius - b.radius <= margin) {
+          expected.emplace_back(i, j);
+        }
+      }
+    }
+    BOOST_TEST((pairsWithinReach(spheres, links, margin) == expected), "trial " << trial);
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
