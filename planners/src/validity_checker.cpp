@@ -73,14 +73,24 @@ double StateValidityChecker::clearance(const Eigen::Ref<const Eigen::VectorXd>& 
   return clearanceUpTo(q, std::numeric_limits<double>::infinity());
 }
 
+bool StateValidityChecker::finite(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  if (q.size() != n_) robots::checkConfiguration(world_->robot(), q);  // throws, naming the sizes
+  return q.allFinite();
+}
+
 double StateValidityChecker::clearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q, double cap) const {
   distanceQueries_.fetch_add(1, std::memory_order_relaxed);
+  if (!finite(q)) return -std::numeric_limits<double>::infinity();
   return signedDistanceUpTo(*world_, q, cap);
 }
 
 SplitDistance StateValidityChecker::splitClearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q,
                                                        double cap, bool selfPairs) const {
   distanceQueries_.fetch_add(1, std::memory_order_relaxed);
+  if (!finite(q)) {
+    constexpr double worst = -std::numeric_limits<double>::infinity();
+    return SplitDistance{worst, selfPairs ? worst : std::numeric_limits<double>::infinity()};
+  }
   return splitSignedDistanceUpTo(*world_, q, cap, selfPairs);
 }
 
@@ -102,7 +112,9 @@ bool StateValidityChecker::isValid(const ompl::base::State* state, double& dist,
   const bool valid = isValid(state, dist);
   validStateAvailable = false;
   if (valid) return true;
-  const PushOutResult pushed = pushOut_.run(mapping_.configuration(state));
+  const Eigen::VectorXd q = mapping_.configuration(state);
+  if (!q.allFinite()) return false;  // no configuration to push out from
+  const PushOutResult pushed = pushOut_.run(q);
   if (pushed.success()) {
     mapping_.toState(pushed.q, validState);
     validStateAvailable = true;

@@ -12,6 +12,7 @@
 #include <ompl/base/SpaceInformation.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -133,6 +134,33 @@ BOOST_AUTO_TEST_CASE(states_outside_the_limits_are_invalid) {
   q[0] = world->robot().upperLimits()[0] + 0.01;
   dp::copyToState(q, state.get());
   BOOST_TEST(!checker.isValid(state.get()));
+}
+
+// A NaN or infinite value anywhere in a state: invalid through every overload, clearance
+// -infinity, never an exception.
+BOOST_AUTO_TEST_CASE(non_finite_states_are_invalid_with_the_worst_clearance) {
+  const auto world = bundledWorld("shelf");
+  const auto si = spaceFor(*world);
+  const dp::StateValidityChecker checker(si, world);
+  ob::ScopedState<> state(si);
+  ob::ScopedState<> pushed(si);
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (double bad : {std::nan(""), inf, -inf}) {
+    for (int v = 0; v < world->robot().numVariables(); ++v) {
+      Eigen::VectorXd q = dp::test::suggestedStart();
+      q[v] = bad;
+      dp::copyToState(q, state.get());
+      BOOST_TEST(!checker.isValid(state.get()));
+      BOOST_TEST(checker.clearance(state.get()) == -inf);
+      double dist = 0.0;
+      BOOST_TEST(!checker.isValid(state.get(), dist));
+      BOOST_TEST(dist == -inf);
+      bool available = true;
+      BOOST_TEST(checker.clearance(state.get(), pushed.get(), available) == -inf);
+      BOOST_TEST(!available);
+      BOOST_TEST(checker.splitClearanceUpTo(q, 1.0).world == -inf);
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(penetration_tolerance_and_safety_margin) {

@@ -11,6 +11,8 @@
 //                  nearest obstacle (scene, obstacle or another link of the robot), NEGATIVE
 //                  THE PENETRATION DEPTH when in collision, as OMPL documents. The raw distance:
 //                  the safety margin and penetration tolerance are not subtracted.
+// A state with a NaN or infinite value is invalid and its clearance is -infinity: OMPL may hand
+// such a state to either call, and both then say "not a place to be" without throwing.
 // isValid(state, dist)  isValid plus dist = clearance(state).
 // isValid(state, dist, validState, validStateAvailable)
 //                  as above; when the state is invalid, the push-out (push_out.h) is run from it
@@ -106,6 +108,8 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
 
  private:
   bool withinBounds(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+  /// False when a value of q is NaN or infinite (q of the wrong size throws, naming the sizes).
+  bool finite(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
   std::shared_ptr<const checker::World> world_;
   StateMapping mapping_;
