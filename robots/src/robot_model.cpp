@@ -6,6 +6,8 @@
 
 #include "xml_text.h"
 
+#include <deepcheck/deep/input_range.h>
+
 #include <console_bridge/console.h>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
@@ -84,7 +86,7 @@ urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, std::stri
 /// read (<visual>, <inertial>).
 class Prepass {
  public:
-  explicit Prepass(std::string context) : context_(std::move(context)) {}
+  Prepass(std::string context, int maxLinks) : context_(std::move(context)), maxLinks_(maxLinks) {}
 
   /// Returns the cleaned XML text for urdfdom; fills jointOrder (joint name -> position in file).
   std::string run(const std::string& xml, std::map<std::string, int>& jointOrder) {
@@ -94,6 +96,7 @@ class Prepass {
     if (robot == nullptr || std::string(robot->Value()) != "robot") {
       throw std::invalid_argument(context_ + ": the root element is not <robot>");
     }
+    checkCounts(*robot);
     int jointCount = 0;
     std::map<std::string, JointLinks> parentOf;  // child link -> its joint
     for (TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
@@ -113,6 +116,18 @@ class Prepass {
   }
 
  private:
+  /// Throws when the robot holds more than maxLinks_ links or joints.
+  void checkCounts(const TiXmlElement& robot) const {
+    for (const char* tag : {"link", "joint"}) {
+      int n = 0;
+      for (const TiXmlElement* e = robot.FirstChildElement(tag); e != nullptr; e = e->NextSiblingElement(tag)) ++n;
+      if (n > maxLinks_) {
+        throw std::invalid_argument(context_ + ": " + std::to_string(n) + " <" + tag + "> elements, more than " +
+                                    "LoadOptions::maxLinks = " + std::to_string(maxLinks_) + " (raise it to load the file)");
+      }
+    }
+  }
+
   /// Parses attribute `attr` of `e` as `count` numbers (count < 0: any count >= 1); throws
   /// naming `owner` and `what` when one is not a number or not finite.
   void checkNumbers(const TiXmlElement& e, const char* attr, int count, const std::string& owner,
@@ -128,9 +143,11 @@ class Prepass {
       char* end = nullptr;
       const double value = std::strtod(p, &end);
       if (end == p) throw std::invalid_argument(where + " is not a list of numbers");
-      if (!std::isfinite(value)) {
+      if (!(std::abs(value) <= deep::range::kMaxCoordinate)) {
         std::ostringstream msg;
-        msg << where << " has a non-finite value (component " << n << ")";
+        msg << where << " has a " << (std::isfinite(value) ? "value out of range" : "non-finite value")
+            << " (component " << n << "; magnitudes up to " << deep::range::kMaxCoordinate
+            << " are supported)";
         throw std::invalid_argument(msg.str());
       }
       ++n;
@@ -238,6 +255,7 @@ class Prepass {
   }
 
   std::string context_;
+  int maxLinks_;
 };
 
 std::string format(const Eigen::Vector3d& v) {
@@ -530,7 +548,7 @@ RobotModel RobotModel::fromUrdfString(const std::string& xml, const std::string&
   const std::string context = "URDF " + inQuotes(model.source_);
 
   std::map<std::string, int> jointOrder;
-  const std::string cleaned = Prepass(context).run(xml, jointOrder);
+  const std::string cleaned = Prepass(context, options.maxLinks).run(xml, jointOrder);
   std::string errors;
   const urdf::ModelInterfaceSharedPtr urdf = parseWithUrdfdom(cleaned, errors);
   if (!urdf) {
