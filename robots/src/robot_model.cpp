@@ -238,20 +238,34 @@ class Prepass {
     }
   }
 
+  /// Walks up from every child link towards its root. A link met again on the current walk
+  /// closes a loop; the walk stops at a link an earlier walk finished, so each link is walked
+  /// once and the check is linear in the number of joints.
   void checkNoLoop(const std::map<std::string, JointLinks>& parentOf) const {
-    for (const auto& [child, j] : parentOf) {
-      std::string link = j.parent;
-      for (std::size_t steps = 0; steps <= parentOf.size(); ++steps) {
-        if (link == child) {
-          throw std::invalid_argument(context_ + ": joint " + inQuotes(j.joint) + " closes a loop: its child link " +
-                                      inQuotes(child) + " is also its parent or an ancestor of it" +
-                                      " (URDF kinematics must be a tree)");
+    enum class Walk { Current, Finished };
+    std::map<std::string, Walk> seen;
+    for (const auto& entry : parentOf) {
+      std::vector<const std::string*> walked;
+      for (const std::string* link = &entry.first;;) {
+        const auto s = seen.find(*link);
+        if (s != seen.end()) {
+          if (s->second == Walk::Current) throwLoop(*link, parentOf.at(*link).joint);
+          break;
         }
-        const auto up = parentOf.find(link);
-        if (up == parentOf.end()) break;
-        link = up->second.parent;
+        const auto up = parentOf.find(*link);
+        if (up == parentOf.end()) break;  // a root
+        seen.emplace(*link, Walk::Current);
+        walked.push_back(link);
+        link = &up->second.parent;
       }
+      for (const std::string* link : walked) seen[*link] = Walk::Finished;
     }
+  }
+
+  [[noreturn]] void throwLoop(const std::string& child, const std::string& joint) const {
+    throw std::invalid_argument(context_ + ": joint " + inQuotes(joint) + " closes a loop: its child link " +
+                                inQuotes(child) + " is also its parent or an ancestor of it" +
+                                " (URDF kinematics must be a tree)");
   }
 
   std::string context_;
@@ -293,39 +307,53 @@ class UrdfBuilder {
     model_.name_ = urdf_.getName();
     const urdf::LinkConstSharedPtr root = urdf_.getRoot();
     if (!root) throw std::invalid_argument(context_ + ": no root link");
-    addLink(*root, -1);
+    addTree(*root);
     resolveMimics();
     collectVariables();
   }
 
  private:
-  void addLink(const urdf::Link& link, int parentJoint) {
-    const int index = static_cast<int>(model_.links_.size());
-    model_.links_.emplace_back();
-    {
-      Link& L = model_.links_.back();
-      L.name = link.name;
-      L.parentJoint = parentJoint;
-      L.parentLink = parentJoint < 0 ? -1 : model_.joints_[parentJoint].parentLink;
-    }
-    if (parentJoint >= 0) model_.joints_[parentJoint].childLink = index;
-    addCollisions(link, index);
-
-    // Children in the order their joints appear in the file (urdfdom keeps them sorted by name).
-    std::vector<urdf::JointSharedPtr> children = link.child_joints;
-    std::sort(children.begin(), children.end(), [this](const auto& a, const auto& b) {
-      return order(a->name) < order(b->name);
-    });
-    for (const auto& j : children) {
-      const int jointIndex = addJoint(*j, index);
-      model_.links_[index].childJoints.push_back(jointIndex);
-      urdf::LinkConstSharedPtr child = urdf_.getLink(j->child_link_name);
+  /// Numbers the links and joints depth first from the root (see the header). The walk keeps its
+  /// own stack, as a chain of links may be as long as LoadOptions::maxLinks allows.
+  void addTree(const urdf::Link& root) {
+    std::vector<std::pair<urdf::JointSharedPtr, int>> pending;  // (joint, its parent link's index)
+    pushChildren(root, addLink(root, -1), pending);
+    while (!pending.empty()) {
+      const auto [j, parentLink] = pending.back();
+      pending.pop_back();
+      const int jointIndex = addJoint(*j, parentLink);
+      model_.links_[parentLink].childJoints.push_back(jointIndex);
+      const urdf::LinkConstSharedPtr child = urdf_.getLink(j->child_link_name);
       if (!child) {
         throw std::invalid_argument(context_ + ": joint " + inQuotes(j->name) + " has unknown child link " +
                                     inQuotes(j->child_link_name));
       }
-      addLink(*child, jointIndex);
+      pushChildren(*child, addLink(*child, jointIndex), pending);
     }
+  }
+
+  /// Adds the link (without its child joints) and returns its index.
+  int addLink(const urdf::Link& link, int parentJoint) {
+    const int index = static_cast<int>(model_.links_.size());
+    model_.links_.emplace_back();
+    Link& L = model_.links_.back();
+    L.name = link.name;
+    L.parentJoint = parentJoint;
+    L.parentLink = parentJoint < 0 ? -1 : model_.joints_[parentJoint].parentLink;
+    if (parentJoint >= 0) model_.joints_[parentJoint].childLink = index;
+    addCollisions(link, index);
+    return index;
+  }
+
+  /// Queues the child joints of `link` (index `index`) so that they are taken in file order
+  /// (urdfdom keeps them sorted by name).
+  void pushChildren(const urdf::Link& link, int index,
+                    std::vector<std::pair<urdf::JointSharedPtr, int>>& pending) const {
+    std::vector<urdf::JointSharedPtr> children = link.child_joints;
+    std::sort(children.begin(), children.end(), [this](const auto& a, const auto& b) {
+      return order(a->name) > order(b->name);  // reversed: the stack pops the first one first
+    });
+    for (const auto& j : children) pending.emplace_back(j, index);
   }
 
   int order(const std::string& jointName) const {
