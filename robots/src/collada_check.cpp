@@ -54,7 +54,6 @@ bool looksLikeXml(const std::string& extension, std::string_view start) {
   return first != std::string_view::npos && start[first] == '<';
 }
 
-bool isXmlSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 bool isDigit(char c) { return c >= '0' && c <= '9'; }
 
 template <std::size_t N>

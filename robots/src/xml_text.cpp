@@ -60,8 +60,6 @@ void checkText(const std::string& xml, const std::string& context) {
   }
 }
 
-bool isXmlSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
-
 int lineAt(std::string_view xml, std::size_t at) {
   return 1 + static_cast<int>(std::count(xml.begin(), xml.begin() + static_cast<long>(at), '\n'));
 }

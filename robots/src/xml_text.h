@@ -8,6 +8,9 @@
 
 namespace deepcheck::robots {
 
+/// XML white space (space, tab, line feed, carriage return).
+inline bool isXmlSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
 /// Throws std::invalid_argument "<context>: line L: elements nested N levels deep, more than the
 /// limit of kMaxNestingDepth" when an element of `xml` lies deeper than kMaxNestingDepth (the
 /// root element is level 1). TinyXML, urdfdom and assimp's XML readers recurse once per level, so
