@@ -1,5 +1,7 @@
 #include "collada_check.h"
 
+#include "xml_text.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -18,8 +20,11 @@
 namespace deepcheck::robots {
 namespace {
 
-/// How many leading bytes of a file without the .dae extension are searched for "<COLLADA".
-constexpr std::size_t kColladaSignatureBytes = 4096;
+/// How many leading bytes of a mesh file are read to tell whether it is XML, and COLLADA.
+constexpr std::size_t kSignatureBytes = 4096;
+
+/// Extensions of the XML formats assimp reads without decompressing them.
+constexpr std::array<std::string_view, 7> kXmlExtensions{".dae", ".xml", ".x3d", ".amf", ".irr", ".irrmesh", ".xgl"};
 
 constexpr std::array<std::string_view, 3> kIndexLists{"p", "h", "vcount"};
 constexpr std::array<std::string_view, 7> kArrays{"float_array", "int_array",    "bool_array", "Name_array",
@@ -31,17 +36,24 @@ std::string lowercase(std::string s) {
   return s;
 }
 
-/// True for the .dae extension, or "<COLLADA" among the first bytes; reads no more than those.
-bool looksLikeCollada(const std::string& path) {
-  if (lowercase(std::filesystem::path(path).extension().string()) == ".dae") return true;
+/// The first kSignatureBytes of the file.
+std::string head(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  std::string head(kColladaSignatureBytes, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  return lowercase(head).find("<collada") != std::string::npos;
+  std::string text(kSignatureBytes, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return text;
 }
 
-bool isXmlSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+/// True for an XML extension, or when the first byte after white space (and a UTF-8 byte order
+/// mark) is '<'.
+bool looksLikeXml(const std::string& extension, std::string_view start) {
+  if (std::find(kXmlExtensions.begin(), kXmlExtensions.end(), extension) != kXmlExtensions.end()) return true;
+  if (start.substr(0, 3) == "\xEF\xBB\xBF") start.remove_prefix(3);
+  const std::size_t first = start.find_first_not_of(" \t\r\n");
+  return first != std::string_view::npos && start[first] == '<';
+}
+
 bool isDigit(char c) { return c >= '0' && c <= '9'; }
 
 template <std::size_t N>
@@ -196,11 +208,14 @@ class Checker {
 
 }  // namespace
 
-void checkColladaFile(const std::string& path) {
-  if (!looksLikeCollada(path)) return;  // an STL or OBJ file is not read a second time
+void checkXmlMeshFile(const std::string& path) {
+  const std::string extension = lowercase(std::filesystem::path(path).extension().string());
+  const std::string start = head(path);
+  if (!looksLikeXml(extension, start)) return;  // an STL or OBJ file is not read a second time
   std::ifstream in(path, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Checker(path, text).run();
+  checkXmlDepth(text, "mesh file '" + path + "'");
+  if (extension == ".dae" || lowercase(start).find("<collada") != std::string::npos) Checker(path, text).run();
 }
 
 }  // namespace deepcheck::robots

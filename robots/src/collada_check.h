@@ -1,5 +1,6 @@
 #pragma once
-// Checks of a COLLADA file made before assimp reads it: inputs on which assimp 5.2's COLLADA reader
+// Checks of an XML mesh file made before assimp reads it. Every XML format: elements nested deeper
+// than kMaxNestingDepth (assimp's readers recurse once per level). COLLADA also: inputs on which assimp 5.2's COLLADA reader
 // loops until memory runs out or reads outside its arrays, rejected with a message naming the
 // line.
 //
@@ -19,9 +20,10 @@
 
 namespace deepcheck::robots {
 
-/// When `path` is a COLLADA file (extension .dae, or "<COLLADA" among its first bytes), applies the
-/// checks above. Throws std::invalid_argument naming the file, the line and what is wrong. Other
-/// files are left alone.
-void checkColladaFile(const std::string& path);
+/// When `path` is an XML file (an XML format's extension, or '<' first), checks its nesting; when
+/// it is a COLLADA file (extension .dae, or "<COLLADA" among its first bytes), applies the checks
+/// above. Throws std::invalid_argument naming the file, the line and what is wrong. Other files
+/// are left alone.
+void checkXmlMeshFile(const std::string& path);
 
 }  // namespace deepcheck::robots

@@ -4,6 +4,8 @@
 
 #include "collada_check.h"
 
+#include <deepcheck/deep/input_range.h>
+
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
@@ -22,6 +24,8 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace deepcheck::robots {
 namespace {
@@ -37,36 +41,56 @@ Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
   return out;
 }
 
+std::string format(const Eigen::Vector3d& v) {
+  std::ostringstream s;
+  s << v.x() << " " << v.y() << " " << v.z();
+  return s.str();
+}
+
 /// Merges the meshes instanced by the node tree, welding identical positions.
 class Merger {
  public:
   Merger(const aiScene& scene, const Eigen::Vector3d& scale, TriangleMesh& out)
       : scene_(scene), scale_(scale), out_(out) {}
 
-  void addNode(const aiNode& node, const Eigen::Matrix4d& parent) {
-    const Eigen::Matrix4d X = parent * toEigen(node.mTransformation);
+  /// Adds the meshes of the tree under `root`, depth first. The walk keeps its own stack: the
+  /// depth of a node tree read from a binary format is not bounded.
+  void addTree(const aiNode& root) {
+    std::vector<std::pair<const aiNode*, Eigen::Matrix4d>> pending{{&root, Eigen::Matrix4d::Identity()}};
+    while (!pending.empty()) {
+      const auto [node, parent] = pending.back();
+      pending.pop_back();
+      const Eigen::Matrix4d X = parent * toEigen(node->mTransformation);
+      addNodeMeshes(*node, X);
+      for (unsigned c = node->mNumChildren; c-- > 0;) pending.emplace_back(node->mChildren[c], X);
+    }
+  }
+
+ private:
+  /// The meshes of one node, placed by X (its accumulated transform).
+  void addNodeMeshes(const aiNode& node, const Eigen::Matrix4d& X) {
     // Scale after the node transforms: the URDF scale applies to the file's frame.
-    Eigen::Matrix3d A = scale_.asDiagonal() * X.topLeftCorner<3, 3>();
+    const Eigen::Matrix3d A = scale_.asDiagonal() * X.topLeftCorner<3, 3>();
     const Eigen::Vector3d b = scale_.cwiseProduct(X.topRightCorner<3, 1>());
     const bool mirrored = A.determinant() < 0.0;
     for (unsigned i = 0; i < node.mNumMeshes; ++i) {
       addMesh(*scene_.mMeshes[node.mMeshes[i]], A, b, mirrored);
     }
-    for (unsigned c = 0; c < node.mNumChildren; ++c) addNode(*node.mChildren[c], X);
   }
 
- private:
+
   void addMesh(const aiMesh& mesh, const Eigen::Matrix3d& A, const Eigen::Vector3d& b,
                bool mirrored) {
     std::vector<int> index(mesh.mNumVertices);
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D& p = mesh.mVertices[v];
       const Eigen::Vector3d x = A * Eigen::Vector3d(p.x, p.y, p.z) + b;
-      if (!x.allFinite()) {
+      if (!(x.cwiseAbs().maxCoeff() <= deep::range::kMaxCoordinate)) {
         std::ostringstream msg;
         msg << "mesh file " << inQuotes(out_.source) << ": vertex " << v << " of mesh "
-            << inQuotes(mesh.mName.C_Str()) << " is not finite (" << p.x << " " << p.y << " " << p.z
-            << ")";
+            << inQuotes(mesh.mName.C_Str()) << " (" << p.x << " " << p.y << " " << p.z << ") is at ("
+            << format(x) << ") after the node transforms and the scale (" << format(scale_)
+            << "); coordinates up to " << deep::range::kMaxCoordinate << " are supported";
         throw std::invalid_argument(msg.str());
       }
       const std::array<double, 3> key{x.x(), x.y(), x.z()};
@@ -118,12 +142,6 @@ std::string binaryStlHint(const std::string& path) {
          " bytes: truncated or corrupt)";
 }
 
-std::string format(const Eigen::Vector3d& v) {
-  std::ostringstream s;
-  s << v.x() << " " << v.y() << " " << v.z();
-  return s.str();
-}
-
 }  // namespace
 
 int removeDegenerateTriangles(TriangleMesh& mesh) {
@@ -163,13 +181,20 @@ int removeDegenerateTriangles(TriangleMesh& mesh) {
   return before - static_cast<int>(mesh.triangles.size());
 }
 
-TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
+namespace {
+
+/// Throws unless every component of the scale is non-zero with magnitude at most kMaxCoordinate.
+void checkScale(const std::string& path, const Eigen::Vector3d& scale) {
+  if ((scale.array() != 0.0).all() && scale.cwiseAbs().maxCoeff() <= deep::range::kMaxCoordinate) return;
+  std::ostringstream msg;
+  msg << "mesh file " << inQuotes(path) << ": scale (" << format(scale)
+      << ") must have non-zero components of magnitude at most " << deep::range::kMaxCoordinate;
+  throw std::invalid_argument(msg.str());
+}
+
+/// Throws unless `path` is a readable regular file of at most options.maxFileBytes.
+void checkFile(const std::string& path, const MeshLoadOptions& options) {
   namespace fs = std::filesystem;
-  if (!scale.allFinite() || (scale.array() == 0.0).any()) {
-    std::ostringstream msg;
-    msg << "mesh file " << inQuotes(path) << ": scale (" << format(scale) << ") must have finite, non-zero components";
-    throw std::invalid_argument(msg.str());
-  }
   std::error_code ec;
   if (!fs::exists(path, ec)) {
     throw std::invalid_argument("mesh file " + inQuotes(path) + " does not exist");
@@ -180,8 +205,20 @@ TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
   if (!std::ifstream(path).good()) {
     throw std::invalid_argument("mesh file " + inQuotes(path) + " cannot be opened for reading");
   }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > options.maxFileBytes) {
+    throw std::invalid_argument("mesh file " + inQuotes(path) + " has " + std::to_string(size) +
+                                " bytes, more than MeshLoadOptions::maxFileBytes = " +
+                                std::to_string(options.maxFileBytes));
+  }
+}
 
-  checkColladaFile(path);
+}  // namespace
+
+TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale, const MeshLoadOptions& options) {
+  checkScale(path, scale);
+  checkFile(path, options);
+  checkXmlMeshFile(path);
   Assimp::Importer importer;
   // Use COLLADA coordinates as written (see the header comment); keep its unit.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
@@ -196,7 +233,7 @@ TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale) {
   TriangleMesh mesh;
   mesh.source = path;
   Merger merger(*scene, scale, mesh);
-  merger.addNode(*scene->mRootNode, Eigen::Matrix4d::Identity());
+  merger.addTree(*scene->mRootNode);
   const int total = static_cast<int>(mesh.triangles.size());
   if (total == 0) {
     throw std::invalid_argument("mesh file " + inQuotes(path) + " contains no triangles");

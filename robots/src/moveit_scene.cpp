@@ -28,7 +28,18 @@ struct Reader {
   std::string baseDirectory;
   std::vector<std::string> roots;
   double coneMaxDeviation = 0.0;
+  std::size_t maxShapes = 0;
+  std::size_t shapeCount = 0;  ///< shapes read so far, aliased ones counted each time
 };
+
+/// Throws when `more` entries of `list` (objects or shapes) would take the scene past
+/// SceneLoadOptions::maxShapes. Called before they are read, so that YAML aliases repeating a
+/// list are stopped as soon as their expansion passes the limit.
+void checkShapeCount(const Reader& r, const YAML::Node& list, std::size_t more, const char* what) {
+  if (r.shapeCount + more <= r.maxShapes) return;
+  r.ctx.fail(list, std::to_string(r.shapeCount + more) + " " + what + " so far (YAML aliases counted as expanded), " +
+                       "more than SceneLoadOptions::maxShapes = " + std::to_string(r.maxShapes));
+}
 
 std::string lowercase(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -66,14 +77,14 @@ SceneShape readPrimitive(const Reader& r, const YAML::Node& node, int index) {
   scene_yaml::checkKeys(ctx, node, "a primitive", {"type", "dimensions"});
   const PrimitiveType& type = readPrimitiveType(ctx, required(ctx, node, "type"));
   const YAML::Node dimensionsNode = required(ctx, node, "dimensions");
-  const std::vector<double> d = readNumbers(ctx, dimensionsNode, "dimensions");
   std::string names;
   for (const char* n : type.dimensions) names += (names.empty() ? "" : ", ") + std::string(n);
-  if (d.size() != type.dimensions.size()) {
+  if (dimensionsNode.IsSequence() && dimensionsNode.size() != type.dimensions.size()) {
     ctx.fail(dimensionsNode, std::string("a ") + type.name + " needs " +
                                  std::to_string(type.dimensions.size()) + " dimensions [" + names +
-                                 "], has " + std::to_string(d.size()));
+                                 "], has " + std::to_string(dimensionsNode.size()));
   }
+  const std::vector<double> d = readNumbers(ctx, dimensionsNode, "dimensions");
   for (size_t i = 0; i < d.size(); ++i) {
     if (d[i] > 0.0) continue;
     std::ostringstream msg;
@@ -140,7 +151,7 @@ SceneShape readMesh(const Reader& r, const YAML::Node& node, int index) {
 using ShapeReader = SceneShape (*)(const Reader&, const YAML::Node&, int);
 
 /// Appends the shapes listed under `listKey`, posed by the entries of `posesKey`.
-void readShapes(const Reader& r, const YAML::Node& object, const char* listKey,
+void readShapes(Reader& r, const YAML::Node& object, const char* listKey,
                 const char* posesKey, ShapeReader readShape, SceneObject& out) {
   const Context& ctx = r.ctx;
   const YAML::Node list = object[listKey];
@@ -158,6 +169,8 @@ void readShapes(const Reader& r, const YAML::Node& object, const char* listKey,
     ctx.fail(poses, std::string("'") + posesKey + "' must be a list with one pose per entry of '" +
                         listKey + "' (" + std::to_string(list.size()) + ")");
   }
+  checkShapeCount(r, list, list.size(), "shapes");
+  r.shapeCount += list.size();
   for (size_t i = 0; i < list.size(); ++i) {
     SceneShape shape = readShape(r, list[i], static_cast<int>(i));
     const Eigen::Isometry3d X_OS =
@@ -243,6 +256,7 @@ PlanningScene readScene(Reader& r, const YAML::Node& root) {
   const YAML::Node objects = world["collision_objects"];
   if (!objects.IsDefined() || objects.IsNull()) return scene;
   if (!objects.IsSequence()) r.ctx.fail(objects, "'collision_objects' must be a list");
+  checkShapeCount(r, objects, objects.size(), "collision objects");  // each object has a shape
   std::map<std::string, int> lines;
   for (size_t i = 0; i < objects.size(); ++i) {
     SceneObject object = readObject(r, objects[i], static_cast<int>(i));
@@ -271,12 +285,13 @@ PlanningScene parsePlanningScene(const std::string& yaml, const std::string& bas
   r.baseDirectory = baseDirectory;
   r.roots = packageRoots(options.packageRoots, options.useRosPackagePath);
   r.coneMaxDeviation = options.coneMaxDeviation;
+  r.maxShapes = options.maxShapes;
   if (!(options.coneMaxDeviation > 0.0) || !std::isfinite(options.coneMaxDeviation)) {
     throw std::invalid_argument("planning scene '" + r.ctx.source +
                                 "': coneMaxDeviation must be positive and finite");
   }
   try {
-    return readScene(r, YAML::Load(yaml));
+    return readScene(r, scene_yaml::loadYaml(yaml, r.ctx.source));
   } catch (const YAML::Exception& e) {
     std::string message = "planning scene '" + r.ctx.source + "'";
     if (!e.mark.is_null()) message += ", line " + std::to_string(e.mark.line + 1);

@@ -12,6 +12,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// How much of a package.xml is read to find its <name>, bytes: the name comes first in real
+/// files, and a huge file under a root must not be read whole.
+constexpr std::size_t kPackageXmlBytes = 64 * 1024;
+
 bool startsWith(const std::string& s, const std::string& prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
 }
@@ -42,10 +46,10 @@ std::string normalized(const fs::path& p) {
 /// The <name> declared by a package.xml, or "" when the file is absent or has none.
 std::string packageXmlName(const fs::path& packageXml) {
   if (!isFile(packageXml)) return "";
-  std::ifstream in(packageXml);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  std::ifstream in(packageXml, std::ios::binary);
+  std::string text(kPackageXmlBytes, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
   const std::string open = "<name>";
   const std::string close = "</name>";
   const auto begin = text.find(open);
@@ -66,6 +70,65 @@ fs::path relativeToBase(const std::string& path, const std::string& baseDirector
   return fs::path(baseDirectory) / p;
 }
 
+/// True when `path` lies inside `folder` as written (no filesystem access).
+bool lexicallyInside(const fs::path& path, const fs::path& folder) {
+  const fs::path relative = path.lexically_normal().lexically_relative(folder.lexically_normal());
+  return !relative.empty() && *relative.begin() != "..";
+}
+
+/// True when `path` (an existing file) lies inside `folder` once symbolic links are resolved.
+bool canonicallyInside(const fs::path& path, const fs::path& folder) {
+  std::error_code ec;
+  const fs::path file = fs::canonical(path, ec);
+  if (ec) return false;
+  const fs::path root = fs::canonical(folder, ec);
+  return !ec && lexicallyInside(file, root);
+}
+
+/// Records that the URI leaves `packageFolder`. The same words whether or not anything exists
+/// there, so that the message tells nothing about files outside the roots.
+void rejectOutside(const std::string& uri, const fs::path& packageFolder, UriResolution& out) {
+  out.rejected = true;
+  out.problem = "'" + uri + "' resolves outside its package root '" + normalized(packageFolder) +
+                "' (a package:// path may not leave its package)";
+}
+
+/// Tries `rest` in the package folder `folder`: records the candidate, sets out.path when the file
+/// is there and inside the folder, rejects it when it is outside. Returns true when done.
+bool tryCandidate(const std::string& uri, const fs::path& folder, const std::string& rest,
+                  const std::string& note, UriResolution& out) {
+  const fs::path candidate = folder / rest;
+  if (!lexicallyInside(candidate, folder)) {
+    rejectOutside(uri, folder, out);
+    return true;
+  }
+  out.searched.push_back(normalized(candidate) + note);
+  if (!isFile(candidate)) return false;
+  if (!canonicallyInside(candidate, folder)) {
+    rejectOutside(uri, folder, out);
+    return true;
+  }
+  out.path = normalized(candidate);
+  return true;
+}
+
+/// The direct subfolders of `root` (other than one named `package`) whose package.xml declares
+/// `package`, sorted (directory order is unspecified).
+std::vector<fs::path> renamedPackageFolders(const fs::path& root, const std::string& package) {
+  std::vector<fs::path> matches;
+  std::error_code ec;
+  fs::directory_iterator it(root, ec);
+  if (ec) return matches;
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    if (ec) break;
+    std::error_code dirEc;
+    if (!it->is_directory(dirEc) || it->path().filename() == package) continue;
+    if (packageXmlName(it->path() / "package.xml") == package) matches.push_back(it->path());
+  }
+  std::sort(matches.begin(), matches.end());
+  return matches;
+}
+
 void resolvePackage(const std::string& uri, const std::vector<std::string>& roots,
                     UriResolution& out) {
   const std::string body = uri.substr(std::string("package://").size());
@@ -76,6 +139,10 @@ void resolvePackage(const std::string& uri, const std::vector<std::string>& root
   }
   const std::string package = body.substr(0, slash);
   const std::string rest = body.substr(slash + 1);
+  if (package == "." || package == ".." || fs::path(rest).is_absolute()) {
+    out.problem = "malformed package URI (the package must be a name and the path relative)";
+    return;
+  }
   if (roots.empty()) {
     out.problem = "no package roots to search (set LoadOptions::packageRoots, or ROS_PACKAGE_PATH with "
                   "LoadOptions::useRosPackagePath)";
@@ -84,41 +151,13 @@ void resolvePackage(const std::string& uri, const std::vector<std::string>& root
   for (const std::string& rootString : roots) {
     const fs::path root(rootString);
     // The plain ROS rule: <root>/<package>/<rest>.
-    const fs::path plain = root / package / rest;
-    out.searched.push_back(normalized(plain));
-    if (isFile(plain)) {
-      out.path = normalized(plain);
-      return;
-    }
+    if (tryCandidate(uri, root / package, rest, "", out)) return;
     // The root is itself the package.
-    if (packageXmlName(root / "package.xml") == package) {
-      const fs::path candidate = root / rest;
-      out.searched.push_back(normalized(candidate));
-      if (isFile(candidate)) {
-        out.path = normalized(candidate);
-        return;
-      }
-    }
+    if (packageXmlName(root / "package.xml") == package && tryCandidate(uri, root, rest, "", out)) return;
     // A direct subfolder whose package.xml declares the package under another folder name.
-    std::error_code ec;
-    fs::directory_iterator it(root, ec);
-    if (ec) continue;
-    std::vector<fs::path> matches;
-    for (; it != fs::directory_iterator(); it.increment(ec)) {
-      if (ec) break;
-      std::error_code dirEc;
-      if (!it->is_directory(dirEc) || it->path().filename() == package) continue;
-      if (packageXmlName(it->path() / "package.xml") == package) matches.push_back(it->path());
-    }
-    std::sort(matches.begin(), matches.end());  // directory order is unspecified
-    for (const fs::path& dir : matches) {
-      const fs::path candidate = dir / rest;
-      out.searched.push_back(normalized(candidate) + " (package.xml of " + dir.filename().string() +
-                             " names " + package + ")");
-      if (isFile(candidate)) {
-        out.path = normalized(candidate);
-        return;
-      }
+    for (const fs::path& dir : renamedPackageFolders(root, package)) {
+      const std::string note = " (package.xml of " + dir.filename().string() + " names " + package + ")";
+      if (tryCandidate(uri, dir, rest, note, out)) return;
     }
   }
   out.problem = "package '" + package + "' has no file '" + rest + "' in any package root";
@@ -178,6 +217,7 @@ std::string resolveUriOrThrow(const std::string& uri, const std::vector<std::str
                               const std::string& baseDirectory, const std::string& context) {
   UriResolution r = resolveUri(uri, roots, baseDirectory);
   if (r.found()) return r.path;
+  if (r.rejected) throw std::invalid_argument(context + ": mesh " + r.problem);
   std::string message = context + ": cannot find mesh '" + uri + "': " + r.problem;
   if (!r.searched.empty()) {
     message += "; searched:";

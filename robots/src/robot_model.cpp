@@ -6,6 +6,8 @@
 
 #include "xml_text.h"
 
+#include <deepcheck/deep/input_range.h>
+
 #include <console_bridge/console.h>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
@@ -84,7 +86,7 @@ urdf::ModelInterfaceSharedPtr parseWithUrdfdom(const std::string& xml, std::stri
 /// read (<visual>, <inertial>).
 class Prepass {
  public:
-  explicit Prepass(std::string context) : context_(std::move(context)) {}
+  Prepass(std::string context, int maxLinks) : context_(std::move(context)), maxLinks_(maxLinks) {}
 
   /// Returns the cleaned XML text for urdfdom; fills jointOrder (joint name -> position in file).
   std::string run(const std::string& xml, std::map<std::string, int>& jointOrder) {
@@ -94,6 +96,7 @@ class Prepass {
     if (robot == nullptr || std::string(robot->Value()) != "robot") {
       throw std::invalid_argument(context_ + ": the root element is not <robot>");
     }
+    checkCounts(*robot);
     int jointCount = 0;
     std::map<std::string, JointLinks> parentOf;  // child link -> its joint
     for (TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
@@ -113,6 +116,18 @@ class Prepass {
   }
 
  private:
+  /// Throws when the robot holds more than maxLinks_ links or joints.
+  void checkCounts(const TiXmlElement& robot) const {
+    for (const char* tag : {"link", "joint"}) {
+      int n = 0;
+      for (const TiXmlElement* e = robot.FirstChildElement(tag); e != nullptr; e = e->NextSiblingElement(tag)) ++n;
+      if (n > maxLinks_) {
+        throw std::invalid_argument(context_ + ": " + std::to_string(n) + " <" + tag + "> elements, more than " +
+                                    "LoadOptions::maxLinks = " + std::to_string(maxLinks_) + " (raise it to load the file)");
+      }
+    }
+  }
+
   /// Parses attribute `attr` of `e` as `count` numbers (count < 0: any count >= 1); throws
   /// naming `owner` and `what` when one is not a number or not finite.
   void checkNumbers(const TiXmlElement& e, const char* attr, int count, const std::string& owner,
@@ -128,9 +143,11 @@ class Prepass {
       char* end = nullptr;
       const double value = std::strtod(p, &end);
       if (end == p) throw std::invalid_argument(where + " is not a list of numbers");
-      if (!std::isfinite(value)) {
+      if (!(std::abs(value) <= deep::range::kMaxCoordinate)) {
         std::ostringstream msg;
-        msg << where << " has a non-finite value (component " << n << ")";
+        msg << where << " has a " << (std::isfinite(value) ? "value out of range" : "non-finite value")
+            << " (component " << n << "; magnitudes up to " << deep::range::kMaxCoordinate
+            << " are supported)";
         throw std::invalid_argument(msg.str());
       }
       ++n;
@@ -221,23 +238,38 @@ class Prepass {
     }
   }
 
+  /// Walks up from every child link towards its root. A link met again on the current walk
+  /// closes a loop; the walk stops at a link an earlier walk finished, so each link is walked
+  /// once and the check is linear in the number of joints.
   void checkNoLoop(const std::map<std::string, JointLinks>& parentOf) const {
-    for (const auto& [child, j] : parentOf) {
-      std::string link = j.parent;
-      for (std::size_t steps = 0; steps <= parentOf.size(); ++steps) {
-        if (link == child) {
-          throw std::invalid_argument(context_ + ": joint " + inQuotes(j.joint) + " closes a loop: its child link " +
-                                      inQuotes(child) + " is also its parent or an ancestor of it" +
-                                      " (URDF kinematics must be a tree)");
+    enum class Walk { Current, Finished };
+    std::map<std::string, Walk> seen;
+    for (const auto& entry : parentOf) {
+      std::vector<const std::string*> walked;
+      for (const std::string* link = &entry.first;;) {
+        const auto s = seen.find(*link);
+        if (s != seen.end()) {
+          if (s->second == Walk::Current) throwLoop(*link, parentOf.at(*link).joint);
+          break;
         }
-        const auto up = parentOf.find(link);
-        if (up == parentOf.end()) break;
-        link = up->second.parent;
+        const auto up = parentOf.find(*link);
+        if (up == parentOf.end()) break;  // a root
+        seen.emplace(*link, Walk::Current);
+        walked.push_back(link);
+        link = &up->second.parent;
       }
+      for (const std::string* link : walked) seen[*link] = Walk::Finished;
     }
   }
 
+  [[noreturn]] void throwLoop(const std::string& child, const std::string& joint) const {
+    throw std::invalid_argument(context_ + ": joint " + inQuotes(joint) + " closes a loop: its child link " +
+                                inQuotes(child) + " is also its parent or an ancestor of it" +
+                                " (URDF kinematics must be a tree)");
+  }
+
   std::string context_;
+  int maxLinks_;
 };
 
 std::string format(const Eigen::Vector3d& v) {
@@ -275,39 +307,53 @@ class UrdfBuilder {
     model_.name_ = urdf_.getName();
     const urdf::LinkConstSharedPtr root = urdf_.getRoot();
     if (!root) throw std::invalid_argument(context_ + ": no root link");
-    addLink(*root, -1);
+    addTree(*root);
     resolveMimics();
     collectVariables();
   }
 
  private:
-  void addLink(const urdf::Link& link, int parentJoint) {
-    const int index = static_cast<int>(model_.links_.size());
-    model_.links_.emplace_back();
-    {
-      Link& L = model_.links_.back();
-      L.name = link.name;
-      L.parentJoint = parentJoint;
-      L.parentLink = parentJoint < 0 ? -1 : model_.joints_[parentJoint].parentLink;
-    }
-    if (parentJoint >= 0) model_.joints_[parentJoint].childLink = index;
-    addCollisions(link, index);
-
-    // Children in the order their joints appear in the file (urdfdom keeps them sorted by name).
-    std::vector<urdf::JointSharedPtr> children = link.child_joints;
-    std::sort(children.begin(), children.end(), [this](const auto& a, const auto& b) {
-      return order(a->name) < order(b->name);
-    });
-    for (const auto& j : children) {
-      const int jointIndex = addJoint(*j, index);
-      model_.links_[index].childJoints.push_back(jointIndex);
-      urdf::LinkConstSharedPtr child = urdf_.getLink(j->child_link_name);
+  /// Numbers the links and joints depth first from the root (see the header). The walk keeps its
+  /// own stack, as a chain of links may be as long as LoadOptions::maxLinks allows.
+  void addTree(const urdf::Link& root) {
+    std::vector<std::pair<urdf::JointSharedPtr, int>> pending;  // (joint, its parent link's index)
+    pushChildren(root, addLink(root, -1), pending);
+    while (!pending.empty()) {
+      const auto [j, parentLink] = pending.back();
+      pending.pop_back();
+      const int jointIndex = addJoint(*j, parentLink);
+      model_.links_[parentLink].childJoints.push_back(jointIndex);
+      const urdf::LinkConstSharedPtr child = urdf_.getLink(j->child_link_name);
       if (!child) {
         throw std::invalid_argument(context_ + ": joint " + inQuotes(j->name) + " has unknown child link " +
                                     inQuotes(j->child_link_name));
       }
-      addLink(*child, jointIndex);
+      pushChildren(*child, addLink(*child, jointIndex), pending);
     }
+  }
+
+  /// Adds the link (without its child joints) and returns its index.
+  int addLink(const urdf::Link& link, int parentJoint) {
+    const int index = static_cast<int>(model_.links_.size());
+    model_.links_.emplace_back();
+    Link& L = model_.links_.back();
+    L.name = link.name;
+    L.parentJoint = parentJoint;
+    L.parentLink = parentJoint < 0 ? -1 : model_.joints_[parentJoint].parentLink;
+    if (parentJoint >= 0) model_.joints_[parentJoint].childLink = index;
+    addCollisions(link, index);
+    return index;
+  }
+
+  /// Queues the child joints of `link` (index `index`) so that they are taken in file order
+  /// (urdfdom keeps them sorted by name).
+  void pushChildren(const urdf::Link& link, int index,
+                    std::vector<std::pair<urdf::JointSharedPtr, int>>& pending) const {
+    std::vector<urdf::JointSharedPtr> children = link.child_joints;
+    std::sort(children.begin(), children.end(), [this](const auto& a, const auto& b) {
+      return order(a->name) > order(b->name);  // reversed: the stack pops the first one first
+    });
+    for (const auto& j : children) pending.emplace_back(j, index);
   }
 
   int order(const std::string& jointName) const {
@@ -530,7 +576,7 @@ RobotModel RobotModel::fromUrdfString(const std::string& xml, const std::string&
   const std::string context = "URDF " + inQuotes(model.source_);
 
   std::map<std::string, int> jointOrder;
-  const std::string cleaned = Prepass(context).run(xml, jointOrder);
+  const std::string cleaned = Prepass(context, options.maxLinks).run(xml, jointOrder);
   std::string errors;
   const urdf::ModelInterfaceSharedPtr urdf = parseWithUrdfdom(cleaned, errors);
   if (!urdf) {

@@ -2,6 +2,10 @@
 
 #include "deepcheck/robots/moveit_scene.h"
 
+#include <deepcheck/deep/input_range.h>
+
+#include <yaml-cpp/eventhandler.h>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +22,51 @@ std::string Context::where(const YAML::Node& node) const {
 
 void Context::fail(const YAML::Node& node, const std::string& what) const {
   throw std::invalid_argument(where(node) + ": " + what);
+}
+
+namespace {
+
+/// Follows the nesting of maps and sequences, throwing when it passes kMaxNestingDepth. yaml-cpp
+/// calls OnMapStart and OnSequenceStart before it reads (recursively) what they hold.
+class DepthCheck : public YAML::EventHandler {
+ public:
+  explicit DepthCheck(const std::string& source) : source_(source) {}
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    enter(mark);
+  }
+  void OnSequenceEnd() override { --depth_; }
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    enter(mark);
+  }
+  void OnMapEnd() override { --depth_; }
+
+ private:
+  void enter(const YAML::Mark& mark) {
+    if (++depth_ <= kMaxNestingDepth) return;
+    throw std::invalid_argument("planning scene '" + source_ + "', line " + std::to_string(mark.line + 1) +
+                                ": collections nested " + std::to_string(depth_) +
+                                " levels deep, more than the limit of " + std::to_string(kMaxNestingDepth));
+  }
+
+  const std::string& source_;
+  int depth_ = 0;
+};
+
+}  // namespace
+
+YAML::Node loadYaml(const std::string& text, const std::string& source) {
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  DepthCheck check(source);
+  parser.HandleNextDocument(check);
+  return YAML::Load(text);
 }
 
 int lineOf(const YAML::Node& node) {
@@ -37,6 +86,8 @@ YAML::Node required(const Context& ctx, const YAML::Node& parent, const char* ke
 void checkKeys(const Context& ctx, const YAML::Node& node, const char* what,
                std::initializer_list<const char*> allowed) {
   if (!node.IsMap()) ctx.fail(node, std::string(what) + " must be a map");
+  // yaml-cpp keeps repeated keys; refusing them bounds the work on a map repeated by aliases.
+  if (node.size() > allowed.size()) ctx.fail(node, std::string(what) + " has repeated keys");
   for (const auto& entry : node) {
     if (!entry.first.IsScalar()) ctx.fail(entry.first, std::string(what) + " has a key that is not a name");
     const std::string& key = entry.first.Scalar();
@@ -61,6 +112,11 @@ double readNumber(const Context& ctx, const YAML::Node& node, const std::string&
     ctx.fail(node, what + " must be a number, is '" + node.Scalar() + "'");
   }
   if (!std::isfinite(value)) ctx.fail(node, what + " must be finite, is '" + node.Scalar() + "'");
+  if (std::abs(value) > deep::range::kMaxCoordinate) {
+    std::ostringstream msg;
+    msg << what << " must have magnitude at most " << deep::range::kMaxCoordinate << ", is '" << node.Scalar() << "'";
+    ctx.fail(node, msg.str());
+  }
   return value;
 }
 
@@ -80,6 +136,10 @@ namespace {
 std::vector<double> readComponents(const Context& ctx, const YAML::Node& node, const std::string& what,
                                    const std::vector<const char*>& names) {
   std::vector<double> out;
+  if ((node.IsMap() || node.IsSequence()) && node.size() != names.size()) {
+    ctx.fail(node, what + " must have " + std::to_string(names.size()) + " numbers, has " +
+                       std::to_string(node.size()));
+  }
   if (node.IsMap()) {
     for (const auto& entry : node) {
       const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "";
@@ -91,12 +151,7 @@ std::vector<double> readComponents(const Context& ctx, const YAML::Node& node, c
     return out;
   }
   if (!node.IsSequence()) ctx.fail(node, what + " must be a list or a map");
-  out = readNumbers(ctx, node, what);
-  if (out.size() != names.size()) {
-    ctx.fail(node, what + " must have " + std::to_string(names.size()) + " numbers, has " +
-                       std::to_string(out.size()));
-  }
-  return out;
+  return readNumbers(ctx, node, what);
 }
 
 }  // namespace

@@ -25,6 +25,13 @@ struct Context {
   [[noreturn]] void fail(const YAML::Node& node, const std::string& what) const;
 };
 
+/// The first document of YAML text. Throws std::invalid_argument "planning scene '<source>',
+/// line <n>: collections nested <d> levels deep, more than the limit of kMaxNestingDepth" when
+/// maps and sequences nest deeper than kMaxNestingDepth (robot_model.h); the depth is checked
+/// by an event pass that stops there, before yaml-cpp builds the nodes. Malformed YAML throws
+/// YAML::Exception.
+YAML::Node loadYaml(const std::string& text, const std::string& source);
+
 /// 1-based line of a node, 0 when it has none.
 int lineOf(const YAML::Node& node);
 

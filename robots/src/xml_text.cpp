@@ -2,6 +2,9 @@
 
 #include "xml_text.h"
 
+#include "deepcheck/robots/robot_model.h"
+
+#include <algorithm>
 #include <cstddef>
 #include <cstdio>
 #include <fstream>
@@ -57,10 +60,80 @@ void checkText(const std::string& xml, const std::string& context) {
   }
 }
 
+int lineAt(std::string_view xml, std::size_t at) {
+  return 1 + static_cast<int>(std::count(xml.begin(), xml.begin() + static_cast<long>(at), '\n'));
+}
+
+/// Position of the '>' closing the start tag that begins at xml[at] ('<'), npos when none. A
+/// quote opens a value only right after '=' (TinyXML reads unquoted values up to a space, '/'
+/// or '>').
+std::size_t startTagEnd(std::string_view xml, std::size_t at) {
+  bool afterEquals = false;
+  for (std::size_t i = at + 1; i < xml.size(); ++i) {
+    const char c = xml[i];
+    if (c == '>') return i;
+    if (afterEquals && (c == '"' || c == '\'')) {
+      i = xml.find(c, i + 1);
+      if (i == std::string_view::npos) return i;
+      afterEquals = false;
+    } else if (c == '=') {
+      afterEquals = true;
+    } else if (!isXmlSpace(c)) {
+      afterEquals = false;
+    }
+  }
+  return std::string_view::npos;
+}
+
+/// Position just past `terminator`, searched from `from`; npos when absent.
+std::size_t pastTerminator(std::string_view xml, std::size_t from, std::string_view terminator) {
+  const std::size_t at = xml.find(terminator, from);
+  return at == std::string_view::npos ? at : at + terminator.size();
+}
+
 }  // namespace
+
+void checkXmlDepth(std::string_view xml, const std::string& context) {
+  const auto fail = [&](std::size_t at, const std::string& what) {
+    throw std::invalid_argument(context + ": line " + std::to_string(lineAt(xml, at)) + ": " + what);
+  };
+  const auto startsAt = [&](std::size_t at, std::string_view s) { return xml.compare(at, s.size(), s) == 0; };
+  int depth = 0;
+  for (std::size_t at = xml.find('<'); at != std::string_view::npos; at = xml.find('<', at)) {
+    std::size_t end = std::string_view::npos;  // just past the markup
+    if (startsAt(at, "<!--")) {
+      end = pastTerminator(xml, at + 4, "-->");
+    } else if (startsAt(at, "<![CDATA[")) {
+      end = pastTerminator(xml, at + 9, "]]>");
+    } else if (startsAt(at, "<?") || startsAt(at, "<!")) {
+      end = pastTerminator(xml, at, ">");
+      if (end == std::string_view::npos) return;  // unclosed: the parser reports it
+      const std::string_view markup = xml.substr(at, end - at);
+      if (markup[1] == '?' ? markup.size() < 4 || markup[markup.size() - 2] != '?'
+                           : markup.find('[') != std::string_view::npos) {
+        fail(at, "a processing instruction or declaration holding '>' or an internal DTD subset, "
+                 "which is not supported");
+      }
+    } else if (startsAt(at, "</")) {
+      depth = std::max(0, depth - 1);
+      end = pastTerminator(xml, at, ">");
+    } else {
+      end = startTagEnd(xml, at);
+      if (end == std::string_view::npos) return;
+      if (xml[end - 1] != '/' && ++depth > kMaxNestingDepth) {
+        fail(at, "elements nested " + std::to_string(depth) + " levels deep, more than the limit of " +
+                     std::to_string(kMaxNestingDepth));
+      }
+      ++end;
+    }
+    if (end == std::string_view::npos) return;
+    at = end;
+  }
+}
 
 void parseXml(TiXmlDocument& doc, const std::string& xml, const std::string& context) {
   checkText(xml, context);
+  checkXmlDepth(xml, context);
   doc.Parse(xml.c_str(), nullptr, TIXML_ENCODING_UTF8);
   if (doc.Error()) {
     std::ostringstream msg;

@@ -31,19 +31,31 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <string>
 
 namespace deepcheck::robots {
 
+struct MeshLoadOptions {
+  /// Largest mesh file read, bytes (assimp holds about twice the file in memory while reading;
+  /// real collision meshes are a few MB). A larger file is an error naming its size.
+  std::uintmax_t maxFileBytes = std::uintmax_t{256} << 20;
+};
+
 /// Loads `path` as described above and returns the merged, cleaned mesh (source = path).
-/// Throws std::invalid_argument, naming the file, when the file is missing or unreadable, when
+/// Throws std::invalid_argument, naming the file, when the file is missing, unreadable or larger
+/// than options.maxFileBytes, when an XML file nests elements deeper than kMaxNestingDepth
+/// (robot_model.h), when
 /// a COLLADA file has an index list (<p>, <h>, <vcount>) holding anything but digits and
 /// whitespace, an array without a count or an accessor reaching beyond its array (assimp 5.2 would
 /// exhaust memory or crash on them; the line is named), when assimp fails (assimp's error string
-/// is included), when the scale has a zero or non-finite
-/// component, when a vertex is not finite, or when no non-degenerate triangle is left.
+/// is included), when the scale has a zero component or one of magnitude above
+/// deep::range::kMaxCoordinate, when a vertex is not finite or, placed and scaled, lies beyond
+/// deep::range::kMaxCoordinate (the message names the scale), or when no non-degenerate
+/// triangle is left.
 TriangleMesh loadMesh(const std::string& path,
-                      const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
+                      const Eigen::Vector3d& scale = Eigen::Vector3d::Ones(),
+                      const MeshLoadOptions& options = {});
 
 /// Drops degenerate triangles and unused vertices of `mesh` in place (step 4 above); returns the
 /// number of triangles dropped.

@@ -45,7 +45,9 @@
 // object ("object 'Can1'", or "object <index>" before its id is known), then what is wrong:
 // malformed YAML, a missing key, an unknown key or primitive type, a wrong number of dimensions,
 // a size that is not positive, a number that is not finite (.nan, .inf), a quaternion far from
-// unit norm, a mesh that cannot be found (every place searched is listed).
+// unit norm, a mesh that cannot be found (every place searched is listed), a number of magnitude
+// above deep::range::kMaxCoordinate (1e50), maps and sequences nested deeper than
+// kMaxNestingDepth (robot_model.h), more shapes than SceneLoadOptions::maxShapes.
 //
 // Frames: F the object's frame (header.frame_id), O the object (pose), S a shape, W the world.
 
@@ -108,6 +110,10 @@ struct SceneLoadOptions {
   bool useRosPackagePath = true;
   /// Largest distance a cone's pyramid may stick out of the cone, metres (> 0).
   double coneMaxDeviation = tol::kCylinderMaxDeviation;
+  /// Most shapes (primitives and meshes, over all objects) a scene may hold, and so most objects;
+  /// a list repeated through YAML aliases counts once per repetition. The count is checked before
+  /// each list is read, so an alias expansion stops as soon as it passes the limit.
+  std::size_t maxShapes = 10000;
 };
 
 /// Reads a planning-scene YAML file; relative mesh paths are relative to its folder.

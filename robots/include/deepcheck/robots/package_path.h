@@ -13,6 +13,12 @@
 //   file://PATH          PATH absolute, or relative to the URDF file's folder
 //   PATH                 a plain path: absolute, or relative to the URDF file's folder
 // Every place looked at is recorded, so that a failure can list them all.
+//
+// A package folder is a boundary: a package:// path that leaves it, as written ("..") or once
+// symbolic links are resolved (for a file that exists), is rejected with a message naming the URI
+// and the folder. The lexical check comes before any file is looked at, so the message is the same
+// whether or not a file exists outside. Only the first 64 KiB of a package.xml are read to find
+// its <name>.
 
 #include <string>
 #include <vector>
@@ -24,6 +30,7 @@ struct UriResolution {
   std::string path;                   ///< absolute, normalized path of the file found ("" if none)
   std::vector<std::string> searched;  ///< every candidate looked at, in order
   std::string problem;                ///< why nothing was found ("" when found)
+  bool rejected = false;              ///< the URI leaves its package folder (problem says so)
   bool found() const { return !path.empty(); }
 };
 
@@ -40,9 +47,9 @@ std::vector<std::string> packageRoots(const std::vector<std::string>& callerRoot
 UriResolution resolveUri(const std::string& uri, const std::vector<std::string>& roots,
                          const std::string& baseDirectory);
 
-/// Same, but throws std::invalid_argument when nothing is found. The message starts with
-/// `context` (e.g. "URDF 'panda.urdf', link 'panda_link3'"), then names the URI and lists every
-/// place searched.
+/// Same, but throws std::invalid_argument when nothing is found or the URI is rejected. The
+/// message starts with `context` (e.g. "URDF 'panda.urdf', link 'panda_link3'"), then names the
+/// URI and lists every place searched (or, when rejected, names the package folder it leaves).
 std::string resolveUriOrThrow(const std::string& uri, const std::vector<std::string>& roots,
                               const std::string& baseDirectory, const std::string& context);
 

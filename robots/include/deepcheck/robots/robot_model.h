@@ -48,6 +48,12 @@
 // LoadOptions::fixFloatingJoints, in which case they become fixed joints at their origin
 // (Joint::urdfType keeps the word written in the file).
 //
+// Limits. Elements nested deeper than kMaxNestingDepth are rejected before TinyXML reads the
+// text; a URDF with more than LoadOptions::maxLinks links (or joints) before urdfdom reads it;
+// every number read must be finite with magnitude at most deep::range::kMaxCoordinate (1e50, the
+// range the distance queries support), so that a pose far out is rejected here, naming the link
+// or joint, and not by a query later.
+//
 // Errors: every problem throws std::invalid_argument whose message starts with
 // "URDF '<file>'" and names the link, joint or value at fault.
 
@@ -59,6 +65,12 @@
 #include <vector>
 
 namespace deepcheck::robots {
+
+/// Deepest nesting accepted in a file read by this library, in levels: XML elements (URDF, SRDF,
+/// COLLADA and the other XML mesh formats; the root element is level 1) and YAML collections
+/// (planning scenes). The parsers recurse once per level, so deeper files would overflow the
+/// stack; they are rejected before being parsed. Real files stay within a few tens of levels.
+constexpr int kMaxNestingDepth = 256;
 
 enum class JointType {
   Fixed,       ///< no motion
@@ -129,6 +141,10 @@ struct LoadOptions {
   bool useRosPackagePath = true;
   /// Treat floating and planar joints as fixed at their origin instead of rejecting them.
   bool fixFloatingJoints = false;
+  /// Most <link> elements, and most <joint> elements, a URDF may hold (real robots hold a few
+  /// hundred at most); more is an error naming the file and the count, raised before the rest of
+  /// the file is checked.
+  int maxLinks = 10000;
 };
 
 class RobotModel {

@@ -8,7 +8,8 @@
 // reason is an error.
 //
 // Errors: bad input throws std::invalid_argument whose message names the file (or the text's
-// source), the line and the offending value.
+// source), the line and the offending value; elements nested deeper than kMaxNestingDepth
+// (robot_model.h) are rejected before the text is parsed.
 
 #include <optional>
 #include <string>
