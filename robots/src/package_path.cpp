@@ -76,15 +76,6 @@ bool lexicallyInside(const fs::path& path, const fs::path& folder) {
   return !relative.empty() && *relative.begin() != "..";
 }
 
-/// True when `path` (an existing file) lies inside `folder` once symbolic links are resolved.
-bool canonicallyInside(const fs::path& path, const fs::path& folder) {
-  std::error_code ec;
-  const fs::path file = fs::canonical(path, ec);
-  if (ec) return false;
-  const fs::path root = fs::canonical(folder, ec);
-  return !ec && lexicallyInside(file, root);
-}
-
 /// Records that the URI leaves `packageFolder`. The same words whether or not anything exists
 /// there, so that the message tells nothing about files outside the roots.
 void rejectOutside(const std::string& uri, const fs::path& packageFolder, UriResolution& out) {
@@ -104,10 +95,8 @@ bool tryCandidate(const std::string& uri, const fs::path& folder, const std::str
   }
   out.searched.push_back(normalized(candidate) + note);
   if (!isFile(candidate)) return false;
-  if (!canonicallyInside(candidate, folder)) {
-    rejectOutside(uri, folder, out);
-    return true;
-  }
+  // A symbolic link inside the package is followed wherever it points: the package's owner put it
+  // there (colcon --symlink-install links every installed file back to the sources).
   out.path = normalized(candidate);
   return true;
 }

@@ -137,14 +137,18 @@ BOOST_AUTO_TEST_CASE(package_uri_may_not_leave_its_package) {
               {"malformed package URI"});
 }
 
-BOOST_AUTO_TEST_CASE(package_symlink_may_not_leave_its_package) {
+// A symbolic link placed in the package (colcon --symlink-install links installed files back to
+// the sources) is followed: only the path as written must stay in the package.
+BOOST_AUTO_TEST_CASE(package_symlinks_are_followed) {
   TempDir dir;
-  const std::string root = (dir.path() / "roots").string();
-  dir.write("roots/mypkg/package.xml", "<package><name>mypkg</name></package>");
-  const std::string outside = dir.write("secret/outside.obj", kTetrahedronObj);
-  std::filesystem::create_symlink(outside, dir.path() / "roots/mypkg/link.obj");
-  checkThrows([&] { resolveUriOrThrow("package://mypkg/link.obj", {root}, "", "URDF 'r.urdf'"); },
-              {"URDF 'r.urdf'", "package://mypkg/link.obj", "outside its package root", root + "/mypkg'"});
+  const std::string root = (dir.path() / "install").string();
+  dir.write("install/mypkg/package.xml", "<package><name>mypkg</name></package>");
+  const std::string source = dir.write("src/mypkg/meshes/t.obj", kTetrahedronObj);
+  std::filesystem::create_directories(dir.path() / "install/mypkg/meshes");
+  std::filesystem::create_symlink(source, dir.path() / "install/mypkg/meshes/t.obj");
+  BOOST_TEST(resolveUri("package://mypkg/meshes/t.obj", {root}, "").found());
+  checkThrows([&] { resolveUriOrThrow("package://mypkg/../../src/mypkg/meshes/t.obj", {root}, "", "URDF 'r.urdf'"); },
+              {"URDF 'r.urdf'", "outside its package root", root + "/mypkg'"});
 }
 
 BOOST_AUTO_TEST_CASE(package_xml_name_is_read_from_its_start) {
