@@ -5,6 +5,7 @@
 #include "deepcheck/checker/world.h"
 
 #include "external_broad_phase.h"
+#include "progress.h"
 #include "world_internal.h"
 
 #include "deepcheck/deep/pair_frame.h"
@@ -92,10 +93,29 @@ robots::MeshDecomposer makeDecomposer(const WorldOptions& options, std::shared_p
   };
 }
 
-std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robots::CollisionGeometryOptions& geometry) {
+/// robots::collisionPieces of `model`, with a progress line per mesh made into pieces once the
+/// step runs long (`what` names the model in it).
+std::vector<std::vector<robots::CollisionPiece>> piecesWithProgress(const robots::RobotModel& model,
+                                                                    const robots::CollisionGeometryOptions& geometry,
+                                                                    std::ostream* out, const std::string& what) {
+  detail::Progress progress(out, what + ": meshes made into pieces", 0, tol::kProgressQuietSeconds);
+  std::size_t meshes = 0;
+  robots::CollisionGeometryOptions counted = geometry;
+  counted.decomposer = [&](const robots::TriangleMesh& mesh) {
+    std::vector<deep::ConvexPolytope> polytopes =
+        geometry.decomposer ? geometry.decomposer(mesh) : robots::convexHullDecomposer(mesh);
+    progress.update(++meshes);
+    return polytopes;
+  };
+  return robots::collisionPieces(model, counted);
+}
+
+std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robots::CollisionGeometryOptions& geometry,
+                                            std::ostream* progress) {
   auto robot = std::make_shared<RobotData>(RobotData{std::move(model), {}, {}, {}, {}, {}});
   const robots::RobotModel& m = robot->model;
-  const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(m, geometry);
+  const std::vector<std::vector<robots::CollisionPiece>> pieces =
+      piecesWithProgress(m, geometry, progress, "robot '" + m.name() + "'");
   std::vector<bool> hasGeometry(m.numLinks(), false);
   for (int l = 0; l < m.numLinks(); ++l) {
     if (pieces[l].empty()) continue;
@@ -244,7 +264,12 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
   for (const LinkGeometry& g : robot.links) links.push_back(g.link);
   s.selfPairs.clear();
   s.selfCacheSize = 0;
-  for (const auto& [a, b] : pairsWithinReach(robot.reach, links, options.reachMargin)) {
+  const std::vector<std::pair<int, int>> reachable = pairsWithinReach(robot.reach, links, options.reachMargin);
+  detail::Progress progress(options.progress, "robot '" + robot.model.name() + "': self pairs", reachable.size(),
+                            tol::kProgressQuietSeconds);
+  for (std::size_t k = 0; k < reachable.size(); ++k) {
+    progress.update(k);
+    const auto [a, b] = reachable[k];
     if (disabled.count({links[a], links[b]})) continue;
     auto known = grids.find({a, b});
     s.selfPairs.push_back({a, b, s.selfCacheSize,
@@ -296,7 +321,7 @@ World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std
     *excess = std::numeric_limits<double>::quiet_NaN();  // a custom decomposer: unknown
   }
   auto snap = std::make_shared<Snapshot>();
-  snap->robot = buildRobot(std::move(robot), st.geometry);
+  snap->robot = buildRobot(std::move(robot), st.geometry, options.progress);
   st.robot = snap->robot;
   robots::checkDisabledPairs(snap->robot->model, options.disabledPairs, "WorldOptions::disabledPairs");
   for (const robots::DisabledPair& p : options.disabledPairs) {
@@ -332,7 +357,8 @@ int World::addScene(robots::RobotModel scene, const SceneSpec& options) {
   std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(scene, q);
   auto data = std::make_shared<SceneData>(SceneData{std::move(scene), std::move(q), std::move(X_WL), 0, 0, 0});
 
-  const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(data->model, st.geometry);
+  const std::vector<std::vector<robots::CollisionPiece>> pieces =
+      piecesWithProgress(data->model, st.geometry, st.options.progress, "scene '" + data->model.name() + "'");
   auto snap = std::make_shared<Snapshot>(*st.current);
   const int index = static_cast<int>(snap->scenes.size());
   snap->scenePieces = appendScenePieces(*snap->scenePieces, *snap->robot, *data, index, pieces,

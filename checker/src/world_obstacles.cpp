@@ -2,6 +2,7 @@
 
 #include "deepcheck/checker/world.h"
 
+#include "progress.h"
 #include "world_internal.h"
 
 #include "deepcheck/deep/pair_frame.h"
@@ -160,7 +161,10 @@ std::vector<int> World::addObstacles(const std::vector<Obstacle>& obstacles) {
   // Every obstacle's pieces are made before the world changes: a bad one leaves it as it was.
   std::vector<std::shared_ptr<ObstacleData>> added;
   added.reserve(obstacles.size());
+  detail::Progress progress(st.options.progress, "obstacles made into pieces", obstacles.size(),
+                            tol::kProgressQuietSeconds);
   for (const Obstacle& obstacle : obstacles) {
+    progress.update(added.size());
     if (obstacle.name.empty()) throw std::invalid_argument("addObstacle: the obstacle has no name");
     checkObstaclePose(obstacle.X_WO, obstacle.name);
     auto data = std::make_shared<ObstacleData>();

@@ -3,6 +3,7 @@
 
 #include "checker_test_util.h"
 
+#include "progress.h"
 #include "reach.h"
 
 #include <boost/test/unit_test.hpp>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -130,6 +132,46 @@ BOOST_AUTO_TEST_CASE(pairs_within_reach_equal_brute_force) {
     }
     BOOST_TEST((pairsWithinReach(spheres, links, margin) == expected), "trial " << trial);
   }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(construction_progress)
+
+// Nothing while the step is within its quiet time; then lines with the count, and a closing line;
+// a null stream is silent.
+BOOST_AUTO_TEST_CASE(lines_only_past_the_quiet_time) {
+  std::ostringstream quiet;
+  {
+    detail::Progress p(&quiet, "self pairs", 10, 3600.0);
+    for (std::size_t k = 0; k < 10; ++k) p.update(k);
+  }
+  BOOST_TEST(quiet.str().empty());
+  std::ostringstream loud;
+  {
+    detail::Progress p(&loud, "self pairs", 10, 0.0);
+    p.update(3);
+  }
+  BOOST_TEST(loud.str().find("deepcheck: self pairs 3/10 (") == 0u, loud.str());
+  BOOST_TEST(loud.str().find("deepcheck: self pairs done (") != std::string::npos, loud.str());
+  std::ostringstream unknown;
+  {
+    detail::Progress p(&unknown, "meshes", 0, 0.0);
+    p.update(7);
+  }
+  BOOST_TEST(unknown.str().find("deepcheck: meshes 7 (") == 0u, unknown.str());
+  detail::Progress silent(nullptr, "x", 1, 0.0);
+  silent.update(1);
+}
+
+// A quick world construction prints nothing on its progress stream.
+BOOST_AUTO_TEST_CASE(quick_loads_print_nothing) {
+  std::ostringstream out;
+  WorldOptions options = testWorldOptions();
+  options.progress = &out;
+  World world(armRobot(), options);
+  world.addObstacles({Obstacle::box("b", Eigen::Vector3d::Ones(), translation(2, 0, 0))});
+  BOOST_TEST(out.str().empty());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -25,6 +25,11 @@ constexpr double kObbParallel = 1e-9;
 /// GJK's warm start across any step (its answer does not depend on it).
 constexpr double kWarmStartMaxStep = 0.1;
 
+/// A step of a world's construction (pieces of the robot's links, self-pair grids, obstacles)
+/// prints no progress line before it has run this long, and then at most one line this often
+/// (seconds; WorldOptions::progress).
+constexpr double kProgressQuietSeconds = 1.0;
+
 /// Default margin of the reachability filter, metres: a scene piece is dropped at load time when
 /// it is farther than this from every point any robot link can ever reach (the reach spheres of
 /// reach.h). Distances reported by the world are exact up to this margin; above it they are only

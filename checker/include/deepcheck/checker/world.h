@@ -66,6 +66,7 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <string>
@@ -181,6 +182,10 @@ struct ContextTestAccess;  // world_test_access.h (checker/src): hooks for the t
 
 /// How a World is built.
 struct WorldOptions {
+  /// Where progress lines of the construction steps that run past tol::kProgressQuietSeconds go
+  /// (the robot's pieces, self-pair grids, scenes and obstacles); nullptr: nowhere. A quick load
+  /// prints nothing.
+  std::ostream* progress = &std::cerr;
   /// Cylinder prisms and how meshes become pieces. An empty `geometry.decomposer` means the
   /// default: convex decomposition (robots/decomposition.h) with `decomposition` parameters,
   /// through the on-disk cache in `decompositionCacheDir` ("" = the default directory,
