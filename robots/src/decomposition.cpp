@@ -30,7 +30,9 @@ std::vector<Piece> Decomposer::initialPieces(DecompositionReport* report) {
   std::vector<Piece> pieces;
   Part whole = makePart({}, all, {});
   report->hullConcavity = whole.hullConcavity;
-  report->alreadyConvex = whole.concavity <= target_;
+  // A mesh whose own hull meets the target stays one piece, even when reducing that hull to the
+  // vertex budget adds more than the target allows: the report (and its warning) then says so.
+  report->alreadyConvex = whole.hullConcavity <= target_;
   if (report->alreadyConvex || mesh_.numGroups == 1) {
     addPart(&pieces, std::move(whole));
   } else {
@@ -120,6 +122,14 @@ void Decomposer::cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex) {
   if (!alreadyConvex) *pieces = merge(std::move(*pieces), true);
 }
 
+void Decomposer::capVertices(std::vector<Piece>* pieces) {
+  for (Piece& piece : *pieces) {
+    if (static_cast<int>(piece.finalHull.vertices.size()) <= params_.maxVerticesPerPiece) continue;
+    piece.finalHull = detail::reduceHullVertices(piece.hull, params_.maxVerticesPerPiece);
+    if (piece.parts.size() == 1) parts_[piece.parts.front()].finalHull = piece.finalHull;
+  }
+}
+
 std::vector<Concavity> Decomposer::finalConcavities(const std::vector<Piece>& pieces) {
   std::vector<Concavity> final;
   for (const Piece& piece : pieces) {
@@ -146,6 +156,7 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
        budget_ = static_cast<int>(std::min<long long>(2LL * budget_, params_.maxPieces))) {
     for (int verify = 0; verify <= dt::kVerifyRounds; ++verify) {
       cutAndMerge(&pieces, report->alreadyConvex);
+      capVertices(&pieces);
       final = finalConcavities(pieces);  // the final, denser estimate on what is returned
       if (verify == dt::kVerifyRounds || report->alreadyConvex) break;
       if (!reopen(&pieces, final, true)) break;
@@ -229,6 +240,7 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
   report.numTriangles = clean.inputTriangles;
   report.numVertices = clean.inputVertices;
   report.holesFilled = clean.holesFilled;
+  report.duplicatesRemoved = clean.duplicatesRemoved;
   report.voidsRemoved = clean.voidsRemoved;
   report.numComponents = clean.numComponents;
   report.diagonal = clean.diagonal;
@@ -254,7 +266,24 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
   report.decomposeMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   report.milliseconds = report.decomposeMilliseconds;
+  report.warning = targetWarning(report, result.pieces);
   return result;
+}
+
+std::string targetWarning(const DecompositionReport& report, const std::vector<ConvexPiece>& pieces) {
+  int above = 0;
+  double worst = 0.0;
+  for (const ConvexPiece& piece : pieces) {
+    above += piece.concavity > report.targetConcavity ? 1 : 0;
+    worst = std::max(worst, piece.concavity);
+  }
+  if (above == 0) return "";
+  using detail::decomp::roundedNumber;
+  return "decomposition of " + detail::decomp::meshName(report.source) + " misses its target: " + std::to_string(above) + " of " +
+         std::to_string(pieces.size()) + " pieces end up to " + roundedNumber(worst) + " m outside the mesh (" +
+         roundedNumber(100.0 * worst / report.diagonal) + "% of its diagonal), target " +
+         roundedNumber(report.targetConcavity) + " m; more pieces (maxPieces) or vertices per piece " +
+         "(maxVerticesPerPiece) may meet it";
 }
 
 bool pieceContains(const ConvexPiece& piece, const Vector3d& point, double tolerance) {

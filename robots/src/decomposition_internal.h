@@ -62,6 +62,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <set>
@@ -84,8 +85,17 @@ using detail::unite;
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr double kPi = 3.141592653589793;
 
-inline std::string meshName(const TriangleMesh& mesh) {
-  return mesh.source.empty() ? std::string("(generated mesh)") : "'" + mesh.source + "'";
+/// A mesh as messages name it: its source in quotes, or "(generated mesh)".
+inline std::string meshName(const std::string& source) {
+  return source.empty() ? std::string("(generated mesh)") : "'" + source + "'";
+}
+inline std::string meshName(const TriangleMesh& mesh) { return meshName(mesh.source); }
+
+/// A length or ratio for a message read by a person: 3 significant digits.
+inline std::string roundedNumber(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", v);
+  return buffer;
 }
 
 /// Twice the vector area of a convex polygon given by its corners in order (the sum of the cross
@@ -159,6 +169,7 @@ struct CleanMesh {
   bool closed = false;  ///< after filling holes
   int holesFilled = 0;
   int voidsRemoved = 0;    ///< closed inward-facing components sealed inside others
+  int duplicatesRemoved = 0;  ///< triangles on the same three vertices as an earlier one
   int inputVertices = 0;   ///< before filling holes
   int inputTriangles = 0;
   double volume = 0.0;  ///< sum of the components' volumes (voids count negative); NaN when open
@@ -166,6 +177,14 @@ struct CleanMesh {
 
 /// The input, cleaned (decomposition_mesh_repair.cpp): welded, holes filled, oriented outward.
 CleanMesh cleanMesh(const TriangleMesh& mesh);
+
+/// Throws std::invalid_argument naming the mesh (`name`, as meshName gives) for a mesh without
+/// triangles, a vertex that is not finite or an index out of range.
+void checkInput(const TriangleMesh& mesh, const std::string& name);
+/// The bounding box of the vertices the triangles use.
+Eigen::AlignedBox3d usedBox(const TriangleMesh& mesh);
+/// A triangle whose area is at most (kDegenerateRelative * diagonal)^2: cleanMesh drops it.
+bool isDegenerate(const Vector3d& a, const Vector3d& b, const Vector3d& c, double diagonal);
 
 // ------------------------------------------------------------------------------------------------
 // Cross-section of the whole mesh by a plane: "is this point of the plane inside the solid", and
@@ -402,6 +421,9 @@ class Decomposer {
   bool cutWorst(std::vector<Piece>* pieces);
   /// Rounds of cuts within the budget and merges of neighbours, then the forced merges.
   void cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex);
+  /// Reduces every piece hull still above maxVerticesPerPiece (a part that missed the target
+  /// was not reduced, expecting a cut that never came).
+  void capVertices(std::vector<Piece>* pieces);
   /// The final, denser concavity estimate of each piece.
   std::vector<Concavity> finalConcavities(const std::vector<Piece>& pieces);
   /// Pieces whose final estimate is above the report's target go back to be cut: a part keeps
