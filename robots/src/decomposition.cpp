@@ -110,8 +110,7 @@ bool Decomposer::cutWorst(std::vector<Piece>* pieces) {
 
 void Decomposer::cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex) {
   for (int round = 0; round < dt::kMaxRounds && !alreadyConvex; ++round) {
-    while (static_cast<int>(pieces->size()) < budget_ && cutWorst(pieces)) {
-    }
+    while (static_cast<int>(pieces->size()) < budget_ && cutWorst(pieces)) reportProgress(*pieces);
     bool over = false;
     for (const Piece& piece : *pieces) over = over || piece.concavity > target_;
     if (!params_.mergePieces) break;
@@ -120,6 +119,17 @@ void Decomposer::cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex) {
     if (!over || pieces->size() == before) break;
   }
   if (!alreadyConvex) *pieces = merge(std::move(*pieces), true);
+}
+
+void Decomposer::reportProgress(const std::vector<Piece>& pieces) {
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - lastProgress_).count() < dt::kProgressSeconds) return;
+  lastProgress_ = now;
+  double worst = 0.0;
+  for (const Piece& piece : pieces) worst = std::max(worst, piece.concavity);
+  std::fprintf(stderr, "deepcheck: decomposing %s (%zu triangles): %zu pieces, worst concavity %s (target %s), %.0f s\n",
+               name_.c_str(), mesh_.triangles.size(), pieces.size(), roundedNumber(worst).c_str(),
+               roundedNumber(reportTarget_).c_str(), std::chrono::duration<double>(now - start_).count());
 }
 
 void Decomposer::capVertices(std::vector<Piece>* pieces) {
@@ -203,6 +213,7 @@ void DecompositionParams::validate() const {
     fail("minConcavityAbs must be finite and >= 0, got " + formatNumber(minConcavityAbs));
   }
   if (maxPieces < 1) fail("maxPieces must be >= 1, got " + std::to_string(maxPieces));
+  if (maxTriangles < 1) fail("maxTriangles must be >= 1, got " + std::to_string(maxTriangles));
   if (maxVerticesPerPiece < 4) {
     fail("maxVerticesPerPiece must be >= 4, got " + std::to_string(maxVerticesPerPiece));
   }
@@ -233,6 +244,12 @@ std::vector<deep::ConvexPolytope> ConvexDecomposition::polytopes() const {
 ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const DecompositionParams& params) {
   const auto start = std::chrono::steady_clock::now();
   params.validate();
+  if (mesh.triangles.size() > static_cast<std::size_t>(params.maxTriangles)) {
+    throw std::invalid_argument("decomposeConvex: mesh " + detail::decomp::meshName(mesh) + " has " +
+                                std::to_string(mesh.triangles.size()) + " triangles, more than maxTriangles (" +
+                                std::to_string(params.maxTriangles) +
+                                "); raise it (deepcheck decompose --max-triangles N) or simplify the mesh");
+  }
   const CleanMesh clean = cleanMesh(mesh);
   ConvexDecomposition result;
   DecompositionReport& report = result.report;
@@ -248,7 +265,7 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
   report.meshClosed = clean.closed;
   report.meshVolume = clean.volume;
 
-  Decomposer decomposer(clean, params, report.targetConcavity);
+  Decomposer decomposer(clean, params, report.targetConcavity, detail::decomp::meshName(mesh));
   result.pieces = decomposer.run(&report);
 
   report.numPieces = static_cast<int>(result.pieces.size());

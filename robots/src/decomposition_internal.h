@@ -59,6 +59,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <chrono>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -397,12 +398,14 @@ struct Piece {
 class Decomposer {
  public:
   /// `target`: the absolute concavity target; decisions aim at kDecisionFraction of it.
-  Decomposer(const CleanMesh& mesh, const DecompositionParams& params, double target)
+  /// `name`: the mesh as messages name it (meshName), for the progress lines.
+  Decomposer(const CleanMesh& mesh, const DecompositionParams& params, double target, std::string name)
       : mesh_(mesh),
         params_(params),
         target_(dt::kDecisionFraction * target),
         reportTarget_(target),
-        diagonal_(mesh.diagonal) {
+        diagonal_(mesh.diagonal),
+        name_(std::move(name)) {
     std::vector<Triangle> triangles;
     triangles.reserve(mesh.triangles.size());
     for (const auto& t : mesh.triangles) triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
@@ -421,6 +424,9 @@ class Decomposer {
   bool cutWorst(std::vector<Piece>* pieces);
   /// Rounds of cuts within the budget and merges of neighbours, then the forced merges.
   void cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex);
+  /// One line on stderr (pieces so far, their worst concavity, the time) once the decomposition
+  /// has run kProgressSeconds since the start or the last such line.
+  void reportProgress(const std::vector<Piece>& pieces);
   /// Reduces every piece hull still above maxVerticesPerPiece (a part that missed the target
   /// was not reduced, expecting a cut that never came).
   void capVertices(std::vector<Piece>* pieces);
@@ -544,6 +550,9 @@ class Decomposer {
   std::vector<std::unique_ptr<CutPlane>> planes_;
   std::vector<Part> parts_;
   int budget_ = 0;  ///< pieces allowed in the current budget stage (see run), <= maxPieces
+  const std::string name_;
+  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point lastProgress_ = start_;
   std::uint64_t evaluations_ = 0;
 };
 

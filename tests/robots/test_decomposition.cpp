@@ -640,6 +640,15 @@ BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
   p.maxPieces = 0;
   checkThrows([&] { decomposeConvex(mesh, p); }, {"maxPieces", "0"});
   p = {};
+  p.maxTriangles = 0;
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"maxTriangles", "0"});
+  // A mesh above the triangle limit: refused with its name, its count and the option.
+  p = {};
+  p.maxTriangles = 11;
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"'box'", "has 44 triangles", "maxTriangles (11)", "--max-triangles"});
+  p.maxTriangles = 44;
+  BOOST_CHECK_EQUAL(decomposeConvex(mesh, p).report.numPieces, 1);
+  p = {};
   p.maxVerticesPerPiece = 3;
   checkThrows([&] { decomposeConvex(mesh, p); }, {"maxVerticesPerPiece", "3"});
   // The cached entry point validates the parameters before looking at the cache.

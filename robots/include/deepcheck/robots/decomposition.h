@@ -76,6 +76,9 @@ namespace deepcheck::robots {
 /// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
 constexpr int kDecompositionAlgorithmVersion = 5;
 
+/// Default of DecompositionParams::maxTriangles.
+constexpr int kDefaultMaxTriangles = 200000;
+
 struct DecompositionParams {
   /// Concavity target as a fraction of the mesh's bounding-box diagonal, in (0, 1].
   double maxConcavity = 0.01;
@@ -87,6 +90,12 @@ struct DecompositionParams {
   int maxPieces = 64;
   /// Largest number of vertices of a piece, >= 4 (see the header comment for the bound).
   int maxVerticesPerPiece = 64;
+  /// Largest number of triangles of a mesh to decompose, >= 1: decomposeConvex refuses a larger
+  /// one (std::invalid_argument naming the mesh, its count and this field). The time grows about
+  /// linearly with the triangles, about 1 s per 1,000 on one core for a mesh that needs 16
+  /// pieces, so the default caps a load at a few minutes. Not part of the cache key: it decides
+  /// whether to decompose, not the result.
+  int maxTriangles = kDefaultMaxTriangles;
   /// Merge neighbouring pieces whose merged hull still meets the target.
   bool mergePieces = true;
   /// Seed of the hull-surface sampling (the only randomness; the result is deterministic).
