@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +36,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck decompose MESH [--out PIECES.obj] [--max-concavity F]\n"
     "                           [--min-concavity-abs M] [--max-pieces N] [--max-vertices N]\n"
+    "                           [--max-triangles N]\n"
     "                           [--cache DIR | --no-cache] [--package-path DIR]...\n"
     "       deepcheck decompose --report MESH... [same options, no --out]\n"
     "\n"
@@ -52,6 +54,8 @@ constexpr const char* kUsage =
     "                          target is missed with 32)\n"
     "  --max-vertices N        at most N vertices per piece (default 64; the pieces still\n"
     "                          contain the mesh)\n"
+    "  --max-triangles N       refuse a mesh of more than N triangles (default 200000; about\n"
+    "                          1 s per 1000 triangles; progress is printed past 1 s)\n"
     "  --cache DIR             cache folder (default $XDG_CACHE_HOME/deepcheck or\n"
     "                          ~/.cache/deepcheck)\n"
     "  --no-cache              neither read nor write the cache\n"
@@ -98,7 +102,7 @@ struct DecomposeArgs {
 };
 
 /// The decomposition parameters given (--max-concavity, --min-concavity-abs, --max-pieces,
-/// --max-vertices); UsageError for a value they do not accept.
+/// --max-vertices, --max-triangles); UsageError for a value they do not accept.
 robots::DecompositionParams takeParams(std::vector<std::string>& args) {
   robots::DecompositionParams params;
   if (const std::string v = takeSingleOption(args, "--max-concavity"); !v.empty()) {
@@ -112,6 +116,9 @@ robots::DecompositionParams takeParams(std::vector<std::string>& args) {
   }
   if (const std::string v = takeSingleOption(args, "--max-vertices"); !v.empty()) {
     params.maxVerticesPerPiece = static_cast<int>(parseCount(v, "--max-vertices", 1, kMaxCount));
+  }
+  if (const std::string v = takeSingleOption(args, "--max-triangles"); !v.empty()) {
+    params.maxTriangles = static_cast<int>(parseCount(v, "--max-triangles", 1, std::numeric_limits<int>::max()));
   }
   return params;
 }

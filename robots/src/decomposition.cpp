@@ -30,7 +30,9 @@ std::vector<Piece> Decomposer::initialPieces(DecompositionReport* report) {
   std::vector<Piece> pieces;
   Part whole = makePart({}, all, {});
   report->hullConcavity = whole.hullConcavity;
-  report->alreadyConvex = whole.concavity <= target_;
+  // A mesh whose own hull meets the target stays one piece, even when reducing that hull to the
+  // vertex budget adds more than the target allows: the report (and its warning) then says so.
+  report->alreadyConvex = whole.hullConcavity <= target_;
   if (report->alreadyConvex || mesh_.numGroups == 1) {
     addPart(&pieces, std::move(whole));
   } else {
@@ -108,8 +110,7 @@ bool Decomposer::cutWorst(std::vector<Piece>* pieces) {
 
 void Decomposer::cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex) {
   for (int round = 0; round < dt::kMaxRounds && !alreadyConvex; ++round) {
-    while (static_cast<int>(pieces->size()) < budget_ && cutWorst(pieces)) {
-    }
+    while (static_cast<int>(pieces->size()) < budget_ && cutWorst(pieces)) reportProgress(*pieces);
     bool over = false;
     for (const Piece& piece : *pieces) over = over || piece.concavity > target_;
     if (!params_.mergePieces) break;
@@ -118,6 +119,25 @@ void Decomposer::cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex) {
     if (!over || pieces->size() == before) break;
   }
   if (!alreadyConvex) *pieces = merge(std::move(*pieces), true);
+}
+
+void Decomposer::reportProgress(const std::vector<Piece>& pieces) {
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - lastProgress_).count() < dt::kProgressSeconds) return;
+  lastProgress_ = now;
+  double worst = 0.0;
+  for (const Piece& piece : pieces) worst = std::max(worst, piece.concavity);
+  std::fprintf(stderr, "deepcheck: decomposing %s (%zu triangles): %zu pieces, worst concavity %s (target %s), %.0f s\n",
+               name_.c_str(), mesh_.triangles.size(), pieces.size(), roundedNumber(worst).c_str(),
+               roundedNumber(reportTarget_).c_str(), std::chrono::duration<double>(now - start_).count());
+}
+
+void Decomposer::capVertices(std::vector<Piece>* pieces) {
+  for (Piece& piece : *pieces) {
+    if (static_cast<int>(piece.finalHull.vertices.size()) <= params_.maxVerticesPerPiece) continue;
+    piece.finalHull = detail::reduceHullVertices(piece.hull, params_.maxVerticesPerPiece);
+    if (piece.parts.size() == 1) parts_[piece.parts.front()].finalHull = piece.finalHull;
+  }
 }
 
 std::vector<Concavity> Decomposer::finalConcavities(const std::vector<Piece>& pieces) {
@@ -146,6 +166,7 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
        budget_ = static_cast<int>(std::min<long long>(2LL * budget_, params_.maxPieces))) {
     for (int verify = 0; verify <= dt::kVerifyRounds; ++verify) {
       cutAndMerge(&pieces, report->alreadyConvex);
+      capVertices(&pieces);
       final = finalConcavities(pieces);  // the final, denser estimate on what is returned
       if (verify == dt::kVerifyRounds || report->alreadyConvex) break;
       if (!reopen(&pieces, final, true)) break;
@@ -192,6 +213,7 @@ void DecompositionParams::validate() const {
     fail("minConcavityAbs must be finite and >= 0, got " + formatNumber(minConcavityAbs));
   }
   if (maxPieces < 1) fail("maxPieces must be >= 1, got " + std::to_string(maxPieces));
+  if (maxTriangles < 1) fail("maxTriangles must be >= 1, got " + std::to_string(maxTriangles));
   if (maxVerticesPerPiece < 4) {
     fail("maxVerticesPerPiece must be >= 4, got " + std::to_string(maxVerticesPerPiece));
   }
@@ -222,6 +244,12 @@ std::vector<deep::ConvexPolytope> ConvexDecomposition::polytopes() const {
 ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const DecompositionParams& params) {
   const auto start = std::chrono::steady_clock::now();
   params.validate();
+  if (mesh.triangles.size() > static_cast<std::size_t>(params.maxTriangles)) {
+    throw std::invalid_argument("decomposeConvex: mesh " + detail::decomp::meshName(mesh) + " has " +
+                                std::to_string(mesh.triangles.size()) + " triangles, more than maxTriangles (" +
+                                std::to_string(params.maxTriangles) +
+                                "); raise it (deepcheck decompose --max-triangles N) or simplify the mesh");
+  }
   const CleanMesh clean = cleanMesh(mesh);
   ConvexDecomposition result;
   DecompositionReport& report = result.report;
@@ -229,6 +257,7 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
   report.numTriangles = clean.inputTriangles;
   report.numVertices = clean.inputVertices;
   report.holesFilled = clean.holesFilled;
+  report.duplicatesRemoved = clean.duplicatesRemoved;
   report.voidsRemoved = clean.voidsRemoved;
   report.numComponents = clean.numComponents;
   report.diagonal = clean.diagonal;
@@ -236,7 +265,7 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
   report.meshClosed = clean.closed;
   report.meshVolume = clean.volume;
 
-  Decomposer decomposer(clean, params, report.targetConcavity);
+  Decomposer decomposer(clean, params, report.targetConcavity, detail::decomp::meshName(mesh));
   result.pieces = decomposer.run(&report);
 
   report.numPieces = static_cast<int>(result.pieces.size());
@@ -254,7 +283,24 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
   report.decomposeMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   report.milliseconds = report.decomposeMilliseconds;
+  report.warning = targetWarning(report, result.pieces);
   return result;
+}
+
+std::string targetWarning(const DecompositionReport& report, const std::vector<ConvexPiece>& pieces) {
+  int above = 0;
+  double worst = 0.0;
+  for (const ConvexPiece& piece : pieces) {
+    above += piece.concavity > report.targetConcavity ? 1 : 0;
+    worst = std::max(worst, piece.concavity);
+  }
+  if (above == 0) return "";
+  using detail::decomp::roundedNumber;
+  return "decomposition of " + detail::decomp::meshName(report.source) + " misses its target: " + std::to_string(above) + " of " +
+         std::to_string(pieces.size()) + " pieces end up to " + roundedNumber(worst) + " m outside the mesh (" +
+         roundedNumber(100.0 * worst / report.diagonal) + "% of its diagonal), target " +
+         roundedNumber(report.targetConcavity) + " m; more pieces (maxPieces) or vertices per piece " +
+         "(maxVerticesPerPiece) may meet it";
 }
 
 bool pieceContains(const ConvexPiece& piece, const Vector3d& point, double tolerance) {

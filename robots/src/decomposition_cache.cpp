@@ -1,22 +1,25 @@
 #include "deepcheck/robots/decomposition_cache.h"
 
+#include "decomposition_internal.h"
+
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <limits>
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 namespace deepcheck::robots {
@@ -27,7 +30,7 @@ namespace {
 
 constexpr char kMagic[8] = {'D', 'C', 'K', 'D', 'E', 'C', 'M', 'P'};
 /// Bumped when the file layout changes (kDecompositionAlgorithmVersion covers the content).
-constexpr std::uint32_t kFormatVersion = 2;
+constexpr std::uint32_t kFormatVersion = 3;
 /// Sanity bounds on counts read from a file: a corrupt count must not make us allocate gigabytes.
 constexpr std::uint32_t kMaxPiecesInFile = 1u << 20;
 constexpr std::uint32_t kMaxVerticesInFile = 1u << 24;
@@ -147,7 +150,7 @@ class Reader {
 /// The report fields that describe the result (not the call: source, times of this call, cache).
 void writeReport(Writer& w, const DecompositionReport& r) {
   for (int x : {r.numTriangles, r.numVertices, r.numComponents, r.numPieces, r.maxPieceVertices,
-                r.holesFilled, r.voidsRemoved}) {
+                r.holesFilled, r.voidsRemoved, r.duplicatesRemoved}) {
     w.u32(static_cast<std::uint32_t>(x));
   }
   for (double x : {r.diagonal, r.targetConcavity, r.concavity, r.concavityRelative, r.hullConcavity,
@@ -158,7 +161,7 @@ void writeReport(Writer& w, const DecompositionReport& r) {
 }
 
 bool readReport(Reader& rd, DecompositionReport* r) {
-  std::uint32_t counts[7];
+  std::uint32_t counts[8];
   for (std::uint32_t& c : counts) {
     if (!rd.u32(&c)) return false;
   }
@@ -169,6 +172,7 @@ bool readReport(Reader& rd, DecompositionReport* r) {
   r->maxPieceVertices = static_cast<int>(counts[4]);
   r->holesFilled = static_cast<int>(counts[5]);
   r->voidsRemoved = static_cast<int>(counts[6]);
+  r->duplicatesRemoved = static_cast<int>(counts[7]);
   for (double* x : {&r->diagonal, &r->targetConcavity, &r->concavity, &r->concavityRelative,
                     &r->hullConcavity, &r->meshVolume, &r->piecesVolume, &r->volumeRatio,
                     &r->decomposeMilliseconds}) {
@@ -198,17 +202,48 @@ bool keyBytes(const std::string& key, unsigned char out[16]) {
   return true;
 }
 
-/// The whole content of the file at `path`; false when it cannot be opened or read (a read error
-/// must not escape: libstdc++ throws from a stream buffer whose read fails, e.g. on a directory).
-bool readWholeFile(const std::string& path, std::string& data) {
-  try {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    return !in.bad();
-  } catch (const std::exception&) {
-    return false;
+/// The system's message for errno value `error`.
+std::string systemReason(int error) { return std::error_code(error, std::generic_category()).message(); }
+
+/// Reads the whole file at `path` into `data`; "" on success, else the system's reason.
+std::string readWholeFile(const std::string& path, std::string& data) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return systemReason(errno);
+  data.clear();
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int error = errno;
+      ::close(fd);
+      return systemReason(error);
+    }
+    data.append(buffer, static_cast<std::size_t>(n));
   }
+  ::close(fd);
+  return "";
+}
+
+/// Writes `data` to `path`, which must not exist yet; "" on success, else the system's reason
+/// (a full disk shows at write or close).
+std::string writeNewFile(const std::string& path, const std::string& data) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) return systemReason(errno);
+  std::size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int error = errno;
+      ::close(fd);
+      return systemReason(error);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0) return systemReason(errno);
+  return "";
 }
 
 /// One line on stderr about the cache: the decomposition goes on without it, but the user should
@@ -220,6 +255,11 @@ void noteCacheProblem(const std::string& text, const std::string& directory, boo
   const std::lock_guard<std::mutex> lock(mutex);
   if (once && !reported.insert(directory).second) return;
   std::fprintf(stderr, "deepcheck: decomposition cache: %s\n", text.c_str());
+}
+
+/// The report's warning, if any, as one line on stderr.
+void printWarning(const DecompositionReport& report) {
+  if (!report.warning.empty()) std::fprintf(stderr, "deepcheck: warning: %s\n", report.warning.c_str());
 }
 
 void setProblem(std::string* problem, const std::string& text) {
@@ -290,7 +330,7 @@ std::optional<ConvexDecomposition> DecompositionCache::load(const std::string& k
   };
   if (!fs::is_regular_file(status)) return bad("not a regular file");
   std::string data;
-  if (!readWholeFile(path, data)) return bad("cannot be read");
+  if (const std::string why = readWholeFile(path, data); !why.empty()) return bad("cannot be read: " + why);
   if (data.size() < sizeof kMagic + 8) return bad("truncated");
   // Checksum first: it covers everything, so the fields below are read from intact bytes.
   const std::size_t body = data.size() - 8;
@@ -392,15 +432,10 @@ bool DecompositionCache::store(const std::string& key, const ConvexDecomposition
   std::ostringstream temp;
   temp << pathFor(key) << ".tmp." << ::getpid() << '.'
        << std::hash<std::thread::id>{}(std::this_thread::get_id()) << '.' << counter++;
-  {
-    std::ofstream out(temp.str(), std::ios::binary | std::ios::trunc);
-    out.write(w.buffer().data(), static_cast<std::streamsize>(w.buffer().size()));
-    out.close();
-    if (!out) {
-      fs::remove(temp.str(), ec);
-      setProblem(problem, "cannot write " + temp.str());
-      return false;
-    }
+  if (const std::string why = writeNewFile(temp.str(), w.buffer()); !why.empty()) {
+    fs::remove(temp.str(), ec);
+    setProblem(problem, "cannot write " + temp.str() + ": " + why);
+    return false;
   }
   fs::rename(temp.str(), pathFor(key), ec);
   if (ec) {
@@ -417,7 +452,11 @@ ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
                                           const DecompositionCache& cache) {
   const auto start = std::chrono::steady_clock::now();
   params.validate();
-  if (!cache.enabled()) return decomposeConvex(mesh, params);
+  if (!cache.enabled()) {
+    ConvexDecomposition result = decomposeConvex(mesh, params);
+    printWarning(result.report);
+    return result;
+  }
   const std::string key = DecompositionCache::key(mesh, params);
   std::string problem;
   std::optional<ConvexDecomposition> hit = cache.load(key, &problem);
@@ -425,12 +464,23 @@ ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   };
   if (hit) {
-    hit->report.source = mesh.source;
-    hit->report.cache = CacheStatus::Hit;
-    hit->report.milliseconds = elapsed();
-    return std::move(*hit);
+    // The entry is checked against the mesh before use: a checksum only says the file is as
+    // written, not that what was written covers this mesh.
+    const std::string gap = coverageProblem(mesh, hit->pieces);
+    if (gap.empty()) {
+      hit->report.source = mesh.source;
+      hit->report.cache = CacheStatus::Hit;
+      hit->report.warning = targetWarning(hit->report, hit->pieces);
+      printWarning(hit->report);
+      hit->report.milliseconds = elapsed();
+      return std::move(*hit);
+    }
+    problem = cache.pathFor(key) + ": its pieces do not cover the mesh: " + gap;
   }
-  if (!problem.empty()) noteCacheProblem(problem + "; decomposing again", cache.directory(), false);
+  if (!problem.empty()) {
+    noteCacheProblem(problem + "; decomposing " + detail::decomp::meshName(mesh) + " again", cache.directory(),
+                     false);
+  }
   ConvexDecomposition result = decomposeConvex(mesh, params);
   result.report.cache = problem.empty() ? CacheStatus::Stored : CacheStatus::Replaced;
   result.report.cacheMessage = problem;
@@ -441,6 +491,7 @@ ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
     result.report.cacheMessage = storeProblem;
   }
   result.report.milliseconds = elapsed();
+  printWarning(result.report);
   return result;
 }
 

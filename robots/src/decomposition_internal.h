@@ -59,9 +59,11 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <chrono>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <set>
@@ -84,8 +86,17 @@ using detail::unite;
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr double kPi = 3.141592653589793;
 
-inline std::string meshName(const TriangleMesh& mesh) {
-  return mesh.source.empty() ? std::string("(generated mesh)") : "'" + mesh.source + "'";
+/// A mesh as messages name it: its source in quotes, or "(generated mesh)".
+inline std::string meshName(const std::string& source) {
+  return source.empty() ? std::string("(generated mesh)") : "'" + source + "'";
+}
+inline std::string meshName(const TriangleMesh& mesh) { return meshName(mesh.source); }
+
+/// A length or ratio for a message read by a person: 3 significant digits.
+inline std::string roundedNumber(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", v);
+  return buffer;
 }
 
 /// Twice the vector area of a convex polygon given by its corners in order (the sum of the cross
@@ -159,6 +170,7 @@ struct CleanMesh {
   bool closed = false;  ///< after filling holes
   int holesFilled = 0;
   int voidsRemoved = 0;    ///< closed inward-facing components sealed inside others
+  int duplicatesRemoved = 0;  ///< triangles on the same three vertices as an earlier one
   int inputVertices = 0;   ///< before filling holes
   int inputTriangles = 0;
   double volume = 0.0;  ///< sum of the components' volumes (voids count negative); NaN when open
@@ -166,6 +178,14 @@ struct CleanMesh {
 
 /// The input, cleaned (decomposition_mesh_repair.cpp): welded, holes filled, oriented outward.
 CleanMesh cleanMesh(const TriangleMesh& mesh);
+
+/// Throws std::invalid_argument naming the mesh (`name`, as meshName gives) for a mesh without
+/// triangles, a vertex that is not finite or an index out of range.
+void checkInput(const TriangleMesh& mesh, const std::string& name);
+/// The bounding box of the vertices the triangles use.
+Eigen::AlignedBox3d usedBox(const TriangleMesh& mesh);
+/// A triangle whose area is at most (kDegenerateRelative * diagonal)^2: cleanMesh drops it.
+bool isDegenerate(const Vector3d& a, const Vector3d& b, const Vector3d& c, double diagonal);
 
 // ------------------------------------------------------------------------------------------------
 // Cross-section of the whole mesh by a plane: "is this point of the plane inside the solid", and
@@ -378,12 +398,14 @@ struct Piece {
 class Decomposer {
  public:
   /// `target`: the absolute concavity target; decisions aim at kDecisionFraction of it.
-  Decomposer(const CleanMesh& mesh, const DecompositionParams& params, double target)
+  /// `name`: the mesh as messages name it (meshName), for the progress lines.
+  Decomposer(const CleanMesh& mesh, const DecompositionParams& params, double target, std::string name)
       : mesh_(mesh),
         params_(params),
         target_(dt::kDecisionFraction * target),
         reportTarget_(target),
-        diagonal_(mesh.diagonal) {
+        diagonal_(mesh.diagonal),
+        name_(std::move(name)) {
     std::vector<Triangle> triangles;
     triangles.reserve(mesh.triangles.size());
     for (const auto& t : mesh.triangles) triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
@@ -402,6 +424,12 @@ class Decomposer {
   bool cutWorst(std::vector<Piece>* pieces);
   /// Rounds of cuts within the budget and merges of neighbours, then the forced merges.
   void cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex);
+  /// One line on stderr (pieces so far, their worst concavity, the time) once the decomposition
+  /// has run kProgressSeconds since the start or the last such line.
+  void reportProgress(const std::vector<Piece>& pieces);
+  /// Reduces every piece hull still above maxVerticesPerPiece (a part that missed the target
+  /// was not reduced, expecting a cut that never came).
+  void capVertices(std::vector<Piece>* pieces);
   /// The final, denser concavity estimate of each piece.
   std::vector<Concavity> finalConcavities(const std::vector<Piece>& pieces);
   /// Pieces whose final estimate is above the report's target go back to be cut: a part keeps
@@ -522,6 +550,9 @@ class Decomposer {
   std::vector<std::unique_ptr<CutPlane>> planes_;
   std::vector<Part> parts_;
   int budget_ = 0;  ///< pieces allowed in the current budget stage (see run), <= maxPieces
+  const std::string name_;
+  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point lastProgress_ = start_;
   std::uint64_t evaluations_ = 0;
 };
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <set>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -126,46 +127,13 @@ std::vector<double> componentVolumes(const CleanMesh& mesh, const Vector3d& orig
   return volume;
 }
 
-/// Throws for a mesh without triangles, a vertex that is not finite or an index out of range.
-void checkInput(const TriangleMesh& mesh, const std::string& name) {
-  if (mesh.triangles.empty()) {
-    throw std::invalid_argument("decomposeConvex: mesh " + name + " has no triangles");
-  }
-  const int n = static_cast<int>(mesh.vertices.size());
-  for (int i = 0; i < n; ++i) {
-    if (!mesh.vertices[i].allFinite()) {
-      const Vector3d& v = mesh.vertices[i];
-      throw std::invalid_argument("decomposeConvex: mesh " + name + ": vertex " + std::to_string(i) +
-                                  " is not finite (" + formatNumber(v.x()) + ", " +
-                                  formatNumber(v.y()) + ", " + formatNumber(v.z()) + ")");
-    }
-  }
-  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
-    for (int k : mesh.triangles[t]) {
-      if (k < 0 || k >= n) {
-        throw std::invalid_argument("decomposeConvex: mesh " + name + ": triangle " +
-                                    std::to_string(t) + " has vertex index " + std::to_string(k) +
-                                    " out of range [0, " + std::to_string(n) + ")");
-      }
-    }
-  }
-}
-
-/// The bounding box of the vertices the triangles use.
-Eigen::AlignedBox3d usedBox(const TriangleMesh& mesh) {
-  Eigen::AlignedBox3d box(Vector3d::Constant(kInf), Vector3d::Constant(-kInf));
-  for (const auto& tri : mesh.triangles) {
-    for (int k : tri) {
-      box.min() = box.min().cwiseMin(mesh.vertices[k]);
-      box.max() = box.max().cwiseMax(mesh.vertices[k]);
-    }
-  }
-  return box;
-}
-
 /// Welds bit-identical positions (after turning -0 into +0) into out->vertices and keeps the
 /// triangles that are not degenerate (kDegenerateRelative of the diagonal) in out->triangles.
+/// A triangle on the same three vertices as an earlier one (either winding: a repeated or
+/// two-sided face) is dropped too: its copies would cancel or double the volume and the
+/// cross-section winding numbers.
 void weldTriangles(const TriangleMesh& mesh, const std::string& name, CleanMesh* out) {
+  std::set<std::array<int, 3>> seen;
   std::unordered_map<PositionKey, int, PositionKeyHash> index;
   std::vector<int> remap(mesh.vertices.size(), -1);
   auto weld = [&](int i) {
@@ -174,13 +142,16 @@ void weldTriangles(const TriangleMesh& mesh, const std::string& name, CleanMesh*
     if (inserted) out->vertices.push_back(mesh.vertices[i]);
     return remap[i] = it->second;
   };
-  const double minArea2 = std::pow(dt::kDegenerateRelative * out->diagonal, 4);
   for (const auto& tri : mesh.triangles) {
     const std::array<int, 3> w{weld(tri[0]), weld(tri[1]), weld(tri[2])};
     if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) continue;
-    const Vector3d area = (out->vertices[w[1]] - out->vertices[w[0]])
-                              .cross(out->vertices[w[2]] - out->vertices[w[0]]);
-    if (0.25 * area.squaredNorm() <= minArea2) continue;
+    if (isDegenerate(out->vertices[w[0]], out->vertices[w[1]], out->vertices[w[2]], out->diagonal)) continue;
+    std::array<int, 3> sorted = w;
+    std::sort(sorted.begin(), sorted.end());
+    if (!seen.insert(sorted).second) {
+      ++out->duplicatesRemoved;
+      continue;
+    }
     out->triangles.push_back(w);
   }
   if (out->triangles.empty() || !(out->diagonal > 0.0)) {
@@ -315,6 +286,46 @@ void groupComponents(CleanMesh* out) {
 }
 
 }  // namespace
+
+void checkInput(const TriangleMesh& mesh, const std::string& name) {
+  if (mesh.triangles.empty()) {
+    throw std::invalid_argument("decomposeConvex: mesh " + name + " has no triangles");
+  }
+  const int n = static_cast<int>(mesh.vertices.size());
+  for (int i = 0; i < n; ++i) {
+    if (!mesh.vertices[i].allFinite()) {
+      const Vector3d& v = mesh.vertices[i];
+      throw std::invalid_argument("decomposeConvex: mesh " + name + ": vertex " + std::to_string(i) +
+                                  " is not finite (" + formatNumber(v.x()) + ", " +
+                                  formatNumber(v.y()) + ", " + formatNumber(v.z()) + ")");
+    }
+  }
+  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
+    for (int k : mesh.triangles[t]) {
+      if (k < 0 || k >= n) {
+        throw std::invalid_argument("decomposeConvex: mesh " + name + ": triangle " +
+                                    std::to_string(t) + " has vertex index " + std::to_string(k) +
+                                    " out of range [0, " + std::to_string(n) + ")");
+      }
+    }
+  }
+}
+
+Eigen::AlignedBox3d usedBox(const TriangleMesh& mesh) {
+  Eigen::AlignedBox3d box(Vector3d::Constant(kInf), Vector3d::Constant(-kInf));
+  for (const auto& tri : mesh.triangles) {
+    for (int k : tri) {
+      box.min() = box.min().cwiseMin(mesh.vertices[k]);
+      box.max() = box.max().cwiseMax(mesh.vertices[k]);
+    }
+  }
+  return box;
+}
+
+bool isDegenerate(const Vector3d& a, const Vector3d& b, const Vector3d& c, double diagonal) {
+  const double minArea2 = std::pow(dt::kDegenerateRelative * diagonal, 4);
+  return 0.25 * (b - a).cross(c - a).squaredNorm() <= minArea2;
+}
 
 CleanMesh cleanMesh(const TriangleMesh& mesh) {
   const std::string name = meshName(mesh);

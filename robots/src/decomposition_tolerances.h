@@ -29,6 +29,10 @@ constexpr double kDecisionFraction = 0.9;
 /// scores noisy at about this level.
 constexpr double kTieFraction = 0.1;
 
+/// A decomposition running longer than this (seconds) reports its progress on stderr, at most
+/// once per this interval.
+constexpr double kProgressSeconds = 1.0;
+
 /// Rounds of cutting (until the budget is spent) and merging (which frees budget).
 constexpr int kMaxRounds = 4;
 /// Times the final estimate may send pieces back to be cut (see Decomposer::run).

@@ -3,8 +3,9 @@
 // Properties checked rather than stored numbers: the pieces cover the mesh (every vertex, and
 // points sampled on every triangle, inside a piece), the reported concavity meets the target, a
 // convex mesh stays one piece, the vertex budget holds, results are deterministic, the cache
-// round-trips and recovers from corrupt files, a budget above 32 pieces is used only by a mesh that
-// needs it, and bad input is rejected with a message.
+// round-trips, recovers from corrupt files and rejects entries whose pieces miss the mesh, a
+// missed target is warned about, duplicated faces are dropped, a budget above 32 pieces is used
+// only by a mesh that needs it, and bad input is rejected with a message.
 
 #include "deepcheck/robots/decomposition.h"
 #include "deepcheck/robots/decomposition_cache.h"
@@ -13,6 +14,10 @@
 #include "robots_test_util.h"
 
 #include <boost/test/unit_test.hpp>
+
+#include <sys/resource.h>
+
+#include <csignal>
 
 #include <algorithm>
 
@@ -25,6 +30,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <system_error>
 #include <tuple>
 #include <vector>
 
@@ -145,6 +151,32 @@ TriangleMesh cylinder(int n, double r, double h) {
   return mesh;
 }
 
+/// A torus about the z axis (radii R and r, `around` x `across` quads): not convex, and its hull
+/// has far more vertices than the default budget of 64.
+TriangleMesh torus(int around, int across, double R, double r) {
+  TriangleMesh mesh;
+  mesh.source = "torus";
+  for (int i = 0; i < around; ++i) {
+    const double u = 2.0 * M_PI * i / around;
+    for (int j = 0; j < across; ++j) {
+      const double v = 2.0 * M_PI * j / across;
+      mesh.vertices.emplace_back((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
+                                 r * std::sin(v));
+    }
+  }
+  for (int i = 0; i < around; ++i) {
+    for (int j = 0; j < across; ++j) {
+      const int a = i * across + j;
+      const int b = ((i + 1) % around) * across + j;
+      const int c = i * across + (j + 1) % across;
+      const int d = ((i + 1) % around) * across + (j + 1) % across;
+      mesh.triangles.push_back({a, b, d});
+      mesh.triangles.push_back({a, d, c});
+    }
+  }
+  return mesh;
+}
+
 double diagonalOf(const TriangleMesh& mesh) {
   Vector3d lo = mesh.vertices.front();
   Vector3d hi = lo;
@@ -226,18 +258,6 @@ BOOST_AUTO_TEST_CASE(a_convex_mesh_is_one_piece_without_decomposition) {
   BOOST_CHECK_SMALL(d.report.concavity, 1e-12);
   BOOST_CHECK_CLOSE(d.report.volumeRatio, 1.0, 1e-9);
   checkDecomposition(mesh, d);
-}
-
-BOOST_AUTO_TEST_CASE(vertex_budget_holds_and_reduced_pieces_still_contain_the_mesh) {
-  // 96 sides: 194 hull vertices, far over the budget of 16.
-  const TriangleMesh mesh = cylinder(96, 0.31, 0.47);
-  DecompositionParams params;
-  params.maxVerticesPerPiece = 16;
-  params.maxConcavity = 0.05;
-  const ConvexDecomposition d = decomposeConvex(mesh, params);
-  for (const ConvexPiece& piece : d.pieces) BOOST_CHECK_LE(static_cast<int>(piece.vertices.size()), 16);
-  BOOST_CHECK_EQUAL(uncoveredPoints(mesh, d.pieces, 2), 0);
-  BOOST_CHECK(d.report.targetMet);
 }
 
 BOOST_AUTO_TEST_CASE(pieces_become_valid_polytopes) {
@@ -440,12 +460,149 @@ BOOST_AUTO_TEST_CASE(parameters_and_content_change_the_key) {
   BOOST_CHECK_EQUAL(DecompositionCache::key(renamed, base), key);  // the content is the key
 }
 
+BOOST_AUTO_TEST_CASE(a_forged_cache_entry_whose_pieces_miss_the_mesh_is_rebuilt) {
+  // A well-formed entry (right key, right checksum) holding one 1 mm cube: the coverage check
+  // rejects it, and the mesh is decomposed again.
+  TempDir dir;
+  const DecompositionCache cache(dir.path().string());
+  const TriangleMesh mesh = lShape();
+  const std::string key = DecompositionCache::key(mesh, {});
+  const ConvexDecomposition reference = decomposeConvexCached(mesh, {}, cache);
+  ConvexDecomposition forged = reference;
+  const TriangleMesh tiny = voxelMesh({{0, 0, 0}}, 0.001, Vector3d(0.1, -0.2, 0.3), "tiny");
+  forged.pieces = {{tiny.vertices, tiny.triangles, 1e-9, 0.0}};
+  forged.report.numPieces = 1;
+  BOOST_REQUIRE(cache.store(key, forged));
+  BOOST_REQUIRE(cache.load(key));  // it reads as a valid file
+  BOOST_CHECK_NE(coverageProblem(mesh, forged.pieces), "");
+  const ConvexDecomposition again = decomposeConvexCached(mesh, {}, cache);
+  BOOST_CHECK(again.report.cache == CacheStatus::Replaced);
+  BOOST_CHECK_MESSAGE(again.report.cacheMessage.find("do not cover the mesh") != std::string::npos,
+                      again.report.cacheMessage);
+  BOOST_CHECK_MESSAGE(again.report.cacheMessage.find("outside every piece") != std::string::npos,
+                      again.report.cacheMessage);
+  BOOST_REQUIRE_EQUAL(again.pieces.size(), reference.pieces.size());
+  checkDecomposition(mesh, again);
+  BOOST_CHECK(decomposeConvexCached(mesh, {}, cache).report.cache == CacheStatus::Hit);
+}
+
+BOOST_AUTO_TEST_CASE(coverage_names_the_first_vertex_outside_the_pieces) {
+  const TriangleMesh mesh = uShape();
+  ConvexDecomposition d = decomposeConvex(mesh);
+  BOOST_CHECK_EQUAL(coverageProblem(mesh, d.pieces), "");
+  // Every piece moved away along x by 1/7: some vertex is left outside.
+  for (ConvexPiece& piece : d.pieces) {
+    for (Vector3d& v : piece.vertices) v.x() += 1.0 / 7.0;
+  }
+  const std::string problem = coverageProblem(mesh, d.pieces);
+  BOOST_CHECK_MESSAGE(problem.find("vertex ") != std::string::npos, problem);
+  BOOST_CHECK_MESSAGE(problem.find("outside every piece") != std::string::npos, problem);
+  BOOST_CHECK_EQUAL(coverageProblem(mesh, {}).find("no piece") != std::string::npos, true);
+  TriangleMesh nan = mesh;
+  nan.vertices[1].z() = std::numeric_limits<double>::quiet_NaN();
+  checkThrows([&] { coverageProblem(nan, d.pieces); }, {"U shape", "vertex 1", "not finite"});
+}
+
+BOOST_AUTO_TEST_CASE(a_cache_write_failure_gives_the_system_reason) {
+  // A file size limit of a few bytes makes the write fail (as root too): EFBIG, whose message
+  // the problem must carry. SIGXFSZ would kill the process: ignored meanwhile.
+  TempDir dir;
+  const DecompositionCache cache(dir.path().string());
+  const TriangleMesh mesh = lShape();
+  const ConvexDecomposition d = decomposeConvex(mesh);
+  rlimit saved{};
+  BOOST_REQUIRE_EQUAL(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit tiny = saved;
+  tiny.rlim_cur = 16;
+  const auto previous = std::signal(SIGXFSZ, SIG_IGN);
+  BOOST_REQUIRE_EQUAL(::setrlimit(RLIMIT_FSIZE, &tiny), 0);
+  std::string problem;
+  const bool stored = cache.store(DecompositionCache::key(mesh, {}), d, &problem);
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, previous);
+  BOOST_CHECK(!stored);
+  BOOST_CHECK_MESSAGE(problem.find("cannot write") != std::string::npos, problem);
+  const std::string reason = std::error_code(EFBIG, std::generic_category()).message();
+  BOOST_CHECK_MESSAGE(problem.find(reason) != std::string::npos, problem);
+}
+
 BOOST_AUTO_TEST_CASE(a_disabled_cache_neither_reads_nor_writes) {
   const DecompositionCache cache = DecompositionCache::disabled();
   BOOST_CHECK(!cache.enabled());
   const ConvexDecomposition d = decomposeConvexCached(box(), {}, cache);
   BOOST_CHECK(d.report.cache == CacheStatus::NotUsed);
   BOOST_CHECK_EQUAL(d.report.numPieces, 1);
+}
+
+BOOST_AUTO_TEST_CASE(a_missed_target_is_named_in_the_warning_also_from_the_cache) {
+  // The ring in one piece: its hull spans the hole, far above the target.
+  DecompositionParams one;
+  one.maxPieces = 1;
+  const TriangleMesh mesh = ring();
+  const ConvexDecomposition d = decomposeConvex(mesh, one);
+  BOOST_REQUIRE(!d.report.targetMet);
+  for (const std::string& part : {std::string("'ring'"), std::string("misses its target"), std::string("1 of 1")}) {
+    BOOST_CHECK_MESSAGE(d.report.warning.find(part) != std::string::npos, d.report.warning);
+  }
+  TempDir dir;
+  const DecompositionCache cache(dir.path().string());
+  BOOST_CHECK_EQUAL(decomposeConvexCached(mesh, one, cache).report.warning, d.report.warning);
+  const ConvexDecomposition hit = decomposeConvexCached(mesh, one, cache);
+  BOOST_CHECK(hit.report.cache == CacheStatus::Hit);
+  BOOST_CHECK_EQUAL(hit.report.warning, d.report.warning);
+  // Met: no warning.
+  BOOST_CHECK_EQUAL(decomposeConvex(mesh).report.warning, "");
+}
+
+BOOST_AUTO_TEST_CASE(a_convex_mesh_with_many_vertices_stays_one_piece_within_the_vertex_budget) {
+  // 96 sides: 194 hull vertices. Its hull meets any target; reduced to 16 vertices it may not,
+  // which the warning would say, but it is not cut.
+  const TriangleMesh mesh = cylinder(96, 0.31, 0.47);
+  for (double maxConcavity : {0.05, 0.001}) {
+    DecompositionParams params;
+    params.maxVerticesPerPiece = 16;
+    params.maxConcavity = maxConcavity;
+    params.minConcavityAbs = 0.0;
+    const ConvexDecomposition d = decomposeConvex(mesh, params);
+    BOOST_CHECK_EQUAL(d.report.numPieces, 1);
+    BOOST_CHECK(d.report.alreadyConvex);
+    BOOST_CHECK_LE(d.report.maxPieceVertices, 16);
+    BOOST_CHECK_EQUAL(d.report.warning.empty(), d.report.targetMet);
+    BOOST_CHECK_EQUAL(uncoveredPoints(mesh, d.pieces, 2), 0);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_vertex_budget_holds_when_the_target_is_missed) {
+  // A torus in one piece: the part misses the target and is never cut, yet its hull (576
+  // vertices) is reduced to the budget.
+  const TriangleMesh mesh = torus(48, 12, 0.1, 0.03);
+  DecompositionParams params;
+  params.maxPieces = 1;
+  const ConvexDecomposition d = decomposeConvex(mesh, params);
+  BOOST_REQUIRE_EQUAL(d.report.numPieces, 1);
+  BOOST_CHECK(!d.report.targetMet);
+  BOOST_CHECK_LE(d.report.maxPieceVertices, params.maxVerticesPerPiece);
+  BOOST_CHECK_EQUAL(uncoveredPoints(mesh, d.pieces, 1), 0);
+}
+
+BOOST_AUTO_TEST_CASE(duplicated_faces_are_dropped_and_the_volume_ratio_stays_right) {
+  const TriangleMesh mesh = lShape();
+  const ConvexDecomposition reference = decomposeConvex(mesh);
+  BOOST_REQUIRE_GE(reference.report.volumeRatio, 1.0 - 1e-9);
+  TriangleMesh repeated = mesh;   // every face twice
+  TriangleMesh twoSided = mesh;   // every face also wound the other way
+  for (const auto& t : mesh.triangles) {
+    repeated.triangles.push_back(t);
+    twoSided.triangles.push_back({t[0], t[2], t[1]});
+  }
+  for (const TriangleMesh& doubled : {repeated, twoSided}) {
+    const ConvexDecomposition d = decomposeConvex(doubled);
+    BOOST_CHECK_EQUAL(d.report.duplicatesRemoved, static_cast<int>(mesh.triangles.size()));
+    BOOST_CHECK_EQUAL(d.report.numTriangles, reference.report.numTriangles);
+    BOOST_CHECK_CLOSE(d.report.meshVolume, reference.report.meshVolume, 1e-9);
+    BOOST_CHECK_CLOSE(d.report.volumeRatio, reference.report.volumeRatio, 1e-9);
+    checkDecomposition(doubled, d);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
@@ -482,6 +639,15 @@ BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
   p = {};
   p.maxPieces = 0;
   checkThrows([&] { decomposeConvex(mesh, p); }, {"maxPieces", "0"});
+  p = {};
+  p.maxTriangles = 0;
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"maxTriangles", "0"});
+  // A mesh above the triangle limit: refused with its name, its count and the option.
+  p = {};
+  p.maxTriangles = 11;
+  checkThrows([&] { decomposeConvex(mesh, p); }, {"'box'", "has 44 triangles", "maxTriangles (11)", "--max-triangles"});
+  p.maxTriangles = 44;
+  BOOST_CHECK_EQUAL(decomposeConvex(mesh, p).report.numPieces, 1);
   p = {};
   p.maxVerticesPerPiece = 3;
   checkThrows([&] { decomposeConvex(mesh, p); }, {"maxVerticesPerPiece", "3"});

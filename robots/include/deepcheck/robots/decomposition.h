@@ -15,8 +15,9 @@
 // Steps (decomposition.cpp has the details):
 //   1. Weld identical vertices, drop degenerate triangles, fill simple holes (a missing quad of a
 //      wall is common in CAD exports), orient components outward, drop sealed inner voids.
-//   2. If the hull of the whole mesh (reduced to maxVerticesPerPiece) meets the target, it is the
-//      one piece ("already convex"); no decomposition.
+//   2. If the hull of the whole mesh meets the target, it is the one piece ("already convex"),
+//      reduced to maxVerticesPerPiece; no decomposition. Should the reduction add more than the
+//      target allows, the report's warning says so: a convex mesh is never split.
 //   3. Otherwise, repeatedly take the part of largest concavity and cut it by the candidate plane
 //      that minimizes the larger concavity of the two sides; candidates are axis-aligned and
 //      principal-axis planes at several offsets and through the features around the worst
@@ -73,9 +74,10 @@
 namespace deepcheck::robots {
 
 /// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
-/// 4: the point-to-triangle distance no longer returns NaN for a triangle with two equal corners
-/// (such clipped triangles were dropped from the concavity measure).
-constexpr int kDecompositionAlgorithmVersion = 4;
+constexpr int kDecompositionAlgorithmVersion = 5;
+
+/// Default of DecompositionParams::maxTriangles.
+constexpr int kDefaultMaxTriangles = 200000;
 
 struct DecompositionParams {
   /// Concavity target as a fraction of the mesh's bounding-box diagonal, in (0, 1].
@@ -88,6 +90,12 @@ struct DecompositionParams {
   int maxPieces = 64;
   /// Largest number of vertices of a piece, >= 4 (see the header comment for the bound).
   int maxVerticesPerPiece = 64;
+  /// Largest number of triangles of a mesh to decompose, >= 1: decomposeConvex refuses a larger
+  /// one (std::invalid_argument naming the mesh, its count and this field). The time grows about
+  /// linearly with the triangles, about 1 s per 1,000 on one core for a mesh that needs 16
+  /// pieces, so the default caps a load at a few minutes. Not part of the cache key: it decides
+  /// whether to decompose, not the result.
+  int maxTriangles = kDefaultMaxTriangles;
   /// Merge neighbouring pieces whose merged hull still meets the target.
   bool mergePieces = true;
   /// Seed of the hull-surface sampling (the only randomness; the result is deterministic).
@@ -113,8 +121,8 @@ enum class CacheStatus {
   NotUsed,      ///< no cache was used (none given, or caching disabled)
   Hit,          ///< read from the cache: no decomposition ran
   Stored,       ///< not in the cache: decomposed, then written to it
-  Replaced,     ///< the cache file was unreadable (truncated, corrupt, other version): decomposed,
-                ///< then rewritten
+  Replaced,     ///< the cache file was unreadable (truncated, corrupt, other version) or its pieces
+                ///< did not cover the mesh (coverageProblem): decomposed, then rewritten
   StoreFailed,  ///< decomposed, but writing the cache failed (report.cacheMessage says why)
 };
 
@@ -134,9 +142,11 @@ struct DecompositionReport {
   double concavityRelative = 0.0;  ///< concavity / diagonal
   bool targetMet = false;        ///< concavity <= targetConcavity
   double hullConcavity = 0.0;    ///< concavity of the mesh's own hull (before vertex reduction)
-  bool alreadyConvex = false;    ///< the mesh's own hull, reduced to maxVerticesPerPiece, met the
-                                 ///< target: one piece, no cuts
+  bool alreadyConvex = false;    ///< the mesh's own hull met the target: one piece, no cuts (its
+                                 ///< concavity includes what the vertex reduction added)
   int holesFilled = 0;           ///< simple holes (boundary loops) closed before decomposing
+  int duplicatesRemoved = 0;     ///< triangles dropped as repeats of an earlier one (the same
+                                 ///< three vertices, either winding: repeated or two-sided faces)
   int voidsRemoved = 0;          ///< sealed inner cavities (inward-facing closed components inside
                                  ///< others) ignored: they cannot be reached, covering them is free
   bool meshClosed = false;       ///< every edge is shared by an even number (>= 2) of triangles,
@@ -149,6 +159,10 @@ struct DecompositionReport {
   double milliseconds = 0.0;     ///< wall time of this call (a cache read on a hit)
   CacheStatus cache = CacheStatus::NotUsed;
   std::string cacheMessage;      ///< why a cache file was replaced or could not be written
+  /// One line naming the mesh, how far its worst piece ends outside it and the target, when a
+  /// piece misses the target; "" otherwise (targetWarning). decomposeConvexCached prints it on
+  /// stderr; callers of decomposeConvex print it themselves.
+  std::string warning;
 };
 
 struct ConvexDecomposition {
@@ -163,6 +177,23 @@ struct ConvexDecomposition {
 /// mesh's source and the bad input, when the mesh has no triangle, a vertex is NaN or infinite,
 /// a triangle index is out of range, all triangles are degenerate, or a parameter is out of range.
 ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const DecompositionParams& params = {});
+
+/// The report's warning (see DecompositionReport::warning) for `pieces` and the report's source,
+/// target and piece limits: "" when every piece meets the target.
+std::string targetWarning(const DecompositionReport& report, const std::vector<ConvexPiece>& pieces);
+
+/// A mesh vertex counts as covered by the pieces when it lies inside some piece grown by this
+/// fraction of the mesh's bounding-box diagonal: far above the round-off of the hulls (~1e-12 of
+/// the diagonal, see Coverage above), far below any feature of a collision mesh.
+constexpr double kCoverageToleranceRelative = 1e-9;
+
+/// Why `pieces` do not cover `mesh`: "" when every vertex of its non-degenerate triangles lies
+/// inside some piece grown by kCoverageToleranceRelative of the diagonal (the pieces' face
+/// planes decide); otherwise a phrase naming the first vertex outside, its position and its
+/// distance to the nearest piece. Throws std::invalid_argument for an invalid mesh, as
+/// decomposeConvex does. Costs about (vertices x faces of one piece): a cheap check of a result
+/// read from elsewhere (the cache) before it is trusted.
+std::string coverageProblem(const TriangleMesh& mesh, const std::vector<ConvexPiece>& pieces);
 
 /// True when `point` is inside `piece` or within `tolerance` of it (uses the hull faces; a flat
 /// piece counts as a plate of thickness 2 * tolerance).

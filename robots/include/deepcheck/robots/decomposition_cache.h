@@ -15,10 +15,17 @@
 // The cache is never trusted and never an error. An entry that is not a regular file (a directory
 // in its place), cannot be read, is truncated, has a wrong magic, version, key or checksum, or
 // holds an out-of-range index or a non-finite number is treated as absent: the mesh is decomposed
-// again and the file replaced when possible. A directory that cannot be created or written leaves
-// the decomposition uncached. decomposeConvexCached says so in one line on stderr
-// ("deepcheck: decomposition cache: <file or directory>: <why>; ...", a write problem once per
-// directory and process) and in the report (CacheStatus, cacheMessage). Reading never throws.
+// again and the file replaced when possible. An entry that reads well is still checked against
+// the mesh before use (coverageProblem: every vertex inside some piece, within
+// kCoverageToleranceRelative of the diagonal), so a stale or forged entry whose pieces miss part
+// of the mesh is rebuilt too. A directory that cannot be created or written leaves the
+// decomposition uncached. decomposeConvexCached says so in one line on stderr
+// ("deepcheck: decomposition cache: <file or directory>: <why>; ...", naming the mesh when it is
+// decomposed again, with the system's reason for a failed read or write; a write problem once
+// per directory and process) and in the report (CacheStatus, cacheMessage). Reading never throws.
+//
+// decomposeConvexCached also prints the report's warning (a piece missing the target), on a hit
+// too: "deepcheck: warning: decomposition of '<mesh>' misses its target: ...".
 //
 // Writes go to a temporary file in the same directory that is then renamed over the final name
 // (atomic on POSIX), so concurrent processes never see a partial file; at worst two of them both
@@ -68,9 +75,11 @@ class DecompositionCache {
   bool enabled_ = true;
 };
 
-/// decomposeConvex through `cache`: a hit is a file read (report.cache == CacheStatus::Hit,
-/// report.milliseconds the read time, report.decomposeMilliseconds the original time); a miss
-/// decomposes and stores. Same exceptions as decomposeConvex (the input is validated on hits too).
+/// decomposeConvex through `cache`: a hit is a file read and the coverage check
+/// (report.cache == CacheStatus::Hit, report.milliseconds the time of both,
+/// report.decomposeMilliseconds the original time); a miss decomposes and stores. Prints the
+/// report's warning, if any, on stderr. Same exceptions as decomposeConvex (the input is
+/// validated on hits too).
 ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
                                           const DecompositionParams& params,
                                           const DecompositionCache& cache);
