@@ -87,7 +87,7 @@ std::vector<robots::CollisionPiece> piecesOfGeometry(const robots::Geometry& g, 
       throw std::invalid_argument(msg.str());
     }
     try {
-      loaded = robots::loadMesh(g.meshPath, g.meshScale);
+      loaded = robots::loadMesh(g.meshPath, g.meshScale, options.meshLoad);
     } catch (const std::exception& e) {
       throw std::invalid_argument(what + ": " + e.what());
     }

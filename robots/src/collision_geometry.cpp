@@ -32,7 +32,7 @@ const PolytopeList& meshPieces(const RobotModel& model, int link, int collision,
   if (it != cache.end()) return it->second;
   PolytopeList pieces;
   try {
-    std::vector<deep::ConvexPolytope> polytopes = meshPolytopes(loadMesh(g.meshPath, g.meshScale), options);
+    std::vector<deep::ConvexPolytope> polytopes = meshPolytopes(loadMesh(g.meshPath, g.meshScale, options.meshLoad), options);
     for (deep::ConvexPolytope& p : polytopes) {
       pieces.push_back(std::make_shared<const deep::ConvexPolytope>(std::move(p)));
     }

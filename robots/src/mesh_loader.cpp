@@ -209,7 +209,8 @@ void checkFile(const std::string& path, const MeshLoadOptions& options) {
   if (!ec && size > options.maxFileBytes) {
     throw std::invalid_argument("mesh file " + inQuotes(path) + " has " + std::to_string(size) +
                                 " bytes, more than MeshLoadOptions::maxFileBytes = " +
-                                std::to_string(options.maxFileBytes));
+                                std::to_string(options.maxFileBytes) +
+                                " (a robot's or world's: CollisionGeometryOptions::meshLoad)");
   }
 }
 

@@ -73,6 +73,20 @@ BOOST_AUTO_TEST_CASE(obstacles_added_together) {
   BOOST_TEST(together.obstacleIds().size() == obstacles.size());
 }
 
+// The mesh file size limit is the world's option: a mesh over it is refused naming the option,
+// and raising it loads the mesh.
+BOOST_AUTO_TEST_CASE(mesh_file_size_limit_is_a_world_option) {
+  const std::string mesh = bundledDataDir() + "/deepcheck_arm/meshes/link4.stl";
+  WorldOptions options = testWorldOptions();
+  options.geometry.meshLoad.maxFileBytes = 100;
+  World small(armRobot(), options);
+  checkThrowsWith([&] { small.addObstacle(Obstacle::meshFile("m", mesh, translation(2, 0, 0))); },
+                  "MeshLoadOptions::maxFileBytes = 100");
+  options.geometry.meshLoad.maxFileBytes = std::uintmax_t{1} << 30;
+  World large(armRobot(), options);
+  BOOST_TEST(large.addObstacle(Obstacle::meshFile("m", mesh, translation(2, 0, 0))) >= 0);
+}
+
 // Links whose reach spheres never come within the margin are not paired; within it, and with a
 // link on a prismatic joint (whose sphere holds within its limits only), they are.
 BOOST_AUTO_TEST_CASE(self_pairs_within_reach) {

@@ -28,6 +28,7 @@
 // piece built here P = G, so X_LP = CollisionElement::X_LG. Metres.
 
 #include "deepcheck/robots/mesh.h"
+#include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/robot_model.h"
 #include "deepcheck/robots/tolerances.h"
 
@@ -63,6 +64,8 @@ struct CollisionGeometryOptions {
   double cylinderMaxDeviation = tol::kCylinderMaxDeviation;
   /// How meshes become pieces; empty means convexHullDecomposer.
   MeshDecomposer decomposer;
+  /// How mesh files are read (their size limit).
+  MeshLoadOptions meshLoad;
 };
 
 /// Number of sides of the circumscribed prism of a cylinder of radius `radius` (see above).
