@@ -112,7 +112,7 @@ std::vector<std::vector<robots::CollisionPiece>> piecesWithProgress(const robots
 
 std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robots::CollisionGeometryOptions& geometry,
                                             std::ostream* progress) {
-  auto robot = std::make_shared<RobotData>(RobotData{std::move(model), {}, {}, {}, {}, {}});
+  auto robot = std::make_shared<RobotData>(RobotData{std::move(model), {}, {}, {}, nullptr});
   const robots::RobotModel& m = robot->model;
   const std::vector<std::vector<robots::CollisionPiece>> pieces =
       piecesWithProgress(m, geometry, progress, "robot '" + m.name() + "'");
@@ -147,8 +147,7 @@ std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robo
     robot->links.push_back(lg);
   }
   robot->reach = linkReachSpheres(m, pieces);
-  robot->adjacent = robots::adjacentLinkPairs(m, pieces);
-  robot->rigid = rigidLinkPairs(m, hasGeometry);
+  robot->linkPairs = std::make_shared<const LinkPairIndex>(m, hasGeometry);
   return robot;
 }
 
@@ -232,24 +231,23 @@ std::shared_ptr<const PieceSet> appendScenePieces(const PieceSet& old, const Rob
 }
 
 /// Counts the disabled link pairs of `s` by reason (adjacent before rigid before by name), over
-/// the pairs of links with geometry, and returns them as one set.
+/// the pairs of links with geometry; returns the pairs disabled by name only.
 std::set<std::pair<int, int>> countDisabledPairs(Snapshot& s, const WorldOptions& options) {
   const RobotData& robot = *s.robot;
+  const LinkPairIndex& index = *robot.linkPairs;
   std::vector<bool> hasGeometry(robot.model.numLinks(), false);
   for (const LinkGeometry& g : robot.links) hasGeometry[g.link] = true;
-  std::set<std::pair<int, int>> disabled;
-  auto add = [&](const std::vector<std::pair<int, int>>& pairs, int& count) {
-    for (const auto& [a, b] : pairs) {
-      if (hasGeometry[a] && hasGeometry[b] && disabled.insert({std::min(a, b), std::max(a, b)}).second) ++count;
-    }
-  };
-  s.disabledAdjacent = 0;
-  s.disabledRigid = 0;
-  s.disabledByUser = 0;
-  if (options.disableAdjacent) add(robot.adjacent, s.disabledAdjacent);
-  if (options.disableRigid) add(robot.rigid, s.disabledRigid);
-  add(s.userDisabled, s.disabledByUser);
-  return disabled;
+  const long long adjacentAndRigid = options.disableAdjacent ? index.numAdjacentAndRigid() : 0;
+  s.disabledAdjacent = static_cast<int>(options.disableAdjacent ? index.numAdjacent() : 0);
+  s.disabledRigid = static_cast<int>(options.disableRigid ? index.numRigid() - adjacentAndRigid : 0);
+  std::set<std::pair<int, int>> byName;
+  for (const auto& [a, b] : s.userDisabled) {
+    if (!hasGeometry[a] || !hasGeometry[b]) continue;
+    if ((options.disableAdjacent && index.adjacent(a, b)) || (options.disableRigid && index.rigid(a, b))) continue;
+    byName.insert({std::min(a, b), std::max(a, b)});
+  }
+  s.disabledByUser = static_cast<int>(byName.size());
+  return byName;
 }
 
 /// Self pairs of `robot` that can come within the reach margin (reach.h), minus the adjacent and
@@ -259,7 +257,12 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
   // Grids depend on the robot only: those of pairs already built are kept.
   std::map<std::pair<int, int>, std::shared_ptr<const detail::SelfPairGrid>> grids;
   for (const SelfPair& p : s.selfPairs) grids[{p.a, p.b}] = p.grid;
-  const std::set<std::pair<int, int>> disabled = countDisabledPairs(s, options);
+  const std::set<std::pair<int, int>> byName = countDisabledPairs(s, options);
+  const LinkPairIndex& index = *robot.linkPairs;
+  auto disabled = [&](int a, int b) {
+    return (options.disableAdjacent && index.adjacent(a, b)) || (options.disableRigid && index.rigid(a, b)) ||
+           byName.count({a, b}) > 0;
+  };
   std::vector<int> links;
   for (const LinkGeometry& g : robot.links) links.push_back(g.link);
   s.selfPairs.clear();
@@ -270,7 +273,7 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
   for (std::size_t k = 0; k < reachable.size(); ++k) {
     progress.update(k);
     const auto [a, b] = reachable[k];
-    if (disabled.count({links[a], links[b]})) continue;
+    if (disabled(links[a], links[b])) continue;
     auto known = grids.find({a, b});
     s.selfPairs.push_back({a, b, s.selfCacheSize,
                            known != grids.end()    ? known->second
@@ -279,8 +282,8 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
     s.selfCacheSize += robot.links[a].numPieces * robot.links[b].numPieces;
   }
   const long long n = static_cast<long long>(links.size());
-  s.unreachablePairs = static_cast<int>(n * (n - 1) / 2 - static_cast<long long>(disabled.size()) -
-                                        static_cast<long long>(s.selfPairs.size()));
+  const long long disabledPairs = static_cast<long long>(s.disabledAdjacent) + s.disabledRigid + s.disabledByUser;
+  s.unreachablePairs = static_cast<int>(n * (n - 1) / 2 - disabledPairs - static_cast<long long>(s.selfPairs.size()));
 }
 
 std::pair<int, int> linkPairByName(const robots::RobotModel& model, const std::string& a, const std::string& b) {

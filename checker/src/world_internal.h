@@ -7,6 +7,7 @@
 
 #include "aabb_tree.h"
 #include "obb.h"
+#include "link_pairs.h"
 #include "reach.h"
 #include "deepcheck/checker/world.h"
 
@@ -58,8 +59,7 @@ struct RobotData {
   std::vector<RobotPiece> pieces;   // grouped by link, in link order
   std::vector<LinkGeometry> links;  // links with pieces, in link order
   std::vector<ReachSphere> reach;   // per link
-  std::vector<std::pair<int, int>> adjacent;  // link pairs, robots::adjacentLinkPairs()
-  std::vector<std::pair<int, int>> rigid;     // link pairs, rigidLinkPairs()
+  std::shared_ptr<const LinkPairIndex> linkPairs;  // adjacent and rigid link pairs
 };
 
 /// A world piece (scene or obstacle), posed in the world.

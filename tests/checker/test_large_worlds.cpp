@@ -3,6 +3,10 @@
 
 #include "checker_test_util.h"
 
+#include "deepcheck/robots/collision_geometry.h"
+#include "deepcheck/robots/pair_filter.h"
+
+#include "link_pairs.h"
 #include "progress.h"
 #include "reach.h"
 
@@ -42,9 +46,59 @@ robots::RobotModel twoArms(double apart, bool slider) {
   return robots::RobotModel::fromUrdfString(xml + "</robot>", ".", {}, "two_arms.urdf");
 }
 
+/// A random tree of n links: link i's parent is a random earlier link, its joint fixed or
+/// revolute, and it has a box with probability `geometry` (else nothing).
+robots::RobotModel randomTree(int n, double geometry, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::string xml = "<robot name='tree'>";
+  for (int i = 0; i < n; ++i) {
+    xml += "<link name='l" + std::to_string(i) + "'>";
+    if (u(rng) < geometry) xml += "<collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision>";
+    xml += "</link>";
+    if (i == 0) continue;
+    const int parent = std::uniform_int_distribution<int>(0, i - 1)(rng);
+    const bool fixed = u(rng) < 0.4;
+    xml += "<joint name='j" + std::to_string(i) + "' type='" + (fixed ? "fixed" : "revolute") + "'><parent link='l" +
+           std::to_string(parent) + "'/><child link='l" + std::to_string(i) + "'/><origin xyz='0.3 0 0'/>";
+    if (!fixed) xml += "<axis xyz='0 0 1'/><limit lower='-1' upper='1' effort='1' velocity='1'/>";
+    xml += "</joint>";
+  }
+  return robots::RobotModel::fromUrdfString(xml + "</robot>", ".", {}, "tree.urdf");
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(large_worlds)
+
+// The link pair index answers and counts as the pair lists it replaces (adjacentLinkPairs,
+// rigidLinkPairs) on random trees, hubs without geometry included.
+BOOST_AUTO_TEST_CASE(link_pair_index_equals_the_pair_lists) {
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 300; ++trial) {
+    const robots::RobotModel model = randomTree(2 + trial % 30, trial % 3 == 0 ? 0.3 : 0.7, rng);
+    const auto pieces = robots::collisionPieces(model, robots::CollisionGeometryOptions());
+    std::vector<bool> hasGeometry(model.numLinks());
+    for (int l = 0; l < model.numLinks(); ++l) hasGeometry[l] = !pieces[l].empty();
+    const auto adjacentList = robots::adjacentLinkPairs(model, pieces);
+    const auto rigidList = rigidLinkPairs(model, hasGeometry);
+    const std::set<std::pair<int, int>> adjacent(adjacentList.begin(), adjacentList.end());
+    const std::set<std::pair<int, int>> rigid(rigidList.begin(), rigidList.end());
+    const LinkPairIndex index(model, hasGeometry);
+    long long both = 0;
+    for (int a = 0; a < model.numLinks(); ++a) {
+      for (int b = a + 1; b < model.numLinks(); ++b) {
+        if (!hasGeometry[a] || !hasGeometry[b]) continue;
+        BOOST_TEST(index.adjacent(a, b) == (adjacent.count({a, b}) > 0), "trial " << trial << " links " << a << ", " << b);
+        BOOST_TEST(index.adjacent(b, a) == index.adjacent(a, b));
+        BOOST_TEST(index.rigid(a, b) == (rigid.count({a, b}) > 0), "trial " << trial << " links " << a << ", " << b);
+        both += adjacent.count({a, b}) > 0 && rigid.count({a, b}) > 0;
+      }
+    }
+    BOOST_TEST(index.numAdjacent() == static_cast<long long>(adjacent.size()), "trial " << trial);
+    BOOST_TEST(index.numRigid() == static_cast<long long>(rigid.size()), "trial " << trial);
+    BOOST_TEST(index.numAdjacentAndRigid() == both, "trial " << trial);
+  }
+}
 
 // addObstacles: ids in order, the same answers as adding one by one, and a bad obstacle anywhere
 // in the list leaves the world as it was, with an error naming it.
