@@ -6,6 +6,7 @@
 //   scene_urdf     a scene URDF of N box links (fromUrdfString + addScene)
 //   robot_star     a robot URDF of N box links on revolute joints, all children of a box base
 //                  (fromUrdfString + the World's construction: pieces, self pairs, grids)
+//   robot_hub      the same around a base without geometry (every two children adjacent)
 //   mesh           a closed mesh of about N triangles (a tessellated sphere, one convex piece)
 //                  added as an obstacle: the mesh's cleaning, hull and decomposition
 // Usage: load_bench [--sizes 250,500,...] [--kinds scene_yaml,...] [--out folder]
@@ -21,6 +22,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -30,6 +32,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace dc = deepcheck::checker;
 namespace dr = deepcheck::robots;
 
@@ -37,10 +41,13 @@ namespace {
 
 const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
 
-dc::World bundledArm() {
+/// The bundled arm with its SRDF's disabled pairs; meshes decomposed through the cache in
+/// `cacheDir` ("" the default).
+dc::World bundledArm(const std::string& cacheDir = "") {
   dr::LoadOptions load;
   load.packageRoots = {kData};
   dc::WorldOptions options;
+  options.decompositionCacheDir = cacheDir;
   options.disabledPairs = dr::readSrdfDisabledPairs(kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
   return dc::World(dr::RobotModel::fromUrdfFile(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf", load), options);
 }
@@ -86,9 +93,11 @@ std::string sceneUrdf(int n) {
   return u.str();
 }
 
-std::string starUrdf(int n) {
+/// N box links on revolute joints around a hub: a box (`hubGeometry`) or a link without geometry,
+/// which makes every two of its children adjacent.
+std::string starUrdf(int n, bool hubGeometry) {
   std::ostringstream u;
-  u << "<robot name='star'>" << boxLink("base");
+  u << "<robot name='star'>" << (hubGeometry ? boxLink("base") : std::string("<link name='base'/>"));
   for (int i = 0; i < n; ++i) {
     const double a = 2 * M_PI * i / n;
     u << boxLink("l" + std::to_string(i)) << "<joint name='j" << i << "' type='revolute'><parent link='base'/><child link='l"
@@ -156,8 +165,8 @@ double timeKind(const std::string& kind, int n, int* items) {
     dc::World world = bundledArm();
     return seconds([&] { world.addScene(dr::RobotModel::fromUrdfString(urdf, ".", {}, "grid.urdf")); });
   }
-  if (kind == "robot_star") {
-    const std::string urdf = starUrdf(n);
+  if (kind == "robot_star" || kind == "robot_hub") {
+    const std::string urdf = starUrdf(n, kind == "robot_star");
     return seconds([&] {
       dc::World world(dr::RobotModel::fromUrdfString(urdf, ".", {}, "star.urdf"));
     });
@@ -165,10 +174,17 @@ double timeKind(const std::string& kind, int n, int* items) {
   if (kind == "mesh") {
     dr::TriangleMesh mesh = sphereMesh(n);
     *items = static_cast<int>(mesh.triangles.size());
-    dc::World world = bundledArm();
-    return seconds([&] { world.addObstacle(dc::Obstacle::fromMesh("sphere", mesh, Eigen::Isometry3d::Identity())); });
+    // A decomposition cache of its own, empty: the first load is timed, not a cache read.
+    const std::filesystem::path cache =
+        std::filesystem::temp_directory_path() / ("deepcheck_load_bench_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(cache);
+    dc::World world = bundledArm(cache.string());
+    const double s =
+        seconds([&] { world.addObstacle(dc::Obstacle::fromMesh("sphere", mesh, Eigen::Isometry3d::Identity())); });
+    std::filesystem::remove_all(cache);
+    return s;
   }
-  throw std::invalid_argument("unknown kind '" + kind + "' (scene_yaml, obstacles, obstacles_batch, scene_urdf, robot_star, mesh)");
+  throw std::invalid_argument("unknown kind '" + kind + "' (scene_yaml, obstacles, obstacles_batch, scene_urdf, robot_star, robot_hub, mesh)");
 }
 
 }  // namespace
@@ -176,14 +192,14 @@ double timeKind(const std::string& kind, int n, int* items) {
 void usage(const std::string& error) {
   if (!error.empty()) std::fprintf(stderr, "load_bench: %s\n", error.c_str());
   std::fprintf(stderr,
-               "usage: load_bench [--sizes 250,500,1000,2000,4000] [--kinds scene_yaml,obstacles,obstacles_batch,scene_urdf,robot_star,mesh]\n"
+               "usage: load_bench [--sizes 250,500,1000,2000,4000] [--kinds scene_yaml,obstacles,obstacles_batch,scene_urdf,robot_star,robot_hub,mesh]\n"
                "                  [--out folder (default bench/results)]\n");
   std::exit(2);
 }
 
 int main(int argc, char** argv) {
   std::vector<int> sizes = {250, 500, 1000, 2000, 4000};
-  std::vector<std::string> kinds = {"scene_yaml", "obstacles", "obstacles_batch", "scene_urdf", "robot_star", "mesh"};
+  std::vector<std::string> kinds = {"scene_yaml", "obstacles", "obstacles_batch", "scene_urdf", "robot_star", "robot_hub", "mesh"};
   std::string out = DEEPCHECK_BENCH_RESULTS_DIR;
   deepcheck::bench::readOptions(argc, argv, usage, [&](const std::string& arg, auto value) {
     if (arg == "--sizes") {
