@@ -18,16 +18,21 @@ const char* toString(DisableReason reason) {
     case DisableReason::Never: return "Never";
     case DisableReason::User: return "User";
     case DisableReason::Unspecified: return "";
+    case DisableReason::Other: return "Other";
   }
   return "";
 }
 
-std::optional<DisableReason> parseDisableReason(const std::string& text) {
+DisableReason parseDisableReason(const std::string& text) {
   for (int r = 0; r < kNumDisableReasons; ++r) {
     const auto reason = static_cast<DisableReason>(r);
     if (text == toString(reason)) return reason;
   }
-  return std::nullopt;
+  return DisableReason::Other;
+}
+
+std::string reasonText(const DisabledPair& pair) {
+  return pair.reason == DisableReason::Other ? pair.reasonText : toString(pair.reason);
 }
 
 std::pair<std::string, std::string> pairKey(const std::string& a, const std::string& b) {
@@ -72,16 +77,9 @@ std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml,
       }
       (std::string(attr) == "link1" ? p.link1 : p.link2) = value;
     }
-    const char* reasonText = e->Attribute("reason");
-    const std::optional<DisableReason> reason =
-        parseDisableReason(reasonText == nullptr ? "" : reasonText);
-    if (!reason) {
-      throw std::invalid_argument(where + ": <disable_collisions link1=" + quoted(p.link1) +
-                                  " link2=" + quoted(p.link2) + ">: unknown reason " +
-                                  quoted(reasonText) +
-                                  " (expected Adjacent, Default, Always, Never or User)");
-    }
-    p.reason = *reason;
+    const char* reason = e->Attribute("reason");
+    p.reason = parseDisableReason(reason == nullptr ? "" : reason);
+    if (p.reason == DisableReason::Other) p.reasonText = reason;
     pairs.push_back(p);
   }
   return pairs;
@@ -107,7 +105,9 @@ std::string srdfText(const std::string& robotName, const std::vector<DisabledPai
   for (const DisabledPair& p : pairs) {
     out << "  <disable_collisions link1=\"" << xmlEscape(p.link1) << "\" link2=\""
         << xmlEscape(p.link2) << "\"";
-    if (p.reason != DisableReason::Unspecified) out << " reason=\"" << toString(p.reason) << "\"";
+    if (p.reason != DisableReason::Unspecified) {
+      out << " reason=\"" << xmlEscape(reasonText(p)) << "\"";
+    }
     out << "/>\n";
   }
   out << "</robot>\n";

@@ -5,13 +5,13 @@
 // Other SRDF elements (groups, states, virtual joints, end effectors) are ignored when reading and
 // not written. A missing reason attribute is DisableReason::Unspecified (example-robot-data's
 // ur5.srdf has none); reason "User" (MoveIt's hand-made pairs) is DisableReason::User; any other
-// reason is an error.
+// text (MoveIt accepts any, e.g. "Common") is DisableReason::Other with the text kept in
+// DisabledPair::reasonText, so that it is shown and written back as found.
 //
 // Errors: bad input throws std::invalid_argument whose message names the file (or the text's
 // source), the line and the offending value; elements nested deeper than kMaxNestingDepth
 // (robot_model.h) are rejected before the text is parsed.
 
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,28 +25,35 @@ enum class DisableReason {
   Never,        ///< in collision in none of the random samples
   User,         ///< disabled by hand (SRDF reason "User"); never computed here
   Unspecified,  ///< SRDF entry without a reason attribute; never computed here
+  Other,        ///< SRDF reason text other than the five words above; never computed here
 };
-constexpr int kNumDisableReasons = 6;
+constexpr int kNumDisableReasons = 7;
 
-/// The SRDF word: "Adjacent", "Default", "Always", "Never", "User"; "" for Unspecified.
+/// The SRDF word: "Adjacent", "Default", "Always", "Never", "User"; "" for Unspecified; "Other"
+/// for Other (whose own text is DisabledPair::reasonText).
 const char* toString(DisableReason reason);
 /// Inverse of toString() for the five words (case-sensitive, as MoveIt writes them); "" gives
-/// Unspecified; any other text gives std::nullopt.
-std::optional<DisableReason> parseDisableReason(const std::string& text);
+/// Unspecified; any other text gives Other.
+DisableReason parseDisableReason(const std::string& text);
 
 /// One disabled pair, by link name. Pairs are unordered: (A, B) and (B, A) are the same pair.
 struct DisabledPair {
   std::string link1;
   std::string link2;
   DisableReason reason = DisableReason::Unspecified;
+  /// The SRDF reason text when `reason` is Other (e.g. "Common"); empty otherwise.
+  std::string reasonText;
 };
+
+/// The reason as an SRDF would write it: `reasonText` for Other, else toString(reason).
+std::string reasonText(const DisabledPair& pair);
 
 /// (min, max) of the two names: a key under which (A, B) and (B, A) are equal.
 std::pair<std::string, std::string> pairKey(const std::string& a, const std::string& b);
 
 /// The <disable_collisions> entries of SRDF text, in file order. `sourceName` names the text in
 /// messages. Throws std::invalid_argument (naming the source and the line) for malformed XML, a
-/// root element other than <robot>, a missing or empty link1/link2, or an unknown reason.
+/// root element other than <robot>, or a missing or empty link1/link2.
 std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml,
                                                  const std::string& sourceName = "");
 /// Same, from a file (a missing or unreadable file is an error naming it).
@@ -54,7 +61,7 @@ std::vector<DisabledPair> readSrdfDisabledPairs(const std::string& path);
 
 /// SRDF text: an XML declaration, `comment` (if not empty) as an XML comment, and
 /// <robot name="robotName"> with one <disable_collisions> per pair in the given order (reason
-/// omitted for Unspecified). Names are XML-escaped.
+/// omitted for Unspecified, reasonText(pair) otherwise). Names and reasons are XML-escaped.
 std::string srdfText(const std::string& robotName, const std::vector<DisabledPair>& pairs,
                      const std::string& comment = "");
 /// Writes srdfText() to `path`; throws std::invalid_argument naming the file when it cannot.
