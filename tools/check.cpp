@@ -2,7 +2,7 @@
 //
 //   deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...
 //                   [--scene S.yaml]... [--frame-alias NAME=LINK]...
-//                   [--srdf FILE [--group NAME]] [--lock JOINT=VALUE]... [--package-path DIR]... [--gradient] < configs.txt
+//                   [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--gradient] < configs.txt
 //
 // Input: one configuration per line, the joint values in configuration order (the order
 // `deepcheck info` prints: RobotModel::variableNames()), separated by blanks; lines whose first
@@ -44,7 +44,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                       [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
-    "                       [--srdf FILE [--group NAME]] [--lock JOINT=VALUE]... [--package-path DIR]... [--gradient] < configs.txt\n"
+    "                       [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--gradient] < configs.txt\n"
     "\n"
     "Minimum signed distance of the robot to its scenes and to itself, one configuration per\n"
     "input line (joint values in the order `deepcheck info` prints; '#' comments and blank lines\n"

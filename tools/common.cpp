@@ -107,7 +107,7 @@ std::vector<double> takeVector(std::vector<std::string>& args, const std::string
 }
 
 void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::vector<SceneArg>& scenes,
-                      std::string& srdf) {
+                      std::vector<std::string>& srdfs) {
   std::vector<std::string> rest;
   auto valueOf = [&](std::size_t& i, const std::string& name) {
     const std::string prefix = name + "=";
@@ -129,8 +129,7 @@ void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::v
       if (!robot.empty()) throw UsageError("option --robot given more than once");
       robot = valueOf(i, "--robot");
     } else if (is(args[i], "--srdf")) {
-      if (!srdf.empty()) throw UsageError("option --srdf given more than once");
-      srdf = valueOf(i, "--srdf");
+      srdfs.push_back(valueOf(i, "--srdf"));
     } else if (is(args[i], "--scene")) {
       scenes.push_back(SceneArg{valueOf(i, "--scene")});
     } else if (args[i] == "--scene-pose") {

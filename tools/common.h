@@ -71,10 +71,11 @@ std::uint64_t parseCount(const std::string& text, const std::string& option, std
 /// are values). Empty when absent; UsageError when given twice or without values.
 std::vector<double> takeVector(std::vector<std::string>& args, const std::string& name);
 
-/// Removes --robot (required), --scene (each optionally followed by --scene-pose) and --srdf from
-/// `args`, in command-line order. Throws UsageError for a missing or repeated value.
+/// Removes --robot (required), --scene (each optionally followed by --scene-pose) and every
+/// --srdf from `args`, in command-line order. Throws UsageError for a missing value or a repeated
+/// --robot.
 void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::vector<SceneArg>& scenes,
-                      std::string& srdf);
+                      std::vector<std::string>& srdfs);
 
 /// A duration for people: "850 us", "12.3 ms", "4.56 s" (never "0.000 s").
 std::string formatDuration(double seconds);

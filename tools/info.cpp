@@ -49,7 +49,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: deepcheck info ROBOT.urdf [--package-path DIR]... [--samples N] [--seed S]\n"
-    "                      [--write-srdf FILE] [--srdf FILE --group NAME] [--lock JOINT=VALUE]...\n"
+    "                      [--write-srdf FILE] [--srdf FILE... --group NAME] [--lock JOINT=VALUE]...\n"
     "       deepcheck info SCENE.yaml [--package-path DIR]...\n"
     "\n"
     "Describes a URDF robot or scene: links with their collision elements and convex pieces,\n"
@@ -70,7 +70,8 @@ constexpr const char* kUsage =
     "  --srdf FILE --group NAME\n"
     "                      describe the robot as planning group NAME of the SRDF moves it: its\n"
     "                      variables only, the other joints held (at --lock's value, else their\n"
-    "                      default) and listed as locked\n"
+    "                      default) and listed as locked; --srdf is repeatable (the files'\n"
+    "                      groups are merged; a group two files define differently is an error)\n"
     "  --lock JOINT=VALUE  hold JOINT at VALUE (rad or m; repeatable)\n";
 
 /// Volume enclosed by a closed, consistently wound mesh (divergence theorem); NaN otherwise.
@@ -167,7 +168,8 @@ struct InfoArgs {
   robots::PairFilterOptions filter;
   std::string srdfPath;  ///< --write-srdf
   bool pairFilterOptions = false;  ///< --samples, --seed or --write-srdf given
-  std::string groupSrdf, group;          ///< --srdf, --group
+  std::vector<std::string> groupSrdfs;   ///< --srdf, in command-line order
+  std::string group;                     ///< --group
   std::map<std::string, double> locks;   ///< --lock
 };
 
@@ -177,11 +179,11 @@ InfoArgs takeInfoArgs(std::vector<std::string>& args) {
   const std::string samplesText = takeSingleOption(args, "--samples");
   const std::string seedText = takeSingleOption(args, "--seed");
   a.srdfPath = takeSingleOption(args, "--write-srdf");
-  a.groupSrdf = takeSingleOption(args, "--srdf");
+  a.groupSrdfs = takeOption(args, "--srdf");
   a.group = takeSingleOption(args, "--group");
   a.locks = takeLocks(args);
-  if (a.group.empty() != a.groupSrdf.empty()) {
-    throw UsageError("--srdf and --group go together: the planning group NAME of the SRDF FILE");
+  if (a.group.empty() != a.groupSrdfs.empty()) {
+    throw UsageError("--srdf and --group go together: the planning group NAME of the SRDF FILEs");
   }
   rejectUnknownOptions(args);
   if (args.size() != 1) {
@@ -349,7 +351,7 @@ int runInfo(std::vector<std::string> args) {
   robots::LoadOptions load;
   load.packageRoots = a.roots.commandLine;
   const robots::RobotModel model =
-      robots::planningGroupModel(robots::RobotModel::fromUrdfFile(a.file, load), a.groupSrdf, a.group, a.locks);
+      robots::planningGroupModel(robots::RobotModel::fromUrdfFile(a.file, load), a.groupSrdfs, a.group, a.locks);
   const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
   printSummary(model, pieces);
   printJoints(model);

@@ -88,12 +88,12 @@ SceneKind sceneKind(const std::string& path) {
 
 WorldArgs takeWorldArgs(std::vector<std::string>& args) {
   WorldArgs w;
-  takeWorldOptions(args, w.robot, w.scenes, w.srdf);
+  takeWorldOptions(args, w.robot, w.scenes, w.srdfs);
   w.packages = takePackageRoots(args);
   w.frameAliases = takeFrameAliases(args);
   w.group = takeSingleOption(args, "--group");
   w.locks = takeLocks(args);
-  if (!w.group.empty() && w.srdf.empty()) {
+  if (!w.group.empty() && w.srdfs.empty()) {
     throw UsageError("--group " + w.group + " needs --srdf: the planning groups are the SRDF's");
   }
   bool planningScene = false;
@@ -116,11 +116,12 @@ checker::World loadWorld(const WorldArgs& args) {
   robots::LoadOptions load;
   load.packageRoots = args.packages.commandLine;
   robots::RobotModel robot =
-      robots::planningGroupModel(robots::RobotModel::fromUrdfFile(args.robot, load), args.srdf, args.group, args.locks);
+      robots::planningGroupModel(robots::RobotModel::fromUrdfFile(args.robot, load), args.srdfs, args.group, args.locks);
   checker::WorldOptions options;
-  if (!args.srdf.empty()) {
-    options.disabledPairs = robots::readSrdfDisabledPairs(args.srdf);
-    robots::checkDisabledPairs(robot, options.disabledPairs, args.srdf);
+  for (const std::string& srdf : args.srdfs) {
+    const std::vector<robots::DisabledPair> pairs = robots::readSrdfDisabledPairs(srdf);
+    robots::checkDisabledPairs(robot, pairs, srdf);
+    options.disabledPairs.insert(options.disabledPairs.end(), pairs.begin(), pairs.end());
   }
   checker::World world(std::move(robot), options);
   robots::SceneLoadOptions sceneLoad;

@@ -34,7 +34,9 @@
   "  --frame-alias NAME=LINK\n"                                                                      \
   "                      a planning scene's frame NAME is the robot's link LINK (repeatable),\n"      \
   "                      e.g. base_link=panda_link0 for MotionBenchMaker scenes with the Panda\n"     \
-  "  --srdf FILE         disable the self-collision pairs of this SRDF\n"                             \
+  "  --srdf FILE         disable the self-collision pairs of this SRDF and read its planning groups\n" \
+  "                      (repeatable: the files' pairs and groups are merged; a group two files\n"   \
+  "                      define differently is an error)\n"                                          \
   "  --group NAME        move only the variables of the SRDF's planning group NAME (needs --srdf);\n" \
   "                      the others are held at their --lock value, else their default\n"          \
   "  --lock JOINT=VALUE  hold JOINT at VALUE (rad or m; repeatable); configurations then omit it\n"   \
@@ -55,7 +57,7 @@ robots::FrameAliases takeFrameAliases(std::vector<std::string>& args);
 struct WorldArgs {
   std::string robot;
   std::vector<SceneArg> scenes;
-  std::string srdf;
+  std::vector<std::string> srdfs;  ///< --srdf, in command-line order
   PackageRoots packages;
   robots::FrameAliases frameAliases;
   std::string group;                     ///< --group
@@ -80,7 +82,8 @@ enum class SceneKind { Urdf, PlanningScene };
 /// Throws UsageError naming the file and the extensions known for any other extension.
 SceneKind sceneKind(const std::string& path);
 
-/// Loads the robot (its --group's variables only, its --lock joints held), disables the SRDF's pairs (an unknown link in it is an error naming the file)
+/// Loads the robot (its --group's variables only, its --lock joints held), disables the pairs of
+/// every SRDF (an unknown link in one is an error naming the file)
 /// and adds the scenes in command-line order. Throws std::invalid_argument naming the bad file
 /// (for a planning scene, its line, object and frame; an unknown frame's message suggests
 /// --frame-alias).

@@ -3,7 +3,7 @@
 //
 //   deepcheck plan --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...
 //                  [--scene S.yaml]... [--frame-alias NAME=LINK]...
-//                  [--srdf FILE [--group NAME]] [--lock JOINT=VALUE]... [--package-path DIR]... --start q1 ... qn
+//                  [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... --start q1 ... qn
 //                  (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw
 //                                      [--position-tol M | --position-box HX HY HZ] [--orientation-tol RAD])
 //                  [--planner NAME] [--time SECONDS] [--objective length|clearance]
@@ -64,7 +64,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck plan --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
-    "                      [--srdf FILE [--group NAME]] [--lock JOINT=VALUE]... [--package-path DIR]... --start q1 ... qn\n"
+    "                      [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... --start q1 ... qn\n"
     "                      (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw\n"
     "                                          [--position-tol M | --position-box HX HY HZ] [--orientation-tol RAD])\n"
     "                      [--planner NAME] [--time SECONDS] [--objective length|clearance]\n"
@@ -393,7 +393,6 @@ std::shared_ptr<ompl::geometric::SimpleSetup> makeSetup(const PlanArgs& a) {
   auto world = std::make_shared<checker::World>(loadWorld(a.world));
   planners::SetupOptions options;
   options.packageRoots = a.world.packages.commandLine;
-  options.srdf = a.world.srdf;
   return planners::makeSimpleSetup(world, options);
 }
 

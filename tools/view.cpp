@@ -32,7 +32,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck view --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
-    "                      [--srdf FILE [--group NAME]] [--lock JOINT=VALUE]... [--package-path DIR]... [--config q1 ... qn | --path FILE]\n"
+    "                      [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--config q1 ... qn | --path FILE]\n"
     "                      [--hide LINK]... [--step S] --out view.html\n"
     "       deepcheck view --decompose MESH [--package-path DIR]... --out view.html\n"
     "       deepcheck view --pd CASES.txt --out view.html\n"

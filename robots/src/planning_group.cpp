@@ -248,15 +248,58 @@ std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfG
   return resolver.variables(g);
 }
 
+namespace {
+
+bool sameGroup(const SrdfGroup& a, const SrdfGroup& b) {
+  return a.joints == b.joints && a.links == b.links && a.chains == b.chains && a.subgroups == b.subgroups;
+}
+
+}  // namespace
+
+std::vector<SrdfGroup> readSrdfGroups(const std::vector<std::string>& paths) {
+  std::vector<SrdfGroup> merged;
+  std::vector<std::string> sourceOf;  // the file of each group of `merged`
+  for (const std::string& path : paths) {
+    for (SrdfGroup& group : readSrdfGroups(path)) {
+      const auto same = std::find_if(merged.begin(), merged.end(),
+                                     [&](const SrdfGroup& g) { return g.name == group.name; });
+      if (same == merged.end()) {
+        merged.push_back(std::move(group));
+        sourceOf.push_back(path);
+        continue;
+      }
+      if (sameGroup(*same, group)) continue;
+      const std::string& first = sourceOf[static_cast<std::size_t>(same - merged.begin())];
+      throw std::invalid_argument(srdfContext(path) + ", line " + std::to_string(group.line) + ": group " +
+                                  quoted(group.name) + " is defined differently in " + srdfContext(first) +
+                                  ", line " + std::to_string(same->line));
+    }
+  }
+  return merged;
+}
+
+std::string srdfSourceName(const std::vector<std::string>& paths) {
+  std::string joined;
+  for (const std::string& path : paths) joined += (joined.empty() ? "" : ", ") + path;
+  return joined;
+}
+
 RobotModel planningGroupModel(const RobotModel& model, const std::string& srdfPath, const std::string& group,
                               const std::map<std::string, double>& locked) {
+  return planningGroupModel(model, srdfPath.empty() ? std::vector<std::string>{} : std::vector<std::string>{srdfPath},
+                            group, locked);
+}
+
+RobotModel planningGroupModel(const RobotModel& model, const std::vector<std::string>& srdfPaths,
+                              const std::string& group, const std::map<std::string, double>& locked) {
   if (group.empty()) return model.withLockedVariables(locked);
-  if (srdfPath.empty()) {
+  if (srdfPaths.empty()) {
     throw std::invalid_argument("robot '" + model.name() + "': planning group '" + group +
                                 "' asked for without an SRDF (the groups are the SRDF's)");
   }
-  const std::vector<int> moved = groupVariables(model, readSrdfGroups(srdfPath), group, srdfPath);
-  return lockAllBut(model, moved, locked, "group '" + group + "' of SRDF '" + srdfPath + "'");
+  const std::string source = srdfSourceName(srdfPaths);
+  const std::vector<int> moved = groupVariables(model, readSrdfGroups(srdfPaths), group, source);
+  return lockAllBut(model, moved, locked, "group '" + group + "' of SRDF '" + source + "'");
 }
 
 }  // namespace deepcheck::robots

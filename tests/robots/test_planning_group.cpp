@@ -176,6 +176,25 @@ BOOST_AUTO_TEST_CASE(reads_a_file) {
               {"missing.srdf", "cannot open"});
 }
 
+BOOST_AUTO_TEST_CASE(reads_several_files) {
+  // Groups of two files in file order; a group both define alike is read once.
+  TempDir dir;
+  const std::string a = dir.write("a.srdf", srdfWith("<group name=\"arm\"><joint name=\"j1\"/></group>"));
+  const std::string b = dir.write("b.srdf", srdfWith("<group name=\"cam\"><joint name=\"pan\"/></group>\n"
+                                                      "<group name=\"arm\"><joint name=\"j1\"/></group>"));
+  const std::vector<SrdfGroup> groups = readSrdfGroups(std::vector<std::string>{a, b});
+  BOOST_REQUIRE_EQUAL(groups.size(), 2u);
+  BOOST_TEST(groups[0].name == "arm");
+  BOOST_TEST(groups[1].name == "cam");
+  const RobotModel model = planningGroupModel(loadRail(), std::vector<std::string>{a, b}, "cam", {});
+  BOOST_TEST(model.numVariables() == 1);
+  // Defined differently: both files, both lines and the group are named.
+  const std::string c = dir.write("c.srdf", srdfWith("\n<group name=\"arm\"><joint name=\"j2\"/></group>"));
+  checkThrows([&] { readSrdfGroups(std::vector<std::string>{a, c}); },
+              {"c.srdf', line 3", "a.srdf', line 2", "'arm'", "differently"});
+  BOOST_TEST(srdfSourceName({a, c}) == a + ", " + c);
+}
+
 BOOST_AUTO_TEST_CASE(panda_groups_of_its_moveit_config) {
   if (!haveShared("panda_groups_of_its_moveit_config")) return;
   const RobotModel panda = loadPanda();

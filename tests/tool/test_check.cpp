@@ -127,6 +127,39 @@ BOOST_AUTO_TEST_CASE(self_pairs_and_srdf) {
   BOOST_TEST(r.err.find("zzz") != std::string::npos, r.err);
 }
 
+BOOST_AUTO_TEST_CASE(several_srdf_files) {
+  // A robot's groups and its disabled pairs in separate files (as the PR2's are): both are read.
+  // Two cubes on sliders from a base with geometry: only the pair (a, b) is not adjacent.
+  Scratch s;
+  const std::string robot = s.write(
+      "pair.urdf",
+      "<robot name='pair'><link name='base'><collision><origin xyz='0 0 -1'/><geometry><box size='0.1 0.1 0.1'/>"
+      "</geometry></collision></link>"
+      "<link name='a'><collision><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+      "<link name='b'><collision><origin xyz='0 0.5 0'/><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+      "<joint name='ja' type='prismatic'><parent link='base'/><child link='a'/><axis xyz='1 0 0'/>"
+      "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
+      "<joint name='jb' type='prismatic'><parent link='base'/><child link='b'/><axis xyz='1 0 0'/>"
+      "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
+  const std::string groups = s.write("groups.srdf", "<robot name='pair'>\n<group name='a_only'><joint name='ja'/></group>\n</robot>");
+  const std::string pairs = s.write("pairs.srdf", "<robot name='pair'><disable_collisions link1='a' link2='b' reason='Common'/>\n"
+                                                  "<group name='a_only'><joint name='ja'/></group></robot>");
+  Run r = runCheck(s, "--robot " + robot + " --srdf " + groups, "0 0\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("1 link pairs checked") != std::string::npos, r.err);
+  // The group of the first file, the pair of the second (which defines the group alike).
+  r = runCheck(s, "--robot " + robot + " --srdf " + groups + " --srdf " + pairs + " --group a_only", "0\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("0 link pairs checked") != std::string::npos, r.err);
+  // A group two files define differently: an error naming both files and the group.
+  const std::string other = s.write("other.srdf", "<robot name='pair'>\n\n<group name='a_only'><joint name='jb'/></group></robot>");
+  r = runCheck(s, "--robot " + robot + " --srdf " + groups + " --srdf " + other + " --group a_only", "0\n");
+  BOOST_TEST(r.status == 1);
+  for (const std::string& word : {other + "', line 3", groups + "', line 2", std::string("'a_only'"), std::string("differently")}) {
+    BOOST_TEST(r.err.find(word) != std::string::npos, word << ": " << r.err);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_and_command_lines) {
   Scratch s;
   const std::string robot = s.write("slider.urdf", kRobot);

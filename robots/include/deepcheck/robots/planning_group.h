@@ -49,6 +49,13 @@ struct SrdfGroup {
 std::vector<SrdfGroup> parseSrdfGroups(const std::string& xml, const std::string& sourceName = "");
 /// parseSrdfGroups() of a file; the path names it in messages.
 std::vector<SrdfGroup> readSrdfGroups(const std::string& path);
+/// The groups of several SRDF files, in file order: a robot's groups and its disabled pairs may
+/// come in separate files (the PR2's do). A group that several files define alike (same joints,
+/// links, chains and subgroups, in the same order) is kept once; a group two files define
+/// differently is an error naming both files, their lines and the group.
+std::vector<SrdfGroup> readSrdfGroups(const std::vector<std::string>& paths);
+/// The SRDF files as one source for messages: their paths joined by ", ".
+std::string srdfSourceName(const std::vector<std::string>& paths);
 
 /// The variables (indices into the model's configuration q, ascending, no duplicates) that the
 /// group `name` of `groups` moves. `srdfSource` names the SRDF in messages.
@@ -62,5 +69,8 @@ std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfG
 /// SRDF, and what readSrdfGroups, groupVariables and lockAllBut throw.
 RobotModel planningGroupModel(const RobotModel& model, const std::string& srdfPath, const std::string& group,
                               const std::map<std::string, double>& locked);
+/// Same, with the groups of several SRDF files (readSrdfGroups(paths)); no files is no SRDF.
+RobotModel planningGroupModel(const RobotModel& model, const std::vector<std::string>& srdfPaths,
+                              const std::string& group, const std::map<std::string, double>& locked);
 
 }  // namespace deepcheck::robots
