@@ -2,7 +2,8 @@
 //
 //   deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...
 //                   [--scene S.yaml]... [--frame-alias NAME=LINK]...
-//                   [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--gradient] < configs.txt
+//                   [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--gradient]
+//                   [--clamp-to-limits] < configs.txt
 //
 // Input: one configuration per line, the joint values in configuration order (the order
 // `deepcheck info` prints: RobotModel::variableNames()), separated by blanks; lines whose first
@@ -44,29 +45,35 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                       [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
-    "                       [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--gradient] < configs.txt\n"
+    "                       [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--gradient]\n"
+    "                       [--clamp-to-limits] < configs.txt\n"
     "\n"
     "Minimum signed distance of the robot to its scenes and to itself, one configuration per\n"
     "input line (joint values in the order `deepcheck info` prints; '#' comments and blank lines\n"
     "are skipped). Output per line: three triples 'sd linkA linkB' (%.17g; sd < 0 is minus the\n"
     "penetration depth; scene links are named scene/<link>, planning-scene objects obstacle/<id>):\n"
     "the minimum over all pairs, over the robot-scene pairs, over the robot's self pairs; then\n"
-    "with --gradient the components of d sd/dq of the first.\n"
+    "with --gradient the components of d sd/dq of the first. A joint value outside its limits is an\n"
+    "error naming the line, the joint, the value and the limits (see --clamp-to-limits).\n"
     "On stderr: the world's summary and a last line 'configurations N total_us T'.\n"
     "\n"
     "options:\n"
     DEEPCHECK_WORLD_OPTIONS_HELP
-    "  --gradient          append the gradient of sd with respect to the joint values\n";
+    "  --gradient          append the gradient of sd with respect to the joint values\n"
+    DEEPCHECK_CLAMP_HELP;
 
 int run(std::vector<std::string> args) {
   const bool gradient = takeFlag(args, "--gradient");
+  JointLimitPolicy limits;
+  limits.clamp = takeFlag(args, "--clamp-to-limits");
   const WorldArgs worldArgs = takeWorldArgs(args);
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "'");
 
   checker::World world = loadWorld(worldArgs);
-  const std::vector<Eigen::VectorXd> configurations = readConfigurations(std::cin, world.robot());
+  const std::vector<Eigen::VectorXd> configurations = readConfigurations(std::cin, world.robot(), &limits);
   std::fputs(world.summary().c_str(), stderr);
+  warnClamped("check", limits);
 
   // Two pruned searches, one per kind of pair; the overall minimum is the smaller.
   checker::DistanceOptions sceneQuery;

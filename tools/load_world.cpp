@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -14,7 +15,39 @@
 
 namespace deepcheck::tools {
 
-std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot) {
+void applyJointLimits(const robots::RobotModel& robot, Eigen::VectorXd& q, const std::string& what,
+                      JointLimitPolicy& policy) {
+  for (int v = 0; v < robot.numVariables(); ++v) {
+    const robots::Joint& joint = robot.joint(robot.variableJoint(v));
+    const double lower = robot.lowerLimits()[v];
+    const double upper = robot.upperLimits()[v];
+    if (joint.type == robots::JointType::Continuous || (q[v] >= lower && q[v] <= upper)) continue;
+    const std::string& name = robot.variableNames()[static_cast<std::size_t>(v)];
+    if (policy.clamp) {
+      q[v] = std::min(std::max(q[v], lower), upper);
+      policy.clamped.insert(name);
+      continue;
+    }
+    const char* unit = joint.type == robots::JointType::Prismatic ? "m" : "rad";
+    const bool below = q[v] < lower;
+    char text[240];
+    std::snprintf(text, sizeof text, " = %.6g %s is %s its %s limit %.6g %s (limits [%.6g, %.6g] %s)", q[v], unit,
+                  below ? "below" : "above", below ? "lower" : "upper", below ? lower : upper, unit, lower, upper, unit);
+    throw InputError(what + " is outside the joint limits: joint '" + name + "'" + text +
+                     "; --clamp-to-limits clamps it");
+  }
+}
+
+void warnClamped(const std::string& subcommand, const JointLimitPolicy& policy) {
+  if (policy.clamped.empty()) return;
+  std::string names;
+  for (const std::string& name : policy.clamped) names += (names.empty() ? "'" : ", '") + name + "'";
+  std::fprintf(stderr, "deepcheck %s: warning: values clamped to the joint limits of %s\n", subcommand.c_str(),
+               names.c_str());
+}
+
+std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot,
+                                                JointLimitPolicy* limits) {
   std::vector<Eigen::VectorXd> out;
   int lineNumber = 0;
   InputLine line;
@@ -24,6 +57,11 @@ std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::
     if (q.size() != robot.numVariables()) {
       failAt(line, std::to_string(q.size()) + " values, robot '" + robot.name() + "' has " +
                        std::to_string(robot.numVariables()) + " variables");
+    }
+    try {
+      if (limits != nullptr) applyJointLimits(robot, q, "the configuration", *limits);
+    } catch (const InputError& e) {
+      failAt(line, e.what());
     }
     out.push_back(std::move(q));
   }

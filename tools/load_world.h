@@ -17,6 +17,7 @@
 
 #include <istream>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -45,9 +46,35 @@
 
 namespace deepcheck::tools {
 
+/// What `check` and `plan` do with a joint value outside its joint's limits: refuse it (an error
+/// naming the joint, the value and the limits) or, with --clamp-to-limits, clamp it and warn.
+/// Continuous joints have no limits: their values are taken as they are.
+struct JointLimitPolicy {
+  bool clamp = false;              ///< clamp instead of refusing
+  std::set<std::string> clamped;   ///< the joints clamped so far, for warnClamped()
+};
+
+/// The help line of --clamp-to-limits.
+#define DEEPCHECK_CLAMP_HELP                                                                       \
+  "  --clamp-to-limits   clamp a joint value outside its limits into them (one warning line names\n" \
+  "                      the clamped joints) instead of refusing it; continuous joints have none\n"
+
+/// Applies `policy` to q (one value per variable of `robot`): a value outside its bounded joint's
+/// limits is clamped (its joint added to policy.clamped) or refused with an InputError whose
+/// message starts with `what` and names the joint, the value and the limits.
+void applyJointLimits(const robots::RobotModel& robot, Eigen::VectorXd& q, const std::string& what,
+                      JointLimitPolicy& policy);
+
+/// One line on stderr, "deepcheck <subcommand>: warning: ...", naming the clamped joints; nothing
+/// when none was clamped.
+void warnClamped(const std::string& subcommand, const JointLimitPolicy& policy);
+
 /// Configurations, one per line (joint values in the robot's variable order; '#' comments and
-/// blank lines skipped); throws InputError naming the line (a bad number, a wrong count).
-std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot);
+/// blank lines skipped), each taken within the joint limits by `limits` when given (a path file
+/// is read as written); throws InputError naming the line (a bad number, a wrong count, a value
+/// that `limits` refuses).
+std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot,
+                                                JointLimitPolicy* limits = nullptr);
 
 /// Removes every `--frame-alias NAME=LINK` (or `--frame-alias=NAME=LINK`) from `args`: the scene
 /// frame NAME is the robot's link LINK. UsageError for a malformed or repeated NAME.

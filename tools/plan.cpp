@@ -7,7 +7,7 @@
 //                  (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw
 //                                      [--position-tol M | --position-box HX HY HZ] [--orientation-tol RAD])
 //                  [--planner NAME] [--time SECONDS] [--objective length|clearance]
-//                  [--repair-start [--repair-margin METRES]] [--seed N] --out path.txt
+//                  [--repair-start [--repair-margin METRES]] [--clamp-to-limits] [--seed N] --out path.txt
 //
 // A pose goal (planners/pose_goal.h) is reached by inverse kinematics: one collision-free
 // solution is found before planning (none: exit status 1 with the best attempt's error), then
@@ -68,12 +68,15 @@ constexpr const char* kUsage =
     "                      (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw\n"
     "                                          [--position-tol M | --position-box HX HY HZ] [--orientation-tol RAD])\n"
     "                      [--planner NAME] [--time SECONDS] [--objective length|clearance]\n"
-    "                      [--repair-start [--repair-margin METRES]] [--seed N] --out path.txt\n"
+    "                      [--repair-start [--repair-margin METRES]] [--clamp-to-limits] [--seed N]\n"
+    "                      --out path.txt\n"
     "\n"
     "Plans with OMPL and deepcheck's checker and writes the path, one configuration per line\n"
     "(joint values in the order `deepcheck info` prints). The solution is shortcut, then every\n"
     "waypoint and motion is certified free by the clearance motion validator (and repaired where\n"
-    "that fails). Exit status 0 only for an exact, certified solution.\n"
+    "that fails). Exit status 0 only for an exact, certified solution. A start or goal value outside\n"
+    "its joint's limits is an error naming the joint, the value and the limits (see\n"
+    "--clamp-to-limits); a continuous joint's value is taken as the same angle in [-pi, pi].\n"
     "\n"
     "options:\n"
     DEEPCHECK_WORLD_OPTIONS_HELP
@@ -100,6 +103,7 @@ constexpr const char* kUsage =
     "                      configuration with --repair-margin of clearance first\n"
     "                      (planners/push_out.h)\n"
     "  --repair-margin M   the clearance a repaired start or goal gets, metres (default 0.001)\n"
+    DEEPCHECK_CLAMP_HELP
     "  --seed N            OMPL's random seed, 0 to 4294967295 (default: OMPL's own, different\n"
     "                      each run), and the first seed of a pose goal's IK (default 0)\n"
     "  --out FILE          where to write the path (required)\n";
@@ -108,25 +112,11 @@ Eigen::VectorXd toVector(const std::vector<double>& values) {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
-/// Throws InputError for a q of the wrong size, or naming the first joint of q outside its limits,
-/// its value and the limit.
-void checkWithinLimits(const robots::RobotModel& model, const Eigen::VectorXd& q, const std::string& what) {
-  if (q.size() != model.numVariables()) {
-    throw InputError("the " + what + " configuration has " + std::to_string(q.size()) + " values, robot '" +
-                     model.name() + "' has " + std::to_string(model.numVariables()) + " variables");
-  }
-  for (int v = 0; v < model.numVariables(); ++v) {
-    const double lower = model.lowerLimits()[v];
-    const double upper = model.upperLimits()[v];
-    if (q[v] >= lower && q[v] <= upper) continue;
-    const char* unit = model.joint(model.variableJoint(v)).type == robots::JointType::Prismatic ? "m" : "rad";
-    char text[160];
-    std::snprintf(text, sizeof text, " = %.6g %s is %s its %s limit %.6g %s", q[v], unit,
-                  q[v] < lower ? "below" : "above", q[v] < lower ? "lower" : "upper", q[v] < lower ? lower : upper,
-                  unit);
-    throw InputError("the " + what + " configuration is outside the joint limits: joint '" +
-                     model.variableNames()[static_cast<std::size_t>(v)] + "'" + text);
-  }
+/// Throws InputError naming `what` for a q of the wrong size.
+void checkSize(const robots::RobotModel& model, const std::vector<double>& q, const std::string& what) {
+  if (static_cast<int>(q.size()) == model.numVariables()) return;
+  throw InputError("the " + what + " configuration has " + std::to_string(q.size()) + " values, robot '" +
+                   model.name() + "' has " + std::to_string(model.numVariables()) + " variables");
 }
 
 /// The nearest pair of one kind, for the report.
@@ -272,6 +262,7 @@ struct PlanArgs {
   std::vector<double> start;
   std::vector<double> goal;
   std::optional<GoalPoseArg> goalPose;
+  JointLimitPolicy limits;  ///< --clamp-to-limits
   std::string plannerName;
   double seconds = 0.0;
   std::string objectiveName;
@@ -295,6 +286,7 @@ void takeRepairOptions(std::vector<std::string>& args, PlanArgs& a) {
 PlanArgs takePlanArgs(std::vector<std::string>& args) {
   PlanArgs a;
   a.world = takeWorldArgs(args);
+  a.limits.clamp = takeFlag(args, "--clamp-to-limits");
   a.start = takeVector(args, "--start");
   a.goalPose = takeGoalPose(args);
   a.goal = takeVector(args, "--goal");
@@ -374,13 +366,30 @@ std::shared_ptr<planners::PoseGoal> setPoseGoal(ompl::geometric::SimpleSetup& ss
   return goal;
 }
 
+/// The start and a goal configuration taken within the joint limits (a.limits: refused or clamped,
+/// one warning line naming the clamped joints). A continuous joint's value becomes the same angle
+/// in [-pi, pi], the range the planner's state space gives it.
+void takeEndpointsWithinLimits(const robots::RobotModel& model, PlanArgs& a) {
+  std::vector<std::pair<const char*, std::vector<double>*>> endpoints = {{"start", &a.start}};
+  if (!a.goalPose) endpoints.emplace_back("goal", &a.goal);
+  for (const auto& [what, values] : endpoints) {
+    checkSize(model, *values, what);
+    Eigen::VectorXd q = toVector(*values);
+    applyJointLimits(model, q, std::string("the ") + what + " configuration", a.limits);
+    for (int v = 0; v < model.numVariables(); ++v) {
+      if (model.joint(model.variableJoint(v)).type != robots::JointType::Continuous) continue;
+      q[v] = std::remainder(q[v], 2.0 * M_PI);
+    }
+    values->assign(q.data(), q.data() + q.size());
+  }
+  warnClamped("plan", a.limits);
+}
+
 /// The start state and a goal configuration (a pose goal is set after the endpoints are checked).
 void setStartAndGoal(ompl::geometric::SimpleSetup& ss, const PlanArgs& a) {
   const auto checker = planners::validityCheckerOf(ss);
   const Eigen::VectorXd start = toVector(a.start);
-  checkWithinLimits(checker->world().robot(), start, "start");
   if (!a.goalPose) {
-    checkWithinLimits(checker->world().robot(), toVector(a.goal), "goal");
     planners::setStartAndGoal(ss, start, toVector(a.goal));
     return;
   }
@@ -481,13 +490,14 @@ void finishPath(ompl::geometric::SimpleSetup& ss, const PlanArgs& a, const plann
 }
 
 int run(std::vector<std::string> args) {
-  const PlanArgs a = takePlanArgs(args);
+  PlanArgs a = takePlanArgs(args);
   if (a.seeded) ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(a.seed));  // before any OMPL object
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   const auto ss = makeSetup(a);
   // The planner first: an unknown name is reported before any work.
   const auto planner = planners::makePlanner(a.plannerName, ss->getSpaceInformation());
   std::fprintf(stderr, "%s", planners::validityCheckerOf(*ss)->world().summary().c_str());
+  takeEndpointsWithinLimits(planners::validityCheckerOf(*ss)->world().robot(), a);
   setStartAndGoal(*ss, a);
   checkOrRepairEndpoints(*ss, a);
   const std::shared_ptr<planners::PoseGoal> goal = a.goalPose ? setPoseGoal(*ss, a, toVector(a.start)) : nullptr;

@@ -160,6 +160,38 @@ BOOST_AUTO_TEST_CASE(several_srdf_files) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(values_outside_the_joint_limits) {
+  Scratch s;
+  const std::string robot = s.write("slider.urdf", kRobot);
+  const std::string scene = s.write("room.urdf", kScene);
+  // Refused: the line, the joint, the value and the limits (slide in [-2, 2], lift in [-1, 1]).
+  Run r = runCheck(s, "--robot " + robot + " --scene " + scene, "0 0\n3 0\n");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.out.empty());
+  BOOST_TEST(r.err.find("line 2: the configuration is outside the joint limits: joint 'slide' = 3 m is above its "
+                        "upper limit 2 m (limits [-2, 2] m)") != std::string::npos,
+             r.err);
+  // Clamped with --clamp-to-limits: the answers at the limits, one warning line naming each joint.
+  r = runCheck(s, "--robot " + robot + " --scene " + scene + " --clamp-to-limits", "3 0\n-5 7\n0 -1\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const Run atLimits = runCheck(s, "--robot " + robot + " --scene " + scene, "2 0\n-2 1\n0 -1\n");
+  BOOST_TEST(r.out == atLimits.out);
+  BOOST_TEST(r.err.find("deepcheck check: warning: values clamped to the joint limits of 'lift', 'slide'\n") !=
+                 std::string::npos,
+             r.err);
+  BOOST_TEST(r.err.find("warning") == r.err.rfind("warning"), r.err);
+  BOOST_TEST(atLimits.err.find("warning") == std::string::npos, atLimits.err);
+  // A continuous joint has no limits: any value is taken as it is.
+  const std::string wheel = s.write(
+      "wheel.urdf",
+      "<robot name='wheel'><link name='base'/>"
+      "<link name='rim'><collision><origin xyz='1 0 0'/><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+      "<joint name='spin' type='continuous'><parent link='base'/><child link='rim'/><axis xyz='0 0 1'/></joint></robot>");
+  r = runCheck(s, "--robot " + wheel + " --scene " + scene, "7\n-12.5\n");
+  BOOST_TEST(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("warning") == std::string::npos, r.err);
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_and_command_lines) {
   Scratch s;
   const std::string robot = s.write("slider.urdf", kRobot);

@@ -139,6 +139,27 @@ BOOST_AUTO_TEST_CASE(bad_command_lines_and_inputs_are_named) {
   BOOST_TEST(r.status == 2);
 }
 
+BOOST_AUTO_TEST_CASE(clamp_to_limits_clamps_the_start_and_warns_once) {
+  // joint7 at -3.1, below its lower limit -3.05433: refused, naming the limits; clamped with the
+  // option, the path then starting at the limit.
+  Scratch scratch;
+  const std::string out = scratch.path("path.txt");
+  const std::string start = " --start 0 -0.4 0 -1.6 0 1.2 -3.1";
+  Run r = plan(scratch, kWorld + start + kGoal + " --out " + quote(out));
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("(limits [-3.05433, 3.05433] rad); --clamp-to-limits clamps it") != std::string::npos, r.err);
+  r = plan(scratch, kWorld + start + kGoal + " --clamp-to-limits --seed 3 --time 10 --out " + quote(out));
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("deepcheck plan: warning: values clamped to the joint limits of 'joint7'\n") != std::string::npos,
+             r.err);
+  BOOST_TEST(r.err.find("warning") == r.err.rfind("warning"), r.err);  // one line
+  std::ifstream in(out);
+  std::vector<double> first(7);
+  for (double& v : first) in >> v;
+  const robots::RobotModel arm = armInTheShelf()->robot();
+  BOOST_TEST(first[6] == arm.lowerLimits()[6]);
+}
+
 BOOST_AUTO_TEST_CASE(a_repaired_start_gets_the_margin_and_the_report_splits_scene_and_self_clearance) {
   // The shelf goal turned about joint 1 until the hand is 2 to 10 mm into the compartment's wall.
   const std::unique_ptr<checker::World> armWorld = armInTheShelf();
