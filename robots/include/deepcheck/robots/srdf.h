@@ -38,6 +38,11 @@ DisableReason parseDisableReason(const std::string& text);
 
 /// One disabled pair, by link name. Pairs are unordered: (A, B) and (B, A) are the same pair.
 struct DisabledPair {
+  DisabledPair() = default;
+  DisabledPair(std::string link1, std::string link2, DisableReason reason = DisableReason::Unspecified,
+               std::string reasonText = "")
+      : link1(std::move(link1)), link2(std::move(link2)), reason(reason), reasonText(std::move(reasonText)) {}
+
   std::string link1;
   std::string link2;
   DisableReason reason = DisableReason::Unspecified;
