@@ -73,6 +73,7 @@ int run(std::vector<std::string> args) {
   checker::World world = loadWorld(worldArgs);
   const std::vector<Eigen::VectorXd> configurations = readConfigurations(std::cin, world.robot(), &limits);
   std::fputs(world.summary().c_str(), stderr);
+  warnVisualOnlyLinks("check", world.robot());
   warnClamped("check", limits);
 
   // Two pruned searches, one per kind of pair; the overall minimum is the smaller.

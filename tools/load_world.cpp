@@ -38,12 +38,35 @@ void applyJointLimits(const robots::RobotModel& robot, Eigen::VectorXd& q, const
   }
 }
 
+namespace {
+
+/// 'a', 'b', 'c'
+template <class Names>
+std::string quotedNames(const Names& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "'" : ", '") + name + "'";
+  return text;
+}
+
+}  // namespace
+
 void warnClamped(const std::string& subcommand, const JointLimitPolicy& policy) {
   if (policy.clamped.empty()) return;
-  std::string names;
-  for (const std::string& name : policy.clamped) names += (names.empty() ? "'" : ", '") + name + "'";
   std::fprintf(stderr, "deepcheck %s: warning: values clamped to the joint limits of %s\n", subcommand.c_str(),
-               names.c_str());
+               quotedNames(policy.clamped).c_str());
+}
+
+void warnVisualOnlyLinks(const std::string& subcommand, const robots::RobotModel& robot) {
+  std::vector<std::string> visualOnly;
+  bool anyCollision = false;
+  for (const robots::Link& link : robot.links()) {
+    anyCollision = anyCollision || !link.collisions.empty();
+    if (link.hasVisual && link.collisions.empty()) visualOnly.push_back(link.name);
+  }
+  if (visualOnly.empty()) return;
+  std::fprintf(stderr, "deepcheck %s: warning: robot '%s'%s: links with <visual> but no <collision> geometry, "
+               "not checked: %s\n", subcommand.c_str(), robot.name().c_str(),
+               anyCollision ? "" : " has no collision geometry at all", quotedNames(visualOnly).c_str());
 }
 
 std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot,

@@ -69,6 +69,11 @@ void applyJointLimits(const robots::RobotModel& robot, Eigen::VectorXd& q, const
 /// when none was clamped.
 void warnClamped(const std::string& subcommand, const JointLimitPolicy& policy);
 
+/// One line on stderr, "deepcheck <subcommand>: warning: ...", naming the robot's links that have
+/// a <visual> but no <collision> element: the checker cannot see them, so a robot drawn only with
+/// visuals would be found free everywhere. Nothing when there is no such link.
+void warnVisualOnlyLinks(const std::string& subcommand, const robots::RobotModel& robot);
+
 /// Configurations, one per line (joint values in the robot's variable order; '#' comments and
 /// blank lines skipped), each taken within the joint limits by `limits` when given (a path file
 /// is read as written); throws InputError naming the line (a bad number, a wrong count, a value

@@ -497,6 +497,7 @@ int run(std::vector<std::string> args) {
   // The planner first: an unknown name is reported before any work.
   const auto planner = planners::makePlanner(a.plannerName, ss->getSpaceInformation());
   std::fprintf(stderr, "%s", planners::validityCheckerOf(*ss)->world().summary().c_str());
+  warnVisualOnlyLinks("plan", planners::validityCheckerOf(*ss)->world().robot());
   takeEndpointsWithinLimits(planners::validityCheckerOf(*ss)->world().robot(), a);
   setStartAndGoal(*ss, a);
   checkOrRepairEndpoints(*ss, a);

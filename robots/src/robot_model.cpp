@@ -19,6 +19,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -88,8 +89,10 @@ class Prepass {
  public:
   Prepass(std::string context, int maxLinks) : context_(std::move(context)), maxLinks_(maxLinks) {}
 
-  /// Returns the cleaned XML text for urdfdom; fills jointOrder (joint name -> position in file).
-  std::string run(const std::string& xml, std::map<std::string, int>& jointOrder) {
+  /// Returns the cleaned XML text for urdfdom; fills jointOrder (joint name -> position in file)
+  /// and visualLinks (the links with a <visual>, which the cleaned text no longer shows).
+  std::string run(const std::string& xml, std::map<std::string, int>& jointOrder,
+                  std::set<std::string>& visualLinks) {
     TiXmlDocument doc;
     parseXml(doc, xml, context_);
     TiXmlElement* robot = doc.RootElement();
@@ -102,6 +105,7 @@ class Prepass {
     for (TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
       const std::string tag = e->Value();
       if (tag == "link") {
+        if (e->FirstChildElement("visual") != nullptr) visualLinks.insert(attribute(*e, "name"));
         checkLink(*e);
       } else if (tag == "joint") {
         checkJoint(*e);
@@ -576,7 +580,8 @@ RobotModel RobotModel::fromUrdfString(const std::string& xml, const std::string&
   const std::string context = "URDF " + inQuotes(model.source_);
 
   std::map<std::string, int> jointOrder;
-  const std::string cleaned = Prepass(context, options.maxLinks).run(xml, jointOrder);
+  std::set<std::string> visualLinks;
+  const std::string cleaned = Prepass(context, options.maxLinks).run(xml, jointOrder, visualLinks);
   std::string errors;
   const urdf::ModelInterfaceSharedPtr urdf = parseWithUrdfdom(cleaned, errors);
   if (!urdf) {
@@ -584,6 +589,7 @@ RobotModel RobotModel::fromUrdfString(const std::string& xml, const std::string&
                                 (errors.empty() ? std::string("(no message)") : errors));
   }
   UrdfBuilder(model, *urdf, jointOrder, context, baseDirectory, options).build();
+  for (Link& link : model.links_) link.hasVisual = visualLinks.count(link.name) > 0;
   return model;
 }
 

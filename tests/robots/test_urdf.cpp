@@ -325,6 +325,22 @@ BOOST_AUTO_TEST_CASE(mimic_chain_resolved) {
   BOOST_TEST(X_WL[m.linkIndex("c")].isApprox(X, 1e-14));
 }
 
+BOOST_AUTO_TEST_CASE(links_with_visuals_are_marked) {
+  // The visual's contents are not read (a missing mesh is fine); only that it is there.
+  const RobotModel m = RobotModel::fromUrdfString(
+      R"(<robot name="v"><link name="drawn"><visual><geometry><mesh filename="missing.stl"/></geometry></visual></link>
+      <link name="both"><visual><geometry><box size="1 1 1"/></geometry></visual>
+        <collision><geometry><box size="1 1 1"/></geometry></collision></link>
+      <link name="bare"/>
+      <joint name="a" type="fixed"><parent link="drawn"/><child link="both"/></joint>
+      <joint name="b" type="fixed"><parent link="drawn"/><child link="bare"/></joint></robot>)",
+      "", rootsOnly({}));
+  BOOST_TEST(m.link(m.linkIndex("drawn")).hasVisual);
+  BOOST_TEST(m.link(m.linkIndex("drawn")).collisions.empty());
+  BOOST_TEST(m.link(m.linkIndex("both")).hasVisual);
+  BOOST_TEST(!m.link(m.linkIndex("bare")).hasVisual);
+}
+
 BOOST_AUTO_TEST_CASE(continuous_joint_limits) {
   const RobotModel m = RobotModel::fromUrdfString(
       oneJointUrdf("continuous", R"(<axis xyz="0 0 2"/>)"), "", rootsOnly({}));

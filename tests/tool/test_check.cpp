@@ -192,6 +192,40 @@ BOOST_AUTO_TEST_CASE(values_outside_the_joint_limits) {
   BOOST_TEST(r.err.find("warning") == std::string::npos, r.err);
 }
 
+BOOST_AUTO_TEST_CASE(links_with_visual_but_no_collision_geometry) {
+  Scratch s;
+  const std::string scene = s.write("room.urdf", kScene);
+  // Drawn with visuals only: free everywhere, so the links are named in one warning line.
+  const std::string drawn = s.write(
+      "drawn.urdf",
+      "<robot name='drawn'><link name='base'><visual><geometry><box size='1 1 1'/></geometry></visual></link>"
+      "<link name='arm'><visual><geometry><box size='0.2 0.2 0.2'/></geometry></visual></link>"
+      "<joint name='slide' type='prismatic'><parent link='base'/><child link='arm'/><axis xyz='1 0 0'/>"
+      "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
+  Run r = runCheck(s, "--robot " + drawn + " --scene " + scene, "0.7\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("deepcheck check: warning: robot 'drawn' has no collision geometry at all: links with "
+                        "<visual> but no <collision> geometry, not checked: 'base', 'arm'\n") != std::string::npos,
+             r.err);
+  BOOST_TEST(r.err.find("warning") == r.err.rfind("warning"), r.err);
+  // Some links with collision geometry: only the visual-only ones are named.
+  const std::string half = s.write(
+      "half.urdf",
+      "<robot name='half'><link name='base'><visual><geometry><box size='1 1 1'/></geometry></visual></link>"
+      "<link name='arm'><visual><geometry><box size='0.2 0.2 0.2'/></geometry></visual>"
+      "<collision><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+      "<joint name='slide' type='prismatic'><parent link='base'/><child link='arm'/><axis xyz='1 0 0'/>"
+      "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
+  r = runCheck(s, "--robot " + half + " --scene " + scene, "0\n");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("deepcheck check: warning: robot 'half': links with <visual> but no <collision> geometry, "
+                        "not checked: 'base'\n") != std::string::npos,
+             r.err);
+  // Collision geometry everywhere: no warning.
+  r = runCheck(s, "--robot " + s.write("slider.urdf", kRobot) + " --scene " + scene, "0 0\n");
+  BOOST_TEST(r.err.find("warning") == std::string::npos, r.err);
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_and_command_lines) {
   Scratch s;
   const std::string robot = s.write("slider.urdf", kRobot);

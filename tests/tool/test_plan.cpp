@@ -160,6 +160,22 @@ BOOST_AUTO_TEST_CASE(clamp_to_limits_clamps_the_start_and_warns_once) {
   BOOST_TEST(first[6] == arm.lowerLimits()[6]);
 }
 
+BOOST_AUTO_TEST_CASE(a_robot_drawn_with_visuals_only_is_named_in_a_warning) {
+  // No collision geometry: every path is free, which the warning line says is not a finding.
+  Scratch scratch;
+  const std::string robot = scratch.write(
+      "drawn.urdf",
+      "<robot name='drawn'><link name='base'/><link name='arm'><visual><geometry><box size='0.2 0.2 0.2'/></geometry>"
+      "</visual></link><joint name='slide' type='prismatic'><parent link='base'/><child link='arm'/>"
+      "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
+  const Run r = plan(scratch, " --robot " + quote(robot) + " --start 0 --goal 1 --seed 1 --out " +
+                                  quote(scratch.path("path.txt")));
+  BOOST_TEST(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("deepcheck plan: warning: robot 'drawn' has no collision geometry at all: links with "
+                        "<visual> but no <collision> geometry, not checked: 'arm'\n") != std::string::npos,
+             r.err);
+}
+
 BOOST_AUTO_TEST_CASE(a_repaired_start_gets_the_margin_and_the_report_splits_scene_and_self_clearance) {
   // The shelf goal turned about joint 1 until the hand is 2 to 10 mm into the compartment's wall.
   const std::unique_ptr<checker::World> armWorld = armInTheShelf();

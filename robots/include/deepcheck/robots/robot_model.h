@@ -5,7 +5,8 @@
 // Loading. The URDF is read with TinyXML first (malformed XML is reported with its line and
 // column; every number of an <origin>, <axis>, <limit>, <mimic> and of the collision geometry is
 // checked to be finite; <visual> and <inertial> blocks are dropped unread, so a broken or missing
-// visual mesh never matters), then handed to urdfdom. Only <collision> elements are used; a link
+// visual mesh never matters; only whether a link has a <visual> is kept, Link::hasVisual), then
+// handed to urdfdom. Only <collision> elements are used; a link
 // may have several. Mesh URIs are resolved at load time (package_path.h); the meshes themselves
 // are read later, by collision_geometry.h.
 //
@@ -107,6 +108,9 @@ struct Link {
   int parentLink = -1;           ///< (-1 for the root)
   std::vector<int> childJoints;  ///< in URDF order
   std::vector<CollisionElement> collisions;
+  /// The URDF link has a <visual> element (its contents are not read). A link with a visual but
+  /// no collision element is invisible to the checker, which callers may want to say.
+  bool hasVisual = false;
 };
 
 struct Joint {
