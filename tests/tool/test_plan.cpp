@@ -160,6 +160,24 @@ BOOST_AUTO_TEST_CASE(clamp_to_limits_clamps_the_start_and_warns_once) {
   BOOST_TEST(first[6] == arm.lowerLimits()[6]);
 }
 
+BOOST_AUTO_TEST_CASE(a_continuous_joint_takes_any_angle) {
+  // No limits to refuse: 7 rad is planned from as the same angle in [-pi, pi], without a warning.
+  Scratch scratch;
+  const std::string robot = scratch.write(
+      "wheel.urdf",
+      "<robot name='wheel'><link name='base'/><link name='rim'><collision><origin xyz='1 0 0'/><geometry>"
+      "<box size='0.2 0.2 0.2'/></geometry></collision></link><joint name='spin' type='continuous'>"
+      "<parent link='base'/><child link='rim'/><axis xyz='0 0 1'/></joint></robot>");
+  const std::string out = scratch.path("path.txt");
+  const Run r = plan(scratch, " --robot " + quote(robot) + " --start 7 --goal 0 --seed 1 --out " + quote(out));
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.err.find("warning") == std::string::npos, r.err);
+  std::ifstream in(out);
+  double first = 0.0;
+  in >> first;
+  BOOST_TEST(std::abs(first - (7.0 - 2.0 * M_PI)) < 1e-12);
+}
+
 BOOST_AUTO_TEST_CASE(a_robot_drawn_with_visuals_only_is_named_in_a_warning) {
   // No collision geometry: every path is free, which the warning line says is not a finding.
   Scratch scratch;
