@@ -7,14 +7,14 @@
 // load must never throw; an entry it accepts must hold finite vertices, triangle indices within
 // their piece, and convex pieces that become polytopes.
 
+#include "harness_support.h"
+
 #include "deepcheck/robots/decomposition_cache.h"
 
 #include <unistd.h>
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -41,9 +41,7 @@ const robots::DecompositionCache& cache() {
 }
 
 void require(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "DecompositionCache::load accepted an entry with %s\n", what);
-  std::abort();
+  deepcheck::fuzz::require(ok, "DecompositionCache::load accepted an entry with", what);
 }
 
 }  // namespace

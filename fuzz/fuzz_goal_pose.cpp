@@ -5,29 +5,20 @@
 
 #include "common.h"
 #include "goal_pose.h"
+#include "harness_support.h"
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <vector>
 
 namespace {
 
-void require(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "takeGoalPose accepted a goal with %s\n", what);
-  std::abort();
-}
+using deepcheck::fuzz::rigid;
 
-bool rigid(const Eigen::Isometry3d& X) {
-  const Eigen::Matrix3d R = X.linear();
-  return X.matrix().allFinite() && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 &&
-         std::abs(R.determinant() - 1.0) < 1e-9;
-}
+void require(bool ok, const char* what) { deepcheck::fuzz::require(ok, "takeGoalPose accepted a goal with", what); }
 
 }  // namespace
 

@@ -6,6 +6,8 @@
 // (the readers' documented error), never a crash or another exception (a yaml-cpp exception
 // escaping included); what is accepted must be finite, rigid and within the arm's limits.
 
+#include "harness_support.h"
+
 #include "deepcheck/planners/problem_generation.h"
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/robot_model.h"
@@ -13,8 +15,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -25,16 +25,7 @@ namespace {
 namespace planners = deepcheck::planners;
 namespace robots = deepcheck::robots;
 
-const robots::RobotModel& arm() {
-  static const robots::RobotModel model = [] {
-    robots::LoadOptions options;
-    options.packageRoots = {DEEPCHECK_SOURCE_DIR "/robots/data"};
-    options.useRosPackagePath = false;
-    return robots::RobotModel::fromUrdfFile(DEEPCHECK_SOURCE_DIR "/robots/data/deepcheck_arm/urdf/deepcheck_arm.urdf",
-                                            options);
-  }();
-  return model;
-}
+const robots::RobotModel& arm() { return deepcheck::fuzz::bundledArm(); }
 
 /// Objects "box" and "can" on the arm's base link.
 const robots::PlanningScene& scene() {
@@ -49,17 +40,9 @@ const robots::PlanningScene& scene() {
   return s;
 }
 
-void require(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "problem files: %s\n", what);
-  std::abort();
-}
+using deepcheck::fuzz::rigid;
 
-bool rigid(const Eigen::Isometry3d& X) {
-  const Eigen::Matrix3d R = X.linear();
-  return X.matrix().allFinite() && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 &&
-         std::abs(R.determinant() - 1.0) < 1e-9;
-}
+void require(bool ok, const char* what) { deepcheck::fuzz::require(ok, "problem files", what); }
 
 void variations(const std::string& yaml, std::size_t seed) {
   std::vector<planners::SceneVariation> v;

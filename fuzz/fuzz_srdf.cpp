@@ -5,6 +5,8 @@
 // by forward kinematics. Bad input must end in std::invalid_argument naming the problem (the
 // readers' documented error), never a crash or another exception.
 
+#include "harness_support.h"
+
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/planning_group.h"
@@ -13,8 +15,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,16 +23,7 @@ namespace {
 
 namespace robots = deepcheck::robots;
 
-const robots::RobotModel& arm() {
-  static const robots::RobotModel model = [] {
-    robots::LoadOptions options;
-    options.packageRoots = {DEEPCHECK_SOURCE_DIR "/robots/data"};
-    options.useRosPackagePath = false;
-    return robots::RobotModel::fromUrdfFile(DEEPCHECK_SOURCE_DIR "/robots/data/deepcheck_arm/urdf/deepcheck_arm.urdf",
-                                            options);
-  }();
-  return model;
-}
+const robots::RobotModel& arm() { return deepcheck::fuzz::bundledArm(); }
 
 void disabledPairs(const std::string& xml) {
   std::vector<robots::DisabledPair> pairs;
@@ -48,10 +39,7 @@ void disabledPairs(const std::string& xml) {
   for (std::size_t i = 0; same && i < pairs.size(); ++i) {
     same = again[i].link1 == pairs[i].link1 && again[i].link2 == pairs[i].link2 && again[i].reason == pairs[i].reason;
   }
-  if (!same) {
-    std::fprintf(stderr, "srdfText does not read back as the pairs it was given\n");
-    std::abort();
-  }
+  deepcheck::fuzz::require(same, "srdfText", "does not read back as the pairs it was given");
   try {
     robots::checkDisabledPairs(arm(), pairs, "fuzz.srdf");
   } catch (const std::invalid_argument&) {
