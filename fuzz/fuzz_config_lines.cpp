@@ -7,6 +7,7 @@
 // UsageError/InputError (or the library's std::invalid_argument), never a crash.
 
 #include "common.h"
+#include "harness_support.h"
 #include "load_world.h"
 
 #include "deepcheck/robots/kinematics.h"
@@ -24,16 +25,7 @@ namespace {
 
 using namespace deepcheck::tools;
 
-const deepcheck::robots::RobotModel& arm() {
-  static const deepcheck::robots::RobotModel model = [] {
-    deepcheck::robots::LoadOptions options;
-    options.packageRoots = {DEEPCHECK_SOURCE_DIR "/robots/data"};
-    options.useRosPackagePath = false;
-    return deepcheck::robots::RobotModel::fromUrdfFile(
-        DEEPCHECK_SOURCE_DIR "/robots/data/deepcheck_arm/urdf/deepcheck_arm.urdf", options);
-  }();
-  return model;
-}
+const deepcheck::robots::RobotModel& arm() { return deepcheck::fuzz::bundledArm(); }
 
 /// The bundled arm with the --lock joints held, posed at its default configuration.
 void lockJoints(const std::map<std::string, double>& locks) {

@@ -6,6 +6,8 @@
 // resolved against a folder that does not exist and no package root is searched, so no mesh
 // file is found or opened.
 
+#include "harness_support.h"
+
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/robot_model.h"
 
@@ -33,11 +35,7 @@ const deepcheck::robots::RobotModel& robot() {
   return model;
 }
 
-bool rigid(const Eigen::Isometry3d& X) {
-  const Eigen::Matrix3d R = X.linear();
-  return X.matrix().allFinite() && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 &&
-         std::abs(R.determinant() - 1.0) < 1e-9;
-}
+using deepcheck::fuzz::rigid;
 
 bool wellFormed(const SceneShape& s) {
   const auto& g = s.geometry;

@@ -17,6 +17,14 @@ namespace deepcheck::planners {
 
 namespace {
 
+/// "a list", "a scalar", ...: what a node is, for messages.
+std::string shapeOf(const YAML::Node& node) {
+  if (node.IsSequence()) return "a list";
+  if (node.IsScalar()) return "a scalar ('" + node.Scalar() + "')";
+  if (node.IsNull()) return "an empty value";
+  return "a map";
+}
+
 /// Reads values of one file; fail() throws "<kind> '<file>', line <n>: <what>".
 struct Reader {
   std::string kind;
@@ -28,6 +36,8 @@ struct Reader {
     throw std::invalid_argument(message + ": " + what);
   }
   YAML::Node required(const YAML::Node& parent, const char* key) const {
+    // yaml-cpp throws YAML::BadSubscript when a scalar is indexed by a key: the file's error instead.
+    if (!parent.IsMap()) fail(parent, std::string("'") + key + "' must be a key of a map, not of " + shapeOf(parent));
     const YAML::Node node = parent[key];
     if (!node.IsDefined()) fail(parent, std::string("missing '") + key + "'");
     return node;
@@ -62,6 +72,18 @@ struct Reader {
     const std::vector<double> v = numbers(node, what, 3);
     if (nonNegative && (v[0] < 0 || v[1] < 0 || v[2] < 0)) fail(node, what + " entries must not be negative");
     return Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+  /// Runs `read` (which reads the nodes of this file): a yaml-cpp exception that escapes it (a
+  /// conversion or subscript the checks above do not foresee) becomes this file's error.
+  template <class Read>
+  auto guarded(Read read) const -> decltype(read()) {
+    try {
+      return read();
+    } catch (const YAML::Exception& e) {
+      std::string message = kind + " '" + source + "'";
+      if (!e.mark.is_null()) message += ", line " + std::to_string(e.mark.line + 1);
+      throw std::invalid_argument(message + ": " + e.msg);
+    }
   }
   YAML::Node parse(const std::string& yaml) const {
     try {
@@ -147,11 +169,13 @@ std::vector<ObjectQuery> readQueries(const Reader& r, const YAML::Node& list, co
 
 std::vector<SceneVariation> parseSceneVariations(const std::string& yaml, const std::string& sourceName) {
   const Reader r{"variation file", sourceName};
-  const YAML::Node root = r.parse(yaml);
-  if (!root.IsSequence()) r.fail(root, "the file must be a list of variations");
-  std::vector<SceneVariation> out;
-  for (const YAML::Node& node : root) out.push_back(readVariation(r, node));
-  return out;
+  return r.guarded([&] {
+    const YAML::Node root = r.parse(yaml);
+    if (!root.IsSequence()) r.fail(root, "the file must be a list of variations");
+    std::vector<SceneVariation> out;
+    for (const YAML::Node& node : root) out.push_back(readVariation(r, node));
+    return out;
+  });
 }
 
 std::vector<SceneVariation> loadSceneVariations(const std::string& path) {
@@ -160,41 +184,45 @@ std::vector<SceneVariation> loadSceneVariations(const std::string& path) {
 
 QuerySet parseQueries(const std::string& yaml, const std::string& sourceName) {
   const Reader r{"query file", sourceName};
-  const YAML::Node root = r.parse(yaml);
-  if (!root.IsMap()) r.fail(root, "the file must be a map with goal_queries (and start_queries)");
-  QuerySet set;
-  set.source = sourceName;
-  for (const auto& kv : root) {
-    const std::string key = kv.first.Scalar();
-    if (key == "goal_queries") {
-      set.goal = readQueries(r, kv.second, "goal_queries");
-    } else if (key == "start_queries") {
-      set.start = readQueries(r, kv.second, "start_queries");
-    } else {
-      r.fail(kv.first, "unknown key '" + key + "' (goal_queries, start_queries)");
+  return r.guarded([&] {
+    const YAML::Node root = r.parse(yaml);
+    if (!root.IsMap()) r.fail(root, "the file must be a map with goal_queries (and start_queries)");
+    QuerySet set;
+    set.source = sourceName;
+    for (const auto& kv : root) {
+      const std::string key = kv.first.Scalar();
+      if (key == "goal_queries") {
+        set.goal = readQueries(r, kv.second, "goal_queries");
+      } else if (key == "start_queries") {
+        set.start = readQueries(r, kv.second, "start_queries");
+      } else {
+        r.fail(kv.first, "unknown key '" + key + "' (goal_queries, start_queries)");
+      }
     }
-  }
-  if (set.goal.empty()) r.fail(root, "no goal query: 'goal_queries' is missing or empty");
-  return set;
+    if (set.goal.empty()) r.fail(root, "no goal query: 'goal_queries' is missing or empty");
+    return set;
+  });
 }
 
 QuerySet loadQueries(const std::string& path) { return parseQueries(readFile(path, "query file"), path); }
 
 RobotConfig parseRobotConfig(const std::string& yaml, const std::string& sourceName) {
   const Reader r{"robot configuration", sourceName};
-  const YAML::Node root = r.parse(yaml);
-  if (!root.IsMap()) r.fail(root, "the file must be a map");
-  RobotConfig c;
-  c.source = sourceName;
-  if (root["urdf"].IsDefined()) c.urdf = r.text(root["urdf"], "urdf");
-  if (root["srdf"].IsDefined()) c.srdf = r.text(root["srdf"], "srdf");
-  const YAML::Node state = r.required(root, "robot_state");
-  c.line = state.Mark().line + 1;
-  const YAML::Node joints = r.required(state, "joint_state");
-  const YAML::Node names = r.required(joints, "name");
-  c.jointNames = r.texts(names, "joint_state name");
-  c.jointPositions = r.numbers(r.required(joints, "position"), "joint_state position", c.jointNames.size());
-  return c;
+  return r.guarded([&] {
+    const YAML::Node root = r.parse(yaml);
+    if (!root.IsMap()) r.fail(root, "the file must be a map");
+    RobotConfig c;
+    c.source = sourceName;
+    if (root["urdf"].IsDefined()) c.urdf = r.text(root["urdf"], "urdf");
+    if (root["srdf"].IsDefined()) c.srdf = r.text(root["srdf"], "srdf");
+    const YAML::Node state = r.required(root, "robot_state");
+    c.line = state.Mark().line + 1;
+    const YAML::Node joints = r.required(state, "joint_state");
+    const YAML::Node names = r.required(joints, "name");
+    c.jointNames = r.texts(names, "joint_state name");
+    c.jointPositions = r.numbers(r.required(joints, "position"), "joint_state position", c.jointNames.size());
+    return c;
+  });
 }
 
 RobotConfig loadRobotConfig(const std::string& path) {

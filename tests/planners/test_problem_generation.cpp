@@ -128,6 +128,19 @@ BOOST_AUTO_TEST_CASE(bad_files_name_file_line_and_value) {
               "robot configuration 'r.yaml', line 4: joint_state position must be a list of 2 numbers");
 }
 
+BOOST_AUTO_TEST_CASE(bad_structure_is_the_files_error) {
+  // A key looked up in a scalar or a list (yaml-cpp's BadSubscript) is an error naming the file.
+  checkThrows([] { parseRobotConfig("robot_state: 3\n", "r.yaml"); },
+              "robot configuration 'r.yaml', line 1: 'joint_state' must be a key of a map, not of a scalar ('3')");
+  checkThrows([] { parseRobotConfig("robot_state:\n  joint_state: [a, b]\n", "r.yaml"); },
+              "robot configuration 'r.yaml', line 2: 'name' must be a key of a map, not of a list");
+  checkThrows([] { parseQueries("goal_queries:\n  - objects: [a]\n    tag: F\n    offset: x\n", "q.yaml"); },
+              "query file 'q.yaml', line 4: 'position' must be a key of a map, not of a scalar ('x')");
+  checkThrows([] { parseRobotConfig("robot_state:\n", "r.yaml"); }, "robot configuration 'r.yaml'");
+  checkThrows([] { parseRobotConfig("urdf: a\nrobot_state: {joint_state: {name: [j], position: [[1]]}}\n", "r.yaml"); },
+              "robot configuration 'r.yaml', line 2: joint_state position entry must be a number");
+}
+
 BOOST_AUTO_TEST_CASE(variation_moves_world_and_objects) {
   robots::PlanningScene s = robots::parsePlanningScene(
       "world:\n  collision_objects:\n"

@@ -180,6 +180,10 @@ BOOST_AUTO_TEST_CASE(bad_pose_goals_are_reported) {
   // 5 m away: out of reach; the best attempt's error is reported.
   fails(" --goal-pose flange 5 0 0.5 0 0 0 1", 1,
         "no inverse kinematics solution for link 'flange' reaches the goal pose: the best attempt is ");
+  // A quaternion component beyond 1e154 (its square overflows) still gives a direction: the
+  // pose is accepted (w = 1e200: the identity) and only found out of reach.
+  fails(" --goal-pose flange 5 0 0.5 0 0 0 1e200", 1,
+        "no inverse kinematics solution for link 'flange' reaches the goal pose: the best attempt is ");
   // 5 m away with a 10 cm box: the report names the box.
   fails(" --goal-pose flange 5 0 0.5 0 0 0 1 --position-box 0.1 0.1 0.1", 1, "(tolerances box 0.1 0.1 0.1 m, 0.001 rad)");
   // Inside the crate: reachable, but only in collision.
