@@ -124,17 +124,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const bool valid = checker.isValid(state.get());
   require(inside || !valid, "a state outside the limits or not finite is valid");
   double dist = 0.0;
-  double clearance = 0.0;
-  bool validWithDistance = false;
-  try {
-    validWithDistance = checker.isValid(state.get(), dist);
-    clearance = checker.clearance(state.get());
-  } catch (const std::invalid_argument&) {
-    // The overloads that measure the distance run forward kinematics before the limits check,
-    // which throws for a NaN or infinite value (naming the variable) where isValid(state) answers
-    // false; docs/testing.md lists it among the open findings. Any other state must not throw.
-    if (q.allFinite()) throw;
-    return 0;
+  const bool validWithDistance = checker.isValid(state.get(), dist);
+  const double clearance = checker.clearance(state.get());
+  if (!q.allFinite()) {
+    require(dist == -std::numeric_limits<double>::infinity() && clearance == dist,
+            "a state that is not finite has a clearance above -infinity");
   }
   require(valid == validWithDistance, "isValid(state) and isValid(state, dist) disagree");
   if (inside) require(std::isfinite(dist) && std::isfinite(clearance), "a state within the limits has no finite clearance");

@@ -75,9 +75,10 @@ inline int cubeCell(const Vector3d& d, int grid) {
   if (!(m > 0.0 && m <= std::numeric_limits<double>::max())) return -1;
   const double half = 0.5 * grid;
   const double s = half / m;
-  const int iu = std::min(grid - 1, std::max(0, static_cast<int>(u * s + half)));
-  const int iw = std::min(grid - 1, std::max(0, static_cast<int>(w * s + half)));
-  return (face * grid + iu) * grid + iw;
+  // Clamped before the cast (a NaN component gives cell 0): a double out of int's range has no
+  // defined conversion.
+  auto cell = [&](double x) { return x >= 0.0 ? static_cast<int>(std::min(x, grid - 1.0)) : 0; };
+  return (face * grid + cell(u * s + half)) * grid + cell(w * s + half);
 }
 
 }  // namespace

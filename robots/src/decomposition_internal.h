@@ -256,8 +256,10 @@ class CrossSection {
   }
 
   int bucketOf(double v) const {
-    const int b = static_cast<int>((v - vlo_) / width_);
-    return std::clamp(b, 0, static_cast<int>(buckets_.size()) - 1);
+    // Clamped before the cast: a point far off the section (or NaN) has no int bucket index.
+    const double last = static_cast<double>(buckets_.size() - 1);
+    const double b = (v - vlo_) / width_;
+    return b >= 0.0 ? static_cast<int>(std::min(b, last)) : 0;
   }
 
   void buildBuckets();
