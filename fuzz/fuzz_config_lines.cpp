@@ -49,9 +49,9 @@ void parseArguments(const std::string& firstLine) {
     parseValue(takeSingleOption(args, "--time", "5"), "--time");
     parseCount(takeSingleOption(args, "--seed", "0"), "--seed", 0, 4294967295u);
     std::string robot;
-    std::string srdf;
+    std::vector<std::string> srdfs;
     std::vector<SceneArg> scenes;
-    takeWorldOptions(args, robot, scenes, srdf);
+    takeWorldOptions(args, robot, scenes, srdfs);
     const std::map<std::string, double> locks = takeLocks(args);
     rejectUnknownOptions(args);
     lockJoints(locks);
