@@ -232,14 +232,4 @@ BOOST_AUTO_TEST_CASE(lines_only_past_the_quiet_time) {
   silent.update(1);
 }
 
-// A quick world construction prints nothing on its progress stream.
-BOOST_AUTO_TEST_CASE(quick_loads_print_nothing) {
-  std::ostringstream out;
-  WorldOptions options = testWorldOptions();
-  options.progress = &out;
-  World world(armRobot(), options);
-  world.addObstacles({Obstacle::box("b", Eigen::Vector3d::Ones(), translation(2, 0, 0))});
-  BOOST_TEST(out.str().empty());
-}
-
 BOOST_AUTO_TEST_SUITE_END()
