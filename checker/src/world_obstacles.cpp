@@ -158,7 +158,9 @@ int World::addObstacle(const Obstacle& obstacle) { return addObstacles({obstacle
 
 std::vector<int> World::addObstacles(const std::vector<Obstacle>& obstacles) {
   WorldState& st = *state_;
-  // Every obstacle's pieces are made before the world changes: a bad one leaves it as it was.
+  // Under the lock: the decomposer records the geometry excess in state shared by the world's
+  // changes. Every obstacle's pieces are made before the world changes: a bad one leaves it as it was.
+  std::lock_guard<std::mutex> lock(st.mutex);
   std::vector<std::shared_ptr<ObstacleData>> added;
   added.reserve(obstacles.size());
   detail::Progress progress(st.options.progress, "obstacles made into pieces", obstacles.size(),
@@ -173,7 +175,6 @@ std::vector<int> World::addObstacles(const std::vector<Obstacle>& obstacles) {
                                             "obstacle '" + obstacle.name + "'");
     added.push_back(std::move(data));
   }
-  std::lock_guard<std::mutex> lock(st.mutex);
   auto snap = std::make_shared<Snapshot>(*st.current);
   // The pieces of the obstacles already there are kept as they are; only the tree is rebuilt.
   auto pieces = std::make_shared<PieceSet>(*snap->obstaclePieces);
