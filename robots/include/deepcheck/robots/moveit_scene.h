@@ -96,9 +96,31 @@ struct SceneObject {
   int line = 0;                    ///< 1-based line where the object starts
 };
 
+/// Collisions a scene allows (MoveIt's allowed_collision_matrix): names are robot links or
+/// object ids (an attached object's id included).
+struct AllowedCollisions {
+  /// Pairs allowed to touch, each once, as written (entry_names / entry_values set to true).
+  std::vector<std::pair<std::string, std::string>> pairs;
+  /// Names allowed to touch anything (default_entry_names whose default_entry_values is true).
+  std::vector<std::string> always;
+};
+
+/// An object attached to a robot link (robot_state.attached_collision_objects): it moves with
+/// the link and is checked against the scene and the robot's other links, but for touchLinks.
+struct AttachedObject {
+  std::string linkName;  ///< the link it is attached to
+  /// The object; its frameId and X_FO place it at the scene's configuration, and it then keeps
+  /// its pose relative to linkName.
+  SceneObject object;
+  std::vector<std::string> touchLinks;  ///< links it may touch (linkName always may)
+  int line = 0;                         ///< 1-based line where the attached object starts
+};
+
 struct PlanningScene {
   std::string source;  ///< the file (or the name given to parsePlanningScene)
   std::vector<SceneObject> objects;  ///< in file order
+  std::vector<AttachedObject> attached;  ///< in file order
+  AllowedCollisions allowed;
   /// Index of the object called `id`, -1 when there is none.
   int objectIndex(const std::string& id) const;
 };
