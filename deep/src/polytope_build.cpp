@@ -247,14 +247,14 @@ ConvexPolytope ConvexPolytope::fromPoints(const std::vector<Vector3d>& points,
   return PolytopeBuilder(points, name).build();
 }
 
-ConvexPolytope ConvexPolytope::box(const Vector3d& halfExtents) {
+ConvexPolytope ConvexPolytope::box(const Vector3d& size) {
   for (int c = 0; c < 3; ++c) {
-    if (!(std::isfinite(halfExtents[c]) && halfExtents[c] > 0.0)) {
-      throw std::invalid_argument(std::string("box: half extent ") + std::to_string(c) + " (" +
-                                  axisName(c) + ") = " + formatDouble(halfExtents[c]) +
-                                  " must be positive and finite");
+    if (!(std::isfinite(size[c]) && size[c] > 0.0)) {
+      throw std::invalid_argument(std::string("box: size ") + std::to_string(c) + " (" + axisName(c) +
+                                  ") = " + formatDouble(size[c]) + " must be positive and finite");
     }
   }
+  const Vector3d halfExtents = 0.5 * size;
   std::vector<Vector3d> corners;
   for (int i = 0; i < 8; ++i) {
     corners.emplace_back((i & 1) ? halfExtents.x() : -halfExtents.x(),

@@ -86,7 +86,7 @@ CollisionPiece primitivePiece(const Geometry& g, const CollisionGeometryOptions&
         msg << what << ": box size (" << g.boxSize.transpose() << ") must be positive and finite";
         throw std::invalid_argument(msg.str());
       }
-      piece.core = std::make_shared<const deep::ConvexPolytope>(deep::ConvexPolytope::box(0.5 * g.boxSize));
+      piece.core = std::make_shared<const deep::ConvexPolytope>(deep::ConvexPolytope::box(g.boxSize));
       piece.origin = what + " box";
       return piece;
     case GeometryType::Sphere:

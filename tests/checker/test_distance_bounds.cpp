@@ -50,7 +50,7 @@ std::shared_ptr<const deep::ConvexPolytope> randomCore(std::mt19937& rng, int ki
   std::uniform_real_distribution<double> u(0.3, 1.0);
   *radius = 0.0;
   switch (kind) {
-    case 0: return std::make_shared<deep::ConvexPolytope>(deep::ConvexPolytope::box(size * Eigen::Vector3d(u(rng), u(rng), u(rng))));
+    case 0: return std::make_shared<deep::ConvexPolytope>(deep::ConvexPolytope::box(2.0 * size * Eigen::Vector3d(u(rng), u(rng), u(rng))));
     case 1:
       *radius = size;
       return std::make_shared<deep::ConvexPolytope>(deep::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}));

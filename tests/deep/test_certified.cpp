@@ -207,7 +207,7 @@ BOOST_AUTO_TEST_CASE(bracket_contains_the_exact_depth_at_every_cap) {
 // inside the other, stacked boxes: each start has its own path, all exact and certified.
 BOOST_AUTO_TEST_CASE(degenerate_starts) {
   std::mt19937 rng(13);
-  const ConvexPolytope box = ConvexPolytope::box(Vector3d(0.5, 1.0, 1.5));
+  const ConvexPolytope box = ConvexPolytope::box(Vector3d(1.0, 2.0, 3.0));
   const ConvexPolytope blob = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 200, Vector3d(1, 0.5, 0.25)));
   const ConvexPolytope small = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 30, Vector3d(0.1, 0.1, 0.1)));
   struct Case {
@@ -553,7 +553,7 @@ BOOST_AUTO_TEST_CASE(probe_start) {
   }
   BOOST_TEST(tried > 30);
   BOOST_TEST(started >= tried * 9 / 10);
-  const ConvexPolytope box = ConvexPolytope::box(Vector3d(0.5, 1.0, 1.5));
+  const ConvexPolytope box = ConvexPolytope::box(Vector3d(1.0, 2.0, 3.0));
   const Isometry3d I = Isometry3d::Identity();
   CertifiedResult unused;
   BOOST_TEST(!certifiedFromProbes(box, box, PairFrame::make(box, I, box, I), surface, {}, unused));
@@ -574,8 +574,8 @@ BOOST_AUTO_TEST_CASE(start_from_generic_directions) {
   for (int i = 0; i < 120; ++i) {
     const int n = 4 + static_cast<int>(U(rng) * 40);
     const Vector3d semiA(1.0, 0.05 + U(rng), 0.05 + U(rng)), semiB(0.1 + U(rng), 0.05 + U(rng), 0.02 + 0.5 * U(rng));
-    const ConvexPolytope A = i % 3 == 0 ? ConvexPolytope::box(0.5 * semiA) : ConvexPolytope::fromPoints(ellipsoidPoints(rng, n, semiA));
-    const ConvexPolytope B = i % 3 == 1 ? ConvexPolytope::box(0.5 * semiB) : ConvexPolytope::fromPoints(ellipsoidPoints(rng, n, semiB));
+    const ConvexPolytope A = i % 3 == 0 ? ConvexPolytope::box(semiA) : ConvexPolytope::fromPoints(ellipsoidPoints(rng, n, semiA));
+    const ConvexPolytope B = i % 3 == 1 ? ConvexPolytope::box(semiB) : ConvexPolytope::fromPoints(ellipsoidPoints(rng, n, semiB));
     const Isometry3d X_WA = makePose(randomRotation(rng), Vector3d::Zero());
     const Isometry3d X_WB = makePose(randomRotation(rng), 0.3 * U(rng) * randomUnit(rng));
     const PairFrame frame = PairFrame::make(A, X_WA, B, X_WB);
@@ -614,8 +614,8 @@ double beyondFaces(const ConvexPolytope& P, const Isometry3d& X_WP, const Vector
 // both boxes' boundaries; warm and swapped queries agree.
 BOOST_AUTO_TEST_CASE(parallel_faces_named_without_a_walk) {
   std::mt19937 rng(31);
-  const ConvexPolytope A = ConvexPolytope::box(Vector3d(0.5, 1.0, 1.5));
-  const ConvexPolytope B = ConvexPolytope::box(Vector3d(0.4, 0.3, 0.6));
+  const ConvexPolytope A = ConvexPolytope::box(Vector3d(1.0, 2.0, 3.0));
+  const ConvexPolytope B = ConvexPolytope::box(Vector3d(0.8, 0.6, 1.2));
   const Quaterniond quarter(Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ()));
   const Quaterniond R = randomRotation(rng);
   const Vector3d far(1e4, -1e4, 1e4);

@@ -266,7 +266,7 @@ SignedDistanceResult expectExact(const ConvexPolytope& A, const Isometry3d& X_WA
   return r;
 }
 
-ConvexPolytope boxOf(double hx, double hy, double hz) { return ConvexPolytope::box(Vector3d(hx, hy, hz)); }
+ConvexPolytope boxOf(double hx, double hy, double hz) { return ConvexPolytope::box(2.0 * Vector3d(hx, hy, hz)); }
 
 Isometry3d poseRt(const Eigen::Matrix3d& R, const Vector3d& t) {
   Isometry3d X = Isometry3d::Identity();

@@ -113,8 +113,8 @@ BOOST_AUTO_TEST_CASE(axis_aligned_boxes_match_analytic) {
     const Eigen::Vector3d hA(ext(rng), ext(rng), ext(rng));
     const Eigen::Vector3d hB(ext(rng), ext(rng), ext(rng));
     const Eigen::Vector3d t(off(rng), off(rng), off(rng));
-    const ConvexPolytope A = ConvexPolytope::box(hA);
-    const ConvexPolytope B = ConvexPolytope::box(hB);
+    const ConvexPolytope A = ConvexPolytope::box(2.0 * hA);
+    const ConvexPolytope B = ConvexPolytope::box(2.0 * hB);
     double sd = 0.0;
     Eigen::Vector3d n;
     boxBoxAnalytic(hA, hB, t, sd, n);
@@ -134,8 +134,8 @@ BOOST_AUTO_TEST_CASE(rotated_boxes_match_analytic) {
   std::uniform_real_distribution<double> off(-1.0, 1.0);
   const Eigen::Vector3d hA(1.0 / 3.0, 0.5, 0.7);
   const Eigen::Vector3d hB(0.2, 1.0 / 7.0, 0.45);
-  const ConvexPolytope A = ConvexPolytope::box(hA);
-  const ConvexPolytope B = ConvexPolytope::box(hB);
+  const ConvexPolytope A = ConvexPolytope::box(2.0 * hA);
+  const ConvexPolytope B = ConvexPolytope::box(2.0 * hB);
   for (int k = 0; k < 100; ++k) {
     const Eigen::Vector3d t(off(rng), off(rng), off(rng));
     double sd = 0.0;
@@ -154,7 +154,7 @@ BOOST_AUTO_TEST_CASE(rotated_boxes_match_analytic) {
 
 BOOST_AUTO_TEST_CASE(touching_boxes_have_zero_distance) {
   const Eigen::Vector3d h(0.3, 1.0 / 3.0, 0.4);
-  const ConvexPolytope A = ConvexPolytope::box(h);
+  const ConvexPolytope A = ConvexPolytope::box(2.0 * h);
   const Eigen::Isometry3d X = pose(Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Quaterniond(
                                        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized())));
   // Face to face, edge to edge, corner to corner.
@@ -185,7 +185,7 @@ BOOST_AUTO_TEST_CASE(spheres_as_point_cores) {
 
 BOOST_AUTO_TEST_CASE(sphere_against_box) {
   const Eigen::Vector3d h(0.5, 0.4, 0.3);
-  const ConvexPolytope box = ConvexPolytope::box(h);
+  const ConvexPolytope box = ConvexPolytope::box(2.0 * h);
   const ConvexPolytope point = ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}, "sphere");
   const double r = 0.2;
   // Centre inside the box, nearest face +y: core depth 0.4 - 0.3 = 0.1.
@@ -253,7 +253,7 @@ BOOST_AUTO_TEST_CASE(coplanar_polygons) {
 }
 
 BOOST_AUTO_TEST_CASE(polygon_penetrating_box) {
-  const ConvexPolytope box = ConvexPolytope::box(Eigen::Vector3d(1.0, 1.0, 0.5));
+  const ConvexPolytope box = ConvexPolytope::box(Eigen::Vector3d(2.0, 2.0, 1.0));
   const ConvexPolytope S = square(0.25);
   // A small square standing upright (normal along x), its lower edge 0.2 into the box's top face.
   const Eigen::Isometry3d X_WS =
@@ -298,7 +298,7 @@ BOOST_AUTO_TEST_CASE(far_from_origin_matches_near_origin) {
   const Eigen::Vector3d far(1e4, -1e4, 1e4);
   for (int k = 0; k < 20; ++k) {
     const ConvexPolytope A = randomHull(rng, 20, Eigen::Vector3d(0.5, 0.4, 0.3));
-    const ConvexPolytope B = ConvexPolytope::box(Eigen::Vector3d(0.3, 0.2, 1.0 / 3.0));
+    const ConvexPolytope B = ConvexPolytope::box(Eigen::Vector3d(0.6, 0.4, 2.0 / 3.0));
     const Eigen::Isometry3d X_WA = pose(Eigen::Vector3d::Zero(), randomRotation(rng));
     const Eigen::Isometry3d X_WB =
         pose(Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
@@ -332,8 +332,8 @@ BOOST_AUTO_TEST_CASE(swap_gives_same_distance_opposite_normal) {
 BOOST_AUTO_TEST_CASE(minkowski_hull_of_boxes_is_a_box) {
   const Eigen::Vector3d hA(0.5, 0.25, 1.0 / 3.0);
   const Eigen::Vector3d hB(0.2, 0.3, 0.1);
-  const ConvexPolytope A = ConvexPolytope::box(hA);
-  const ConvexPolytope B = ConvexPolytope::box(hB);
+  const ConvexPolytope A = ConvexPolytope::box(2.0 * hA);
+  const ConvexPolytope B = ConvexPolytope::box(2.0 * hB);
   const Eigen::Vector3d t(0.1, -0.2, 0.05);
   const PairFrame frame =
       PairFrame::make(A, pose(Eigen::Vector3d::Zero()), B, pose(t));
@@ -360,7 +360,7 @@ BOOST_AUTO_TEST_CASE(minkowski_hull_of_boxes_is_a_box) {
 }
 
 BOOST_AUTO_TEST_CASE(rejects_bad_radii) {
-  const ConvexPolytope A = ConvexPolytope::box(Eigen::Vector3d(1, 1, 1));
+  const ConvexPolytope A = ConvexPolytope::box(Eigen::Vector3d(2, 2, 2));
   const Eigen::Isometry3d X = pose(Eigen::Vector3d::Zero());
   BOOST_CHECK_THROW(exactSignedDistance(A, X, A, X, -0.1, 0.0), std::invalid_argument);
   BOOST_CHECK_THROW(exactSignedDistance(A, X, A, X, 0.0, NAN), std::invalid_argument);

@@ -119,7 +119,7 @@ BOOST_AUTO_TEST_CASE(direction_index_rejects_zero_and_non_finite) {
     BOOST_TEST(s < poly.numVertices());
   }
   // Small hulls are searched by brute force and have no index.
-  const ConvexPolytope box = ConvexPolytope::box(Vector3d(1, 2, 3));
+  const ConvexPolytope box = ConvexPolytope::box(Vector3d(2, 4, 6));
   BOOST_TEST(box.supportStart(Vector3d(1, 1, 1)) == -1);
 }
 
@@ -148,7 +148,7 @@ BOOST_AUTO_TEST_CASE(overlaps_unchecked_equals_overlaps) {
   for (int trial = 0; trial < 3000; ++trial) {
     const ConvexPolytope A = ConvexPolytope::fromPoints(t::ellipsoidPoints(rng, 20 + trial % 150, Vector3d(0.3, 0.2, 0.1)));
     const ConvexPolytope B = trial % 4 == 0
-                                 ? ConvexPolytope::box(Vector3d(0.2, 0.3, 0.05))
+                                 ? ConvexPolytope::box(Vector3d(0.4, 0.6, 0.1))
                                  : ConvexPolytope::fromPoints(t::ellipsoidPoints(rng, 30, Vector3d(0.1, 0.4, 0.2)));
     const double rA = trial % 3 == 0 ? 0.02 : 0.0;
     const double rB = trial % 5 == 0 ? 0.05 : 0.0;

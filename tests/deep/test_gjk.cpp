@@ -423,8 +423,8 @@ BOOST_AUTO_TEST_CASE(degenerate_configurations) {
   }
   // Boxes face to face with a gap of 1/3, sideways offsets, in random common rotations.
   std::mt19937 rng(11);
-  const ConvexPolytope box1 = ConvexPolytope::box(Vector3d(third, 0.5, 0.2));
-  const ConvexPolytope box2 = ConvexPolytope::box(Vector3d(0.7, third, 0.1));
+  const ConvexPolytope box1 = ConvexPolytope::box(Vector3d(2 * third, 1.0, 0.4));
+  const ConvexPolytope box2 = ConvexPolytope::box(Vector3d(1.4, 2 * third, 0.2));
   for (int trial = 0; trial < 40; ++trial) {
     PairFrame frame;
     const Vector3d sideways = trial < 20 ? Vector3d(0, 0.1 * trial / 20.0, 0) : Vector3d(0, 0.1, 0.05);
@@ -491,8 +491,8 @@ BOOST_AUTO_TEST_CASE(near_contact_nearly_parallel) {
       BOOST_TEST(err < 1e-14, "segments: distance " << r.distance << " expected " << d);
     }
     {
-      const ConvexPolytope A = ConvexPolytope::box(Vector3d(1.0, 0.7, 0.3));
-      const ConvexPolytope box = ConvexPolytope::box(Vector3d(0.4, 0.5, 0.2));
+      const ConvexPolytope A = ConvexPolytope::box(Vector3d(2.0, 1.4, 0.6));
+      const ConvexPolytope box = ConvexPolytope::box(Vector3d(0.8, 1.0, 0.4));
       const Eigen::Matrix3d tilt =
           Eigen::AngleAxisd(angle, Vector3d(u(rng), u(rng), 0.0).normalized()).toRotationMatrix();
       const int low = box.supportBruteForce(tilt.transpose() * Vector3d(0, 0, -1));
@@ -535,8 +535,8 @@ BOOST_AUTO_TEST_CASE(overlapping_pairs) {
 
 // Deep overlaps whose supports are symmetric: the origin lands on a lower-dimensional simplex.
 BOOST_AUTO_TEST_CASE(symmetric_deep_overlaps) {
-  const ConvexPolytope box = ConvexPolytope::box(Vector3d(1.0, 1.0, 1.0));
-  const ConvexPolytope flat = ConvexPolytope::box(Vector3d(1.0, 0.5, 0.25));
+  const ConvexPolytope box = ConvexPolytope::box(Vector3d(2.0, 2.0, 2.0));
+  const ConvexPolytope flat = ConvexPolytope::box(Vector3d(2.0, 1.0, 0.5));
   PairFrame same;
   GjkResult r = gjkDistance(box, box, same);
   BOOST_TEST(statusName(r.status) == "Overlapping");
@@ -735,7 +735,7 @@ BOOST_AUTO_TEST_CASE(enclosing_tetrahedron_certifies_overlap_at_nearby_poses) {
   int confirmed = 0, notConfirmed = 0;
   for (int path = 0; path < 12; ++path) {
     const ConvexPolytope A = randomHull(rng, 8 + 15 * path, 1.0, Vector3d::Zero());
-    const ConvexPolytope B = path % 3 == 0 ? ConvexPolytope::box(Vector3d(0.9, 0.4, 0.6))
+    const ConvexPolytope B = path % 3 == 0 ? ConvexPolytope::box(Vector3d(1.8, 0.8, 1.2))
                                            : randomHull(rng, 120 - 9 * path, 0.7, Vector3d::Zero());
     const Vector3d start = randomUnit(rng) * 2.5;
     const Vector3d axis = randomUnit(rng);

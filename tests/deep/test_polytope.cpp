@@ -346,7 +346,7 @@ BOOST_AUTO_TEST_CASE(tetrahedron) {
 BOOST_AUTO_TEST_CASE(box_and_cube_ring_order) {
   std::mt19937 rng(16);
   const Vector3d e(0.5, 1.0 / 3.0, 0.25);
-  const ConvexPolytope box = ConvexPolytope::box(e);
+  const ConvexPolytope box = ConvexPolytope::box(2.0 * e);  // half extents e
   BOOST_TEST(toString(box.kind()) == std::string("Polyhedron"));
   BOOST_TEST(box.numVertices() == 8);
   BOOST_TEST(box.numFaces() == 6);
@@ -531,7 +531,7 @@ BOOST_AUTO_TEST_CASE(duplicates_and_near_duplicates) {
   checkHull(poly, pts, rng, "near duplicates");
   // Same on a box's corners: still a box.
   std::vector<Vector3d> corners;
-  const ConvexPolytope reference = ConvexPolytope::box(Vector3d(1, 2, 3));
+  const ConvexPolytope reference = ConvexPolytope::box(Vector3d(2, 4, 6));
   for (const Vector3d& c : reference.vertices()) {
     for (int k = 0; k < 4; ++k)
       corners.push_back(c + Vector3d(jitter(rng), jitter(rng), jitter(rng)));
@@ -672,7 +672,7 @@ BOOST_AUTO_TEST_CASE(pair_frame_maps_vertices) {
 }
 
 BOOST_AUTO_TEST_CASE(pair_frame_rejects_bad_poses) {
-  const ConvexPolytope A = ConvexPolytope::box(Vector3d(0.5, 0.5, 0.5));
+  const ConvexPolytope A = ConvexPolytope::box(Vector3d(1, 1, 1));
   Eigen::Isometry3d good = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d bad = Eigen::Isometry3d::Identity();
   bad.translation().y() = std::numeric_limits<double>::quiet_NaN();

@@ -59,8 +59,9 @@ class ConvexPolytope {
   static ConvexPolytope fromPoints(const std::vector<Eigen::Vector3d>& points,
                                    const std::string& name = "points");
 
-  /// An axis-aligned box centred at the origin with the given half extents (all > 0).
-  static ConvexPolytope box(const Eigen::Vector3d& halfExtents);
+  /// An axis-aligned box centred at the origin. `size`: its full edge lengths along x, y and z
+  /// (all > 0), metres, as a URDF <box size>, a MoveIt box primitive and Obstacle::box take them.
+  static ConvexPolytope box(const Eigen::Vector3d& size);
 
   PolytopeKind kind() const { return kind_; }
   int numVertices() const { return static_cast<int>(vertices_.size()); }

@@ -7,7 +7,7 @@
 // decomposed once per call.
 //
 // Primitives stay primitive (no mesh is made):
-//   box       ConvexPolytope::box(size / 2): 8 vertices, exact.
+//   box       ConvexPolytope::box(size): 8 vertices, exact.
 //   sphere    a Point core with the sphere's radius: exact.
 //   cylinder  a circumscribed prism: a regular N-gon whose edges are tangent to the circle of
 //             radius r (apothem r, so its corners are at r / cos(pi / N)), extruded over the full
