@@ -1,8 +1,10 @@
 // Fuzz harness: a decomposition cache entry (robots/decomposition_cache.h) read by
 // DecompositionCache::load. The first byte picks how the rest becomes the entry's file:
-//   even: the rest is the entry up to its checksum; the harness writes the requested key over
-//         bytes 16..31 (after the magic and the two versions) and appends the FNV-1a checksum,
-//         so that mutations reach the fields behind the checksum and key checks;
+//   even: the rest is the entry up to its checksum; the harness writes the current header (the
+//         magic and the format and algorithm versions, as store() writes them) over bytes 0..15
+//         and the requested key over bytes 16..31, and appends the FNV-1a checksum, so that
+//         mutations reach the fields behind those checks, and the corpus stays valid when a
+//         version is bumped;
 //   odd:  the rest is the whole file, as is (the checks themselves).
 // load must never throw; an entry it accepts must hold finite vertices, triangle indices within
 // their piece, and convex pieces that become polytopes.
@@ -26,7 +28,8 @@ namespace {
 namespace robots = deepcheck::robots;
 
 constexpr char kKey[] = "00112233445566778899aabbccddeeff";
-constexpr std::size_t kKeyOffset = 16;  ///< after "DCKDECMP", the format and the algorithm version
+constexpr std::size_t kHeaderSize = 16;  ///< "DCKDECMP", the format and the algorithm version
+constexpr std::size_t kKeyOffset = kHeaderSize;
 
 std::uint64_t fnv1a(const std::string& bytes) {
   std::uint64_t h = 1469598103934665603ULL;
@@ -40,6 +43,27 @@ const robots::DecompositionCache& cache() {
   return c;
 }
 
+/// The first kHeaderSize bytes of an entry as this build's store() writes it.
+const std::string& currentHeader() {
+  static const std::string header = [] {
+    std::filesystem::create_directories(cache().directory());
+    std::string problem;
+    if (!cache().store(kKey, robots::ConvexDecomposition{}, &problem)) {
+      throw std::runtime_error("fuzz_decomposition_cache: cannot write a reference entry: " + problem);
+    }
+    const std::string path = cache().pathFor(kKey);
+    std::string bytes(kHeaderSize, '\0');
+    std::ifstream in(path, std::ios::binary);
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    std::filesystem::remove(path);
+    if (in.gcount() != static_cast<std::streamsize>(kHeaderSize)) {
+      throw std::runtime_error("fuzz_decomposition_cache: the reference entry is shorter than its header");
+    }
+    return bytes;
+  }();
+  return header;
+}
+
 void require(bool ok, const char* what) {
   deepcheck::fuzz::require(ok, "DecompositionCache::load accepted an entry with", what);
 }
@@ -51,6 +75,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::string entry(reinterpret_cast<const char*>(data + 1), size - 1);
   if (data[0] % 2 == 0) {
     if (entry.size() < kKeyOffset + 16) entry.resize(kKeyOffset + 16, '\0');
+    entry.replace(0, kHeaderSize, currentHeader());
     for (std::size_t i = 0; i < 16; ++i) {
       entry[kKeyOffset + i] = static_cast<char>(std::stoi(std::string(kKey + 2 * i, 2), nullptr, 16));
     }

@@ -6,6 +6,7 @@ fuzz/corpus/ itself to refresh the committed seeds). Deterministic: the same fil
 import math
 import os
 import random
+import re
 import struct
 import sys
 
@@ -94,9 +95,19 @@ put("goal_pose", "pose_box.txt", "--goal-pose hand 0.5 0 0.4 1 1 1 1 --position-
 put("goal_pose", "errors.txt", "--goal-pose hand 0 0 0 0 0 0 0 --position-tol 0 --position-box 1 1\n")
 
 # Decomposition cache entries: first byte 0 (the harness writes the key and the checksum) or 1 (as is).
+# The versions are read from the sources, so that the whole-file seeds pass the version checks.
+def source_constant(path, name):
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", path)) as f:
+        return int(re.search(r"constexpr [a-z:0-9_]+ " + name + r" = (\d+);", f.read()).group(1))
+
+cache_versions = (source_constant("robots/src/decomposition_cache.cpp", "kFormatVersion"),
+                  source_constant("robots/include/deepcheck/robots/decomposition.h", "kDecompositionAlgorithmVersion"))
+
 def entry(pieces):
-    body = b"DCKDECMP" + struct.pack("<II", 2, 4) + bytes.fromhex("00112233445566778899aabbccddeeff")
-    body += struct.pack("<7I", 12, 8, 1, len(pieces), max(len(v) for v, _ in pieces), 0, 0)
+    body = b"DCKDECMP" + struct.pack("<II", *cache_versions) + bytes.fromhex("00112233445566778899aabbccddeeff")
+    # The report: 8 counts (triangles, vertices, components, pieces, most piece vertices, holes
+    # filled, voids removed, duplicates removed), 9 doubles, the flags.
+    body += struct.pack("<8I", 12, 8, 1, len(pieces), max(len(v) for v, _ in pieces), 0, 0, 0)
     body += struct.pack("<9d", 1.7, 0.01, 0.005, 0.003, 0.0, 1.0, 1.0, 1.0, 12.5) + struct.pack("<I", 5)
     body += struct.pack("<I", len(pieces))
     for vertices, triangles in pieces:
