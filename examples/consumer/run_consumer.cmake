@@ -1,13 +1,17 @@
 # The consumer test (tests/CMakeLists.txt): builds this folder's project against deepcheck and runs
 # it. cmake -DMODE=<mode> -DSOURCE_DIR=<deepcheck source> -DBUILD_DIR=<deepcheck build>
-#       -DWORK_DIR=<scratch folder> -DGENERATOR=<generator> -P run_consumer.cmake
-#   MODE=find_package      installs BUILD_DIR into WORK_DIR/prefix (cmake --install), checks that
-#                          the installed package names neither SOURCE_DIR nor BUILD_DIR, and builds
-#                          the consumer with CMAKE_PREFIX_PATH=WORK_DIR/prefix; the program reads
-#                          the installed share/deepcheck.
+#       -DWORK_DIR=<scratch folder> -DGENERATOR=<generator> -DCXX=<C++ compiler> -P run_consumer.cmake
+#   MODE=find_package      installs BUILD_DIR (static libraries, the default) into WORK_DIR/prefix
+#                          (cmake --install), checks that the installed package names neither
+#                          SOURCE_DIR nor BUILD_DIR, builds main.cpp with the compiler flags
+#                          `pkg-config --cflags --libs deepcheck` gives and runs it, then builds the
+#                          consumer with CMAKE_PREFIX_PATH=WORK_DIR/prefix; the programs read the
+#                          installed share/deepcheck.
+#   MODE=shared_install    the same with shared libraries: SOURCE_DIR's libraries alone built with
+#                          BUILD_SHARED_LIBS=ON in WORK_DIR/deepcheck and installed.
 #   MODE=add_subdirectory  builds the consumer with DEEPCHECK_SOURCE_TREE=SOURCE_DIR (deepcheck's
 #                          libraries rebuilt in WORK_DIR: only those the consumer links).
-# Both use ccache when it is installed, and pass when the program prints a positive minimum
+# All use ccache when it is installed, and pass when every program built prints a positive minimum
 # clearance.
 cmake_minimum_required(VERSION 3.21)
 
@@ -26,9 +30,15 @@ if(CCACHE)
   list(APPEND args -DCMAKE_CXX_COMPILER_LAUNCHER=${CCACHE})
 endif()
 
-if(MODE STREQUAL "find_package")
-  set(prefix ${WORK_DIR}/prefix)
-  run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+# check_clearance(<output>): fails unless the consumer's output has a positive minimum clearance.
+function(check_clearance output)
+  if(NOT output MATCHES "min clearance +(0\\.0*[1-9][0-9]*|[1-9][0-9]*\\.[0-9]+) m")
+    message(FATAL_ERROR "the consumer printed no positive minimum clearance:\n${output}")
+  endif()
+endfunction()
+
+# check_installed(<prefix>): no file of the installed package names the source or build folder.
+function(check_installed prefix)
   file(GLOB_RECURSE package_files ${prefix}/*.cmake ${prefix}/*.pc)
   foreach(file IN LISTS package_files)
     file(READ ${file} text)
@@ -39,22 +49,51 @@ if(MODE STREQUAL "find_package")
       endif()
     endforeach()
   endforeach()
-  # pkg-config users: deepcheck.pc names the installed headers and libraries.
-  find_program(PKG_CONFIG pkg-config)
-  if(PKG_CONFIG)
-    file(GLOB_RECURSE pc_file ${prefix}/deepcheck.pc)
-    get_filename_component(pc_dir "${pc_file}" DIRECTORY)
-    set(ENV{PKG_CONFIG_PATH} "${pc_dir}")
-    run(${PKG_CONFIG} --cflags --libs deepcheck)
-    if(NOT output MATCHES "-I[^ ]*/include" OR NOT output MATCHES "-ldeepcheck_planners")
-      message(FATAL_ERROR "pkg-config --cflags --libs deepcheck: ${output}")
+endfunction()
+
+# pkg_config_consumer(<prefix>): main.cpp compiled and linked with pkg-config's flags alone, then
+# run on the installed data (the installed libraries found through LD_LIBRARY_PATH when shared).
+function(pkg_config_consumer prefix)
+  find_program(PKG_CONFIG pkg-config REQUIRED)
+  file(GLOB_RECURSE pc_file ${prefix}/deepcheck.pc)
+  get_filename_component(pc_dir "${pc_file}" DIRECTORY)
+  set(ENV{PKG_CONFIG_PATH} "${pc_dir}")
+  run(${PKG_CONFIG} --cflags --libs deepcheck)
+  string(STRIP "${output}" flags)
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  run(${PKG_CONFIG} --variable=datadir deepcheck)
+  string(STRIP "${output}" data)
+  set(program ${WORK_DIR}/consumer_pkg_config)
+  run(${CXX} -O1 "-DCONSUMER_DATA_DIR=\"${data}\"" -o ${program} ${CMAKE_CURRENT_LIST_DIR}/main.cpp ${flags})
+  get_filename_component(libdir "${pc_dir}" DIRECTORY)
+  run(${CMAKE_COMMAND} -E env "LD_LIBRARY_PATH=${libdir}" ${program} ${data})
+  message(STATUS "pkg-config consumer: ${output}")
+  check_clearance("${output}")
+endfunction()
+
+if(MODE STREQUAL "find_package" OR MODE STREQUAL "shared_install")
+  set(prefix ${WORK_DIR}/prefix)
+  if(MODE STREQUAL "shared_install")
+    set(lib_build ${WORK_DIR}/deepcheck)
+    set(lib_args -S ${SOURCE_DIR} -B ${lib_build} -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON
+                 -DDEEPCHECK_INSTALL=ON -DDEEPCHECK_BUILD_TESTS=OFF -DDEEPCHECK_BUILD_BENCH=OFF
+                 -DDEEPCHECK_BUILD_EXAMPLES=OFF -DDEEPCHECK_BUILD_TOOLS=OFF -DDEEPCHECK_BUILD_FCL_REFERENCE=OFF)
+    if(CCACHE)
+      list(APPEND lib_args -DCMAKE_CXX_COMPILER_LAUNCHER=${CCACHE})
     endif()
+    run(${CMAKE_COMMAND} ${lib_args})
+    run(${CMAKE_COMMAND} --build ${lib_build})
+    run(${CMAKE_COMMAND} --install ${lib_build} --prefix ${prefix})
+  else()
+    run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
   endif()
+  check_installed(${prefix})
+  pkg_config_consumer(${prefix})
   list(APPEND args -DCMAKE_PREFIX_PATH=${prefix})
 elseif(MODE STREQUAL "add_subdirectory")
   list(APPEND args -DDEEPCHECK_SOURCE_TREE=${SOURCE_DIR})
 else()
-  message(FATAL_ERROR "MODE must be find_package or add_subdirectory, not '${MODE}'")
+  message(FATAL_ERROR "MODE must be find_package, shared_install or add_subdirectory, not '${MODE}'")
 endif()
 
 run(${CMAKE_COMMAND} ${args})
@@ -62,6 +101,4 @@ run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 
 run(${WORK_DIR}/build/deepcheck_consumer)
 message(STATUS "${output}")
-if(NOT output MATCHES "min clearance +(0\\.0*[1-9][0-9]*|[1-9][0-9]*\\.[0-9]+) m")
-  message(FATAL_ERROR "the consumer printed no positive minimum clearance:\n${output}")
-endif()
+check_clearance("${output}")
