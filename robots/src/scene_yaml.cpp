@@ -105,6 +105,14 @@ std::string readString(const Context& ctx, const YAML::Node& node, const std::st
   return node.Scalar();
 }
 
+bool readBool(const Context& ctx, const YAML::Node& node, const std::string& what) {
+  bool value = false;
+  if (!node.IsScalar() || !YAML::convert<bool>::decode(node, value)) {
+    ctx.fail(node, what + " must be true or false" + (node.IsScalar() ? ", is '" + node.Scalar() + "'" : ""));
+  }
+  return value;
+}
+
 double readNumber(const Context& ctx, const YAML::Node& node, const std::string& what) {
   if (!node.IsScalar()) ctx.fail(node, what + " must be a number");
   double value = 0.0;

@@ -22,16 +22,35 @@
 //                       plain path; relative paths are relative to the YAML file's folder. The
 //                       file is found here; it is read later (collision_geometry.h, mesh_loader.h).
 //   mesh_poses          one pose X_OS per mesh
-//   operation           optional; only "add" (0) is accepted: a scene file describes a world
+//   operation           optional; only "add" (0, or b'\x00' as `ros2 topic echo` prints the byte)
+//                       is accepted: a scene file describes a world
 //   type, subframe_names, subframe_poses   accepted and ignored (no geometry)
 // A pose is {position: [x, y, z], orientation: [x, y, z, w]} or the message form
 // {position: {x:, y:, z:}, orientation: {x:, y:, z:, w:}}. A quaternion whose norm is within
 // tol::kSceneQuaternionNorm of 1 is normalised; any other is an error.
-// Top level: `world` (its `collision_objects`; an `octomap` is an error: not supported). The
-// robot-side fields of a PlanningScene (name, robot_state, robot_model_name,
-// allowed_collision_matrix, link_padding, link_scale, object_colors, is_diff) are accepted and
-// ignored. `fixed_frame_transforms` entries are accepted when their transform is the identity
-// (MotionBenchMaker's cage says base_link is the planning frame this way) and rejected otherwise.
+// Top level:
+//   world                     its `collision_objects`, and its `octomap` (octomap_msgs/
+//                             OctomapWithPose, always present in what MoveIt and `ros2 topic
+//                             echo` write): accepted when its octomap.data is absent or empty (as
+//                             MoveIt, which ignores an octomap without data), an error naming the
+//                             line ("an octomap with data is not supported") otherwise.
+//   robot_state               its `attached_collision_objects` (PlanningScene::attached): each
+//                             {link_name, object (a collision object as above), touch_links};
+//                             detach_posture and weight are accepted and ignored. joint_state,
+//                             multi_dof_joint_state and is_diff are accepted and ignored: the
+//                             configuration is the caller's.
+//   allowed_collision_matrix  PlanningScene::allowed: entry_names with entry_values[i].enabled
+//                             (one bool per name; as MoveIt, only the upper triangle i < j counts)
+//                             and default_entry_names with default_entry_values; only true entries
+//                             are kept. Names are not resolved here (the world does): an unknown
+//                             name is no error; a name listed twice or lists of mismatched sizes
+//                             are.
+//   fixed_frame_transforms    entries accepted when their transform is the identity
+//                             (MotionBenchMaker's cage says base_link is the planning frame this
+//                             way; MoveIt writes the model frame to itself) and rejected otherwise.
+//   name                      PlanningScene::name.
+//   robot_model_name, link_padding, link_scale, object_colors, is_diff: accepted and ignored.
+// An id names one object: world and attached objects share the ids' name space.
 // Any other key is an error (a misspelt key must not silently drop an object).
 //
 // Cones. A cone becomes an in-memory triangle mesh (SceneShape::mesh): the circumscribed
@@ -42,7 +61,8 @@
 //
 // Errors: std::invalid_argument, the message starting with "planning scene '<file>', line <n>"
 // (1-based; the line of the offending node, or of its parent when a key is missing), then the
-// object ("object 'Can1'", or "object <index>" before its id is known), then what is wrong:
+// object ("object 'Can1'", "attached object 'tool'", or "object <index>" before its id is
+// known), then what is wrong:
 // malformed YAML, a missing key, an unknown key or primitive type, a wrong number of dimensions,
 // a size that is not positive, a number that is not finite (.nan, .inf), a quaternion far from
 // unit norm, a mesh that cannot be found (every place searched is listed), a number of magnitude
@@ -118,6 +138,7 @@ struct AttachedObject {
 
 struct PlanningScene {
   std::string source;  ///< the file (or the name given to parsePlanningScene)
+  std::string name;    ///< the scene's name (YAML `name`, a .scene file's first line); may be empty
   std::vector<SceneObject> objects;  ///< in file order
   std::vector<AttachedObject> attached;  ///< in file order
   AllowedCollisions allowed;
@@ -150,8 +171,11 @@ PlanningScene parsePlanningScene(const std::string& yaml, const std::string& bas
 /// Throws std::invalid_argument unless height, radius and maxDeviation are positive and finite.
 TriangleMesh coneMesh(double height, double radius, double maxDeviation);
 
-/// The scene as planning-scene YAML that loadPlanningScene reads back to the same objects: each
-/// object with its frame_id and id, no `pose` (shape poses are X_FS, the object pose folded in),
+/// The scene as planning-scene YAML that loadPlanningScene reads back to the same objects, attached
+/// objects (robot_state.attached_collision_objects) and allowed collisions (an
+/// allowed_collision_matrix over the names of the pairs, symmetric; the default entries true for
+/// `always`; pairs read back in the matrix's order, (A, B) possibly as (B, A)): each object with
+/// its frame_id and id, no `pose` (shape poses are X_FS, the object pose folded in),
 /// its primitives then its meshes (resource: the resolved absolute path), numbers with 17
 /// significant digits, quaternions x y z w. Throws std::invalid_argument naming the object for a
 /// shape that has no file form: a cone (its pyramid is kept, not its dimensions) or another
