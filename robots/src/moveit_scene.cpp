@@ -383,6 +383,7 @@ PlanningScene loadPlanningScene(const std::string& path, const SceneLoadOptions&
   }
   std::stringstream buffer;
   buffer << in.rdbuf();
+  if (isSceneTextFile(path)) return parseSceneText(buffer.str(), options, path);
   const std::string folder = std::filesystem::path(path).parent_path().string();
   return parsePlanningScene(buffer.str(), folder, options, path);
 }

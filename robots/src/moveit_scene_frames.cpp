@@ -28,6 +28,7 @@ int frameLink(const PlanningScene& scene, const SceneObject& object, const Robot
   }
   const int link = robot.linkIndex(object.frameId);
   if (link >= 0) return link;
+  if (object.frameId == kModelFrame && robot.numLinks() > 0) return 0;  // the root link
   const std::string root = robot.numLinks() > 0 ? robot.link(0).name : "LINK";
   throw std::invalid_argument(
       where + ": unknown frame '" + object.frameId + "': robot '" + robot.name() +

@@ -159,13 +159,59 @@ struct SceneLoadOptions {
   std::size_t maxShapes = 10000;
 };
 
-/// Reads a planning-scene YAML file; relative mesh paths are relative to its folder.
+/// Reads a planning-scene file: MoveIt's .scene text when isSceneTextFile(path) (see below),
+/// planning-scene YAML otherwise; relative mesh paths are relative to its folder.
 PlanningScene loadPlanningScene(const std::string& path, const SceneLoadOptions& options = {});
 /// Reads planning-scene YAML text; relative mesh paths are relative to `baseDirectory`.
 /// `sourceName` names the text in messages ("<string>" when empty).
 PlanningScene parsePlanningScene(const std::string& yaml, const std::string& baseDirectory,
                                  const SceneLoadOptions& options = {},
                                  const std::string& sourceName = "");
+
+// MoveIt's .scene text format: what MoveIt's "Export" / "Import" of a scene (PlanningScene::
+// saveGeometryToStream, loadGeometryFromStream) and geometric_shapes' saveAsText and
+// constructShapeFromText write and read. Whitespace-separated, but for two lines:
+//   line 1            the scene's name (PlanningScene::name)
+//   per object:
+//     * ID            the rest of the line, trimmed, is the id (unique, not empty)
+//     x y z / qx qy qz qw   the object pose X_FO (newer format only; see below)
+//     N               the number of shapes (at least 1)
+//     per shape:      its type and dimensions, then its pose X_OS ("x y z", "qx qy qz qw"), then
+//                     a colour "r g b a" (read and ignored):
+//                       box X Y Z (full edge lengths) | sphere R | cylinder R L | cone R L
+//                       (radius first, unlike shape_msgs) | mesh V T, then V vertices "x y z",
+//                       then T triangles "i j k" (0-based vertex indices)
+//     S, then S times "NAME" and a pose    the subframes (newer format only; read and ignored)
+//   .                 the end of the scene (anything after it is ignored, as MoveIt does)
+// The format has two versions, told apart as MoveIt does: when the line after the first "* ID"
+// line holds more than one word (the object pose's position) the file is the newer one with
+// object poses and subframes; otherwise the older one (no object pose: identity; no subframes).
+// A .scene file has no frames: its objects are in MoveIt's planning frame, the model frame, so
+// each object's frameId is kModelFrame, which shapeWorldPoses resolves to the robot's root link
+// (MoveIt's model frame is the root link or, with an SRDF virtual joint, the joint's parent frame,
+// which the robot's root sits on). Cones become pyramids as in YAML; a mesh becomes an in-memory
+// TriangleMesh (SceneShape::mesh); a plane is an error (not modelled). Numbers must be finite with
+// magnitude at most deep::range::kMaxCoordinate, sizes positive, quaternions of unit norm within
+// tol::kSceneQuaternionNorm; every count is checked against the tokens left in the file before
+// anything is allocated for it, and the shapes against SceneLoadOptions::maxShapes.
+// Errors: std::invalid_argument, "planning scene '<file>', line <n>, object '<id>': <what>".
+
+/// The frame of a .scene file's objects: the model frame, resolved to the robot's root link. Not
+/// a valid ROS frame name, so it names no link and no frame of a YAML scene by accident.
+inline const std::string kModelFrame = "<model frame>";
+
+/// True for a path ending in .scene (any case): MoveIt's scene text format.
+bool isSceneTextFile(const std::string& path);
+/// Reads .scene text (see above); `sourceName` names it in messages ("<string>" when empty).
+PlanningScene parseSceneText(const std::string& text, const SceneLoadOptions& options = {},
+                             const std::string& sourceName = "");
+/// The scene as .scene text in the newer format (object poses, no subframes, colour "0 0 0 0"),
+/// numbers with 17 significant digits: parseSceneText (and MoveIt) read it back to the same
+/// objects. Meshes are written inline: a mesh file is loaded (mesh_loader.h, with its scale), a
+/// cone as its pyramid (so it reads back as a mesh). Throws std::invalid_argument naming the
+/// object for what a .scene file cannot hold: an object in a frame other than kModelFrame, an id
+/// with a line break or a space at either end, attached objects or allowed collisions.
+std::string writeSceneText(const PlanningScene& scene);
 
 /// The triangle mesh of the circumscribed pyramid of a cone along z (see the header comment).
 /// Throws std::invalid_argument unless height, radius and maxDeviation are positive and finite.
@@ -199,7 +245,8 @@ using FrameAliases = std::map<std::string, std::string>;
 std::pair<std::string, std::string> parseFrameAlias(const std::string& text);
 
 /// World poses X_WS of every shape, result[object][shape] = X_WF * X_FS, where X_WF is the pose
-/// of the robot link named by the object's frame (through `aliases` when it is a key there) at
+/// of the robot link named by the object's frame (through `aliases` when it is a key there; else
+/// the link of that name; else, for kModelFrame, the root link) at
 /// configuration q (forward kinematics, with the robot's base pose). Throws
 /// std::invalid_argument for a frame that is no link, naming the file, object and frame, listing
 /// the robot's links and suggesting an alias; or for an alias whose target is no link.
