@@ -49,6 +49,15 @@ std::pair<std::string, std::string> parseFrameAlias(const std::string& text) {
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
+FrameAliases withVirtualJointAliases(FrameAliases aliases, const std::vector<SrdfVirtualJoint>& virtualJoints,
+                                     const RobotModel& robot) {
+  for (const SrdfVirtualJoint& joint : virtualJoints) {
+    if (robot.linkIndex(joint.parentFrame) >= 0) continue;
+    aliases.emplace(joint.parentFrame, joint.childLink);
+  }
+  return aliases;
+}
+
 std::vector<std::vector<Eigen::Isometry3d>> shapeWorldPoses(
     const PlanningScene& scene, const RobotModel& robot, const Eigen::Ref<const Eigen::VectorXd>& q,
     const FrameAliases& aliases) {

@@ -73,6 +73,7 @@
 
 #include "deepcheck/robots/mesh.h"
 #include "deepcheck/robots/robot_model.h"
+#include "deepcheck/robots/srdf.h"
 #include "deepcheck/robots/tolerances.h"
 
 #include <Eigen/Core>
@@ -243,6 +244,14 @@ using FrameAliases = std::map<std::string, std::string>;
 
 /// Parses "NAME=LINK" (the CLI's --frame-alias). Throws std::invalid_argument when malformed.
 std::pair<std::string, std::string> parseFrameAlias(const std::string& text);
+
+/// `aliases` with, for each SRDF virtual joint (srdf.h), its parent frame (MoveIt's model frame:
+/// world, odom_combined...) mapped to its child link (the robot's root), so that scene objects
+/// given in that frame need no alias of their own. An existing alias of the frame is kept (the
+/// caller's wins, as does the first of two virtual joints with the same parent frame), and a
+/// parent frame that is a link of `robot` is left to name that link.
+FrameAliases withVirtualJointAliases(FrameAliases aliases, const std::vector<SrdfVirtualJoint>& virtualJoints,
+                                     const RobotModel& robot);
 
 /// World poses X_WS of every shape, result[object][shape] = X_WF * X_FS, where X_WF is the pose
 /// of the robot link named by the object's frame (through `aliases` when it is a key there; else
