@@ -3,6 +3,7 @@
 
 #include "deepcheck/robots/package_path.h"
 #include "moveit_scene_acm.h"
+#include "moveit_scene_inline_mesh.h"
 #include "scene_yaml.h"
 
 #include <algorithm>
@@ -31,6 +32,7 @@ struct Reader {
   double coneMaxDeviation = 0.0;
   std::size_t maxShapes = 0;
   std::size_t shapeCount = 0;  ///< shapes read so far, aliased ones counted each time
+  std::size_t meshBudget = 0;  ///< inline mesh vertices and triangles the scene may still hold
 };
 
 /// Throws when `more` entries of `list` (objects or shapes) would take the scene past
@@ -73,7 +75,7 @@ const PrimitiveType& readPrimitiveType(const Context& ctx, const YAML::Node& nod
                      "' (known: box, sphere, cylinder, cone, or shape_msgs' numbers 1 to 4)");
 }
 
-SceneShape readPrimitive(const Reader& r, const YAML::Node& node, int index) {
+SceneShape readPrimitive(Reader& r, const YAML::Node& node, int index) {
   const Context& ctx = r.ctx;
   scene_yaml::checkKeys(ctx, node, "a primitive", {"type", "dimensions"});
   const PrimitiveType& type = readPrimitiveType(ctx, required(ctx, node, "type"));
@@ -127,11 +129,25 @@ YAML::Node oneOf(const Context& ctx, const YAML::Node& node, const char* a, cons
   return first.IsDefined() ? first : second;
 }
 
-SceneShape readMesh(const Reader& r, const YAML::Node& node, int index) {
+/// A shape_msgs/Mesh given inline: an in-memory mesh, as a cone's.
+SceneShape readInlineMeshShape(Reader& r, const YAML::Node& node, int index) {
+  scene_yaml::checkKeys(r.ctx, node, "an inline mesh", {"vertices", "triangles"});
+  auto mesh = std::make_shared<TriangleMesh>(readInlineMesh(r.ctx, node, r.meshBudget));
+  mesh->source = r.ctx.source + " " + r.ctx.object + " mesh " + std::to_string(index);
+  SceneShape shape;
+  shape.geometry.type = GeometryType::Mesh;
+  shape.name = "mesh " + std::to_string(index) + " (inline, " + std::to_string(mesh->vertices.size()) +
+               " vertices, " + std::to_string(mesh->triangles.size()) + " triangles)";
+  shape.mesh = std::move(mesh);
+  return shape;
+}
+
+SceneShape readMesh(Reader& r, const YAML::Node& node, int index) {
   const Context& ctx = r.ctx;
+  if (isInlineMesh(node)) return readInlineMeshShape(r, node, index);
   scene_yaml::checkKeys(ctx, node, "a mesh", {"resource", "filename", "scale", "dimensions"});
   const YAML::Node uriNode = oneOf(ctx, node, "resource", "filename");
-  if (!uriNode.IsDefined()) ctx.fail(node, "a mesh needs 'resource' (or 'filename')");
+  if (!uriNode.IsDefined()) ctx.fail(node, "a mesh needs 'resource' (or 'filename'), or 'vertices' and 'triangles'");
   SceneShape shape;
   shape.geometry.type = GeometryType::Mesh;
   shape.geometry.meshUri = readString(ctx, uriNode, "mesh resource");
@@ -149,7 +165,7 @@ SceneShape readMesh(const Reader& r, const YAML::Node& node, int index) {
   return shape;
 }
 
-using ShapeReader = SceneShape (*)(const Reader&, const YAML::Node&, int);
+using ShapeReader = SceneShape (*)(Reader&, const YAML::Node&, int);
 
 /// Appends the shapes listed under `listKey`, posed by the entries of `posesKey`.
 void readShapes(Reader& r, const YAML::Node& object, const char* listKey,
@@ -361,6 +377,7 @@ PlanningScene parsePlanningScene(const std::string& yaml, const std::string& bas
   r.roots = packageRoots(options.packageRoots, options.useRosPackagePath);
   r.coneMaxDeviation = options.coneMaxDeviation;
   r.maxShapes = options.maxShapes;
+  r.meshBudget = options.maxInlineMeshElements;
   if (!(options.coneMaxDeviation > 0.0) || !std::isfinite(options.coneMaxDeviation)) {
     throw std::invalid_argument("planning scene '" + r.ctx.source +
                                 "': coneMaxDeviation must be positive and finite");

@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <map>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -50,20 +49,27 @@ std::string primitive(const Geometry& g) {
   return "";
 }
 
+/// A mesh entry: its file (resolved path and scale), or an in-memory mesh inline.
+void writeMesh(std::ostringstream& out, const std::string& entry, const SceneShape& s) {
+  if (!s.mesh) {
+    const Eigen::Vector3d& k = s.geometry.meshScale;
+    out << entry << "- {resource: " << quoted(s.geometry.meshPath) << ", scale: " << list({k.x(), k.y(), k.z()})
+        << "}\n";
+    return;
+  }
+  out << entry << "- vertices:\n";
+  for (const Eigen::Vector3d& v : s.mesh->vertices) out << entry << "    - " << list({v.x(), v.y(), v.z()}) << "\n";
+  out << entry << "  triangles:\n";
+  for (const auto& t : s.mesh->triangles) {
+    out << entry << "    - {vertex_indices: [" << t[0] << ", " << t[1] << ", " << t[2] << "]}\n";
+  }
+}
+
 /// A collision object as a YAML map: its first key after `first` ("    - " for a list entry), the
 /// others at column indent.size() (first.size() == indent.size()).
 void writeObject(std::ostringstream& out, const std::string& first, const std::string& indent, const SceneObject& o) {
   std::vector<const SceneShape*> primitives, meshes;
-  for (const SceneShape& s : o.shapes) {
-    if (s.geometry.type != GeometryType::Mesh) {
-      primitives.push_back(&s);
-    } else if (s.geometry.meshPath.empty()) {
-      throw std::invalid_argument("writing planning scene: object '" + o.id + "', " + s.name +
-                                  ": an in-memory mesh (a cone) has no file form");
-    } else {
-      meshes.push_back(&s);
-    }
-  }
+  for (const SceneShape& s : o.shapes) (s.geometry.type == GeometryType::Mesh ? meshes : primitives).push_back(&s);
   const std::string entry = indent + "  ";
   out << first << "header:\n" << indent << "  frame_id: " << quoted(o.frameId) << "\n"
       << indent << "id: " << quoted(o.id) << "\n";
@@ -75,11 +81,7 @@ void writeObject(std::ostringstream& out, const std::string& first, const std::s
   }
   if (!meshes.empty()) {
     out << indent << "meshes:\n";
-    for (const SceneShape* s : meshes) {
-      const Eigen::Vector3d& k = s->geometry.meshScale;
-      out << entry << "- {resource: " << quoted(s->geometry.meshPath) << ", scale: " << list({k.x(), k.y(), k.z()})
-          << "}\n";
-    }
+    for (const SceneShape* s : meshes) writeMesh(out, entry, *s);
     out << indent << "mesh_poses:\n";
     for (const SceneShape* s : meshes) writePose(out, entry, s->X_FS);
   }

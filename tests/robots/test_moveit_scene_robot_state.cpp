@@ -7,6 +7,7 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <array>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -20,6 +21,8 @@ using test::checkThrows;
 const std::string kScenes = std::string(DEEPCHECK_SOURCE_DIR) + "/tests/data/moveit_scenes";
 const std::string kDump = kScenes + "/monitored_planning_scene.yaml";
 constexpr double kExact = 1e-12;  // values copied from the file, up to round-off
+/// A pose written with 17 digits and read back: the rotation goes through a quaternion.
+constexpr double kRoundTrip = 1e-15;
 
 std::string readText(const std::string& path) {
   std::ifstream in(path);
@@ -66,7 +69,7 @@ BOOST_AUTO_TEST_SUITE(robots_moveit_scene_robot_state)
 
 BOOST_AUTO_TEST_CASE(topic_echo_dump_reads_objects_attached_objects_and_matrix) {
   const PlanningScene scene = loadPlanningScene(kDump);
-  BOOST_REQUIRE_EQUAL(scene.objects.size(), 2u);
+  BOOST_REQUIRE_EQUAL(scene.objects.size(), 3u);
   const SceneObject& table = scene.objects[0];
   BOOST_CHECK_EQUAL(table.id, "table");
   BOOST_CHECK_EQUAL(table.frameId, "base_link");
@@ -75,6 +78,18 @@ BOOST_AUTO_TEST_CASE(topic_echo_dump_reads_objects_attached_objects_and_matrix) 
   BOOST_CHECK_SMALL((table.shapes[0].geometry.boxSize - Eigen::Vector3d(0.6, 1.0, 0.1)).norm(), kExact);
   BOOST_CHECK_SMALL((table.shapes[0].X_FS.translation() - Eigen::Vector3d(0.55, 0, -0.05)).norm(), kExact);
   BOOST_CHECK_EQUAL(scene.objects[1].id, "post");
+  // A mesh object as MoveIt publishes it: vertices and triangles inline.
+  const SceneObject& bracket = scene.objects[2];
+  BOOST_REQUIRE_EQUAL(bracket.shapes.size(), 1u);
+  BOOST_REQUIRE(bracket.shapes[0].mesh);
+  BOOST_CHECK(bracket.shapes[0].geometry.type == GeometryType::Mesh);
+  BOOST_CHECK(bracket.shapes[0].geometry.meshPath.empty());
+  BOOST_CHECK_EQUAL(bracket.shapes[0].name, "mesh 0 (inline, 4 vertices, 4 triangles)");
+  BOOST_CHECK_EQUAL(bracket.shapes[0].mesh->vertices.size(), 4u);
+  BOOST_CHECK_SMALL((bracket.shapes[0].mesh->vertices[3] - Eigen::Vector3d(0, 0, 0.1)).norm(), kExact);
+  const std::array<int, 3> last = {1, 2, 3};
+  BOOST_CHECK(bracket.shapes[0].mesh->triangles.at(3) == last);
+  BOOST_CHECK_SMALL((bracket.shapes[0].X_FS.translation() - Eigen::Vector3d(0.45, -0.3, 0)).norm(), kExact);
 
   BOOST_REQUIRE_EQUAL(scene.attached.size(), 1u);
   const AttachedObject& tool = scene.attached[0];
@@ -85,8 +100,8 @@ BOOST_AUTO_TEST_CASE(topic_echo_dump_reads_objects_attached_objects_and_matrix) 
   BOOST_CHECK_SMALL((tool.object.X_FO.translation() - Eigen::Vector3d(0, 0, 0.1)).norm(), kExact);
   BOOST_REQUIRE_EQUAL(tool.object.shapes.size(), 1u);
   BOOST_CHECK(tool.object.shapes[0].geometry.type == GeometryType::Cylinder);
-  BOOST_CHECK_CLOSE(tool.object.shapes[0].geometry.length, 0.12, 1e-10);
-  BOOST_CHECK_CLOSE(tool.object.shapes[0].geometry.radius, 0.02, 1e-10);
+  BOOST_CHECK_SMALL(tool.object.shapes[0].geometry.length - 0.12, kExact);
+  BOOST_CHECK_SMALL(tool.object.shapes[0].geometry.radius - 0.02, kExact);
   const std::vector<std::string> touch = {"hand", "left_finger", "right_finger"};
   BOOST_CHECK_EQUAL_COLLECTIONS(tool.touchLinks.begin(), tool.touchLinks.end(), touch.begin(), touch.end());
 
@@ -103,7 +118,7 @@ BOOST_AUTO_TEST_CASE(octomap_with_data_is_refused_with_its_line) {
   const std::string dump = readText(kDump);
   const std::string withData = replaced(dump, "      data: []\n", "      data:\n      - 12\n      - -3\n");
   checkThrows([&] { parsePlanningScene(withData, kScenes, {}, "scan.yaml"); },
-              {"planning scene 'scan.yaml', line 263", "octomap with data is not supported"});
+              {"planning scene 'scan.yaml', line 330", "octomap with data is not supported"});
   // An octomap without an inner octomap, or whose data is absent, is empty too.
   BOOST_CHECK_EQUAL(parse("world:\n  octomap: {header: {frame_id: a}}\n").objects.size(), 0u);
   BOOST_CHECK_EQUAL(parse("world:\n  octomap: {octomap: {id: OcTree, binary: true}}\n").objects.size(), 0u);
@@ -150,6 +165,33 @@ BOOST_AUTO_TEST_CASE(bad_matrices_name_file_line_and_what) {
   checkThrows([] { parseMatrix("  entry_name: [a]\n"); }, {"line 2", "unknown key 'entry_name'"});
 }
 
+BOOST_AUTO_TEST_CASE(bad_inline_meshes_name_file_line_and_object) {
+  const auto mesh = [](const std::string& body) {
+    return parse("world:\n  collision_objects:\n  - header: {frame_id: base_link}\n    id: m\n    meshes:\n    - " +
+                 body + "\n    mesh_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]\n");
+  };
+  const std::string vertices = "vertices: [[0, 0, 0], [1, 0, 0], {x: 0, y: 1, z: 0}]";
+  BOOST_CHECK_EQUAL(mesh(vertices + "\n      triangles: [[0, 1, 2]]").objects.at(0).shapes.at(0).mesh->triangles.size(), 1u);
+  checkThrows([&] { mesh(vertices); }, {"dump.yaml', line 6, object 'm'", "missing 'triangles'"});
+  checkThrows([&] { mesh(vertices + "\n      triangles: []"); }, {"line 7", "'triangles' must be a list, not empty"});
+  checkThrows([&] { mesh(vertices + "\n      triangles: [{vertex_indices: [0, 1, 3]}]"); },
+              {"line 7, object 'm'", "triangles[0][2] is 3, not one of the 3 vertices"});
+  checkThrows([&] { mesh(vertices + "\n      triangles: [[0, 1]]"); }, {"line 7", "triangles[0] must have three vertex indices"});
+  checkThrows([&] { mesh(vertices + "\n      triangles: [[0, 1, -2]]"); }, {"line 7", "is -2, not one of"});
+  checkThrows([&] { mesh(vertices + "\n      triangles: [[0, 1, 2]]\n      scale: [1, 1, 1]"); },
+              {"line 8", "unknown key 'scale' in an inline mesh"});
+  checkThrows([&] { mesh("vertices: [[0, 0, .nan]]\n      triangles: [[0, 0, 0]]"); }, {"vertices[0][2] must be finite"});
+  SceneLoadOptions small;
+  small.maxInlineMeshElements = 3;
+  checkThrows([&] {
+        parsePlanningScene("world:\n  collision_objects:\n  - header: {frame_id: base_link}\n    id: m\n    meshes:\n    - " +
+                               vertices + "\n      triangles: [[0, 1, 2]]\n    mesh_poses: [{position: [0, 0, 0], "
+                               "orientation: [0, 0, 0, 1]}]\n",
+                           kScenes, small, "big.yaml");
+      },
+      {"big.yaml', line 7", "'triangles' has 1 entries, more than the 0 left of SceneLoadOptions::maxInlineMeshElements"});
+}
+
 BOOST_AUTO_TEST_CASE(bad_attached_objects_name_file_line_and_object) {
   const std::string object = "object:\n      header: {frame_id: hand}\n      id: tool\n      " + sphere("      ");
   BOOST_CHECK_EQUAL(parseAttached("link_name: hand\n    " + object).attached.size(), 1u);
@@ -188,7 +230,13 @@ BOOST_AUTO_TEST_CASE(dump_round_trips_through_the_writer) {
   BOOST_CHECK_EQUAL(b.object.frameId, a.object.frameId);
   BOOST_CHECK_EQUAL_COLLECTIONS(b.touchLinks.begin(), b.touchLinks.end(), a.touchLinks.begin(), a.touchLinks.end());
   BOOST_REQUIRE_EQUAL(b.object.shapes.size(), 1u);
-  BOOST_CHECK_SMALL((b.object.shapes[0].X_FS.matrix() - a.object.shapes[0].X_FS.matrix()).cwiseAbs().maxCoeff(), 1e-15);
+  BOOST_CHECK_SMALL((b.object.shapes[0].X_FS.matrix() - a.object.shapes[0].X_FS.matrix()).cwiseAbs().maxCoeff(),
+                    kRoundTrip);
+  const SceneShape& mesh = scene.objects[2].shapes[0];
+  const SceneShape& meshBack = back.objects.at(2).shapes.at(0);
+  BOOST_REQUIRE(meshBack.mesh);
+  BOOST_CHECK(meshBack.mesh->vertices == mesh.mesh->vertices);
+  BOOST_CHECK(meshBack.mesh->triangles == mesh.mesh->triangles);
   BOOST_CHECK(unorderedPairs(back.allowed) == unorderedPairs(scene.allowed));
   BOOST_CHECK(back.allowed.always == scene.allowed.always);
 

@@ -118,7 +118,7 @@ BOOST_AUTO_TEST_CASE(info_describes_attached_objects_and_allowed_collisions) {
   Scratch s;
   const Run dump = s.run("info " + quote(kScenes + "/monitored_planning_scene.yaml"));
   BOOST_TEST_REQUIRE(dump.status == 0, dump.err);
-  BOOST_TEST(contains(dump.out, "2 objects, 2 shapes, 1 attached objects, 1 allowed pairs"), dump.out);
+  BOOST_TEST(contains(dump.out, "3 objects, 3 shapes, 1 attached objects, 1 allowed pairs"), dump.out);
   BOOST_TEST(contains(dump.out, "  tool (frame hand, line 40) on hand, touching hand left_finger right_finger"),
              dump.out);
   BOOST_TEST(contains(dump.out, "  base_link table\n  post anything\n"), dump.out);

@@ -21,6 +21,10 @@
 //                       SceneLoadOptions::packageRoots then ROS_PACKAGE_PATH), file://path or a
 //                       plain path; relative paths are relative to the YAML file's folder. The
 //                       file is found here; it is read later (collision_geometry.h, mesh_loader.h).
+//                       Or a shape_msgs/Mesh given inline, as MoveIt publishes a mesh object:
+//                       {vertices: [{x:, y:, z:}...], triangles: [{vertex_indices: [i, j, k]}...]}
+//                       (0-based indices), an in-memory mesh (SceneShape::mesh) like a cone's, at
+//                       most SceneLoadOptions::maxInlineMeshElements vertices and triangles in all.
 //   mesh_poses          one pose X_OS per mesh
 //   operation           optional; only "add" (0, or b'\x00' as `ros2 topic echo` prints the byte)
 //                       is accepted: a scene file describes a world
@@ -158,6 +162,9 @@ struct SceneLoadOptions {
   /// a list repeated through YAML aliases counts once per repetition. The count is checked before
   /// each list is read, so an alias expansion stops as soon as it passes the limit.
   std::size_t maxShapes = 10000;
+  /// Most vertices and triangles of inline meshes (shape_msgs/Mesh) over the whole scene, counted
+  /// before each list is read (YAML aliases as expanded).
+  std::size_t maxInlineMeshElements = 10000000;
 };
 
 /// Reads a planning-scene file: MoveIt's .scene text when isSceneTextFile(path) (see below),
@@ -223,10 +230,9 @@ TriangleMesh coneMesh(double height, double radius, double maxDeviation);
 /// allowed_collision_matrix over the names of the pairs, symmetric; the default entries true for
 /// `always`; pairs read back in the matrix's order, (A, B) possibly as (B, A)): each object with
 /// its frame_id and id, no `pose` (shape poses are X_FS, the object pose folded in),
-/// its primitives then its meshes (resource: the resolved absolute path), numbers with 17
-/// significant digits, quaternions x y z w. Throws std::invalid_argument naming the object for a
-/// shape that has no file form: a cone (its pyramid is kept, not its dimensions) or another
-/// in-memory mesh.
+/// its primitives then its meshes (resource: the resolved absolute path; an in-memory mesh, a
+/// cone's pyramid included, inline as vertices and triangles, so a cone reads back as its
+/// pyramid), numbers with 17 significant digits, quaternions x y z w.
 std::string writePlanningScene(const PlanningScene& scene);
 
 /// A scene given as a URDF (MotionBenchMaker's kitchen and table_bars: fixed parts, doors and
