@@ -16,11 +16,16 @@
 //   pieces:                              one line per piece: <link> <kind> <vertices> <origin>
 //   meshes (...):                        one line per distinct mesh file and scale
 //   collision pairs (...):               the pair filter's counts
-// For a MoveIt planning scene (SCENE.yaml or .yml), the objects as read instead:
+// With --write-srdf, the SRDF holds the disabled pairs and the planning groups: those of the
+// --srdf files when given (with their virtual joints), else defaultChainGroup (robots/srdf.h).
+// For a MoveIt planning scene (SCENE.yaml, .yml or .scene), the objects as read instead:
 //   planning scene '<file>'
-//   <objects> objects, <shapes> shapes
+//   <objects> objects, <shapes> shapes, <attached> attached objects, <pairs> allowed pairs
 //   objects (...):                       per object "<id> (frame <frame_id>, line <n>)", then
 //     one line per shape: <name> <geometry> at <x y z> <qx qy qz qw> (its pose in the frame)
+//   attached objects (...):              the same per attached object, after "on <link>"
+//   allowed collisions:                  "<a> <b>" per allowed pair, "<name> anything" per
+//                                        default entry, or none
 // Units: metres, radians (limits of prismatic joints in metres), m/s or rad/s.
 
 #include "common.h"
@@ -50,15 +55,16 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck info ROBOT.urdf [--package-path DIR]... [--samples N] [--seed S]\n"
     "                      [--write-srdf FILE] [--srdf FILE... --group NAME] [--lock JOINT=VALUE]...\n"
-    "       deepcheck info SCENE.yaml [--package-path DIR]...\n"
+    "       deepcheck info SCENE.yaml|SCENE.scene [--package-path DIR]...\n"
     "\n"
     "Describes a URDF robot or scene: links with their collision elements and convex pieces,\n"
     "joints in configuration order with their limits, the collision meshes and how well their\n"
     "pieces fit them, and the self-collision pairs left after the pair filter (adjacent links,\n"
     "pairs colliding at the default configuration, always or never colliding in N random\n"
     "configurations, as MoveIt's setup assistant does).\n"
-    "A MoveIt planning scene (.yaml or .yml): its collision objects as read, each with its frame\n"
-    "and its shapes (geometry and pose in the object's frame, quaternions x y z w).\n"
+    "A MoveIt planning scene (.yaml, .yml or .scene): its collision objects and attached objects\n"
+    "as read, each with its frame and its shapes (geometry and pose in the object's frame,\n"
+    "quaternions x y z w), and its allowed collisions.\n"
     "\n"
     "options:\n"
     "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"
@@ -66,7 +72,9 @@ constexpr const char* kUsage =
     "  --samples N         random configurations for the pair filter (default 10000; 0 skips the\n"
     "                      'Always' and 'Never' tests)\n"
     "  --seed S            seed of the random configurations (default 1)\n"
-    "  --write-srdf FILE   write the disabled pairs as an SRDF file\n"
+    "  --write-srdf FILE   write an SRDF file: the disabled pairs and the planning groups (those of\n"
+    "                      --srdf, else a group 'manipulator': the chain from the root link to\n"
+    "                      the end of the longest chain of moving joints)\n"
     "  --srdf FILE --group NAME\n"
     "                      describe the robot as planning group NAME of the SRDF moves it: its\n"
     "                      variables only, the other joints held (at --lock's value, else their\n"
@@ -187,7 +195,7 @@ InfoArgs takeInfoArgs(std::vector<std::string>& args) {
   }
   rejectUnknownOptions(args);
   if (args.size() != 1) {
-    throw UsageError(args.empty() ? "missing ROBOT.urdf (or SCENE.yaml)" : "expected one file, got " +
+    throw UsageError(args.empty() ? "missing ROBOT.urdf (or SCENE.yaml, SCENE.scene)" : "expected one file, got " +
                                                                std::to_string(args.size()) +
                                                                " arguments");
   }
@@ -291,14 +299,33 @@ void printCollisionPairs(const robots::RobotModel& model, const robots::PairFilt
   }
 }
 
+/// The groups and virtual joints --write-srdf writes: those of the --srdf files, else a default
+/// chain group.
+robots::SrdfContents srdfContents(const robots::RobotModel& model, const robots::PairFilterResult& result,
+                                  const InfoArgs& a) {
+  robots::SrdfContents contents;
+  contents.pairs = result.disabled;
+  if (a.groupSrdfs.empty()) {
+    contents.groups.push_back(robots::defaultChainGroup(model));
+    return contents;
+  }
+  contents.groups = robots::readSrdfGroups(a.groupSrdfs);
+  for (const std::string& srdf : a.groupSrdfs) {
+    for (const robots::SrdfVirtualJoint& j : robots::readSrdfVirtualJoints(srdf)) contents.virtualJoints.push_back(j);
+  }
+  return contents;
+}
+
 void writeDisabledPairs(const robots::RobotModel& model, const robots::PairFilterResult& result, const InfoArgs& a) {
   const std::string comment =
       "Disabled collision pairs of " + model.name() + ", written by `deepcheck info " +
       fileName(a.file) + "` (pair filter: robots/include/deepcheck/robots/pair_filter.h)\n" +
       "     on the convex hull of each collision mesh, with " + std::to_string(result.samples) +
       " random samples, seed " + std::to_string(a.filter.seed) + ".";
-  robots::writeSrdf(a.srdfPath, model.name(), result.disabled, comment);
-  std::printf("\nwrote %s (%zu disabled pairs)\n", a.srdfPath.c_str(), result.disabled.size());
+  const robots::SrdfContents contents = srdfContents(model, result, a);
+  robots::writeSrdf(a.srdfPath, model.name(), contents, comment);
+  std::printf("\nwrote %s (%zu disabled pairs, %zu planning groups)\n", a.srdfPath.c_str(), result.disabled.size(),
+              contents.groups.size());
 }
 
 /// "box 0.3 x 0.3 x 0.6 m", "sphere radius 0.1 m", ...
@@ -322,6 +349,17 @@ std::string describe(const robots::SceneShape& shape) {
   }
 }
 
+/// "<id> (frame <frame>, line <n>)<suffix>", then one line per shape.
+void printSceneObject(const robots::SceneObject& o, const std::string& suffix) {
+  std::printf("  %s (frame %s, line %d)%s\n", o.id.c_str(), o.frameId.c_str(), o.line, suffix.c_str());
+  for (const robots::SceneShape& shape : o.shapes) {
+    const Eigen::Vector3d p = shape.X_FS.translation();
+    const Eigen::Quaterniond q(shape.X_FS.rotation());
+    std::printf("    %-34s %s at %.6g %.6g %.6g  %.6g %.6g %.6g %.6g\n", shape.name.c_str(), describe(shape).c_str(),
+                p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
+  }
+}
+
 int describePlanningScene(const InfoArgs& a) {
   if (a.pairFilterOptions || !a.group.empty() || !a.locks.empty()) {
     throw UsageError("--samples, --seed, --write-srdf, --group and --lock describe robots, not planning scenes");
@@ -331,17 +369,20 @@ int describePlanningScene(const InfoArgs& a) {
   const robots::PlanningScene scene = robots::loadPlanningScene(a.file, load);
   std::size_t shapes = 0;
   for (const robots::SceneObject& o : scene.objects) shapes += o.shapes.size();
-  std::printf("planning scene '%s'\n%zu objects, %zu shapes\n", scene.source.c_str(), scene.objects.size(), shapes);
+  std::printf("planning scene '%s'\n%zu objects, %zu shapes, %zu attached objects, %zu allowed pairs\n",
+              scene.source.c_str(), scene.objects.size(), shapes, scene.attached.size(), scene.allowed.pairs.size());
   std::printf("\nobjects (shape poses in the object's frame: x y z, quaternion qx qy qz qw):\n");
-  for (const robots::SceneObject& o : scene.objects) {
-    std::printf("  %s (frame %s, line %d)\n", o.id.c_str(), o.frameId.c_str(), o.line);
-    for (const robots::SceneShape& shape : o.shapes) {
-      const Eigen::Vector3d p = shape.X_FS.translation();
-      const Eigen::Quaterniond q(shape.X_FS.rotation());
-      std::printf("    %-34s %s at %.6g %.6g %.6g  %.6g %.6g %.6g %.6g\n", shape.name.c_str(), describe(shape).c_str(),
-                  p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
-    }
+  for (const robots::SceneObject& o : scene.objects) printSceneObject(o, "");
+  if (!scene.attached.empty()) std::printf("\nattached objects (touch links after 'touching'):\n");
+  for (const robots::AttachedObject& a : scene.attached) {
+    std::string touching;
+    for (const std::string& l : a.touchLinks) touching += " " + l;
+    printSceneObject(a.object, " on " + a.linkName + (touching.empty() ? "" : ", touching" + touching));
   }
+  std::printf("\nallowed collisions:\n");
+  for (const auto& [x, y] : scene.allowed.pairs) std::printf("  %s %s\n", x.c_str(), y.c_str());
+  for (const std::string& name : scene.allowed.always) std::printf("  %s anything\n", name.c_str());
+  if (scene.allowed.pairs.empty() && scene.allowed.always.empty()) std::printf("  none\n");
   return 0;
 }
 

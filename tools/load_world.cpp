@@ -136,7 +136,7 @@ std::string lowerCaseExtension(const std::string& path) {
 
 bool isPlanningSceneFile(const std::string& path) {
   const std::string extension = lowerCaseExtension(path);
-  return extension == ".yaml" || extension == ".yml";
+  return extension == ".yaml" || extension == ".yml" || robots::isSceneTextFile(path);
 }
 
 SceneKind sceneKind(const std::string& path) {
@@ -144,7 +144,7 @@ SceneKind sceneKind(const std::string& path) {
   const std::string extension = lowerCaseExtension(path);
   if (extension == ".urdf") return SceneKind::Urdf;
   throw UsageError("scene '" + path + "': unknown scene type '" + extension +
-                   "' (expected .urdf for a URDF scene, .yaml or .yml for a MoveIt planning scene)");
+                   "' (expected .urdf for a URDF scene, .yaml, .yml or .scene for a MoveIt planning scene)");
 }
 
 WorldArgs takeWorldArgs(std::vector<std::string>& args) {
@@ -168,7 +168,7 @@ WorldArgs takeWorldArgs(std::vector<std::string>& args) {
     }
   }
   if (!w.frameAliases.empty() && !planningScene) {
-    throw UsageError("--frame-alias needs a planning-scene --scene (.yaml or .yml)");
+    throw UsageError("--frame-alias needs a planning-scene --scene (.yaml, .yml or .scene)");
   }
   return w;
 }
@@ -179,16 +179,19 @@ checker::World loadWorld(const WorldArgs& args) {
   robots::RobotModel robot =
       robots::planningGroupModel(robots::RobotModel::fromUrdfFile(args.robot, load), args.srdfs, args.group, args.locks);
   checker::WorldOptions options;
+  std::vector<robots::SrdfVirtualJoint> virtualJoints;
   for (const std::string& srdf : args.srdfs) {
     const std::vector<robots::DisabledPair> pairs = robots::readSrdfDisabledPairs(srdf);
     robots::checkDisabledPairs(robot, pairs, srdf);
     options.disabledPairs.insert(options.disabledPairs.end(), pairs.begin(), pairs.end());
+    const std::vector<robots::SrdfVirtualJoint> joints = robots::readSrdfVirtualJoints(srdf);
+    virtualJoints.insert(virtualJoints.end(), joints.begin(), joints.end());
   }
   checker::World world(std::move(robot), options);
   robots::SceneLoadOptions sceneLoad;
   sceneLoad.packageRoots = args.packages.commandLine;
   checker::PlanningSceneOptions placement;
-  placement.frameAliases = args.frameAliases;
+  placement.frameAliases = robots::withVirtualJointAliases(args.frameAliases, virtualJoints, world.robot());
   for (const SceneArg& s : args.scenes) {
     if (sceneKind(s.path) == SceneKind::PlanningScene) {
       world.addPlanningScene(robots::loadPlanningScene(s.path, sceneLoad), placement);

@@ -5,8 +5,10 @@
 // A scene's kind is chosen by its file's extension: .urdf is a URDF scene (a model whose links
 // are obstacles, placed by --scene-pose); .yaml or .yml is a MoveIt planning scene
 // (robots/moveit_scene.h) whose collision objects are posed in the frames their header.frame_id
-// names: robot links, or names that --frame-alias maps to robot links. A planning scene's objects
-// are already placed by their frames, so --scene-pose after one is an error.
+// names: robot links, or names that --frame-alias maps to robot links, or the parent frame of an
+// --srdf's virtual joint (the robot's root link); .scene is MoveIt's scene text format, its
+// objects in the model frame (the robot's root link). A planning scene's objects are already
+// placed by their frames, so --scene-pose after one is an error.
 
 #include "common.h"
 
@@ -27,14 +29,17 @@
   "  --scene FILE        a scene (repeatable): FILE.urdf is a URDF whose links are obstacles (its\n"  \
   "                      joints at their default values); FILE.yaml or FILE.yml is a MoveIt\n"        \
   "                      planning scene, its collision objects posed in the robot links their\n"      \
-  "                      header.frame_id names (at the robot's default configuration)\n"             \
+  "                      header.frame_id names (at the robot's default configuration);\n"            \
+  "                      FILE.scene is MoveIt's scene text (Export/Import), posed on the root link\n" \
   "  --scene-pose x y z roll pitch yaw\n"                                                            \
   "                      places the URDF scene given just before (metres, radians; URDF rpy:\n"       \
   "                      R = Rz(yaw) Ry(pitch) Rx(roll)); default: the identity. Not after a\n"       \
   "                      planning scene, whose objects are placed by their frames\n"                 \
   "  --frame-alias NAME=LINK\n"                                                                      \
   "                      a planning scene's frame NAME is the robot's link LINK (repeatable),\n"      \
-  "                      e.g. base_link=panda_link0 for MotionBenchMaker scenes with the Panda\n"     \
+  "                      e.g. base_link=panda_link0 for MotionBenchMaker scenes with the Panda;\n"    \
+  "                      an --srdf's virtual_joint parent frame (world, odom_combined) is already\n"  \
+  "                      an alias of its child link\n"                                               \
   "  --srdf FILE         disable the self-collision pairs of this SRDF and read its planning groups\n" \
   "                      (repeatable: the files' pairs and groups are merged; a group two files\n"   \
   "                      define differently is an error)\n"                                          \
@@ -106,7 +111,7 @@ std::map<std::string, double> takeLocks(std::vector<std::string>& args);
 /// after a planning-scene YAML, a --frame-alias without any such scene, or --group without --srdf.
 WorldArgs takeWorldArgs(std::vector<std::string>& args);
 
-/// True for a .yaml or .yml file (any case): a MoveIt planning scene.
+/// True for a .yaml, .yml or .scene file (any case): a MoveIt planning scene.
 bool isPlanningSceneFile(const std::string& path);
 
 /// The kind of a scene file, from its extension (any case).

@@ -2,6 +2,8 @@
 #include "deepcheck/robots/moveit_scene.h"
 
 #include "deepcheck/robots/package_path.h"
+#include "moveit_scene_acm.h"
+#include "moveit_scene_inline_mesh.h"
 #include "scene_yaml.h"
 
 #include <algorithm>
@@ -30,6 +32,7 @@ struct Reader {
   double coneMaxDeviation = 0.0;
   std::size_t maxShapes = 0;
   std::size_t shapeCount = 0;  ///< shapes read so far, aliased ones counted each time
+  std::size_t meshBudget = 0;  ///< inline mesh vertices and triangles the scene may still hold
 };
 
 /// Throws when `more` entries of `list` (objects or shapes) would take the scene past
@@ -72,7 +75,7 @@ const PrimitiveType& readPrimitiveType(const Context& ctx, const YAML::Node& nod
                      "' (known: box, sphere, cylinder, cone, or shape_msgs' numbers 1 to 4)");
 }
 
-SceneShape readPrimitive(const Reader& r, const YAML::Node& node, int index) {
+SceneShape readPrimitive(Reader& r, const YAML::Node& node, int index) {
   const Context& ctx = r.ctx;
   scene_yaml::checkKeys(ctx, node, "a primitive", {"type", "dimensions"});
   const PrimitiveType& type = readPrimitiveType(ctx, required(ctx, node, "type"));
@@ -126,11 +129,25 @@ YAML::Node oneOf(const Context& ctx, const YAML::Node& node, const char* a, cons
   return first.IsDefined() ? first : second;
 }
 
-SceneShape readMesh(const Reader& r, const YAML::Node& node, int index) {
+/// A shape_msgs/Mesh given inline: an in-memory mesh, as a cone's.
+SceneShape readInlineMeshShape(Reader& r, const YAML::Node& node, int index) {
+  scene_yaml::checkKeys(r.ctx, node, "an inline mesh", {"vertices", "triangles"});
+  auto mesh = std::make_shared<TriangleMesh>(readInlineMesh(r.ctx, node, r.meshBudget));
+  mesh->source = r.ctx.source + " " + r.ctx.object + " mesh " + std::to_string(index);
+  SceneShape shape;
+  shape.geometry.type = GeometryType::Mesh;
+  shape.name = "mesh " + std::to_string(index) + " (inline, " + std::to_string(mesh->vertices.size()) +
+               " vertices, " + std::to_string(mesh->triangles.size()) + " triangles)";
+  shape.mesh = std::move(mesh);
+  return shape;
+}
+
+SceneShape readMesh(Reader& r, const YAML::Node& node, int index) {
   const Context& ctx = r.ctx;
+  if (isInlineMesh(node)) return readInlineMeshShape(r, node, index);
   scene_yaml::checkKeys(ctx, node, "a mesh", {"resource", "filename", "scale", "dimensions"});
   const YAML::Node uriNode = oneOf(ctx, node, "resource", "filename");
-  if (!uriNode.IsDefined()) ctx.fail(node, "a mesh needs 'resource' (or 'filename')");
+  if (!uriNode.IsDefined()) ctx.fail(node, "a mesh needs 'resource' (or 'filename'), or 'vertices' and 'triangles'");
   SceneShape shape;
   shape.geometry.type = GeometryType::Mesh;
   shape.geometry.meshUri = readString(ctx, uriNode, "mesh resource");
@@ -148,7 +165,7 @@ SceneShape readMesh(const Reader& r, const YAML::Node& node, int index) {
   return shape;
 }
 
-using ShapeReader = SceneShape (*)(const Reader&, const YAML::Node&, int);
+using ShapeReader = SceneShape (*)(Reader&, const YAML::Node&, int);
 
 /// Appends the shapes listed under `listKey`, posed by the entries of `posesKey`.
 void readShapes(Reader& r, const YAML::Node& object, const char* listKey,
@@ -181,6 +198,9 @@ void readShapes(Reader& r, const YAML::Node& object, const char* listKey,
   }
 }
 
+/// CollisionObject.operation ADD as `ros2 topic echo` prints a `byte` field (Python's bytes).
+constexpr const char* kEchoedAdd = "b'\\x00'";
+
 /// Fails when `key` holds a non-empty list: a feature deepcheck does not model.
 void rejectNonEmpty(const Context& ctx, const YAML::Node& node, const char* key, const char* why) {
   const YAML::Node value = node[key];
@@ -189,15 +209,16 @@ void rejectNonEmpty(const Context& ctx, const YAML::Node& node, const char* key,
   ctx.fail(value, std::string("'") + key + "' is not supported: " + why);
 }
 
-SceneObject readObject(Reader& r, const YAML::Node& node, int index) {
+/// A collision object; `label` names it in messages ("object", "attached object").
+SceneObject readObject(Reader& r, const YAML::Node& node, int index, const std::string& label = "object") {
   Context& ctx = r.ctx;
-  ctx.object = "object " + std::to_string(index);
+  ctx.object = label + " " + std::to_string(index);
   SceneObject object;
   object.line = lineOf(node);
   const YAML::Node idNode = required(ctx, node, "id");
   object.id = readString(ctx, idNode, "id");
   if (object.id.empty()) ctx.fail(idNode, "the id is empty");
-  ctx.object = "object '" + object.id + "'";
+  ctx.object = label + " '" + object.id + "'";
   scene_yaml::checkKeys(ctx, node, "a collision object",
                         {"header", "id", "pose", "type", "primitives", "primitive_poses", "meshes",
                          "mesh_poses", "planes", "plane_poses", "subframe_names", "subframe_poses",
@@ -210,7 +231,7 @@ SceneObject readObject(Reader& r, const YAML::Node& node, int index) {
   const YAML::Node operation = node["operation"];
   if (operation.IsDefined()) {
     const std::string op = lowercase(readString(ctx, operation, "operation"));
-    if (op != "add" && op != "0") {
+    if (op != "add" && op != "0" && op != kEchoedAdd) {
       ctx.fail(operation, "operation '" + operation.Scalar() +
                               "' is not supported: a scene file can only add objects (add, 0)");
     }
@@ -241,6 +262,76 @@ void readFixedFrameTransforms(Reader& r, const YAML::Node& list) {
   }
 }
 
+/// world.octomap (octomap_msgs/OctomapWithPose: header, origin, octomap {header, binary, id,
+/// resolution, data}): accepted when the octomap holds no data, as MoveIt and `ros2 topic echo`
+/// write it for a scene without a sensor (MoveIt, too, ignores an octomap whose data is empty).
+void readOctomap(const Context& ctx, const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return;
+  scene_yaml::checkKeys(ctx, node, "world.octomap", {"header", "origin", "octomap"});
+  const YAML::Node map = node["octomap"];
+  if (!map.IsDefined() || map.IsNull()) return;
+  scene_yaml::checkKeys(ctx, map, "world.octomap.octomap", {"header", "binary", "id", "resolution", "data"});
+  const YAML::Node data = map["data"];
+  if (!data.IsDefined() || data.IsNull()) return;
+  if (data.IsSequence() && data.size() == 0) return;
+  ctx.fail(data, "an octomap with data is not supported: give the obstacles as collision objects");
+}
+
+/// The ids read so far, with their lines: an id names one object, in the world or attached.
+using IdLines = std::map<std::string, int>;
+
+void claimId(const Reader& r, IdLines& ids, const SceneObject& object, const YAML::Node& node) {
+  const auto [it, inserted] = ids.emplace(object.id, object.line);
+  if (!inserted) {
+    r.ctx.fail(node, "the id is used twice (first at line " + std::to_string(it->second) + ")");
+  }
+}
+
+/// A list that may be absent or empty (undefined node: none); anything else but a list fails.
+bool readList(const Context& ctx, const YAML::Node& list, const char* key) {
+  if (!list.IsDefined() || list.IsNull()) return false;
+  if (!list.IsSequence()) ctx.fail(list, std::string("'") + key + "' must be a list");
+  return list.size() > 0;
+}
+
+/// One moveit_msgs/AttachedCollisionObject; detach_posture and weight are accepted and ignored.
+AttachedObject readAttached(Reader& r, const YAML::Node& node, int index) {
+  Context& ctx = r.ctx;
+  ctx.object = "attached object " + std::to_string(index);
+  scene_yaml::checkKeys(ctx, node, "an attached collision object",
+                        {"link_name", "object", "touch_links", "detach_posture", "weight"});
+  AttachedObject attached;
+  attached.line = lineOf(node);
+  const YAML::Node linkNode = required(ctx, node, "link_name");
+  attached.linkName = readString(ctx, linkNode, "link_name");
+  if (attached.linkName.empty()) ctx.fail(linkNode, "link_name is empty");
+  attached.object = readObject(r, required(ctx, node, "object"), index, "attached object");
+  const YAML::Node touch = node["touch_links"];
+  if (readList(ctx, touch, "touch_links")) {
+    for (std::size_t k = 0; k < touch.size(); ++k) {
+      attached.touchLinks.push_back(readString(ctx, touch[k], "touch_links[" + std::to_string(k) + "]"));
+    }
+  }
+  return attached;
+}
+
+/// robot_state (moveit_msgs/RobotState): its attached_collision_objects; the joint states are
+/// accepted and ignored (the configuration is the caller's).
+void readRobotState(Reader& r, const YAML::Node& state, IdLines& ids, PlanningScene& scene) {
+  if (!state.IsDefined() || state.IsNull()) return;
+  scene_yaml::checkKeys(r.ctx, state, "robot_state",
+                        {"joint_state", "multi_dof_joint_state", "attached_collision_objects", "is_diff"});
+  const YAML::Node list = state["attached_collision_objects"];
+  if (!readList(r.ctx, list, "attached_collision_objects")) return;
+  checkShapeCount(r, list, list.size(), "objects");  // each object has a shape
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    AttachedObject attached = readAttached(r, list[i], static_cast<int>(i));
+    claimId(r, ids, attached.object, list[i]);
+    scene.attached.push_back(std::move(attached));
+  }
+  r.ctx.object.clear();
+}
+
 PlanningScene readScene(Reader& r, const YAML::Node& root) {
   if (!root.IsMap()) r.ctx.fail(root, "expected a map with 'world' (a MoveIt planning scene)");
   scene_yaml::checkKeys(r.ctx, root, "the planning scene",
@@ -248,22 +339,22 @@ PlanningScene readScene(Reader& r, const YAML::Node& root) {
                          "allowed_collision_matrix", "link_padding", "link_scale", "object_colors",
                          "is_diff"});
   readFixedFrameTransforms(r, root["fixed_frame_transforms"]);
-  const YAML::Node world = required(r.ctx, root, "world");
-  scene_yaml::checkKeys(r.ctx, world, "world", {"collision_objects", "octomap"});
-  rejectNonEmpty(r.ctx, world, "octomap", "give the obstacles as collision objects");
   PlanningScene scene;
   scene.source = r.ctx.source;
+  const YAML::Node name = root["name"];
+  if (name.IsDefined() && !name.IsNull()) scene.name = readString(r.ctx, name, "name");
+  IdLines ids;
+  readRobotState(r, root["robot_state"], ids, scene);
+  scene.allowed = readAllowedCollisions(r.ctx, root["allowed_collision_matrix"]);
+  const YAML::Node world = required(r.ctx, root, "world");
+  scene_yaml::checkKeys(r.ctx, world, "world", {"collision_objects", "octomap"});
+  readOctomap(r.ctx, world["octomap"]);
   const YAML::Node objects = world["collision_objects"];
-  if (!objects.IsDefined() || objects.IsNull()) return scene;
-  if (!objects.IsSequence()) r.ctx.fail(objects, "'collision_objects' must be a list");
+  if (!readList(r.ctx, objects, "collision_objects")) return scene;
   checkShapeCount(r, objects, objects.size(), "collision objects");  // each object has a shape
-  std::map<std::string, int> lines;
   for (size_t i = 0; i < objects.size(); ++i) {
     SceneObject object = readObject(r, objects[i], static_cast<int>(i));
-    const auto [it, inserted] = lines.emplace(object.id, object.line);
-    if (!inserted) {
-      r.ctx.fail(objects[i], "the id is used twice (first at line " + std::to_string(it->second) + ")");
-    }
+    claimId(r, ids, object, objects[i]);
     scene.objects.push_back(std::move(object));
   }
   return scene;
@@ -286,6 +377,7 @@ PlanningScene parsePlanningScene(const std::string& yaml, const std::string& bas
   r.roots = packageRoots(options.packageRoots, options.useRosPackagePath);
   r.coneMaxDeviation = options.coneMaxDeviation;
   r.maxShapes = options.maxShapes;
+  r.meshBudget = options.maxInlineMeshElements;
   if (!(options.coneMaxDeviation > 0.0) || !std::isfinite(options.coneMaxDeviation)) {
     throw std::invalid_argument("planning scene '" + r.ctx.source +
                                 "': coneMaxDeviation must be positive and finite");
@@ -308,6 +400,7 @@ PlanningScene loadPlanningScene(const std::string& path, const SceneLoadOptions&
   }
   std::stringstream buffer;
   buffer << in.rdbuf();
+  if (isSceneTextFile(path)) return parseSceneText(buffer.str(), options, path);
   const std::string folder = std::filesystem::path(path).parent_path().string();
   return parsePlanningScene(buffer.str(), folder, options, path);
 }

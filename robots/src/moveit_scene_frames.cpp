@@ -28,6 +28,7 @@ int frameLink(const PlanningScene& scene, const SceneObject& object, const Robot
   }
   const int link = robot.linkIndex(object.frameId);
   if (link >= 0) return link;
+  if (object.frameId == kModelFrame && robot.numLinks() > 0) return 0;  // the root link
   const std::string root = robot.numLinks() > 0 ? robot.link(0).name : "LINK";
   throw std::invalid_argument(
       where + ": unknown frame '" + object.frameId + "': robot '" + robot.name() +
@@ -46,6 +47,15 @@ std::pair<std::string, std::string> parseFrameAlias(const std::string& text) {
                                 "' must be NAME=LINK (e.g. base_link=panda_link0)");
   }
   return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+FrameAliases withVirtualJointAliases(FrameAliases aliases, const std::vector<SrdfVirtualJoint>& virtualJoints,
+                                     const RobotModel& robot) {
+  for (const SrdfVirtualJoint& joint : virtualJoints) {
+    if (robot.linkIndex(joint.parentFrame) >= 0) continue;
+    aliases.emplace(joint.parentFrame, joint.childLink);
+  }
+  return aliases;
 }
 
 std::vector<std::vector<Eigen::Isometry3d>> shapeWorldPoses(

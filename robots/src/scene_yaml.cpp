@@ -86,8 +86,6 @@ YAML::Node required(const Context& ctx, const YAML::Node& parent, const char* ke
 void checkKeys(const Context& ctx, const YAML::Node& node, const char* what,
                std::initializer_list<const char*> allowed) {
   if (!node.IsMap()) ctx.fail(node, std::string(what) + " must be a map");
-  // yaml-cpp keeps repeated keys; refusing them bounds the work on a map repeated by aliases.
-  if (node.size() > allowed.size()) ctx.fail(node, std::string(what) + " has repeated keys");
   for (const auto& entry : node) {
     if (!entry.first.IsScalar()) ctx.fail(entry.first, std::string(what) + " has a key that is not a name");
     const std::string& key = entry.first.Scalar();
@@ -98,11 +96,22 @@ void checkKeys(const Context& ctx, const YAML::Node& node, const char* what,
     for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
     ctx.fail(entry.first, "unknown key '" + key + "' in " + what + " (known: " + list + ")");
   }
+  // yaml-cpp keeps repeated keys; refusing them bounds the work on a map repeated by aliases.
+  // (Checked after the names, so that an unknown key is reported as such.)
+  if (node.size() > allowed.size()) ctx.fail(node, std::string(what) + " has repeated keys");
 }
 
 std::string readString(const Context& ctx, const YAML::Node& node, const std::string& what) {
   if (!node.IsScalar()) ctx.fail(node, what + " must be a single value");
   return node.Scalar();
+}
+
+bool readBool(const Context& ctx, const YAML::Node& node, const std::string& what) {
+  bool value = false;
+  if (!node.IsScalar() || !YAML::convert<bool>::decode(node, value)) {
+    ctx.fail(node, what + " must be true or false" + (node.IsScalar() ? ", is '" + node.Scalar() + "'" : ""));
+  }
+  return value;
 }
 
 double readNumber(const Context& ctx, const YAML::Node& node, const std::string& what) {

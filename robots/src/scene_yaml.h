@@ -42,6 +42,8 @@ void checkKeys(const Context& ctx, const YAML::Node& node, const char* what,
                std::initializer_list<const char*> allowed);
 
 std::string readString(const Context& ctx, const YAML::Node& node, const std::string& what);
+/// true or false (also True, yes, on... as YAML 1.1 spells them).
+bool readBool(const Context& ctx, const YAML::Node& node, const std::string& what);
 /// A finite number.
 double readNumber(const Context& ctx, const YAML::Node& node, const std::string& what);
 /// A sequence of finite numbers.

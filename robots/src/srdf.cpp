@@ -89,8 +89,66 @@ std::vector<DisabledPair> readSrdfDisabledPairs(const std::string& path) {
   return parseSrdfDisabledPairs(readSrdfText(path), path);
 }
 
+std::vector<SrdfVirtualJoint> parseSrdfVirtualJoints(const std::string& xml, const std::string& sourceName) {
+  const std::string context = "SRDF " + quoted(sourceName.empty() ? "<string>" : sourceName);
+  TiXmlDocument doc;
+  const TiXmlElement& robot = parseSrdfRoot(doc, xml, context);
+  std::vector<SrdfVirtualJoint> joints;
+  for (const TiXmlElement* e = robot.FirstChildElement("virtual_joint"); e != nullptr;
+       e = e->NextSiblingElement("virtual_joint")) {
+    const std::string where = context + ", line " + std::to_string(e->Row());
+    SrdfVirtualJoint j;
+    j.line = e->Row();
+    for (auto [attr, field] : {std::pair<const char*, std::string*>{"name", &j.name}, {"type", &j.type},
+                               {"parent_frame", &j.parentFrame}, {"child_link", &j.childLink}}) {
+      const char* value = e->Attribute(attr);
+      if (value == nullptr || *value == '\0') {
+        throw std::invalid_argument(where + ": <virtual_joint> without " + attr);
+      }
+      *field = value;
+    }
+    if (j.type != "fixed" && j.type != "floating" && j.type != "planar") {
+      throw std::invalid_argument(where + ": <virtual_joint> " + quoted(j.name) + " has type " + quoted(j.type) +
+                                  " (known: fixed, floating, planar)");
+    }
+    joints.push_back(j);
+  }
+  return joints;
+}
+
+std::vector<SrdfVirtualJoint> readSrdfVirtualJoints(const std::string& path) {
+  return parseSrdfVirtualJoints(readSrdfText(path), path);
+}
+
 std::string srdfText(const std::string& robotName, const std::vector<DisabledPair>& pairs,
                      const std::string& comment) {
+  SrdfContents contents;
+  contents.pairs = pairs;
+  return srdfText(robotName, contents, comment);
+}
+
+namespace {
+
+/// <tag attr="value"/> lines of a group, indented four spaces.
+void writeGroupElements(std::ostringstream& out, const char* tag, const std::vector<std::string>& names) {
+  for (const std::string& n : names) out << "    <" << tag << " name=\"" << xmlEscape(n) << "\"/>\n";
+}
+
+void writeGroup(std::ostringstream& out, const SrdfGroup& g) {
+  out << "  <group name=\"" << xmlEscape(g.name) << "\">\n";
+  writeGroupElements(out, "joint", g.joints);
+  writeGroupElements(out, "link", g.links);
+  for (const auto& [base, tip] : g.chains) {
+    out << "    <chain base_link=\"" << xmlEscape(base) << "\" tip_link=\"" << xmlEscape(tip) << "\"/>\n";
+  }
+  writeGroupElements(out, "group", g.subgroups);
+  out << "  </group>\n";
+}
+
+}  // namespace
+
+std::string srdfText(const std::string& robotName, const SrdfContents& contents, const std::string& comment) {
+  const std::vector<DisabledPair>& pairs = contents.pairs;
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
   if (!comment.empty()) {
@@ -102,6 +160,12 @@ std::string srdfText(const std::string& robotName, const std::vector<DisabledPai
     out << "<!-- " << safe << " -->\n";
   }
   out << "<robot name=\"" << xmlEscape(robotName) << "\">\n";
+  for (const SrdfGroup& g : contents.groups) writeGroup(out, g);
+  for (const SrdfVirtualJoint& j : contents.virtualJoints) {
+    out << "  <virtual_joint name=\"" << xmlEscape(j.name) << "\" type=\"" << xmlEscape(j.type)
+        << "\" parent_frame=\"" << xmlEscape(j.parentFrame) << "\" child_link=\"" << xmlEscape(j.childLink)
+        << "\"/>\n";
+  }
   for (const DisabledPair& p : pairs) {
     out << "  <disable_collisions link1=\"" << xmlEscape(p.link1) << "\" link2=\""
         << xmlEscape(p.link2) << "\"";
@@ -116,9 +180,16 @@ std::string srdfText(const std::string& robotName, const std::vector<DisabledPai
 
 void writeSrdf(const std::string& path, const std::string& robotName,
                const std::vector<DisabledPair>& pairs, const std::string& comment) {
+  SrdfContents contents;
+  contents.pairs = pairs;
+  writeSrdf(path, robotName, contents, comment);
+}
+
+void writeSrdf(const std::string& path, const std::string& robotName, const SrdfContents& contents,
+               const std::string& comment) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot open for writing");
-  out << srdfText(robotName, pairs, comment);
+  out << srdfText(robotName, contents, comment);
   out.close();
   if (!out) throw std::invalid_argument("SRDF " + quoted(path) + ": write failed");
 }

@@ -320,7 +320,7 @@ BOOST_AUTO_TEST_CASE(bad_structure_is_reported) {
               {"object 'thing'", "operation 'remove' is not supported"});
   checkThrows([&] { parse(oneObject(sphere + "      planes: [{coef: [0, 0, 1, 0]}]\n")); },
               {"object 'thing'", "'planes' is not supported"});
-  checkThrows([] { parse("world:\n  octomap: {octomap: {id: x}}\n"); }, {"'octomap' is not supported"});
+  checkThrows([] { parse("world:\n  octomap: {octomap: {id: x, data: [3]}}\n"); }, {"octomap with data is not supported"});
   checkThrows([] { parse("fixed_frame_transforms:\n  - child_frame_id: a\n    transform: {translation: [1, 0, 0], rotation: [0, 0, 0, 1]}\nworld: {}\n"); },
               {"line 2", "fixed_frame_transforms[0] is not the identity"});
   checkThrows([] { loadPlanningScene("/nonexistent/scene.yaml"); },

@@ -3,6 +3,10 @@
 
 #include "tool_runner.h"
 
+#include "deepcheck/robots/planning_group.h"
+#include "deepcheck/robots/robot_model.h"
+#include "deepcheck/robots/srdf.h"
+
 #include <boost/test/unit_test.hpp>
 
 #include <regex>
@@ -11,6 +15,7 @@
 #include <vector>
 
 using namespace deepcheck::tool_test;
+namespace robots = deepcheck::robots;
 
 namespace {
 
@@ -102,6 +107,50 @@ BOOST_AUTO_TEST_CASE(writes_srdf) {
   BOOST_TEST(text.find("<disable_collisions link1=\"link7\" link2=\"hand\" reason=\"Adjacent\"/>") !=
              std::string::npos);
   BOOST_TEST(text.find("500 random samples, seed 3") != std::string::npos);
+  BOOST_TEST(r.out.find("disabled pairs, 1 planning groups)") != std::string::npos, r.out);
+  // The file is a usable SRDF: its default group is the chain from the root to the hand (where
+  // the fingers branch off), and it reads back to the pairs written.
+  const std::vector<robots::SrdfGroup> groups = robots::readSrdfGroups(srdf);
+  BOOST_REQUIRE_EQUAL(groups.size(), 1u);
+  BOOST_TEST(groups[0].name == robots::kDefaultGroupName);
+  BOOST_REQUIRE_EQUAL(groups[0].chains.size(), 1u);
+  BOOST_TEST(groups[0].chains[0].first == "base_link");
+  BOOST_TEST(groups[0].chains[0].second == "hand");
+  robots::LoadOptions load;
+  load.packageRoots = {kData};
+  const robots::RobotModel arm = robots::RobotModel::fromUrdfFile(kArm, load);
+  BOOST_TEST(robots::groupVariables(arm, groups, groups[0].name, srdf).size() == 7u);
+  BOOST_TEST(!robots::readSrdfDisabledPairs(srdf).empty());
+  const Run check = scratch.run("check --robot " + quote(kArm) + " --package-path " + quote(kData) + " --srdf " +
+                                    quote(srdf) + " --group " + robots::kDefaultGroupName,
+                                "0 0 0 0 0 0 0\n");
+  BOOST_TEST(check.status == 0, check.err);
+}
+
+BOOST_AUTO_TEST_CASE(write_srdf_keeps_the_groups_and_virtual_joint_of_srdf) {
+  Scratch scratch;
+  const std::string given = scratch.write("given.srdf",
+                                          "<robot name='deepcheck_arm'>\n"
+                                          "  <group name='shoulder'><chain base_link='base_link' tip_link='link2'/></group>\n"
+                                          "  <group name='wrist'><joint name='joint6'/><joint name='joint7'/>"
+                                          "<group name='shoulder'/></group>\n"
+                                          "  <virtual_joint name='v' type='fixed' parent_frame='world' child_link='base_link'/>\n"
+                                          "</robot>\n");
+  const std::string written = scratch.path("written.srdf");
+  const Run r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "0", "--srdf", given, "--group",
+                                  "wrist", "--write-srdf", written});
+  BOOST_REQUIRE_MESSAGE(r.status == 0, r.err);
+  const std::vector<robots::SrdfGroup> groups = robots::readSrdfGroups(written);
+  BOOST_REQUIRE_EQUAL(groups.size(), 2u);
+  BOOST_TEST(groups[0].name == "shoulder");
+  BOOST_TEST(groups[1].joints == (std::vector<std::string>{"joint6", "joint7"}));
+  BOOST_TEST(groups[1].subgroups == std::vector<std::string>{"shoulder"});
+  // The same groups as the given file: both files together are no conflict.
+  BOOST_TEST(robots::readSrdfGroups(std::vector<std::string>{given, written}).size() == 2u);
+  const std::vector<robots::SrdfVirtualJoint> joints = robots::readSrdfVirtualJoints(written);
+  BOOST_REQUIRE_EQUAL(joints.size(), 1u);
+  BOOST_TEST(joints[0].parentFrame == "world");
+  BOOST_TEST(joints[0].childLink == "base_link");
 }
 
 BOOST_AUTO_TEST_CASE(locked_joints_and_a_planning_group) {

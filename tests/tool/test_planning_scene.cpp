@@ -153,14 +153,16 @@ BOOST_AUTO_TEST_CASE(info_describes_a_planning_scene_as_read) {
                       "ROS_PACKAGE_PATH=");
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   const std::vector<std::string> out = lines(r.out);
-  BOOST_TEST_REQUIRE(out.size() == 9u, r.out);
+  BOOST_TEST_REQUIRE(out.size() == 12u, r.out);
   BOOST_TEST(out[0] == "planning scene '" + scene + "'");
-  BOOST_TEST(out[1] == "1 objects, 4 shapes");
+  BOOST_TEST(out[1] == "1 objects, 4 shapes, 0 attached objects, 0 allowed pairs");
   BOOST_TEST(out[4] == "  things (frame base_link, line 3)");
   BOOST_TEST(contains(out[5], "box 0.1 x 0.2 x 0.3 m at 1 2 3  0 0 0 1"), out[5]);
   BOOST_TEST(contains(out[6], "sphere radius 0.05 m at 0 0 0.5  0 0 1 0"), out[6]);
   BOOST_TEST(contains(out[7], "cylinder length 0.4 m radius 0.02 m at 0 0 0  0 0 0 1"), out[7]);
   BOOST_TEST(contains(out[8], "deepcheck_arm/meshes/base.stl scale 2 2 2 at 0 0 0  0 0 0 1"), out[8]);
+  BOOST_TEST(out[10] == "allowed collisions:");
+  BOOST_TEST(out[11] == "  none");
   const Run pairs = s.run("info " + quote(scene) + " --samples 10");
   BOOST_TEST(pairs.status == 2);
   BOOST_TEST(contains(pairs.err, "describe robots, not planning scenes"), pairs.err);
