@@ -151,3 +151,14 @@ with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus", "me
 inner = '<node id="n" name="n"><matrix>1 0 0 0.5 0 -1 0 0 0 0 1 0 0 0 0 1</matrix><instance_geometry url="#tri"/></node>'
 deep = "".join('<node id="d%d"><translate>0 0 0.01</translate>' % i for i in range(200)) + inner + "</node>" * 200
 put("mesh", "collada_nodes_200_deep.dae", dae.replace(inner, deep))
+
+# MoveIt .scene text (newer format): 300 boxes, and one object with a 2000-vertex mesh inline.
+boxes = "".join("* box%d\n%.4f %.4f 0.1\n0 0 0 1\n1\nbox\n0.05 0.05 0.05\n0 0 0\n0 0 0 1\n0 0 0 0\n0\n"
+                % (i, rng.uniform(-1, 1), rng.uniform(-1, 1)) for i in range(300))
+put("scene_text", "boxes_300.scene", "crowd\n" + boxes + ".\n")
+points = [(math.cos(t) * math.sin(p), math.sin(t) * math.sin(p), math.cos(p))
+          for t, p in ((rng.uniform(0, 6.3), rng.uniform(0, 3.2)) for _ in range(2000))]
+faces = [(i, (i + 1) % 2000, (i + 2) % 2000) for i in range(0, 1998, 3)]
+mesh = "mesh\n%d %d\n" % (len(points), len(faces)) + "".join("%.6f %.6f %.6f\n" % p for p in points)
+mesh += "".join("%d %d %d\n" % f for f in faces)
+put("scene_text", "mesh_2000.scene", "blob\n* blob\n0 0 0.5\n0 0 0 1\n1\n" + mesh + "0 0 0\n0 0 0 1\n0 0 0 0\n0\n.\n")

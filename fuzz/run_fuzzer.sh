@@ -17,7 +17,7 @@ shift 3
 case "$harness" in
   urdf|srdf|moveit_scene|problems) max_len=131072 ;;
   mesh|decomposition_cache) max_len=262144 ;;
-  pd_input|config_lines|goal_pose) max_len=65536 ;;
+  pd_input|config_lines|goal_pose|scene_text) max_len=65536 ;;
   ompl_state) max_len=512 ;;
   *) echo "run_fuzzer.sh: unknown harness '$harness'" >&2; exit 2 ;;
 esac

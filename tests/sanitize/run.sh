@@ -56,7 +56,7 @@ if ! grep -q '^DEEPCHECK_HAVE_LIBFUZZER:INTERNAL=1' build-asan/CMakeCache.txt; t
   echo "sanitize: clang++ cannot link libFuzzer (-fsanitize=fuzzer): install clang and libclang-rt-14-dev (packages.txt)" >&2
   exit 1
 fi
-harnesses=(pd_input urdf mesh config_lines moveit_scene srdf problems decomposition_cache ompl_state goal_pose)
+harnesses=(pd_input urdf mesh config_lines moveit_scene scene_text srdf problems decomposition_cache ompl_state goal_pose)
 cmake --build build-asan -j "$jobs" --target test_deep test_robots test_checker "${harnesses[@]/#/fuzz_}"
 
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
