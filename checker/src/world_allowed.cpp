@@ -28,17 +28,22 @@ bool startsWith(const std::string& s, const std::string& prefix) { return s.comp
 
 }  // namespace
 
-std::vector<std::string> bodyAliases(const std::string& bodyName) {
+std::vector<std::string> bodyAliases(const std::string& bodyName, const robots::RobotModel& robot) {
   std::vector<std::string> out{bodyName};
-  if (startsWith(bodyName, "scene/")) out.push_back(bodyName.substr(6));
+  // A name without its prefix, unless a robot link has it: an SRDF's pair (base_link, shoulder)
+  // must not allow a scene's link "base_link" against the shoulder.
+  const auto bare = [&](const std::string& name) {
+    if (robot.linkIndex(name) < 0) out.push_back(name);
+  };
+  if (startsWith(bodyName, "scene/")) bare(bodyName.substr(6));
   for (const std::string prefix : {"obstacle/", "attached/"}) {
     if (!startsWith(bodyName, prefix)) continue;
     const std::string name = bodyName.substr(prefix.size());
-    out.push_back(name);
+    bare(name);
     // "<id>/<k>": the k-th shape of a planning-scene object, also named by the object's id.
     const std::size_t slash = name.rfind('/');
     if (slash != std::string::npos && slash > 0) {
-      out.push_back(name.substr(0, slash));
+      bare(name.substr(0, slash));
       out.push_back(prefix + name.substr(0, slash));
     }
   }
@@ -48,7 +53,7 @@ std::vector<std::string> bodyAliases(const std::string& bodyName) {
 std::vector<std::string> groupAliases(const Snapshot& s, int g) {
   const LinkGeometry& lg = s.robot->links[static_cast<std::size_t>(g)];
   if (lg.attached < 0) return {s.robot->model.link(lg.link).name};
-  return bodyAliases("attached/" + s.attached[static_cast<std::size_t>(lg.attached)]->source.name);
+  return bodyAliases("attached/" + s.attached[static_cast<std::size_t>(lg.attached)]->source.name, s.robot->model);
 }
 
 bool allowedByName(const AllowedNames& allowed, const std::vector<std::string>& a, const std::vector<std::string>& b) {
@@ -87,7 +92,7 @@ AllowedMask maskOf(const Snapshot& s, const PieceSet& set, const std::set<std::s
   AllowedMask mask;
   mask.bodies = set.bodies.size();
   for (std::size_t b = 0; b < set.bodies.size(); ++b) {
-    const std::vector<std::string> body = bodyAliases(set.bodies[b].name);
+    const std::vector<std::string> body = bodyAliases(set.bodies[b].name, s.robot->model);
     const bool named = std::any_of(body.begin(), body.end(), [&](const std::string& n) { return names.count(n) > 0; });
     for (std::size_t g = 0; g < groups.size(); ++g) {
       if (!(named ? allowedByName(s.allowed, groups[g], body) : groupAlways[g])) continue;
@@ -149,7 +154,7 @@ std::vector<std::string> bodies(const Snapshot& s) {
 std::vector<std::string> knownNames(const Snapshot& s) {
   std::vector<std::string> out;
   for (const std::string& body : bodies(s)) {
-    for (const std::string& n : detail::bodyAliases(body)) out.push_back(n);
+    for (const std::string& n : detail::bodyAliases(body, s.robot->model)) out.push_back(n);
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -168,7 +173,7 @@ void checkName(const Snapshot& s, const std::string& name, const std::string& wh
 std::vector<std::vector<std::string>> aliasesOfBodiesNamed(const Snapshot& s, const std::string& name) {
   std::vector<std::vector<std::string>> out;
   for (const std::string& body : bodies(s)) {
-    std::vector<std::string> aliases = detail::bodyAliases(body);
+    std::vector<std::string> aliases = detail::bodyAliases(body, s.robot->model);
     if (std::find(aliases.begin(), aliases.end(), name) != aliases.end()) out.push_back(std::move(aliases));
   }
   return out;

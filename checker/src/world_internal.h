@@ -225,8 +225,9 @@ void publish(WorldState& st, std::shared_ptr<Snapshot> snap);
 /// The names a body answers to in allowed collisions (world_allowed.cpp): a robot link its name;
 /// a scene link "scene/<link>" and <link>; an obstacle "obstacle/<name>" and <name>, and for a
 /// name "<id>/<k>" (a planning-scene object's k-th shape) also <id> and "obstacle/<id>"; an
-/// attached object likewise with "attached/".
-std::vector<std::string> bodyAliases(const std::string& bodyName);
+/// attached object likewise with "attached/". A name without its prefix that is also a robot
+/// link's name is left out: it names the link only.
+std::vector<std::string> bodyAliases(const std::string& bodyName, const robots::RobotModel& robot);
 /// The aliases of robot geometry g of `s` (a link's name, or its attached object's aliases).
 std::vector<std::string> groupAliases(const Snapshot& s, int g);
 /// True when the bodies with aliases a and b may touch.

@@ -116,6 +116,22 @@ BOOST_AUTO_TEST_CASE(allowed_pairs_are_listed_and_answered) {
   BOOST_TEST(world.summaryCounts().allowedCollisions == 3);
 }
 
+// A robot link's name names the link only: an SRDF pair (link1, link3) does not allow link1
+// against an obstacle that happens to be called "link3" (it is "obstacle/link3" then).
+BOOST_AUTO_TEST_CASE(a_robot_link_name_names_the_link_only) {
+  WorldOptions options = test::testWorldOptions();
+  options.progress = nullptr;
+  options.disabledPairs = {robots::DisabledPair("link1", "link3")};
+  World world(test::armRobot(), options);
+  world.addObstacle(Obstacle::box("link3", Eigen::Vector3d(0.05, 0.05, 0.05), translation(0, 0, 0.3)));  // in link1
+  const Eigen::VectorXd q0 = world.robot().defaultConfiguration();
+  BOOST_TEST(!world.isFree(q0));
+  BOOST_TEST(world.signedDistance(q0).closest.nameB == "obstacle/link3");
+  BOOST_TEST(!world.collisionAllowed("link1", "obstacle/link3"));
+  world.allowCollision("link1", "obstacle/link3");
+  BOOST_TEST(world.isFree(q0));
+}
+
 BOOST_AUTO_TEST_CASE(unknown_names_are_errors_with_near_matches) {
   World world = armWorld();
   test::checkThrowsWith([&] { world.allowCollision("link1", "crat"); }, "no robot link, attached object, scene link or obstacle is named 'crat'");
