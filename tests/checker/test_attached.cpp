@@ -240,7 +240,10 @@ BOOST_AUTO_TEST_CASE(planning_scene_attached_objects_and_allowed_collisions) {
 
 BOOST_AUTO_TEST_CASE(shown_in_the_html_view_on_its_link) {
   World world = quietArm();
+  const int tool = world.robot().linkIndex("tool");
+  const std::size_t toolPieces = world.linkPieces(tool).size();
   world.attach("tool", Obstacle::box("box", Eigen::Vector3d(0.1, 0.06, 0.04), boxInTool()));
+  BOOST_TEST(world.linkPieces(tool).size() == toolPieces);  // the link's own pieces only
   Eigen::VectorXd q = world.robot().defaultConfiguration();
   q[0] = 0.7;
   q[1] = -0.3;

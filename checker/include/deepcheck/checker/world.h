@@ -412,7 +412,8 @@ class World {
   Obstacle obstacle(int id) const;
 
   /// The convex pieces the queries use for robot link `link`, in the link frame (X_LP); empty for
-  /// a link without geometry. For display and export (html_view.h). Defined in world_pieces.cpp.
+  /// a link without geometry; objects attached to it are not among them (attachedObjects()). For
+  /// display and export (html_view.h). Defined in world_pieces.cpp.
   std::vector<robots::CollisionPiece> linkPieces(int link) const;
   /// A scene or obstacle piece as the queries use it: X_LP is its pose in the world.
   struct WorldPieceRef {
