@@ -38,9 +38,10 @@
 // to it), or an object attached to one, against a scene link or an obstacle keeps one distance in
 // every configuration. Policy: such a pair is NOT dropped silently: it counts in every query like
 // any pair unless allowed (a collision is a collision); the world reports each one within
-// tol::kFixedPairReportDistance ONCE, on WorldOptions::progress, when a scene, obstacles or an
-// allowed collision change it, naming the pair and how to allow it; the push-out names it when it
-// is what blocks (planners/push_out.h).
+// tol::kFixedPairReportDistance ONCE, on WorldOptions::progress, when the scene, obstacles or
+// attached object that brings it is added (or when reports are turned back on:
+// setFixedPairReports), naming the pair and how to allow it; the push-out names it when it is
+// what blocks (planners/push_out.h).
 //
 // Attached objects (world_attached.cpp). An Obstacle attached to a robot link moves with it
 // (its pose X_LO in the link frame is fixed): it is checked against scenes, obstacles and the
