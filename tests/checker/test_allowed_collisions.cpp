@@ -56,23 +56,36 @@ BOOST_AUTO_TEST_SUITE(checker_allowed_collisions)
 // a body allowed with anything), isFree, the closest pair and the contact list equal the brute
 // force: every body pair of a world with nothing allowed, minus the allowed ones.
 BOOST_AUTO_TEST_CASE(queries_equal_brute_force_over_pairs_not_allowed) {
-  const World reference = armWorld();
+  World reference = armWorld();
   World world = armWorld();
+  // A rod held by the tool takes part too: against an obstacle and a link.
+  const Obstacle rod = Obstacle::box("rod", Eigen::Vector3d(0.04, 0.04, 0.5), translation(0.0, 0.0, 0.2));
+  reference.attach("tool", rod);
+  world.attach("tool", rod);
   const std::vector<std::pair<std::string, std::string>> allowed = {
-      {"link2", "obstacle/crate"}, {"tool", "obstacle/post"}, {"base", "link3"}, {"obstacle/ball", "*"}};
+      {"link2", "obstacle/crate"}, {"tool", "obstacle/post"}, {"base", "link3"}, {"obstacle/ball", "*"},
+      {"attached/rod", "obstacle/crate"}, {"link1", "attached/rod"}};
   world.allowCollision("crate", "link2");
   world.allowCollision("tool", "obstacle/post");
   world.disablePair("base", "link3");
   world.allowCollisionsWith("ball");
+  world.allowCollision("rod", "crate");
+  world.allowCollision("attached/rod", "link1");
   std::mt19937 rng(20261129);
-  int free = 0, colliding = 0, changed = 0;
+  int free = 0, colliding = 0, changed = 0, rodChecked = 0, rodAllowed = 0;
   DistanceOptions contacts;
   contacts.contactMargin = std::numeric_limits<double>::infinity();
   for (const Eigen::VectorXd& q : test::randomConfigurations(world.robot(), 300, rng)) {
     std::vector<Contact> expected;
     const std::vector<Contact> everything = allContacts(reference, q);
     for (const Contact& c : everything) {
-      if (!isAllowed(allowed, c)) expected.push_back(c);
+      const bool rod = c.nameA == "attached/rod" || c.nameB == "attached/rod";
+      if (!isAllowed(allowed, c)) {
+        expected.push_back(c);
+        rodChecked += rod && c.distance <= 0.0;
+      } else {
+        rodAllowed += rod && c.distance <= 0.0;
+      }
     }
     auto context = world.makeContext();
     const DistanceResult got = world.signedDistance(q, context, contacts);
@@ -92,6 +105,9 @@ BOOST_AUTO_TEST_CASE(queries_equal_brute_force_over_pairs_not_allowed) {
   BOOST_TEST(free > 30);
   BOOST_TEST(colliding > 30);
   BOOST_TEST(changed > 0);
+  // The rod's pairs overlap in both kinds: checked and allowed.
+  BOOST_TEST(rodChecked > 0);
+  BOOST_TEST(rodAllowed > 0);
 }
 
 BOOST_AUTO_TEST_CASE(allowed_pairs_are_listed_and_answered) {
