@@ -199,7 +199,7 @@ BOOST_AUTO_TEST_CASE(fixed_pair_reported_once_and_allowed) {
   BOOST_TEST_REQUIRE(fixed.size() == 1u);
   BOOST_TEST(fixed[0].nameA == "base");
   BOOST_TEST(fixed[0].nameB == "obstacle/table");
-  BOOST_TEST(std::abs(fixed[0].distance + 0.002) <= 1e-9);
+  BOOST_TEST(std::abs(fixed[0].distance + 0.002) <= kSameDistance);
   const std::string text = log.str();
   BOOST_TEST(text.find("base and obstacle/table are -0.002 m apart in every configuration (no joint moves base)") !=
              std::string::npos, text);
@@ -305,7 +305,7 @@ BOOST_AUTO_TEST_CASE(ur5_bolted_to_a_flush_table) {
   BOOST_TEST(free > 0);
   // The robot-world clearance was capped by the base's constant -3 mm; it no longer is (what caps
   // it now is the shoulder over the table, which the pan joint turns without lifting: 2.4 cm).
-  BOOST_TEST(worldBefore.back() <= fixed[0].distance + 1e-9);
+  BOOST_TEST(worldBefore.back() <= fixed[0].distance + kSameDistance);
   BOOST_TEST(worldAfter.back() > 0.01);
 }
 

@@ -24,6 +24,8 @@ using test::translation;
 
 /// Accuracy of a distance between a sphere and a box found by the narrow phase (metres).
 constexpr double kDistanceAccuracy = 1e-7;
+/// Poses composed of the same transforms in another order (round-off only).
+constexpr double kPoseExact = 1e-12;
 /// Central-difference step (rad) and the agreement asked of the gradient with it.
 constexpr double kGradientStep = 1e-6;
 constexpr double kGradientAgreement = 1e-4;
@@ -147,7 +149,7 @@ BOOST_AUTO_TEST_CASE(collides_with_obstacles_and_detaches) {
   BOOST_TEST(world.attachedObjects().empty());
   const Eigen::Isometry3d expected =
       robots::forwardKinematics(world.robot(), q1)[world.robot().linkIndex("tool")] * translation(0.3, 0, 0);
-  BOOST_TEST((world.obstacle(id).X_WO.matrix() - expected.matrix()).norm() <= 1e-12);
+  BOOST_TEST((world.obstacle(id).X_WO.matrix() - expected.matrix()).norm() <= kPoseExact);
   BOOST_TEST(world.isFree(q0));
   const double toBox = contactOf(withContacts(world, q0).contacts, "tool", "obstacle/box").distance;
   BOOST_TEST(std::abs(toBox - 0.2) <= kDistanceAccuracy);  // 0.3 between centres, minus 0.05 and 0.05
@@ -167,7 +169,7 @@ BOOST_AUTO_TEST_CASE(an_obstacle_is_attached_where_it_is) {
   BOOST_TEST(world.obstacleIds().empty());
   const AttachedObjectInfo info = world.attachedObjects().at(0);
   BOOST_TEST(info.link == "tool");
-  BOOST_TEST((info.X_LO.matrix() - translation(0.0, 0.0, 0.08).matrix()).norm() <= 1e-12);
+  BOOST_TEST((info.X_LO.matrix() - translation(0.0, 0.0, 0.08).matrix()).norm() <= kPoseExact);
 }
 
 BOOST_AUTO_TEST_CASE(bad_names_are_errors) {
@@ -224,7 +226,7 @@ BOOST_AUTO_TEST_CASE(planning_scene_attached_objects_and_allowed_collisions) {
   BOOST_TEST_REQUIRE(attached.size() == 1u);
   BOOST_TEST(attached[0].object.name == "held");
   BOOST_TEST(attached[0].link == "tool");
-  BOOST_TEST((attached[0].X_LO.matrix() - translation(0, 0, 0.07).matrix()).norm() <= 1e-12);
+  BOOST_TEST((attached[0].X_LO.matrix() - translation(0, 0, 0.07).matrix()).norm() <= kPoseExact);
   BOOST_TEST(attached[0].touchLinks == std::vector<std::string>{"link3"});
   BOOST_TEST(world.collisionAllowed("base", "table"));
   BOOST_TEST(world.collisionAllowed("held", "*"));
@@ -258,7 +260,7 @@ BOOST_AUTO_TEST_CASE(shown_in_the_html_view_on_its_link) {
     BOOST_TEST(!b.pieces.empty());
     BOOST_TEST_REQUIRE(b.track >= 0);
     const Eigen::Isometry3d& pose = view.frames.front().poses.at(static_cast<std::size_t>(b.track));
-    BOOST_TEST((pose.matrix() - expected.matrix()).norm() <= 1e-12);
+    BOOST_TEST((pose.matrix() - expected.matrix()).norm() <= kPoseExact);
   }
   BOOST_TEST(found == 1);
 }

@@ -425,7 +425,7 @@ BOOST_AUTO_TEST_CASE(allow_collision_and_the_fixed_pair_report) {
                            "base): every configuration collides; allow it with --allow-collision base:scene/floor") !=
                  std::string::npos,
              sunk.err);
-  BOOST_TEST(std::abs(number(fields(lines(sunk.out).at(0))[0]) + 0.05) < 1e-6, sunk.out);
+  BOOST_TEST(std::abs(number(fields(lines(sunk.out).at(0))[0]) + 0.05) < kExact, sunk.out);
 
   const Run allowed = runCheck(s, world + " --allow-collision base:floor", "0 0.3\n");
   BOOST_TEST_REQUIRE(allowed.status == 0, allowed.err);
