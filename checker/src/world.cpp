@@ -209,15 +209,9 @@ std::shared_ptr<const PieceSet> appendScenePieces(const PieceSet& old, const Rob
     bool anyKept = false;
     for (const robots::CollisionPiece& p : pieces[l]) {
       WorldPiece w = makeWorldPiece(p, scene.X_WL[l], body, set->pieces.size());
-      bool reachable = false;
-      for (const ReachSphere& r : robot.reach) {
-        if (r.valid && w.box.distance(r.center_W) - r.radius <= reachMargin) {
-          reachable = true;
-          break;
-        }
-      }
-      if (!reachable) {
+      if (!detail::reachable(robot.reach, w.box, reachMargin)) {
         ++scene.piecesDropped;
+        scene.dropped.push_back({l, std::move(w)});
         continue;
       }
       ++scene.piecesKept;
@@ -343,6 +337,61 @@ void publish(WorldState& st, std::shared_ptr<Snapshot> snap) {
 
 void rebuildSelfPairs(Snapshot& s, const WorldOptions& options) { buildSelfPairs(s, options); }
 
+bool reachable(const std::vector<ReachSphere>& reach, const Aabb& box, double margin) {
+  for (const ReachSphere& r : reach) {
+    if (r.valid && box.distance(r.center_W) - r.radius <= margin) return true;
+  }
+  return false;
+}
+
+namespace {
+
+/// The index of scene link `link`'s body in `set` (scene `scene`), made when it has none yet.
+int sceneBody(PieceSet& set, const SceneData& data, int scene, int link) {
+  for (std::size_t b = 0; b < set.bodies.size(); ++b) {
+    const BodyRef& ref = set.bodies[b].ref;
+    if (ref.kind == BodyRef::Kind::SceneLink && ref.scene == scene && ref.index == link) return static_cast<int>(b);
+  }
+  WorldBody body;
+  body.ref.kind = BodyRef::Kind::SceneLink;
+  body.ref.index = link;
+  body.ref.scene = scene;
+  body.name = "scene/" + data.model.link(link).name;
+  set.bodies.push_back(body);
+  return static_cast<int>(set.bodies.size()) - 1;
+}
+
+}  // namespace
+
+void reclaimScenePieces(Snapshot& s, double reachMargin, BroadPhase broadPhase) {
+  std::shared_ptr<PieceSet> set;
+  for (std::size_t k = 0; k < s.scenes.size(); ++k) {
+    const SceneData& old = *s.scenes[k];
+    const auto reached = [&](const DroppedPiece& d) { return reachable(s.robot->reach, d.piece.box, reachMargin); };
+    if (std::none_of(old.dropped.begin(), old.dropped.end(), reached)) continue;
+    if (set == nullptr) set = std::make_shared<PieceSet>(*s.scenePieces);
+    auto data = std::make_shared<SceneData>(old);
+    data->dropped.clear();
+    for (const DroppedPiece& d : old.dropped) {
+      if (!reached(d)) {
+        data->dropped.push_back(d);
+        continue;
+      }
+      WorldPiece w = d.piece;
+      w.body = sceneBody(*set, *data, static_cast<int>(k), d.link);
+      w.uid = set->pieces.size();
+      set->pieces.push_back(std::move(w));
+      ++data->piecesKept;
+      --data->piecesDropped;
+    }
+    s.scenes[k] = data;
+  }
+  if (set == nullptr) return;
+  set->fclTree.reset();
+  finishPieceSet(*set, broadPhase);
+  s.scenePieces = set;
+}
+
 }  // namespace detail
 
 World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std::make_shared<WorldState>()) {
@@ -401,7 +450,7 @@ int World::addSceneLocked(robots::RobotModel scene, const SceneSpec& options) {
     throw std::invalid_argument("scene '" + scene.name() + "': " + e.what());
   }
   std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(scene, q);
-  auto data = std::make_shared<SceneData>(SceneData{std::move(scene), std::move(q), std::move(X_WL), 0, 0, 0});
+  auto data = std::make_shared<SceneData>(SceneData{std::move(scene), std::move(q), std::move(X_WL), 0, 0, 0, {}});
 
   const std::vector<std::vector<robots::CollisionPiece>> pieces =
       piecesWithProgress(data->model, st.geometry, st.options.progress, "scene '" + data->model.name() + "'");

@@ -36,6 +36,12 @@ void attachToRobot(Snapshot& s, const std::shared_ptr<const RobotData>& own) {
     const AttachedData& a = *s.attached[k];
     appendLinkGeometry(*robot, a.link, static_cast<int>(k), a.pieces, a.X_LO);
   }
+  // The reach spheres of the links holding objects, grown to hold them (reach.h).
+  std::vector<std::vector<robots::CollisionPiece>> pieces(static_cast<std::size_t>(robot->model.numLinks()));
+  for (const RobotPiece& p : robot->pieces) {
+    pieces[static_cast<std::size_t>(p.link)].push_back(robots::CollisionPiece{p.core, p.radius, p.X_LP, ""});
+  }
+  robot->reach = linkReachSpheres(robot->model, pieces);
   s.robot = robot;
 }
 
@@ -92,6 +98,7 @@ std::shared_ptr<AttachedData> makeAttached(const Snapshot& s, const std::string&
 /// Publishes `snap` with `s.attached` changed: robot data, self pairs and masks made again.
 void publishAttached(WorldState& st, std::shared_ptr<Snapshot> snap) {
   detail::attachToRobot(*snap, st.robot);
+  detail::reclaimScenePieces(*snap, st.options.reachMargin, st.options.broadPhase);
   detail::rebuildSelfPairs(*snap, st.options);
   detail::publish(st, std::move(snap));
 }

@@ -95,6 +95,13 @@ struct PieceSet {
   std::shared_ptr<const ExternalPieceTree> fclTree;  // only with BroadPhase::FclTree
 };
 
+/// A scene piece the reach filter dropped, kept aside: an attached object may reach it later
+/// (reclaimScenePieces).
+struct DroppedPiece {
+  int link = -1;  // scene link
+  WorldPiece piece;
+};
+
 /// One scene as loaded.
 struct SceneData {
   robots::RobotModel model;
@@ -103,6 +110,7 @@ struct SceneData {
   int piecesKept = 0;
   int piecesDropped = 0;
   int linksWithGeometry = 0;
+  std::vector<DroppedPiece> dropped;
 };
 
 /// One obstacle as given, with its pieces in its own frame O.
@@ -238,8 +246,14 @@ void buildAllowedMasks(Snapshot& s);
 std::set<std::pair<int, int>> allowedLinkPairs(const Snapshot& s);
 /// Rebuilds s.selfPairs (world.cpp): after a change of the allowed names or attached objects.
 void rebuildSelfPairs(Snapshot& s, const WorldOptions& options);
-/// s.robot made again from the robot's own data and s.attached (world_attached.cpp).
+/// s.robot made again from the robot's own data and s.attached, its reach spheres grown by the
+/// attached objects (world_attached.cpp).
 void attachToRobot(Snapshot& s, const std::shared_ptr<const RobotData>& own);
+/// True when the box is within `margin` of a reach sphere (world.cpp).
+bool reachable(const std::vector<ReachSphere>& reach, const Aabb& box, double margin);
+/// Moves the dropped scene pieces that s.robot's reach spheres now reach into s.scenePieces
+/// (world.cpp): after an attachment grew them.
+void reclaimScenePieces(Snapshot& s, double reachMargin, BroadPhase broadPhase);
 
 /// Pads a bounding radius for round-off (tol::kBoundingRelative).
 inline double padRadius(double r, const Eigen::Vector3d& center) {

@@ -155,6 +155,27 @@ BOOST_AUTO_TEST_CASE(collides_with_obstacles_and_detaches) {
   BOOST_TEST(std::abs(toBox - 0.2) <= kDistanceAccuracy);  // 0.3 between centres, minus 0.05 and 0.05
 }
 
+// A scene box beyond the arm's reach is dropped at load; a long rod held by the tool reaches it,
+// and the box is checked again.
+BOOST_AUTO_TEST_CASE(scene_pieces_beyond_the_arm_come_back_for_a_long_object) {
+  World world = quietArm();
+  const robots::RobotModel lamp = robots::RobotModel::fromUrdfString(
+      "<robot name='lamp'><link name='shade'><collision><origin xyz='0 0 2.6'/><geometry><box size='0.2 0.2 0.2'/>"
+      "</geometry></collision></link></robot>",
+      ".", {}, "lamp.urdf");
+  world.addScene(lamp);
+  BOOST_TEST(world.summaryCounts().scenePiecesDropped == 1);
+  const Eigen::VectorXd q0 = world.robot().defaultConfiguration();  // straight up, the tool at z = 1.1
+  world.attach("tool", Obstacle::box("pole", Eigen::Vector3d(0.04, 0.04, 1.6), translation(0, 0, 0.8)));
+  BOOST_TEST(world.summaryCounts().scenePiecesDropped == 0);
+  BOOST_TEST(!world.isFree(q0));
+  const DistanceResult r = world.signedDistance(q0);
+  BOOST_TEST(r.closest.nameA == "attached/pole");
+  BOOST_TEST(r.closest.nameB == "scene/shade");
+  // The pole (0.04 wide, its tip at 2.7) in the shade (0.2 wide, from 2.5): out sideways by 0.02 + 0.1.
+  BOOST_TEST(std::abs(r.closest.distance + 0.12) <= kDistanceAccuracy);
+}
+
 BOOST_AUTO_TEST_CASE(an_obstacle_is_attached_where_it_is) {
   World world = quietArm();
   Eigen::VectorXd q0 = world.robot().defaultConfiguration();

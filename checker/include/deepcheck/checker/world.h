@@ -48,9 +48,9 @@
 // robot's links except its own link, its touch links and the links rigidly attached to its link
 // (with WorldOptions::disableRigid), and against other attached objects not on the same link.
 // Its contacts name it "attached/<name>" with linkA (or bodyB.index) the link carrying it, and
-// their gradients are those of the witness point fixed on that link. Scene pieces dropped at load
-// by the reach filter are not brought back by an attachment (a long object held by the arm may
-// reach farther than the arm: load with a larger reachMargin).
+// their gradients are those of the witness point fixed on that link. The reach spheres of the link
+// grow to hold the object, and scene pieces the reach filter dropped at load that it may reach
+// are checked from then on.
 //
 // Signed distance (per pair of convex pieces the contract of deep/signed_distance.h, minimized
 // over pieces and pairs). For a pair (A, B): A is always a robot link; B is a robot link (self pair, B's link
