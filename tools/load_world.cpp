@@ -123,6 +123,20 @@ std::map<std::string, double> takeLocks(std::vector<std::string>& args) {
   return locks;
 }
 
+std::vector<std::pair<std::string, std::string>> takeAllowedCollisions(std::vector<std::string>& args) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& text : takeOption(args, "--allow-collision")) {
+    const std::size_t colon = text.find(':');
+    if (colon == std::string::npos || colon == 0 || colon + 1 == text.size() ||
+        text.find(':', colon + 1) != std::string::npos) {
+      throw UsageError("--allow-collision needs A:B (two body names, or A:* for A against anything), got '" + text +
+                       "'");
+    }
+    out.emplace_back(text.substr(0, colon), text.substr(colon + 1));
+  }
+  return out;
+}
+
 namespace {
 
 std::string lowerCaseExtension(const std::string& path) {
@@ -154,6 +168,7 @@ WorldArgs takeWorldArgs(std::vector<std::string>& args) {
   w.frameAliases = takeFrameAliases(args);
   w.group = takeSingleOption(args, "--group");
   w.locks = takeLocks(args);
+  w.allowed = takeAllowedCollisions(args);
   if (!w.group.empty() && w.srdfs.empty()) {
     throw UsageError("--group " + w.group + " needs --srdf: the planning groups are the SRDF's");
   }
@@ -188,6 +203,7 @@ checker::World loadWorld(const WorldArgs& args) {
     virtualJoints.insert(virtualJoints.end(), joints.begin(), joints.end());
   }
   checker::World world(std::move(robot), options);
+  const bool reports = world.setFixedPairReports(false);  // once the allowed pairs are in
   robots::SceneLoadOptions sceneLoad;
   sceneLoad.packageRoots = args.packages.commandLine;
   checker::PlanningSceneOptions placement;
@@ -201,6 +217,14 @@ checker::World loadWorld(const WorldArgs& args) {
       world.addScene(robots::RobotModel::fromUrdfFile(s.path, load));
     }
   }
+  for (const auto& [a, b] : args.allowed) {
+    try {
+      world.allowCollision(a, b);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("--allow-collision " + a + ":" + b + ": " + e.what());
+    }
+  }
+  world.setFixedPairReports(reports);
   return world;
 }
 

@@ -47,7 +47,12 @@
   "                      the others are held at their --lock value, else their default\n"          \
   "  --lock JOINT=VALUE  hold JOINT at VALUE (rad or m; repeatable); configurations then omit it\n"   \
   "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"    \
-  "                      also read)\n"
+  "                      also read)\n"                                                               \
+  "  --allow-collision A:B\n"                                                                         \
+  "                      let bodies A and B touch (repeatable); A:* lets A touch anything. Names:\n"  \
+  "                      robot links, obstacles and planning-scene object ids, scene links\n"       \
+  "                      (scene/LINK), attached objects; e.g. base_link:table for a robot bolted\n"  \
+  "                      to a table\n"
 
 namespace deepcheck::tools {
 
@@ -99,7 +104,13 @@ struct WorldArgs {
   robots::FrameAliases frameAliases;
   std::string group;                     ///< --group
   std::map<std::string, double> locks;   ///< --lock
+  /// --allow-collision A:B, in command-line order ("*" for anything).
+  std::vector<std::pair<std::string, std::string>> allowed;
 };
+
+/// Removes every `--allow-collision A:B` from `args`. UsageError unless the text is two non-empty
+/// names joined by one ':' (B may be "*").
+std::vector<std::pair<std::string, std::string>> takeAllowedCollisions(std::vector<std::string>& args);
 
 /// Removes every `--lock JOINT=VALUE` from `args`. UsageError for a malformed one, a value that is
 /// not a finite number, or a joint given twice.
@@ -120,8 +131,9 @@ enum class SceneKind { Urdf, PlanningScene };
 SceneKind sceneKind(const std::string& path);
 
 /// Loads the robot (its --group's variables only, its --lock joints held), disables the pairs of
-/// every SRDF (an unknown link in one is an error naming the file)
-/// and adds the scenes in command-line order. Throws std::invalid_argument naming the bad file
+/// every SRDF (an unknown link in one is an error naming the file), adds the scenes in
+/// command-line order and allows the --allow-collision pairs (an unknown name is an error naming
+/// it and its near matches); the world reports its fixed pairs (world.h) after all of that. Throws std::invalid_argument naming the bad file
 /// (for a planning scene, its line, object and frame; an unknown frame's message suggests
 /// --frame-alias).
 checker::World loadWorld(const WorldArgs& args);

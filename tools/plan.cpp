@@ -317,6 +317,7 @@ void checkOrRepairEndpoints(ompl::geometric::SimpleSetup& ss, const PlanArgs& a)
       const double sd = std::isnan(p.finalDistance) ? checker->clearance(p.q) : p.finalDistance;
       std::fprintf(stderr, "repair %s: %s, moved %.4g rad, signed distance now %.4g m (margin %.4g m)\n", what,
                    planners::toString(p.status), p.jointMotion, sd, a.margin);
+      if (!p.reason.empty()) std::fprintf(stderr, "repair %s: %s\n", what, p.reason.c_str());
     };
     report("start", r.starts.front());
     if (r.goalIsState) report("goal", r.goal);

@@ -33,7 +33,7 @@
   const contactDistance = f64(frames.contact.distance);
   const contactPoints = f32(frames.contact.points);
 
-  const LAYER_COLOURS = { robot: 0xd9a45b, scene: 0x8fa3b8, obstacle: 0xb86f5e, 'shape A': 0x4a90d9,
+  const LAYER_COLOURS = { robot: 0xd9a45b, attached: 0x6bb36b, scene: 0x8fa3b8, obstacle: 0xb86f5e, 'shape A': 0x4a90d9,
     'shape B': 0xe0a030, answer: 0x3fae49, mesh: 0xb5b5b5 };
   const SHAPE_OPACITY = { scene: 0.55, obstacle: 0.7, answer: 0.35 };
   const colourOf = (layer) => (layer in LAYER_COLOURS ? LAYER_COLOURS[layer] : 0xa0a0a0);

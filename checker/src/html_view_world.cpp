@@ -91,6 +91,31 @@ void addObstacles(const World& world, const std::vector<World::WorldPieceRef>& w
   }
 }
 
+/// The attached objects, each on a track of its own that follows its link (trackLink) at its
+/// pose in the link frame (trackOffset).
+void addAttached(const World& world, MeshStore& meshes, std::vector<ViewBody>& bodies, std::vector<int>& trackLink,
+                 std::vector<Eigen::Isometry3d>& trackOffset) {
+  for (const AttachedObjectInfo& a : world.attachedObjects()) {
+    ViewBody b;
+    b.name = "attached/" + a.object.name;
+    b.layer = "attached";
+    if (a.object.geometry.type == robots::GeometryType::Mesh && a.object.mesh) {
+      b.shapes.push_back(ViewShape{a.object.geometry, a.object.mesh, Eigen::Isometry3d::Identity()});
+    } else {
+      b.shapes.push_back(shapeOf(a.object.geometry, Eigen::Isometry3d::Identity(), meshes));
+    }
+    const Eigen::Isometry3d X_OL = a.X_LO.inverse();
+    for (const robots::CollisionPiece& p : a.pieces) {
+      b.pieces.push_back(p);
+      b.pieces.back().X_LP = X_OL * p.X_LP;  // into the object's frame
+    }
+    b.track = static_cast<int>(trackLink.size());
+    trackLink.push_back(world.robot().linkIndex(a.link));
+    trackOffset.push_back(a.X_LO);
+    bodies.push_back(std::move(b));
+  }
+}
+
 /// The configurations with frames added between them (WorldViewOptions::maxStep, maxFrames);
 /// `waypoint` tells which are the given ones, `index` the waypoint each frame starts from.
 struct Densified {
@@ -186,9 +211,11 @@ ViewScene viewOfWorld(const World& world, const std::vector<Eigen::VectorXd>& co
     trackLink.push_back(robot.linkIndex(b.name));
     b.visible = std::find(options.hiddenLinks.begin(), options.hiddenLinks.end(), b.name) == options.hiddenLinks.end();
   }
+  std::vector<Eigen::Isometry3d> trackOffset(trackLink.size(), Eigen::Isometry3d::Identity());
+  MeshStore meshes;
+  addAttached(world, meshes, scene.bodies, trackLink, trackOffset);
   scene.numTracks = static_cast<int>(trackLink.size());
   const std::vector<World::WorldPieceRef> worldPieces = world.worldPieces();
-  MeshStore meshes;
   addScenes(world, worldPieces, scene.bodies);
   addObstacles(world, worldPieces, meshes, scene.bodies);
 
@@ -198,7 +225,9 @@ ViewScene viewOfWorld(const World& world, const std::vector<Eigen::VectorXd>& co
   for (std::size_t f = 0; f < path.q.size(); ++f) {
     ViewFrame frame;
     robots::forwardKinematics(robot, path.q[f], X_WL);
-    for (const int link : trackLink) frame.poses.push_back(X_WL[static_cast<std::size_t>(link)]);
+    for (std::size_t t = 0; t < trackLink.size(); ++t) {
+      frame.poses.push_back(X_WL[static_cast<std::size_t>(trackLink[t])] * trackOffset[t]);
+    }
     frame.waypoint = path.waypoint[f];
     const int w = path.index[f];
     frame.label = frame.waypoint ? "waypoint " + std::to_string(w)

@@ -120,31 +120,7 @@ std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robo
   for (int l = 0; l < m.numLinks(); ++l) {
     if (pieces[l].empty()) continue;
     hasGeometry[l] = true;
-    LinkGeometry lg;
-    lg.link = l;
-    lg.firstPiece = static_cast<int>(robot->pieces.size());
-    lg.numPieces = static_cast<int>(pieces[l].size());
-    Aabb box;
-    for (const robots::CollisionPiece& p : pieces[l]) {
-      RobotPiece rp;
-      rp.core = p.core;
-      rp.radius = p.radius;
-      rp.X_LP = p.X_LP;
-      rp.center_L = p.X_LP * p.core->center();
-      rp.sphereRadius = detail::padRadius(p.core->boundingRadius() + p.radius, rp.center_L);
-      rp.obb_L = Obb::ofPiece(*p.core, p.radius).transformed(p.X_LP);
-      rp.link = l;
-      box.extend(Aabb::ofSphere(rp.center_L, rp.sphereRadius));
-      robot->pieces.push_back(rp);
-    }
-    lg.center_L = box.center();
-    double r = 0.0;
-    for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
-      const RobotPiece& rp = robot->pieces[i];
-      r = std::max(r, (rp.center_L - lg.center_L).norm() + rp.sphereRadius);
-    }
-    lg.radius = detail::padRadius(r, lg.center_L);
-    robot->links.push_back(lg);
+    detail::appendLinkGeometry(*robot, l, -1, pieces[l], Eigen::Isometry3d::Identity());
   }
   robot->reach = linkReachSpheres(m, pieces);
   robot->linkPairs = std::make_shared<const LinkPairIndex>(m, hasGeometry);
@@ -154,6 +130,37 @@ std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robo
 }  // namespace
 
 namespace detail {
+
+void appendLinkGeometry(RobotData& robot, int link, int attached, const std::vector<robots::CollisionPiece>& pieces,
+                        const Eigen::Isometry3d& X_LB) {
+  LinkGeometry lg;
+  lg.link = link;
+  lg.attached = attached;
+  lg.firstPiece = static_cast<int>(robot.pieces.size());
+  lg.numPieces = static_cast<int>(pieces.size());
+  Aabb box;
+  for (const robots::CollisionPiece& p : pieces) {
+    RobotPiece rp;
+    rp.core = p.core;
+    rp.radius = p.radius;
+    rp.X_LP = X_LB * p.X_LP;
+    rp.center_L = rp.X_LP * p.core->center();
+    rp.sphereRadius = detail::padRadius(p.core->boundingRadius() + p.radius, rp.center_L);
+    rp.obb_L = Obb::ofPiece(*p.core, p.radius).transformed(rp.X_LP);
+    rp.link = link;
+    rp.group = static_cast<int>(robot.links.size());
+    box.extend(Aabb::ofSphere(rp.center_L, rp.sphereRadius));
+    robot.pieces.push_back(rp);
+  }
+  lg.center_L = box.center();
+  double r = 0.0;
+  for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
+    const RobotPiece& rp = robot.pieces[i];
+    r = std::max(r, (rp.center_L - lg.center_L).norm() + rp.sphereRadius);
+  }
+  lg.radius = detail::padRadius(r, lg.center_L);
+  robot.links.push_back(lg);
+}
 
 WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry3d& X_WB, int body,
                           std::uint64_t uid) {
@@ -202,15 +209,9 @@ std::shared_ptr<const PieceSet> appendScenePieces(const PieceSet& old, const Rob
     bool anyKept = false;
     for (const robots::CollisionPiece& p : pieces[l]) {
       WorldPiece w = makeWorldPiece(p, scene.X_WL[l], body, set->pieces.size());
-      bool reachable = false;
-      for (const ReachSphere& r : robot.reach) {
-        if (r.valid && w.box.distance(r.center_W) - r.radius <= reachMargin) {
-          reachable = true;
-          break;
-        }
-      }
-      if (!reachable) {
+      if (!detail::reachable(robot.reach, w.box, reachMargin)) {
         ++scene.piecesDropped;
+        scene.dropped.push_back({l, std::move(w)});
         continue;
       }
       ++scene.piecesKept;
@@ -231,23 +232,46 @@ std::shared_ptr<const PieceSet> appendScenePieces(const PieceSet& old, const Rob
 }
 
 /// Counts the disabled link pairs of `s` by reason (adjacent before rigid before by name), over
-/// the pairs of links with geometry; returns the pairs disabled by name only.
+/// the pairs of links with geometry; returns the pairs disabled by name only (allowed collisions).
 std::set<std::pair<int, int>> countDisabledPairs(Snapshot& s, const WorldOptions& options) {
   const RobotData& robot = *s.robot;
   const LinkPairIndex& index = *robot.linkPairs;
-  std::vector<bool> hasGeometry(robot.model.numLinks(), false);
-  for (const LinkGeometry& g : robot.links) hasGeometry[g.link] = true;
   const long long adjacentAndRigid = options.disableAdjacent ? index.numAdjacentAndRigid() : 0;
   s.disabledAdjacent = static_cast<int>(options.disableAdjacent ? index.numAdjacent() : 0);
   s.disabledRigid = static_cast<int>(options.disableRigid ? index.numRigid() - adjacentAndRigid : 0);
   std::set<std::pair<int, int>> byName;
-  for (const auto& [a, b] : s.userDisabled) {
-    if (!hasGeometry[a] || !hasGeometry[b]) continue;
+  for (const auto& [a, b] : detail::allowedLinkPairs(s)) {
     if ((options.disableAdjacent && index.adjacent(a, b)) || (options.disableRigid && index.rigid(a, b))) continue;
-    byName.insert({std::min(a, b), std::max(a, b)});
+    byName.insert({a, b});
   }
   s.disabledByUser = static_cast<int>(byName.size());
   return byName;
+}
+
+/// True when the attached object of robot geometry a may not touch robot geometry b (a link's or
+/// another attached object's): b is on its link, a touch link, rigidly attached to its link (with
+/// disableRigid), or the pair is allowed by name.
+bool attachedPairDisabled(const Snapshot& s, const WorldOptions& options, int a, int b) {
+  const RobotData& robot = *s.robot;
+  const detail::AttachedData& object = *s.attached[static_cast<std::size_t>(robot.links[a].attached)];
+  const int other = robot.links[b].link;
+  if (other == object.link) return true;
+  if (std::find(object.touchLinks.begin(), object.touchLinks.end(), other) != object.touchLinks.end()) return true;
+  if (options.disableRigid && robot.linkPairs->rigid(object.link, other)) return true;
+  return detail::allowedByName(s.allowed, detail::groupAliases(s, a), detail::groupAliases(s, b));
+}
+
+/// Self pairs of the attached objects (robot geometries from `first` on) with every robot
+/// geometry before them, unless disabled (attachedPairDisabled). No reach filter, no grid.
+void addAttachedSelfPairs(Snapshot& s, const WorldOptions& options, int first) {
+  const RobotData& robot = *s.robot;
+  for (int a = first; a < static_cast<int>(robot.links.size()); ++a) {
+    for (int b = 0; b < a; ++b) {
+      if (attachedPairDisabled(s, options, a, b)) continue;
+      s.selfPairs.push_back({b, a, s.selfCacheSize, nullptr});
+      s.selfCacheSize += robot.links[a].numPieces * robot.links[b].numPieces;
+    }
+  }
 }
 
 /// Self pairs of `robot` that can come within the reach margin (reach.h), minus the adjacent and
@@ -264,7 +288,9 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
            byName.count({a, b}) > 0;
   };
   std::vector<int> links;
-  for (const LinkGeometry& g : robot.links) links.push_back(g.link);
+  for (const LinkGeometry& g : robot.links) {
+    if (g.attached < 0) links.push_back(g.link);
+  }
   s.selfPairs.clear();
   s.selfCacheSize = 0;
   const std::vector<std::pair<int, int>> reachable = pairsWithinReach(robot.reach, links, options.reachMargin);
@@ -284,6 +310,7 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
   const long long n = static_cast<long long>(links.size());
   const long long disabledPairs = static_cast<long long>(s.disabledAdjacent) + s.disabledRigid + s.disabledByUser;
   s.unreachablePairs = static_cast<int>(n * (n - 1) / 2 - disabledPairs - static_cast<long long>(s.selfPairs.size()));
+  addAttachedSelfPairs(s, options, static_cast<int>(links.size()));
 }
 
 std::pair<int, int> linkPairByName(const robots::RobotModel& model, const std::string& a, const std::string& b) {
@@ -301,10 +328,68 @@ std::pair<int, int> linkPairByName(const robots::RobotModel& model, const std::s
 namespace detail {
 
 void publish(WorldState& st, std::shared_ptr<Snapshot> snap) {
+  buildAllowedMasks(*snap);
   snap->excess = std::isnan(*st.excessSink) ? *st.excessSink
                                             : std::max(*st.excessSink, st.options.geometry.cylinderMaxDeviation);
   st.current = std::move(snap);
   st.generation.fetch_add(1, std::memory_order_acq_rel);
+}
+
+void rebuildSelfPairs(Snapshot& s, const WorldOptions& options) { buildSelfPairs(s, options); }
+
+bool reachable(const std::vector<ReachSphere>& reach, const Aabb& box, double margin) {
+  for (const ReachSphere& r : reach) {
+    if (r.valid && box.distance(r.center_W) - r.radius <= margin) return true;
+  }
+  return false;
+}
+
+namespace {
+
+/// The index of scene link `link`'s body in `set` (scene `scene`), made when it has none yet.
+int sceneBody(PieceSet& set, const SceneData& data, int scene, int link) {
+  for (std::size_t b = 0; b < set.bodies.size(); ++b) {
+    const BodyRef& ref = set.bodies[b].ref;
+    if (ref.kind == BodyRef::Kind::SceneLink && ref.scene == scene && ref.index == link) return static_cast<int>(b);
+  }
+  WorldBody body;
+  body.ref.kind = BodyRef::Kind::SceneLink;
+  body.ref.index = link;
+  body.ref.scene = scene;
+  body.name = "scene/" + data.model.link(link).name;
+  set.bodies.push_back(body);
+  return static_cast<int>(set.bodies.size()) - 1;
+}
+
+}  // namespace
+
+void reclaimScenePieces(Snapshot& s, double reachMargin, BroadPhase broadPhase) {
+  std::shared_ptr<PieceSet> set;
+  for (std::size_t k = 0; k < s.scenes.size(); ++k) {
+    const SceneData& old = *s.scenes[k];
+    const auto reached = [&](const DroppedPiece& d) { return reachable(s.robot->reach, d.piece.box, reachMargin); };
+    if (std::none_of(old.dropped.begin(), old.dropped.end(), reached)) continue;
+    if (set == nullptr) set = std::make_shared<PieceSet>(*s.scenePieces);
+    auto data = std::make_shared<SceneData>(old);
+    data->dropped.clear();
+    for (const DroppedPiece& d : old.dropped) {
+      if (!reached(d)) {
+        data->dropped.push_back(d);
+        continue;
+      }
+      WorldPiece w = d.piece;
+      w.body = sceneBody(*set, *data, static_cast<int>(k), d.link);
+      w.uid = set->pieces.size();
+      set->pieces.push_back(std::move(w));
+      ++data->piecesKept;
+      --data->piecesDropped;
+    }
+    s.scenes[k] = data;
+  }
+  if (set == nullptr) return;
+  set->fclTree.reset();
+  finishPieceSet(*set, broadPhase);
+  s.scenePieces = set;
 }
 
 }  // namespace detail
@@ -328,7 +413,8 @@ World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std
   st.robot = snap->robot;
   robots::checkDisabledPairs(snap->robot->model, options.disabledPairs, "WorldOptions::disabledPairs");
   for (const robots::DisabledPair& p : options.disabledPairs) {
-    snap->userDisabled.push_back(linkPairByName(snap->robot->model, p.link1, p.link2));
+    // An SRDF's disabled pairs are allowed collisions like any other (world_allowed.cpp).
+    snap->allowed.pairs.insert(std::minmax(p.link1, p.link2));
   }
   buildSelfPairs(*snap, options);
   {
@@ -347,7 +433,13 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 World::~World() = default;
 
-int World::addScene(robots::RobotModel scene, const SceneSpec& options) {
+int World::addScene(robots::RobotModel scene, const SceneSpec& placement) {
+  const int index = addSceneLocked(std::move(scene), placement);
+  detail::reportFixedPairs(*this, *state_);
+  return index;
+}
+
+int World::addSceneLocked(robots::RobotModel scene, const SceneSpec& options) {
   WorldState& st = *state_;
   std::lock_guard<std::mutex> lock(st.mutex);
   if (options.overridePose) scene.setBasePose(options.X_WS);
@@ -358,7 +450,7 @@ int World::addScene(robots::RobotModel scene, const SceneSpec& options) {
     throw std::invalid_argument("scene '" + scene.name() + "': " + e.what());
   }
   std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(scene, q);
-  auto data = std::make_shared<SceneData>(SceneData{std::move(scene), std::move(q), std::move(X_WL), 0, 0, 0});
+  auto data = std::make_shared<SceneData>(SceneData{std::move(scene), std::move(q), std::move(X_WL), 0, 0, 0, {}});
 
   const std::vector<std::vector<robots::CollisionPiece>> pieces =
       piecesWithProgress(data->model, st.geometry, st.options.progress, "scene '" + data->model.name() + "'");
@@ -382,7 +474,8 @@ void World::disablePair(const std::string& linkA, const std::string& linkB) {
   WorldState& st = *state_;
   std::lock_guard<std::mutex> lock(st.mutex);
   auto snap = std::make_shared<Snapshot>(*st.current);
-  snap->userDisabled.push_back(linkPairByName(snap->robot->model, linkA, linkB));
+  linkPairByName(snap->robot->model, linkA, linkB);  // both must be robot links
+  snap->allowed.pairs.insert(std::minmax(linkA, linkB));
   buildSelfPairs(*snap, st.options);
   publish(st, snap);
 }
@@ -410,7 +503,11 @@ const Eigen::VectorXd& World::sceneConfiguration(int index) const {
 std::vector<std::pair<int, int>> World::allowedSelfPairs() const {
   const auto snap = state_->snapshot();
   std::vector<std::pair<int, int>> out;
-  for (const SelfPair& p : snap->selfPairs) out.emplace_back(snap->robot->links[p.a].link, snap->robot->links[p.b].link);
+  for (const SelfPair& p : snap->selfPairs) {
+    const LinkGeometry& a = snap->robot->links[p.a];
+    const LinkGeometry& b = snap->robot->links[p.b];
+    if (a.attached < 0 && b.attached < 0) out.emplace_back(a.link, b.link);
+  }
   return out;
 }
 

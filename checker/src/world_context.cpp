@@ -54,7 +54,8 @@ void refresh(Impl& c) {
     next = c.state->current;
     generation = c.state->generation.load(std::memory_order_relaxed);
   }
-  const Snapshot* prev = c.snap.get();
+  // Attaching or detaching an object changes the robot's pieces: then nothing is kept.
+  const Snapshot* prev = c.snap != nullptr && c.snap->robot == next->robot ? c.snap.get() : nullptr;
   const RobotData& robot = *next->robot;
   const std::size_t nRobot = robot.pieces.size();
   if (prev == nullptr) {

@@ -48,7 +48,7 @@ struct DistanceSearch {
     return std::min(need, options.maxDistance);
   }
 
-  void record(const PairKey& key, int linkA, int setKind, int body, const deep::SignedDistanceResult& r) {
+  void record(const PairKey& key, int groupA, int setKind, int body, const deep::SignedDistanceResult& r) {
     if (r.distance < options.maxDistance && (!found || r.distance < best)) {
       found = true;
       best = r.distance;
@@ -57,7 +57,7 @@ struct DistanceSearch {
     }
     if (!collectContacts() || !(r.distance <= options.contactMargin)) return;
     for (BodyPairBest& e : c.bodyPairs) {
-      if (e.linkA == linkA && e.setKind == setKind && e.body == body) {
+      if (e.groupA == groupA && e.setKind == setKind && e.body == body) {
         if (r.distance < e.result.distance) {
           e.key = key;
           e.result = r;
@@ -65,7 +65,7 @@ struct DistanceSearch {
         return;
       }
     }
-    c.bodyPairs.push_back(BodyPairBest{linkA, setKind, body, key, r});
+    c.bodyPairs.push_back(BodyPairBest{groupA, setKind, body, key, r});
   }
 
   /// Measures the pair (both pieces posed).
@@ -100,7 +100,7 @@ struct DistanceSearch {
       const deep::SignedDistanceResult r =
           pairDistance(shapeOf(a), pieceTransform(c, robot, k.robotPiece), shapeOf(b),
                        pieceTransform(c, robot, k.other), c.selfCaches[k.cache]);
-      record(k, a.link, 0, b.link, r);
+      record(k, a.group, 0, b.group, r);
       return;
     }
     const PieceSet& set = worldPieces(s, k.kind);
@@ -109,7 +109,7 @@ struct DistanceSearch {
     const deep::SignedDistanceResult r =
         pairDistance(shapeOf(a), pieceTransform(c, robot, k.robotPiece), shapeOf(w), w.X_WP,
                      worldCaches(c, k.kind)[pairIndex(set, k.robotPiece, k.other)]);
-    record(k, a.link, k.kind == PairKey::Kind::Scene ? 1 : 2, w.body, r);
+    record(k, a.group, k.kind == PairKey::Kind::Scene ? 1 : 2, w.body, r);
   }
 
   /// Lower bound from support functions (see supportLowerBound), along the best pair's normal and
@@ -154,6 +154,7 @@ struct DistanceSearch {
                 [&](int wp, double /*linkLowerBound*/) {
                   const WorldPiece& w = set.pieces[wp];
                   ++c.stats.linkCandidates;
+                  if (worldPairAllowed(s, kind, g, w.body)) return;
                   for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
                     posePiece(c, robot, i);
                     const RobotPiece& p = robot.pieces[i];
@@ -220,6 +221,13 @@ struct DistanceSearch {
   }
 };
 
+/// The name of robot geometry g: its link's, or "attached/<name>".
+std::string geometryName(const Snapshot& s, int g) {
+  const LinkGeometry& lg = s.robot->links[g];
+  if (lg.attached < 0) return s.robot->model.link(lg.link).name;
+  return "attached/" + s.attached[lg.attached]->source.name;
+}
+
 /// Fills names and, when asked, the gradient of a pair's distance.
 Contact makeContact(Impl& c, const Snapshot& s, const PairKey& key, const deep::SignedDistanceResult& r,
                     bool gradient) {
@@ -231,12 +239,17 @@ Contact makeContact(Impl& c, const Snapshot& s, const PairKey& key, const deep::
   out.pointB = r.pointB;
   out.status = r.status;
   out.linkA = robot.pieces[key.robotPiece].link;
-  out.nameA = robot.model.link(out.linkA).name;
+  out.nameA = geometryName(s, robot.pieces[key.robotPiece].group);
   int linkB = -1;
   if (key.kind == PairKey::Kind::Self) {
-    linkB = robot.pieces[key.other].link;
+    const RobotPiece& b = robot.pieces[key.other];
+    linkB = b.link;
     out.bodyB = robotBody(linkB);
-    out.nameB = robot.model.link(linkB).name;
+    if (robot.links[b.group].attached >= 0) {
+      out.bodyB.kind = BodyRef::Kind::Attached;
+      out.bodyB.scene = robot.links[b.group].attached;
+    }
+    out.nameB = geometryName(s, b.group);
   } else {
     const PieceSet& set = key.kind == PairKey::Kind::Scene ? *s.scenePieces : *s.obstaclePieces;
     const detail::WorldBody& body = set.bodies[set.pieces[key.other].body];

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,12 +32,14 @@ struct RobotPiece {
   double sphereRadius = 0.0;
   Obb obb_L;  // oriented box in the link frame
   int link = -1;
+  int group = -1;  // its LinkGeometry (index into RobotData::links)
 };
 
-/// A robot link that has pieces: pieces [firstPiece, firstPiece + numPieces) and their bounding
-/// sphere in the link frame.
+/// A robot link that has pieces, or an object attached to a link: pieces
+/// [firstPiece, firstPiece + numPieces) and their bounding sphere in the link frame.
 struct LinkGeometry {
   int link = -1;
+  int attached = -1;  // index into Snapshot::attached for an attached object, -1 for the link's own
   int firstPiece = 0;
   int numPieces = 0;
   Eigen::Vector3d center_L = Eigen::Vector3d::Zero();
@@ -53,7 +56,9 @@ struct SelfPair {
   std::shared_ptr<const SelfPairGrid> grid;
 };
 
-/// Everything about the robot: built once, shared by all snapshots.
+/// Everything about the robot: its own links built once (WorldState::robot), and in a snapshot
+/// with attached objects a copy with one more LinkGeometry per object, after the links' own
+/// (world_attached.cpp).
 struct RobotData {
   robots::RobotModel model;
   std::vector<RobotPiece> pieces;   // grouped by link, in link order
@@ -90,6 +95,13 @@ struct PieceSet {
   std::shared_ptr<const ExternalPieceTree> fclTree;  // only with BroadPhase::FclTree
 };
 
+/// A scene piece the reach filter dropped, kept aside: an attached object may reach it later
+/// (reclaimScenePieces).
+struct DroppedPiece {
+  int link = -1;  // scene link
+  WorldPiece piece;
+};
+
 /// One scene as loaded.
 struct SceneData {
   robots::RobotModel model;
@@ -98,6 +110,7 @@ struct SceneData {
   int piecesKept = 0;
   int piecesDropped = 0;
   int linksWithGeometry = 0;
+  std::vector<DroppedPiece> dropped;
 };
 
 /// One obstacle as given, with its pieces in its own frame O.
@@ -108,8 +121,40 @@ struct ObstacleData {
   double excess = 0.0;
 };
 
+/// An object attached to a robot link (world_attached.cpp): its pieces in its frame O, O's pose
+/// in the link frame, and the links it may touch (its own link always may).
+struct AttachedData {
+  Obstacle source;  // X_WO as given when attached (not updated)
+  int link = -1;
+  Eigen::Isometry3d X_LO = Eigen::Isometry3d::Identity();
+  std::vector<robots::CollisionPiece> pieces;  // X_LP = pose of the piece in O
+  std::vector<int> touchLinks;
+};
+
+/// Allowed collisions by name (world_allowed.cpp): pairs of names (first < second), and names
+/// allowed to touch anything. A name stands for every body it is an alias of (bodyAliases).
+struct AllowedNames {
+  std::set<std::pair<std::string, std::string>> pairs;
+  std::set<std::string> always;
+  bool empty() const { return pairs.empty() && always.empty(); }
+};
+
+/// Which (robot geometry, world body) pairs of one PieceSet are allowed: bits[g * bodies + body];
+/// empty when none is.
+struct AllowedMask {
+  std::size_t bodies = 0;
+  std::vector<std::uint8_t> bits;
+  bool test(int g, int body) const {
+    return !bits.empty() && bits[static_cast<std::size_t>(g) * bodies + static_cast<std::size_t>(body)] != 0;
+  }
+};
+
 struct Snapshot {
   std::shared_ptr<const RobotData> robot;
+  std::vector<std::shared_ptr<const AttachedData>> attached;  // robot->links beyond the own ones
+  AllowedNames allowed;
+  AllowedMask sceneAllowed;     // from `allowed`, rebuilt by publish()
+  AllowedMask obstacleAllowed;
   std::vector<std::shared_ptr<const SceneData>> scenes;
   std::vector<std::shared_ptr<const ObstacleData>> obstacles;  // by increasing id
   std::shared_ptr<const PieceSet> scenePieces;
@@ -120,7 +165,6 @@ struct Snapshot {
   int disabledRigid = 0;
   int disabledByUser = 0;
   int unreachablePairs = 0;  // link pairs neither disabled nor checked: never within the reach margin
-  std::vector<std::pair<int, int>> userDisabled;  // link pairs, first < second
   double excess = 0.0;
 };
 
@@ -137,6 +181,10 @@ struct WorldState {
   /// `mutex` or in the constructor); NaN when unknown.
   std::shared_ptr<double> excessSink;
   robots::CollisionGeometryOptions geometry;  // with the decomposer resolved
+  /// Fixed pairs already reported ("<nameA>\n<nameB>"), so each is reported once (under `mutex`).
+  std::set<std::string> reportedFixedPairs;
+  /// World::setFixedPairReports: while false, nothing is reported.
+  std::atomic<bool> fixedPairReports{true};
   /// The robot, the same in every snapshot: read without the mutex (World::robot() is called on
   /// every validity query).
   std::shared_ptr<const RobotData> robot;
@@ -153,6 +201,11 @@ std::vector<robots::CollisionPiece> piecesOfGeometry(const robots::Geometry& geo
                                                      const robots::CollisionGeometryOptions& options,
                                                      const std::string& what);
 
+/// Appends to `robot` the geometry of `link` (attached: -1 for the link's own pieces, else the
+/// index of its attached object) made of `pieces` posed at X_LB in the link frame.
+void appendLinkGeometry(RobotData& robot, int link, int attached, const std::vector<robots::CollisionPiece>& pieces,
+                        const Eigen::Isometry3d& X_LB);
+
 /// A world piece from a collision piece of a body posed at X_WB: its bounding box, sphere and
 /// oriented box.
 WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry3d& X_WB, int body, std::uint64_t uid);
@@ -166,8 +219,41 @@ void appendObstacle(PieceSet& set, const ObstacleData& o);
 std::shared_ptr<const PieceSet> buildObstaclePieces(const std::vector<std::shared_ptr<const ObstacleData>>& obstacles,
                                                     BroadPhase broadPhase);
 
-/// Publishes a new snapshot (caller holds the mutex).
+/// Reports on options.progress the fixed pairs (World::fixedPairs) not reported before, one line
+/// each naming the pair, its distance and how to allow it (world_fixed_pairs.cpp). Call without
+/// holding the mutex.
+void reportFixedPairs(const World& world, WorldState& st);
+/// That line, and its advice alone ("allow it with --allow-collision A:B ...").
+std::string fixedPairMessage(const Contact& c, const robots::RobotModel& robot);
+std::string allowHint(const Contact& c);
+
+/// Publishes a new snapshot (caller holds the mutex): its allowed masks are rebuilt first.
 void publish(WorldState& st, std::shared_ptr<Snapshot> snap);
+
+/// The names a body answers to in allowed collisions (world_allowed.cpp): a robot link its name;
+/// a scene link "scene/<link>" and <link>; an obstacle "obstacle/<name>" and <name>, and for a
+/// name "<id>/<k>" (a planning-scene object's k-th shape) also <id> and "obstacle/<id>"; an
+/// attached object likewise with "attached/". A name without its prefix that is also a robot
+/// link's name is left out: it names the link only.
+std::vector<std::string> bodyAliases(const std::string& bodyName, const robots::RobotModel& robot);
+/// The aliases of robot geometry g of `s` (a link's name, or its attached object's aliases).
+std::vector<std::string> groupAliases(const Snapshot& s, int g);
+/// True when the bodies with aliases a and b may touch.
+bool allowedByName(const AllowedNames& allowed, const std::vector<std::string>& a, const std::vector<std::string>& b);
+/// Rebuilds s.sceneAllowed and s.obstacleAllowed from s.allowed.
+void buildAllowedMasks(Snapshot& s);
+/// Self pairs (robot links with geometry, first < second) that s.allowed allows.
+std::set<std::pair<int, int>> allowedLinkPairs(const Snapshot& s);
+/// Rebuilds s.selfPairs (world.cpp): after a change of the allowed names or attached objects.
+void rebuildSelfPairs(Snapshot& s, const WorldOptions& options);
+/// s.robot made again from the robot's own data and s.attached, its reach spheres grown by the
+/// attached objects (world_attached.cpp).
+void attachToRobot(Snapshot& s, const std::shared_ptr<const RobotData>& own);
+/// True when the box is within `margin` of a reach sphere (world.cpp).
+bool reachable(const std::vector<ReachSphere>& reach, const Aabb& box, double margin);
+/// Moves the dropped scene pieces that s.robot's reach spheres now reach into s.scenePieces
+/// (world.cpp): after an attachment grew them.
+void reclaimScenePieces(Snapshot& s, double reachMargin, BroadPhase broadPhase);
 
 /// Pads a bounding radius for round-off (tol::kBoundingRelative).
 inline double padRadius(double r, const Eigen::Vector3d& center) {

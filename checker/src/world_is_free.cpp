@@ -103,6 +103,7 @@ bool linkHitsSet(Impl& c, const Snapshot& s, PairKey::Kind kind, int g) {
   return forEachOverlapping(set, c.state->options.broadPhase, Aabb::ofSphere(center, lg.radius), [&](int wp) {
     const WorldPiece& w = set.pieces[wp];
     ++c.stats.linkCandidates;
+    if (worldPairAllowed(s, kind, g, w.body)) return false;
     if (fartherThan(w.box.squaredDistance(center), lg.radius)) return false;
     for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
       posePiece(c, robot, i);

@@ -157,6 +157,12 @@ std::size_t findObstacle(const Snapshot& s, int id) {
 int World::addObstacle(const Obstacle& obstacle) { return addObstacles({obstacle}).front(); }
 
 std::vector<int> World::addObstacles(const std::vector<Obstacle>& obstacles) {
+  std::vector<int> ids = addObstaclesLocked(obstacles);
+  detail::reportFixedPairs(*this, *state_);
+  return ids;
+}
+
+std::vector<int> World::addObstaclesLocked(const std::vector<Obstacle>& obstacles) {
   WorldState& st = *state_;
   // Under the lock: the decomposer records the geometry excess in state shared by the world's
   // changes. Every obstacle's pieces are made before the world changes: a bad one leaves it as it was.

@@ -17,7 +17,7 @@ std::vector<robots::CollisionPiece> World::linkPieces(int link) const {
   }
   std::vector<robots::CollisionPiece> out;
   for (const detail::LinkGeometry& g : robot.links) {
-    if (g.link != link) continue;
+    if (g.link != link || g.attached >= 0) continue;  // attached objects: attachedObjects()
     for (int i = g.firstPiece; i < g.firstPiece + g.numPieces; ++i) {
       const detail::RobotPiece& p = robot.pieces[static_cast<std::size_t>(i)];
       out.push_back(robots::CollisionPiece{p.core, p.radius, p.X_LP, robot.model.link(link).name});

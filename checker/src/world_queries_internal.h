@@ -50,9 +50,9 @@ struct PairKey {
 
 /// The minimum over the piece pairs of one body pair, for the contact list.
 struct BodyPairBest {
-  int linkA = -1;
+  int groupA = -1;  ///< robot geometry (RobotData::links) of A
   int setKind = 0;  ///< 0 robot link, 1 scene body, 2 obstacle body
-  int body = -1;    ///< robot link index or body index in its set
+  int body = -1;    ///< robot geometry or body index in its set
   PairKey key;
   deep::SignedDistanceResult result;
 };
@@ -291,6 +291,11 @@ inline deep::ConvexShape shapeOf(const WorldPiece& p) { return deep::ConvexShape
 
 inline void notify(const World::Context::Impl& c, int linkA, const BodyRef& bodyB) {
   if (c.onNarrowPhase) c.onNarrowPhase(NarrowPhaseEvent{linkA, bodyB});
+}
+
+/// True when the pair (robot geometry g, body `body` of the world set of `kind`) is allowed.
+inline bool worldPairAllowed(const Snapshot& s, PairKey::Kind kind, int g, int body) {
+  return (kind == PairKey::Kind::Scene ? s.sceneAllowed : s.obstacleAllowed).test(g, body);
 }
 
 inline BodyRef bodyOfWorldPiece(const PieceSet& set, const WorldPiece& w) { return set.bodies[w.body].ref; }

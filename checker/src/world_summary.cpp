@@ -37,6 +37,9 @@ std::string World::bodyName(const BodyRef& body) const {
         if (o->id == body.index) return "obstacle/" + o->source.name;
       }
       break;
+    case BodyRef::Kind::Attached:
+      if (body.scene < 0 || body.scene >= static_cast<int>(snap->attached.size())) break;
+      return "attached/" + snap->attached[body.scene]->source.name;
   }
   throw std::invalid_argument("bodyName: no such body (index " + std::to_string(body.index) + ")");
 }
@@ -44,7 +47,7 @@ std::string World::bodyName(const BodyRef& body) const {
 World::Summary World::summaryCounts() const {
   const auto snap = state_->snapshot();
   Summary s;
-  const RobotData& r = *snap->robot;
+  const RobotData& r = *state_->robot;  // the robot's own links, without attached objects
   s.robotLinks = r.model.numLinks();
   s.robotLinksWithGeometry = static_cast<int>(r.links.size());
   s.robotPieces = static_cast<int>(r.pieces.size());
@@ -62,6 +65,9 @@ World::Summary World::summaryCounts() const {
   }
   s.obstacles = static_cast<int>(snap->obstacles.size());
   s.obstaclePieces = static_cast<int>(snap->obstaclePieces->pieces.size());
+  s.attachedObjects = static_cast<int>(snap->attached.size());
+  s.attachedPieces = static_cast<int>(snap->robot->pieces.size() - r.pieces.size());
+  s.allowedCollisions = static_cast<int>(snap->allowed.pairs.size() + snap->allowed.always.size());
   s.geometryExcess = snap->excess;
   return s;
 }
@@ -87,7 +93,10 @@ std::string World::summary() const {
   out << "scene pieces: kept " << s.scenePiecesKept << ", dropped " << s.scenePiecesDropped
       << " (reach margin " << state_->options.reachMargin << " m)\n";
   out << "obstacles: " << s.obstacles << " (" << s.obstaclePieces << " pieces)\n";
-  const long long worldPairs = static_cast<long long>(s.robotPieces) * (s.scenePiecesKept + s.obstaclePieces);
+  if (s.attachedObjects > 0) out << "attached objects: " << s.attachedObjects << " (" << s.attachedPieces << " pieces)\n";
+  if (s.allowedCollisions > 0) out << "allowed collisions: " << s.allowedCollisions << " entries (pairs and names)\n";
+  const long long worldPairs =
+      static_cast<long long>(s.robotPieces + s.attachedPieces) * (s.scenePiecesKept + s.obstaclePieces);
   int grids = 0, cells = 0, freeCells = 0;
   for (const SelfPair& p : snap->selfPairs) {
     if (p.grid == nullptr) continue;

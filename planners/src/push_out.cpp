@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -302,6 +303,24 @@ PushOut standOffPushOut(std::shared_ptr<const checker::World> world, const Valid
   return PushOut(std::move(world), raised, options);
 }
 
+namespace {
+
+/// PushOutResult::reason: the first pair that no joint moves and that makes every configuration
+/// invalid (sd <= threshold), or "".
+std::string blockingFixedPair(const checker::World& world, double threshold) {
+  const std::vector<checker::Contact> fixed = world.fixedPairs(threshold);
+  if (fixed.empty()) return "";
+  const checker::Contact& c = fixed.front();
+  char distance[32];
+  std::snprintf(distance, sizeof distance, "%.3g", c.distance);
+  return "the link " + world.robot().link(c.linkA).name + " is moved by no joint, and " + c.nameA + " is " + distance + " m from " + c.nameB +
+         " in every configuration (at most the validity threshold " + robots::formatNumber(threshold) +
+         " m): no push-out can repair it; allow the pair if it is meant to touch: --allow-collision " + c.nameA +
+         ":" + c.nameB + " (checker::World::allowCollision)";
+}
+
+}  // namespace
+
 PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& q0) const {
   const robots::RobotModel& model = world_->robot();
   robots::checkConfiguration(model, q0);
@@ -323,6 +342,7 @@ PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& q0) const {
   checker::DistanceResult d = search.query(result.q);
   result.initialDistance = search.minimum(d);
   if (result.initialDistance < -options_.maxDepth) {
+    result.reason = blockingFixedPair(*world_, validity_.threshold());
     result.status = PushOutStatus::TooDeep;
     result.q = q0;
     result.finalDistance = result.initialDistance;
@@ -330,6 +350,7 @@ PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& q0) const {
   }
   const bool valid = search.iterate(std::move(d), &result);
   result.status = valid ? PushOutStatus::Repaired : PushOutStatus::NotConverged;
+  if (!valid) result.reason = blockingFixedPair(*world_, validity_.threshold());
   result.jointMotion = (result.q - q0).norm();
   result.finalDistance = signedDistanceUpTo(*world_, result.q, std::numeric_limits<double>::infinity());
   return result;

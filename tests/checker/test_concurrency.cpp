@@ -166,4 +166,50 @@ BOOST_AUTO_TEST_CASE(changes_while_queries_run) {
   BOOST_TEST(queries > 0);
 }
 
+BOOST_AUTO_TEST_CASE(attaching_while_queries_run) {
+  // One thread attaches a rod to the tool and detaches it, over and over, while others query.
+  // Every answer must be one of the two worlds' answers (a query runs on one snapshot).
+  World world = makeWorld();
+  const Obstacle rod = Obstacle::box("rod", Eigen::Vector3d(0.12, 0.12, 1.0), translation(0, 0, 0.4));
+  std::mt19937 rng(29);
+  const std::vector<Eigen::VectorXd> qs = randomConfigurations(world.robot(), 200, rng);
+  auto freshIsFree = [&](const Eigen::VectorXd& q) {
+    auto context = world.makeContext();
+    return world.isFree(q, context);
+  };
+  std::vector<bool> freeWithout, freeWith;
+  for (const auto& q : qs) freeWithout.push_back(freshIsFree(q));
+  world.attach("tool", rod);
+  for (const auto& q : qs) freeWith.push_back(freshIsFree(q));
+  world.detach("rod", false);
+  int differing = 0;
+  for (std::size_t i = 0; i < qs.size(); ++i) differing += freeWithout[i] != freeWith[i];
+  BOOST_TEST(differing > 10);
+
+  std::atomic<bool> stop{false};
+  std::atomic<int> mismatches{0};
+  std::thread changer([&] {
+    for (int i = 0; i < 100; ++i) {
+      world.attach("tool", rod);
+      world.detach("rod", false);
+    }
+    stop = true;
+  });
+  std::vector<std::thread> readers;
+  for (int t = 0; t < kThreads - 1; ++t) {
+    readers.emplace_back([&, t] {
+      auto context = world.makeContext();
+      for (std::size_t i = t; !stop || i < qs.size(); ++i) {
+        const std::size_t k = i % qs.size();
+        const bool free = world.isFree(qs[k], context);
+        if (free != freeWithout[k] && free != freeWith[k]) ++mismatches;
+        world.signedDistance(qs[k], context);
+      }
+    });
+  }
+  changer.join();
+  for (std::thread& th : readers) th.join();
+  BOOST_TEST(mismatches == 0);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -3,11 +3,13 @@
 #include "bundled.h"
 
 #include "deepcheck/planners/push_out.h"
+#include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/validity.h"
 
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -44,6 +46,27 @@ BOOST_AUTO_TEST_CASE(valid_input_is_returned_unchanged) {
   BOOST_TEST(r.status == dp::PushOutStatus::AlreadyValid);
   BOOST_TEST(r.jointMotion == 0.0);
   BOOST_TEST((r.q == start));
+}
+
+// A table sunk 3 mm into the base, which no joint moves: no push-out can help; the result says
+// which pair blocks and how to allow it, and once allowed the start is valid.
+BOOST_AUTO_TEST_CASE(a_pair_no_joint_moves_is_named_with_how_to_allow_it) {
+  const auto world = dp::loadWorld(dp::test::armUrdf(), {}, dp::test::bundledOptions());
+  double bottom = std::numeric_limits<double>::infinity();
+  for (const deepcheck::robots::CollisionPiece& p : world->linkPieces(world->robot().linkIndex("base_link"))) {
+    for (const Eigen::Vector3d& v : p.core->vertices()) bottom = std::min(bottom, (p.X_LP * v).z() - p.radius);
+  }
+  Eigen::Isometry3d X_WT = Eigen::Isometry3d::Identity();
+  X_WT.translation() = Eigen::Vector3d(0, 0, bottom + 0.003 - 0.025);
+  world->addObstacle(deepcheck::checker::Obstacle::box("table", Eigen::Vector3d(1.0, 1.0, 0.05), X_WT));
+  const dp::PushOutResult r = dp::PushOut(world).run(dp::test::suggestedStart());
+  BOOST_TEST(!r.success());
+  BOOST_TEST(r.reason.find("the link base_link is moved by no joint") != std::string::npos, r.reason);
+  BOOST_TEST(r.reason.find("--allow-collision base_link:obstacle/table") != std::string::npos, r.reason);
+  world->allowCollision("base_link", "table");
+  const dp::PushOutResult allowed = dp::PushOut(world).run(dp::test::suggestedStart());
+  BOOST_TEST(allowed.status == dp::PushOutStatus::AlreadyValid);
+  BOOST_TEST(allowed.reason.empty());
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_its_name) {

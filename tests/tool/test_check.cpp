@@ -405,4 +405,46 @@ BOOST_AUTO_TEST_CASE(panda_in_the_kitchen) {
   BOOST_TEST(r.err.find("scene 0 'kitchen'") != std::string::npos, r.err);
 }
 
+
+
+// A robot whose base (moved by no joint) is sunk 0.05 into the floor: reported once after
+// loading with the option that allows it; --allow-collision removes the pair from the answers;
+// bad names and bad syntax are errors.
+BOOST_AUTO_TEST_CASE(allow_collision_and_the_fixed_pair_report) {
+  Scratch s;
+  std::string robotXml = kRobot;
+  robotXml.replace(robotXml.find("<link name='base'/>"), std::string("<link name='base'/>").size(),
+                   "<link name='base'><collision><origin xyz='0 0 -0.3'/><geometry><box size='0.2 0.2 0.2'/>"
+                   "</geometry></collision></link>");
+  const std::string robot = s.write("bolted.urdf", robotXml);
+  const std::string scene = s.write("room.urdf", kScene);
+  const std::string world = "--robot " + robot + " --scene " + scene;
+  const Run sunk = runCheck(s, world, "0 0.3\n");
+  BOOST_TEST_REQUIRE(sunk.status == 0, sunk.err);
+  BOOST_TEST(sunk.err.find("warning: base and scene/floor are -0.05 m apart in every configuration (no joint moves "
+                           "base): every configuration collides; allow it with --allow-collision base:scene/floor") !=
+                 std::string::npos,
+             sunk.err);
+  BOOST_TEST(std::abs(number(fields(lines(sunk.out).at(0))[0]) + 0.05) < kExact, sunk.out);
+
+  const Run allowed = runCheck(s, world + " --allow-collision base:floor", "0 0.3\n");
+  BOOST_TEST_REQUIRE(allowed.status == 0, allowed.err);
+  BOOST_TEST(allowed.err.find("warning") == std::string::npos, allowed.err);
+  const std::vector<std::string> f = fields(lines(allowed.out).at(0));
+  BOOST_TEST(std::abs(number(f[0]) - 0.5) < kExact, allowed.out);  // the cube to the wall
+  BOOST_TEST(f[2] == "scene/wall");
+
+  const Run typo = runCheck(s, world + " --allow-collision base:flor", "0 0\n");
+  BOOST_TEST(typo.status == 1);
+  BOOST_TEST(typo.err.find("--allow-collision base:flor: allowCollision: no robot link, attached object, scene link or "
+                           "obstacle is named 'flor'; near matches: 'floor'") != std::string::npos,
+             typo.err);
+  const Run syntax = runCheck(s, world + " --allow-collision base", "0 0\n");
+  BOOST_TEST(syntax.status == 2);
+  BOOST_TEST(syntax.err.find("--allow-collision needs A:B") != std::string::npos, syntax.err);
+  const Run anything = runCheck(s, world + " --allow-collision base:*", "0 0.3\n");
+  BOOST_TEST_REQUIRE(anything.status == 0, anything.err);
+  BOOST_TEST(fields(lines(anything.out).at(0))[2] == "scene/wall");
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -49,4 +49,15 @@ constexpr double kCertifiedGapRelative = 1e-9;
 constexpr int kGridMaxCells = 16384;
 constexpr long long kGridMaxPiecePairTests = 1LL << 17;
 
+/// A pair that no joint can change (a robot link moved by no joint, or an object attached to
+/// one, against a scene link or an obstacle) is reported at load when its distance is at most
+/// this, metres (World::fixedPairs): it bounds the clearance of every state, and below zero makes
+/// every state collide. 1 cm: a base bolted to a table top, resting on it or a few millimetres
+/// above, is reported; a wall across the room is not.
+constexpr double kFixedPairReportDistance = 0.01;
+
+/// Names within this edit distance (or containing one another) of an unknown name are listed as
+/// near matches in the error message (allowed collisions, attached objects).
+constexpr int kNearMatchEdits = 3;
+
 }  // namespace deepcheck::checker::tol

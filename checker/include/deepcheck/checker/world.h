@@ -24,7 +24,33 @@
 // never reaches the narrow phase.
 //
 // Names. A robot link is named by its URDF name, a scene link "scene/<link>", an obstacle
-// "obstacle/<name>".
+// "obstacle/<name>", an attached object "attached/<name>".
+//
+// Allowed collisions (world_allowed.cpp). allowCollision(a, b) and allowCollisionsWith(a) name
+// bodies: a robot link, an attached object ("attached/<name>" or <name>), a scene link
+// ("scene/<link>" or <link>), an obstacle ("obstacle/<name>" or <name>; "<id>" also names every
+// obstacle "<id>/<k>" of a planning-scene object of several shapes). A name stands for every
+// body it names. An allowed pair takes part in no query: isFree, signedDistance, its contacts
+// and gradients, and so the clearance and the push-out built on them. WorldOptions::disabledPairs
+// (an SRDF's) and disablePair() enter the same table as robot link pairs.
+//
+// Fixed pairs (World::fixedPairs). A robot link moved by no joint (the root and the links fixed
+// to it), or an object attached to one, against a scene link or an obstacle keeps one distance in
+// every configuration. Policy: such a pair is NOT dropped silently: it counts in every query like
+// any pair unless allowed (a collision is a collision); the world reports each one within
+// tol::kFixedPairReportDistance ONCE, on WorldOptions::progress, when the scene, obstacles or
+// attached object that brings it is added (or when reports are turned back on:
+// setFixedPairReports), naming the pair and how to allow it; the push-out names it when it is
+// what blocks (planners/push_out.h).
+//
+// Attached objects (world_attached.cpp). An Obstacle attached to a robot link moves with it
+// (its pose X_LO in the link frame is fixed): it is checked against scenes, obstacles and the
+// robot's links except its own link, its touch links and the links rigidly attached to its link
+// (with WorldOptions::disableRigid), and against other attached objects not on the same link.
+// Its contacts name it "attached/<name>" with linkA (or bodyB.index) the link carrying it, and
+// their gradients are those of the witness point fixed on that link. The reach spheres of the link
+// grow to hold the object, and scene pieces the reach filter dropped at load that it may reach
+// are checked from then on.
 //
 // Signed distance (per pair of convex pieces the contract of deep/signed_distance.h, minimized
 // over pieces and pairs). For a pair (A, B): A is always a robot link; B is a robot link (self pair, B's link
@@ -89,9 +115,13 @@ const char* toString(BroadPhase b);
 
 /// What a body of a pair is.
 struct BodyRef {
-  enum class Kind { RobotLink, SceneLink, Obstacle } kind = Kind::RobotLink;
-  int index = -1;  ///< RobotLink: link index; SceneLink: link index in its scene; Obstacle: id
-  int scene = -1;  ///< SceneLink: the scene's index (addScene order)
+  enum class Kind { RobotLink, SceneLink, Obstacle, Attached } kind = Kind::RobotLink;
+  /// RobotLink: link index; SceneLink: link index in its scene; Obstacle: id; Attached: the link
+  /// carrying it.
+  int index = -1;
+  /// SceneLink: the scene's index (addScene order); Attached: the object's position in
+  /// World::attachedObjects().
+  int scene = -1;
   bool operator==(const BodyRef& o) const { return kind == o.kind && index == o.index && scene == o.scene; }
   bool operator!=(const BodyRef& o) const { return !(*this == o); }
 };
@@ -121,10 +151,10 @@ struct Contact {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, from A towards B, world frame
   Eigen::Vector3d pointA = Eigen::Vector3d::Zero();   ///< witness on A, world frame
   Eigen::Vector3d pointB = Eigen::Vector3d::Zero();   ///< witness on B, world frame
-  int linkA = -1;                                     ///< robot link of A
+  int linkA = -1;                                     ///< robot link of A (carrying it, if attached)
   BodyRef bodyB;
-  std::string nameA;  ///< link name
-  std::string nameB;  ///< link name, "scene/<link>" or "obstacle/<name>"
+  std::string nameA;  ///< link name or "attached/<name>"
+  std::string nameB;  ///< link name, "attached/<name>", "scene/<link>" or "obstacle/<name>"
   deep::SignedDistanceStatus status = deep::SignedDistanceStatus::NotConverged;
   /// d distance / dq (numVariables entries) when DistanceOptions::gradient, else empty.
   Eigen::VectorXd gradient;
@@ -237,6 +267,25 @@ struct SceneSpec {
       : urdf(std::move(path)), overridePose(true), X_WS(pose) {}
 };
 
+/// How World::attach places an object on a link.
+struct AttachOptions {
+  /// Robot links the object may touch (its own link always may).
+  std::vector<std::string> touchLinks;
+  /// False: Obstacle::X_WO is the object's pose in the link frame (X_LO). True: it is its pose in
+  /// the world with the robot at `q` (empty: the default configuration).
+  bool worldFrame = false;
+  Eigen::VectorXd q;
+};
+
+/// An attached object as the world holds it (World::attachedObjects).
+struct AttachedObjectInfo {
+  Obstacle object;  ///< as given; X_WO as given
+  std::string link;
+  Eigen::Isometry3d X_LO = Eigen::Isometry3d::Identity();  ///< its pose in the link frame
+  std::vector<std::string> touchLinks;
+  std::vector<robots::CollisionPiece> pieces;  ///< X_LP: pose of the piece in the link frame
+};
+
 /// Placement of a MoveIt planning scene (World::addPlanningScene).
 struct PlanningSceneOptions {
   /// Scene frame names mapped to robot links (e.g. base_link -> panda_link0).
@@ -282,7 +331,9 @@ class World {
   int addScene(robots::RobotModel scene, const Eigen::Isometry3d& X_WS);
   /// Adds every shape of a MoveIt planning scene as an obstacle named "<id>" (an object with one
   /// shape) or "<id>/<k>" (its k-th shape), posed by robots::shapeWorldPoses; returns their ids in
-  /// file order (world_planning_scene.cpp).
+  /// file order. Then attaches its attached objects (each shape an object named as above, posed
+  /// at options.q, with its touch links) and allows its allowed collisions
+  /// (world_planning_scene.cpp).
   std::vector<int> addPlanningScene(const robots::PlanningScene& scene, const PlanningSceneOptions& options = {});
 
   /// Adds an obstacle; returns its id (never reused).
@@ -299,6 +350,42 @@ class World {
 
   /// Disables one more self pair (by link names).
   void disablePair(const std::string& linkA, const std::string& linkB);
+
+  // --- allowed collisions (header comment) --------------------------------------------------
+
+  /// Allows bodies named a and b to touch ("*" for either: allowCollisionsWith the other). Throws
+  /// std::invalid_argument naming an unknown name and its near matches.
+  void allowCollision(const std::string& a, const std::string& b);
+  /// Allows the bodies named `name` to touch anything.
+  void allowCollisionsWith(const std::string& name);
+  /// The allowed pairs as given (first < second), then ("name", "*") for each allowCollisionsWith.
+  std::vector<std::pair<std::string, std::string>> allowedCollisions() const;
+  /// True when every body named a may touch every body named b (b "*": a was given to
+  /// allowCollisionsWith). Throws for an unknown name, as allowCollision.
+  bool collisionAllowed(const std::string& a, const std::string& b) const;
+
+  /// The pairs that no joint can change (header comment) within `maxDistance` of each other and
+  /// not allowed, as contacts at the default configuration, nearest first.
+  std::vector<Contact> fixedPairs(double maxDistance = tol::kFixedPairReportDistance) const;
+  /// Off: changes report no fixed pair (a loader adding scenes, then allowing collisions, turns
+  /// them off meanwhile). On: reports at once those not reported yet, then at every change.
+  /// Returns the previous setting. On by default.
+  bool setFixedPairReports(bool on);
+
+  // --- attached objects (header comment) -----------------------------------------------------
+
+  /// Attaches `object` to robot link `link` (options: its frame, touch links). Throws
+  /// std::invalid_argument for an unknown link or touch link, a name already attached, or a bad
+  /// shape, naming it.
+  void attach(const std::string& link, const Obstacle& object, const AttachOptions& options = {});
+  /// Attaches obstacle `id` (removed from the obstacles) where it is in the world with the robot at
+  /// options.q; options.worldFrame is ignored.
+  void attachObstacle(int id, const std::string& link, const AttachOptions& options = {});
+  /// Detaches the object `name`: with keepAsObstacle it becomes an obstacle where it is with the
+  /// robot at q (empty: the default configuration) and its id is returned; otherwise it is
+  /// removed and -1 returned.
+  int detach(const std::string& name, bool keepAsObstacle = true, const Eigen::VectorXd& q = Eigen::VectorXd());
+  std::vector<AttachedObjectInfo> attachedObjects() const;
 
   // --- queries -----------------------------------------------------------------------------
 
@@ -326,7 +413,8 @@ class World {
   Obstacle obstacle(int id) const;
 
   /// The convex pieces the queries use for robot link `link`, in the link frame (X_LP); empty for
-  /// a link without geometry. For display and export (html_view.h). Defined in world_pieces.cpp.
+  /// a link without geometry; objects attached to it are not among them (attachedObjects()). For
+  /// display and export (html_view.h). Defined in world_pieces.cpp.
   std::vector<robots::CollisionPiece> linkPieces(int link) const;
   /// A scene or obstacle piece as the queries use it: X_LP is its pose in the world.
   struct WorldPieceRef {
@@ -357,6 +445,9 @@ class World {
     int scenePiecesDropped = 0;
     int obstacles = 0;
     int obstaclePieces = 0;
+    int attachedObjects = 0;
+    int attachedPieces = 0;
+    int allowedCollisions = 0;  ///< entries of the allowed-collision table (SRDF pairs included)
     /// Largest amount by which a piece may stick out of the original geometry (cylinder prisms,
     /// convex decomposition's concavity); NaN when a custom decomposer makes it unknown. Metres.
     double geometryExcess = 0.0;
@@ -366,8 +457,17 @@ class World {
   std::string summary() const;
 
  private:
+  /// The changes made under the world's lock; the public functions then report the new fixed
+  /// pairs (world_fixed_pairs.cpp), which queries the world and so needs the lock released.
+  int addSceneLocked(robots::RobotModel scene, const SceneSpec& placement);
+  std::vector<int> addObstaclesLocked(const std::vector<Obstacle>& obstacles);
+
   std::shared_ptr<detail::WorldState> state_;
 };
+
+/// True when no joint moves `link` relative to the robot's root: every joint between them is
+/// fixed (or locked). Such a link keeps its pose in every configuration (world_fixed_pairs.cpp).
+bool movedByNoJoint(const robots::RobotModel& model, int link);
 
 /// Link pairs (i < j), both with geometry (`hasGeometry[link]`), joined by fixed joints only: their
 /// relative pose never changes.

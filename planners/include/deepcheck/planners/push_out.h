@@ -99,6 +99,9 @@ struct PushOutResult {
   /// sd of q (metres); NaN when the push-out did not start, and for a jiggle that did not repair.
   double finalDistance = 0.0;
   double jointMotion = 0.0;      ///< |q - input|, joint-space Euclidean norm
+  /// Why it failed, when no configuration can succeed: a pair that no joint moves within the
+  /// validity threshold (checker::World::fixedPairs), named with how to allow it. Else empty.
+  std::string reason;
   bool success() const {
     return status == PushOutStatus::AlreadyValid || status == PushOutStatus::Repaired;
   }
