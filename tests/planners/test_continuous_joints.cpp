@@ -6,6 +6,8 @@
 #include "bundled.h"
 
 #include "deepcheck/planners/motion_validator.h"
+#include "deepcheck/planners/objectives.h"
+#include "deepcheck/planners/planner_factory.h"
 #include "deepcheck/planners/problem_generation.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/state_space.h"
@@ -121,6 +123,25 @@ BOOST_AUTO_TEST_CASE(start_3_goal_minus_3_plans_the_short_way_through_pi) {
   const double travel = spinTravel(ss->getSolutionPath(), checker->mapping());
   BOOST_TEST(travel == kShortTurn, boost::test_tools::tolerance(1e-6));
   BOOST_TEST(ss->getSolutionPath().length() == kShortTurn, boost::test_tools::tolerance(1e-6));
+}
+
+BOOST_AUTO_TEST_CASE(informed_planners_plan_on_so2_components_with_the_library_objectives) {
+  // OMPL's PathLengthDirectInfSampler refuses a compound with SO2 components; makePathLengthObjective
+  // and the clearance objective sample it by rejection.
+  for (const char* name : {"BIT*", "InformedRRT*"}) {
+    for (const bool clearance : {false, true}) {
+      auto ss = dp::makeSimpleSetup(wheelWorld(false));
+      dp::setStartAndGoal(*ss, config(3.0, 0.0), config(-3.0, 0.0));
+      const ob::SpaceInformationPtr& si = ss->getSpaceInformation();
+      ss->setOptimizationObjective(clearance ? dp::makeLengthClearanceObjective(si, dp::validityCheckerOf(*ss))
+                                             : dp::makePathLengthObjective(si));
+      const ob::PlannerPtr planner = dp::makePlanner(name, si);
+      dp::prepareForCostlyObjective(*planner);
+      ss->setPlanner(planner);
+      BOOST_TEST_REQUIRE(ss->solve(0.5) == ob::PlannerStatus::EXACT_SOLUTION, name);
+      BOOST_TEST(spinTravel(ss->getSolutionPath(), dp::validityCheckerOf(*ss)->mapping()) < 0.3, name);
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(with_a_plate_at_pi_the_plan_goes_the_long_way_and_is_certified) {
