@@ -2,8 +2,9 @@
 // All numerical tolerances and defaults of deepcheck::planners, in one place.
 //
 // Lengths are metres (workspace) or radians (joint space, for revolute joints; metres for
-// prismatic ones). "Joint-space length" is OMPL's RealVectorStateSpace distance: the Euclidean
-// norm of the difference of two configurations.
+// prismatic ones). "Joint-space length" is the state space's distance: for makeStateSpace's
+// RealVectorStateSpace the Euclidean norm of the difference of two configurations; with continuous
+// joints (SO2 components, state_space.h) the sum of the components' distances.
 
 namespace deepcheck::planners::tol {
 
