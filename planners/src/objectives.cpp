@@ -1,13 +1,13 @@
 #include "deepcheck/planners/objectives.h"
 
 #include "deepcheck/planners/state_space.h"
+#include "uniform_informed_sampler.h"
 #include "deepcheck/robots/format_number.h"
 
 #include <ompl/base/goals/GoalRegion.h>
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/samplers/informed/PathLengthDirectInfSampler.h>
-#include <ompl/base/samplers/informed/RejectionInfSampler.h>
 
 #include <algorithm>
 #include <array>
@@ -35,18 +35,19 @@ class LengthClearanceObjective : public ompl::base::MultiOptimizationObjective {
   /// directly) never leaves out a better path. OMPL's default for other objectives is rejection
   /// sampling of the whole space, whose acceptance rate on an arm (a UR5: 28.8 rad across) is
   /// nearly 0 once a solution is known: BIT* then draws for seconds without checking its
-  /// termination condition. The direct sampler takes RealVector spaces only (state_space.h).
+  /// termination condition. The direct sampler takes RealVector spaces only (state_space.h); other
+  /// spaces are sampled uniformly (uniform_informed_sampler.h).
   ompl::base::InformedSamplerPtr allocInformedStateSampler(const ompl::base::ProblemDefinitionPtr& problem,
                                                            unsigned int maxCalls) const override {
     if (si_->getStateSpace()->getType() != ompl::base::STATE_SPACE_REAL_VECTOR) {
-      return ompl::base::MultiOptimizationObjective::allocInformedStateSampler(problem, maxCalls);
+      return std::make_shared<UniformInformedSampler>(problem, maxCalls);
     }
     return std::make_shared<ompl::base::PathLengthDirectInfSampler>(problem, maxCalls);
   }
 };
 
-/// OMPL's path length, with rejection sampling of the informed set where OMPL's direct sampler
-/// refuses the space (state_space.h: compounds with SO2 components).
+/// OMPL's path length, with uniform sampling of the whole space where OMPL's direct informed
+/// sampler refuses the space (state_space.h: compounds with SO2 components).
 class PathLengthObjective : public ompl::base::PathLengthOptimizationObjective {
  public:
   using ompl::base::PathLengthOptimizationObjective::PathLengthOptimizationObjective;
@@ -55,7 +56,7 @@ class PathLengthObjective : public ompl::base::PathLengthOptimizationObjective {
     if (si_->getStateSpace()->getType() == ompl::base::STATE_SPACE_REAL_VECTOR) {
       return ompl::base::PathLengthOptimizationObjective::allocInformedStateSampler(problem, maxCalls);
     }
-    return std::make_shared<ompl::base::RejectionInfSampler>(problem, maxCalls);
+    return std::make_shared<UniformInformedSampler>(problem, maxCalls);
   }
 };
 

@@ -46,7 +46,8 @@
 // is left out); OMPL's default for a MultiOptimizationObjective is rejection sampling of the whole
 // space, which on a UR5 accepts almost nothing once a solution is known (measured: BIT* grew 252
 // to 533 vertices in 8 s instead of about 5,000 in 3 s, and overran its time budget by 0.6 s).
-// On a space with SO2 components (continuous joints) it samples by rejection, as OMPL's direct
+// On a space with SO2 components (continuous joints) it samples the whole space uniformly
+// (uniform_informed_sampler.h: never stalls, leaves nothing out), as OMPL's direct
 // sampler takes RealVector spaces only.
 //
 // makeMaxMinClearanceObjective: OMPL's MaximizeMinClearanceObjective, unchanged: it reads the
@@ -110,8 +111,8 @@ ompl::base::OptimizationObjectivePtr makeLengthClearanceObjective(
     std::shared_ptr<const LinkSpeedBound> bound = nullptr, double resolution = 0.0);
 
 /// OMPL's PathLengthOptimizationObjective, except that the informed planners (BIT*,
-/// InformedRRT*) sample a state space with SO2 components (continuous joints, state_space.h) by
-/// rejection instead of throwing "PathLengthDirectInfSampler only supports RealVector, SE2 and
+/// InformedRRT*) sample a state space with SO2 components (continuous joints, state_space.h)
+/// uniformly, without information (uniform_informed_sampler.h), instead of throwing "PathLengthDirectInfSampler only supports RealVector, SE2 and
 /// SE3 statespaces". Identical on a RealVectorStateSpace. Throws std::invalid_argument for a null
 /// space information.
 ompl::base::OptimizationObjectivePtr makePathLengthObjective(const ompl::base::SpaceInformationPtr& si);

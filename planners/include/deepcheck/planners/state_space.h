@@ -16,7 +16,7 @@
 //     each component's valid segment is the segment fraction of its own extent (pi for SO2).
 //   OMPL 1.5's PathLengthDirectInfSampler accepts only RealVector, SE2 and SE3 spaces: the
 //   informed planners (BIT*, InformedRRT*) with OMPL's PathLengthOptimizationObjective cannot
-//   plan on such a compound; makePathLengthObjective (objectives.h) samples it by rejection.
+//   plan on such a compound; makePathLengthObjective (objectives.h) samples it uniformly.
 
 // StateMapping: everything in deepcheck::planners that reads a configuration from an OMPL state
 // or writes one into it (validity checker, motion validator, samplers, objectives, push-out of
