@@ -5,6 +5,7 @@
 #include "deepcheck/robots/format_number.h"
 
 #include <ompl/base/goals/GoalRegion.h>
+#include <ompl/base/goals/GoalSampleableRegion.h>
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/samplers/informed/PathLengthDirectInfSampler.h>
@@ -18,6 +19,15 @@
 namespace deepcheck::planners {
 
 namespace {
+
+/// OMPL's direct path-length sampler can be made: a RealVector space (it refuses others), a start,
+/// and a goal it can sample now (it throws otherwise; a pose goal's IK solutions come lazily).
+bool directSamplerApplies(const ompl::base::StateSpace& space, const ompl::base::ProblemDefinition& problem) {
+  if (space.getType() != ompl::base::STATE_SPACE_REAL_VECTOR || problem.getStartStateCount() < 1) return false;
+  const ompl::base::GoalPtr& goal = problem.getGoal();
+  return goal && goal->hasType(ompl::base::GOAL_SAMPLEABLE_REGION) &&
+         goal->as<ompl::base::GoalSampleableRegion>()->maxSampleCount() >= 1;
+}
 
 /// Path length + weight * hinge, keeping the path length's heuristics (admissible: hinge >= 0).
 class LengthClearanceObjective : public ompl::base::MultiOptimizationObjective {
@@ -35,11 +45,11 @@ class LengthClearanceObjective : public ompl::base::MultiOptimizationObjective {
   /// directly) never leaves out a better path. OMPL's default for other objectives is rejection
   /// sampling of the whole space, whose acceptance rate on an arm (a UR5: 28.8 rad across) is
   /// nearly 0 once a solution is known: BIT* then draws for seconds without checking its
-  /// termination condition. The direct sampler takes RealVector spaces only (state_space.h); other
-  /// spaces are sampled uniformly (uniform_informed_sampler.h).
+  /// termination condition. Where the direct sampler cannot be made (directSamplerApplies) the
+  /// whole space is sampled uniformly (uniform_informed_sampler.h).
   ompl::base::InformedSamplerPtr allocInformedStateSampler(const ompl::base::ProblemDefinitionPtr& problem,
                                                            unsigned int maxCalls) const override {
-    if (si_->getStateSpace()->getType() != ompl::base::STATE_SPACE_REAL_VECTOR) {
+    if (!directSamplerApplies(*si_->getStateSpace(), *problem)) {
       return std::make_shared<UniformInformedSampler>(problem, maxCalls);
     }
     return std::make_shared<ompl::base::PathLengthDirectInfSampler>(problem, maxCalls);
