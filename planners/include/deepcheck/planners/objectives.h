@@ -32,7 +32,7 @@
 // r(n) stays above it for the first ~10^4 nodes. Call prepareForCostlyObjective
 // (planner_factory.h): radius neighbours and a range of tol::kCostlyObjectiveRangeFraction of the
 // extent (measured on a UR5: 3,300 RRT* iterations in 8 s with OMPL's range, 134 distance queries
-// each; 28,000 with the shorter one).
+// each; 25,000 to 30,000 with the shorter one).
 //
 // makeLengthClearanceObjective: the objective `deepcheck plan --objective clearance` optimizes,
 //     cost(path) = length(path) + w * integral over the path of stateCost

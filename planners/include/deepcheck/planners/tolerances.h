@@ -110,7 +110,7 @@ constexpr double kDefaultHingeWeight = 100.0;
 /// prepareForCostlyObjective). OMPL's default is 0.2: 5.76 rad on a UR5 (28.8 rad across), and
 /// RRT*'s radius min(range, r(n)) stays at the range for the first ~10^4 nodes, so every new node
 /// asks the clearance cost of the motion to most of the tree. 0.04 (1.15 rad on a UR5, 0.55 rad on
-/// the bundled arm) measured 48,600 RRT* iterations in 8 s instead of 3,300 on a UR5
+/// the bundled arm) measured 25,000 to 30,000 RRT* iterations in 8 s instead of 3,300 on a UR5
 /// (docs/planners.md, "Optimizing planners and the clearance objective").
 constexpr double kCostlyObjectiveRangeFraction = 0.04;
 
