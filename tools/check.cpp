@@ -28,6 +28,7 @@
 #include "subcommands.h"
 
 #include "deepcheck/checker/world.h"
+#include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include <Eigen/Geometry>
@@ -71,7 +72,8 @@ int run(std::vector<std::string> args) {
   if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "'");
 
   checker::World world = loadWorld(worldArgs);
-  const std::vector<Eigen::VectorXd> configurations = readConfigurations(std::cin, world.robot(), &limits);
+  std::vector<Eigen::VectorXd> configurations = readConfigurations(std::cin, world.robot(), &limits);
+  for (Eigen::VectorXd& q : configurations) robots::normalizeWrappingVariables(world.robot(), q);  // 4.0 -> 4.0 - 2 pi
   std::fputs(world.summary().c_str(), stderr);
   warnVisualOnlyLinks("check", world.robot());
   warnClamped("check", limits);

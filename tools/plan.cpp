@@ -41,10 +41,10 @@
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/inverse_kinematics.h"
+#include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/robot_model.h"
 
 #include <ompl/base/ScopedState.h>
-#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -77,7 +77,7 @@ constexpr const char* kUsage =
     "waypoint and motion is certified free by the clearance motion validator (and repaired where\n"
     "that fails). Exit status 0 only for an exact, certified solution. A start or goal value outside\n"
     "its joint's limits is an error naming the joint, the value and the limits (see\n"
-    "--clamp-to-limits); a continuous joint's value is taken as the same angle in [-pi, pi].\n"
+    "--clamp-to-limits); a continuous joint's value is taken as the same angle in (-pi, pi].\n"
     "\n"
     "options:\n"
     DEEPCHECK_WORLD_OPTIONS_HELP
@@ -269,7 +269,7 @@ std::shared_ptr<planners::PoseGoal> setPoseGoal(ompl::geometric::SimpleSetup& ss
 
 /// The start and a goal configuration taken within the joint limits (a.limits: refused or clamped,
 /// one warning line naming the clamped joints). A continuous joint's value becomes the same angle
-/// in [-pi, pi], the range the planner's state space gives it.
+/// in (-pi, pi], the range of its SO2 component (robots/joint_angles.h).
 void takeEndpointsWithinLimits(const robots::RobotModel& model, PlanArgs& a) {
   std::vector<std::pair<const char*, std::vector<double>*>> endpoints = {{"start", &a.start}};
   if (!a.goalPose) endpoints.emplace_back("goal", &a.goal);
@@ -277,10 +277,7 @@ void takeEndpointsWithinLimits(const robots::RobotModel& model, PlanArgs& a) {
     checkSize(model, *values, what);
     Eigen::VectorXd q = toVector(*values);
     applyJointLimits(model, q, std::string("the ") + what + " configuration", a.limits);
-    for (int v = 0; v < model.numVariables(); ++v) {
-      if (model.joint(model.variableJoint(v)).type != robots::JointType::Continuous) continue;
-      q[v] = std::remainder(q[v], 2.0 * M_PI);
-    }
+    robots::normalizeWrappingVariables(model, q);
     values->assign(q.data(), q.data() + q.size());
   }
   warnClamped("plan", a.limits);
@@ -345,7 +342,7 @@ void setObjective(ompl::geometric::SimpleSetup& ss, ompl::base::Planner& planner
         planners::linkSpeedBoundOf(ss)));
     planners::prepareForCostlyObjective(planner);  // RRT*: radius neighbours (planner_factory.h)
   } else {
-    ss.setOptimizationObjective(std::make_shared<ompl::base::PathLengthOptimizationObjective>(si));
+    ss.setOptimizationObjective(planners::makePathLengthObjective(si));
   }
 }
 

@@ -1,5 +1,7 @@
 #include "deepcheck/planners/planner_factory.h"
 
+#include "deepcheck/planners/tolerances.h"
+
 #include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
 #include <ompl/geometric/planners/fmt/FMT.h>
@@ -127,9 +129,18 @@ bool isOptimizingPlanner(const std::string& name) {
 bool prepareForCostlyObjective(ompl::base::Planner& planner) {
   // InformedRRTstar derives from RRTstar.
   auto* rrtStar = dynamic_cast<og::RRTstar*>(&planner);
-  if (rrtStar == nullptr || !rrtStar->getKNearest()) return false;
-  rrtStar->setKNearest(false);
-  return true;
+  if (rrtStar == nullptr) return false;
+  bool changed = false;
+  if (rrtStar->getKNearest()) {
+    rrtStar->setKNearest(false);
+    changed = true;
+  }
+  // A range of 0 is OMPL's "not set": setup() would make it 0.2 of the extent.
+  if (rrtStar->getRange() == 0.0) {
+    rrtStar->setRange(tol::kCostlyObjectiveRangeFraction * planner.getSpaceInformation()->getMaximumExtent());
+    changed = true;
+  }
+  return changed;
 }
 
 }  // namespace deepcheck::planners

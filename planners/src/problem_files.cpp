@@ -2,6 +2,7 @@
 // every error naming the file, the line and the value.
 
 #include "deepcheck/planners/problem_generation.h"
+#include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/planning_group.h"
 
 #include <yaml-cpp/yaml.h>
@@ -246,6 +247,10 @@ Eigen::VectorXd configurationOf(const robots::RobotModel& robot, const RobotConf
       notes->push_back(m.str());
     }
     if (v < 0) continue;  // a mimic joint follows its variable; a locked one keeps its value
+    if (robots::isWrappingVariable(robot, v)) {
+      q[v] = robots::normalizeAngle(x);  // the same angle, not outside any limit
+      continue;
+    }
     q[v] = std::clamp(x, robot.lowerLimits()[v], robot.upperLimits()[v]);
     if (q[v] != x && notes) {
       std::ostringstream m;

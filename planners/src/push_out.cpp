@@ -4,6 +4,7 @@
 #include "deepcheck/planners/push_out.h"
 
 #include "deepcheck/robots/format_number.h"
+#include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/random_configuration.h"
 
@@ -321,9 +322,12 @@ std::string blockingFixedPair(const checker::World& world, double threshold) {
 
 }  // namespace
 
-PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& q0) const {
+PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& given) const {
   const robots::RobotModel& model = world_->robot();
-  robots::checkConfiguration(model, q0);
+  robots::checkConfiguration(model, given);
+  // A wrapping variable's value is an angle (4.0 rad is 4.0 - 2 pi), not clamped to pi below.
+  Eigen::VectorXd q0 = given;
+  robots::normalizeWrappingVariables(model, q0);
   const Eigen::VectorXd& lower = model.lowerLimits();
   const Eigen::VectorXd& upper = model.upperLimits();
 

@@ -3,6 +3,8 @@
 
 #include "deepcheck/planners/state_space.h"
 
+#include "deepcheck/robots/joint_angles.h"
+
 #include <ompl/base/StateSpace.h>
 #include <ompl/base/spaces/SO2StateSpace.h>
 
@@ -126,8 +128,11 @@ ob::State* component(ob::State* state, const std::vector<unsigned int>& componen
   return state;
 }
 
-/// x wrapped into [-pi, pi].
-double wrapAngle(double x) { return std::remainder(x, 2.0 * kPi); }
+/// The short way from one angle to another, in [-pi, pi]: x - 2 pi k, k the integer nearest
+/// x / (2 pi). A difference of exactly +-pi keeps its sign (std::remainder's tie goes to k = 0), so
+/// it goes the way OMPL's SO2StateSpace::interpolate goes (directly when |difference| <= pi); the
+/// validator must certify the motion the planner takes, so this is not normalizeAngle's (-pi, pi].
+double shortestTurn(double x) { return std::remainder(x, 2.0 * kPi); }
 
 }  // namespace
 
@@ -180,7 +185,7 @@ Eigen::VectorXd StateMapping::displacement(const Eigen::Ref<const Eigen::VectorX
   Eigen::VectorXd dq = q2 - q1;
   if (anyAngular_) {
     for (int v = 0; v < n_; ++v) {
-      if (angular_[static_cast<std::size_t>(v)]) dq[v] = wrapAngle(dq[v]);
+      if (angular_[static_cast<std::size_t>(v)]) dq[v] = shortestTurn(dq[v]);
     }
   }
   return dq;
@@ -191,7 +196,7 @@ Eigen::VectorXd StateMapping::along(const Eigen::Ref<const Eigen::VectorXd>& q,
   Eigen::VectorXd out = q + s * dq;
   if (anyAngular_) {
     for (int v = 0; v < n_; ++v) {
-      if (angular_[static_cast<std::size_t>(v)]) out[v] = wrapAngle(out[v]);
+      if (angular_[static_cast<std::size_t>(v)]) out[v] = robots::normalizeAngle(out[v]);
     }
   }
   return out;
@@ -239,7 +244,7 @@ StateMapping makeStateMapping(const ompl::base::StateSpace& space, const robots:
         for (const Leaf& leaf : leaves) {
           ob::State* c = component(s, leaf.components);
           if (leaf.angular) {
-            c->as<ob::SO2StateSpace::StateType>()->value = wrapAngle(q[leaf.variable]);
+            c->as<ob::SO2StateSpace::StateType>()->value = robots::normalizeAngle(q[leaf.variable]);
           } else {
             c->as<ob::RealVectorStateSpace::StateType>()->values[leaf.index] = q[leaf.variable];
           }

@@ -1,11 +1,13 @@
 #include "deepcheck/planners/validity_checker.h"
 
 #include "deepcheck/planners/state_space.h"
+#include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/kinematics.h"
 
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace deepcheck::planners {
 
@@ -48,6 +50,14 @@ StateValidityChecker::StateValidityChecker(ompl::base::SpaceInformation* si,
                                 std::to_string(mapping_.numVariables()) + " variables but robot '" +
                                 world_->robot().name() + "' has " + std::to_string(n_));
   }
+  lower_ = world_->robot().lowerLimits();
+  upper_ = world_->robot().upperLimits();
+  const std::vector<bool> wraps = robots::wrappingVariables(world_->robot());
+  for (int v = 0; v < n_; ++v) {
+    if (!wraps[static_cast<std::size_t>(v)]) continue;
+    lower_[v] = -std::numeric_limits<double>::infinity();
+    upper_[v] = std::numeric_limits<double>::infinity();
+  }
   specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
   specs_.hasValidDirectionComputation = true;
 }
@@ -60,7 +70,7 @@ StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr
 bool StateValidityChecker::withinBounds(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   const robots::RobotModel& model = world_->robot();
   if (q.size() != n_) robots::checkConfiguration(model, q);  // throws, naming the sizes
-  return (q.array() >= model.lowerLimits().array()).all() && (q.array() <= model.upperLimits().array()).all();
+  return (q.array() >= lower_.array()).all() && (q.array() <= upper_.array()).all();
 }
 
 bool StateValidityChecker::isValid(const Eigen::Ref<const Eigen::VectorXd>& q) const {

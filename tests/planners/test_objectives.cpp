@@ -271,7 +271,10 @@ BOOST_AUTO_TEST_CASE(clearance_objective_keeps_rrt_star_paths_farther_from_obsta
                                                      dp::tol::kDefaultHingeWeight, bound)
                   : std::make_shared<ob::PathLengthOptimizationObjective>(si));
     auto planner = std::make_shared<SeededRRTstar>(si, seed);
-    // The same neighbours for both objectives.
+    // The same neighbours for both objectives, and OMPL's default range (0.2 of the extent, which
+    // prepareForCostlyObjective keeps when set): 1,500 iterations of the shorter range it picks
+    // otherwise leave the length-only paths farther than 1 cm from the pole.
+    planner->setRange(0.2 * si->getMaximumExtent());
     BOOST_TEST(dp::prepareForCostlyObjective(*planner));
     planner->setProblemDefinition(pdef);
     planner->setup();

@@ -61,7 +61,9 @@ BOOST_AUTO_TEST_SUITE(planners_validity_checker)
 BOOST_AUTO_TEST_CASE(state_space_has_the_urdf_limits_and_names) {
   const auto world = bundledWorld("shelf");
   const auto& model = world->robot();
-  const auto space = dp::makeStateSpace(model);
+  // No continuous joint: a plain RealVectorStateSpace (state_space.h).
+  const auto space = std::dynamic_pointer_cast<ob::RealVectorStateSpace>(dp::makeStateSpace(model));
+  BOOST_TEST_REQUIRE(space != nullptr);
   BOOST_TEST(space->getDimension() == 7u);
   for (int v = 0; v < 7; ++v) {
     BOOST_TEST(space->getBounds().low[v] == model.lowerLimits()[v]);

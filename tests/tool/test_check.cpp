@@ -7,6 +7,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -190,6 +191,13 @@ BOOST_AUTO_TEST_CASE(values_outside_the_joint_limits) {
   r = runCheck(s, "--robot " + wheel + " --scene " + scene, "7\n-12.5\n");
   BOOST_TEST(r.status == 0, r.err);
   BOOST_TEST(r.err.find("warning") == std::string::npos, r.err);
+  // 4.0 rad is the angle 4.0 - 2 pi (robots/joint_angles.h): the same answers, digit for digit.
+  char normalized[64];
+  std::snprintf(normalized, sizeof normalized, "%.17g\n", 4.0 - 2.0 * M_PI);
+  r = runCheck(s, "--robot " + wheel + " --scene " + scene, "4.0\n");
+  const Run same = runCheck(s, "--robot " + wheel + " --scene " + scene, normalized);
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.out == same.out);
 }
 
 BOOST_AUTO_TEST_CASE(links_with_visual_but_no_collision_geometry) {

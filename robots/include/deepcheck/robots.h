@@ -7,6 +7,7 @@
 #include "deepcheck/robots/decomposition.h"
 #include "deepcheck/robots/decomposition_cache.h"
 #include "deepcheck/robots/inverse_kinematics.h"
+#include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/mesh.h"
 #include "deepcheck/robots/mesh_loader.h"

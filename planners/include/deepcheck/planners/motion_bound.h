@@ -14,7 +14,11 @@
 //   - a variable driving several joints of the chain (mimics) sums their contributions;
 //   - 0 when v moves no joint between the root and link i.
 // Along the straight joint-space motion q(s) = q + s dq, s in [0, 1], no point of link i moves
-// farther than D_i(dq) = sum_v speed(i, v) |dq_v|.
+// farther than D_i(dq) = sum_v speed(i, v) |dq_v|. dq must be the displacement the motion takes:
+// for a continuous joint planned as an SO2 component, the short way round (StateMapping::
+// displacement, state_space.h: 0.283 rad from 3.0 to -3.0, not -6.0). The bound of the raw
+// difference would be sound but 21 times too large there; the bound of the short turn applied to
+// a motion that went the long way would not be.
 //
 // Pair bounds. The World's signed distance is the minimum over pairs of convex pieces; for one
 // pair it changes by at most the relative displacement of the two pieces (for overlapping pieces

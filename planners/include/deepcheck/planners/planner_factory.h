@@ -5,7 +5,7 @@
 // BIT*, PRM, PRM*, LazyPRM, LazyPRM*, KPIECE1, BKPIECE1, EST, BiEST, SBL, FMT, TRRT. The name a
 // planner made here gives itself (Planner::getName: "RRTstar", "kBITstar") is accepted too.
 // Every planner gets OMPL's default parameters (prepareForCostlyObjective changes RRT*'s
-// neighbours for the clearance objective).
+// neighbours and range for the clearance objective).
 
 #include <ompl/base/Planner.h>
 #include <ompl/base/SpaceInformation.h>
@@ -35,8 +35,12 @@ bool isOptimizingPlanner(const std::string& name);
 /// k = 1.1 * 2^(d+1) e (1 + 1/d) ln(n) nodes for each new node (d joints, n nodes; 35.9 ln n for 2
 /// joints, and more than the whole tree for 7 joints below ~10^4 nodes), those farther
 /// than its range included, which it then never connects. The radius variant asks only the nodes
-/// within min(range, r(n)). Other planners are left as they are. Returns true when it changed
-/// the planner.
+/// within min(range, r(n)); and since r(n) stays above OMPL's default range (0.2 of the extent:
+/// 5.76 rad on a UR5) for the first ~10^4 nodes, a range that was not set is set to
+/// tol::kCostlyObjectiveRangeFraction of the extent (1.15 rad on a UR5), which also bounds each
+/// motion whose cost is integrated. A range the caller set is kept. BIT* and PRM* need nothing
+/// here (BIT*'s informed sampling is the objective's, objectives.h). Other planners are left as
+/// they are. Returns true when it changed the planner.
 bool prepareForCostlyObjective(ompl::base::Planner& planner);
 
 }  // namespace deepcheck::planners

@@ -105,7 +105,8 @@ RobotConfig parseRobotConfig(const std::string& yaml, const std::string& sourceN
 /// the locked one); a joint the robot lacks is an error naming it. A value outside the robot's limits (the
 /// file may have been written for another model of the robot: MotionBenchMaker's Panda opens its
 /// fingers 0.065 m, the moveit_resources Panda 0.04 m) is clamped into them and, when `notes` is
-/// given, a line saying so is added to it.
+/// given, a line saying so is added to it. A wrapping variable's value (a continuous joint,
+/// robots/joint_angles.h) is the same angle normalized to (-pi, pi], without a note.
 Eigen::VectorXd configurationOf(const robots::RobotModel& robot, const RobotConfig& config,
                                 std::vector<std::string>* notes = nullptr);
 

@@ -117,8 +117,10 @@ class PushOut {
   PushOut(std::shared_ptr<const checker::World> world, const ValidityOptions& validity = {},
           const PushOutOptions& options = {});
 
-  /// Pushes q out (see the header comment). Throws std::invalid_argument for a q of the wrong
-  /// size or with a non-finite value, naming the variable.
+  /// Pushes q out (see the header comment); the values of wrapping variables (continuous joints,
+  /// robots/joint_angles.h) are normalized to (-pi, pi] first, the others clamped into their
+  /// limits. Throws std::invalid_argument for a q of the wrong size or with a non-finite value,
+  /// naming the variable.
   PushOutResult run(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
   const checker::World& world() const { return *world_; }

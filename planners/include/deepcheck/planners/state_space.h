@@ -2,13 +2,22 @@
 // The joint space of a robots::RobotModel as an OMPL state space, and how states of any state
 // space the library is given map to configurations.
 //
-// makeStateSpace: one real dimension per variable of the model (robot_model.h: the revolute,
-// continuous and prismatic joints that are not mimic joints, in joint order), named after the
-// joint, bounded by the URDF limits. Continuous joints get the model's [-pi, pi] and are NOT
-// wrapped around: the space is a box, the distance Euclidean (a motion from -3 to 3 rad goes the
-// long way). Planning on such a joint is correct but may find longer paths than an SO(2)
-// dimension would; a space with SO2 components (below) takes the short way.
-//
+// makeStateSpace: one value per variable of the model (robot_model.h: the revolute, continuous
+// and prismatic joints that are not mimic joints, in joint order), named after the variable.
+//   - No variable wraps (robots/joint_angles.h): a RealVectorStateSpace bounded by the URDF
+//     limits, its distance Euclidean.
+//   - Some variables wrap (continuous joints): a CompoundStateSpace, in variable order, of an
+//     SO2StateSpace per wrapping variable (named after it) and a bounded RealVectorStateSpace per
+//     run of the other variables (its dimensions named after them). ScopedState's values and
+//     indices are then still the variables in order. An SO2 value lies in [-pi, pi]; distances,
+//     interpolation and motions take the short way round: from 3.0 to -3.0 rad is 0.283 rad
+//     through pi, not 6 rad through 0. The distance is OMPL's compound distance, the SUM of the
+//     components' distances (Euclidean within a RealVector run, |wrapped difference| per SO2);
+//     each component's valid segment is the segment fraction of its own extent (pi for SO2).
+//   OMPL 1.5's PathLengthDirectInfSampler accepts only RealVector, SE2 and SE3 spaces: the
+//   informed planners (BIT*, InformedRRT*) with OMPL's PathLengthOptimizationObjective cannot
+//   plan on such a compound; makePathLengthObjective (objectives.h) samples it uniformly.
+
 // StateMapping: everything in deepcheck::planners that reads a configuration from an OMPL state
 // or writes one into it (validity checker, motion validator, samplers, objectives, push-out of
 // the endpoints, path tools) goes through the StateMapping of its validity checker.
@@ -26,7 +35,7 @@
 // conversion: StateMapping::custom.
 //
 // Motions between two states are straight lines in configuration space, the angular variables
-// taking the short way round (through +-pi) and wrapped back into [-pi, pi]: how OMPL's
+// taking the short way round (through +-pi) and wrapped back into (-pi, pi]: how OMPL's
 // RealVector and SO2 spaces interpolate. A custom mapping must describe a space that
 // interpolates that way too (mark its angular variables), or the motion validator certifies
 // another motion than the planner's.
@@ -37,6 +46,7 @@
 #include <Eigen/Core>
 
 #include <ompl/base/State.h>
+#include <ompl/base/StateSpace.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include <functional>
@@ -46,14 +56,14 @@
 
 namespace deepcheck::planners {
 
-/// A RealVectorStateSpace with one bounded, named dimension per variable of `model`. The longest
-/// valid segment fraction is set to tol::kDefaultSegmentFraction. Throws std::invalid_argument,
-/// naming the variable and the values, when the model has no variable or a variable's limits are
-/// not finite with lower < upper.
-std::shared_ptr<ompl::base::RealVectorStateSpace> makeStateSpace(const robots::RobotModel& model);
+/// The joint space of `model` (see the header comment): a RealVectorStateSpace when no variable
+/// wraps, else a compound with SO2 components. The longest valid segment fraction is set to
+/// tol::kDefaultSegmentFraction. Throws std::invalid_argument, naming the variable and the values,
+/// when the model has no variable or a bounded variable's limits are not finite with lower < upper.
+ompl::base::StateSpacePtr makeStateSpace(const robots::RobotModel& model);
 
 /// A read-only view of a state of a RealVectorStateSpace of dimension n (no copy): for the spaces
-/// of makeStateSpace only (any other layout: StateMapping).
+/// of makeStateSpace of robots without wrapping variables only (any other layout: StateMapping).
 inline Eigen::Map<const Eigen::VectorXd> mapState(const ompl::base::State* state, int n) {
   return {state->as<ompl::base::RealVectorStateSpace::StateType>()->values, n};
 }
@@ -63,7 +73,7 @@ inline Eigen::Map<Eigen::VectorXd> mapState(ompl::base::State* state, int n) {
 }
 
 /// Copies q into `state` (a state of a RealVectorStateSpace of dimension q.size(), as made by
-/// makeStateSpace; any other layout: StateMapping::toState).
+/// makeStateSpace for a robot without wrapping variables; any other layout: StateMapping::toState).
 void copyToState(const Eigen::Ref<const Eigen::VectorXd>& q, ompl::base::State* state);
 
 /// States of one state space as configurations of one robot, and back (see the header comment).
@@ -77,7 +87,7 @@ class StateMapping {
 
   /// A user-supplied mapping of `numVariables` (>= 1) values. `angular[v]` marks the variables
   /// the space treats as angles on a circle (motions take the short way round, values wrap into
-  /// [-pi, pi]); empty: none. `description` names the mapping in messages. Throws
+  /// (-pi, pi]); empty: none. `description` names the mapping in messages. Throws
   /// std::invalid_argument for a count < 1, empty functions or an `angular` of another size.
   static StateMapping custom(int numVariables, ToConfiguration toConfiguration, ToState toState,
                              std::vector<bool> angular = {}, std::string description = "custom state mapping");
@@ -93,7 +103,7 @@ class StateMapping {
   /// q2 - q1, the angular variables the short way round (in [-pi, pi]).
   Eigen::VectorXd displacement(const Eigen::Ref<const Eigen::VectorXd>& q1,
                                const Eigen::Ref<const Eigen::VectorXd>& q2) const;
-  /// q + s dq, the angular variables wrapped into [-pi, pi]: the state at fraction s of the motion
+  /// q + s dq, the angular variables normalized into (-pi, pi]: the state at fraction s of the motion
   /// from q along displacement dq.
   Eigen::VectorXd along(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<const Eigen::VectorXd>& dq,
                         double s) const;

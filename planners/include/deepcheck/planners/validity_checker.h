@@ -3,7 +3,9 @@
 //
 // isValid(state)   the configuration is within the robot's URDF joint limits
 //                  (RobotModel::lowerLimits / upperLimits; the state space's own bounds are not
-//                  read: makeStateSpace sets them to the same limits, a user's space may differ)
+//                  read: makeStateSpace sets them to the same limits, a user's space may differ;
+//                  a wrapping variable, robots/joint_angles.h, has none: 4.0 rad is the angle
+//                  4.0 - 2 pi, not a value above pi)
 //                  AND valid by validity.h (sd > safetyMargin - penetrationTolerance; with both
 //                  0, World::isFree's early exit). Thread safe and const: OMPL's parallel planners may call it from many
 //                  threads (each uses its own warm-start context of the World).
@@ -116,6 +118,8 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
   ValidityOptions validity_;
   PushOut pushOut_;
   int n_ = 0;
+  /// The joint limits isValid checks: the URDF's, none (+-infinity) for wrapping variables.
+  Eigen::VectorXd lower_, upper_;
   mutable std::atomic<std::uint64_t> validityQueries_{0};
   mutable std::atomic<std::uint64_t> distanceQueries_{0};
 };

@@ -34,9 +34,9 @@
 //
 // Limits. lowerLimits()/upperLimits() are the URDF limits of the variables. Continuous joints
 // have none in the URDF; they are given [-pi, pi], which reaches every orientation and keeps the
-// bounds finite for samplers; a planner that wants wrap-around can test
-// joint(variableJoint(v)).type == JointType::Continuous. Forward kinematics accepts any finite
-// value; limits are not enforced there.
+// bounds finite for samplers. Planners wrap them around instead (joint_angles.h: which variables
+// wrap, and their values normalized to (-pi, pi]). Forward kinematics accepts any finite value;
+// limits are not enforced there.
 //
 // Locked joints. withLockedVariables() gives a copy of the model in which chosen variables are
 // held at given values, as a planning group holds the joints outside it: each of their joints
