@@ -42,7 +42,7 @@ std::optional<double> takeTolerance(std::vector<std::string>& args, const std::s
   return value;
 }
 
-/// Removes `--position-box HX HY HZ` from `args`; empty when absent. Each half-width > 0 metres.
+/// Removes `--position-box X Y Z` from `args`; empty when absent. Each edge length > 0 metres.
 std::optional<Eigen::Vector3d> takePositionBox(std::vector<std::string>& args) {
   const auto at = std::find(args.begin(), args.end(), "--position-box");
   if (at == args.end()) return std::nullopt;
@@ -50,12 +50,12 @@ std::optional<Eigen::Vector3d> takePositionBox(std::vector<std::string>& args) {
   const auto first = at + 1;
   const auto isOption = [](const std::string& word) { return word.compare(0, 2, "--") == 0; };
   if (args.end() - first < 3 || std::any_of(first, first + 3, isOption)) {
-    throw UsageError("--position-box needs 3 half-widths in metres: HX HY HZ");
+    throw UsageError("--position-box needs 3 edge lengths in metres: X Y Z");
   }
   for (int k = 0; k < 3; ++k) {
     const std::string& word = *(first + k);
     box[k] = parseValue(word, "--position-box");
-    if (!(box[k] > 0.0)) throw UsageError("--position-box half-widths must be > 0 m, got " + word);
+    if (!(box[k] > 0.0)) throw UsageError("--position-box edge lengths must be > 0 m, got " + word);
   }
   args.erase(at, first + 3);
   if (std::find(args.begin(), args.end(), "--position-box") != args.end()) {

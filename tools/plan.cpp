@@ -5,7 +5,7 @@
 //                  [--scene S.yaml]... [--frame-alias NAME=LINK]...
 //                  [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... --start q1 ... qn
 //                  (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw
-//                                      [--position-tol M | --position-box HX HY HZ] [--orientation-tol RAD])
+//                                      [--position-tol M | --position-box X Y Z] [--orientation-tol RAD])
 //                  [--planner NAME] [--time SECONDS] [--objective length|clearance]
 //                  [--repair-start [--repair-margin METRES]] [--clamp-to-limits] [--seed N] --out path.txt
 //
@@ -67,7 +67,7 @@ constexpr const char* kUsage =
     "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
     "                      [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... --start q1 ... qn\n"
     "                      (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw\n"
-    "                                          [--position-tol M | --position-box HX HY HZ] [--orientation-tol RAD])\n"
+    "                                          [--position-tol M | --position-box X Y Z] [--orientation-tol RAD])\n"
     "                      [--planner NAME] [--time SECONDS] [--objective length|clearance]\n"
     "                      [--repair-start [--repair-margin METRES]] [--clamp-to-limits] [--seed N]\n"
     "                      --out path.txt\n"
@@ -89,8 +89,8 @@ constexpr const char* kUsage =
     "                      qx qy qz qw (MoveIt's order, normalized; not zero). Reached by inverse\n"
     "                      kinematics; no collision-free solution is exit status 1\n"
     "  --position-tol M    how far the link's origin may be from the goal, metres (default 1e-4)\n"
-    "  --position-box HX HY HZ  instead, a box: the link's origin within HX, HY, HZ metres of the\n"
-    "                      goal along the goal frame's x, y and z (MoveIt's box region)\n"
+    "  --position-box X Y Z  instead, a box of those edge lengths (metres) centred on the goal\n"
+    "                      along the goal frame's x, y and z (MoveIt's box region)\n"
     "  --orientation-tol RAD  the largest rotation between the link's orientation and the goal's,\n"
     "                      radians (default 1e-3)\n"
     "  --planner NAME      an OMPL planner (default RRTConnect): RRTConnect, RRT, RRT*,\n"

@@ -94,7 +94,7 @@ Eigen::Isometry3d queryPose(const robots::PlanningScene& scene, const ObjectQuer
 robots::IkOptions queryIkOptions(const ObjectQuery& query, const robots::IkOptions& base,
                                  const Eigen::Isometry3d& eeOffset) {
   robots::IkOptions o = base;
-  o.positionBox = query.positionTolerance / 2.0;
+  o.positionBox = query.positionTolerance;
   o.boxPose = eeOffset;
   o.orientationTolerance = query.orientationTolerance.minCoeff();
   return o;

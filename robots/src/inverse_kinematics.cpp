@@ -35,7 +35,7 @@ Vector6d errorVector(const Eigen::Isometry3d& X_WL, const Eigen::Isometry3d& X_W
   e.tail<3>() = X_WT.translation() - X_WL.translation();
   if (hasBox(options)) {
     const Eigen::Vector3d d = boxOffset(X_WL, X_WT, options);
-    const Eigen::Vector3d aim = tol::kIkBoxAimScale * options.positionBox;
+    const Eigen::Vector3d aim = tol::kIkBoxAimScale * 0.5 * options.positionBox;
     const Eigen::Vector3d outside = d - d.cwiseMax(-aim).cwiseMin(aim);
     e.tail<3>() = (X_WT.linear() * options.boxPose.linear()) * -outside;
   }
@@ -48,7 +48,7 @@ PoseError errorOf(const Eigen::Isometry3d& X_WL, const Eigen::Isometry3d& X_WT, 
   error.orientation = e.head<3>().norm();
   error.position = (X_WT.translation() - X_WL.translation()).norm();
   const double positionPart = hasBox(options)
-                                  ? boxOffset(X_WL, X_WT, options).cwiseAbs().cwiseQuotient(options.positionBox).maxCoeff()
+                                  ? boxOffset(X_WL, X_WT, options).cwiseAbs().cwiseQuotient(0.5 * options.positionBox).maxCoeff()
                                   : error.position / options.positionTolerance;
   error.normalized = std::max(positionPart, error.orientation / options.orientationTolerance);
   return error;
@@ -153,7 +153,7 @@ void checkBox(const IkOptions& options) {
   if (!h.allFinite() || (h.array() < 0.0).any() || ((h.array() == 0.0).any() && (h.array() > 0.0).any())) {
     std::ostringstream msg;
     msg << "inverse kinematics: option positionBox (m) is (" << h.x() << ", " << h.y() << ", " << h.z()
-        << "), its half-widths must be all positive and finite, or all zero for the positionTolerance sphere";
+        << "), its edge lengths must be all positive and finite, or all zero for the positionTolerance sphere";
     throw std::invalid_argument(msg.str());
   }
   if (!isRigid(options.boxPose)) {

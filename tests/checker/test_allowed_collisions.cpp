@@ -268,8 +268,11 @@ BOOST_AUTO_TEST_CASE(ur5_bolted_to_a_flush_table) {
   BOOST_TEST(fixed[0].distance <= 0.0);
   BOOST_TEST_MESSAGE("UR5 base_link - table: " << fixed[0].distance << " m");
   BOOST_TEST(log.str().find("--allow-collision base_link:obstacle/table") != std::string::npos, log.str());
+  // One warning (the log may also hold progress lines of a cold decomposition cache).
   const std::string text = log.str();
-  BOOST_TEST(std::count(text.begin(), text.end(), '\n') == 1, text);
+  int warnings = 0;
+  for (std::size_t at = text.find("warning:"); at != std::string::npos; at = text.find("warning:", at + 1)) ++warnings;
+  BOOST_TEST(warnings == 1, text);
 
   std::mt19937 rng(2026);
   const std::vector<Eigen::VectorXd> qs = test::randomConfigurations(world.robot(), 200, rng);

@@ -108,7 +108,7 @@ BOOST_AUTO_TEST_CASE(files_are_read) {
   Eigen::Isometry3d eeOffset = Eigen::Isometry3d::Identity();
   eeOffset.translation() = Eigen::Vector3d(0, 0, 0.1);
   const deepcheck::robots::IkOptions ik = queryIkOptions(q.start[0], {}, eeOffset);
-  BOOST_CHECK_SMALL((ik.positionBox - Eigen::Vector3d(0.005, 0.01, 0.015)).norm(), 1e-15);
+  BOOST_CHECK_SMALL((ik.positionBox - Eigen::Vector3d(0.01, 0.02, 0.03)).norm(), 1e-15);
   BOOST_CHECK(ik.boxPose.isApprox(eeOffset));
   BOOST_CHECK_SMALL(ik.orientationTolerance - 0.01, 1e-15);
   BOOST_CHECK_SMALL((q.goal[0].offset.translation() - Eigen::Vector3d(-0.2, 0, 0.05)).norm(), 1e-15);

@@ -117,9 +117,9 @@ BOOST_AUTO_TEST_CASE(position_box_admits_a_corner_the_sphere_does_not) {
   sphere.positionTolerance = 0.05;
   sphere.maxRestarts = 2;
   IkOptions box = sphere;
-  box.positionBox = Eigen::Vector3d::Constant(0.05);
-  // 6 cm beyond the end of travel along the diagonal: out of the 5 cm sphere, inside the box of
-  // half-width 5 cm (3.46 cm per axis).
+  box.positionBox = Eigen::Vector3d::Constant(0.1);
+  // 6 cm beyond the end of travel along the diagonal: out of the 5 cm sphere, inside the 10 cm box
+  // (5 cm from its centre to each face; 3.46 cm per axis).
   const Eigen::Isometry3d X_WT(Eigen::Translation3d(1.06 * u));
   const IkResult bySphere = solveInverseKinematics(slider, "tip", X_WT, sphere);
   BOOST_TEST(bySphere.status == IkStatus::NotConverged);
@@ -143,7 +143,7 @@ BOOST_AUTO_TEST_CASE(position_box_applies_to_its_frame_on_the_link) {
   const Eigen::Vector3d u = Eigen::Vector3d::Ones().normalized();
   const int tip = slider.linkIndex("tip");
   IkOptions box;
-  box.positionBox = Eigen::Vector3d(0.01, 0.3, 0.3);
+  box.positionBox = Eigen::Vector3d(0.02, 0.6, 0.6);
   box.boxPose = Eigen::Translation3d(0.2, 0.0, 0.0) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ());
   // Target of the tip at 0.5 u: B's target origin at 0.5 u + (0.2, 0, 0); the box is thin along
   // B's x, which is the world's y. Reaching along u moves B's origin by t u; the thin axis bounds
@@ -155,7 +155,7 @@ BOOST_AUTO_TEST_CASE(position_box_applies_to_its_frame_on_the_link) {
   BOOST_TEST(std::abs(r.q[0] - 0.5) / std::sqrt(3.0) <= 0.01);
   BOOST_TEST(std::abs(r.q[0] - 0.5) > 1e-3);  // stopped at the box, not at the target
   const Eigen::Vector3d d = (X_WT * box.boxPose).inverse() * (forwardKinematics(slider, r.q)[tip] * box.boxPose.translation());
-  BOOST_TEST(r.error.normalized == d.cwiseAbs().cwiseQuotient(box.positionBox).maxCoeff());
+  BOOST_TEST(r.error.normalized == d.cwiseAbs().cwiseQuotient(0.5 * box.positionBox).maxCoeff());
 }
 
 BOOST_AUTO_TEST_CASE(joint_limits_are_respected_when_the_target_needs_more) {

@@ -138,7 +138,7 @@ BOOST_AUTO_TEST_CASE(a_position_box_is_met_along_the_goal_axes) {
   const std::string scene = s.write("objects.yaml", kObjects);
   const checker::World world =
       libraryWorld(armUrdf(), armSrdf(), test::bundledDataDir(), scene, {{"world", "base_link"}});
-  // The goal pose 8 cm along its own x from a reachable one; the box is 10 cm along x, 1 mm
+  // The goal pose 8 cm along its own x from a reachable one; the box is 20 cm along x, 2 mm
   // across: the flange ends inside it, short of the centre.
   const int flange = world.robot().linkIndex("flange");
   Eigen::Isometry3d X_WT = robots::forwardKinematics(world.robot(), armGoal())[static_cast<std::size_t>(flange)];
@@ -146,7 +146,7 @@ BOOST_AUTO_TEST_CASE(a_position_box_is_met_along_the_goal_axes) {
   const Eigen::Vector3d p = X_WT.translation();
   const std::string out = s.path("path.txt");
   const Run run = s.run("plan" + armArgs(scene) + " --goal-pose" + poseWords("flange", X_WT) +
-                            " --position-box 0.1 0.001 0.001 --seed 2 --time 5 --out " + quote(out),
+                            " --position-box 0.2 0.002 0.002 --seed 2 --time 5 --out " + quote(out),
                         "", "ROS_PACKAGE_PATH=");
   BOOST_TEST_REQUIRE(run.status == 0, run.err);
   const std::vector<Eigen::VectorXd> path = readPath(out, world.robot().numVariables());
@@ -172,8 +172,8 @@ BOOST_AUTO_TEST_CASE(bad_pose_goals_are_reported) {
   fails(" --goal-pose flange 0.5 0 0.5 0 0", 2, "--goal-pose needs a link and 7 numbers");
   fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-tol 0", 2, "--position-tol must be > 0 m");
   fails(" --goal 0 0 0 0 0 0 0.1 --orientation-tol 0.1", 2, "--position-tol, --position-box and --orientation-tol need --goal-pose");
-  fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0.1", 2, "--position-box needs 3 half-widths");
-  fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0 0.1", 2, "half-widths must be > 0 m, got 0");
+  fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0.1", 2, "--position-box needs 3 edge lengths");
+  fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0 0.1", 2, "edge lengths must be > 0 m, got 0");
   fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0.1 0.1 --position-tol 0.1", 2,
         "--position-tol and --position-box exclude each other");
   fails(" --goal-pose tool0 0.5 0 0.5 0 0 0 1", 1, "no link named 'tool0'");

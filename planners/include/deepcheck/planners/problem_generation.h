@@ -19,8 +19,8 @@
 //                    [tx, ty, tz], orientation_tol: [rx, ry, rz]}, attached}. One query per
 //                    object: the end effector at X_O * offset, X_O the object's pose. The
 //                    tolerance box (full edge lengths, as MotionBenchMaker's box region, along the
-//                    axes of the end-effector target) is the IK's position box (half-widths
-//                    t / 2, on the query frame: the end effector); the orientation is met
+//                    axes of the end-effector target) is the IK's position box (the same edge
+//                    lengths, on the query frame: the end effector); the orientation is met
 //                    within min(r). Only attached "False" is accepted.
 //   robot file       MotionBenchMaker's robot configuration (configs/robots/panda.yaml):
 //                    robot_state.joint_state {name: [..], position: [..]}, the default state;
@@ -129,7 +129,7 @@ Eigen::Isometry3d queryPose(const robots::PlanningScene& scene, const ObjectQuer
                             const Eigen::Isometry3d& eeOffset);
 
 /// IK tolerances meeting a query's tolerance box (see the file comment): `base` with the box's
-/// half-widths as the position box, applied to the query frame (X_LB = eeOffset, the query frame
+/// edge lengths as the position box, applied to the query frame (X_LB = eeOffset, the query frame
 /// in the tip's frame), and the smallest orientation tolerance.
 robots::IkOptions queryIkOptions(const ObjectQuery& query, const robots::IkOptions& base,
                                  const Eigen::Isometry3d& eeOffset);

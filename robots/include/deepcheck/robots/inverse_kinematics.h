@@ -22,7 +22,7 @@
 // Position tolerance: a sphere of radius IkOptions::positionTolerance around p_WT, or, when
 // IkOptions::positionBox is set, a box region (MoveIt's and MotionBenchMaker's): the frame B
 // attached to the link at X_LB = IkOptions::boxPose must have its origin within the box of those
-// half-widths along the axes of B's target X_WT X_LB, centred on that target's origin. With
+// edge lengths along the axes of B's target X_WT X_LB, centred on that target's origin. With
 // boxPose the identity, the link origin within a box along T's axes. With the box, the position
 // rows of e are the gap from B's origin to the box (zero inside it), and the Jacobian is taken at
 // B's origin, so an unreachable centre does not stop a reachable corner.
@@ -35,7 +35,7 @@
 // Errors: std::invalid_argument naming the value: an unknown link (the message lists the links), a
 // non-finite or non-rigid target pose, a tolerance, iteration count or damping that is not
 // positive and finite, a position box with a negative, non-finite or (among positive ones) zero
-// half-width or a boxPose that is not a finite rigid transform, an initial configuration of the wrong size or with a non-finite value.
+// edge length or a boxPose that is not a finite rigid transform, an initial configuration of the wrong size or with a non-finite value.
 
 #include "deepcheck/robots/robot_model.h"
 #include "deepcheck/robots/tolerances.h"
@@ -52,8 +52,10 @@ namespace deepcheck::robots {
 struct IkOptions {
   double positionTolerance = tol::kIkPositionTolerance;        ///< metres
   double orientationTolerance = tol::kIkOrientationTolerance;  ///< radians
-  /// Half-widths of a position box along T's axes, metres; all zero (the default): the sphere of
-  /// radius positionTolerance instead. Either all zero or all positive.
+  /// Edge lengths of a position box along T's axes, metres (the full widths, as every box of the
+  /// API and MoveIt's box constraint region; B's origin may be up to half of each from the
+  /// target); all zero (the default): the sphere of radius positionTolerance instead. Either all
+  /// zero or all positive.
   Eigen::Vector3d positionBox = Eigen::Vector3d::Zero();
   /// X_LB: where on the link the box applies, and the box's axes (see the file comment).
   Eigen::Isometry3d boxPose = Eigen::Isometry3d::Identity();
@@ -72,7 +74,7 @@ struct PoseError {
   double orientation = 0.0;  ///< angle of R_WT R_WL^T, radians in [0, pi]
   /// max(position part, orientation / orientationTolerance): at most 1 exactly when the pose is
   /// reached. The position part is position / positionTolerance, or with a box max_i |d_i| / h_i
-  /// (d = B's origin in its target's frame, h = positionBox). Dimensionless; what "best" means between attempts.
+  /// (d = B's origin in its target's frame, h = positionBox / 2). Dimensionless; what "best" means between attempts.
   double normalized = 0.0;
   bool within() const { return normalized <= 1.0; }
 };
