@@ -32,7 +32,12 @@ void Progress::update(std::size_t done) {
   if (now < quiet_ || (printed_ && now - lastLine_ < quiet_)) return;
   *out_ << "deepcheck: " << what_ << " " << done;
   if (total_ > 0) *out_ << "/" << total_;
-  *out_ << " (" << seconds(now) << ")\n" << std::flush;
+  *out_ << " (" << seconds(now);
+  // The rest at the pace so far: an estimate, for steps whose items take alike times.
+  if (total_ > 0 && done > 0 && done < total_) {
+    *out_ << ", about " << seconds(now * static_cast<double>(total_ - done) / static_cast<double>(done)) << " left";
+  }
+  *out_ << ")\n" << std::flush;
   lastLine_ = now;
   printed_ = true;
 }

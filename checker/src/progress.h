@@ -1,8 +1,9 @@
 #pragma once
 // Progress of a long step of the world's construction, as lines on a stream (stderr by default,
 // WorldOptions::progress): nothing while the step is short, so a quick load prints nothing.
-// After tol::kProgressQuietSeconds a line "deepcheck: <what> <done>/<total> (<s> s)" (no total
-// when it is not known in advance: 0) at most that often, and a closing line "deepcheck: <what> done (<s> s)" when any line was printed.
+// After tol::kProgressQuietSeconds a line "deepcheck: <what> <done>/<total> (<s> s, about <r> s
+// left)" (r: the rest at the pace so far; no total and no estimate when the total is not known in
+// advance: 0) at most that often, and a closing line "deepcheck: <what> done (<s> s)" when any line was printed.
 
 #include <chrono>
 #include <cstddef>

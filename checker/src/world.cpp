@@ -98,7 +98,11 @@ robots::MeshDecomposer makeDecomposer(const WorldOptions& options, std::shared_p
 std::vector<std::vector<robots::CollisionPiece>> piecesWithProgress(const robots::RobotModel& model,
                                                                     const robots::CollisionGeometryOptions& geometry,
                                                                     std::ostream* out, const std::string& what) {
-  detail::Progress progress(out, what + ": meshes made into pieces", 0, tol::kProgressQuietSeconds);
+  std::size_t total = 0;
+  for (int l = 0; l < model.numLinks(); ++l) {
+    for (const auto& c : model.link(l).collisions) total += c.geometry.type == robots::GeometryType::Mesh;
+  }
+  detail::Progress progress(out, what + ": meshes made into pieces", total, tol::kProgressQuietSeconds);
   std::size_t meshes = 0;
   robots::CollisionGeometryOptions counted = geometry;
   counted.decomposer = [&](const robots::TriangleMesh& mesh) {

@@ -221,6 +221,7 @@ BOOST_AUTO_TEST_CASE(lines_only_past_the_quiet_time) {
     p.update(3);
   }
   BOOST_TEST(loud.str().find("deepcheck: self pairs 3/10 (") == 0u, loud.str());
+  BOOST_TEST(loud.str().find(" left)\n") != std::string::npos, loud.str());  // the estimate of the rest
   BOOST_TEST(loud.str().find("deepcheck: self pairs done (") != std::string::npos, loud.str());
   std::ostringstream unknown;
   {
@@ -228,6 +229,7 @@ BOOST_AUTO_TEST_CASE(lines_only_past_the_quiet_time) {
     p.update(7);
   }
   BOOST_TEST(unknown.str().find("deepcheck: meshes 7 (") == 0u, unknown.str());
+  BOOST_TEST(unknown.str().find("left") == std::string::npos, unknown.str());  // no total, no estimate
   detail::Progress silent(nullptr, "x", 1, 0.0);
   silent.update(1);
 }
