@@ -76,7 +76,7 @@
 namespace deepcheck::robots {
 
 /// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
-constexpr int kDecompositionAlgorithmVersion = 7;
+constexpr int kDecompositionAlgorithmVersion = 8;
 
 /// Default of DecompositionParams::maxTriangles.
 constexpr int kDefaultMaxTriangles = 200000;
