@@ -23,6 +23,8 @@ plot for [i=1:words(kinds)] csv using 2:(pick(word(kinds, i), $3)) with linespoi
      [200:100000] 1e-4 * x with lines dt 3 lc rgb '#7f7f7f' title "slope 1 (linear)"
 
 set output outdir.'/load_bench_hand.png'
+set key bottom right
+set xrange [500:200000]
 set title "Non-convex hand: pieces and excess against triangles (bench/load_bench.cpp)"
 set xlabel "triangles"
 set ylabel "pieces"
