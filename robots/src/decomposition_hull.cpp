@@ -285,13 +285,6 @@ class ProgressiveHull {
   /// collapses are ranked on the hull before the batch, so larger batches cost quality (1/2 left
   /// twice the excess on a finely tessellated sphere; 1/32 matches one collapse at a time).
   static constexpr int kBatchDivisor = 32;
-  /// While the hull has more than kCoarseFactor times the budget, a batch removes up to
-  /// 1/kCoarseBatchDivisor of the vertices left to remove instead: those first collapses are
-  /// far smaller than the last ones, which set the excess, and a hull of thousands of vertices
-  /// (a finely tessellated mesh) otherwise takes hundreds of batches, each a hull of them all.
-  static constexpr int kCoarseFactor = 4;
-  static constexpr int kCoarseBatchDivisor = 4;
-
   /// A batch takes at least kMinBatch collapses (fewer only when fewer vertices are left to
   /// remove): its collapses do not overlap, and one at a time the last few dozen vertices took a
   /// batch, a hull and a ranking each (a 150-vertex hull took 0.2 s to reduce to 64). Two keep
@@ -299,9 +292,11 @@ class ProgressiveHull {
   /// of them ended 2 % above).
   static constexpr int kMinBatch = 2;
 
+  /// Larger batches for a hull of thousands of vertices cost more than they save: a batch with
+  /// one collapse that fails is redone without it, and a quarter of the vertices per batch made
+  /// a 100,000-triangle mesh's merges 4x slower.
   static int batchSize(int n, int maxVertices) {
-    const int divisor = n > kCoarseFactor * maxVertices ? kCoarseBatchDivisor : kBatchDivisor;
-    return std::min(n - maxVertices, std::max(kMinBatch, (n - maxVertices) / divisor));
+    return std::min(n - maxVertices, std::max(kMinBatch, (n - maxVertices) / kBatchDivisor));
   }
   static constexpr int kMaxConstraints = 24;  ///< planes around an edge; more (a fan apex) is skipped
   /// A collapse point may violate a face plane by this much, relative to the hull's diagonal
