@@ -15,7 +15,7 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vec
                                                 double abortAbove) {
   SideResult result;
   std::vector<Vector3d> points;
-  points.reserve(part.scoringPoints.size());
+  points.reserve(part.points.size());
   std::unordered_set<PositionKey, PositionKeyHash> crossings;
   const double slab = dt::kMinSlabRelative * diagonal_;
   const double tolerance = dt::kOnPlaneRelative * diagonal_;
@@ -51,7 +51,7 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vec
     }
   }
   if (!result.valid) return result;
-  for (const Vector3d& p : part.scoringPoints) {
+  for (const Vector3d& p : part.points) {
     if (insideKeeps(p, keeps.size())) points.push_back(p);  // polygon corners and cell corners
   }
   // New cell corners on each cut plane: where it meets the edges of the part's cell (and the

@@ -31,10 +31,7 @@
 // through the mesh point nearest to it, through mesh points near it, through the walls that rays
 // from it meet (and along those walls' own planes), a few evenly spaced offsets, a refinement of
 // the best offset, and slabs between the walls on both sides of the worst sample (a slot or gap
-// is cut out in one step). A part with more than kScoringPoints points (a finely tessellated
-// mesh) scores its candidates on a sample of them (Part::scoringPoints): each candidate costs a
-// hull of each side, and the candidates of a part of 100,000 triangles would otherwise each cost
-// a hull of tens of thousands of points. The parts of the cut chosen are built from all points. When the best cut does not lower the concavity much (a plateau: a
+// is cut out in one step). When the best cut does not lower the concavity much (a plateau: a
 // hole needs two cuts through its axis, a frame around a pocket a cut along each wall), the most
 // promising cuts are compared one cut ahead; if that shows no progress either, the cut along the
 // largest mesh face near the concavity is taken.
@@ -178,12 +175,6 @@ struct CleanMesh {
   int inputTriangles = 0;
   double volume = 0.0;  ///< sum of the components' volumes (voids count negative); NaN when open
 };
-
-/// The points a part's candidate cuts are scored with (see Part::scoringPoints): all of `points`
-/// when there are at most kScoringPoints, else the extreme points along kScoringDirections
-/// directions spread over the sphere and every k-th point, about kScoringPoints in all
-/// (decomposition_parts.cpp).
-std::vector<Vector3d> scoringSample(const std::vector<Vector3d>& points);
 
 /// The input, cleaned (decomposition_mesh_repair.cpp): welded, holes filled, oriented outward.
 CleanMesh cleanMesh(const TriangleMesh& mesh);
@@ -386,10 +377,6 @@ struct Part {
   /// there, so the hull needs them (the cut faces are not in the polygons).
   std::vector<Vector3d> cellCorners;
   std::vector<Vector3d> points;  ///< distinct corners of the polygons, and the cell corners
-  /// What candidate cuts of the part are scored with (evaluateSide): `points`, or for a part with
-  /// more than kScoringPoints of them, a sample (scoringSample). The parts a chosen cut makes are
-  /// built and measured from all points.
-  std::vector<Vector3d> scoringPoints;
   Hull hull;                     ///< hull of the points
   Hull finalHull;                ///< hull, reduced to the vertex budget when it met the target
   double hullConcavity = 0.0;    ///< concavity of `hull`

@@ -259,31 +259,6 @@ void Decomposer::assignCellCorners(const std::vector<CellSide>& cell, const std:
   }
 }
 
-std::vector<Vector3d> scoringSample(const std::vector<Vector3d>& points) {
-  const int n = static_cast<int>(points.size());
-  if (n <= dt::kScoringPoints) return points;
-  // The extreme points along directions spread evenly over the sphere (a Fibonacci lattice):
-  // the tips and corners of the part, which a regular sample could miss.
-  std::vector<char> chosen(points.size(), 0);
-  const double golden = kPi * (3.0 - std::sqrt(5.0));
-  for (int k = 0; k < dt::kScoringDirections; ++k) {
-    const double z = 1.0 - (2.0 * k + 1.0) / dt::kScoringDirections;
-    const double r = std::sqrt(1.0 - z * z);
-    const Vector3d d(r * std::cos(golden * k), r * std::sin(golden * k), z);
-    int best = 0;
-    for (int i = 1; i < n; ++i) best = d.dot(points[i]) > d.dot(points[best]) ? i : best;
-    chosen[best] = 1;
-  }
-  // Then every k-th point.
-  const int stride = (n + dt::kScoringPoints - 1) / dt::kScoringPoints;
-  for (int i = 0; i < n; i += stride) chosen[i] = 1;
-  std::vector<Vector3d> sample;
-  for (int i = 0; i < n; ++i) {
-    if (chosen[i] != 0) sample.push_back(points[i]);
-  }
-  return sample;
-}
-
 Part Decomposer::makePart(std::vector<CellSide> cell, std::vector<PartPolygon> polygons,
                           std::vector<Vector3d> cellCorners, bool reduce, const Vector3d* hint) {
   Part part;
@@ -299,7 +274,6 @@ Part Decomposer::makePart(std::vector<CellSide> cell, std::vector<PartPolygon> p
   }
   for (const Vector3d& p : part.cellCorners) addPoint(p);
   part.hull = detail::convexHull(part.points);
-  part.scoringPoints = scoringSample(part.points);
   Target target;
   target.mesh = &meshBvh_;
   addCaps(part, &target.caps);

@@ -57,15 +57,6 @@ constexpr int kCandidateSamples = 256;
 constexpr int kPartSamples = 1024;
 constexpr int kReportSamples = 4096;
 constexpr int kOffsetsPerDirection = 6;
-/// Candidate cuts of a part with more points than kScoringPoints are scored on a sample of
-/// about that many (Part::scoringPoints): its extreme points along kScoringDirections directions
-/// spread over the sphere (tips and corners) and every k-th point. Each candidate costs a hull of
-/// the points on each side of the cut, and a finely tessellated mesh (tens of thousands of
-/// triangles) would otherwise cost a hull of tens of thousands of points per candidate. The
-/// sample's hull of a side lies inside the exact one, within about the sample's spacing, so a
-/// score may be a little low; the parts of the cut chosen are built and measured from all points.
-constexpr int kScoringPoints = 1024;
-constexpr int kScoringDirections = 64;
 /// Planes through the part's points near its worst hull sample: at most kFeatureOffsets per
 /// direction, nearest first, at least kFeatureSpacingFraction * T apart.
 constexpr int kFeatureOffsets = 4;

@@ -585,10 +585,9 @@ BOOST_AUTO_TEST_CASE(the_vertex_budget_holds_when_the_target_is_missed) {
   BOOST_CHECK_EQUAL(uncoveredPoints(mesh, d.pieces, 1), 0);
 }
 
-BOOST_AUTO_TEST_CASE(a_finely_tessellated_mesh_is_scored_on_a_sample_and_still_covered) {
-  // 96 x 32 quads: 3,072 vertices, more than the cut search scores on (kScoringPoints), so the
-  // first cuts are chosen on a sample; the pieces are built from every point, so they cover
-  // every vertex and random points of every triangle, meet the target and the vertex budget.
+BOOST_AUTO_TEST_CASE(a_finely_tessellated_torus_is_covered_and_meets_the_target) {
+  // 96 x 32 quads, 3,072 vertices: the pieces cover every vertex and random points of every
+  // triangle, and meet the target and the vertex budget.
   const TriangleMesh mesh = torus(96, 32, 0.1, 0.03);
   const ConvexDecomposition d = decomposeConvex(mesh);
   BOOST_CHECK_GE(d.report.numPieces, 4);

@@ -23,9 +23,7 @@
 //      principal-axis planes at several offsets and through the features around the worst
 //      concavity, and slabs between two walls. Plateaus (no single cut helps) are handled by a
 //      one-cut lookahead, then by cutting along a wall. A cut triangle is clipped to both sides.
-//      Each side is split again into its connected components. Candidates of a part with many
-//      points (a finely tessellated mesh) are scored on a sample of its points; the two sides
-//      of the cut chosen are built from all of them, so coverage does not depend on the sample.
+//      Each side is split again into its connected components.
 //   4. When the budget's number of parts exist, merge neighbouring pieces whose merged hull meets
 //      the target (cheapest first), which frees budget for more cuts; repeat. Finally, if there
 //      are still more pieces than the budget, merge the cheapest pairs until there are not. The
@@ -76,7 +74,7 @@
 namespace deepcheck::robots {
 
 /// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
-constexpr int kDecompositionAlgorithmVersion = 8;
+constexpr int kDecompositionAlgorithmVersion = 10;
 
 /// Default of DecompositionParams::maxTriangles.
 constexpr int kDefaultMaxTriangles = 200000;
