@@ -92,9 +92,10 @@ struct DecompositionParams {
   int maxVerticesPerPiece = 64;
   /// Largest number of triangles of a mesh to decompose, >= 1: decomposeConvex refuses a larger
   /// one (std::invalid_argument naming the mesh, its count and this field). The time grows about
-  /// linearly with the triangles, about 0.2 s per 1,000 on a shared core for a hand of some 20
-  /// pieces (bench/README.md, Loading), so the default caps a load at about a minute. Not part
-  /// of the cache key: it decides whether to decompose, not the result.
+  /// linearly with the triangles, about 0.25 s per 1,000 on a shared core for a hand of some 20
+  /// pieces and 0.5 s for one of 50 (bench/README.md, Loading), so the default caps a load at
+  /// one to two minutes. Not part of the cache key: it decides whether to decompose, not the
+  /// result.
   int maxTriangles = kDefaultMaxTriangles;
   /// Merge neighbouring pieces whose merged hull still meets the target.
   bool mergePieces = true;
