@@ -82,7 +82,34 @@ void tubeResolution(double length, double radius, int triangles, int* segments, 
   *steps = std::max(2, static_cast<int>(triangles / (2.0 * *segments)));
 }
 
+/// The palm: a straight tube along x, radius 2.5 cm, in about `perTube` triangles.
+void appendPalm(int perTube, robots::TriangleMesh* mesh) {
+  int segments = 0;
+  int steps = 0;
+  tubeResolution(0.09, 0.025, perTube, &segments, &steps);
+  appendTube(fingerPath({-0.045, 0, 0}, Vector3d::UnitX(), Vector3d::UnitY(), 0.09, 0.01, 0.0, steps), 0.025,
+             segments, mesh);
+}
+
 }  // namespace
+
+robots::TriangleMesh combMesh(int triangles) {
+  robots::TriangleMesh mesh;
+  mesh.source = "comb";
+  constexpr int kFingers = 8;
+  const int perTube = std::max(100, triangles / (kFingers + 1));
+  appendPalm(perTube, &mesh);
+  for (int f = 0; f < kFingers; ++f) {
+    const Vector3d root(-0.042 + 0.012 * f, 0.0, 0.01);
+    const double straight = 0.04 + 0.008 * (f % 3);
+    int segments = 0;
+    int steps = 0;
+    tubeResolution(straight + 0.02 * 3.5, 0.005, perTube, &segments, &steps);
+    appendTube(fingerPath(root, Vector3d::UnitZ(), Vector3d::UnitY(), straight, 0.02, 3.5, steps), 0.005,
+               segments, &mesh);
+  }
+  return mesh;
+}
 
 robots::TriangleMesh handMesh(int triangles) {
   robots::TriangleMesh mesh;
@@ -90,10 +117,7 @@ robots::TriangleMesh handMesh(int triangles) {
   const int perTube = std::max(100, triangles / 5);
   int segments = 0;
   int steps = 0;
-  // The palm: a straight tube along x, radius 2.5 cm.
-  tubeResolution(0.09, 0.025, perTube, &segments, &steps);
-  appendTube(fingerPath({-0.045, 0, 0}, Vector3d::UnitX(), Vector3d::UnitY(), 0.09, 0.01, 0.0, steps), 0.025,
-             segments, &mesh);
+  appendPalm(perTube, &mesh);
   // Four fingers, radius 8 mm, rising from inside the palm and curling by 150 degrees.
   for (int f = 0; f < 4; ++f) {
     const Vector3d root(-0.036 + 0.024 * f, 0.0, 0.01);

@@ -11,4 +11,8 @@ namespace deepcheck::bench {
 /// The hand, about 0.1 m across, in about `triangles` triangles (at least a few hundred).
 robots::TriangleMesh handMesh(int triangles);
 
+/// A harder hand: eight thinner fingers (radius 5 mm) curled by 200 degrees on the same palm,
+/// which needs about twice the pieces.
+robots::TriangleMesh combMesh(int triangles);
+
 }  // namespace deepcheck::bench

@@ -13,6 +13,7 @@
 //                  fingers) decomposed by decomposeConvex with the default parameters, as a
 //                  world's first load does; also its pieces and excess (the report's concavity:
 //                  how far the pieces stick out of the mesh, metres)
+//   comb           the same with eight thinner fingers (hand_mesh.h), about 50 pieces
 // Usage: load_bench [--sizes 250,500,...] [--kinds scene_yaml,...] [--out folder]
 // Prints a table and writes <out>/load_bench.csv (kind, n, seconds, µs per item, and for `hand`
 // pieces and excess in metres).
@@ -147,7 +148,7 @@ double seconds(const std::function<void()>& f) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// What a run measured besides its time: the decomposition's pieces and excess (`hand` only).
+/// What a run measured besides its time: the decomposition's pieces and excess (`hand`, `comb`).
 struct Quality {
   int pieces = 0;
   double excess = std::nan("");
@@ -156,8 +157,8 @@ struct Quality {
 /// Time of loading one kind at size n (what is built before the clock starts is not counted).
 double timeKind(const std::string& kind, int n, int* items, Quality* quality) {
   *items = n;
-  if (kind == "hand") {
-    const dr::TriangleMesh mesh = deepcheck::bench::handMesh(n);
+  if (kind == "hand" || kind == "comb") {
+    const dr::TriangleMesh mesh = kind == "hand" ? deepcheck::bench::handMesh(n) : deepcheck::bench::combMesh(n);
     *items = static_cast<int>(mesh.triangles.size());
     dr::ConvexDecomposition d;
     const double s = seconds([&] { d = dr::decomposeConvex(mesh, dr::DecompositionParams{}); });
@@ -207,7 +208,7 @@ double timeKind(const std::string& kind, int n, int* items, Quality* quality) {
     std::filesystem::remove_all(cache);
     return s;
   }
-  throw std::invalid_argument("unknown kind '" + kind + "' (scene_yaml, obstacles, obstacles_batch, scene_urdf, robot_star, robot_hub, mesh, hand)");
+  throw std::invalid_argument("unknown kind '" + kind + "' (scene_yaml, obstacles, obstacles_batch, scene_urdf, robot_star, robot_hub, mesh, hand, comb)");
 }
 
 }  // namespace
@@ -215,7 +216,7 @@ double timeKind(const std::string& kind, int n, int* items, Quality* quality) {
 void usage(const std::string& error) {
   if (!error.empty()) std::fprintf(stderr, "load_bench: %s\n", error.c_str());
   std::fprintf(stderr,
-               "usage: load_bench [--sizes 250,500,1000,2000,4000] [--kinds scene_yaml,obstacles,obstacles_batch,scene_urdf,robot_star,robot_hub,mesh,hand]\n"
+               "usage: load_bench [--sizes 250,500,1000,2000,4000] [--kinds scene_yaml,obstacles,obstacles_batch,scene_urdf,robot_star,robot_hub,mesh,hand,comb]\n"
                "                  [--out folder (default bench/results)]\n");
   std::exit(2);
 }

@@ -2,7 +2,7 @@
 # Usage: gnuplot -e "csv='results/load_bench.csv'; outdir='results'" load_plots.gp
 # Writes load_bench.png: load time against the number of items loaded, one line per kind, on
 # log-log axes with a dotted line of slope 1 (linear growth) for reference; and
-# load_bench_hand.png: the non-convex hand's pieces and excess (mm) against its triangles.
+# load_bench_hand.png: the non-convex hand's and comb's pieces and excess (mm) against triangles.
 
 if (!exists("csv")) csv = 'results/load_bench.csv'
 if (!exists("outdir")) outdir = 'results'
@@ -25,7 +25,7 @@ plot for [i=1:words(kinds)] csv using 2:(pick(word(kinds, i), $3)) with linespoi
 set output outdir.'/load_bench_hand.png'
 set key bottom right
 set xrange [500:200000]
-set title "Non-convex hand: pieces and excess against triangles (bench/load_bench.cpp)"
+set title "Non-convex hand and comb: pieces and excess against triangles (bench/load_bench.cpp)"
 set xlabel "triangles"
 set ylabel "pieces"
 set y2label "excess (mm): how far the pieces stick out of the mesh"
@@ -34,5 +34,5 @@ set ytics nomirror
 set y2tics
 set yrange [0:*]
 set y2range [0:*]
-plot csv using 2:(pick('hand', $5)) with linespoints lw 2 pt 7 title "pieces", \
-     csv using 2:(pick('hand', 1000 * $6)) axes x1y2 with linespoints lw 2 pt 5 title "excess (mm)"
+plot for [k in "hand comb"] csv using 2:(pick(k, $5)) with linespoints lw 2 pt 7 title k." pieces", \
+     for [k in "hand comb"] csv using 2:(pick(k, 1000 * $6)) axes x1y2 with linespoints lw 2 pt 5 dt 2 title k." excess (mm)"

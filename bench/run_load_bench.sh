@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Load-time benchmark in one command: configure, build, run load_bench, plot.
 #
-#   bench/run_load_bench.sh          sizes 250 to 8,000 for every kind, then the non-convex `hand`
+#   bench/run_load_bench.sh          sizes 250 to 8,000 for every kind, then the non-convex `hand` and `comb`
 #                                    mesh up to 100,000 triangles (several minutes on 2 cores);
 #                                    results in bench/results/load_bench.csv, load_bench.png and
 #                                    load_bench_hand.png (its pieces and excess)
@@ -15,7 +15,7 @@ build="$root/build-bench"
 jobs=2
 out="$here/results"
 extra=(--kinds scene_yaml,obstacles,obstacles_batch,scene_urdf,robot_star,robot_hub,mesh --sizes 250,500,1000,2000,4000,8000)
-hand=(--kinds hand --sizes 1000,4000,16000,45000,100000)
+hand=(--kinds hand,comb --sizes 1000,4000,16000,45000,100000)
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --build-dir) build="$2"; shift ;;
