@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Load-time benchmark in one command: configure, build, run load_bench, plot.
 #
-#   bench/run_load_bench.sh          sizes 250 to 8,000 for every kind, then the non-convex `hand` and `comb`
-#                                    mesh up to 100,000 triangles (several minutes on 2 cores);
-#                                    results in bench/results/load_bench.csv, load_bench.png and
-#                                    load_bench_hand.png (its pieces and excess)
+#   bench/run_load_bench.sh          sizes 250 to 8,000 for every kind, then the non-convex
+#                                    `hand` and `comb` meshes up to 100,000 triangles (about 5
+#                                    minutes on 2 cores); results in bench/results/load_bench.csv,
+#                                    load_bench.png and load_bench_hand.png (pieces and excess)
 # Options: --build-dir DIR (default: build-bench beside bench/), --out DIR, --jobs N (default 2);
 # anything after `--` goes to load_bench (e.g. -- --kinds mesh --sizes 1000,10000).
 set -euo pipefail
