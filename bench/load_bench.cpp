@@ -9,14 +9,22 @@
 //   robot_hub      the same around a base without geometry (every two children adjacent)
 //   mesh           a closed mesh of about N triangles (a tessellated sphere, one convex piece)
 //                  added as an obstacle: the mesh's cleaning, hull and decomposition
+//   hand           a non-convex mesh of about N triangles (hand_mesh.h: a palm and four curled
+//                  fingers) decomposed by decomposeConvex with the default parameters, as a
+//                  world's first load does; also its pieces and excess (the report's concavity:
+//                  how far the pieces stick out of the mesh, metres)
+//   comb           the same with eight thinner fingers (hand_mesh.h), about 50 pieces
 // Usage: load_bench [--sizes 250,500,...] [--kinds scene_yaml,...] [--out folder]
-// Prints a table and writes <out>/load_bench.csv (kind, n, seconds, seconds per item).
+// Prints a table and writes <out>/load_bench.csv (kind, n, seconds, µs per item, and for `hand`
+// pieces and excess in metres).
 // bench/run_load_bench.sh runs it and plots the curves.
 
 #include "format.h"
+#include "hand_mesh.h"
 #include "options.h"
 
 #include "deepcheck/checker/world.h"
+#include "deepcheck/robots/decomposition.h"
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/srdf.h"
 
@@ -140,9 +148,25 @@ double seconds(const std::function<void()>& f) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// What a run measured besides its time: the decomposition's pieces and excess (`hand`, `comb`).
+struct Quality {
+  int pieces = 0;
+  double excess = std::nan("");
+};
+
 /// Time of loading one kind at size n (what is built before the clock starts is not counted).
-double timeKind(const std::string& kind, int n, int* items) {
+double timeKind(const std::string& kind, int n, int* items, Quality* quality) {
   *items = n;
+  if (kind == "hand" || kind == "comb") {
+    const dr::TriangleMesh mesh = kind == "hand" ? deepcheck::bench::handMesh(n) : deepcheck::bench::combMesh(n);
+    *items = static_cast<int>(mesh.triangles.size());
+    dr::ConvexDecomposition d;
+    const double s = seconds([&] { d = dr::decomposeConvex(mesh, dr::DecompositionParams{}); });
+    quality->pieces = d.report.numPieces;
+    quality->excess = d.report.concavity;
+    if (!d.report.warning.empty()) std::fprintf(stderr, "load_bench: %s\n", d.report.warning.c_str());
+    return s;
+  }
   if (kind == "scene_yaml") {
     const std::string yaml = planningSceneYaml(n);
     dc::World world = bundledArm();
@@ -184,7 +208,7 @@ double timeKind(const std::string& kind, int n, int* items) {
     std::filesystem::remove_all(cache);
     return s;
   }
-  throw std::invalid_argument("unknown kind '" + kind + "' (scene_yaml, obstacles, obstacles_batch, scene_urdf, robot_star, robot_hub, mesh)");
+  throw std::invalid_argument("unknown kind '" + kind + "' (scene_yaml, obstacles, obstacles_batch, scene_urdf, robot_star, robot_hub, mesh, hand, comb)");
 }
 
 }  // namespace
@@ -192,14 +216,14 @@ double timeKind(const std::string& kind, int n, int* items) {
 void usage(const std::string& error) {
   if (!error.empty()) std::fprintf(stderr, "load_bench: %s\n", error.c_str());
   std::fprintf(stderr,
-               "usage: load_bench [--sizes 250,500,1000,2000,4000] [--kinds scene_yaml,obstacles,obstacles_batch,scene_urdf,robot_star,robot_hub,mesh]\n"
+               "usage: load_bench [--sizes 250,500,1000,2000,4000] [--kinds scene_yaml,obstacles,obstacles_batch,scene_urdf,robot_star,robot_hub,mesh,hand,comb]\n"
                "                  [--out folder (default bench/results)]\n");
   std::exit(2);
 }
 
 int main(int argc, char** argv) {
   std::vector<int> sizes = {250, 500, 1000, 2000, 4000};
-  std::vector<std::string> kinds = {"scene_yaml", "obstacles", "obstacles_batch", "scene_urdf", "robot_star", "robot_hub", "mesh"};
+  std::vector<std::string> kinds = {"scene_yaml", "obstacles", "obstacles_batch", "scene_urdf", "robot_star", "robot_hub", "mesh", "hand"};
   std::string out = DEEPCHECK_BENCH_RESULTS_DIR;
   deepcheck::bench::readOptions(argc, argv, usage, [&](const std::string& arg, auto value) {
     if (arg == "--sizes") {
@@ -219,15 +243,24 @@ int main(int argc, char** argv) {
 
   std::ofstream csv(out + "/load_bench.csv");
   if (!csv) usage("cannot write " + out + "/load_bench.csv");
-  csv << "kind,n,seconds,us_per_item\n";
-  std::printf("%-12s %8s %10s %12s\n", "kind", "n", "seconds", "us per item");
+  csv << "kind,n,seconds,us_per_item,pieces,excess_m\n";
+  std::printf("%-12s %8s %10s %12s %7s %10s\n", "kind", "n", "seconds", "us per item", "pieces", "excess m");
   for (const std::string& kind : kinds) {
     for (int n : sizes) {
       int items = n;
-      const double s = timeKind(kind, n, &items);
-      std::printf("%-12s %8d %10.3f %12.1f\n", kind.c_str(), items, s, 1e6 * s / items);
+      Quality q;
+      const double s = timeKind(kind, n, &items, &q);
+      std::printf("%-12s %8d %10.3f %12.1f", kind.c_str(), items, s, 1e6 * s / items);
+      csv << kind << "," << items << "," << s << "," << 1e6 * s / items << ",";
+      if (q.pieces > 0) {
+        std::printf(" %7d %10.4f", q.pieces, q.excess);
+        csv << q.pieces << "," << q.excess;
+      } else {
+        csv << ",";
+      }
+      std::printf("\n");
       std::fflush(stdout);
-      csv << kind << "," << items << "," << s << "," << 1e6 * s / items << "\n";
+      csv << "\n";
     }
   }
   return 0;

@@ -55,7 +55,7 @@ constexpr const char* kUsage =
     "  --max-vertices N        at most N vertices per piece (default 64; the pieces still\n"
     "                          contain the mesh)\n"
     "  --max-triangles N       refuse a mesh of more than N triangles (default 200000; about\n"
-    "                          1 s per 1000 triangles; progress is printed past 1 s)\n"
+    "                          0.25-0.5 s per 1000 triangles; progress is printed past 1 s)\n"
     "  --cache DIR             cache folder (default $XDG_CACHE_HOME/deepcheck or\n"
     "                          ~/.cache/deepcheck)\n"
     "  --no-cache              neither read nor write the cache\n"

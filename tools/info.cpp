@@ -1,7 +1,10 @@
 // `deepcheck info ROBOT.urdf`: what deepcheck makes of a robot (or scene) description: its links
-// with their collision elements and convex pieces, the joints in configuration order with their
-// limits, the meshes and how well their pieces fit them, and the self-collision pairs left after
-// the pair filter (robots/include/deepcheck/robots/pair_filter.h).
+// with their collision elements and the convex pieces the checker uses (meshes decomposed through
+// the same on-disk decomposition cache as `check` and `plan`, so a second run is quick; progress
+// lines on stderr while a first decomposition runs long), the joints in configuration order with
+// their limits, the meshes and how well their hulls fit them, and the self-collision pairs left
+// after the pair filter (robots/include/deepcheck/robots/pair_filter.h), found on one convex hull
+// per mesh.
 //
 // Output (stdout, plain text, one section per heading):
 //   robot '<name>' (<file>)
@@ -13,7 +16,8 @@
 //                                        --lock)
 //   links:                               one line per link, in link order:
 //     <index> <link> <parent link> <parent joint> <collision elements> <pieces>
-//   pieces:                              one line per piece: <link> <kind> <vertices> <origin>
+//                                        (<pieces>: the checker's, after decomposition)
+//   pieces:                              one line per piece: <link> <kind> <vertices>
 //   meshes (...):                        one line per distinct mesh file and scale
 //   collision pairs (...):               the pair filter's counts
 // With --write-srdf, the SRDF holds the disabled pairs and the planning groups: those of the
@@ -32,6 +36,7 @@
 #include "load_world.h"
 #include "subcommands.h"
 
+#include "deepcheck/checker/world.h"
 #include "deepcheck/robots/collision_geometry.h"
 #include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/moveit_scene.h"
@@ -57,11 +62,13 @@ constexpr const char* kUsage =
     "                      [--write-srdf FILE] [--srdf FILE... --group NAME] [--lock JOINT=VALUE]...\n"
     "       deepcheck info SCENE.yaml|SCENE.scene [--package-path DIR]...\n"
     "\n"
-    "Describes a URDF robot or scene: links with their collision elements and convex pieces,\n"
+    "Describes a URDF robot or scene: links with their collision elements and the convex pieces\n"
+    "the checker uses (meshes decomposed as by check and plan, through the same decomposition\n"
+    "cache, so a second run is quick; progress on stderr while a first decomposition runs long),\n"
     "joints in configuration order with their limits, the collision meshes and how well their\n"
-    "pieces fit them, and the self-collision pairs left after the pair filter (adjacent links,\n"
-    "pairs colliding at the default configuration, always or never colliding in N random\n"
-    "configurations, as MoveIt's setup assistant does).\n"
+    "convex hulls fit them, and the self-collision pairs left after the pair filter (adjacent\n"
+    "links, pairs colliding at the default configuration, always or never colliding in N random\n"
+    "configurations, as MoveIt's setup assistant does; on one convex hull per mesh).\n"
     "A MoveIt planning scene (.yaml, .yml or .scene): its collision objects and attached objects\n"
     "as read, each with its frame and its shapes (geometry and pose in the object's frame,\n"
     "quaternions x y z w), and its allowed collisions.\n"
@@ -141,7 +148,7 @@ void printMeshes(const robots::RobotModel& model) {
       if (!found) uses.push_back({c.geometry.meshPath, c.geometry.meshScale, {link.name}});
     }
   }
-  std::printf("\nmeshes (pieces: the convex hull of each mesh, no decomposition):\n");
+  std::printf("\nmeshes (hull: the convex hull of each mesh; the checker's pieces are in links):\n");
   if (uses.empty()) {
     std::printf("  none\n");
     return;
@@ -165,7 +172,7 @@ void printMeshes(const robots::RobotModel& model) {
                 mesh.triangles.size(), mesh.vertices.size(), volume, hullVolume, ratio,
                 hull.numVertices(), links.c_str());
   }
-  std::printf("  (hull/mesh > 1: the piece is larger than the mesh by that volume factor; 'open':\n"
+  std::printf("  (hull/mesh > 1: the hull is larger than the mesh by that volume factor; 'open':\n"
               "  the mesh is not closed, so it has no volume)\n");
 }
 
@@ -252,6 +259,16 @@ void printJoints(const robots::RobotModel& model) {
   if (!anyLocked) std::printf("  none\n");
 }
 
+/// The convex pieces the checker uses for each link (by link index): those of a collision world
+/// built with the default options, meshes decomposed through the default decomposition cache; the
+/// world prints progress lines on stderr while this runs long.
+std::vector<std::vector<robots::CollisionPiece>> checkerPieces(const robots::RobotModel& model) {
+  const checker::World world(model);
+  std::vector<std::vector<robots::CollisionPiece>> pieces(static_cast<std::size_t>(model.numLinks()));
+  for (int l = 0; l < model.numLinks(); ++l) pieces[static_cast<std::size_t>(l)] = world.linkPieces(l);
+  return pieces;
+}
+
 void printLinksAndPieces(const robots::RobotModel& model,
                          const std::vector<std::vector<robots::CollisionPiece>>& pieces) {
   std::printf("\nlinks:\n");
@@ -273,7 +290,7 @@ void printLinksAndPieces(const robots::RobotModel& model,
       std::printf("  %-24s %-10s %4d vertices", model.link(l).name.c_str(),
                   deep::toString(p.core->kind()), p.core->numVertices());
       if (p.radius > 0.0) std::printf(", radius %.6g", p.radius);
-      std::printf("  (%s)\n", p.origin.c_str());
+      std::printf("\n");
     }
   }
   if (!anyPiece) std::printf("  none\n");
@@ -393,12 +410,14 @@ int runInfo(std::vector<std::string> args) {
   load.packageRoots = a.roots.commandLine;
   const robots::RobotModel model =
       robots::planningGroupModel(robots::RobotModel::fromUrdfFile(a.file, load), a.groupSrdfs, a.group, a.locks);
-  const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
+  const std::vector<std::vector<robots::CollisionPiece>> pieces = checkerPieces(model);
   printSummary(model, pieces);
   printJoints(model);
   printLinksAndPieces(model, pieces);
   printMeshes(model);
-  const robots::PairFilterResult result = robots::computeDisabledPairs(model, pieces, a.filter);
+  // The pair filter works on one hull per mesh, as the SRDF written says.
+  const robots::PairFilterResult result =
+      robots::computeDisabledPairs(model, robots::collisionPieces(model), a.filter);
   printCollisionPairs(model, result, a.filter);
   if (!a.srdfPath.empty()) writeDisabledPairs(model, result, a);
   return 0;

@@ -539,7 +539,9 @@ class Decomposer {
 
   Hull pieceHull(const Piece& a, const Piece* b) const;
   Target pieceTarget(const Piece& a, const Piece* b) const;
-  double mergeCost(const Piece& a, const Piece& b, double abortAbove);
+  /// Concavity of the merge of a and b (infinite when it is forbidden or exceeds `abortAbove`);
+  /// `merged` receives the merged piece when it is finite.
+  double mergeCost(const Piece& a, const Piece& b, double abortAbove, Piece* merged);
   std::vector<Piece> merge(std::vector<Piece> pieces, bool forced);
 
   const CleanMesh& mesh_;

@@ -30,22 +30,29 @@ Target Decomposer::pieceTarget(const Piece& a, const Piece* b) const {
   return target;
 }
 
-double Decomposer::mergeCost(const Piece& a, const Piece& b, double abortAbove) {
+double Decomposer::mergeCost(const Piece& a, const Piece& b, double abortAbove, Piece* merged) {
   for (int x : a.parts) {
     for (int y : b.parts) {
       if (forbidden_.count({x, y}) != 0) return kInf;  // merged once, failed the final check
     }
   }
-  const Hull hull = pieceHull(a, &b);
+  Hull hull = pieceHull(a, &b);
   const Target target = pieceTarget(a, &b);
   Concavity c = measureConcavity(hull, target, dt::kPartSamples, Extra::Dense, nextSeed(), abortAbove,
                                  diagonal_);
   if (c.aborted) return kInf;
+  Hull reduced = hull;
   if (static_cast<int>(hull.vertices.size()) > params_.maxVerticesPerPiece) {
-    const Hull reduced = detail::reduceHullVertices(hull, params_.maxVerticesPerPiece);
+    reduced = detail::reduceHullVertices(hull, params_.maxVerticesPerPiece);
     c = measureConcavity(reduced, target, dt::kPartSamples, Extra::Dense, nextSeed(), abortAbove, diagonal_);
     if (c.aborted) return kInf;
   }
+  // The merged piece, kept for when this merge is made: its hulls are not computed twice.
+  merged->parts = a.parts;
+  merged->parts.insert(merged->parts.end(), b.parts.begin(), b.parts.end());
+  merged->hull = std::move(hull);
+  merged->finalHull = std::move(reduced);
+  merged->concavity = c.value;
   return c.value;
 }
 
@@ -61,6 +68,7 @@ std::vector<Piece> Decomposer::merge(std::vector<Piece> pieces, bool forced) {
   const double bound = forced ? kInf : target_;
   const int n = static_cast<int>(pieces.size());
   std::vector<std::vector<double>> cost(n, std::vector<double>(n, kInf));
+  std::vector<std::vector<Piece>> candidate(n, std::vector<Piece>(n));  // the merged pieces
   std::vector<Eigen::AlignedBox3d> boxes(n);
   for (int i = 0; i < n; ++i) boxes[i] = boxOf(pieces[i]);
   const double grow = dt::kNeighbourFraction * target_;
@@ -73,7 +81,7 @@ std::vector<Piece> Decomposer::merge(std::vector<Piece> pieces, bool forced) {
   };
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
-      if (neighbours(i, j)) cost[i][j] = mergeCost(pieces[i], pieces[j], bound);
+      if (neighbours(i, j)) cost[i][j] = mergeCost(pieces[i], pieces[j], bound, &candidate[i][j]);
     }
   }
   std::vector<char> alive(n, 1);
@@ -91,13 +99,7 @@ std::vector<Piece> Decomposer::merge(std::vector<Piece> pieces, bool forced) {
       }
     }
     if (bi < 0 || (!forced && cost[bi][bj] > target_)) break;
-    Piece merged;
-    merged.parts = pieces[bi].parts;
-    merged.parts.insert(merged.parts.end(), pieces[bj].parts.begin(), pieces[bj].parts.end());
-    merged.hull = pieceHull(pieces[bi], &pieces[bj]);
-    merged.finalHull = detail::reduceHullVertices(merged.hull, params_.maxVerticesPerPiece);
-    merged.concavity = cost[bi][bj];
-    pieces[bi] = std::move(merged);
+    pieces[bi] = std::move(candidate[bi][bj]);
     boxes[bi] = boxOf(pieces[bi]);
     alive[bj] = 0;
     --count;
@@ -105,7 +107,7 @@ std::vector<Piece> Decomposer::merge(std::vector<Piece> pieces, bool forced) {
       if (!alive[k] || k == bi) continue;
       const int i = std::min(k, bi);
       const int j = std::max(k, bi);
-      cost[i][j] = neighbours(i, j) ? mergeCost(pieces[i], pieces[j], bound) : kInf;
+      cost[i][j] = neighbours(i, j) ? mergeCost(pieces[i], pieces[j], bound, &candidate[i][j]) : kInf;
     }
   }
   std::vector<Piece> kept;

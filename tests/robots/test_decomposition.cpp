@@ -585,6 +585,17 @@ BOOST_AUTO_TEST_CASE(the_vertex_budget_holds_when_the_target_is_missed) {
   BOOST_CHECK_EQUAL(uncoveredPoints(mesh, d.pieces, 1), 0);
 }
 
+BOOST_AUTO_TEST_CASE(a_finely_tessellated_torus_is_covered_and_meets_the_target) {
+  // 96 x 32 quads, 3,072 vertices: the pieces cover every vertex and random points of every
+  // triangle, and meet the target and the vertex budget.
+  const TriangleMesh mesh = torus(96, 32, 0.1, 0.03);
+  const ConvexDecomposition d = decomposeConvex(mesh);
+  BOOST_CHECK_GE(d.report.numPieces, 4);
+  BOOST_CHECK(d.report.targetMet);
+  BOOST_CHECK_EQUAL(coverageProblem(mesh, d.pieces), "");
+  checkDecomposition(mesh, d);
+}
+
 BOOST_AUTO_TEST_CASE(duplicated_faces_are_dropped_and_the_volume_ratio_stays_right) {
   const TriangleMesh mesh = lShape();
   const ConvexDecomposition reference = decomposeConvex(mesh);

@@ -9,12 +9,14 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <filesystem>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
 
 using namespace deepcheck::tool_test;
+namespace fs = std::filesystem;
 namespace robots = deepcheck::robots;
 
 namespace {
@@ -67,15 +69,20 @@ BOOST_AUTO_TEST_CASE(bundled_arm) {
     BOOST_TEST(std::stod(m[5]) > 2.0);
   }
 
-  // Links with their element and piece counts; the flange has neither.
+  // Links with their element and piece counts; the flange has neither. link1's mesh is not
+  // convex: the checker decomposes it into several pieces.
   const std::vector<std::string> links = section(r.out, "links:");
   BOOST_REQUIRE_EQUAL(links.size(), 13u);
   BOOST_TEST(std::regex_match(links[9], std::regex(R"(\s*8\s+flange\s+link7\s+flange_joint\s+0\s+0\s*)")),
              links[9]);
-  BOOST_TEST(std::regex_match(links[2], std::regex(R"(\s*1\s+link1\s+base_link\s+joint1\s+1\s+1\s*)")),
-             links[2]);
+  std::smatch link1;
+  BOOST_TEST_REQUIRE(std::regex_match(links[2], link1, std::regex(R"(\s*1\s+link1\s+base_link\s+joint1\s+1\s+(\d+)\s*)")),
+                     links[2]);
+  BOOST_TEST(std::stoi(link1[1]) > 1);
 
-  BOOST_TEST(section(r.out, "pieces:").size() == 11u);
+  std::smatch summary;
+  BOOST_REQUIRE(std::regex_search(r.out, summary, std::regex(R"((\d+) convex pieces)")));
+  BOOST_TEST(section(r.out, "pieces:").size() == std::stoul(summary[1]));
   BOOST_TEST(r.out.find("finger.stl") != std::string::npos);
 
   // Pair counts: 55 pairs of the 11 links with geometry, 10 adjacent ones, the rest balanced.
@@ -92,6 +99,40 @@ BOOST_AUTO_TEST_CASE(bundled_arm) {
   BOOST_REQUIRE(std::regex_search(r.out, m, std::regex(R"(remaining \(checked\): (\d+))")));
   BOOST_TEST(std::stoi(m[1]) + disabled == 55);
   BOOST_TEST(std::stoi(m[1]) > 0);
+}
+
+BOOST_AUTO_TEST_CASE(pieces_are_the_checkers_through_the_same_cache) {
+  // info decomposes the meshes as check does, through the same cache: its piece count is the one
+  // check's summary gives, more than one hull per mesh (the arm's links are not convex), and
+  // check finds every decomposition in the cache info filled.
+  Scratch scratch;
+  const Run info = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "0"});
+  BOOST_REQUIRE_MESSAGE(info.status == 0, "exit " << info.status << ": " << info.err);
+  std::smatch m;
+  BOOST_REQUIRE(std::regex_search(info.out, m, std::regex(R"((\d+) collision elements, (\d+) convex pieces)")));
+  const int elements = std::stoi(m[1]);
+  const int pieces = std::stoi(m[2]);
+  BOOST_TEST(pieces > elements);
+  BOOST_TEST(section(info.out, "pieces:").size() == static_cast<std::size_t>(pieces));
+  int perLink = 0;
+  for (const std::string& row : section(info.out, "links:")) {
+    const std::vector<std::string> f = fields(row);
+    if (f.size() == 6 && f[0] != "index") perLink += std::stoi(f[5]);
+  }
+  BOOST_TEST(perLink == pieces);
+
+  const fs::path cache = fs::path(scratch.path("cache")) / "deepcheck";
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(cache)) entries.push_back(e.path());
+  BOOST_TEST(!entries.empty());
+  const Run check = scratch.run("check --robot " + quote(kArm) + " --package-path " + quote(kData),
+                                "0 0 0 0 0 0 0\n");
+  BOOST_REQUIRE_MESSAGE(check.status == 0, "exit " << check.status << ": " << check.err);
+  BOOST_REQUIRE(std::regex_search(check.err, m, std::regex(R"(robot 'deepcheck_arm': .* (\d+) pieces)")));
+  BOOST_TEST(std::stoi(m[1]) == pieces);
+  std::size_t after = 0;
+  for (const auto& e : fs::directory_iterator(cache)) after += e.is_regular_file() ? 1 : 0;
+  BOOST_TEST(after == entries.size(), "check added cache entries: info did not use the same cache");
 }
 
 BOOST_AUTO_TEST_CASE(writes_srdf) {

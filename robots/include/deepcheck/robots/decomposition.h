@@ -74,7 +74,7 @@
 namespace deepcheck::robots {
 
 /// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
-constexpr int kDecompositionAlgorithmVersion = 5;
+constexpr int kDecompositionAlgorithmVersion = 10;
 
 /// Default of DecompositionParams::maxTriangles.
 constexpr int kDefaultMaxTriangles = 200000;
@@ -92,9 +92,10 @@ struct DecompositionParams {
   int maxVerticesPerPiece = 64;
   /// Largest number of triangles of a mesh to decompose, >= 1: decomposeConvex refuses a larger
   /// one (std::invalid_argument naming the mesh, its count and this field). The time grows about
-  /// linearly with the triangles, about 1 s per 1,000 on one core for a mesh that needs 16
-  /// pieces, so the default caps a load at a few minutes. Not part of the cache key: it decides
-  /// whether to decompose, not the result.
+  /// linearly with the triangles, about 0.25 s per 1,000 on a shared core for a hand of some 20
+  /// pieces and 0.5 s for one of 50 (bench/README.md, Loading), so the default caps a load at
+  /// one to two minutes. Not part of the cache key: it decides whether to decompose, not the
+  /// result.
   int maxTriangles = kDefaultMaxTriangles;
   /// Merge neighbouring pieces whose merged hull still meets the target.
   bool mergePieces = true;
