@@ -22,7 +22,11 @@
 // is built again silently; a corrupt one (truncated, bad checksum, bad magic, a flag other than
 // 0 or 1, another cell count) is built again with one line on the progress stream. An entry that
 // reads well is spot-checked before use (SelfPairGrid::build re-certifies
-// tol::kGridCacheSpotChecks of its FREE cells) and rebuilt, with one line, if any fails. Writes
+// tol::kGridCacheSpotChecks of its FREE cells) and rebuilt, with one line, if any fails. The
+// spot check catches an entry wrong in a fair share of its cells, not a single flipped cell (the
+// key and checksum guard against those). It runs GJK from other warm starts than the scan did,
+// so a cell certified within GJK's accuracy of the threshold could in principle fail it: the
+// entry is then rebuilt, which costs time, never an answer. Writes
 // are atomic (robots::writeFileAtomically); a directory that cannot be created or written leaves
 // the grids uncached, silently.
 
