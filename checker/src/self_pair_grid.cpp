@@ -2,6 +2,7 @@
 
 #include "self_pair_grid.h"
 
+#include "self_pair_grid_cache.h"
 #include "world_internal.h"
 
 #include "deepcheck/deep/gjk.h"
@@ -10,7 +11,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <optional>
+#include <ostream>
+#include <string>
 
 namespace deepcheck::checker::detail {
 
@@ -118,7 +123,7 @@ bool SelfPairGrid::layout(const robots::RobotModel& model, const std::map<int, d
     range[d] = model.upperLimits()[v] - lower_[d];
     if (!(range[d] > 0.0) || !std::isfinite(range[d])) return false;
     rhoOf[d] = r;
-    weight[d] = std::max(r * range[d], 1e-300);
+    weight[d] = std::max(r * range[d], std::numeric_limits<double>::min());  // no division by zero
     ++d;
   }
   const long long budget = std::min<long long>(tol::kGridMaxCells, tol::kGridMaxPiecePairTests / piecePairs);
@@ -135,18 +140,28 @@ bool SelfPairGrid::layout(const robots::RobotModel& model, const std::map<int, d
     step[k] = range[k] / cells_[k];
     inverseStep_[k] = cells_[k] / range[k];
     // Padded: q's cell index comes from a rounded division, so q may lie a few ulps outside it.
-    const double halfWidth = 0.5 * step[k] * (1.0 + 1e-9) + 1e-12 * (1.0 + std::abs(lower_[k]) + range[k]);
+    const double halfWidth = 0.5 * step[k] * (1.0 + tol::kGridCellPaddingRelative) +
+                             tol::kGridCellPaddingAbsolute * (1.0 + std::abs(lower_[k]) + range[k]);
     delta_ += rhoOf[k] * halfWidth;
   }
   return true;
 }
 
+Eigen::Isometry3d SelfPairGrid::poseAtCentre(const robots::RobotModel& model, int up, int down, const double step[2],
+                                             int index, Eigen::VectorXd& q,
+                                             std::vector<Eigen::Isometry3d>& X_WL) const {
+  const int i0 = dims_ == 1 ? index : index / cells_[1];
+  q[variable_[0]] = lower_[0] + (i0 + 0.5) * step[0];
+  if (dims_ == 2) q[variable_[1]] = lower_[1] + (index % cells_[1] + 0.5) * step[1];
+  robots::forwardKinematics(model, q, X_WL);
+  return X_WL[up].inverse() * X_WL[down];
+}
+
 void SelfPairGrid::certifyCells(const RobotData& robot, int up, int down, const LinkGeometry& U,
                                 const LinkGeometry& D, const double step[2]) {
-  const robots::RobotModel& model = robot.model;
   // Each cell: the variables at its centre, the others at the default configuration (they do not
   // change D's pose in U).
-  Eigen::VectorXd q = model.defaultConfiguration();
+  Eigen::VectorXd q = robot.model.defaultConfiguration();
   std::vector<Eigen::Isometry3d> X_WL;
   std::vector<deep::GjkCache> caches(static_cast<std::size_t>(U.numPieces) * D.numPieces);  // warm along the scan
   const int total = cells_[0] * cells_[1];
@@ -156,15 +171,44 @@ void SelfPairGrid::certifyCells(const RobotData& robot, int up, int down, const 
     int i1 = cell % cells_[1];
     if (i0 % 2 == 1) i1 = cells_[1] - 1 - i1;  // boustrophedon: neighbouring cells in a row
     const int index = dims_ == 1 ? i0 : i0 * cells_[1] + i1;
-    q[variable_[0]] = lower_[0] + (i0 + 0.5) * step[0];
-    if (dims_ == 2) q[variable_[1]] = lower_[1] + (i1 + 0.5) * step[1];
-    robots::forwardKinematics(model, q, X_WL);
-    const Eigen::Isometry3d X_UD = X_WL[up].inverse() * X_WL[down];
+    const Eigen::Isometry3d X_UD = poseAtCentre(robot.model, up, down, step, index, q, X_WL);
     free_[index] = cellCertified(robot, U, D, X_UD, delta_, &caches) ? 1 : 0;
   }
 }
 
-std::shared_ptr<const SelfPairGrid> SelfPairGrid::build(const RobotData& robot, int a, int b) {
+std::vector<double> SelfPairGrid::layoutNumbers(const double step[2]) const {
+  std::vector<double> numbers = {static_cast<double>(dims_), delta_};
+  for (int d = 0; d < 2; ++d) {
+    numbers.insert(numbers.end(), {static_cast<double>(variable_[d]), lower_[d], step[d], inverseStep_[d],
+                                   static_cast<double>(cells_[d])});
+  }
+  return numbers;
+}
+
+bool SelfPairGrid::spotCheck(const RobotData& robot, int up, int down, const LinkGeometry& U, const LinkGeometry& D,
+                             const double step[2]) const {
+  std::vector<int> freeCells;
+  for (int i = 0; i < numCells(); ++i) {
+    if (free_[i] != 0) freeCells.push_back(i);
+  }
+  const int n = static_cast<int>(freeCells.size());
+  const bool all = n <= tol::kGridCacheSpotChecks;
+  Eigen::VectorXd q = robot.model.defaultConfiguration();
+  std::vector<Eigen::Isometry3d> X_WL;
+  std::vector<deep::GjkCache> caches(static_cast<std::size_t>(U.numPieces) * D.numPieces);
+  // Golden-ratio steps through the FREE cells: spread over them, and over both variables (an
+  // even stride could keep hitting the same column of the grid).
+  const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int k = 0; k < (all ? n : tol::kGridCacheSpotChecks); ++k) {
+    const int cell = all ? freeCells[k] : freeCells[static_cast<int>(std::fmod(0.5 + k * golden, 1.0) * n)];
+    const Eigen::Isometry3d X_UD = poseAtCentre(robot.model, up, down, step, cell, q, X_WL);
+    if (!cellCertified(robot, U, D, X_UD, delta_, &caches)) return false;
+  }
+  return true;
+}
+
+std::shared_ptr<const SelfPairGrid> SelfPairGrid::build(const RobotData& robot, int a, int b,
+                                                        const SelfPairGridCache* cache, std::ostream* notes) {
   Chain chain;
   if (!chainOf(robot, a, b, &chain)) return nullptr;
   const std::map<int, double> rho = motionRadii(robot, chain);
@@ -174,8 +218,30 @@ std::shared_ptr<const SelfPairGrid> SelfPairGrid::build(const RobotData& robot, 
   auto grid = std::make_shared<SelfPairGrid>();
   double step[2] = {1.0, 1.0};
   if (!grid->layout(robot.model, rho, static_cast<long long>(U.numPieces) * D.numPieces, step)) return nullptr;
-  grid->certifyCells(robot, chain.up, chain.down, U, D, step);
+  if (cache != nullptr && cache->enabled()) {
+    grid->certifyThroughCache(robot, chain.up, chain.down, U, D, step, *cache, notes);
+  } else {
+    grid->certifyCells(robot, chain.up, chain.down, U, D, step);
+  }
   return grid;
+}
+
+void SelfPairGrid::certifyThroughCache(const RobotData& robot, int up, int down, const LinkGeometry& U,
+                                       const LinkGeometry& D, const double step[2], const SelfPairGridCache& cache,
+                                       std::ostream* notes) {
+  const std::string key = selfPairGridKey(robot, up, down, U, D, layoutNumbers(step));
+  const std::size_t numCells = static_cast<std::size_t>(cells_[0]) * cells_[1];
+  std::string problem;
+  if (std::optional<std::vector<std::uint8_t>> flags = cache.load(key, numCells, &problem)) {
+    free_ = std::move(*flags);
+    if (spotCheck(robot, up, down, U, D, step)) return;
+    problem = cache.pathFor(key) + ": a FREE cell fails its certificate when checked again";
+  }
+  if (!problem.empty() && notes != nullptr) {
+    *notes << "deepcheck: self-pair grid cache: " << problem << "; certifying the grid again\n";
+  }
+  certifyCells(robot, up, down, U, D, step);
+  cache.store(key, free_);  // a failed write (read-only directory) leaves the grid uncached
 }
 
 }  // namespace deepcheck::checker::detail

@@ -31,10 +31,17 @@
 // to delta, up to tol::kGridMaxCells cells and tol::kGridMaxPiecePairTests piece-pair evaluations
 // (bounding spheres first, GJK for the pairs within reach), which bounds construction time. On
 // the Panda, 128 x 128 cells give delta of 5 to 10 mm.
+//
+// Cache: build reads the cells' flags from the on-disk cache when it holds an entry for the
+// pair's key (self_pair_grid_cache.h), re-certifies tol::kGridCacheSpotChecks of its FREE cells
+// and uses it only if all pass; otherwise it certifies every cell and stores the result. The
+// flags, hence every answer, are the same with and without the cache.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <cstdint>
+#include <iosfwd>
 #include <map>
 #include <memory>
 #include <vector>
@@ -47,13 +54,18 @@ namespace deepcheck::checker::detail {
 
 struct RobotData;
 struct LinkGeometry;
+class SelfPairGridCache;
 
 class SelfPairGrid {
  public:
   /// The grid of the self pair of link geometries (a, b) (indices into RobotData::links), or null
   /// when the pair does not qualify (not on one branch, a prismatic joint or more than two
   /// variables between them, degenerate limits, or too many piece pairs for the budget).
-  static std::shared_ptr<const SelfPairGrid> build(const RobotData& robot, int a, int b);
+  /// Through `cache` when given and enabled; a corrupt or rejected entry is noted in one line on
+  /// `notes` (when not null) and rebuilt.
+  static std::shared_ptr<const SelfPairGrid> build(const RobotData& robot, int a, int b,
+                                                   const SelfPairGridCache* cache = nullptr,
+                                                   std::ostream* notes = nullptr);
 
   /// True when q lies in a cell certified free (q must have the robot's size).
   bool certifiedFree(const Eigen::VectorXd& q) const {
@@ -68,6 +80,8 @@ class SelfPairGrid {
 
   int numCells() const { return static_cast<int>(free_.size()); }
   int numFreeCells() const;
+  /// Whether cell `index` (row-major, first variable slowest) is certified free.
+  bool cellFree(int index) const { return free_[index] != 0; }
   /// The largest motion bound delta over the cells, metres.
   double motionBound() const { return delta_; }
 
@@ -80,6 +94,20 @@ class SelfPairGrid {
   /// Marks each cell free when every piece pair of U and D is certified apart over it.
   void certifyCells(const RobotData& robot, int up, int down, const LinkGeometry& U, const LinkGeometry& D,
                     const double step[2]);
+  /// X_UD, the pose of D in U, with the variables at the centre of cell `index` (q and X_WL:
+  /// scratch; q has the robot's size).
+  Eigen::Isometry3d poseAtCentre(const robots::RobotModel& model, int up, int down, const double step[2], int index,
+                                 Eigen::VectorXd& q, std::vector<Eigen::Isometry3d>& X_WL) const;
+  /// certifyCells through `cache`: the flags of its entry when it passes spotCheck, else
+  /// certified and stored (a corrupt or rejected entry noted on `notes`).
+  void certifyThroughCache(const RobotData& robot, int up, int down, const LinkGeometry& U, const LinkGeometry& D,
+                           const double step[2], const SelfPairGridCache& cache, std::ostream* notes);
+  /// The layout's numbers, as the cache key hashes them.
+  std::vector<double> layoutNumbers(const double step[2]) const;
+  /// True when tol::kGridCacheSpotChecks of the FREE cells, spread over them deterministically,
+  /// are certified again (all of them when there are fewer).
+  bool spotCheck(const RobotData& robot, int up, int down, const LinkGeometry& U, const LinkGeometry& D,
+                 const double step[2]) const;
 
   int dims_ = 0;
   int variable_[2] = {-1, -1};

@@ -6,6 +6,7 @@
 
 #include "external_broad_phase.h"
 #include "progress.h"
+#include "self_pair_grid_cache.h"
 #include "world_internal.h"
 
 #include "deepcheck/deep/pair_frame.h"
@@ -300,6 +301,7 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
   const std::vector<std::pair<int, int>> reachable = pairsWithinReach(robot.reach, links, options.reachMargin);
   detail::Progress progress(options.progress, "robot '" + robot.model.name() + "': self pairs", reachable.size(),
                             tol::kProgressQuietSeconds);
+  const detail::SelfPairGridCache gridCache = detail::SelfPairGridCache::besideDecompositionCache(options);
   for (std::size_t k = 0; k < reachable.size(); ++k) {
     progress.update(k);
     const auto [a, b] = reachable[k];
@@ -307,7 +309,7 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
     auto known = grids.find({a, b});
     s.selfPairs.push_back({a, b, s.selfCacheSize,
                            known != grids.end()    ? known->second
-                           : options.selfPairGrids ? detail::SelfPairGrid::build(robot, a, b)
+                           : options.selfPairGrids ? detail::SelfPairGrid::build(robot, a, b, &gridCache, options.progress)
                                                    : nullptr});
     s.selfCacheSize += robot.links[a].numPieces * robot.links[b].numPieces;
   }

@@ -2,25 +2,18 @@
 
 #include "decomposition_internal.h"
 
-#include <fcntl.h>
-#include <unistd.h>
+#include "deepcheck/robots/cache_file.h"
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <functional>
 #include <limits>
 #include <mutex>
 #include <set>
-#include <sstream>
-#include <system_error>
-#include <thread>
 
 namespace deepcheck::robots {
 
@@ -34,58 +27,6 @@ constexpr std::uint32_t kFormatVersion = 3;
 /// Sanity bounds on counts read from a file: a corrupt count must not make us allocate gigabytes.
 constexpr std::uint32_t kMaxPiecesInFile = 1u << 20;
 constexpr std::uint32_t kMaxVerticesInFile = 1u << 24;
-
-/// FNV-1a, 64 bits.
-std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t h = 1469598103934665603ULL) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ULL;
-  return h;
-}
-
-/// Two independent 64-bit hashes of the same byte stream: FNV-1a and a multiply-xorshift of
-/// 8-byte words (different structure, so their collisions are unrelated).
-class Hasher {
- public:
-  void bytes(const void* data, std::size_t size) {
-    a_ = fnv1a(data, size, a_);
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-      word_ |= static_cast<std::uint64_t>(p[i]) << (8 * filled_);
-      if (++filled_ == 8) flush();
-    }
-  }
-  void u64(std::uint64_t x) {
-    unsigned char b[8];
-    for (int i = 0; i < 8; ++i) b[i] = static_cast<unsigned char>(x >> (8 * i));
-    bytes(b, 8);
-  }
-  void f64(double x) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &x, sizeof bits);
-    u64(bits);
-  }
-  std::string hex() {
-    if (filled_ > 0) flush();
-    char out[33];
-    std::snprintf(out, sizeof out, "%016llx%016llx", static_cast<unsigned long long>(a_),
-                  static_cast<unsigned long long>(b_));
-    return out;
-  }
-
- private:
-  void flush() {
-    std::uint64_t z = b_ ^ (word_ + 0x9e3779b97f4a7c15ULL + (b_ << 6) + (b_ >> 2));
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    b_ = z ^ (z >> 31);
-    word_ = 0;
-    filled_ = 0;
-  }
-  std::uint64_t a_ = 1469598103934665603ULL;
-  std::uint64_t b_ = 0x243f6a8885a308d3ULL;
-  std::uint64_t word_ = 0;
-  int filled_ = 0;
-};
 
 // Little-endian encoding.
 class Writer {
@@ -186,66 +127,6 @@ bool readReport(Reader& rd, DecompositionReport* r) {
   return true;
 }
 
-bool keyBytes(const std::string& key, unsigned char out[16]) {
-  if (key.size() != 32) return false;
-  for (int i = 0; i < 16; ++i) {
-    unsigned value = 0;
-    for (int k = 0; k < 2; ++k) {
-      const char c = key[2 * i + k];
-      value <<= 4;
-      if (c >= '0' && c <= '9') value |= static_cast<unsigned>(c - '0');
-      else if (c >= 'a' && c <= 'f') value |= static_cast<unsigned>(c - 'a' + 10);
-      else return false;
-    }
-    out[i] = static_cast<unsigned char>(value);
-  }
-  return true;
-}
-
-/// The system's message for errno value `error`.
-std::string systemReason(int error) { return std::error_code(error, std::generic_category()).message(); }
-
-/// Reads the whole file at `path` into `data`; "" on success, else the system's reason.
-std::string readWholeFile(const std::string& path, std::string& data) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return systemReason(errno);
-  data.clear();
-  char buffer[1 << 16];
-  for (;;) {
-    const ssize_t n = ::read(fd, buffer, sizeof buffer);
-    if (n == 0) break;
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int error = errno;
-      ::close(fd);
-      return systemReason(error);
-    }
-    data.append(buffer, static_cast<std::size_t>(n));
-  }
-  ::close(fd);
-  return "";
-}
-
-/// Writes `data` to `path`, which must not exist yet; "" on success, else the system's reason
-/// (a full disk shows at write or close).
-std::string writeNewFile(const std::string& path, const std::string& data) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) return systemReason(errno);
-  std::size_t done = 0;
-  while (done < data.size()) {
-    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int error = errno;
-      ::close(fd);
-      return systemReason(error);
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::close(fd) != 0) return systemReason(errno);
-  return "";
-}
-
 /// One line on stderr about the cache: the decomposition goes on without it, but the user should
 /// know why every load recomputes. A write problem is reported once per directory and process
 /// (it would repeat for every mesh).
@@ -289,7 +170,7 @@ std::string DecompositionCache::defaultDirectory() {
 }
 
 std::string DecompositionCache::key(const TriangleMesh& mesh, const DecompositionParams& params) {
-  Hasher h;
+  ContentHasher h;
   static const char kTag[] = "deepcheck convex decomposition";
   h.bytes(kTag, sizeof kTag);
   h.u64(static_cast<std::uint64_t>(kDecompositionAlgorithmVersion));
@@ -350,7 +231,7 @@ std::optional<ConvexDecomposition> DecompositionCache::load(const std::string& k
   if (!rd.u32(&algorithm) || algorithm != static_cast<std::uint32_t>(kDecompositionAlgorithmVersion)) {
     return bad("algorithm version " + std::to_string(algorithm));
   }
-  if (!rd.raw(fileKey, 16) || !keyBytes(key, wantKey) || std::memcmp(fileKey, wantKey, 16) != 0) {
+  if (!rd.raw(fileKey, 16) || !cacheKeyBytes(key, wantKey) || std::memcmp(fileKey, wantKey, 16) != 0) {
     return bad("key mismatch");
   }
   ConvexDecomposition result;
@@ -394,7 +275,7 @@ bool DecompositionCache::store(const std::string& key, const ConvexDecomposition
     return false;
   }
   unsigned char keyBin[16];
-  if (!keyBytes(key, keyBin)) {
+  if (!cacheKeyBytes(key, keyBin)) {
     setProblem(problem, "malformed key '" + key + "'");
     return false;
   }
@@ -421,27 +302,8 @@ bool DecompositionCache::store(const std::string& key, const ConvexDecomposition
   }
   w.u64(fnv1a(w.buffer().data(), w.buffer().size()));
 
-  std::error_code ec;
-  fs::create_directories(directory_, ec);
-  if (ec) {
-    setProblem(problem, "cannot create " + directory_ + ": " + ec.message());
-    return false;
-  }
-  // A name no other process or thread uses, in the same directory (rename is atomic there).
-  static std::atomic<unsigned> counter{0};
-  std::ostringstream temp;
-  temp << pathFor(key) << ".tmp." << ::getpid() << '.'
-       << std::hash<std::thread::id>{}(std::this_thread::get_id()) << '.' << counter++;
-  if (const std::string why = writeNewFile(temp.str(), w.buffer()); !why.empty()) {
-    fs::remove(temp.str(), ec);
-    setProblem(problem, "cannot write " + temp.str() + ": " + why);
-    return false;
-  }
-  fs::rename(temp.str(), pathFor(key), ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp.str(), ignored);
-    setProblem(problem, "cannot rename " + temp.str() + " to " + pathFor(key) + ": " + ec.message());
+  if (const std::string why = writeFileAtomically(directory_, pathFor(key), w.buffer()); !why.empty()) {
+    setProblem(problem, why);
     return false;
   }
   return true;

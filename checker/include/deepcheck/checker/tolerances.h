@@ -49,6 +49,17 @@ constexpr double kCertifiedGapRelative = 1e-9;
 constexpr int kGridMaxCells = 16384;
 constexpr long long kGridMaxPiecePairTests = 1LL << 17;
 
+/// Self-pair grids: a cell's half-width in delta is padded by this fraction of itself plus
+/// kGridCellPaddingAbsolute times (1 + |lower limit| + range) of its variable (radians): q's cell
+/// index comes from a rounded division, so q may lie a few ulps outside the cell it is given.
+constexpr double kGridCellPaddingRelative = 1e-9;
+constexpr double kGridCellPaddingAbsolute = 1e-12;
+
+/// Self-pair grid cache (self_pair_grid_cache.h): an entry read from disk is used only when this
+/// many of its FREE cells, spread over them deterministically, are certified again (each costs
+/// about what one cell's certification costs at construction, of 16,384 cells).
+constexpr int kGridCacheSpotChecks = 32;
+
 /// A pair that no joint can change (a robot link moved by no joint, or an object attached to
 /// one, against a scene link or an obstacle) is reported at load when its distance is at most
 /// this, metres (World::fixedPairs): it bounds the clearance of every state, and below zero makes

@@ -208,6 +208,7 @@ struct QueryStats {
 
 namespace detail {
 struct ContextTestAccess;  // world_test_access.h (checker/src): hooks for the tests
+struct WorldTestAccess;    // world_test_access.h: the world's internals, for the tests
 }  // namespace detail
 
 /// How a World is built.
@@ -462,6 +463,7 @@ class World {
   int addSceneLocked(robots::RobotModel scene, const SceneSpec& placement);
   std::vector<int> addObstaclesLocked(const std::vector<Obstacle>& obstacles);
 
+  friend struct detail::WorldTestAccess;
   std::shared_ptr<detail::WorldState> state_;
 };
 
