@@ -114,6 +114,21 @@ BOOST_AUTO_TEST_CASE(the_virtual_joint_frame_needs_no_alias) {
   BOOST_TEST(contains(badRun.err, "line 2: <virtual_joint> 'v' has type 'wobbly'"), badRun.err);
 }
 
+// The dump's attached tool and allowed-collision matrix reach the world from the file: the tool
+// rides on the hand with its touch links, the matrix's pairs are allowed, others are not.
+BOOST_AUTO_TEST_CASE(a_topic_echo_dump_attaches_its_objects_and_allows_its_pairs) {
+  const checker::World world =
+      libraryWorld(armUrdf(), armSrdf(), test::bundledDataDir(), kScenes + "/monitored_planning_scene.yaml");
+  const std::vector<checker::AttachedObjectInfo> attached = world.attachedObjects();
+  BOOST_TEST_REQUIRE(attached.size() == 1u);
+  BOOST_TEST(attached[0].object.name == "tool");
+  BOOST_TEST(attached[0].link == "hand");
+  BOOST_TEST(attached[0].touchLinks == (std::vector<std::string>{"hand", "left_finger", "right_finger"}));
+  BOOST_TEST(world.collisionAllowed("base_link", "table"));
+  BOOST_TEST(world.collisionAllowed("post", "link3"));
+  BOOST_TEST(!world.collisionAllowed("link3", "table"));
+}
+
 BOOST_AUTO_TEST_CASE(info_describes_attached_objects_and_allowed_collisions) {
   Scratch s;
   const Run dump = s.run("info " + quote(kScenes + "/monitored_planning_scene.yaml"));
