@@ -10,7 +10,8 @@
 // cannot be generated is reported in the output and the table, and the run goes on.
 // Checkers, on the same problems (the same state space and segment fraction):
 //   deepcheck  makeSimpleSetup with default options: our validity checker on the convex pieces,
-//              OMPL's DiscreteMotionValidator at the default resolution, the push-out sampler;
+//              the certified motion validator (--motions discrete: OMPL's DiscreteMotionValidator
+//              at the default resolution, for comparison), the push-out sampler;
 //   fcl        FclStateValidityChecker (FCL on the original meshes), OMPL's DiscreteMotionValidator
 //              and OMPL's default valid state sampler.
 // OMPL's random numbers are reseeded before a problem's setups are made, before each planner is
@@ -22,9 +23,10 @@
 // optimizing planner in OMPL 1.5, otherwise growing its roadmap to the time limit) takes as met by
 // any path. One run per problem, planner and checker (--runs R: R runs; the tables then count runs).
 //
-// After each solved run (not timed): the path is simplified (simplifySolutionChecked), certified
-// by certifyPath on our setup (the clearance motion validator, repairing where it fails) and the
-// certified path checked by FCL at tol::kFineResolution (checkPathFine). Checks are the state
+// After each solved run (timed apart from the plan): the path is simplified
+// (simplifySolutionChecked, as it is returned) and checked by FCL at tol::kFineResolution
+// (checkPathFine), then certified by certifyPath on our setup (the certified motion validator,
+// repairing where it fails) and the certified path checked by FCL again. Checks are the state
 // validity queries made while planning (the discrete motion checks' included).
 //
 // Outputs in OUT (default bench/results/mbm): mbm_<scene>.log (one OMPL experiment per scene, the
@@ -86,6 +88,7 @@ struct Options {
   std::vector<std::string> scenes;  ///< empty: all
   std::vector<std::string> planners{"RRTConnect", "BiEST", "PRM"};
   std::vector<std::string> checkers{"deepcheck", "fcl"};
+  dp::MotionValidation motions = dp::MotionValidation::Certified;  ///< our setup's motion validator
   std::string out = std::string(DEEPCHECK_BENCH_RESULTS_DIR) + "/mbm";
 };
 
@@ -93,13 +96,14 @@ struct Options {
   if (!error.empty()) std::fprintf(stderr, "mbm_bench: %s\n", error.c_str());
   std::fprintf(stderr,
                "usage: mbm_bench [--problems N] [--runs R] [--time SECONDS] [--seed S] [--scenes a,b] [--planners a,b]\n"
-               "                 [--checkers a,b] [--out DIR]\n"
+               "                 [--checkers a,b] [--motions certified|discrete] [--out DIR]\n"
                "  --problems N   generated problems per scene (default 100)\n"
                "  --time S       time limit per planning run, seconds (default 10)\n"
                "  --seed S       seed of problem generation and of every run's random numbers (default 1)\n"
                "  --scenes       bookshelf_small, bookshelf_tall, bookshelf_thin, cage, box, table_pick, kitchen,\n"
                "                 table_bars (default all)\n"
                "  --planners     names deepcheck::planners::makePlanner knows (default RRTConnect,BiEST,PRM)\n"
+               "  --motions M    our motion validator: certified (default) or discrete (OMPL's, for comparison)\n"
                "  --out DIR      output folder (default bench/results/mbm)\n");
   std::exit(2);
 }
@@ -126,6 +130,10 @@ Options parseOptions(int argc, char** argv) {
         if (c != "deepcheck" && c != "fcl") usage("unknown checker '" + c + "' (known: deepcheck, fcl)");
       }
       if (opt.checkers.empty()) usage("--checkers needs at least one checker");
+    } else if (arg == "--motions") {
+      const std::string m = value();
+      if (m != "certified" && m != "discrete") usage("unknown --motions '" + m + "' (known: certified, discrete)");
+      opt.motions = m == "certified" ? dp::MotionValidation::Certified : dp::MotionValidation::Discrete;
     } else if (arg == "--out") {
       opt.out = value();
     } else {
@@ -170,10 +178,13 @@ void stopAtFirstSolution(og::SimpleSetup& ss) {
   ss.setOptimizationObjective(objective);
 }
 
-ProblemSetups makeSetups(const std::shared_ptr<deepcheck::checker::World>& world, const dp::Problem& problem) {
+ProblemSetups makeSetups(const std::shared_ptr<deepcheck::checker::World>& world, const dp::Problem& problem,
+                         dp::MotionValidation motions) {
   ProblemSetups s;
   s.problem = &problem;
-  s.ours = dp::makeSimpleSetup(world, pandaArmOptions());
+  dp::SetupOptions options = pandaArmOptions();
+  options.motionValidation = motions;
+  s.ours = dp::makeSimpleSetup(world, options);
   dp::setStartAndGoal(*s.ours, problem.start, problem.goal);
   s.ourChecker = dp::validityCheckerOf(*s.ours);
   s.fcl = makeFclSetup(*s.ours, *world, &s.fclChecker);
@@ -230,15 +241,22 @@ MbmRecord measureRun(og::SimpleSetup& ss, const ProblemSetups& setups, const std
   r.solved = run["solved BOOLEAN"] == "1" && ss.haveExactSolutionPath();
   r.checks = checks;
   if (r.solved) {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
     dp::simplifySolutionChecked(ss);
+    r.simplifyTime = std::chrono::duration<double>(Clock::now() - t0).count();
     og::PathGeometric path = pathIn(ss.getSolutionPath(), setups.ours->getSpaceInformation());
     r.length = path.length();
+    const auto* fcl = setups.fclChecker.get();
+    const auto fclFree = [fcl](const Eigen::VectorXd& q) { return fcl->isFree(q); };
+    r.fclReturned = dp::checkPathFine(path, fclFree).valid;
+    const auto t1 = Clock::now();
     const dp::PathCertificate cert = dp::certifyPath(*setups.ours, path);
+    r.certifyTime = std::chrono::duration<double>(Clock::now() - t1).count();
     r.certifiedAsPlanned = cert.initial.valid;
     r.certified = cert.valid;
     r.certifiedExact = cert.exact();
-    const auto* fcl = setups.fclChecker.get();
-    const dp::PathCheck fine = dp::checkPathFine(path, [fcl](const Eigen::VectorXd& q) { return fcl->isFree(q); });
+    const dp::PathCheck fine = dp::checkPathFine(path, fclFree);
     r.fclFine = fine.valid;
     if (r.certified && !r.fclFine) {
       try {
@@ -256,6 +274,9 @@ MbmRecord measureRun(og::SimpleSetup& ss, const ProblemSetups& setups, const std
     run["certified BOOLEAN"] = r.certified ? "1" : "0";
     run["certified exact BOOLEAN"] = r.certifiedExact ? "1" : "0";
     run["fcl fine verified BOOLEAN"] = r.fclFine ? "1" : "0";
+    run["fcl fine as returned BOOLEAN"] = r.fclReturned ? "1" : "0";
+    run["simplify time REAL"] = fmt(r.simplifyTime, "%.17g");
+    run["certify time REAL"] = fmt(r.certifyTime, "%.17g");
   }
   return r;
 }
@@ -404,7 +425,7 @@ std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std:
   for (int k = 0; k < static_cast<int>(problems.size()); ++k) {
     placeScene(*world, problems[static_cast<std::size_t>(k)].scene);
     reseedOmpl(runSeed(opt.seed, scene.name, k, "", 0, RunStage::Setups));
-    const ProblemSetups setups = makeSetups(world, problems[static_cast<std::size_t>(k)]);
+    const ProblemSetups setups = makeSetups(world, problems[static_cast<std::size_t>(k)], opt.motions);
     for (const std::string& checker : opt.checkers) benchmarkChecker(ctx, k, opt.problems, setups, checker, carrier);
   }
   for (int id : world->obstacleIds()) world->removeObstacle(id);

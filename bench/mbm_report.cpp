@@ -20,8 +20,9 @@ namespace {
 /// Scene, checker and planner summarized over their runs.
 struct MbmRow {
   std::string scene, checker, planner;
-  int runs = 0, solved = 0, certifiedAsPlanned = 0, certified = 0, certifiedExact = 0, fclFine = 0;
+  int runs = 0, solved = 0, certifiedAsPlanned = 0, certified = 0, certifiedExact = 0, fclFine = 0, fclReturned = 0;
   double tMed = std::nan(""), tP90 = std::nan(""), checksPerSecond = std::nan(""), lengthMed = std::nan("");
+  double planSimplifyMed = std::nan(""), certifyMed = std::nan("");  ///< over the solved runs, seconds
   double successPct() const { return runs > 0 ? 100.0 * solved / runs : std::nan(""); }
   double pctOfSolved(int n) const { return solved > 0 ? 100.0 * n / solved : std::nan(""); }
 };
@@ -31,7 +32,7 @@ struct MbmRow {
 template <class Keep>
 MbmRow summarize(const std::vector<MbmRecord>& records, Keep keep) {
   MbmRow row;
-  std::vector<double> t, length;
+  std::vector<double> t, length, planSimplify, certify;
   double checks = 0.0, seconds = 0.0;
   for (const MbmRecord& r : records) {
     if (!keep(r)) continue;
@@ -45,12 +46,17 @@ MbmRow summarize(const std::vector<MbmRecord>& records, Keep keep) {
     row.certified += r.certified;
     row.certifiedExact += r.certifiedExact;
     row.fclFine += r.fclFine;
+    row.fclReturned += r.fclReturned;
     length.push_back(r.length);
+    planSimplify.push_back(r.time + r.simplifyTime);
+    certify.push_back(r.certifyTime);
   }
   row.tMed = median(t);
   row.tP90 = quantile(t, 0.9);
   row.checksPerSecond = seconds > 0.0 ? checks / seconds : std::nan("");
   row.lengthMed = median(length);
+  row.planSimplifyMed = median(planSimplify);
+  row.certifyMed = median(certify);
   return row;
 }
 
@@ -78,28 +84,33 @@ std::string ms(double seconds) { return fmt(1e3 * seconds, "%.3g"); }
 
 void writeCsv(const MbmSettings& s, const std::vector<MbmRecord>& records, const std::vector<MbmRow>& rows) {
   std::ofstream runs(s.out + "/mbm_runs.csv");
-  runs << "scene,problem,checker,planner,solved,time_s,checks,length,certified_as_planned,certified,certified_exact,fcl_fine_ok\n";
+  runs << "scene,problem,checker,planner,solved,time_s,checks,length,certified_as_planned,certified,certified_exact,"
+          "fcl_fine_ok,fcl_fine_ok_as_returned,simplify_s,certify_s\n";
   for (const MbmRecord& r : records) {
     runs << r.scene << ',' << r.problem << ',' << r.checker << ',' << r.planner << ',' << r.solved << ','
          << fmt(r.time, "%.6g") << ',' << fmt(r.checks, "%.0f") << ',' << fmt(r.length, "%.6g") << ','
-         << r.certifiedAsPlanned << ',' << r.certified << ',' << r.certifiedExact << ',' << r.fclFine << '\n';
+         << r.certifiedAsPlanned << ',' << r.certified << ',' << r.certifiedExact << ',' << r.fclFine << ','
+         << r.fclReturned << ',' << fmt(r.simplifyTime, "%.6g") << ',' << fmt(r.certifyTime, "%.6g") << '\n';
   }
   std::ofstream csv(s.out + "/mbm_bench.csv");
   csv << "scene,checker,planner,runs,success_pct,median_time_s,p90_time_s,checks_per_s,median_length,"
-         "certified_as_planned_pct,certified_pct,certified_exact_pct,fcl_fine_ok_pct\n";
+         "certified_as_planned_pct,certified_pct,certified_exact_pct,fcl_fine_ok_pct,fcl_fine_ok_as_returned_pct,"
+         "median_plan_simplify_s,median_certify_s\n";
   for (const MbmRow& r : rows) {
     csv << r.scene << ',' << r.checker << ',' << r.planner << ',' << r.runs << ',' << fmt(r.successPct(), "%.1f") << ','
         << fmt(r.tMed, "%.6g") << ',' << fmt(r.tP90, "%.6g") << ',' << fmt(r.checksPerSecond, "%.0f") << ','
         << fmt(r.lengthMed, "%.4g") << ',' << fmt(r.pctOfSolved(r.certifiedAsPlanned), "%.1f") << ','
         << fmt(r.pctOfSolved(r.certified), "%.1f") << ',' << fmt(r.pctOfSolved(r.certifiedExact), "%.1f") << ','
-        << fmt(r.pctOfSolved(r.fclFine), "%.1f") << '\n';
+        << fmt(r.pctOfSolved(r.fclFine), "%.1f") << ',' << fmt(r.pctOfSolved(r.fclReturned), "%.1f") << ','
+        << fmt(r.planSimplifyMed, "%.6g") << ',' << fmt(r.certifyMed, "%.6g") << '\n';
   }
 }
 
 /// Per planner, over every scene: ours against FCL.
 void writeHeadline(std::ostringstream& md, const MbmSettings& s, const std::vector<MbmRecord>& records) {
-  md << "| planner (all scenes) | checker | runs | success | median (ms) | p90 (ms) | checks/s |\n";
-  md << "|---|---|--:|--:|--:|--:|--:|\n";
+  md << "| planner (all scenes) | checker | runs | success | median (ms) | p90 (ms) | checks/s | plan + simplify (ms) "
+        "| certify (ms) | FCL ok as returned |\n";
+  md << "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const std::string& planner : s.planners) {
     double medians[2] = {std::nan(""), std::nan("")};
     for (std::size_t c = 0; c < s.checkers.size(); ++c) {
@@ -109,10 +120,11 @@ void writeHeadline(std::ostringstream& md, const MbmSettings& s, const std::vect
       if (r.runs == 0) continue;
       if (c < 2) medians[c] = r.tMed;
       md << "| " << planner << " | " << s.checkers[c] << " | " << r.runs << " | " << pct(r.successPct()) << " | "
-         << ms(r.tMed) << " | " << ms(r.tP90) << " | " << fmt(r.checksPerSecond, "%.3g") << " |\n";
+         << ms(r.tMed) << " | " << ms(r.tP90) << " | " << fmt(r.checksPerSecond, "%.3g") << " | "
+         << ms(r.planSimplifyMed) << " | " << ms(r.certifyMed) << " | " << pct(r.pctOfSolved(r.fclReturned)) << " |\n";
     }
     if (!std::isnan(medians[0]) && !std::isnan(medians[1])) {
-      md << "| " << planner << " | FCL median / ours | | | " << fmt(medians[1] / medians[0], "%.2g") << "x | | |\n";
+      md << "| " << planner << " | FCL median / ours | | | " << fmt(medians[1] / medians[0], "%.2g") << "x | | | | | |\n";
     }
   }
   md << "\n";
@@ -133,8 +145,9 @@ void writeMbmReport(const MbmSettings& s, const std::vector<MbmRecord>& records,
         "and 90th percentile over all runs (a failed run counts with its time); checks/s = state validity queries "
         "(motion checks included) per second of planning; length = joint-space length of the simplified path (rad, "
         "median of the solved runs); certified = simplified paths that certifyPath accepts as planned / after its "
-        "repair / after its repair with every motion certified by clearance (no fallback step near contact); FCL ok = certified paths free for FCL on the original meshes at every "
-     << dp::tol::kFineResolution << " rad.\n\n";
+        "repair / after its repair with every motion certified (no fallback step near contact); plan + simplify and certify = "
+        "medians over the solved runs; FCL ok = paths free for FCL on the original meshes at every "
+     << dp::tol::kFineResolution << " rad, as returned (simplified) and after certification.\n\n";
   writeHeadline(md, s, records);
   md << "| scene | planner | checker | runs | success | median (ms) | p90 (ms) | checks/s | length | certified | "
         "FCL ok |\n";

@@ -23,6 +23,9 @@ struct MbmRecord {
   bool certifiedExact = false;      ///< ... with every motion certified by clearance (no fallback
                                     ///< step near contact: PathCertificate::exact())
   bool fclFine = false;             ///< the certified path passes the fine FCL check
+  bool fclReturned = false;         ///< the simplified path, as returned, passes the fine FCL check
+  double simplifyTime = std::nan("");  ///< simplifySolutionChecked, seconds
+  double certifyTime = std::nan("");   ///< certifyPath on the simplified path, seconds
 };
 
 /// A scene that could not be benchmarked, and why.

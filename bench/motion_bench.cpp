@@ -11,14 +11,15 @@
 // The answers are compared: ours may reject a motion FCL accepts (the pieces contain the meshes and
 // stick out by the geometry excess), never the other way round; such motions are counted.
 //
-// Also counted, not timed: the distance queries with which the clearance motion validator
-// (motion_validator.h: exact distances over each pair's displacement bound) certifies the motions
-// that pass, against their states: how many state tests a clearance could save at best.
+// The same motions also go through the certified motion validator (certified_motion_validator.h)
+// on our checker, timed the same way: what proving every motion costs against sampling it. Its
+// verdicts are compared with the discrete ones: a motion the discrete check accepts and the
+// certified one rejects either collides between the sampled states or passes within
+// tol::kCertifiedResolution of contact (counted).
 //
 // Output: a table on stdout (per scene: motions, share valid, states per motion and per motion
-// tested, mean and median microseconds per motion for both, microseconds per tested state for
-// ours, FCL / ours by the means; for the passing motions, states and clearance steps per motion)
-// and bench/results/motion_bench.csv.
+// tested, mean and median microseconds per motion for the three, the configurations the
+// certified validator tested per motion) and bench/results/motion_bench.csv.
 // Usage: motion_bench [--problems N] [--rounds R] [--seed S] [--scenes a,b] [--out FILE]
 
 #include "format.h"
@@ -27,7 +28,7 @@
 #include "plan_problems.h"
 
 #include "deepcheck/fcl_reference/fcl_validity_checker.h"
-#include "deepcheck/planners/motion_validator.h"
+#include "deepcheck/planners/certified_motion_validator.h"
 #include "deepcheck/planners/planner_factory.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/state_space.h"
@@ -157,49 +158,51 @@ void replayOnce(const ob::MotionValidator& validator, const ob::SpaceInformation
 
 struct SceneResult {
   std::string scene;
-  std::vector<double> ours, fcl;  ///< microseconds per motion
+  std::vector<double> ours, certified, fcl;  ///< microseconds per motion
   long states = 0;                ///< states of the motions at the space's resolution
-  long tested = 0;                ///< states our checker tested (motions stop at the first invalid one)
-  int valid = 0;                  ///< motions valid for our checker
+  long tested = 0;                ///< states our discrete check tested (motions stop at the first invalid one)
+  int valid = 0;                  ///< motions valid for our discrete check
+  int certifiedValid = 0;         ///< motions the certified validator accepts
   int oursOnlyInvalid = 0;        ///< motions FCL accepts and ours rejects
-  int fclOnlyInvalid = 0;         ///< motions ours accepts and FCL rejects (must be 0)
-  long passingStates = 0;         ///< states of the motions valid for ours
-  long passingDistanceQueries = 0;  ///< distance queries the clearance validator certifies them with
+  int fclOnlyInvalid = 0;         ///< motions ours (either validator) accepts and FCL rejects (must be 0)
+  int discreteOnlyValid = 0;      ///< motions the discrete check accepts and the certified one rejects
+  int certifiedOnlyValid = 0;     ///< motions the certified validator accepts and the discrete check rejects
+  long configurations = 0;        ///< configurations the certified validator tested
 
   /// Adds another scene's motions (the "all" row).
   void add(const SceneResult& r) {
     ours.insert(ours.end(), r.ours.begin(), r.ours.end());
+    certified.insert(certified.end(), r.certified.begin(), r.certified.end());
     fcl.insert(fcl.end(), r.fcl.begin(), r.fcl.end());
     states += r.states;
     tested += r.tested;
     valid += r.valid;
+    certifiedValid += r.certifiedValid;
     oursOnlyInvalid += r.oursOnlyInvalid;
     fclOnlyInvalid += r.fclOnlyInvalid;
-    passingStates += r.passingStates;
-    passingDistanceQueries += r.passingDistanceQueries;
+    discreteOnlyValid += r.discreteOnlyValid;
+    certifiedOnlyValid += r.certifiedOnlyValid;
+    configurations += r.configurations;
   }
 };
 
-/// Counts what the clearance motion validator (exact distances over each pair's displacement
-/// bound) needs to certify the motions valid for our checker: how many of their states a
-/// clearance could skip at best. Not timed.
-void countClearanceSteps(const ob::SpaceInformationPtr& si, const std::shared_ptr<const dp::StateValidityChecker>& checker,
-                         const std::vector<Motion>& motions, const std::vector<char>& valid,
-                         const std::vector<unsigned>& states, SceneResult& result) {
-  dp::ClearanceMotionValidator clearance(si, checker);
-  ob::ScopedState<> s1(si), s2(si);
-  for (std::size_t k = 0; k < motions.size(); ++k) {
-    if (!valid[k]) continue;
-    dp::copyToState(motions[k].first, s1.get());
-    dp::copyToState(motions[k].second, s2.get());
-    result.passingStates += states[k];
-    const std::uint64_t before = clearance.stats().distanceQueries;
-    clearance.checkMotion(s1.get(), s2.get());
-    result.passingDistanceQueries += static_cast<long>(clearance.stats().distanceQueries - before);
+/// Compares the verdicts of the three validators on every motion.
+void compareVerdicts(const Replay& discrete, const Replay& certified, const Replay& fcl, SceneResult& result) {
+  for (std::size_t k = 0; k < discrete.valid.size(); ++k) {
+    result.valid += discrete.valid[k];
+    result.certifiedValid += certified.valid[k];
+    if (!discrete.valid[k] && fcl.valid[k]) ++result.oursOnlyInvalid;
+    if (discrete.valid[k] && !certified.valid[k]) ++result.discreteOnlyValid;
+    if (!discrete.valid[k] && certified.valid[k]) ++result.certifiedOnlyValid;
+    if ((discrete.valid[k] || certified.valid[k]) && !fcl.valid[k]) {
+      ++result.fclOnlyInvalid;
+      std::fprintf(stderr, "motion_bench: %s: motion %zu accepted by ours, rejected by FCL\n", result.scene.c_str(), k);
+    }
   }
 }
 
-/// Replays one problem's motions through our checker and FCL's, alternating.
+/// Replays one problem's motions through our checker (discrete and certified) and FCL's,
+/// alternating.
 void replayProblem(const std::shared_ptr<deepcheck::checker::World>& world, const std::vector<Motion>& motions,
                    int rounds, SceneResult& result) {
   auto ours = dp::makeSimpleSetup(world, pandaArmOptions());
@@ -210,55 +213,56 @@ void replayProblem(const std::shared_ptr<deepcheck::checker::World>& world, cons
   fclSi->setup();
   const auto checker = dp::validityCheckerOf(*ours);
   ob::DiscreteMotionValidator ourValidator(si);
+  dp::CertifiedMotionValidator certifiedValidator(si, checker);
   ob::DiscreteMotionValidator fclValidator(fclSi);
-  Replay a, b;
+  Replay a, c, b;
   for (int r = 0; r < rounds; ++r) {
     const std::uint64_t before = checker->validityQueries();
     replayOnce(ourValidator, si, motions, a);
     if (r == 0) result.tested += static_cast<long>(checker->validityQueries() - before);
+    if (r == 0) certifiedValidator.resetStats();
+    replayOnce(certifiedValidator, si, motions, c);
+    if (r == 0) result.configurations += static_cast<long>(certifiedValidator.stats().configurations);
     replayOnce(fclValidator, fclSi, motions, b);
   }
   ob::ScopedState<> s1(si), s2(si);
-  std::vector<unsigned> states(motions.size());  // at the space's resolution
   for (std::size_t k = 0; k < motions.size(); ++k) {
     dp::copyToState(motions[k].first, s1.get());
     dp::copyToState(motions[k].second, s2.get());
-    states[k] = std::max(1u, si->getStateSpace()->validSegmentCount(s1.get(), s2.get()));
-    result.states += states[k];
-    result.valid += a.valid[k];
-    if (!a.valid[k] && b.valid[k]) ++result.oursOnlyInvalid;
-    if (a.valid[k] && !b.valid[k]) {
-      ++result.fclOnlyInvalid;
-      std::fprintf(stderr, "motion_bench: %s: motion %zu accepted by ours, rejected by FCL\n", result.scene.c_str(), k);
-    }
+    result.states += std::max(1u, si->getStateSpace()->validSegmentCount(s1.get(), s2.get()));
   }
-  countClearanceSteps(si, checker, motions, a.valid, states, result);
+  compareVerdicts(a, c, b, result);
   result.ours.insert(result.ours.end(), a.micros.begin(), a.micros.end());
+  result.certified.insert(result.certified.end(), c.micros.begin(), c.micros.end());
   result.fcl.insert(result.fcl.end(), b.micros.begin(), b.micros.end());
 }
 
 void printRow(const SceneResult& r) {
   const double n = static_cast<double>(r.ours.size());
-  std::printf("| %s | %zu | %.0f %% | %d | %.1f | %.1f | %s | %s | %s | %s | %s | %.1fx | %.1f | %.1f |\n",
-              r.scene.c_str(), r.ours.size(), 100.0 * r.valid / n, r.oursOnlyInvalid, r.states / n, r.tested / n,
-              fmt(mean(r.ours)).c_str(), fmt(median(r.ours)).c_str(), fmt(mean(r.ours) * n / r.tested).c_str(),
-              fmt(mean(r.fcl)).c_str(), fmt(median(r.fcl)).c_str(), mean(r.fcl) / mean(r.ours),
-              static_cast<double>(r.passingStates) / r.valid, static_cast<double>(r.passingDistanceQueries) / r.valid);
+  std::printf("| %s | %zu | %.0f %% | %.0f %% | %d | %d | %.1f | %.1f | %s | %s | %s | %s | %.1f | %s | %s |\n",
+              r.scene.c_str(), r.ours.size(), 100.0 * r.valid / n, 100.0 * r.certifiedValid / n, r.discreteOnlyValid,
+              r.certifiedOnlyValid, r.states / n, r.tested / n, fmt(mean(r.ours)).c_str(), fmt(median(r.ours)).c_str(),
+              fmt(mean(r.certified)).c_str(), fmt(median(r.certified)).c_str(), r.configurations / n,
+              fmt(mean(r.fcl)).c_str(), fmt(median(r.fcl)).c_str());
 }
 
 void writeCsv(const std::string& path, const std::vector<SceneResult>& results) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   std::ofstream out(path);
-  out << "scene,checker,motions,valid_share,ours_only_invalid,states_per_motion,tested_per_motion,mean_us,median_us,"
-         "p90_us,passing_states_per_motion,passing_clearance_steps_per_motion\n";
+  out << "scene,validator,motions,valid_share,mean_us,median_us,p90_us,states_per_motion,tested_per_motion,"
+         "discrete_only_valid,certified_only_valid,certified_configurations_per_motion\n";
   for (const SceneResult& r : results) {
     const double n = static_cast<double>(r.ours.size());
-    for (int v = 0; v < 2; ++v) {
-      const std::vector<double>& t = v == 0 ? r.ours : r.fcl;
-      out << r.scene << ',' << (v == 0 ? "deepcheck" : "fcl") << ',' << r.ours.size() << ',' << r.valid / n << ','
-          << r.oursOnlyInvalid << ',' << r.states / n << ',' << r.tested / n << ',' << mean(t) << ',' << median(t)
-          << ',' << quantile(t, 0.9) << ',' << static_cast<double>(r.passingStates) / r.valid << ','
-          << static_cast<double>(r.passingDistanceQueries) / r.valid << '\n';
+    const struct {
+      const char* name;
+      const std::vector<double>* t;
+      int valid;
+    } rows[] = {{"deepcheck_discrete", &r.ours, r.valid}, {"deepcheck_certified", &r.certified, r.certifiedValid},
+                {"fcl_discrete", &r.fcl, r.valid + r.oursOnlyInvalid}};
+    for (const auto& row : rows) {
+      out << r.scene << ',' << row.name << ',' << r.ours.size() << ',' << row.valid / n << ',' << mean(*row.t) << ','
+          << median(*row.t) << ',' << quantile(*row.t, 0.9) << ',' << r.states / n << ',' << r.tested / n << ','
+          << r.discreteOnlyValid << ',' << r.certifiedOnlyValid << ',' << r.configurations / n << '\n';
     }
   }
   std::fprintf(stderr, "wrote %s\n", path.c_str());
@@ -297,11 +301,12 @@ int main(int argc, char** argv) {
     results.push_back(std::move(result));
   }
   std::printf("# Motion checks of RRTConnect on MotionBenchMaker problems (motion_bench)\n\n"
-              "%d problem(s) per scene (seed %u), fastest of %d round(s); OMPL's DiscreteMotionValidator on both "
-              "checkers; times in microseconds.\n\n"
-              "| scene | motions | valid | rejected by ours only | states per motion | tested by ours | ours: mean | "
-              "median | per tested state | FCL: mean | median | FCL / ours | passing motions: states | clearance "
-              "steps |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n",
+              "%d problem(s) per scene (seed %u), fastest of %d round(s); OMPL's DiscreteMotionValidator on our "
+              "checker and on FCL's, and our CertifiedMotionValidator; times in microseconds per motion.\n\n"
+              "| scene | motions | valid (discrete) | valid (certified) | discrete only | certified only | "
+              "states per motion | tested | discrete: mean | median | certified: mean | median | certified: "
+              "configurations | FCL: mean | median |\n"
+              "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n",
               opt.problems, opt.seed, opt.rounds);
   SceneResult all;
   all.scene = "all";

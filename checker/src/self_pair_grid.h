@@ -40,6 +40,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstdint>
 #include <iosfwd>
 #include <map>
@@ -76,6 +77,27 @@ class SelfPairGrid {
       index = index * cells_[d] + static_cast<int>(x);
     }
     return free_[index] != 0;
+  }
+
+  /// True when every configuration q + s dq, |s| <= h, lies in a cell certified free: the pair
+  /// is then apart all along that motion (q must have the robot's size).
+  bool certifiedFreeAlong(const Eigen::VectorXd& q, const Eigen::VectorXd& dq, double h) const {
+    int lo[2] = {0, 0};
+    int hi[2] = {0, 0};
+    for (int d = 0; d < dims_; ++d) {
+      const double reach = h * std::abs(dq[variable_[d]]);
+      const double a = (q[variable_[d]] - reach - lower_[d]) * inverseStep_[d];
+      const double b = (q[variable_[d]] + reach - lower_[d]) * inverseStep_[d];
+      if (!(a >= 0.0 && b < cells_[d])) return false;  // beyond the limits (or NaN)
+      lo[d] = static_cast<int>(a);
+      hi[d] = static_cast<int>(b);
+    }
+    for (int i = lo[0]; i <= hi[0]; ++i) {
+      for (int j = lo[1]; j <= hi[1]; ++j) {
+        if (free_[i * (dims_ == 2 ? cells_[1] : 1) + j] == 0) return false;
+      }
+    }
+    return true;
   }
 
   int numCells() const { return static_cast<int>(free_.size()); }

@@ -517,4 +517,6 @@ std::vector<std::pair<int, int>> World::allowedSelfPairs() const {
   return out;
 }
 
+std::uint64_t World::version() const { return state_->generation.load(std::memory_order_acquire); }
+
 }  // namespace deepcheck::checker

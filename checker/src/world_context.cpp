@@ -168,6 +168,16 @@ bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q) const {
   return isFree(q, threadContext(*this, state_));
 }
 
+bool World::isClear(const Eigen::Ref<const Eigen::VectorXd>& q, const ClearanceDemand& demand) const {
+  return isClear(q, threadContext(*this, state_), demand);
+}
+
+MotionCertificate World::certifyMotion(const Eigen::Ref<const Eigen::VectorXd>& q1,
+                                       const Eigen::Ref<const Eigen::VectorXd>& dq,
+                                       const ClearanceDemand& motion) const {
+  return certifyMotion(q1, dq, motion, threadContext(*this, state_));
+}
+
 DistanceResult World::signedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, const DistanceOptions& options) const {
   return signedDistance(q, threadContext(*this, state_), options);
 }

@@ -1,10 +1,14 @@
-// World::isFree: does any checked pair overlap (world_queries_internal.h).
+// World::isFree: does any checked pair overlap; World::isClear: is every checked pair farther apart
+// than a demanded clearance (world_queries_internal.h). One traversal serves both: isClear grows
+// each robot piece, its bounding volumes and its link's sphere by its pair's demand.
 
-#include "world_queries_internal.h"
+#include "world_clearance_internal.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace deepcheck::checker {
 
@@ -63,7 +67,8 @@ bool overlapPair(Impl& c, const deep::ConvexShape& A, const Eigen::Isometry3d& X
 
 /// Narrow phase of robot piece i against world piece wp of `set`, of pair kind `kind` (after the
 /// bounding tests).
-bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set, PairKey::Kind kind, int i, int wp) {
+bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set, PairKey::Kind kind, int i, int wp,
+                  double margin) {
   const RobotPiece& p = robot.pieces[i];
   const WorldPiece& w = set.pieces[wp];
   ++c.stats.narrowPhase;
@@ -73,43 +78,45 @@ bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set, PairKey:
     c.lastHit = PairKey{kind, i, wp, -1};
     return true;
   }
-  const bool hit = overlapPair(c, shapeOf(p), pieceTransform(c, robot, i), shapeOf(w), w.X_WP,
+  const bool hit = overlapPair(c, grown(shapeOf(p), margin), pieceTransform(c, robot, i), shapeOf(w), w.X_WP,
                                worldCaches(c, kind)[pairIndex(set, i, wp)]);
   if (hit) c.lastHit = PairKey{kind, i, wp, -1};
   return hit;
 }
 
-bool overlapSelf(Impl& c, const RobotData& robot, int i, int j, int cache) {
+bool overlapSelf(Impl& c, const RobotData& robot, int i, int j, int cache, double margin) {
   const RobotPiece& a = robot.pieces[i];
   const RobotPiece& b = robot.pieces[j];
   ++c.stats.narrowPhase;
   ++c.stats.selfNarrowPhase;
   notify(c, a.link, robotBody(b.link));
-  const bool hit = overlapPair(c, shapeOf(a), pieceTransform(c, robot, i), shapeOf(b), pieceTransform(c, robot, j),
-                               c.selfCaches[cache]);
+  const bool hit = overlapPair(c, grown(shapeOf(a), margin), pieceTransform(c, robot, i), shapeOf(b),
+                               pieceTransform(c, robot, j), c.selfCaches[cache]);
   if (hit) c.lastHit = PairKey{PairKey::Kind::Self, i, j, cache};
   return hit;
 }
 
-/// The robot link `g` against the world pieces of pair kind `kind` near it: true at the first
-/// overlap.
-bool linkHitsSet(Impl& c, const Snapshot& s, PairKey::Kind kind, int g) {
+/// Calls f(key, margin) for every pair of robot link geometry `g` and a world piece of pair kind
+/// `kind` whose bounding volumes meet, grown by the pair's margin; stops when f returns true.
+template <class F>
+bool linkPairsNear(Impl& c, const Snapshot& s, PairKey::Kind kind, int g, const Margins& margins, F& f) {
   const PieceSet& set = worldPieces(s, kind);
   if (set.pieces.empty()) return false;
   std::vector<std::uint8_t>& axes = worldAxes(c, kind);
   const RobotData& robot = *s.robot;
   const LinkGeometry& lg = robot.links[g];
   const Eigen::Vector3d& center = c.linkCenter[g];
-  return forEachOverlapping(set, c.state->options.broadPhase, Aabb::ofSphere(center, lg.radius), [&](int wp) {
+  const double m = margins.world(g);
+  const double radius = lg.radius + m;
+  return forEachOverlapping(set, c.state->options.broadPhase, Aabb::ofSphere(center, radius), [&](int wp) {
     const WorldPiece& w = set.pieces[wp];
     ++c.stats.linkCandidates;
     if (worldPairAllowed(s, kind, g, w.body)) return false;
-    if (fartherThan(w.box.squaredDistance(center), lg.radius)) return false;
+    if (fartherThan(w.box.squaredDistance(center), radius)) return false;
     for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
       posePiece(c, robot, i);
       ++c.stats.pieceTests;
-      if (worldBoundsMeet(c, robot, i, w, axes[pairIndex(set, i, wp)]) &&
-          overlapWorld(c, robot, set, kind, i, wp)) {
+      if (worldBoundsMeet(c, robot, i, w, axes[pairIndex(set, i, wp)], m) && f(PairKey{kind, i, wp, -1}, m)) {
         return true;
       }
     }
@@ -117,58 +124,116 @@ bool linkHitsSet(Impl& c, const Snapshot& s, PairKey::Kind kind, int g) {
   });
 }
 
-bool selfPairHits(Impl& c, const RobotData& robot, const SelfPair& sp) {
+/// The same for the piece pairs of self pair sp.
+template <class F>
+bool selfPairsNear(Impl& c, const RobotData& robot, const SelfPair& sp, const Margins& margins, F& f) {
   const LinkGeometry& la = robot.links[sp.a];
   const LinkGeometry& lb = robot.links[sp.b];
   ++c.stats.linkCandidates;
-  if (sp.grid != nullptr && sp.grid->certifiedFree(c.lastQ)) {
+  const double m = margins.self(sp.a, sp.b);
+  if (sp.grid != nullptr && margins.gridCertifies(*sp.grid, c.lastQ, m)) {
     ++c.stats.certifiedSelf;
     return false;
   }
-  if (fartherThan((c.linkCenter[sp.a] - c.linkCenter[sp.b]).squaredNorm(), la.radius + lb.radius)) return false;
+  if (fartherThan((c.linkCenter[sp.a] - c.linkCenter[sp.b]).squaredNorm(), la.radius + lb.radius + m)) return false;
   return forEachSelfPiecePair(c, robot, sp, [&](int i, int j, int cache) {
-    return selfBoundsMeet(c, robot, i, j, c.selfAxes[cache]) && overlapSelf(c, robot, i, j, cache);
+    return selfBoundsMeet(c, robot, i, j, c.selfAxes[cache], m) && f(PairKey{PairKey::Kind::Self, i, j, cache}, m);
   });
 }
 
-/// Re-tests the pair that overlapped in the previous query (motions overlap the same pair in a
-/// row): true when it still overlaps.
-bool lastHitStillHits(Impl& c, const Snapshot& s) {
-  const PairKey k = c.lastHit;
+/// Every pair whose bounding volumes meet (grown by its margin), for f(key, margin) until it
+/// returns true: the links from the tip of the tree to the root (the distal links sweep the most
+/// space and meet the world most often, so a colliding configuration is found sooner), then the
+/// self pairs.
+template <class F>
+bool forEachPairNear(Impl& c, const Snapshot& s, const Margins& margins, F& f) {
+  for (int g = static_cast<int>(s.robot->links.size()) - 1; g >= 0; --g) {
+    if (linkPairsNear(c, s, PairKey::Kind::Scene, g, margins, f)) return true;
+    if (linkPairsNear(c, s, PairKey::Kind::Obstacle, g, margins, f)) return true;
+  }
+  for (const SelfPair& sp : s.selfPairs) {
+    if (selfPairsNear(c, *s.robot, sp, margins, f)) return true;
+  }
+  return false;
+}
+
+bool narrowWithin(Impl& c, const Snapshot& s, const PairKey& k, double margin) {
+  const RobotData& robot = *s.robot;
+  if (k.kind == PairKey::Kind::Self) return overlapSelf(c, robot, k.robotPiece, k.other, k.cache, margin);
+  return overlapWorld(c, robot, worldPieces(s, k.kind), k.kind, k.robotPiece, k.other, margin);
+}
+
+/// Bounding tests and narrow phase of pair k, with its margin.
+bool pairWithin(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins) {
   const RobotData& robot = *s.robot;
   posePiece(c, robot, k.robotPiece);
+  const int group = robot.pieces[k.robotPiece].group;
   if (k.kind == PairKey::Kind::Self) {
     posePiece(c, robot, k.other);
-    return selfBoundsMeet(c, robot, k.robotPiece, k.other, c.selfAxes[k.cache]) &&
-           overlapSelf(c, robot, k.robotPiece, k.other, k.cache);
+    const double m = margins.self(group, robot.pieces[k.other].group);
+    return selfBoundsMeet(c, robot, k.robotPiece, k.other, c.selfAxes[k.cache], m) && narrowWithin(c, s, k, m);
   }
   const PieceSet& set = worldPieces(s, k.kind);
   std::uint8_t& axis = worldAxes(c, k.kind)[pairIndex(set, k.robotPiece, k.other)];
-  return worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other], axis) &&
-         overlapWorld(c, robot, set, k.kind, k.robotPiece, k.other);
+  const double m = margins.world(group);
+  return worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other], axis, m) && narrowWithin(c, s, k, m);
 }
 
 }  // namespace
 
-bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context) const {
-  Impl& c = *context.impl_;
-  const Snapshot& s = prepare(*state_, c, q);
-  const RobotData& robot = *s.robot;
+namespace detail {
+
+bool clearOfAll(Impl& c, const Snapshot& s, const Margins& margins) {
   checkLinkTranslations(c);
   if (c.lastHit.kind != PairKey::Kind::None) {
-    if (lastHitStillHits(c, s)) return false;
+    // The pair that was within its margin last time usually still is (motions check nearby
+    // configurations in a row).
+    if (pairWithin(c, s, c.lastHit, margins)) return false;
     c.lastHit = PairKey{};
   }
-  // Links from the tip of the tree to the root: the distal links sweep the most space and meet
-  // the world most often, so a colliding configuration is found sooner (the answer is the same).
-  for (int g = static_cast<int>(robot.links.size()) - 1; g >= 0; --g) {
-    if (linkHitsSet(c, s, PairKey::Kind::Scene, g)) return false;
-    if (linkHitsSet(c, s, PairKey::Kind::Obstacle, g)) return false;
+  auto narrow = [&](const PairKey& k, double m) { return narrowWithin(c, s, k, m); };
+  return !forEachPairNear(c, s, margins, narrow);
+}
+
+Clearance classify(Impl& c, const Snapshot& s, Margins& margins) {
+  checkLinkTranslations(c);
+  const double base = margins.base();
+  bool near = false;
+  // A pair within its margin: at the base clearance, the configuration collides; otherwise it is
+  // near, and the rest of the traversal tests the base clearance alone.
+  auto test = [&](const PairKey& k, double m) {
+    if (!near) {
+      if (!narrowWithin(c, s, k, m)) return false;
+      near = true;
+      margins.dropToBase();
+    }
+    return narrowWithin(c, s, k, base);
+  };
+  if (c.lastHit.kind != PairKey::Kind::None) {
+    const PairKey last = c.lastHit;
+    if (pairWithin(c, s, last, margins)) {
+      near = true;
+      margins.dropToBase();
+      if (pairWithin(c, s, last, margins)) return Clearance::Collides;
+    }
+    c.lastHit = PairKey{};
   }
-  for (const SelfPair& sp : s.selfPairs) {
-    if (selfPairHits(c, robot, sp)) return false;
-  }
-  return true;
+  if (forEachPairNear(c, s, margins, test)) return Clearance::Collides;
+  return near ? Clearance::Near : Clearance::Clear;
+}
+
+}  // namespace detail
+
+bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context) const {
+  Impl& c = *context.impl_;
+  return clearOfAll(c, prepare(*state_, c, q), Margins());
+}
+
+bool World::isClear(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context,
+                    const ClearanceDemand& demand) const {
+  Impl& c = *context.impl_;
+  const Snapshot& s = prepare(*state_, c, q);
+  return clearOfAll(c, s, Margins(demand, *s.robot, demand.scale));
 }
 
 }  // namespace deepcheck::checker

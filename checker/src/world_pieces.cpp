@@ -1,8 +1,9 @@
 // The pieces of a World as its queries see them, for display and export (World::linkPieces,
-// World::worldPieces).
+// World::worldPieces, World::linkExtents).
 
 #include "world_internal.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -22,6 +23,17 @@ std::vector<robots::CollisionPiece> World::linkPieces(int link) const {
       const detail::RobotPiece& p = robot.pieces[static_cast<std::size_t>(i)];
       out.push_back(robots::CollisionPiece{p.core, p.radius, p.X_LP, robot.model.link(link).name});
     }
+  }
+  return out;
+}
+
+std::vector<double> World::linkExtents() const {
+  const auto snap = state_->snapshot();
+  const detail::RobotData& robot = *snap->robot;
+  std::vector<double> out(static_cast<std::size_t>(robot.model.numLinks()), -1.0);
+  for (const detail::RobotPiece& p : robot.pieces) {
+    double& e = out[static_cast<std::size_t>(p.link)];
+    e = std::max(e, p.center_L.norm() + p.sphereRadius);
   }
   return out;
 }

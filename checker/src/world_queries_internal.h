@@ -211,22 +211,37 @@ inline double supportLowerBound(const deep::ConvexPolytope& A, const Eigen::Isom
 /// the bounding tests compare squares, with no square root on isFree's path.
 inline bool fartherThan(double d2, double r) { return d2 > r * r; }
 
-/// The bounding tests of robot piece i (posed) against world piece w: false when its bounding
-/// sphere's lower bound is positive (pieceWorldLowerBound, compared in squares) or the oriented
-/// boxes are apart (`axis`: the pair's last separating axis).
-inline bool worldBoundsMeet(const Impl& c, const RobotData& robot, int i, const WorldPiece& w, std::uint8_t& axis) {
-  const RobotPiece& p = robot.pieces[i];
-  const Eigen::Vector3d& x = c.pieceCenter[i];
-  return !fartherThan(w.box.squaredDistance(x), p.sphereRadius) &&
-         !fartherThan((x - w.center_W).squaredNorm(), p.sphereRadius + w.sphereRadius) &&
-         !separated(c.pieceObb[i], w.obb_W, axis);
+/// `box` grown by `margin` along each of its axes (it then holds everything within margin of it).
+inline Obb grownBox(Obb box, double margin) {
+  box.half.array() += margin;
+  return box;
 }
 
-/// The bounding tests of robot pieces i and j (both posed): spheres, then oriented boxes.
-inline bool selfBoundsMeet(const Impl& c, const RobotData& robot, int i, int j, std::uint8_t& axis) {
-  return !fartherThan((c.pieceCenter[i] - c.pieceCenter[j]).squaredNorm(),
-                      robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius) &&
-         !separated(c.pieceObb[i], c.pieceObb[j], axis);
+/// The bounding tests of robot piece i (posed), grown by `margin`, against world piece w: false
+/// when its bounding sphere's lower bound is positive (pieceWorldLowerBound, compared in squares)
+/// or the oriented boxes are apart (`axis`: the pair's last separating axis).
+inline bool worldBoundsMeet(const Impl& c, const RobotData& robot, int i, const WorldPiece& w, std::uint8_t& axis,
+                            double margin = 0.0) {
+  const RobotPiece& p = robot.pieces[i];
+  const Eigen::Vector3d& x = c.pieceCenter[i];
+  const double r = p.sphereRadius + margin;
+  if (fartherThan(w.box.squaredDistance(x), r) || fartherThan((x - w.center_W).squaredNorm(), r + w.sphereRadius)) {
+    return false;
+  }
+  if (margin == 0.0) return !separated(c.pieceObb[i], w.obb_W, axis);
+  return !separated(grownBox(c.pieceObb[i], margin), w.obb_W, axis);
+}
+
+/// The bounding tests of robot pieces i and j (both posed; i grown by `margin`): spheres, then
+/// oriented boxes.
+inline bool selfBoundsMeet(const Impl& c, const RobotData& robot, int i, int j, std::uint8_t& axis,
+                           double margin = 0.0) {
+  if (fartherThan((c.pieceCenter[i] - c.pieceCenter[j]).squaredNorm(),
+                  robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius + margin)) {
+    return false;
+  }
+  if (margin == 0.0) return !separated(c.pieceObb[i], c.pieceObb[j], axis);
+  return !separated(grownBox(c.pieceObb[i], margin), c.pieceObb[j], axis);
 }
 
 /// Calls f(i, j, cache) for the piece pairs of the self pair sp (both pieces posed; cache indexes

@@ -4,8 +4,8 @@
 // clearance (signed distance, metres) along the path.
 //
 //   deepcheck_consumer [DATA_DIR]   DATA_DIR: deepcheck's bundled robot and scenes
-#include <deepcheck/planners/motion_bound.h>
-#include <deepcheck/planners/motion_validator.h>
+#include <deepcheck/planners/certified_motion_validator.h>
+#include <deepcheck/planners/planner_factory.h>
 #include <deepcheck/planners/path_tools.h>
 #include <deepcheck/planners/setup.h>
 #include <deepcheck/planners/state_space.h>
@@ -43,15 +43,17 @@ int main(int argc, char** argv) {
     const ob::SpaceInformationPtr& si = ss.getSpaceInformation();
     auto checker = std::make_shared<dp::StateValidityChecker>(si, world);
     ss.setStateValidityChecker(checker);
-    auto bound = std::make_shared<const dp::LinkSpeedBound>(dp::LinkSpeedBound::forWorld(*world));
-    si->setMotionValidator(std::make_shared<dp::ClearanceMotionValidator>(si, checker, bound));
+    // Every motion the planner accepts is proven collision free, not sampled.
+    si->setMotionValidator(std::make_shared<dp::CertifiedMotionValidator>(si, checker));
 
     ob::ScopedState<> start(space), goal(space);
     const double from[] = {0, -0.4, 0, -1.6, 0, 1.2, 0};  // radians, joint1 ... joint7
     const double to[] = {1.05, 0.75, -1.17, -1.30, 0.05, -0.07, -2.79};
     for (int i = 0; i < 7; ++i) start[i] = from[i], goal[i] = to[i];
     ss.setStartAndGoalStates(start, goal);
-    ss.setPlanner(std::make_shared<og::RRTConnect>(si));
+    auto planner = std::make_shared<og::RRTConnect>(si);
+    planner->setRange(dp::defaultRange(*si));
+    ss.setPlanner(planner);
     if (ss.solve(20.0) != ob::PlannerStatus::EXACT_SOLUTION) {
       std::fprintf(stderr, "no exact solution\n");
       return 1;

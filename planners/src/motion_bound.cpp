@@ -1,7 +1,5 @@
 #include "deepcheck/planners/motion_bound.h"
 
-#include "deepcheck/robots/collision_geometry.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -115,25 +113,19 @@ LinkSpeedBound::LinkSpeedBound(const robots::RobotModel& model, const std::vecto
 }
 
 LinkSpeedBound LinkSpeedBound::forWorld(const checker::World& world) {
-  const robots::RobotModel& model = world.robot();
-  const double excess = world.summaryCounts().geometryExcess;
-  if (std::isnan(excess)) {
-    throw std::invalid_argument("LinkSpeedBound::forWorld: the geometry excess of robot '" + model.name() +
-                                "' is unknown (custom decomposer); give the link extents explicitly");
+  return LinkSpeedBound(world.robot(), world.linkExtents(), world.allowedSelfPairs());
+}
+
+void LinkSpeedBound::displacements(const Eigen::Ref<const Eigen::VectorXd>& dq, Eigen::VectorXd& link,
+                                   Eigen::MatrixXd& self) const {
+  checkMotion(dq);
+  const Eigen::VectorXd magnitude = dq.cwiseAbs();
+  link.noalias() = speed_ * magnitude;
+  self = link.replicate(1, link.size()) + link.transpose().replicate(link.size(), 1);
+  for (std::size_t p = 0; p < selfPairs_.size(); ++p) {
+    const auto [a, b] = selfPairs_[p];
+    self(a, b) = self(b, a) = selfSpeed_.row(static_cast<Eigen::Index>(p)).dot(magnitude);
   }
-  const std::vector<std::vector<robots::CollisionPiece>> pieces = robots::collisionPieces(model);
-  std::vector<double> extent(static_cast<std::size_t>(model.numLinks()), -1.0);
-  for (int i = 0; i < model.numLinks(); ++i) {
-    for (const robots::CollisionPiece& piece : pieces[static_cast<std::size_t>(i)]) {
-      double farthest = 0.0;
-      for (const Eigen::Vector3d& v : piece.core->vertices()) {
-        farthest = std::max(farthest, (piece.X_LP * v).norm());
-      }
-      extent[static_cast<std::size_t>(i)] =
-          std::max(extent[static_cast<std::size_t>(i)], farthest + piece.radius + excess);
-    }
-  }
-  return LinkSpeedBound(model, extent, world.allowedSelfPairs());
 }
 
 double LinkSpeedBound::linkDisplacement(int link, const Eigen::Ref<const Eigen::VectorXd>& dq) const {

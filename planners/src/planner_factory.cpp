@@ -23,6 +23,7 @@
 #include <cctype>
 #include <functional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace deepcheck::planners {
@@ -118,7 +119,16 @@ std::vector<std::string> plannerNames() {
 std::string plannerName(const std::string& name) { return entry(name).name; }
 
 ompl::base::PlannerPtr makePlanner(const std::string& name, const ompl::base::SpaceInformationPtr& si) {
-  return entry(name).make(si);
+  const Entry& e = entry(name);
+  ompl::base::PlannerPtr planner = e.make(si);
+  if (!e.optimizing && planner->params().hasParam("range")) {
+    planner->params().setParam("range", std::to_string(defaultRange(*si)));
+  }
+  return planner;
+}
+
+double defaultRange(const ompl::base::SpaceInformation& si) {
+  return tol::kDefaultRangeFraction * si.getMaximumExtent();
 }
 
 bool isOptimizingPlanner(const std::string& name) {

@@ -1,6 +1,8 @@
 #include "deepcheck/planners/setup.h"
 
+#include "deepcheck/planners/certified_motion_validator.h"
 #include "deepcheck/planners/motion_validator.h"
+#include "deepcheck/planners/planner_factory.h"
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/planners/valid_state_sampler.h"
 #include "deepcheck/robots/format_number.h"
@@ -84,6 +86,17 @@ void checkGroupOfWorld(const robots::RobotModel& robot, const SetupOptions& opti
 
 }  // namespace
 
+namespace {
+
+/// The validator that certifies motions under the checker's criterion (setup.h: Certified).
+ompl::base::MotionValidatorPtr certifyingValidator(ompl::base::SpaceInformation* si,
+                                                   const std::shared_ptr<const StateValidityChecker>& checker) {
+  if (checker->validityOptions().threshold() >= 0.0) return std::make_shared<CertifiedMotionValidator>(si, checker);
+  return std::make_shared<ClearanceMotionValidator>(si, checker);
+}
+
+}  // namespace
+
 std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(std::shared_ptr<const checker::World> world,
                                                               const SetupOptions& options) {
   if (!world) throw std::invalid_argument("makeSimpleSetup: the world is null");
@@ -99,6 +112,9 @@ std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(std::shared_ptr<co
   auto checker = std::make_shared<StateValidityChecker>(si.get(), world, options.validity, options.pushOut);
   ss->setStateValidityChecker(checker);
   switch (options.motionValidation) {
+    case MotionValidation::Certified:
+      si->setMotionValidator(certifyingValidator(si.get(), checker));
+      break;
     case MotionValidation::Clearance: {
       auto bound = std::make_shared<const LinkSpeedBound>(LinkSpeedBound::forWorld(*world));
       si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si.get(), checker, bound));
@@ -109,6 +125,9 @@ std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(std::shared_ptr<co
       break;
   }
   if (options.pushOutSampler) si->setValidStateSamplerAllocator(pushOutSamplerAllocator(checker));
+  // Without a planner of the caller's, solve() makes this one (OMPL's choice would be RRTConnect
+  // at its own range).
+  ss->setPlannerAllocator([](const ompl::base::SpaceInformationPtr& s) { return makePlanner("RRTConnect", s); });
   si->setup();
   return ss;
 }
@@ -129,10 +148,12 @@ std::shared_ptr<const StateValidityChecker> validityCheckerOf(const ompl::geomet
 }
 
 std::shared_ptr<const LinkSpeedBound> linkSpeedBoundOf(const ompl::geometric::SimpleSetup& ss) {
-  auto validator =
-      std::dynamic_pointer_cast<const ClearanceMotionValidator>(ss.getSpaceInformation()->getMotionValidator());
+  const ompl::base::MotionValidatorPtr& v = ss.getSpaceInformation()->getMotionValidator();
+  if (auto certified = std::dynamic_pointer_cast<const CertifiedMotionValidator>(v)) return certified->bound();
   // The validator owns its bound for as long as it lives; share its ownership.
-  if (validator) return std::shared_ptr<const LinkSpeedBound>(validator, &validator->bound());
+  if (auto clearance = std::dynamic_pointer_cast<const ClearanceMotionValidator>(v)) {
+    return std::shared_ptr<const LinkSpeedBound>(clearance, &clearance->bound());
+  }
   return std::make_shared<const LinkSpeedBound>(LinkSpeedBound::forWorld(validityCheckerOf(ss)->world()));
 }
 
@@ -140,24 +161,26 @@ ompl::base::SpaceInformationPtr certifyingSpaceInformation(const ompl::geometric
   const auto checker = validityCheckerOf(ss);
   auto si = std::make_shared<ompl::base::SpaceInformation>(ss.getStateSpace());
   si->setStateValidityChecker(std::const_pointer_cast<StateValidityChecker>(checker));
-  si->setMotionValidator(std::make_shared<ClearanceMotionValidator>(si.get(), checker, linkSpeedBoundOf(ss)));
+  si->setMotionValidator(certifyingValidator(si.get(), checker));
   si->setup();
   return si;
 }
 
 namespace {
 
-ClearanceMotionValidator& clearanceValidatorOf(const ompl::base::SpaceInformationPtr& si) {
-  return dynamic_cast<ClearanceMotionValidator&>(*si->getMotionValidator());
+/// The clearance validator of `si`, or null (the certified validator takes no fallback step).
+ClearanceMotionValidator* clearanceValidatorOf(const ompl::base::SpaceInformationPtr& si) {
+  return dynamic_cast<ClearanceMotionValidator*>(si->getMotionValidator().get());
 }
 
 /// The fallback steps of `path`'s motions, checked once more on their own (a repair's counts
 /// include the motions it replaced); 0 when the path no longer passes.
 std::uint64_t recheckFallbackSteps(const ompl::geometric::PathGeometric& path,
                                    const ompl::base::SpaceInformationPtr& si) {
-  ClearanceMotionValidator& validator = clearanceValidatorOf(si);
-  validator.resetStats();
-  return checkPathWithPlanner(path, si.get()).valid ? validator.stats().fallbackSteps : 0;
+  ClearanceMotionValidator* validator = clearanceValidatorOf(si);
+  if (validator == nullptr) return 0;
+  validator->resetStats();
+  return checkPathWithPlanner(path, si.get()).valid ? validator->stats().fallbackSteps : 0;
 }
 
 /// A path that passes only with fallback steps: repaired against a validator that refuses them
@@ -167,7 +190,7 @@ std::uint64_t recheckFallbackSteps(const ompl::geometric::PathGeometric& path,
 void repairFallbackSteps(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path,
                          PathCertificate& certificate) {
   const ompl::base::SpaceInformationPtr strict = certifyingSpaceInformation(ss);
-  clearanceValidatorOf(strict).setRefuseFallback(true);
+  clearanceValidatorOf(strict)->setRefuseFallback(true);
   ompl::geometric::PathGeometric candidate = path;
   const PathRepair repair = repairPath(candidate, strict);
   if (!repair.valid) return;
@@ -191,8 +214,10 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
     if (!certificate.valid) return certificate;
   }
   // Unrepaired, the initial check went through exactly the path's motions: its counts stand.
-  certificate.fallbackSteps = certificate.repaired ? recheckFallbackSteps(path, si)
-                                                   : clearanceValidatorOf(si).stats().fallbackSteps;
+  const ClearanceMotionValidator* clearance = clearanceValidatorOf(si);
+  certificate.fallbackSteps = clearance == nullptr   ? 0
+                              : certificate.repaired ? recheckFallbackSteps(path, si)
+                                                     : clearance->stats().fallbackSteps;
   if (certificate.fallbackSteps > 0) repairFallbackSteps(ss, path, certificate);
   return certificate;
 }

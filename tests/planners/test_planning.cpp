@@ -4,6 +4,7 @@
 #include "bundled.h"
 
 #include "deepcheck/fcl_reference/fcl_validity_checker.h"
+#include "deepcheck/planners/certified_motion_validator.h"
 #include "deepcheck/planners/motion_validator.h"
 #include "deepcheck/planners/path_tools.h"
 #include "deepcheck/planners/planner_factory.h"
@@ -114,7 +115,7 @@ BOOST_AUTO_TEST_CASE(setup_is_ready_and_reports_bad_input) {
   BOOST_TEST(checker->world().numScenes() == 1);
   BOOST_TEST(dp::linkSpeedBoundOf(*ss) != nullptr);
   BOOST_TEST(ss->getSpaceInformation()->isSetup());
-  BOOST_TEST(dynamic_cast<const ob::DiscreteMotionValidator*>(ss->getSpaceInformation()->getMotionValidator().get()));
+  BOOST_TEST(dynamic_cast<const dp::CertifiedMotionValidator*>(ss->getSpaceInformation()->getMotionValidator().get()));
   Eigen::VectorXd bad = dp::test::suggestedStart();
   bad[2] = std::nan("");
   BOOST_CHECK_EXCEPTION(dp::setStartAndGoal(*ss, bad, dp::test::suggestedGoal("table")), std::invalid_argument,
@@ -303,10 +304,9 @@ BOOST_AUTO_TEST_CASE(paths_are_written_one_configuration_per_line) {
                         });
 }
 
-// A path that starts 0.2 mm from an obstacle and moves away: the clearance validator cannot
-// certify a step of useful size there and falls back to discrete steps, and the certificate says
-// so. The same path with the obstacle gone is certified exactly.
-BOOST_AUTO_TEST_CASE(certificate_counts_the_steps_taken_near_contact) {
+// A path that starts 0.2 mm from an obstacle and moves away: the certified validator refines its
+// sub-motions down to checker::tol::kCertifiedResolution, so the path is certified as it is.
+BOOST_AUTO_TEST_CASE(a_path_starting_near_contact_is_certified_as_it_is) {
   auto world = dp::loadWorld(dp::test::armUrdf(), {}, dp::test::bundledOptions());
   const Eigen::VectorXd a = dp::test::suggestedStart();
   const Eigen::Vector3d flange = deepcheck::robots::forwardKinematics(world->robot(), a)
@@ -336,8 +336,8 @@ BOOST_AUTO_TEST_CASE(certificate_counts_the_steps_taken_near_contact) {
   const dp::PathCertificate nearContact = dp::certifyPath(*ss, path);
   BOOST_TEST(nearContact.valid);
   BOOST_TEST(!nearContact.repaired);
-  BOOST_TEST(nearContact.fallbackSteps >= 1u);
-  BOOST_TEST(!nearContact.exact());
+  BOOST_TEST(nearContact.exact());
+  BOOST_TEST(path.getStateCount() == 2u);
   world->removeObstacle(id);
   const dp::PathCertificate clear = dp::certifyPath(*ss, asGiven);
   BOOST_TEST(clear.valid);
@@ -345,11 +345,12 @@ BOOST_AUTO_TEST_CASE(certificate_counts_the_steps_taken_near_contact) {
   BOOST_TEST(clear.exact());
 }
 
-// A block on an x-y slider moved 1 m along x past a ball whose nearest point it misses by
-// 0.2 mm half-way: the clearance validator accepts the motion only with fallback steps;
-// certifyPath repairs it against the validator refusing them (the middle pushed out along y), and
-// the repaired path is certified by clearance everywhere.
-BOOST_AUTO_TEST_CASE(a_grazing_motion_is_repaired_until_exact) {
+// A block on an x-y slider moved 1 m along x past a ball whose nearest point it misses by a
+// graze: at 0.2 mm the clearance validator accepts the motion only with fallback steps, and
+// refuses it when told to; the certified validator proves it. At 2 micrometres, below the
+// certified resolution, the certified validator leaves it unproven and certifyPath repairs it
+// (the middle pushed out along y) into a path it certifies.
+BOOST_AUTO_TEST_CASE(a_grazing_motion_is_certified_or_repaired) {
   const std::string urdf = std::string(DEEPCHECK_BINARY_DIR) + "/planners_xy_slider.urdf";
   std::ofstream(urdf) << R"(<robot name="xy_slider"><link name="base"/><link name="carriage"/>
   <link name="block"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
@@ -369,9 +370,13 @@ BOOST_AUTO_TEST_CASE(a_grazing_motion_is_repaired_until_exact) {
     return nearest;
   };
   int id = world->addObstacle(Obstacle::sphere("ball", 0.05, Eigen::Isometry3d(Eigen::Translation3d(0.5, 0.2, 0.0))));
-  const double gap = nearestAlong() - 2e-4;
-  world->removeObstacle(id);
-  id = world->addObstacle(Obstacle::sphere("ball", 0.05, Eigen::Isometry3d(Eigen::Translation3d(0.5, 0.2 - gap, 0.0))));
+  const double offset = nearestAlong();
+  const auto placeBall = [&](double graze) {
+    world->removeObstacle(id);
+    id = world->addObstacle(
+        Obstacle::sphere("ball", 0.05, Eigen::Isometry3d(Eigen::Translation3d(0.5, 0.2 - offset + graze, 0.0))));
+  };
+  placeBall(2e-4);
   const double nearest = nearestAlong();
   BOOST_REQUIRE(nearest > 0.0);  // a graze, not a collision
   BOOST_REQUIRE(nearest < 2.1e-4);
@@ -385,12 +390,20 @@ BOOST_AUTO_TEST_CASE(a_grazing_motion_is_repaired_until_exact) {
   refusing.setRefuseFallback(true);
   BOOST_TEST(!refusing.checkMotion(path.getState(0), path.getState(1)));
   BOOST_TEST(refusing.stats().nearContactRejections == 1u);
+  const dp::CertifiedMotionValidator certified(ss->getSpaceInformation(), checker);
+  BOOST_TEST(certified.checkMotion(path.getState(0), path.getState(1)));
+  placeBall(2e-6);
+  BOOST_REQUIRE(nearestAlong() > 0.0);
+  BOOST_TEST(!certified.checkMotion(path.getState(0), path.getState(1)));
+  BOOST_TEST(certified.stats().unproven == 1u);
   const dp::PathCertificate certificate = dp::certifyPath(*ss, path);
   BOOST_TEST(certificate.valid);
   BOOST_TEST(certificate.repaired);
   BOOST_TEST(certificate.exact());
   BOOST_TEST(path.getStateCount() > 2u);
-  BOOST_TEST(refusing.checkMotion(path.getState(0), path.getState(1)));
+  for (std::size_t k = 0; k + 1 < path.getStateCount(); ++k) {
+    BOOST_TEST(certified.checkMotion(path.getState(k), path.getState(k + 1)));
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

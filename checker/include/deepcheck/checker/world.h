@@ -185,6 +185,32 @@ struct DistanceResult {
   std::vector<Contact> contacts;  ///< see DistanceOptions::contactMargin
 };
 
+/// What World::isClear demands of every checked pair: how far apart it must be (metres). A robot
+/// link i, or an object attached to it, and a world body must be farther apart than
+/// base + scale * link[i]; robot links a and b (or objects attached to them) farther than
+/// base + scale * self(a, b). `link` has robot().numLinks() entries; `self` is numLinks x numLinks
+/// and only the entries of checked pairs are read. Every demand must be finite and >= 0.
+/// A motion validator asks, at the middle of a sub-motion, for more than each pair can move over
+/// its half (planners/certified_motion_validator.h).
+struct ClearanceDemand {
+  double base = 0.0;
+  double scale = 1.0;
+  Eigen::VectorXd link;
+  Eigen::MatrixXd self;
+};
+
+/// What World::certifyMotion found.
+struct MotionCertificate {
+  enum class Verdict {
+    Certified,  ///< every configuration of the motion keeps every pair clear (proven)
+    Collides,   ///< a configuration of the motion has a pair within the threshold (found)
+    Unproven,   ///< neither, down to tol::kCertifiedResolution or tol::kCertifiedMaxTests
+  };
+  Verdict verdict = Verdict::Unproven;
+  int configurations = 0;  ///< configurations tested (one per sub-motion examined)
+  bool certified() const { return verdict == Verdict::Certified; }
+};
+
 /// Counters of one Context (cumulative; reset with Context::resetStats()).
 struct QueryStats {
   std::uint64_t queries = 0;
@@ -396,6 +422,26 @@ class World {
   bool isFree(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context) const;
   bool isFree(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
+  /// True when every checked pair is farther apart than `demand` asks (strictly): isFree with each
+  /// robot piece grown by its pair's demand, at the same cost. All demands 0 is isFree. Throws
+  /// std::invalid_argument for a demand of the wrong size, negative or not finite.
+  bool isClear(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context, const ClearanceDemand& demand) const;
+  bool isClear(const Eigen::Ref<const Eigen::VectorXd>& q, const ClearanceDemand& demand) const;
+
+  /// Certifies the straight motion q(t) = q1 + t dq, t in [0, 1] (world_motion.cpp). `motion`
+  /// bounds how far each pair moves over the whole motion (link[i]: robot link i against the
+  /// world; self(a, b): links a and b relatively; metres; its `scale` is not used) and `base` is
+  /// the clearance every configuration must keep (0: collision free). A sub-motion with middle tm
+  /// and half length h is certified when every pair is farther apart than base + h times its
+  /// bound at q(tm) (isClear), else q(tm) is tested and the sub-motion halved; sub-motions are
+  /// visited level by level, so the configurations tested first are spread along the motion.
+  /// q1 is assumed valid. Throws like isClear, and for a q1 or dq of the wrong size.
+  MotionCertificate certifyMotion(const Eigen::Ref<const Eigen::VectorXd>& q1,
+                                  const Eigen::Ref<const Eigen::VectorXd>& dq, const ClearanceDemand& motion,
+                                  Context& context) const;
+  MotionCertificate certifyMotion(const Eigen::Ref<const Eigen::VectorXd>& q1,
+                                  const Eigen::Ref<const Eigen::VectorXd>& dq, const ClearanceDemand& motion) const;
+
   /// The minimum signed distance over allowed pairs, its pair, witnesses, normal, optionally its
   /// gradient and the contact list.
   DistanceResult signedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context,
@@ -424,6 +470,14 @@ class World {
   };
   /// Every scene piece kept by the reach filter and every obstacle piece, posed in the world.
   std::vector<WorldPieceRef> worldPieces() const;
+
+  /// Per robot link: a bound on the distance from the link's origin to any point of the pieces it
+  /// carries, its own and those of objects attached to it (their bounding spheres); -1 for a link
+  /// that carries none. Changes with attach() and detach(): see version().
+  std::vector<double> linkExtents() const;
+  /// A number that changes whenever the world does (scenes, obstacles, attached objects, allowed
+  /// collisions), so that what a caller derived from it can be refreshed.
+  std::uint64_t version() const;
 
   /// Self pairs checked, as (link, link) with the first index smaller.
   std::vector<std::pair<int, int>> allowedSelfPairs() const;

@@ -33,10 +33,11 @@
 // |sd(q + dq) - sd(q)| <= B(dq), and a motion whose clearance at its start is c is collision free
 // for the first c / B(dq) of it; per pair, the pair's own clearance over its own bound.
 //
-// rho_i comes from the convex hulls of the link's original geometry (one hull per mesh, the
-// prisms of cylinders) plus the World's geometry excess (how far its pieces may stick out of the
-// original geometry), so it bounds the pieces the World actually checks. Frames: link frames L
-// (robot_model.h); metres and radians.
+// rho_i is the World's bound on the pieces link i carries (World::linkExtents: the bounding
+// spheres of the pieces it checks, objects attached to the link included), so it bounds the
+// geometry the World actually checks. A bound made before an object was attached does not
+// cover it: make it again (the certified motion validator does, on World::version()). Frames:
+// link frames L (robot_model.h); metres and radians.
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/robot_model.h"
@@ -61,15 +62,16 @@ class LinkSpeedBound {
   LinkSpeedBound(const robots::RobotModel& model, const std::vector<double>& linkExtent,
                  std::vector<std::pair<int, int>> selfPairs);
 
-  /// The bound for a World's robot and its checked self pairs (loads the robot's meshes to find
-  /// the extents). Throws std::invalid_argument when the World's geometry excess is unknown (a
-  /// custom decomposer).
+  /// The bound for a World's robot, the pieces it checks now (World::linkExtents) and its checked
+  /// self pairs.
   static LinkSpeedBound forWorld(const checker::World& world);
 
   /// speed(i, v): links x variables, metres per radian (or per metre); 0 rows for links without
   /// geometry.
   const Eigen::MatrixXd& speeds() const { return speed_; }
   const std::vector<double>& linkExtents() const { return extent_; }
+  /// The checked self pairs it was made with.
+  const std::vector<std::pair<int, int>>& selfPairs() const { return selfPairs_; }
 
   /// D_i(dq): the farthest any point of link i moves along q -> q + dq (metres).
   double linkDisplacement(int link, const Eigen::Ref<const Eigen::VectorXd>& dq) const;
@@ -80,6 +82,11 @@ class LinkSpeedBound {
   /// The bound of one pair: D_linkA for a world pair (linkB < 0), B_ab for a self pair (any order;
   /// a pair that is not checked gets the conservative D_a + D_b).
   double pairDisplacement(int linkA, int linkB, const Eigen::Ref<const Eigen::VectorXd>& dq) const;
+
+  /// Every bound of the motion dq at once, as World::isClear takes them: link[i] = D_i(dq) and
+  /// self(a, b) = self(b, a) = the pair bound above (D_a + D_b for a pair that is not checked,
+  /// e.g. an attached object's). Resizes both to the robot's number of links.
+  void displacements(const Eigen::Ref<const Eigen::VectorXd>& dq, Eigen::VectorXd& link, Eigen::MatrixXd& self) const;
 
  private:
   void checkMotion(const Eigen::Ref<const Eigen::VectorXd>& dq) const;

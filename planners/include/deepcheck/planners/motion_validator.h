@@ -38,8 +38,10 @@
 // So the validator is never less careful than DiscreteMotionValidator, and exact wherever the
 // clearance allows. It costs the discrete checks plus the certification of the accepted motions,
 // and a contact list up to the cap measures every pair within it: a certification query costs
-// more than an isFree query. It pays off where a wrong motion is expensive and motions are few:
-// certifying a final path (setup.h: certifyPath), not inside a planner's inner loop.
+// more than an isFree query. CertifiedMotionValidator (certified_motion_validator.h) certifies
+// every motion without fallback steps and at about the discrete validator's price, and is the
+// default; this validator serves where that one cannot: a validity criterion with a penetration
+// tolerance (a negative threshold), which makeSimpleSetup and certifyPath then use it for.
 // tests/planners/test_motion_validator.cpp counts the checks and distance queries per motion of
 // both validators; no benchmark here times them or plans with this validator (bench/plan_bench.cpp
 // plans with the discrete one).

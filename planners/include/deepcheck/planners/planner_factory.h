@@ -4,8 +4,10 @@
 // Names (case-insensitive; "*" may be written "star"): RRTConnect, RRT, RRT*, InformedRRT*,
 // BIT*, PRM, PRM*, LazyPRM, LazyPRM*, KPIECE1, BKPIECE1, EST, BiEST, SBL, FMT, TRRT. The name a
 // planner made here gives itself (Planner::getName: "RRTstar", "kBITstar") is accepted too.
-// Every planner gets OMPL's default parameters (prepareForCostlyObjective changes RRT*'s
-// neighbours and range for the clearance objective).
+// Every planner gets OMPL's default parameters, except the range of the planners that do not
+// optimize a cost (RRTConnect, RRT, KPIECE1, ...): defaultRange(), about 1 rad on a 7-joint arm
+// instead of OMPL's 0.2 of the space's extent (2.7 rad). prepareForCostlyObjective changes RRT*'s
+// neighbours and range for the clearance objective.
 
 #include <ompl/base/Planner.h>
 #include <ompl/base/SpaceInformation.h>
@@ -22,8 +24,13 @@ std::vector<std::string> plannerNames();
 /// `name` and listing the known ones.
 std::string plannerName(const std::string& name);
 
-/// A new planner. Throws std::invalid_argument naming `name` and listing the known ones.
+/// A new planner (the range of one that does not optimize: defaultRange). Throws
+/// std::invalid_argument naming `name` and listing the known ones.
 ompl::base::PlannerPtr makePlanner(const std::string& name, const ompl::base::SpaceInformationPtr& si);
+
+/// The longest motion a tree planner that does not optimize adds in one step:
+/// tol::kDefaultRangeFraction of the space's maximum extent.
+double defaultRange(const ompl::base::SpaceInformation& si);
 
 /// True for the planners that optimize a cost (RRT*, InformedRRT*, BIT*, PRM*, LazyPRM*, FMT);
 /// false for an unknown name.

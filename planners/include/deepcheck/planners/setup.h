@@ -10,23 +10,23 @@
 //   state space      one bounded dimension per robot variable (state_space.h);
 //   validity checker deepcheck::planners::StateValidityChecker on a checker::World made of the
 //                    robot (its SRDF's disabled pairs when given) and the scenes;
-//   motion validator OMPL's DiscreteMotionValidator at the state space's resolution (the default),
-//                    or ClearanceMotionValidator (motion_validator.h), which certifies every
-//                    motion it accepts (SetupOptions::motionValidation);
+//   motion validator CertifiedMotionValidator (certified_motion_validator.h): every motion a
+//                    planner or the simplifier accepts is proven collision free, not sampled
+//                    (SetupOptions::motionValidation; with a penetration tolerance the
+//                    ClearanceMotionValidator instead);
 //   valid sampler    PushOutValidStateSampler (valid_state_sampler.h) unless disabled;
-//   resolution       the longest valid segment fraction SetupOptions::segmentFraction.
-// No planner and no objective are set: OMPL's defaults apply until the caller sets them.
+//   resolution       the longest valid segment fraction SetupOptions::segmentFraction (OMPL's
+//                    discrete checks and objective integration; the certified validator does not
+//                    use it);
+//   planner          none set; solve() without one makes RRTConnect at defaultRange()
+//                    (planner_factory.h).
+// No objective is set: OMPL's default applies until the caller sets one.
 // validityCheckerOf() and linkSpeedBoundOf() give back the pieces for objectives and reports.
 //
-// Why the discrete validator by default: planners spend most motion checks on motions that never
-// reach the solution, and the clearance validator adds to the discrete validator's isFree queries
-// a certification by distance queries, each of which costs more than an isFree query
-// (tests/planners/test_motion_validator.cpp counts checks and distance queries per motion;
-// planning with the clearance validator is not benchmarked). The guarantee is obtained where it
-// is cheap, on the final path: certifyPath() checks every waypoint and every motion of it with
-// the clearance validator and, where that fails, repairs it (path_tools.h: push-out and
-// subdivision). The `deepcheck plan` tool does exactly this.
-//
+// So every path solve() and simplifySolutionChecked() return is certified: each of its motions
+// was accepted by the certified validator. certifyPath() still checks (and repairs) paths from
+// elsewhere, and costs little on such a path.
+
 // Files: package:// URIs are resolved with SetupOptions::packageRoots first, then (unless
 // useRosPackagePath is false) ROS_PACKAGE_PATH (robots/package_path.h). Errors are
 // std::invalid_argument naming the file and the problem.
@@ -57,8 +57,15 @@ namespace deepcheck::planners {
 using SceneSpec = checker::SceneSpec;
 
 enum class MotionValidation {
-  Discrete,   ///< OMPL's DiscreteMotionValidator at the state space's resolution
-  Clearance,  ///< ClearanceMotionValidator: discrete pass, then certification by clearance steps
+  /// CertifiedMotionValidator (certified_motion_validator.h): every motion accepted is proven
+  /// valid. With a penetration tolerance (a negative validity threshold), which it cannot
+  /// certify, ClearanceMotionValidator instead.
+  Certified,
+  /// OMPL's DiscreteMotionValidator at the state space's resolution: samples motions, and steps
+  /// over thin obstacles; for comparison.
+  Discrete,
+  /// ClearanceMotionValidator: discrete pass, then certification by clearance steps.
+  Clearance,
 };
 
 struct SetupOptions {
@@ -79,7 +86,7 @@ struct SetupOptions {
   checker::WorldOptions world;
   ValidityOptions validity;
   PushOutOptions pushOut;
-  MotionValidation motionValidation = MotionValidation::Discrete;
+  MotionValidation motionValidation = MotionValidation::Certified;
   /// Register the push-out valid state sampler.
   bool pushOutSampler = true;
   /// Longest valid segment as a fraction of the state space's extent (0, 1].
@@ -109,29 +116,31 @@ std::shared_ptr<const StateValidityChecker> validityCheckerOf(const ompl::geomet
 /// otherwise, which loads the robot's meshes).
 std::shared_ptr<const LinkSpeedBound> linkSpeedBoundOf(const ompl::geometric::SimpleSetup& ss);
 
-/// A SpaceInformation with the state space and validity checker of `ss` and a
-/// ClearanceMotionValidator: checkPathWithPlanner(path, si.get()) certifies a path, repairPath
-/// repairs it against it.
+/// A SpaceInformation with the state space and validity checker of `ss` and a certifying motion
+/// validator (CertifiedMotionValidator; ClearanceMotionValidator with a penetration tolerance):
+/// checkPathWithPlanner(path, si.get()) certifies a path, repairPath repairs it against it.
 ompl::base::SpaceInformationPtr certifyingSpaceInformation(const ompl::geometric::SimpleSetup& ss);
 
 /// The result of certifyPath.
 struct PathCertificate {
-  PathCheck initial;        ///< the path as given, through the clearance validator
+  PathCheck initial;        ///< the path as given, through the certifying validator
   bool repaired = false;    ///< repairPath ran (the initial check failed)
   PathRepair repair;        ///< when repaired
-  bool valid = false;       ///< every waypoint and motion (now) passes the clearance validator
-  /// Steps of the final path's motions the clearance validator took without a certificate (its
-  /// fallback within about 0.5 mm of contact, motion_validator.h): there the path is checked only
-  /// as densely as discrete checking. 0 when every motion is certified by clearance.
+  bool valid = false;       ///< every waypoint and motion (now) passes the certifying validator
+  /// With a penetration tolerance only (the ClearanceMotionValidator certifies): the steps of the
+  /// final path's motions it took without a certificate (its fallback within about 0.5 mm of
+  /// contact, motion_validator.h). Always 0 with the certified validator.
   std::uint64_t fallbackSteps = 0;
-  /// Valid with every motion certified by clearance: no fallback step.
+  /// Valid with every motion certified: no fallback step.
   bool exact() const { return valid && fallbackSteps == 0; }
 };
-/// Certifies `path` (a path of `ss`'s space) with the clearance validator, repairing it in place
-/// when that fails. A path that passes only with fallback steps (motions within about 0.5 mm of
-/// contact) is then repaired against the validator refusing them (setRefuseFallback), and that
-/// repair is kept when it certifies every motion by clearance: exact() is true then. Otherwise
-/// (a start or goal itself that close to contact) the path stays, valid with its fallbackSteps.
+/// Certifies `path` (a path of `ss`'s space) with certifyingSpaceInformation's validator,
+/// repairing it in place when that fails (repairPath: invalid waypoints pushed out, failing
+/// motions split and their midpoints pushed out). With the certified validator a path that passes
+/// is exact. With a penetration tolerance, a path that passes only with fallback steps is then
+/// repaired against the clearance validator refusing them (setRefuseFallback), and that repair is
+/// kept when it certifies every motion: exact() is true then; otherwise (a start or goal itself
+/// that close to contact) the path stays, valid with its fallbackSteps.
 PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geometric::PathGeometric& path);
 
 /// Simplifies the solution of `ss` without ever making it worse: the simplified path is kept only

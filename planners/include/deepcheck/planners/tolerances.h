@@ -25,6 +25,13 @@ constexpr double kFallbackStepFraction = 0.25;
 /// cannot carry anything through more than 0.5 mm of obstacle.
 constexpr double kFallbackDisplacement = 0.0005;
 
+/// makePlanner's range for planners that do not optimize (RRTConnect, RRT, ...), as a fraction of
+/// the state space's maximum extent: 0.98 rad on the Panda's arm, 1.04 rad on the bundled arm,
+/// 2.3 rad on a UR5 with joints of +-2 pi (OMPL's own default is 0.2 of the extent). Shorter
+/// motions fail less often and cost less to certify; measured on the Panda in MotionBenchMaker's
+/// scenes with certified motions (bench/README.md, "MotionBenchMaker benchmark").
+constexpr double kDefaultRangeFraction = 0.075;
+
 /// Distance queries that only need to know whether sd exceeds a threshold t ask for distances up
 /// to max(t, 0) + this (metres): a cap strictly above both t and 0, so that pairs whose bounding
 /// volumes touch are always measured. Far below any geometric feature.

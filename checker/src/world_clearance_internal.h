@@ -1,0 +1,111 @@
+#pragma once
+// Internal to deepcheck::checker: the clearance tests shared by World::isFree, World::isClear
+// (world_is_free.cpp) and World::certifyMotion (world_motion.cpp). A pair is "within" its margin
+// when its bounding volumes, grown by the margin, meet and the narrow phase finds the robot piece
+// grown by the margin overlapping the other piece: its distance is at most the margin (margin 0:
+// they overlap).
+
+#include "self_pair_grid.h"
+#include "world_queries_internal.h"
+
+#include "deepcheck/robots/format_number.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace deepcheck::checker::detail {
+
+/// How far each geometry of the robot may move over a sub-motion of a straight motion q + s dq,
+/// |s| <= h, around the posed configuration, per unit of h (metres): World::certifyMotion's
+/// bound from the pose (world_motion.cpp), tighter than the configuration-free one.
+struct PosedMotion {
+  const Eigen::VectorXd* dq = nullptr;
+  const std::vector<double>* speed = nullptr;  ///< per LinkGeometry
+};
+
+/// The clearance each pair must keep in this query (metres): 0 everywhere for isFree, the
+/// ClearanceDemand at a scale (isClear: the demand's own; a motion: the half length of a
+/// sub-motion, where the posed bound may lower it). Indexed by link geometry (RobotData::links).
+class Margins {
+ public:
+  Margins() = default;
+  /// With a posed motion, the pairs are checked for the sub-motion q + s dq, |s| <= scale,
+  /// around the configuration: each margin is the smaller of the demand's and the posed bound's,
+  /// and a self pair's grid may certify its pair (gridCertifies).
+  Margins(const ClearanceDemand& d, const RobotData& robot, double scale, PosedMotion posed = {})
+      : d_(&d), links_(&robot.links), scale_(scale), posed_(posed) {
+    const int numLinks = robot.model.numLinks();
+    if (d.link.size() != numLinks || d.self.rows() != numLinks || d.self.cols() != numLinks) {
+      throw std::invalid_argument("isClear: the demand has " + std::to_string(d.link.size()) + " link entries and a " +
+                                  std::to_string(d.self.rows()) + " x " + std::to_string(d.self.cols()) +
+                                  " self matrix; the robot has " + std::to_string(numLinks) + " links");
+    }
+    checked(d.base);
+    checked(scale);
+  }
+  /// Robot link geometry g against a world body.
+  double world(int g) const {
+    if (d_ == nullptr) return 0.0;
+    double move = scale_ * d_->link[(*links_)[g].link];
+    if (posed_.speed != nullptr) move = std::min(move, scale_ * (*posed_.speed)[g]);
+    return checked(d_->base + move);
+  }
+  /// Robot link geometries a and b.
+  double self(int a, int b) const {
+    if (d_ == nullptr) return 0.0;
+    double move = scale_ * d_->self((*links_)[a].link, (*links_)[b].link);
+    if (posed_.speed != nullptr) move = std::min(move, scale_ * ((*posed_.speed)[a] + (*posed_.speed)[b]));
+    return checked(d_->base + move);
+  }
+  double scale() const { return scale_; }
+  /// The clearance at scale 0 (0 for isFree).
+  double base() const { return d_ == nullptr ? 0.0 : d_->base; }
+  /// From now on, the base clearance only (scale 0).
+  void dropToBase() { scale_ = 0.0; }
+  /// True when `grid` certifies its pair apart over the whole sub-motion around q (margin 0:
+  /// at q), which is all a motion asks of a pair when the base clearance is 0.
+  bool gridCertifies(const SelfPairGrid& grid, const Eigen::VectorXd& q, double margin) const {
+    if (margin == 0.0) return grid.certifiedFree(q);
+    return posed_.dq != nullptr && d_->base == 0.0 && grid.certifiedFreeAlong(q, *posed_.dq, scale_);
+  }
+
+ private:
+  static double checked(double m) {
+    if (!(m >= 0.0 && m < std::numeric_limits<double>::infinity())) {
+      throw std::invalid_argument("isClear: a demanded clearance is " + robots::formatNumber(m) +
+                                  " (must be finite and >= 0)");
+    }
+    return m;
+  }
+  const ClearanceDemand* d_ = nullptr;
+  const std::vector<LinkGeometry>* links_ = nullptr;
+  double scale_ = 0.0;
+  PosedMotion posed_;
+};
+
+/// `shape` grown by `margin`: the pair overlaps grown exactly when it is within margin.
+inline deep::ConvexShape grown(deep::ConvexShape shape, double margin) {
+  shape.radius += margin;
+  return shape;
+}
+
+/// What classify found.
+enum class Clearance {
+  Clear,     ///< every pair is farther apart than its margin
+  Near,      ///< some pair is within its margin, none within the base clearance
+  Collides,  ///< some pair is within the base clearance (margin 0: overlaps)
+};
+
+/// clearOfAll and, when it fails, the same test at the base clearance, in one traversal: the
+/// pairs after the first one within its margin are tested at the base only (`margins` is dropped
+/// to its base then).
+Clearance classify(Impl& c, const Snapshot& s, Margins& margins);
+
+/// isFree (no margins) or isClear at the context's configuration (`s` from prepare): false at the
+/// first pair within its margin (remembered in c.lastHit and tried first next time).
+bool clearOfAll(Impl& c, const Snapshot& s, const Margins& margins);
+
+}  // namespace deepcheck::checker::detail

@@ -1,0 +1,96 @@
+#pragma once
+// The default motion validator: a motion is accepted only when every configuration on it is
+// proven valid, continuously, not sampled (adaptive dynamic collision checking: Schwarzer, Saha,
+// Latombe, IEEE T-RO 21(3), 2005).
+//
+// For the straight motion q(t) = q1 + t dq, t in [0, 1] (angular variables the short way round:
+// StateMapping::displacement), link i moves by at most D_i(dq) over the whole motion and a self
+// pair (a, b) relatively by at most B_ab(dq) (motion_bound.h), so over a sub-motion of half
+// length h around q(tm) by h D_i and h B_ab. World::certifyMotion (checker/world.h) takes these
+// bounds and proves the motion pair by pair: a pair farther apart at q(tm) than threshold + h
+// times its bound is clear over the sub-motion (one isClear test of that pair: isFree with the
+// piece grown, no distance computed), otherwise its sub-motion is halved. Pairs that stay apart
+// over the whole motion never reach a narrow phase; near pairs are refined only where they are
+// near. Sub-motions are visited level by level (all halves, then all quarters, ...), so the
+// configurations tested are spread along the motion first and a collision is met early.
+// checkMotion(s1, s2): s2 must be valid (OMPL's contract, and the cheapest rejection), then the
+// motion must be Certified. A motion neither certified nor found colliding down to
+// checker::tol::kCertifiedResolution (it passes within about 10 micrometres of the threshold
+// without reaching it) is refused and counted (stats().unproven): a motion is accepted only when
+// proven.
+// The resolution is the robot's geometry moving (metres), not a fraction of the state space's
+// extent: continuous joints and wide joint ranges are no special case, and far from obstacles a
+// long motion is certified by a few tests.
+//
+// The lastValid overload, for a motion it rejects, finds the longest certified prefix by
+// bisection on its length (to the same resolution) and reports its end (OMPL's convention:
+// lastValid.second is its fraction of the motion; that configuration is proven valid).
+//
+// The bound is made from the world's pieces (LinkSpeedBound::forWorld) and made again when the
+// world changes in a way that moves them (an object attached or detached: World::version and
+// World::linkExtents), so attached objects are always covered.
+//
+// The validity threshold of the checker must be >= 0 (a safety margin, no penetration
+// tolerance): a penetration tolerance cannot be a clearance demand; makeSimpleSetup then uses
+// ClearanceMotionValidator (motion_validator.h). Thread safe.
+
+#include "deepcheck/planners/motion_bound.h"
+#include "deepcheck/planners/validity_checker.h"
+
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/SpaceInformation.h>
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace deepcheck::planners {
+
+struct CertifiedMotionStats {
+  std::uint64_t motions = 0;         ///< checkMotion calls
+  std::uint64_t configurations = 0;  ///< configurations the certifications tested
+  std::uint64_t unproven = 0;        ///< certifications that ended neither certified nor colliding
+};
+
+class CertifiedMotionValidator;
+/// Shared pointer, as OMPL names its own (ompl::base::MotionValidatorPtr).
+using CertifiedMotionValidatorPtr = std::shared_ptr<CertifiedMotionValidator>;
+
+class CertifiedMotionValidator : public ompl::base::MotionValidator {
+ public:
+  /// Throws std::invalid_argument for a null space information or checker, or a checker whose
+  /// validity threshold is negative (naming the penetration tolerance).
+  CertifiedMotionValidator(ompl::base::SpaceInformation* si, std::shared_ptr<const StateValidityChecker> checker);
+  CertifiedMotionValidator(const ompl::base::SpaceInformationPtr& si,
+                           std::shared_ptr<const StateValidityChecker> checker);
+
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
+                   std::pair<ompl::base::State*, double>& lastValid) const override;
+
+  CertifiedMotionStats stats() const;
+  void resetStats();
+
+  /// The bound in use (made again when the world's pieces change).
+  std::shared_ptr<const LinkSpeedBound> bound() const;
+
+ private:
+  struct Motion;
+  /// Reads the states, the displacement and the bounds of one motion.
+  void prepare(const ompl::base::State* s1, const ompl::base::State* s2, Motion& m) const;
+  /// Certifies the first `fraction` of the motion, counting.
+  checker::MotionCertificate certify(const Motion& m, double fraction) const;
+  checker::MotionCertificate prefix(const Motion& m, double fraction) const;
+
+  std::shared_ptr<const StateValidityChecker> checker_;
+  mutable std::mutex boundMutex_;
+  mutable std::shared_ptr<const LinkSpeedBound> bound_;
+  mutable std::uint64_t boundVersion_ = 0;
+  mutable std::atomic<std::uint64_t> motions_{0};
+  mutable std::atomic<std::uint64_t> configurations_{0};
+  mutable std::atomic<std::uint64_t> unproven_{0};
+};
+
+}  // namespace deepcheck::planners
