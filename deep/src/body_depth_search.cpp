@@ -28,9 +28,35 @@ struct Line {
   Eigen::Vector3d d;
 };
 
-/// The lines bounding the face's candidate regions: its edge lines, and the traces of the other
-/// differences' planes that cross the face polygon.
-std::vector<Line> faceLines(const std::vector<Difference>& diffs, int k, int f, double tol) {
+/// How the face polygon `poly` meets difference d: Disjoint (some plane of d has the whole polygon
+/// outside it), Covered (every vertex strictly inside d: the whole face is inside d's interior) or
+/// Crossing.
+enum class Meets { Disjoint, Covered, Crossing };
+
+Meets meets(const Difference& d, const std::vector<Eigen::Vector3d>& poly, double tol) {
+  bool covered = true;
+  for (std::size_t g = 0; g < d.normals.size(); ++g) {
+    double lo = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& v : poly) lo = std::min(lo, d.normals[g].dot(v) - d.offsets[g]);
+    if (lo >= -tol) return Meets::Disjoint;  // interiors cannot meet across this plane
+    double hi = -std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& v : poly) hi = std::max(hi, d.normals[g].dot(v) - d.offsets[g]);
+    covered = covered && hi < -tol;
+  }
+  return covered ? Meets::Covered : Meets::Crossing;
+}
+
+/// Number of edges of a face polygon longer than tol (the edge lines faceLines puts first).
+std::size_t edgeCount(const std::vector<Eigen::Vector3d>& poly, double tol) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < poly.size(); ++i) n += (poly[(i + 1) % poly.size()] - poly[i]).norm() > tol ? 1 : 0;
+  return n;
+}
+
+/// The lines bounding the face's candidate regions: its edge lines, and the traces of the planes
+/// of the differences in `crossing` that cross the face polygon.
+std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vector<int>& crossing,
+                            int k, int f, double tol) {
   const Difference& own = diffs[static_cast<std::size_t>(k)];
   const std::vector<Eigen::Vector3d>& poly = own.faces[static_cast<std::size_t>(f)];
   const Eigen::Vector3d& n = own.normals[static_cast<std::size_t>(f)];
@@ -40,9 +66,9 @@ std::vector<Line> faceLines(const std::vector<Difference>& diffs, int k, int f, 
     const Eigen::Vector3d e = poly[(i + 1) % poly.size()] - poly[i];
     if (e.norm() > tol) lines.push_back({poly[i], e.normalized()});
   }
-  for (std::size_t l = 0; l < diffs.size(); ++l) {
-    if (static_cast<int>(l) == k) continue;
-    const Difference& other = diffs[l];
+  // (edgeCount(poly, tol) lines so far: the polygon's edges, which faceCandidates tests against.)
+  for (const int l : crossing) {
+    const Difference& other = diffs[static_cast<std::size_t>(l)];
     for (std::size_t g = 0; g < other.normals.size(); ++g) {
       const Eigen::Vector3d& m = other.normals[g];
       const double e = other.offsets[g];
@@ -68,16 +94,29 @@ std::vector<Line> faceLines(const std::vector<Difference>& diffs, int k, int f, 
   return lines;
 }
 
-/// Candidates of a face, nearer than `bound`: p0, the feet of p0 on the lines, the lines'
-/// pairwise intersections. Returned as (squared norm, point).
+/// True when x (in the face plane, normal n) is inside the face polygon whose edges are the first
+/// `edges` lines (counter-clockwise about n: the inside is on the left of each).
+bool inPolygon(const Eigen::Vector3d& x, const std::vector<Line>& lines, std::size_t edges,
+               const Eigen::Vector3d& n, double tol) {
+  for (std::size_t i = 0; i < edges; ++i) {
+    if (n.cross(lines[i].d).dot(x - lines[i].q) < -tol) return false;
+  }
+  return true;
+}
+
+/// Candidates of a face inside its polygon and nearer than `bound`: p0, the feet of p0 on the
+/// lines, the lines' pairwise intersections; sorted by distance, as (squared norm, point). The
+/// first `edges` lines are the polygon's edges.
 std::vector<std::pair<double, Eigen::Vector3d>> faceCandidates(const Eigen::Vector3d& p0,
                                                                const std::vector<Line>& lines,
-                                                               double bound) {
+                                                               std::size_t edges,
+                                                               const Eigen::Vector3d& n,
+                                                               double bound, double tol) {
   std::vector<std::pair<double, Eigen::Vector3d>> out;
   const double bound2 = bound * bound;
   auto add = [&](const Eigen::Vector3d& x) {
     const double r2 = x.squaredNorm();
-    if (r2 < bound2) out.emplace_back(r2, x);
+    if (r2 < bound2 && inPolygon(x, lines, edges, n, tol)) out.emplace_back(r2, x);
   };
   add(p0);
   for (const Line& L : lines) add(L.q + L.d.dot(p0 - L.q) * L.d);
@@ -95,6 +134,34 @@ std::vector<std::pair<double, Eigen::Vector3d>> faceCandidates(const Eigen::Vect
   return out;
 }
 
+/// Distance from the origin to the face polygon `poly` (plane n.x = h): |h| when the origin's
+/// projection is inside it, else the distance to the nearest edge segment.
+double polygonDistance(const std::vector<Eigen::Vector3d>& poly, const Eigen::Vector3d& n, double h,
+                       double tol) {
+  const Eigen::Vector3d p0 = h * n;
+  double nearest = std::numeric_limits<double>::infinity();
+  bool inside = true;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Eigen::Vector3d& a = poly[i];
+    const Eigen::Vector3d e = poly[(i + 1) % poly.size()] - a;
+    const double len2 = e.squaredNorm();
+    if (len2 <= tol * tol) continue;
+    inside = inside && n.cross(e).dot(p0 - a) >= -tol * std::sqrt(len2);
+    const double s = std::clamp(e.dot(-a) / len2, 0.0, 1.0);
+    nearest = std::min(nearest, (a + s * e).norm());
+  }
+  return inside ? std::abs(h) : nearest;
+}
+
+/// True when x is strictly inside one of the differences listed.
+bool insideAny(const std::vector<Difference>& diffs, const std::vector<int>& which,
+               const Eigen::Vector3d& x, double tol) {
+  for (const int l : which) {
+    if (planeExcess(diffs[static_cast<std::size_t>(l)], x) < -tol) return true;
+  }
+  return false;
+}
+
 /// True when x lies on difference k's face (inside all of k's planes within tol).
 bool onDifference(const Difference& d, const Eigen::Vector3d& x, double tol) {
   return planeExcess(d, x) <= tol;
@@ -107,10 +174,13 @@ SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
   SearchResult r;
   r.point = start;
   double best = start.norm();
-  // Min-heap of (plane distance, difference, face).
+  // Min-heap of (bound, (difference, face)); a face enters with its plane's distance and, when
+  // first popped, is put back with the polygon's distance (never smaller) before it is searched.
   using Entry = std::pair<double, std::pair<int, int>>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  std::vector<std::vector<char>> refined(diffs.size());
   for (std::size_t k = 0; k < diffs.size(); ++k) {
+    refined[k].assign(diffs[k].normals.size(), 0);
     for (std::size_t f = 0; f < diffs[k].normals.size(); ++f) {
       const double dist = std::abs(diffs[k].offsets[f]);
       if (dist < best) queue.push({dist, {static_cast<int>(k), static_cast<int>(f)}});
@@ -123,12 +193,31 @@ SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
     }
     const auto [k, f] = queue.top().second;
     queue.pop();
-    ++r.facesSearched;
     const Difference& d = diffs[static_cast<std::size_t>(k)];
-    const Eigen::Vector3d p0 = d.offsets[static_cast<std::size_t>(f)] * d.normals[static_cast<std::size_t>(f)];
-    const std::vector<Line> lines = faceLines(diffs, k, f, tol);
-    for (const auto& [r2, x] : faceCandidates(p0, lines, best)) {
-      if (!onDifference(d, x, tol) || insideAnother(diffs, k, x, tol)) continue;
+    const std::vector<Eigen::Vector3d>& poly = d.faces[static_cast<std::size_t>(f)];
+    const Eigen::Vector3d& n = d.normals[static_cast<std::size_t>(f)];
+    char& seen = refined[static_cast<std::size_t>(k)][static_cast<std::size_t>(f)];
+    if (!seen) {
+      seen = 1;
+      const double dist = polygonDistance(poly, n, d.offsets[static_cast<std::size_t>(f)], tol);
+      if (dist < best) queue.push({dist, {k, f}});
+      continue;
+    }
+    ++r.facesSearched;
+    // Only the differences whose interiors reach the face bound or cover parts of it.
+    std::vector<int> crossing;
+    bool covered = false;
+    for (int l = 0; l < static_cast<int>(diffs.size()) && !covered; ++l) {
+      if (l == k) continue;
+      const Meets m = meets(diffs[static_cast<std::size_t>(l)], poly, tol);
+      covered = m == Meets::Covered;
+      if (m == Meets::Crossing) crossing.push_back(l);
+    }
+    if (covered) continue;
+    const Eigen::Vector3d p0 = d.offsets[static_cast<std::size_t>(f)] * n;
+    const std::vector<Line> lines = faceLines(diffs, crossing, k, f, tol);
+    for (const auto& [r2, x] : faceCandidates(p0, lines, edgeCount(poly, tol), n, best, tol)) {
+      if (!onDifference(d, x, tol) || insideAny(diffs, crossing, x, tol)) continue;
       best = std::sqrt(r2);
       r.point = x;
       r.difference = k;
