@@ -80,6 +80,16 @@ std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vec
         hi = std::max(hi, s);
       }
       if (lo > tol || hi < -tol) continue;  // the plane misses the face: no boundary on it
+      // M_l's section by the face plane is bounded only by the traces of the facets that cross
+      // that plane.
+      double below = std::numeric_limits<double>::infinity();
+      double above = -below;
+      for (const Eigen::Vector3d& v : other.faces[g]) {
+        const double s = n.dot(v) - h;
+        below = std::min(below, s);
+        above = std::max(above, s);
+      }
+      if (below > tol || above < -tol) continue;
       const Eigen::Vector3d d = n.cross(m);
       const double sine = d.norm();
       if (sine < tol::kBodyParallelSine) continue;  // parallel to the face: no trace

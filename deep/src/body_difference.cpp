@@ -22,7 +22,9 @@ bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out) 
   }
   QhullHull hull;
   try {
-    hull = qhullHull(points, QhullOptions{}, "Minkowski difference");
+    QhullOptions options;
+    options.searchAllPoints = false;
+    hull = qhullHull(points, options, "Minkowski difference");
   } catch (const QhullError&) {
     return false;  // flat or degenerate: no interior, the pair never overlaps
   }
