@@ -22,13 +22,13 @@ struct Difference {
   int pieceB = 0;
   std::vector<Eigen::Vector3d> normals;  ///< unit, outward
   std::vector<double> offsets;           ///< support values of M in the normals
-  /// Face f's vertices, projected onto its plane, in the order Qhull gives them (a loop).
+  /// Face f's vertices, on its plane, counter-clockwise about its normal.
   std::vector<std::vector<Eigen::Vector3d>> faces;
 };
 
-/// Builds the difference of A and B (the hull of all vertex differences; offsets refitted as the
-/// largest normal.x over those differences, so every difference point is inside every plane).
-/// Returns false when the difference is flat (no interior: the pair never overlaps).
+/// Builds the difference of A and B from the pieces' faces and edges (body_difference.cpp);
+/// offsets are exact support values. Returns false when the difference is flat (no interior: the
+/// pair never overlaps).
 bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out);
 
 /// max over faces of normal.x - offset: below -tol the point is strictly inside M, above tol
@@ -52,9 +52,5 @@ struct SearchResult {
 /// starting from a known point of that complement (`start`). `tol` is the membership tolerance.
 SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
                                    const Eigen::Vector3d& start, int maxFaces, double tol);
-
-/// True when x is strictly inside some difference other than `skip` (tolerance tol).
-bool insideAnother(const std::vector<Difference>& diffs, int skip, const Eigen::Vector3d& x,
-                   double tol);
 
 }  // namespace deepcheck::deep::body

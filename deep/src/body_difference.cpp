@@ -1,53 +1,160 @@
 // Minkowski differences of piece pairs as explicit polytopes, for the body depth (body_depth.h).
+//
+// M = B - A = B + (-A). Its facet normals are among: the face normals of B, the negated face
+// normals of A, and the cross products (either sign) of an edge direction of A with one of B.
+// For each candidate unit normal u the support value is h(u) = max u.b - min u.a over the
+// vertices, and the face of M in u is the set of differences b - a of the vertices that reach it
+// (b within eps of B's support plane, a within eps of A's): u names a facet when that set spans a
+// polygon. Offsets are exact support values, so every point of M is inside every plane and the
+// planes of all facets describe M exactly. No hull is built: the work is a few dot products per
+// vertex and candidate, which for the small pieces of a convex decomposition is far cheaper than
+// a general hull of all nA * nB differences.
 
 #include "body_depth_internal.h"
 
-#include "deepcheck/deep/qhull_hull.h"
+#include "deepcheck/deep/tolerances.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace deepcheck::deep::body {
+namespace {
+
+/// The vertices of a piece in P.
+std::vector<Eigen::Vector3d> posedVertices(const PosedPiece& p) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(static_cast<std::size_t>(p.core->numVertices()));
+  for (const Eigen::Vector3d& v : p.core->vertices()) out.push_back(p.X_PP * v);
+  return out;
+}
+
+/// Unit edge directions of a piece in P, parallel ones (either sense) kept once.
+std::vector<Eigen::Vector3d> edgeDirections(const PosedPiece& p, const std::vector<Eigen::Vector3d>& verts) {
+  std::vector<Eigen::Vector3d> dirs;
+  for (int v = 0; v < p.core->numVertices(); ++v) {
+    for (const int w : p.core->neighbors(v)) {
+      if (w <= v) continue;
+      const Eigen::Vector3d e = (verts[static_cast<std::size_t>(w)] - verts[static_cast<std::size_t>(v)]).normalized();
+      const bool known = std::any_of(dirs.begin(), dirs.end(), [&](const Eigen::Vector3d& d) {
+        return d.cross(e).norm() < tol::kBodyParallelSine;
+      });
+      if (!known) dirs.push_back(e);
+    }
+  }
+  return dirs;
+}
+
+/// Points of `pts` within eps of the largest u.x, and that largest value.
+double supportSet(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u, double eps,
+                  std::vector<Eigen::Vector3d>& set) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : pts) best = std::max(best, u.dot(p));
+  set.clear();
+  for (const Eigen::Vector3d& p : pts) {
+    if (u.dot(p) >= best - eps) set.push_back(p);
+  }
+  return best;
+}
+
+double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+/// The convex hull of points of the plane u.x = h, counter-clockwise about u (monotone chain in
+/// a basis of the plane), points projected onto the plane. Fewer than three corners, or a hull
+/// thinner than eps: empty (the set is not a polygon).
+std::vector<Eigen::Vector3d> planeHull(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u,
+                                       double h, double eps) {
+  const Eigen::Vector3d e1 = u.unitOrthogonal();
+  const Eigen::Vector3d e2 = u.cross(e1);
+  std::vector<Eigen::Vector2d> q;
+  q.reserve(pts.size());
+  for (const Eigen::Vector3d& p : pts) q.emplace_back(e1.dot(p), e2.dot(p));
+  std::sort(q.begin(), q.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  std::vector<Eigen::Vector2d> hull(2 * q.size() + 1);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], q[i]) <= 0) --k;
+    hull[k++] = q[i];
+  }
+  for (std::size_t i = q.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross2(hull[k - 2], hull[k - 1], q[i]) <= 0) --k;
+    hull[k++] = q[i];
+  }
+  hull.resize(k > 0 ? k - 1 : 0);
+  if (hull.size() < 3) return {};
+  // Thickness: twice the area over the longest chord-like extent.
+  double area2 = 0.0;
+  double extent = 0.0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    area2 += cross2(hull[0], hull[i], hull[(i + 1) % hull.size()]);
+    extent = std::max(extent, (hull[i] - hull[0]).norm());
+  }
+  if (area2 <= eps * extent) return {};
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(hull.size());
+  for (const Eigen::Vector2d& p : hull) out.push_back(p.x() * e1 + p.y() * e2 + h * u);
+  return out;
+}
+
+}  // namespace
 
 bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out) {
-  std::vector<Eigen::Vector3d> pointsA;
-  std::vector<Eigen::Vector3d> points;
-  pointsA.reserve(static_cast<std::size_t>(A.core->numVertices()));
-  for (const Eigen::Vector3d& v : A.core->vertices()) pointsA.push_back(A.X_PP * v);
-  points.reserve(pointsA.size() * static_cast<std::size_t>(B.core->numVertices()));
-  for (const Eigen::Vector3d& v : B.core->vertices()) {
-    const Eigen::Vector3d b = B.X_PP * v;
-    for (const Eigen::Vector3d& a : pointsA) points.push_back(b - a);
+  const std::vector<Eigen::Vector3d> va = posedVertices(A);
+  const std::vector<Eigen::Vector3d> vb = posedVertices(B);
+  std::vector<Eigen::Vector3d> negA;
+  negA.reserve(va.size());
+  for (const Eigen::Vector3d& a : va) negA.push_back(-a);
+  // A vertex within the pieces' own hull tolerance of a face plane belongs to that face.
+  const double scale = std::max(A.core->lengthScale(), B.core->lengthScale());
+  const double eps = std::max(A.core->hullTolerance(), B.core->hullTolerance()) +
+                     tol::kBodyMemberRelative * scale;
+
+  std::vector<Eigen::Vector3d> candidates;
+  for (int f = 0; f < B.core->numFaces(); ++f) candidates.push_back(B.X_PP.linear() * B.core->faceNormal(f));
+  for (int f = 0; f < A.core->numFaces(); ++f) candidates.push_back(-(A.X_PP.linear() * A.core->faceNormal(f)));
+  for (const Eigen::Vector3d& da : edgeDirections(A, va)) {
+    for (const Eigen::Vector3d& db : edgeDirections(B, vb)) {
+      const Eigen::Vector3d c = da.cross(db);
+      if (c.norm() < tol::kBodyParallelSine) continue;
+      candidates.push_back(c.normalized());
+      candidates.push_back(-c.normalized());
+    }
   }
-  QhullHull hull;
-  try {
-    QhullOptions options;
-    options.searchAllPoints = false;
-    hull = qhullHull(points, options, "Minkowski difference");
-  } catch (const QhullError&) {
-    return false;  // flat or degenerate: no interior, the pair never overlaps
-  }
+
   out.normals.clear();
   out.offsets.clear();
   out.faces.clear();
-  for (std::size_t f = 0; f < hull.loops.size(); ++f) {
-    const Eigen::Vector3d n = hull.normals[f].normalized();
-    // The exact support value of M in n: every difference point is inside the plane, so
-    // membership below is decided against M itself, not against Qhull's rounded facet.
-    double h = -std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& p : points) h = std::max(h, n.dot(p));
-    std::vector<Eigen::Vector3d> loop;
-    loop.reserve(hull.loops[f].size());
-    for (const int i : hull.loops[f]) {
-      const Eigen::Vector3d& p = points[static_cast<std::size_t>(i)];
-      loop.push_back(p - (n.dot(p) - h) * n);
+  std::vector<Eigen::Vector3d> sb, sa, diffs;
+  for (const Eigen::Vector3d& u : candidates) {
+    const bool known = std::any_of(out.normals.begin(), out.normals.end(), [&](const Eigen::Vector3d& n) {
+      return (n - u).norm() < tol::kBodyParallelSine;
+    });
+    if (known) continue;
+    const double h = supportSet(vb, u, eps, sb) + supportSet(negA, u, eps, sa);
+    diffs.clear();
+    for (const Eigen::Vector3d& b : sb) {
+      for (const Eigen::Vector3d& a : sa) diffs.push_back(b + a);  // sa holds -a
     }
-    out.normals.push_back(n);
+    std::vector<Eigen::Vector3d> face = planeHull(diffs, u, h, eps);
+    if (face.empty()) continue;
+    out.normals.push_back(u);
     out.offsets.push_back(h);
-    out.faces.push_back(std::move(loop));
+    out.faces.push_back(std::move(face));
   }
-  return true;
+  // A flat difference (coplanar polygons): two opposite facets at one offset; no interior.
+  for (std::size_t f = 0; f < out.normals.size(); ++f) {
+    for (std::size_t g = f + 1; g < out.normals.size(); ++g) {
+      if ((out.normals[f] + out.normals[g]).norm() < tol::kBodyParallelSine &&
+          out.offsets[f] + out.offsets[g] <= eps) {
+        return false;
+      }
+    }
+  }
+  return out.normals.size() >= 4;
 }
 
 double planeExcess(const Difference& d, const Eigen::Vector3d& x) {
@@ -63,18 +170,6 @@ double rayExit(const Difference& d, const Eigen::Vector3d& u) {
     if (rate > 0) exit = std::min(exit, d.offsets[f] / rate);
   }
   return exit;
-}
-
-bool insideAnother(const std::vector<Difference>& diffs, int skip, const Eigen::Vector3d& x,
-                   double tol) {
-  for (std::size_t k = 0; k < diffs.size(); ++k) {
-    if (static_cast<int>(k) == skip) continue;
-    const Difference& d = diffs[k];
-    bool inside = true;
-    for (std::size_t f = 0; f < d.normals.size() && inside; ++f) inside = d.normals[f].dot(x) - d.offsets[f] < -tol;
-    if (inside) return true;
-  }
-  return false;
 }
 
 }  // namespace deepcheck::deep::body
