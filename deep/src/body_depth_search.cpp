@@ -114,9 +114,32 @@ bool inPolygon(const Eigen::Vector3d& x, const std::vector<Line>& lines, std::si
   return true;
 }
 
+/// The parameter interval [lo, hi] of line L inside the face polygon (edges: the first `edges`
+/// lines), widened by tol; empty (lo > hi) when the line misses it.
+std::pair<double, double> polygonInterval(const Line& L, const std::vector<Line>& lines, std::size_t edges,
+                                          const Eigen::Vector3d& n, double tol) {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < edges && lo <= hi; ++i) {
+    const Eigen::Vector3d w = n.cross(lines[i].d);  // inward, in the plane
+    const double rate = w.dot(L.d);
+    const double at = w.dot(L.q - lines[i].q) + tol;  // >= 0 where the line is inside this edge
+    if (std::abs(rate) < tol::kBodyParallelSine) {
+      if (at < 0) hi = -lo - 1.0;  // parallel and outside: empty
+      continue;
+    }
+    const double s = -at / rate;
+    if (rate > 0) lo = std::max(lo, s);
+    else hi = std::min(hi, s);
+  }
+  return {lo, hi};
+}
+
 /// Candidates of a face inside its polygon and nearer than `bound`: p0, the feet of p0 on the
 /// lines, the lines' pairwise intersections; sorted by distance, as (squared norm, point). The
-/// first `edges` lines are the polygon's edges.
+/// first `edges` lines are the polygon's edges. Lines no nearer than the bound, or missing the
+/// polygon, hold no candidate (a line's points are no nearer than its foot) and are dropped
+/// before the pairs are formed; a pair's intersection counts only inside both lines' intervals.
 std::vector<std::pair<double, Eigen::Vector3d>> faceCandidates(const Eigen::Vector3d& p0,
                                                                const std::vector<Line>& lines,
                                                                std::size_t edges,
@@ -129,14 +152,32 @@ std::vector<std::pair<double, Eigen::Vector3d>> faceCandidates(const Eigen::Vect
     if (r2 < bound2 && inPolygon(x, lines, edges, n, tol)) out.emplace_back(r2, x);
   };
   add(p0);
-  for (const Line& L : lines) add(L.q + L.d.dot(p0 - L.q) * L.d);
+  struct Near {
+    std::size_t line;
+    double lo, hi;
+  };
+  std::vector<Near> near;
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    for (std::size_t j = i + 1; j < lines.size(); ++j) {
-      const Eigen::Vector3d cr = lines[i].d.cross(lines[j].d);
+    const Line& L = lines[i];
+    const Eigen::Vector3d foot = L.q + L.d.dot(p0 - L.q) * L.d;
+    if (foot.squaredNorm() >= bound2) continue;
+    add(foot);
+    const auto [lo, hi] = polygonInterval(L, lines, edges, n, tol);
+    if (lo <= hi) near.push_back({i, lo, hi});
+  }
+  for (std::size_t a = 0; a < near.size(); ++a) {
+    const Line& Li = lines[near[a].line];
+    for (std::size_t b = a + 1; b < near.size(); ++b) {
+      const Line& Lj = lines[near[b].line];
+      const Eigen::Vector3d cr = Li.d.cross(Lj.d);
       const double c2 = cr.squaredNorm();
       if (c2 < tol::kBodyParallelSine * tol::kBodyParallelSine) continue;
-      const double s = (lines[j].q - lines[i].q).cross(lines[j].d).dot(cr) / c2;
-      add(lines[i].q + s * lines[i].d);
+      const double si = (Lj.q - Li.q).cross(Lj.d).dot(cr) / c2;
+      if (si < near[a].lo || si > near[a].hi) continue;
+      const Eigen::Vector3d x = Li.q + si * Li.d;
+      const double sj = Lj.d.dot(x - Lj.q);
+      if (sj < near[b].lo || sj > near[b].hi) continue;
+      add(x);
     }
   }
   std::sort(out.begin(), out.end(),
