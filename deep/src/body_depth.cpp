@@ -132,13 +132,15 @@ int ensureDifference(std::vector<PairInfo>& pairs, int k, int nB, const std::vec
 
 /// Marches from the origin along u, starting at distance t, across every difference whose
 /// interior holds the current point, to the first point held by none: a point of the complement.
+/// Gives up (returns infinity) once beyond `cap`.
 double marchOut(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
                 const std::vector<PosedPiece>& B, std::vector<Difference>& diffs,
-                const Eigen::Vector3d& u, double t, double tol) {
+                const Eigen::Vector3d& u, double t, double cap, double tol) {
   bool moved = true;
   while (moved) {
     moved = false;
     for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+      if (t >= cap) return std::numeric_limits<double>::infinity();
       if (pairs[static_cast<std::size_t>(k)].distanceLower >= t) continue;
       const int idx = ensureDifference(pairs, k, nB, A, B, diffs);
       if (idx < 0 || body::planeExcess(diffs[static_cast<std::size_t>(idx)], t * u) >= -tol) continue;
@@ -147,6 +149,32 @@ double marchOut(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPie
     }
   }
   return t;
+}
+
+/// The shortest march out (marchOut) along the separating directions of the overlapping pairs:
+/// a point of the complement, the search's start. Each pair's own push-out direction is tried
+/// because the body's answer is often one of them (a pair whose push is not blocked by others).
+Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
+                               const std::vector<PosedPiece>& B, std::vector<Difference>& diffs,
+                               int deepest, double tol) {
+  Eigen::Vector3d best = Eigen::Vector3d::Zero();
+  double bestLength = std::numeric_limits<double>::infinity();
+  const auto tryPair = [&](int k) {
+    const SignedDistanceResult& r = pairs[static_cast<std::size_t>(k)].result;
+    const Eigen::Vector3d x = r.distance * r.normal;
+    const double r0 = x.norm();
+    const Eigen::Vector3d u = r0 > tol ? Eigen::Vector3d(x / r0) : Eigen::Vector3d(-r.normal);
+    const double t = marchOut(pairs, nB, A, B, diffs, u, r0, bestLength, tol);
+    if (t < bestLength) {
+      bestLength = t;
+      best = t * u;
+    }
+  };
+  tryPair(deepest);
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    if (k != deepest && pairs[static_cast<std::size_t>(k)].result.distance < 0) tryPair(k);
+  }
+  return best;
 }
 
 /// True when the point x (in P) is strictly inside the difference of some pair other than
@@ -220,15 +248,14 @@ BodySignedDistanceResult bodySignedDistance(const Body& bodyA, const Eigen::Isom
 
   // 3. Upper bound by the ray march, then every pair that can reach inside it.
   std::vector<Difference> diffs;
-  const double r0 = x0.norm();
-  const Eigen::Vector3d u = r0 > tol ? Eigen::Vector3d(x0 / r0) : Eigen::Vector3d(-deepest.normal);
-  const double upper = marchOut(pairs, nB, A, B, diffs, u, r0, tol);
+  const Eigen::Vector3d start = marchFromPairs(pairs, nB, A, B, diffs, nearest, tol);
+  const double upper = start.norm();
   for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
     if (pairs[static_cast<std::size_t>(k)].distanceLower < upper) ensureDifference(pairs, k, nB, A, B, diffs);
   }
 
   // 4. The exact search.
-  const body::SearchResult s = body::searchNearestBoundary(diffs, upper * u, options.maxFaces, tol);
+  const body::SearchResult s = body::searchNearestBoundary(diffs, start, options.maxFaces, tol);
   const Eigen::Vector3d x = s.point;
   const double depth = x.norm();
   out.status = s.finished ? BodyDepthStatus::Certified : BodyDepthStatus::FaceLimit;

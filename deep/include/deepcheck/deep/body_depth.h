@@ -19,9 +19,11 @@
 // some pair overlaps:
 //   1. every pair gets its own signed distance (GJK or the certified depth); the largest pairwise
 //      depth is a lower bound (the complement of U lies outside each M_ij containing the origin);
-//   2. an upper bound: from the deepest pair's separating point x0 = sd * n, march outwards along
-//      the ray through x0 across every M_ij whose interior holds the current point (each step
-//      jumps to that M_ij's exit); the first point inside none is a point of the complement;
+//   2. an upper bound: if no other pair covers the deepest pair's separating point x0 = sd * n
+//      (a pairwise query with B moved by -x0), x0 is the answer. Otherwise, from each overlapping
+//      pair's separating point, march outwards along its ray across every M_ij whose interior
+//      holds the current point (each step jumps to that M_ij's exit); the first point inside
+//      none is a point of the complement, the nearest of these marches the upper bound;
 //   3. every pair whose distance from the origin (its own signed distance) is below that bound
 //      gets its difference M_ij built exactly as a polytope, including pairs that do not overlap
 //      (they can still cover boundary points of the others): its facet normals are found among
