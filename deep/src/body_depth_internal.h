@@ -24,6 +24,9 @@ struct Difference {
   std::vector<double> offsets;           ///< support values of M in the normals
   /// Face f's vertices, on its plane, counter-clockwise about its normal.
   std::vector<std::vector<Eigen::Vector3d>> faces;
+  /// Face f's vertex centroid and the largest distance of a vertex from it (quick rejections).
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<double> radii;
 };
 
 /// Builds the difference of A and B from the pieces' faces and edges (body_difference.cpp);

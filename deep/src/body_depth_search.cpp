@@ -28,19 +28,43 @@ struct Line {
   Eigen::Vector3d d;
 };
 
-/// How the face polygon `poly` meets difference d: Disjoint (some plane of d has the whole polygon
+/// The range of n.x - h over the points.
+std::pair<double, double> planeRange(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& n,
+                                     double h) {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (const Eigen::Vector3d& v : pts) {
+    const double s = n.dot(v) - h;
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+  return {lo, hi};
+}
+
+/// True when points within `radius` of `centre` can lie on both sides of the plane n.x = h
+/// (within tol), and then when the points themselves do.
+bool straddles(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& centre, double radius,
+               const Eigen::Vector3d& n, double h, double tol) {
+  const double at = n.dot(centre) - h;
+  if (at - radius > tol || at + radius < -tol) return false;
+  const auto [lo, hi] = planeRange(pts, n, h);
+  return lo <= tol && hi >= -tol;
+}
+
+/// How the face polygon `poly` (in the ball of `radius` about `centre`) meets difference d: Disjoint (some plane of d has the whole polygon
 /// outside it), Covered (every vertex strictly inside d: the whole face is inside d's interior) or
 /// Crossing.
 enum class Meets { Disjoint, Covered, Crossing };
 
-Meets meets(const Difference& d, const std::vector<Eigen::Vector3d>& poly, double tol) {
+Meets meets(const Difference& d, const std::vector<Eigen::Vector3d>& poly, const Eigen::Vector3d& centre,
+            double radius, double tol) {
   bool covered = true;
   for (std::size_t g = 0; g < d.normals.size(); ++g) {
-    double lo = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& v : poly) lo = std::min(lo, d.normals[g].dot(v) - d.offsets[g]);
+    const double at = d.normals[g].dot(centre) - d.offsets[g];
+    if (at - radius >= -tol) return Meets::Disjoint;  // the polygon's ball is outside the plane
+    if (at + radius < -tol) continue;                   // ... or strictly inside it
+    const auto [lo, hi] = planeRange(poly, d.normals[g], d.offsets[g]);
     if (lo >= -tol) return Meets::Disjoint;  // interiors cannot meet across this plane
-    double hi = -std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector3d& v : poly) hi = std::max(hi, d.normals[g].dot(v) - d.offsets[g]);
     covered = covered && hi < -tol;
   }
   return covered ? Meets::Covered : Meets::Crossing;
@@ -72,24 +96,12 @@ std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vec
     for (std::size_t g = 0; g < other.normals.size(); ++g) {
       const Eigen::Vector3d& m = other.normals[g];
       const double e = other.offsets[g];
-      double lo = std::numeric_limits<double>::infinity();
-      double hi = -lo;
-      for (const Eigen::Vector3d& v : poly) {
-        const double s = m.dot(v) - e;
-        lo = std::min(lo, s);
-        hi = std::max(hi, s);
+      // The plane must cross the face, and (M_l's section by the face plane being bounded only
+      // by the traces of the facets that cross that plane) its facet must cross the face plane.
+      if (!straddles(poly, own.centres[static_cast<std::size_t>(f)], own.radii[static_cast<std::size_t>(f)], m, e, tol) ||
+          !straddles(other.faces[g], other.centres[g], other.radii[g], n, h, tol)) {
+        continue;
       }
-      if (lo > tol || hi < -tol) continue;  // the plane misses the face: no boundary on it
-      // M_l's section by the face plane is bounded only by the traces of the facets that cross
-      // that plane.
-      double below = std::numeric_limits<double>::infinity();
-      double above = -below;
-      for (const Eigen::Vector3d& v : other.faces[g]) {
-        const double s = n.dot(v) - h;
-        below = std::min(below, s);
-        above = std::max(above, s);
-      }
-      if (below > tol || above < -tol) continue;
       const Eigen::Vector3d d = n.cross(m);
       const double sine = d.norm();
       if (sine < tol::kBodyParallelSine) continue;  // parallel to the face: no trace
@@ -260,7 +272,8 @@ SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
     bool covered = false;
     for (int l = 0; l < static_cast<int>(diffs.size()) && !covered; ++l) {
       if (l == k) continue;
-      const Meets m = meets(diffs[static_cast<std::size_t>(l)], poly, tol);
+      const Meets m = meets(diffs[static_cast<std::size_t>(l)], poly, d.centres[static_cast<std::size_t>(f)],
+                            d.radii[static_cast<std::size_t>(f)], tol);
       covered = m == Meets::Covered;
       if (m == Meets::Crossing) crossing.push_back(l);
     }

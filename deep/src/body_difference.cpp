@@ -128,6 +128,8 @@ bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out) 
   out.normals.clear();
   out.offsets.clear();
   out.faces.clear();
+  out.centres.clear();
+  out.radii.clear();
   std::vector<Eigen::Vector3d> sb, sa, diffs;
   for (const Eigen::Vector3d& u : candidates) {
     const bool known = std::any_of(out.normals.begin(), out.normals.end(), [&](const Eigen::Vector3d& n) {
@@ -141,9 +143,16 @@ bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out) 
     }
     std::vector<Eigen::Vector3d> face = planeHull(diffs, u, h, eps);
     if (face.empty()) continue;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : face) centre += p;
+    centre /= static_cast<double>(face.size());
+    double radius = 0.0;
+    for (const Eigen::Vector3d& p : face) radius = std::max(radius, (p - centre).norm());
     out.normals.push_back(u);
     out.offsets.push_back(h);
     out.faces.push_back(std::move(face));
+    out.centres.push_back(centre);
+    out.radii.push_back(radius);
   }
   // A flat difference (coplanar polygons): two opposite facets at one offset; no interior.
   for (std::size_t f = 0; f < out.normals.size(); ++f) {
