@@ -56,11 +56,10 @@ std::vector<PosedPiece> posePieces(const Body& b, const Eigen::Isometry3d& X_W,
   std::vector<PosedPiece> out;
   const Eigen::Vector3d offset = X_W.translation() - p_WP;
   for (const BodyPiece& p : b.pieces) {
-    PosedPiece q;
-    q.core = p.shape.core;
-    q.X_PP.linear() = X_W.linear() * p.X_BP.linear();
-    q.X_PP.translation() = X_W.linear() * p.X_BP.translation() + offset;
-    out.push_back(q);
+    Eigen::Isometry3d X_PP = Eigen::Isometry3d::Identity();
+    X_PP.linear() = X_W.linear() * p.X_BP.linear();
+    X_PP.translation() = X_W.linear() * p.X_BP.translation() + offset;
+    out.push_back(body::posePiece(*p.shape.core, X_PP));
   }
   return out;
 }

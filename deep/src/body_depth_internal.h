@@ -14,7 +14,15 @@ namespace deepcheck::deep::body {
 struct PosedPiece {
   const ConvexPolytope* core = nullptr;
   Eigen::Isometry3d X_PP = Eigen::Isometry3d::Identity();
+  /// In P, computed once per query by posePiece: the vertices, the face normals, and the unit
+  /// edge directions (parallel ones, either sense, kept once).
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<Eigen::Vector3d> faceNormals;
+  std::vector<Eigen::Vector3d> edgeDirections;
 };
+
+/// The piece `core` at X_PP in P, with its vertices, face normals and edge directions there.
+PosedPiece posePiece(const ConvexPolytope& core, const Eigen::Isometry3d& X_PP);
 
 /// M = B_j - A_i for one pair, in P, as face planes {x : normal.x <= offset} and face polygons.
 struct Difference {

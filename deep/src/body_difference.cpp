@@ -21,30 +21,6 @@
 namespace deepcheck::deep::body {
 namespace {
 
-/// The vertices of a piece in P.
-std::vector<Eigen::Vector3d> posedVertices(const PosedPiece& p) {
-  std::vector<Eigen::Vector3d> out;
-  out.reserve(static_cast<std::size_t>(p.core->numVertices()));
-  for (const Eigen::Vector3d& v : p.core->vertices()) out.push_back(p.X_PP * v);
-  return out;
-}
-
-/// Unit edge directions of a piece in P, parallel ones (either sense) kept once.
-std::vector<Eigen::Vector3d> edgeDirections(const PosedPiece& p, const std::vector<Eigen::Vector3d>& verts) {
-  std::vector<Eigen::Vector3d> dirs;
-  for (int v = 0; v < p.core->numVertices(); ++v) {
-    for (const int w : p.core->neighbors(v)) {
-      if (w <= v) continue;
-      const Eigen::Vector3d e = (verts[static_cast<std::size_t>(w)] - verts[static_cast<std::size_t>(v)]).normalized();
-      const bool known = std::any_of(dirs.begin(), dirs.end(), [&](const Eigen::Vector3d& d) {
-        return d.cross(e).norm() < tol::kBodyParallelSine;
-      });
-      if (!known) dirs.push_back(e);
-    }
-  }
-  return dirs;
-}
-
 /// Points of `pts` within eps of the largest u.x, and that largest value.
 double supportSet(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u, double eps,
                   std::vector<Eigen::Vector3d>& set) {
@@ -64,17 +40,25 @@ double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::V
 /// The convex hull of points of the plane u.x = h, counter-clockwise about u (monotone chain in
 /// a basis of the plane), points projected onto the plane. Fewer than three corners, or a hull
 /// thinner than eps: empty (the set is not a polygon).
+/// Scratch space of planeHull, reused across the candidates of one difference.
+struct HullScratch {
+  std::vector<Eigen::Vector2d> q;
+  std::vector<Eigen::Vector2d> hull;
+};
+
 std::vector<Eigen::Vector3d> planeHull(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u,
-                                       double h, double eps) {
+                                       double h, double eps, HullScratch& scratch) {
+  if (pts.size() < 3) return {};
   const Eigen::Vector3d e1 = u.unitOrthogonal();
   const Eigen::Vector3d e2 = u.cross(e1);
-  std::vector<Eigen::Vector2d> q;
-  q.reserve(pts.size());
+  std::vector<Eigen::Vector2d>& q = scratch.q;
+  q.clear();
   for (const Eigen::Vector3d& p : pts) q.emplace_back(e1.dot(p), e2.dot(p));
   std::sort(q.begin(), q.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
   });
-  std::vector<Eigen::Vector2d> hull(2 * q.size() + 1);
+  std::vector<Eigen::Vector2d>& hull = scratch.hull;
+  hull.resize(2 * q.size() + 1);
   std::size_t k = 0;
   for (std::size_t i = 0; i < q.size(); ++i) {
     while (k >= 2 && cross2(hull[k - 2], hull[k - 1], q[i]) <= 0) --k;
@@ -102,26 +86,45 @@ std::vector<Eigen::Vector3d> planeHull(const std::vector<Eigen::Vector3d>& pts, 
 
 }  // namespace
 
+PosedPiece posePiece(const ConvexPolytope& core, const Eigen::Isometry3d& X_PP) {
+  PosedPiece p;
+  p.core = &core;
+  p.X_PP = X_PP;
+  p.vertices.reserve(static_cast<std::size_t>(core.numVertices()));
+  for (const Eigen::Vector3d& v : core.vertices()) p.vertices.push_back(X_PP * v);
+  for (int f = 0; f < core.numFaces(); ++f) p.faceNormals.push_back(X_PP.linear() * core.faceNormal(f));
+  for (int v = 0; v < core.numVertices(); ++v) {
+    for (const int w : core.neighbors(v)) {
+      if (w <= v) continue;
+      const Eigen::Vector3d e =
+          (p.vertices[static_cast<std::size_t>(w)] - p.vertices[static_cast<std::size_t>(v)]).normalized();
+      const bool known = std::any_of(p.edgeDirections.begin(), p.edgeDirections.end(),
+                                     [&](const Eigen::Vector3d& d) { return d.cross(e).norm() < tol::kBodyParallelSine; });
+      if (!known) p.edgeDirections.push_back(e);
+    }
+  }
+  return p;
+}
+
 bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out) {
-  const std::vector<Eigen::Vector3d> va = posedVertices(A);
-  const std::vector<Eigen::Vector3d> vb = posedVertices(B);
+  const std::vector<Eigen::Vector3d>& vb = B.vertices;
   std::vector<Eigen::Vector3d> negA;
-  negA.reserve(va.size());
-  for (const Eigen::Vector3d& a : va) negA.push_back(-a);
+  negA.reserve(A.vertices.size());
+  for (const Eigen::Vector3d& a : A.vertices) negA.push_back(-a);
   // A vertex within the pieces' own hull tolerance of a face plane belongs to that face.
   const double scale = std::max(A.core->lengthScale(), B.core->lengthScale());
   const double eps = std::max(A.core->hullTolerance(), B.core->hullTolerance()) +
                      tol::kBodyMemberRelative * scale;
 
-  std::vector<Eigen::Vector3d> candidates;
-  for (int f = 0; f < B.core->numFaces(); ++f) candidates.push_back(B.X_PP.linear() * B.core->faceNormal(f));
-  for (int f = 0; f < A.core->numFaces(); ++f) candidates.push_back(-(A.X_PP.linear() * A.core->faceNormal(f)));
-  for (const Eigen::Vector3d& da : edgeDirections(A, va)) {
-    for (const Eigen::Vector3d& db : edgeDirections(B, vb)) {
+  std::vector<Eigen::Vector3d> candidates = B.faceNormals;
+  for (const Eigen::Vector3d& n : A.faceNormals) candidates.push_back(-n);
+  for (const Eigen::Vector3d& da : A.edgeDirections) {
+    for (const Eigen::Vector3d& db : B.edgeDirections) {
       const Eigen::Vector3d c = da.cross(db);
-      if (c.norm() < tol::kBodyParallelSine) continue;
-      candidates.push_back(c.normalized());
-      candidates.push_back(-c.normalized());
+      const double length = c.norm();
+      if (length < tol::kBodyParallelSine) continue;
+      candidates.push_back(c / length);
+      candidates.push_back(-c / length);
     }
   }
 
@@ -131,17 +134,19 @@ bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out) 
   out.centres.clear();
   out.radii.clear();
   std::vector<Eigen::Vector3d> sb, sa, diffs;
+  HullScratch scratch;
+  // |n - u| < s for unit vectors is n.u > 1 - s^2 / 2.
+  const double same = 1.0 - 0.5 * tol::kBodyParallelSine * tol::kBodyParallelSine;
   for (const Eigen::Vector3d& u : candidates) {
-    const bool known = std::any_of(out.normals.begin(), out.normals.end(), [&](const Eigen::Vector3d& n) {
-      return (n - u).norm() < tol::kBodyParallelSine;
-    });
+    const bool known = std::any_of(out.normals.begin(), out.normals.end(),
+                                   [&](const Eigen::Vector3d& n) { return n.dot(u) > same; });
     if (known) continue;
     const double h = supportSet(vb, u, eps, sb) + supportSet(negA, u, eps, sa);
     diffs.clear();
     for (const Eigen::Vector3d& b : sb) {
       for (const Eigen::Vector3d& a : sa) diffs.push_back(b + a);  // sa holds -a
     }
-    std::vector<Eigen::Vector3d> face = planeHull(diffs, u, h, eps);
+    std::vector<Eigen::Vector3d> face = planeHull(diffs, u, h, eps, scratch);
     if (face.empty()) continue;
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& p : face) centre += p;
