@@ -443,6 +443,40 @@ BOOST_AUTO_TEST_CASE(flat_pieces) {
   BOOST_TEST(std::abs(r.distance) <= 1e-12);
 }
 
+BOOST_AUTO_TEST_CASE(swapping_the_bodies_negates_the_normal) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int overlapping = 0;
+  for (int c = 0; c < 30; ++c) {
+    const TestBody A = randomBody(rng, 3);
+    const TestBody B = randomBody(rng, 2);
+    const Isometry3d X_WA = makePose(randomRotation(rng), Vector3d::Zero());
+    const Isometry3d X_WB = makePose(randomRotation(rng), randomUnit(rng) * (0.3 + u(rng)));
+    const BodySignedDistanceResult ab = bodySignedDistance(A.body, X_WA, B.body, X_WB);
+    const BodySignedDistanceResult ba = bodySignedDistance(B.body, X_WB, A.body, X_WA);
+    BOOST_TEST(std::abs(ab.distance - ba.distance) <= 1e-9 * std::max(std::abs(ab.distance), 1e-3));
+    if (std::abs(ab.distance) > 1e-6) BOOST_TEST((ab.normal + ba.normal).norm() <= 1e-6);
+    overlapping += ab.distance < 0 ? 1 : 0;
+  }
+  BOOST_TEST(overlapping >= 10);
+}
+
+BOOST_AUTO_TEST_CASE(the_face_cap_returns_a_separating_bracketed_answer) {
+  const SlabCase s;
+  BodyDepthOptions options;
+  options.maxFaces = 1;
+  const BodySignedDistanceResult r =
+      bodySignedDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity(), options);
+  BOOST_TEST(std::string(toString(r.status)) == "face-limit");
+  BOOST_TEST(!r.certified);
+  // A verified push-out, at least the true depth 0.2; the bracket holds the true depth.
+  BOOST_TEST(-r.distance >= 0.2 - 1e-12);
+  BOOST_TEST(r.depthLower <= 0.2 + 1e-12);
+  BOOST_TEST(r.depthUpper >= 0.2 - 1e-12);
+  BOOST_TEST(minPairDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity(),
+                             -r.distance * r.normal) >= -1e-12);
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
   const SlabCase s;
   auto message = [&](const Body& A, const Body& B) {
