@@ -20,6 +20,7 @@ const char* toString(BodyDepthStatus s) {
     case BodyDepthStatus::Separated: return "separated";
     case BodyDepthStatus::Certified: return "certified";
     case BodyDepthStatus::FaceLimit: return "face-limit";
+    case BodyDepthStatus::PairNotCertified: return "pair-not-certified";
   }
   return "unknown";
 }
@@ -193,6 +194,44 @@ bool coveredByPairs(const std::vector<PairInfo>& pairs, int skip, int nB,
   return false;
 }
 
+/// Steps 3 and 4 of the header's method, when the deepest pair's point is covered: the upper bound
+/// by the marches, the relevant differences, the search, and the answer's fields in `out`
+/// (depthLower there is the search's bound; the caller raises it by the pairwise one).
+void searchAnswer(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
+                  const std::vector<PosedPiece>& B, int deepest, double tol, int maxFaces,
+                  const Eigen::Vector3d& p_WP, BodySignedDistanceResult& out) {
+  std::vector<Difference> diffs;
+  const Eigen::Vector3d start = marchFromPairs(pairs, nB, A, B, diffs, deepest, tol);
+  const double upper = start.norm();
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    if (pairs[static_cast<std::size_t>(k)].distanceLower < upper) ensureDifference(pairs, k, nB, A, B, diffs);
+  }
+  const body::SearchResult s = body::searchNearestBoundary(diffs, start, maxFaces, tol);
+  const Eigen::Vector3d& x = s.point;
+  const double depth = x.norm();
+  out.status = s.finished ? BodyDepthStatus::Certified : BodyDepthStatus::FaceLimit;
+  out.certified = s.finished;
+  out.distance = -depth;
+  if (depth > 0) out.normal = -x / depth;  // else the deepest pair's, already in out
+  out.depthUpper = depth;
+  out.depthLower = std::min(depth, s.lowerBound);
+  out.differences = static_cast<int>(diffs.size());
+  out.facesSearched = s.facesSearched;
+  // The difference holding x (when the search kept its start, the march's end: on the
+  // difference the march left last, found here as the one whose boundary is nearest x).
+  int holder = s.difference;
+  double closest = std::numeric_limits<double>::infinity();
+  for (int k = 0; holder < 0 && k < static_cast<int>(diffs.size()); ++k) {
+    const double e = std::abs(body::planeExcess(diffs[static_cast<std::size_t>(k)], x));
+    if (e < closest) closest = e, holder = k;
+  }
+  if (holder >= 0) {
+    out.pieceA = diffs[static_cast<std::size_t>(holder)].pieceA;
+    out.pieceB = diffs[static_cast<std::size_t>(holder)].pieceB;
+  }
+  setWitnesses(A[static_cast<std::size_t>(out.pieceA)], B[static_cast<std::size_t>(out.pieceB)], x, p_WP, out);
+}
+
 }  // namespace
 
 BodySignedDistanceResult bodySignedDistance(const Body& bodyA, const Eigen::Isometry3d& X_WA,
@@ -238,47 +277,16 @@ BodySignedDistanceResult bodySignedDistance(const Body& bodyA, const Eigen::Isom
   // 2. The deepest pair's separating point: if no other pair covers it, it is the answer.
   const Eigen::Vector3d x0 = deepest.distance * deepest.normal;
   if (!coveredByPairs(pairs, nearest, nB, A, B, x0, tol, options.pair)) {
-    out.status = BodyDepthStatus::Certified;
+    out.status = deepest.certified ? BodyDepthStatus::Certified : BodyDepthStatus::PairNotCertified;
+    out.certified = deepest.certified;
     out.depthLower = depthLower;
     out.depthUpper = -deepest.distance;
-    out.certified = deepest.certified;
     return out;
   }
 
-  // 3. Upper bound by the ray march, then every pair that can reach inside it.
-  std::vector<Difference> diffs;
-  const Eigen::Vector3d start = marchFromPairs(pairs, nB, A, B, diffs, nearest, tol);
-  const double upper = start.norm();
-  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
-    if (pairs[static_cast<std::size_t>(k)].distanceLower < upper) ensureDifference(pairs, k, nB, A, B, diffs);
-  }
-
-  // 4. The exact search.
-  const body::SearchResult s = body::searchNearestBoundary(diffs, start, options.maxFaces, tol);
-  const Eigen::Vector3d x = s.point;
-  const double depth = x.norm();
-  out.status = s.finished ? BodyDepthStatus::Certified : BodyDepthStatus::FaceLimit;
-  out.certified = s.finished;
-  out.distance = -depth;
-  out.normal = depth > 0 ? Eigen::Vector3d(-x / depth) : Eigen::Vector3d(deepest.normal);
-  out.depthUpper = depth;
-  out.depthLower = std::min(depth, std::max(depthLower, s.lowerBound));
-  out.differences = static_cast<int>(diffs.size());
-  out.facesSearched = s.facesSearched;
-  // The difference holding x (the march's end lies on the difference it left last, found here).
-  int holder = s.difference;
-  if (holder < 0) {
-    double closest = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < static_cast<int>(diffs.size()); ++k) {
-      const double e = std::abs(body::planeExcess(diffs[static_cast<std::size_t>(k)], x));
-      if (e < closest) closest = e, holder = k;
-    }
-  }
-  if (holder >= 0) {
-    out.pieceA = diffs[static_cast<std::size_t>(holder)].pieceA;
-    out.pieceB = diffs[static_cast<std::size_t>(holder)].pieceB;
-  }
-  setWitnesses(A[static_cast<std::size_t>(out.pieceA)], B[static_cast<std::size_t>(out.pieceB)], x, p_WP, out);
+  // 3, 4. The upper bound, the relevant differences and the exact search.
+  searchAnswer(pairs, nB, A, B, nearest, tol, options.maxFaces, p_WP, out);
+  out.depthLower = std::max(out.depthLower, std::min(depthLower, out.depthUpper));
   return out;
 }
 

@@ -277,6 +277,7 @@ BOOST_AUTO_TEST_CASE(names) {
   BOOST_TEST(std::string(toString(BodyDepthStatus::Separated)) == "separated");
   BOOST_TEST(std::string(toString(BodyDepthStatus::Certified)) == "certified");
   BOOST_TEST(std::string(toString(BodyDepthStatus::FaceLimit)) == "face-limit");
+  BOOST_TEST(std::string(toString(BodyDepthStatus::PairNotCertified)) == "pair-not-certified");
 }
 
 BOOST_AUTO_TEST_CASE(random_unions_agree_with_the_reference) {

@@ -74,6 +74,9 @@ enum class BodyDepthStatus {
   FaceLimit,      ///< overlapping; BodyDepthOptions::maxFaces faces were searched before the
                   ///< search finished: the answer is a verified separating translation (depth
                   ///< upper bound), [depthLower, depthUpper] brackets the depth
+  PairNotCertified,  ///< overlapping; the answer is the deepest pair's, not covered by another
+                     ///< pair, but that pair's own query hit a cap: a verified separating
+                     ///< translation whose depth is an upper bound, bracketed as above
 };
 
 const char* toString(BodyDepthStatus s);
@@ -98,8 +101,7 @@ struct BodySignedDistanceResult {
   /// lower bound, raised to the answer when the search finished.
   double depthLower = 0.0;
   double depthUpper = 0.0;
-  /// Certified: every pairwise query the answer rests on was certified (separated), or the search
-  /// finished (overlapping).
+  /// Certified: separated, the nearest pair's GJK converged; overlapping, status Certified.
   bool certified = false;
   int overlappingPairs = 0;  ///< piece pairs whose signed distance is negative
   int differences = 0;       ///< Minkowski differences built (overlapping: the relevant pairs)
