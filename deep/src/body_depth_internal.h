@@ -14,14 +14,12 @@ namespace deepcheck::deep::body {
 struct PosedPiece {
   const ConvexPolytope* core = nullptr;
   Eigen::Isometry3d X_PP = Eigen::Isometry3d::Identity();
-  /// In P, computed once per query by posePiece: the vertices, the face normals, and the unit
-  /// edge directions (parallel ones, either sense, kept once).
+  /// In P, computed once per query by posePiece: the vertices and the face normals.
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Eigen::Vector3d> faceNormals;
-  std::vector<Eigen::Vector3d> edgeDirections;
 };
 
-/// The piece `core` at X_PP in P, with its vertices, face normals and edge directions there.
+/// The piece `core` at X_PP in P, with its vertices and face normals there.
 PosedPiece posePiece(const ConvexPolytope& core, const Eigen::Isometry3d& X_PP);
 
 /// M = B_j - A_i for one pair, in P, as face planes {x : normal.x <= offset} and face polygons.
@@ -37,10 +35,16 @@ struct Difference {
   std::vector<double> radii;
 };
 
-/// Builds the difference of A and B from the pieces' faces and edges (body_difference.cpp);
-/// offsets are exact support values. Returns false when the difference is flat (no interior: the
-/// pair never overlaps).
+/// Builds the difference of A and B as its facets, offsets exact support values, by the cheaper of
+/// the two constructions below for the pieces' sizes. Returns false when the difference is flat
+/// (no interior: the pair never overlaps).
 bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out);
+/// From the pieces' face normals and edge-direction cross products (body_difference_features.cpp).
+bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Difference& out);
+/// From Qhull's hull of all vertex differences (body_difference_hull.cpp).
+bool buildDifferenceFromHull(const PosedPiece& A, const PosedPiece& B, Difference& out);
+/// Appends a facet (unit normal, offset, polygon counter-clockwise about the normal) to d.
+void addFace(Difference& d, const Eigen::Vector3d& normal, double offset, std::vector<Eigen::Vector3d> face);
 
 /// max over faces of normal.x - offset: below -tol the point is strictly inside M, above tol
 /// strictly outside.

@@ -309,6 +309,28 @@ BOOST_AUTO_TEST_CASE(random_unions_agree_with_the_reference) {
   BOOST_TEST(bodyDeeper >= 10);
 }
 
+BOOST_AUTO_TEST_CASE(large_pieces_agree_with_the_reference) {
+  // Pieces of 16 to 30 vertices: their differences are built as hulls of all vertex differences,
+  // not from their features (body_difference.cpp chooses by size).
+  std::mt19937 rng(808);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int overlapping = 0;
+  for (int c = 0; c < 12; ++c) {
+    TestBody A, B;
+    for (TestBody* b : {&A, &B}) {
+      for (int i = 0; i < 2; ++i) {
+        const Vector3d semi(0.2 + 0.3 * u(rng), 0.2 + 0.3 * u(rng), 0.15 + 0.3 * u(rng));
+        b->add(ConvexPolytope::fromPoints(ellipsoidPoints(rng, 16 + static_cast<int>(u(rng) * 14), semi)),
+               makePose(randomRotation(rng), 0.4 * randomUnit(rng)));
+      }
+    }
+    const Isometry3d X_WB = makePose(randomRotation(rng), randomUnit(rng) * (0.2 + 0.6 * u(rng)));
+    const Reference ref = checkAgainstReference(A, Isometry3d::Identity(), B, X_WB, "large " + std::to_string(c));
+    overlapping += ref.distance < 0 ? 1 : 0;
+  }
+  BOOST_TEST(overlapping >= 6);
+}
+
 BOOST_AUTO_TEST_CASE(box_pressed_into_a_two_box_slab_is_pushed_up) {
   const SlabCase s;
   const BodySignedDistanceResult r = bodySignedDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity());

@@ -26,10 +26,11 @@
 //      none is a point of the complement, the nearest of these marches the upper bound;
 //   3. every pair whose distance from the origin (its own signed distance) is below that bound
 //      gets its difference M_ij built exactly as a polytope, including pairs that do not overlap
-//      (they can still cover boundary points of the others): its facet normals are found among
-//      the pieces' face normals and the cross products of their edge directions, each kept when
-//      the supporting vertices' differences span a polygon, with the exact support value as its
-//      offset;
+//      (they can still cover boundary points of the others): for small pieces its facet normals
+//      are found among the pieces' face normals and the cross products of their edge directions,
+//      each kept when the supporting vertices' differences span a polygon; for larger pieces
+//      (beyond about ten vertices) they are the facets of the hull of all vertex differences;
+//      either way each offset is the exact support value;
 //   4. best-first search over the faces of those differences, in order of their plane's distance
 //      to the origin (a lower bound for every point of the face). For a face, the nearest point
 //      of (the face minus the interiors of all other differences) is one of: the origin's
@@ -44,8 +45,8 @@
 // Limits: pieces must be polytopes (radius 0); spheres and capsules (radius > 0) are rejected
 // with std::invalid_argument, since their differences are not polytopes. A pair whose difference
 // is flat (coplanar polygons, segments, points) has no interior and never overlaps. Building a
-// difference costs O(eA eB (vA + vB)) (e: distinct edge directions, v: vertices), so pieces of
-// a few dozen vertices are the intended use (convex decompositions), not large hulls.
+// difference costs O(eA eB (vA + vB)) (e: edges, v: vertices) or a hull of vA vB points, so
+// pieces of a few dozen vertices are the intended use (convex decompositions), not large hulls.
 
 #include "deepcheck/deep/signed_distance.h"
 
