@@ -18,6 +18,7 @@
 // with the iterations of both options (0: not repaired).
 
 #include "../tests/common/body_cases.h"
+#include "repair_starts.h"
 
 #include "deepcheck/planners/push_out.h"
 #include "deepcheck/planners/setup.h"
@@ -99,16 +100,6 @@ std::shared_ptr<dc::World> gantryWorld(const std::string& link, const std::strin
   return world;
 }
 
-std::shared_ptr<dc::World> bundledWorld(const std::string& scene) {
-  const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
-  dp::SetupOptions options;
-  options.packageRoots = {data};
-  options.useRosPackagePath = false;
-  options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
-  return dp::loadWorld(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", {data + "/scenes/" + scene + ".urdf"},
-                       options);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -135,14 +126,9 @@ int main(int argc, char** argv) {
     run("U", gantryWorld("u", dt::uCollisions()), starts, each);
   }
   for (const std::string scene : {"table", "shelf", "narrow_passage"}) {
-    const auto world = bundledWorld(scene);
+    const auto world = deepcheck::bench::bundledArmWorld(scene);
     std::mt19937_64 rng(1234);
-    std::vector<Eigen::VectorXd> starts;
-    while (starts.size() < 100) {
-      const Eigen::VectorXd q = deepcheck::robots::randomConfiguration(world->robot(), rng);
-      const double sd = dp::signedDistanceUpTo(*world, q, 1e-3);
-      if (sd < 0.0 && sd >= -0.02) starts.push_back(q);
-    }
+    const std::vector<Eigen::VectorXd> starts = deepcheck::bench::penetratingStarts(*world, 100, 0.02, rng);
     run("arm/" + scene, world, starts, false);
   }
   return 0;
