@@ -220,6 +220,34 @@ BOOST_AUTO_TEST_CASE(link_against_a_link_of_several_pieces) {
   BOOST_TEST((back.contact.normal - Eigen::Vector3d(0, 0, 1)).norm() < 1e-9);
 }
 
+// An attached object is a body of its own: a plate held 0.07 below the tool, pressed 0.02 into the
+// slab across the seam, where each box alone would push it out sideways by less.
+BOOST_AUTO_TEST_CASE(attached_object_against_a_body) {
+  World world(gantryRobot(kToolBox), testWorldOptions());
+  world.addScene(sceneOf("slab", kSlab), Eigen::Isometry3d::Identity());
+  world.attach("tool", Obstacle::box("plate", Eigen::Vector3d(0.03, 0.1, 0.04), translation(0, 0, -0.07)));
+  const int toolLink = world.robot().linkIndex("tool");
+  BodyRef plate;
+  plate.kind = BodyRef::Kind::Attached;
+  plate.index = toolLink;
+  plate.scene = 0;
+  // The plate spans z in [-0.09, -0.05] about the tool frame and x in [-0.015, 0.015].
+  const World::BodyContact r = world.bodySignedDistance(gantryQ(0.002, 0, 0.07), plate, sceneLink(world, 0, "slab"));
+  BOOST_TEST(r.contact.distance == -0.02, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST((r.contact.normal - Eigen::Vector3d(0, 0, -1)).norm() < 1e-9, "normal " << r.contact.normal.transpose());
+  BOOST_TEST(r.contact.nameA == "attached/plate");
+  BOOST_TEST(r.contact.linkA == toolLink);
+  BOOST_TEST(r.overlappingPairs == 2);
+  BOOST_TEST(r.pairDepth == 0.017, boost::test_tools::tolerance(1e-9));
+  // The tool itself is clear of the slab (its bottom 0.02 above it).
+  BOOST_TEST(world.bodySignedDistance(gantryQ(0.002, 0, 0.07), robotLink(world, "tool"), sceneLink(world, 0, "slab"))
+                 .contact.distance == 0.02,
+             boost::test_tools::tolerance(1e-9));
+  plate.scene = 1;
+  checkThrowsWith([&] { world.bodySignedDistance(gantryQ(0, 0, 0.3), plate, sceneLink(world, 0, "slab")); },
+                  "no object attached to link tool at position 1");
+}
+
 // A sphere has a radius: the pair is answered pairwise, as signedDistance answers it, and says so.
 BOOST_AUTO_TEST_CASE(rounded_pieces_fall_back_to_the_pairwise_answer) {
   World world(gantryRobot(kToolBox), testWorldOptions());
