@@ -9,6 +9,8 @@
 // trials' claims (>= 99 % repaired by the push-out, less motion than the jiggle); this prints the
 // figures. Usage: repair_bench (about half a minute).
 
+#include "repair_starts.h"
+
 #include "deepcheck/planners/push_out.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/validity.h"
@@ -53,25 +55,10 @@ struct Totals {
   }
 };
 
-std::shared_ptr<deepcheck::checker::World> bundledWorld(const std::string& scene) {
-  const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
-  dp::SetupOptions options;
-  options.packageRoots = {data};
-  options.useRosPackagePath = false;
-  options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
-  return dp::loadWorld(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", {data + "/scenes/" + scene + ".urdf"},
-                       options);
-}
-
 Totals runScene(const std::string& scene) {
-  const auto world = bundledWorld(scene);
+  const auto world = deepcheck::bench::bundledArmWorld(scene);
   std::mt19937_64 rng(1234);
-  std::vector<Eigen::VectorXd> starts;
-  while (static_cast<int>(starts.size()) < kTrialsPerScene) {
-    const Eigen::VectorXd q = deepcheck::robots::randomConfiguration(world->robot(), rng);
-    const double sd = dp::signedDistanceUpTo(*world, q, 1e-3);
-    if (sd < 0.0 && sd >= -kMaxDepth) starts.push_back(q);
-  }
+  const std::vector<Eigen::VectorXd> starts = deepcheck::bench::penetratingStarts(*world, kTrialsPerScene, kMaxDepth, rng);
   const dp::PushOut pushOut(world);
   Totals t;
   for (const Eigen::VectorXd& q : starts) {

@@ -1,7 +1,8 @@
-// Fuzz harness: the input reader of `deepcheck pd` (shapes and posed queries), then every query
-// it accepts through DEEP and the exact reference. Bad input must end in an exception (the tool's
-// one-line error), never a crash; an accepted query must give a finite signed distance and a
-// unit normal (inputs are within deep's supported range once accepted).
+// Fuzz harness: the input reader of `deepcheck pd` (shapes, bodies and posed queries), then every
+// query it accepts through DEEP and the exact reference (queries naming bodies: through the body
+// depth). Bad input must end in an exception (the tool's one-line error), never a crash; an
+// accepted query must give a finite signed distance and a unit normal (inputs are within deep's
+// supported range once accepted).
 
 #include "pd_input.h"
 
@@ -37,6 +38,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const deepcheck::tools::PdInput input = deepcheck::tools::readPdInput(in);
     for (std::size_t i = 0; i < input.queries.size() && i < kMaxQueries; ++i) {
       const deepcheck::tools::PdQuery& q = input.queries[i];
+      if (q.namesBody()) {
+        const auto r = deepcheck::deep::bodySignedDistance(deepcheck::tools::queryBody(input, q.a, q.bodyA), q.X_WA,
+                                                           deepcheck::tools::queryBody(input, q.b, q.bodyB), q.X_WB);
+        requireSane(r.distance, r.normal, "bodySignedDistance");
+        continue;
+      }
       const auto& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
       const auto& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
       const auto r = deepcheck::deep::signedDistance(A, q.X_WA, B, q.X_WB);

@@ -2,7 +2,10 @@
 // The input and output formats are a contract, kept stable (tests/tool/test_pd.cpp checks them):
 //
 //   shape <id> <n>          followed by n lines "<x> <y> <z>": the shape is their convex hull
+//   body <id> <shapeId> ... a body: the union of shapes given before, each in the body's frame
 //   query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> <qw> <qx> <qy> <qz>
+//                           idA and idB name shapes or bodies; a query naming a body is answered
+//                           by deep::bodySignedDistance (a shape there is a one-piece body)
 //   # comment               (lines whose first non-blank character is '#'; blank lines too)
 //
 // Output: one line per query on stdout, "sd nx ny nz" with %.17g (sd > 0 distance, sd < 0 minus
@@ -21,6 +24,7 @@
 #include "pd_input.h"
 #include "subcommands.h"
 
+#include "deepcheck/deep/body_depth.h"
 #include "deepcheck/deep/exact.h"
 #include "deepcheck/deep/signed_distance.h"
 #include "deepcheck/deep/walk_scratch.h"
@@ -47,7 +51,11 @@ constexpr const char* kUsage =
     "\n"
     "Signed distance of pairs of posed convex shapes. Input on stdin:\n"
     "  shape <id> <n>      followed by n lines '<x> <y> <z>' (the shape is their convex hull)\n"
+    "  body <id> <shapeId> <shapeId> ...   a body: the union of shapes given before, each in\n"
+    "                      the body's frame\n"
     "  query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> <qw> <qx> <qy> <qz>\n"
+    "                      idA, idB: shapes or bodies (a body's depth: the shortest translation\n"
+    "                      of B after which no piece of A overlaps a piece of B)\n"
     "  lines starting with '#' are comments; blank lines are ignored.\n"
     "Supported range: |coordinate| and |translation| <= 1e50; a shape's points span 0 (one point)\n"
     "or at least 1e-50; at most 100000 points per shape.\n"
@@ -78,6 +86,12 @@ int runPd(std::vector<std::string> args) {
 
   std::ios::sync_with_stdio(false);
   const PdInput input = readPdInput(std::cin);
+  for (const PdQuery& q : input.queries) {
+    if (exact && q.namesBody()) {
+      throw InputError("line " + std::to_string(q.line) +
+                       ": --method exact answers shape queries only; this query names a body");
+    }
+  }
 
   deep::PairCache cache;
   deep::ExpansionSurface surface;  // the certified method's scratch, shared by every query
@@ -88,22 +102,34 @@ int runPd(std::vector<std::string> args) {
   int lastB = -1;
   std::chrono::steady_clock::duration total{0};
   for (const PdQuery& q : input.queries) {
-    const ConvexPolytope& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
-    const ConvexPolytope& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
-    // Warm start only across consecutive queries of the same ordered pair.
-    if (cold || q.a != lastA || q.b != lastB) cache.reset();
+    // Warm start only across consecutive queries of the same ordered pair of shapes.
+    if (cold || q.namesBody() || q.a != lastA || q.b != lastB) cache.reset();
     lastA = q.a;
     lastB = q.b;
     double sd = 0.0;
     Eigen::Vector3d n;
     try {
-      if (exact) {
+      if (q.namesBody()) {
+        const deep::Body bodyA = queryBody(input, q.a, q.bodyA);
+        const deep::Body bodyB = queryBody(input, q.b, q.bodyB);
+        deep::BodyDepthOptions bodyOptions;
+        bodyOptions.pair = options;
+        const auto t0 = std::chrono::steady_clock::now();
+        const deep::BodySignedDistanceResult r = deep::bodySignedDistance(bodyA, q.X_WA, bodyB, q.X_WB, bodyOptions);
+        total += std::chrono::steady_clock::now() - t0;
+        sd = r.distance;
+        n = r.normal;
+      } else if (exact) {
+        const ConvexPolytope& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
+        const ConvexPolytope& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
         const auto t0 = std::chrono::steady_clock::now();
         const deep::ExactResult r = deep::exactSignedDistance(A, q.X_WA, B, q.X_WB);
         total += std::chrono::steady_clock::now() - t0;
         sd = r.distance;
         n = r.normal;
       } else {
+        const ConvexPolytope& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
+        const ConvexPolytope& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
         const auto t0 = std::chrono::steady_clock::now();
         const deep::SignedDistanceResult r =
             deep::signedDistance(A, q.X_WA, B, q.X_WB, &cache, options);

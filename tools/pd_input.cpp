@@ -65,6 +65,50 @@ int shapeIndex(const PdInput& input, const InputLine& line, const std::string& i
   return it->second;
 }
 
+/// Fails when `id` already names a shape or a body.
+void rejectDuplicateId(const PdInput& input, const InputLine& line, const std::string& id) {
+  if (const auto it = input.ids.find(id); it != input.ids.end()) {
+    failAt(line, "duplicate id '" + id + "' (a shape defined on line " +
+                     std::to_string(input.shapes[static_cast<std::size_t>(it->second)].line) + ")");
+  }
+  if (const auto it = input.bodyIds.find(id); it != input.bodyIds.end()) {
+    failAt(line, "duplicate id '" + id + "' (a body defined on line " +
+                     std::to_string(input.bodies[static_cast<std::size_t>(it->second)].line) + ")");
+  }
+}
+
+/// A query side's id: a shape (returns its index, body = -1) or a body (returns -1, body set).
+int sideIndex(const PdInput& input, const InputLine& line, const std::string& id, int& body) {
+  body = -1;
+  if (const auto it = input.bodyIds.find(id); it != input.bodyIds.end()) {
+    body = it->second;
+    return -1;
+  }
+  if (input.ids.find(id) == input.ids.end()) failAt(line, "unknown shape or body id '" + id + "'");
+  return shapeIndex(input, line, id);
+}
+
+void readBody(const InputLine& line, PdInput& input) {
+  if (line.tokens.size() < 2) failAt(line, "expected 'body <id> <shapeId> <shapeId> ...'");
+  const std::string& id = line.tokens[1];
+  if (line.tokens.size() < 3) failAt(line, "body '" + id + "' names no shape (a body needs at least one)");
+  rejectDuplicateId(input, line, id);
+  PdBody body{{}, line.number};
+  for (std::size_t i = 2; i < line.tokens.size(); ++i) {
+    const std::string& shape = line.tokens[i];
+    if (input.bodyIds.count(shape) != 0) {
+      failAt(line, "'" + shape + "' is a body; a body is made of shapes given before it");
+    }
+    const int index = shapeIndex(input, line, shape);
+    if (std::find(body.shapes.begin(), body.shapes.end(), index) != body.shapes.end()) {
+      failAt(line, "shape '" + shape + "' appears twice in body '" + id + "'");
+    }
+    body.shapes.push_back(index);
+  }
+  input.bodies.push_back(std::move(body));
+  input.bodyIds.emplace(id, static_cast<int>(input.bodies.size()) - 1);
+}
+
 /// Reads the points of the shape whose header is `header` (`line` holds the line after it) and
 /// builds its hull; on return `line` holds the line after the points and the result says whether
 /// there is one.
@@ -73,10 +117,7 @@ bool readShape(std::istream& in, int& lineNumber, const InputLine& header, Input
   if (header.tokens.size() != 3) failAt(header, "expected 'shape <id> <n>'");
   const std::string id = header.tokens[1];
   const int n = parsePointCount(header, header.tokens[2]);
-  if (const auto it = input.ids.find(id); it != input.ids.end()) {
-    failAt(header, "duplicate shape id '" + id + "' (first defined on line " +
-                       std::to_string(input.shapes[static_cast<std::size_t>(it->second)].line) + ")");
-  }
+  rejectDuplicateId(input, header, id);
   std::vector<Eigen::Vector3d> points;
   // A bad count must not allocate a huge buffer up front; the vector grows as points come.
   points.reserve(static_cast<std::size_t>(std::min(n, 1 << 16)));
@@ -86,7 +127,7 @@ bool readShape(std::istream& in, int& lineNumber, const InputLine& header, Input
       failAt(header, "shape '" + id + "' declares " + std::to_string(n) +
                          " points but the input ends after " + std::to_string(points.size()));
     }
-    if (line.tokens[0] == "shape" || line.tokens[0] == "query") {
+    if (line.tokens[0] == "shape" || line.tokens[0] == "query" || line.tokens[0] == "body") {
       failAt(line, "shape '" + id + "' (line " + std::to_string(header.number) + ") declares " +
                        std::to_string(n) + " points but only " + std::to_string(points.size()) +
                        " precede this line");
@@ -124,10 +165,10 @@ PdQuery readQuery(const InputLine& line, const PdInput& input) {
   }
   PdQuery q;
   q.line = line.number;
-  q.a = shapeIndex(input, line, line.tokens[1]);
-  q.X_WA = parsePose(line, 2, "A (shape '" + line.tokens[1] + "')");
-  q.b = shapeIndex(input, line, line.tokens[9]);
-  q.X_WB = parsePose(line, 10, "B (shape '" + line.tokens[9] + "')");
+  q.a = sideIndex(input, line, line.tokens[1], q.bodyA);
+  q.X_WA = parsePose(line, 2, std::string("A (") + (q.bodyA < 0 ? "shape" : "body") + " '" + line.tokens[1] + "')");
+  q.b = sideIndex(input, line, line.tokens[9], q.bodyB);
+  q.X_WB = parsePose(line, 10, std::string("B (") + (q.bodyB < 0 ? "shape" : "body") + " '" + line.tokens[9] + "')");
   return q;
 }
 
@@ -147,12 +188,25 @@ PdInput readPdInput(std::istream& in) {
     }
     if (keyword == "query") {
       input.queries.push_back(readQuery(line, input));
+    } else if (keyword == "body") {
+      readBody(line, input);
     } else {
-      failAt(line, "unknown keyword '" + keyword + "' (expected 'shape' or 'query')");
+      failAt(line, "unknown keyword '" + keyword + "' (expected 'shape', 'body' or 'query')");
     }
     pending = nextInputLine(in, lineNumber, line);
   }
   return input;
+}
+
+deep::Body queryBody(const PdInput& input, int shape, int body) {
+  deep::Body out;
+  const auto piece = [&](int s) {
+    out.pieces.push_back({deep::ConvexShape{&input.shapes[static_cast<std::size_t>(s)].hull, 0.0},
+                          Eigen::Isometry3d::Identity()});
+  };
+  if (body < 0) piece(shape);
+  else for (const int s : input.bodies[static_cast<std::size_t>(body)].shapes) piece(s);
+  return out;
 }
 
 }  // namespace deepcheck::tools

@@ -1,7 +1,8 @@
 #pragma once
 // The input of `deepcheck pd` (its format: tools/pd.cpp), read by `deepcheck pd` and
-// `deepcheck view --pd`: shapes, built into hulls, and posed queries.
+// `deepcheck view --pd`: shapes, built into hulls, bodies (unions of shapes) and posed queries.
 
+#include "deepcheck/deep/body_depth.h"
 #include "deepcheck/deep/polytope.h"
 
 #include <Eigen/Geometry>
@@ -18,19 +19,36 @@ struct PdShape {
   int line;  ///< line of its 'shape' header
 };
 
+/// A body: the union of shapes given before it, each in the body's frame.
+struct PdBody {
+  std::vector<int> shapes;  ///< indices in PdInput::shapes
+  int line;                 ///< line of its 'body' line
+};
+
 struct PdQuery {
   int line;
-  int a;  ///< index in PdInput::shapes
-  int b;
+  int a;  ///< index in PdInput::shapes, or -1 when A is a body
+  int b;  ///< likewise for B
+  int bodyA = -1;  ///< index in PdInput::bodies when A is a body, else -1
+  int bodyB = -1;
   Eigen::Isometry3d X_WA;
   Eigen::Isometry3d X_WB;
+
+  /// The query names a body on either side (it is then answered by deep::bodySignedDistance).
+  bool namesBody() const { return bodyA >= 0 || bodyB >= 0; }
 };
 
 struct PdInput {
   std::vector<PdShape> shapes;
   std::map<std::string, int> ids;  ///< shape id -> index in shapes
+  std::vector<PdBody> bodies;
+  std::map<std::string, int> bodyIds;  ///< body id -> index in bodies
   std::vector<PdQuery> queries;
 };
+
+/// The body one side of a query names: a body's shapes, or its one shape, each at the identity in
+/// the body's frame. Points into input.shapes, which must outlive it.
+deep::Body queryBody(const PdInput& input, int shape, int body);
 
 /// Largest point count of one shape. Building the hull of this many points (Qhull, then deep's
 /// own merging, pruning and checks) takes seconds in an optimized build and minutes under

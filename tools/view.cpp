@@ -135,6 +135,12 @@ checker::ViewScene pdView(const std::string& file) {
     throw InputError(file + ": " + e.what());
   }
   if (input.queries.empty()) throw InputError(file + ": no query in the case file");
+  for (const PdQuery& q : input.queries) {
+    if (q.namesBody()) {
+      throw InputError(file + ": line " + std::to_string(q.line) +
+                       ": the viewer shows queries of shapes only; this query names a body");
+    }
+  }
   std::vector<std::string> idOf(input.shapes.size());
   for (const auto& [id, index] : input.ids) idOf[static_cast<std::size_t>(index)] = id;
 

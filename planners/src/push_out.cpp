@@ -3,6 +3,8 @@
 
 #include "deepcheck/planners/push_out.h"
 
+#include "deepcheck/checker/body_distance.h"
+
 #include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/kinematics.h"
@@ -110,13 +112,21 @@ class PushOutSearch {
         target_(validity.threshold() + options.targetClearance),
         watch_(target_ + tol::kPushOutLookahead) {}
 
-  /// The contacts within the watched distance, with gradients.
+  /// The contacts within the watched distance, with gradients; with options.bodyDepth the
+  /// overlapping ones measured as bodies (useBodyDepth).
   checker::DistanceResult query(const Eigen::VectorXd& q) const {
     checker::DistanceOptions options;
     options.gradient = true;
     options.contactMargin = watch_;
     options.maxDistance = std::max(watch_, 0.0) + tol::kDistanceCapMargin;
-    return world_.signedDistance(q, options);
+    checker::DistanceResult d = world_.signedDistance(q, options);
+    if (options_.bodyDepth) useBodyDepth(q, d);
+    return d;
+  }
+  /// The minimum distance at q as the search judges it: the pairwise one up to the watched
+  /// distance, or with options.bodyDepth the minimum of query(q).
+  double distanceAt(const Eigen::VectorXd& q) const {
+    return options_.bodyDepth ? minimum(query(q)) : signedDistanceUpTo(world_, q, watch_);
   }
   /// The minimum distance of a query (the watched distance when nothing is nearer).
   double minimum(const checker::DistanceResult& d) const { return d.found ? d.closest.distance : watch_; }
@@ -126,6 +136,28 @@ class PushOutSearch {
   bool iterate(checker::DistanceResult d, PushOutResult* result);
 
  private:
+  /// Replaces every overlapping contact whose A is a robot link by the body answer of its pair
+  /// (distance, normal, witnesses, gradient), and the closest pair by the smallest of them. A
+  /// contact of an attached object keeps its pairwise answer.
+  void useBodyDepth(const Eigen::VectorXd& q, checker::DistanceResult& d) const {
+    checker::World::BodyDistanceOptions options;
+    options.gradient = true;
+    for (checker::Contact& c : d.contacts) {
+      if (!(c.distance < 0.0) || c.linkA < 0 || c.nameA != world_.robot().link(c.linkA).name) continue;
+      checker::BodyRef a;
+      a.kind = checker::BodyRef::Kind::RobotLink;
+      a.index = c.linkA;
+      checker::Contact body = world_.bodySignedDistance(q, a, c.bodyB, options).contact;
+      c.distance = body.distance;
+      c.normal = body.normal;
+      c.pointA = body.pointA;
+      c.pointB = body.pointB;
+      c.status = body.status;
+      c.gradient = std::move(body.gradient);
+      if (c.distance < d.closest.distance) d.closest = c;
+    }
+  }
+
   /// Linearizations made at other iterates (the bundle), newest last.
   struct Cut {
     Row row;
@@ -171,7 +203,7 @@ class PushOutSearch {
           Eigen::VectorXd candidate = q;
           candidate[j] = std::clamp(candidate[j] + sign * size, lower_[j], upper_[j]);
           if (candidate[j] == q[j]) continue;
-          const double sd = signedDistanceUpTo(world_, candidate, watch_);
+          const double sd = distanceAt(candidate);
           if (sd > validity_.threshold() && isConfigurationValid(world_, candidate, validity_)) {
             q = candidate;
             isValid = true;

@@ -330,10 +330,10 @@ BOOST_AUTO_TEST_CASE(bad_inputs_are_reported_with_line_numbers) {
              "quaternion of A (shape 'a') has norm 1.01");
   checkError(std::string(kTwoPoints) + "query a" + q + "a 0 0 0 0.5 0.5 0.5 0.500003\n", 4,
              "quaternion of B");
-  checkError(std::string(kTwoPoints) + "\nquery a" + q + "b" + q + "\n", 5, "unknown shape id 'b'");
-  checkError(std::string(kTwoPoints) + "query c" + q + "a" + q + "\n", 4, "unknown shape id 'c'");
+  checkError(std::string(kTwoPoints) + "\nquery a" + q + "b" + q + "\n", 5, "unknown shape or body id 'b'");
+  checkError(std::string(kTwoPoints) + "query c" + q + "a" + q + "\n", 4, "unknown shape or body id 'c'");
   checkError(std::string(kTwoPoints) + "# again\nshape a 1\n0 0 0\n", 5,
-             "duplicate shape id 'a' (first defined on line 1)");
+             "duplicate id 'a' (a shape defined on line 1)");
   checkError("shape a 2\n0 0 0\n1 nan 0\n", 3, "'nan' is not a finite number");
   checkError("shape a 2\n0 0 0\n1 inf 0\n", 3, "'inf' is not a finite number");
   checkError(std::string(kTwoPoints) + "query a 0 0 0 1 0 0 NaN a" + q + "\n", 4, "'NaN'");
@@ -446,6 +446,55 @@ BOOST_AUTO_TEST_CASE(command_line_errors) {
   r = runTool("pd --help", "");
   BOOST_TEST(r.status == 0);
   BOOST_TEST(r.out.find("usage: deepcheck pd [--cold] [--method certified|deep-walk|exact]") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(bodies_are_unions_of_shapes) {
+  const std::string example = readFile(fs::path(DEEPCHECK_SOURCE_DIR) / "tools/examples/pd_bodies.txt");
+  const Run r = runTool("pd", example);
+  BOOST_TEST_REQUIRE(r.status == 0, "stderr: " << r.err);
+  const std::vector<Answer> answers = parseAnswers(r.out);
+  BOOST_TEST_REQUIRE(answers.size() == 4u);
+  checkSummary(r.err, 4);
+  // One box of the slab: the pair's own answer pushes sideways.
+  BOOST_TEST(std::abs(answers[0].sd + 0.16) <= kAgree);
+  BOOST_TEST((answers[0].n - Eigen::Vector3d::UnitX()).norm() <= kAgree);
+  // The whole slab: up, since sideways the cube would enter the other box.
+  BOOST_TEST(std::abs(answers[1].sd + 0.2) <= kAgree);
+  BOOST_TEST((answers[1].n + Eigen::Vector3d::UnitZ()).norm() <= kAgree);
+  BOOST_TEST(std::abs(answers[2].sd) <= kAgree);
+  BOOST_TEST(std::abs(answers[3].sd - 0.1) <= kAgree);
+
+  // A body of one shape answers as the shape, on either side; the pd subcommand's --cold and
+  // deep-walk take bodies too.
+  const std::string q = " 0.2 0.1 0.3 0.9 0.1 0.3 0.3 ";
+  const std::string one = std::string(kTwoPoints) + "shape c 4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nbody bc c\n";
+  const Run shapes = runTool("pd", one + "query a" + q + "c 0 0 0 1 0 0 0\n");
+  const Run bodies = runTool("pd", one + "query a" + q + "bc 0 0 0 1 0 0 0\n");
+  for (const char* args : {"pd", "pd --cold", "pd --method deep-walk"}) {
+    const Run b = runTool(args, one + "query a" + q + "bc 0 0 0 1 0 0 0\nquery bc 0 0 0 1 0 0 0 a" + q + "\n");
+    BOOST_TEST_REQUIRE(b.status == 0, args << ": " << b.err);
+    BOOST_TEST(parseAnswers(b.out).size() == 2u);
+  }
+  BOOST_TEST_REQUIRE(shapes.status == 0);
+  BOOST_TEST_REQUIRE(bodies.status == 0, bodies.err);
+  BOOST_TEST(std::abs(parseAnswers(shapes.out)[0].sd - parseAnswers(bodies.out)[0].sd) <= kAgree);
+}
+
+BOOST_AUTO_TEST_CASE(bad_bodies_are_reported_with_line_numbers) {
+  const std::string q = " 0 0 0 1 0 0 0 ";
+  checkError(std::string(kTwoPoints) + "body b\n", 4, "body 'b' names no shape");
+  checkError(std::string(kTwoPoints) + "body\n", 4, "expected 'body <id> <shapeId>");
+  checkError(std::string(kTwoPoints) + "body b a z\n", 4, "unknown shape id 'z'");
+  checkError(std::string(kTwoPoints) + "body a a\n", 4, "duplicate id 'a' (a shape defined on line 1)");
+  checkError(std::string(kTwoPoints) + "body b a\nbody b a\n", 5, "duplicate id 'b' (a body defined on line 4)");
+  checkError(std::string(kTwoPoints) + "body b a\nshape b 1\n0 0 0\n", 5, "duplicate id 'b' (a body defined on line 4)");
+  checkError(std::string(kTwoPoints) + "body b a a\n", 4, "shape 'a' appears twice in body 'b'");
+  checkError(std::string(kTwoPoints) + "body b a\nbody c b\n", 5, "'b' is a body");
+  checkError(std::string(kTwoPoints) + "body b a\nquery b" + q + "x" + q + "\n", 5, "unknown shape or body id 'x'");
+  const Run r = runTool("pd --method exact", std::string(kTwoPoints) + "body b a\nquery b" + q + "a" + q + "\n");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.out.empty());
+  BOOST_TEST(r.err.find("line 5: --method exact answers shape queries only") != std::string::npos, r.err);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

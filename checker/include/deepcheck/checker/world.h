@@ -449,6 +449,18 @@ class World {
   DistanceResult signedDistance(const Eigen::Ref<const Eigen::VectorXd>& q,
                                 const DistanceOptions& options = {}) const;
 
+  // --- body-level signed distance (deepcheck/checker/body_distance.h) ----------------------
+
+  /// Defined in deepcheck/checker/body_distance.h (include it to call bodySignedDistance).
+  struct BodyDistanceOptions;
+  struct BodyContact;
+  /// The signed distance of two whole bodies, each the union of its convex pieces, at q: a is a
+  /// robot link or an attached object, b any body (body_distance.h has the contract).
+  BodyContact bodySignedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, const BodyRef& a,
+                                 const BodyRef& b) const;
+  BodyContact bodySignedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, const BodyRef& a, const BodyRef& b,
+                                 const BodyDistanceOptions& options) const;
+
   // --- description -------------------------------------------------------------------------
 
   const robots::RobotModel& robot() const;

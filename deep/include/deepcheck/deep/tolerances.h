@@ -59,4 +59,16 @@ constexpr double kCertifyRelative = 1e-14;
 /// A pose is rejected when its rotation R has max |(R^T R - I)_ij| at or above this (dimensionless).
 constexpr double kOrthonormal = 1e-6;
 
+/// Body penetration depth (body_depth.h): a point is strictly inside a Minkowski difference of two
+/// pieces when it is inside every face plane by more than kBodyMemberRelative * L, and on a face
+/// when within that of its plane and inside the others' by -that; L is the bodies' length scale
+/// (the largest distance of a piece vertex from A's origin, in metres). Above the round-off of
+/// plane intersections of size-L coordinates (1e-15 L), far below any real feature.
+constexpr double kBodyMemberRelative = 1e-12;
+
+/// Body penetration depth: two lines in a face plane whose unit directions have a cross product
+/// shorter than this (dimensionless, the sine of their angle) are parallel and not intersected;
+/// two planes likewise have no trace on each other.
+constexpr double kBodyParallelSine = 1e-9;
+
 }  // namespace deepcheck::deep::tol

@@ -36,6 +36,15 @@
 //     most improving one. Penetration depth is the SHORTEST separating translation; where the
 //     cheap way out in joint space goes another way (an arm poking sideways into a table edge,
 //     which tilting lets slip under it) the gradient is flat there and only a probe sees the exit.
+// Bodies. A contact is a (robot link, other body) pair; the world's signed distance gives it the
+// deepest pair of pieces, whose direction is wrong where the link overlaps several pieces of one
+// body (a box pressed into two touching boxes is pushed sideways out of one, into the other; a peg
+// in a U of three boxes is pushed from each wall into the other, and the two cancel). With
+// PushOutOptions::bodyDepth each overlapping contact whose A is a robot link (not an attached
+// object) takes the body's distance, gradient and witnesses from checker::World::bodySignedDistance
+// (the union's penetration depth; the pairwise answer where a piece is rounded), and so does the
+// minimum distance that steps and probes are judged by. Measured on the hard cases and on random
+// starts of the bundled arm (docs/checker.md, "Body-level signed distance"), hence the default.
 // Departures from a textbook projection: the target is c above the threshold rather than on it,
 // so that the last linearized step does not land exactly on the boundary. The minimum joint-space
 // motion is not guaranteed (the problem is non-convex); the step is the locally smallest one.
@@ -74,6 +83,10 @@ struct PushOutOptions {
   /// Configurations penetrating deeper than this are not attempted (metres, > 0; infinity for no
   /// limit).
   double maxDepth = tol::kPushOutMaxDepth;
+  /// Body depth (header comment, "Bodies"): an overlapping contact of a robot link with a body
+  /// measured as the union of the body's pieces (checker::World::bodySignedDistance) rather than as
+  /// its deepest piece pair.
+  bool bodyDepth = true;
 };
 
 /// Throws std::invalid_argument naming the option and its value when one is out of its range.

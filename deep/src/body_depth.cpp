@@ -1,0 +1,293 @@
+// bodySignedDistance (body_depth.h): pairwise queries, the separated answer, the upper bound by
+// a ray march, and the exact search over the relevant pairs' Minkowski differences.
+
+#include "body_depth_internal.h"
+
+#include "deepcheck/deep/gjk.h"
+#include "deepcheck/deep/pair_frame.h"
+#include "deepcheck/deep/tolerances.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace deepcheck::deep {
+
+const char* toString(BodyDepthStatus s) {
+  switch (s) {
+    case BodyDepthStatus::Separated: return "separated";
+    case BodyDepthStatus::Certified: return "certified";
+    case BodyDepthStatus::FaceLimit: return "face-limit";
+    case BodyDepthStatus::PairNotCertified: return "pair-not-certified";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using body::Difference;
+using body::PosedPiece;
+
+void checkBody(const Body& b, const Eigen::Isometry3d& X_W, const char* which) {
+  std::ostringstream msg;
+  msg << "bodySignedDistance: body " << which;
+  if (b.pieces.empty()) throw std::invalid_argument(msg.str() + " has no pieces");
+  checkPose(X_W, (msg.str() + " pose").c_str());
+  for (std::size_t i = 0; i < b.pieces.size(); ++i) {
+    const BodyPiece& p = b.pieces[i];
+    std::ostringstream piece;
+    piece << msg.str() << " piece " << i;
+    if (p.shape.core == nullptr) throw std::invalid_argument(piece.str() + " has no core polytope");
+    if (p.shape.radius != 0.0) {
+      piece << " has radius " << p.shape.radius
+            << ": body depth supports polytope pieces only (radius 0)";
+      throw std::invalid_argument(piece.str());
+    }
+    checkPose(p.X_BP, (piece.str() + " pose").c_str());
+  }
+}
+
+/// The pieces of body b posed in P: world orientation, origin at p_WP. The translation is
+/// formed as R_W * p_BP + (p_W - p_WP) so that a body far from the world's origin keeps the
+/// digits of its offset from A.
+std::vector<PosedPiece> posePieces(const Body& b, const Eigen::Isometry3d& X_W,
+                                   const Eigen::Vector3d& p_WP) {
+  std::vector<PosedPiece> out;
+  const Eigen::Vector3d offset = X_W.translation() - p_WP;
+  for (const BodyPiece& p : b.pieces) {
+    Eigen::Isometry3d X_PP = Eigen::Isometry3d::Identity();
+    X_PP.linear() = X_W.linear() * p.X_BP.linear();
+    X_PP.translation() = X_W.linear() * p.X_BP.translation() + offset;
+    out.push_back(body::posePiece(*p.shape.core, X_PP));
+  }
+  return out;
+}
+
+/// Bodies' length scale: the largest distance of a piece vertex from P's origin.
+double lengthScale(const std::vector<PosedPiece>& A, const std::vector<PosedPiece>& B) {
+  double L = 0.0;
+  for (const auto* pieces : {&A, &B}) {
+    for (const PosedPiece& p : *pieces) {
+      L = std::max(L, (p.X_PP * p.core->center()).norm() + p.core->boundingRadius());
+    }
+  }
+  return std::max(L, std::numeric_limits<double>::min());
+}
+
+/// The pairwise answer of pair (i, j) turned into a body result (witnesses to the world).
+BodySignedDistanceResult fromPair(const SignedDistanceResult& r, int i, int j,
+                                  const Eigen::Vector3d& p_WP) {
+  BodySignedDistanceResult out;
+  out.distance = r.distance;
+  out.normal = r.normal;
+  out.pointA = r.pointA + p_WP;
+  out.pointB = r.pointB + p_WP;
+  out.pieceA = i;
+  out.pieceB = j;
+  out.certified = r.certified;
+  return out;
+}
+
+/// Witnesses for a separating point x (in P) on the difference of pieces a and b: B_j moved by
+/// -x touches A_i, and GJK between them names the touching points.
+void setWitnesses(const PosedPiece& a, const PosedPiece& b, const Eigen::Vector3d& x,
+                  const Eigen::Vector3d& p_WP, BodySignedDistanceResult& out) {
+  Eigen::Isometry3d X_moved = b.X_PP;
+  X_moved.translation() -= x;
+  const PairFrame frame = PairFrame::makeUnchecked(*a.core, a.X_PP, *b.core, X_moved);
+  const GjkResult g = gjkDistance(*a.core, *b.core, frame);
+  out.pointA = frame.X_WP * g.pointA + p_WP;
+  out.pointB = out.pointA + x;
+}
+
+/// One piece pair's data for the overlapping case.
+struct PairInfo {
+  SignedDistanceResult result;
+  /// No point of M_ij is nearer the origin than this (0 for overlapping or unconverged pairs).
+  double distanceLower = 0.0;
+  int built = 0;  ///< 0 not built, 1 a solid difference (index in diffs), 2 flat
+  int index = -1;
+};
+
+/// Builds pair k's difference on first need; returns its index in diffs, or -1 when flat.
+int ensureDifference(std::vector<PairInfo>& pairs, int k, int nB, const std::vector<PosedPiece>& A,
+                     const std::vector<PosedPiece>& B, std::vector<Difference>& diffs) {
+  PairInfo& p = pairs[static_cast<std::size_t>(k)];
+  if (p.built == 0) {
+    Difference d;
+    d.pieceA = k / nB;
+    d.pieceB = k % nB;
+    if (body::buildDifference(A[static_cast<std::size_t>(d.pieceA)], B[static_cast<std::size_t>(d.pieceB)], d)) {
+      p.built = 1;
+      p.index = static_cast<int>(diffs.size());
+      diffs.push_back(std::move(d));
+    } else {
+      p.built = 2;
+    }
+  }
+  return p.built == 1 ? p.index : -1;
+}
+
+/// Marches from the origin along u, starting at distance t, across every difference whose
+/// interior holds the current point, to the first point held by none: a point of the complement.
+/// Gives up (returns infinity) once beyond `cap`.
+double marchOut(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
+                const std::vector<PosedPiece>& B, std::vector<Difference>& diffs,
+                const Eigen::Vector3d& u, double t, double cap, double tol) {
+  bool moved = true;
+  while (moved) {
+    moved = false;
+    for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+      if (t >= cap) return std::numeric_limits<double>::infinity();
+      if (pairs[static_cast<std::size_t>(k)].distanceLower >= t) continue;
+      const int idx = ensureDifference(pairs, k, nB, A, B, diffs);
+      if (idx < 0 || body::planeExcess(diffs[static_cast<std::size_t>(idx)], t * u) >= -tol) continue;
+      t = body::rayExit(diffs[static_cast<std::size_t>(idx)], u);
+      moved = true;
+    }
+  }
+  return t;
+}
+
+/// The shortest march out (marchOut) along the separating directions of the overlapping pairs:
+/// a point of the complement, the search's start. Each pair's own push-out direction is tried
+/// because the body's answer is often one of them (a pair whose push is not blocked by others).
+Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
+                               const std::vector<PosedPiece>& B, std::vector<Difference>& diffs,
+                               int deepest, double tol) {
+  Eigen::Vector3d best = Eigen::Vector3d::Zero();
+  double bestLength = std::numeric_limits<double>::infinity();
+  const auto tryPair = [&](int k) {
+    const SignedDistanceResult& r = pairs[static_cast<std::size_t>(k)].result;
+    const Eigen::Vector3d x = r.distance * r.normal;
+    const double r0 = x.norm();
+    const Eigen::Vector3d u = r0 > tol ? Eigen::Vector3d(x / r0) : Eigen::Vector3d(-r.normal);
+    const double t = marchOut(pairs, nB, A, B, diffs, u, r0, bestLength, tol);
+    if (t < bestLength) {
+      bestLength = t;
+      best = t * u;
+    }
+  };
+  tryPair(deepest);
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    if (k != deepest && pairs[static_cast<std::size_t>(k)].result.distance < 0) tryPair(k);
+  }
+  return best;
+}
+
+/// True when the point x (in P) is strictly inside the difference of some pair other than
+/// `skip`, decided by the pair's own signed distance with B moved by -x.
+bool coveredByPairs(const std::vector<PairInfo>& pairs, int skip, int nB,
+                    const std::vector<PosedPiece>& A, const std::vector<PosedPiece>& B,
+                    const Eigen::Vector3d& x, double tol, const DeepOptions& options) {
+  const double r = x.norm();
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    if (k == skip || pairs[static_cast<std::size_t>(k)].distanceLower >= r) continue;
+    const PosedPiece& a = A[static_cast<std::size_t>(k / nB)];
+    const PosedPiece& b = B[static_cast<std::size_t>(k % nB)];
+    Eigen::Isometry3d X_moved = b.X_PP;
+    X_moved.translation() -= x;
+    if (signedDistance(*a.core, a.X_PP, *b.core, X_moved, nullptr, options).distance < -tol) return true;
+  }
+  return false;
+}
+
+/// Steps 3 and 4 of the header's method, when the deepest pair's point is covered: the upper bound
+/// by the marches, the relevant differences, the search, and the answer's fields in `out`
+/// (depthLower there is the search's bound; the caller raises it by the pairwise one).
+void searchAnswer(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
+                  const std::vector<PosedPiece>& B, int deepest, double tol, int maxFaces,
+                  const Eigen::Vector3d& p_WP, BodySignedDistanceResult& out) {
+  std::vector<Difference> diffs;
+  const Eigen::Vector3d start = marchFromPairs(pairs, nB, A, B, diffs, deepest, tol);
+  const double upper = start.norm();
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    if (pairs[static_cast<std::size_t>(k)].distanceLower < upper) ensureDifference(pairs, k, nB, A, B, diffs);
+  }
+  const body::SearchResult s = body::searchNearestBoundary(diffs, start, maxFaces, tol);
+  const Eigen::Vector3d& x = s.point;
+  const double depth = x.norm();
+  out.status = s.finished ? BodyDepthStatus::Certified : BodyDepthStatus::FaceLimit;
+  out.certified = s.finished;
+  out.distance = -depth;
+  if (depth > 0) out.normal = -x / depth;  // else the deepest pair's, already in out
+  out.depthUpper = depth;
+  out.depthLower = std::min(depth, s.lowerBound);
+  out.differences = static_cast<int>(diffs.size());
+  out.facesSearched = s.facesSearched;
+  // The difference holding x (when the search kept its start, the march's end: on the
+  // difference the march left last, found here as the one whose boundary is nearest x).
+  int holder = s.difference;
+  double closest = std::numeric_limits<double>::infinity();
+  for (int k = 0; holder < 0 && k < static_cast<int>(diffs.size()); ++k) {
+    const double e = std::abs(body::planeExcess(diffs[static_cast<std::size_t>(k)], x));
+    if (e < closest) closest = e, holder = k;
+  }
+  if (holder >= 0) {
+    out.pieceA = diffs[static_cast<std::size_t>(holder)].pieceA;
+    out.pieceB = diffs[static_cast<std::size_t>(holder)].pieceB;
+  }
+  setWitnesses(A[static_cast<std::size_t>(out.pieceA)], B[static_cast<std::size_t>(out.pieceB)], x, p_WP, out);
+}
+
+}  // namespace
+
+BodySignedDistanceResult bodySignedDistance(const Body& bodyA, const Eigen::Isometry3d& X_WA,
+                                            const Body& bodyB, const Eigen::Isometry3d& X_WB,
+                                            const BodyDepthOptions& options) {
+  checkBody(bodyA, X_WA, "A");
+  checkBody(bodyB, X_WB, "B");
+  const Eigen::Vector3d p_WP = X_WA.translation();
+  const std::vector<PosedPiece> A = posePieces(bodyA, X_WA, p_WP);
+  const std::vector<PosedPiece> B = posePieces(bodyB, X_WB, p_WP);
+  const int nB = static_cast<int>(B.size());
+  const double tol = tol::kBodyMemberRelative * lengthScale(A, B);
+
+  // 1. Every pair's own signed distance; the nearest pair and the deepest.
+  std::vector<PairInfo> pairs(A.size() * B.size());
+  int nearest = 0;
+  int overlapping = 0;
+  double depthLower = 0.0;
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    const PosedPiece& a = A[static_cast<std::size_t>(k / nB)];
+    const PosedPiece& b = B[static_cast<std::size_t>(k % nB)];
+    PairInfo& p = pairs[static_cast<std::size_t>(k)];
+    p.result = signedDistance(*a.core, a.X_PP, *b.core, b.X_PP, nullptr, options.pair);
+    const bool converged = p.result.status != SignedDistanceStatus::NotConverged;
+    p.distanceLower = p.result.distance > 0 && converged ? p.result.distance : 0.0;
+    if (p.result.distance < 0) {
+      ++overlapping;
+      depthLower = std::max(depthLower, p.result.depthLower);
+    }
+    if (p.result.distance < pairs[static_cast<std::size_t>(nearest)].result.distance) nearest = k;
+  }
+  const SignedDistanceResult& deepest = pairs[static_cast<std::size_t>(nearest)].result;
+  BodySignedDistanceResult out = fromPair(deepest, nearest / nB, nearest % nB, p_WP);
+  out.overlappingPairs = overlapping;
+  out.pairDepth = std::max(0.0, -deepest.distance);
+  out.pairNormal = deepest.normal;
+  if (overlapping == 0) {
+    out.status = BodyDepthStatus::Separated;
+    out.depthLower = out.depthUpper = -out.distance;
+    return out;
+  }
+
+  // 2. The deepest pair's separating point: if no other pair covers it, it is the answer.
+  const Eigen::Vector3d x0 = deepest.distance * deepest.normal;
+  if (!coveredByPairs(pairs, nearest, nB, A, B, x0, tol, options.pair)) {
+    out.status = deepest.certified ? BodyDepthStatus::Certified : BodyDepthStatus::PairNotCertified;
+    out.certified = deepest.certified;
+    out.depthLower = depthLower;
+    out.depthUpper = -deepest.distance;
+    return out;
+  }
+
+  // 3, 4. The upper bound, the relevant differences and the exact search.
+  searchAnswer(pairs, nB, A, B, nearest, tol, options.maxFaces, p_WP, out);
+  out.depthLower = std::max(out.depthLower, std::min(depthLower, out.depthUpper));
+  return out;
+}
+
+}  // namespace deepcheck::deep

@@ -1,0 +1,159 @@
+// The Minkowski difference of two pieces from their features (body_depth_internal.h).
+//
+// M = B - A = B + (-A). Its facet normals are among: the face normals of B, the negated face
+// normals of A, and the cross products (either sign) of an edge direction of A with one of B.
+// For each candidate unit normal u the support value is h(u) = max u.b - min u.a over the
+// vertices, and the face of M in u is the set of differences b - a of the vertices that reach it
+// (b within eps of B's support plane, a within eps of A's): u names a facet when that set spans a
+// polygon. Offsets are exact support values, so every point of M is inside every plane and the
+// planes of all facets describe M exactly. The work grows as eA eB (vA + vB) (distinct edge
+// directions, vertices): the cheaper method for the small pieces of a decomposition, where a
+// general hull of all vA vB differences costs more (buildDifference chooses).
+
+#include "body_depth_internal.h"
+
+#include "deepcheck/deep/tolerances.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace deepcheck::deep::body {
+namespace {
+
+/// Points of `pts` within eps of the largest u.x, and that largest value.
+double supportSet(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u, double eps,
+                  std::vector<Eigen::Vector3d>& set) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : pts) best = std::max(best, u.dot(p));
+  set.clear();
+  for (const Eigen::Vector3d& p : pts) {
+    if (u.dot(p) >= best - eps) set.push_back(p);
+  }
+  return best;
+}
+
+double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+/// The convex hull of points of the plane u.x = h, counter-clockwise about u (monotone chain in
+/// a basis of the plane), points projected onto the plane. Fewer than three corners, or a hull
+/// thinner than eps: empty (the set is not a polygon).
+/// Scratch space of planeHull, reused across the candidates of one difference.
+struct HullScratch {
+  std::vector<Eigen::Vector2d> q;
+  std::vector<Eigen::Vector2d> hull;
+};
+
+std::vector<Eigen::Vector3d> planeHull(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u,
+                                       double h, double eps, HullScratch& scratch) {
+  if (pts.size() < 3) return {};
+  const Eigen::Vector3d e1 = u.unitOrthogonal();
+  const Eigen::Vector3d e2 = u.cross(e1);
+  std::vector<Eigen::Vector2d>& q = scratch.q;
+  q.clear();
+  for (const Eigen::Vector3d& p : pts) q.emplace_back(e1.dot(p), e2.dot(p));
+  std::sort(q.begin(), q.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  std::vector<Eigen::Vector2d>& hull = scratch.hull;
+  hull.resize(2 * q.size() + 1);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], q[i]) <= 0) --k;
+    hull[k++] = q[i];
+  }
+  for (std::size_t i = q.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross2(hull[k - 2], hull[k - 1], q[i]) <= 0) --k;
+    hull[k++] = q[i];
+  }
+  hull.resize(k > 0 ? k - 1 : 0);
+  if (hull.size() < 3) return {};
+  // Thickness: twice the area over the longest chord-like extent.
+  double area2 = 0.0;
+  double extent = 0.0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    area2 += cross2(hull[0], hull[i], hull[(i + 1) % hull.size()]);
+    extent = std::max(extent, (hull[i] - hull[0]).norm());
+  }
+  if (area2 <= eps * extent) return {};
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(hull.size());
+  for (const Eigen::Vector2d& p : hull) out.push_back(p.x() * e1 + p.y() * e2 + h * u);
+  return out;
+}
+
+
+/// Unit edge directions of a piece in P, parallel ones (either sense) kept once.
+std::vector<Eigen::Vector3d> edgeDirections(const PosedPiece& p) {
+  std::vector<Eigen::Vector3d> dirs;
+  const ConvexPolytope& core = *p.core;
+  for (int v = 0; v < core.numVertices(); ++v) {
+    for (const int w : core.neighbors(v)) {
+      if (w <= v) continue;
+      const Eigen::Vector3d e =
+          (p.vertices[static_cast<std::size_t>(w)] - p.vertices[static_cast<std::size_t>(v)]).normalized();
+      const bool known = std::any_of(dirs.begin(), dirs.end(),
+                                     [&](const Eigen::Vector3d& d) { return d.cross(e).norm() < tol::kBodyParallelSine; });
+      if (!known) dirs.push_back(e);
+    }
+  }
+  return dirs;
+}
+
+}  // namespace
+
+bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Difference& out) {
+  const std::vector<Eigen::Vector3d>& vb = B.vertices;
+  std::vector<Eigen::Vector3d> negA;
+  negA.reserve(A.vertices.size());
+  for (const Eigen::Vector3d& a : A.vertices) negA.push_back(-a);
+  // A vertex within the pieces' own hull tolerance of a face plane belongs to that face.
+  const double scale = std::max(A.core->lengthScale(), B.core->lengthScale());
+  const double eps = std::max(A.core->hullTolerance(), B.core->hullTolerance()) +
+                     tol::kBodyMemberRelative * scale;
+
+  std::vector<Eigen::Vector3d> candidates = B.faceNormals;
+  for (const Eigen::Vector3d& n : A.faceNormals) candidates.push_back(-n);
+  const std::vector<Eigen::Vector3d> edgesB = edgeDirections(B);
+  for (const Eigen::Vector3d& da : edgeDirections(A)) {
+    for (const Eigen::Vector3d& db : edgesB) {
+      const Eigen::Vector3d c = da.cross(db);
+      const double length = c.norm();
+      if (length < tol::kBodyParallelSine) continue;
+      candidates.push_back(c / length);
+      candidates.push_back(-c / length);
+    }
+  }
+
+  std::vector<Eigen::Vector3d> sb, sa, diffs;
+  HullScratch scratch;
+  // |n - u| < s for unit vectors is n.u > 1 - s^2 / 2.
+  const double same = 1.0 - 0.5 * tol::kBodyParallelSine * tol::kBodyParallelSine;
+  for (const Eigen::Vector3d& u : candidates) {
+    const bool known = std::any_of(out.normals.begin(), out.normals.end(),
+                                   [&](const Eigen::Vector3d& n) { return n.dot(u) > same; });
+    if (known) continue;
+    const double h = supportSet(vb, u, eps, sb) + supportSet(negA, u, eps, sa);
+    diffs.clear();
+    for (const Eigen::Vector3d& b : sb) {
+      for (const Eigen::Vector3d& a : sa) diffs.push_back(b + a);  // sa holds -a
+    }
+    std::vector<Eigen::Vector3d> face = planeHull(diffs, u, h, eps, scratch);
+    if (face.empty()) continue;
+    addFace(out, u, h, std::move(face));
+  }
+  // A flat difference (coplanar polygons): two opposite facets at one offset; no interior.
+  for (std::size_t f = 0; f < out.normals.size(); ++f) {
+    for (std::size_t g = f + 1; g < out.normals.size(); ++g) {
+      if ((out.normals[f] + out.normals[g]).norm() < tol::kBodyParallelSine &&
+          out.offsets[f] + out.offsets[g] <= eps) {
+        return false;
+      }
+    }
+  }
+  return out.normals.size() >= 4;
+}
+
+}  // namespace deepcheck::deep::body
