@@ -3,7 +3,7 @@
 // scenes, lastValid, threads, attached objects and the bounds it is given.
 
 #include "bundled.h"
-#include "common/test_paths.h"
+#include "shared_robots.h"
 
 #include "deepcheck/planners/certified_motion_validator.h"
 #include "deepcheck/planners/motion_bound.h"
@@ -130,6 +130,17 @@ void addThinPlates(World& world, int count, std::mt19937_64& rng) {
     }
   }
 }
+/// A robot of the shared data among thin plates: 80 random motions of at most `longest`.
+void checkSharedRobot(const dp::test::SharedRobot& robot, double longest, unsigned seed) {
+  auto world = dp::loadWorld(robot.urdf, {}, robot.options);
+  std::mt19937_64 rng(seed);
+  addThinPlates(*world, 25, rng);
+  Motions m(world, robot.options);
+  const auto [accepted, rejected] = checkRandomMotions(m, *world, 80, longest, rng);
+  BOOST_TEST(accepted >= 5);
+  BOOST_TEST(rejected >= 5);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(planners_certified_motions)
@@ -194,36 +205,14 @@ BOOST_AUTO_TEST_CASE(every_accepted_motion_is_densely_free_on_the_bundled_arm) {
 
 BOOST_AUTO_TEST_CASE(every_accepted_motion_is_densely_free_on_the_panda) {
   if (!deepcheck::test::haveShared("every_accepted_motion_is_densely_free_on_the_panda")) return;
-  const std::string panda = deepcheck::test::sharedDir() + "/robots/panda/moveit_resources_panda_description";
-  dp::SetupOptions options;
-  options.packageRoots = {deepcheck::test::sharedDir() + "/robots/panda"};
-  options.useRosPackagePath = false;
-  auto world = dp::loadWorld(panda + "/urdf/panda.urdf", {}, options);
-  std::mt19937_64 rng(12);
-  addThinPlates(*world, 25, rng);
-  Motions m(world, options);
-  const auto [accepted, rejected] = checkRandomMotions(m, *world, 80, 1.5, rng);
-  BOOST_TEST(accepted >= 5);
-  BOOST_TEST(rejected >= 5);
+  checkSharedRobot(dp::test::sharedPanda(), 1.5, 12);
 }
 
 // The UR5 of the shared data: joints of +-2 pi, where a discrete check at 0.5 % of the space's
 // extent steps 0.144 rad.
 BOOST_AUTO_TEST_CASE(every_accepted_motion_is_densely_free_on_a_wide_range_arm) {
   if (!deepcheck::test::haveShared("every_accepted_motion_is_densely_free_on_a_wide_range_arm")) return;
-  const std::string dir = deepcheck::test::sharedDir() + "/robots/ur5";
-  const std::string description = dir + "/example-robot-data/robots/ur_description";
-  dp::SetupOptions options;
-  options.packageRoots = {dir};
-  options.useRosPackagePath = false;
-  options.srdf = description + "/srdf/ur5.srdf";
-  auto world = dp::loadWorld(description + "/urdf/ur5_robot.urdf", {}, options);
-  std::mt19937_64 rng(13);
-  addThinPlates(*world, 25, rng);
-  Motions m(world, options);
-  const auto [accepted, rejected] = checkRandomMotions(m, *world, 80, 3.0, rng);
-  BOOST_TEST(accepted >= 5);
-  BOOST_TEST(rejected >= 5);
+  checkSharedRobot(dp::test::sharedUr5(), 3.0, 13);
 }
 
 BOOST_AUTO_TEST_CASE(last_valid_is_a_certified_configuration_before_the_first_collision) {

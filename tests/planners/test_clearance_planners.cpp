@@ -9,7 +9,7 @@
 #include "deepcheck/planners/path_tools.h"
 #include "deepcheck/planners/planner_factory.h"
 #include "deepcheck/planners/setup.h"
-#include "../common/test_paths.h"
+#include "shared_robots.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -31,13 +31,8 @@ namespace {
 std::shared_ptr<const deepcheck::checker::World> ur5WithPole() {
   static std::shared_ptr<const deepcheck::checker::World> cached;
   if (cached) return cached;
-  const std::string dir = deepcheck::test::sharedDir() + "/robots/ur5";
-  const std::string description = dir + "/example-robot-data/robots/ur_description";
-  dp::SetupOptions options;
-  options.packageRoots = {dir};
-  options.useRosPackagePath = false;
-  options.srdf = description + "/srdf/ur5.srdf";
-  auto world = dp::loadWorld(description + "/urdf/ur5_robot.urdf", {}, options);
+  const dp::test::SharedRobot ur5 = dp::test::sharedUr5();
+  auto world = dp::loadWorld(ur5.urdf, {}, ur5.options);
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
   X_WO.translation() = Eigen::Vector3d(0.55, 0.0, 0.2);
   world->addObstacle(deepcheck::checker::Obstacle::cylinder("pole", 0.04, 0.4, X_WO));
