@@ -104,6 +104,15 @@ enum class Clearance {
 /// to its base then).
 Clearance classify(Impl& c, const Snapshot& s, Margins& margins);
 
+/// Every pair within its margin at the context's configuration, listed in `near` when none is
+/// within the base clearance (Near; Clear when none is within its margin); Collides at the first
+/// pair within the base clearance (the list is then incomplete).
+Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near);
+
+/// Pair k (as collectNear lists it) within its margin at the context's configuration; a self pair
+/// its grid certifies over the sub-motion (Margins::gridCertifies) is not.
+bool pairNear(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins);
+
 /// isFree (no margins) or isClear at the context's configuration (`s` from prepare): false at the
 /// first pair within its margin (remembered in c.lastHit and tried first next time).
 bool clearOfAll(Impl& c, const Snapshot& s, const Margins& margins);

@@ -222,6 +222,42 @@ Clearance classify(Impl& c, const Snapshot& s, Margins& margins) {
   return near ? Clearance::Near : Clearance::Clear;
 }
 
+Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near) {
+  checkLinkTranslations(c);
+  near.clear();
+  Margins base = margins;
+  base.dropToBase();
+  // The pair that collided last time first: motions test nearby configurations in a row.
+  if (c.lastHit.kind != PairKey::Kind::None) {
+    if (pairWithin(c, s, c.lastHit, base)) return Clearance::Collides;
+    c.lastHit = PairKey{};
+  }
+  auto test = [&](const PairKey& k, double m) {
+    if (!narrowWithin(c, s, k, m)) return false;
+    if (narrowWithin(c, s, k, margins.base())) return true;
+    near.push_back(k);
+    return false;
+  };
+  if (forEachPairNear(c, s, margins, test)) return Clearance::Collides;
+  return near.empty() ? Clearance::Clear : Clearance::Near;
+}
+
+bool pairNear(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins) {
+  if (k.kind == PairKey::Kind::Self) {
+    // The self pair whose block of caches holds k's.
+    const auto sp = std::upper_bound(s.selfPairs.begin(), s.selfPairs.end(), k.cache,
+                                     [](int cache, const SelfPair& p) { return cache < p.cacheOffset; }) -
+                    1;
+    const RobotData& robot = *s.robot;
+    if (sp->grid != nullptr &&
+        margins.gridCertifies(*sp->grid, c.lastQ,
+                              margins.self(robot.pieces[k.robotPiece].group, robot.pieces[k.other].group))) {
+      return false;
+    }
+  }
+  return pairWithin(c, s, k, margins);
+}
+
 }  // namespace detail
 
 bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context) const {

@@ -3,13 +3,14 @@
 //
 // The sub-motions are the dyadic intervals of [0, 1]: at level k the 2^k intervals of length
 // 2^-k, each tested at its middle q(tm) with its half length h = 2^-(k+1) as the scale of the
-// bounds. A sub-motion is certified when every pair is farther apart than base + h times its
-// bound there (isClear: the robot's pieces grown; a self pair may instead be certified by its
-// grid over the whole sub-motion). Otherwise q(tm) itself is tested (isFree, or isClear at the
-// base clearance): a pair within the base there means the motion collides; if not, the two
-// halves are examined at the next level. Levels are visited in order and each level in
-// increasing t: the configurations tested first are spread along the motion, so a collision is
-// met early, as with a discrete check in bisection order.
+// bounds. A pair is clear over a sub-motion when it is farther apart than base + h times its
+// bound at q(tm) (isClear's test: its robot piece grown; a self pair may instead be certified by
+// its grid over the whole sub-motion). A pair clear over a sub-motion is clear over its halves, so
+// only the pairs found within their margins are tested again on the halves, each also at the
+// base clearance: within that, the motion collides there. A sub-motion with no pair left is
+// certified. Levels are visited in order and each level in increasing t: the configurations
+// tested first are spread along the motion, so a collision is met early, as with a discrete
+// check in bisection order.
 //
 // Sub-motions over which some point moves more than tol::kCertifyBelowMove skip the clearance
 // test (such a clearance is rare in a robot's workspace, and the test would only fail): there
@@ -33,10 +34,20 @@ using namespace detail;  // NOLINT: the queries' own internals
 
 namespace {
 
+/// A sub-motion to examine: its index within its level, and the pairs to test there (those its
+/// parent found within their margins), or every pair (first < 0).
+struct SubMotion {
+  std::int64_t index = 0;
+  int first = -1;  ///< into the level's pair list
+  int count = 0;
+};
+
 /// The scratch of one thread's motion checks, reused from motion to motion.
 struct MotionScratch {
   Eigen::VectorXd q, dq;
-  std::vector<std::int64_t> level, next;  ///< sub-motions (index within their level) to examine
+  std::vector<SubMotion> level, next;     ///< the sub-motions of this level and of the next
+  std::vector<PairKey> pairs, nextPairs;  ///< their pair lists
+  std::vector<PairKey> near;              ///< the pairs one sub-motion found within their margins
   const RobotData* chainsOf = nullptr;    ///< the robot data `chains` was made for
   std::vector<std::vector<int>> chains;   ///< per link geometry, its moving joints up to the root
   std::vector<double> speed;              ///< per link geometry, its posed bound (PosedMotion)
@@ -99,8 +110,10 @@ double largestMove(const ClearanceDemand& motion) {
 
 enum class Outcome { Certified, Split, Collides, Unproven };
 
-/// Examines one sub-motion (middle q(tm), half length h) at the context's current pose.
-Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, double h, double move, MotionScratch& w) {
+/// Examines one sub-motion (middle q(tm), half length h) at the context's current pose; on
+/// Split, w.near holds the pairs its halves must test (or `all` is set: every pair).
+Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, double h, double move,
+                const SubMotion& sub, MotionScratch& w, bool& all) {
   const RobotData& robot = *s.robot;
   const bool certify = h * move <= tol::kCertifyBelowMove;
   if (certify) {
@@ -108,12 +121,79 @@ Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, doubl
     posedSpeeds(c, robot, motion, h, w);
   }
   Margins margins(motion, robot, certify ? h : 0.0, certify ? PosedMotion{&w.dq, &w.speed} : PosedMotion{});
-  const Clearance found = classify(c, s, margins);
+  all = false;
+  Clearance found = Clearance::Clear;
+  if (sub.first < 0 && !certify) {
+    // Too long a sub-motion for a clearance test: q(tm) for collision only.
+    found = classify(c, s, margins);
+    all = true;
+  } else if (sub.first < 0) {
+    found = collectNear(c, s, margins, w.near);
+  } else {
+    // The pairs the parent found near; the others are clear over the whole parent.
+    Margins base = margins;
+    base.dropToBase();
+    w.near.clear();
+    for (int i = sub.first; i < sub.first + sub.count; ++i) {
+      const PairKey& k = w.pairs[static_cast<std::size_t>(i)];
+      if (!pairNear(c, s, k, margins)) continue;
+      if (pairNear(c, s, k, base)) return Outcome::Collides;
+      w.near.push_back(k);
+    }
+    found = w.near.empty() ? Clearance::Clear : Clearance::Near;
+  }
   if (found == Clearance::Collides) return Outcome::Collides;
-  // Clear at scale 0 only says q(tm) is valid.
-  if (found == Clearance::Clear && certify) return Outcome::Certified;
+  if (found == Clearance::Clear && !all) return Outcome::Certified;
   if (h * move < tol::kCertifiedResolution) return Outcome::Unproven;
   return Outcome::Split;
+}
+
+/// Queues the halves of sub-motion j for the next level, with the pairs `examine` left.
+void split(const SubMotion& sub, bool all, MotionScratch& w) {
+  SubMotion half;
+  if (!all) {
+    half.first = static_cast<int>(w.nextPairs.size());
+    half.count = static_cast<int>(w.near.size());
+    w.nextPairs.insert(w.nextPairs.end(), w.near.begin(), w.near.end());
+  }
+  half.index = 2 * sub.index;
+  w.next.push_back(half);
+  half.index = 2 * sub.index + 1;
+  w.next.push_back(half);
+}
+
+/// One certification; false when the world changed under it (its pair lists are then void).
+bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q1,
+                 const ClearanceDemand& motion, MotionScratch& w, MotionCertificate& out) {
+  const double move = largestMove(motion);
+  out = MotionCertificate{};
+  out.verdict = MotionCertificate::Verdict::Certified;
+  w.level.assign(1, SubMotion{});
+  w.pairs.clear();
+  std::shared_ptr<const Snapshot> held;
+  for (int k = 0; !w.level.empty(); ++k) {
+    const double h = 0.5 / static_cast<double>(std::int64_t{1} << k);
+    w.next.clear();
+    w.nextPairs.clear();
+    for (const SubMotion& sub : w.level) {
+      w.q = q1 + (2.0 * h * (static_cast<double>(sub.index) + 0.5)) * w.dq;
+      ++out.configurations;
+      const Snapshot& s = prepare(state, c, w.q);
+      if (!held) held = c.snap;
+      if (c.snap != held) return false;
+      bool all = false;
+      const Outcome o = examine(c, s, motion, h, move, sub, w, all);
+      if (o == Outcome::Collides || o == Outcome::Unproven || out.configurations > tol::kCertifiedMaxTests) {
+        out.verdict = o == Outcome::Collides ? MotionCertificate::Verdict::Collides
+                                             : MotionCertificate::Verdict::Unproven;
+        return true;
+      }
+      if (o == Outcome::Split) split(sub, all, w);
+    }
+    std::swap(w.level, w.next);
+    std::swap(w.pairs, w.nextPairs);
+  }
+  return true;
 }
 
 }  // namespace
@@ -125,29 +205,9 @@ MotionCertificate World::certifyMotion(const Eigen::Ref<const Eigen::VectorXd>& 
   checkSizes(robot().numVariables(), q1, dq);
   thread_local MotionScratch w;
   w.dq = dq;
-  const double move = largestMove(motion);
   MotionCertificate out;
-  out.verdict = MotionCertificate::Verdict::Certified;
-  w.level.assign(1, 0);
-  for (int k = 0; !w.level.empty(); ++k) {
-    const double h = 0.5 / static_cast<double>(std::int64_t{1} << k);
-    w.next.clear();
-    for (const std::int64_t j : w.level) {
-      w.q = q1 + (2.0 * h * (static_cast<double>(j) + 0.5)) * dq;
-      ++out.configurations;
-      const Snapshot& s = prepare(*state_, c, w.q);
-      const Outcome o = examine(c, s, motion, h, move, w);
-      if (o == Outcome::Collides || o == Outcome::Unproven || out.configurations > tol::kCertifiedMaxTests) {
-        out.verdict = o == Outcome::Collides ? MotionCertificate::Verdict::Collides
-                                             : MotionCertificate::Verdict::Unproven;
-        return out;
-      }
-      if (o == Outcome::Split) {
-        w.next.push_back(2 * j);
-        w.next.push_back(2 * j + 1);
-      }
-    }
-    std::swap(w.level, w.next);
+  // A change of the world during the check (another thread adding an obstacle) starts it again.
+  while (!certifyOnce(*state_, c, q1, motion, w, out)) {
   }
   return out;
 }

@@ -591,4 +591,28 @@ bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFram
   return true;
 }
 
+bool gjkWithin(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, double within,
+               GjkCache* cache) {
+  const double contactTol = tol::kContactRelative * pairLengthScale(A, B, frame);
+  MinkowskiSupport support(A, B, frame, Vector3d::Zero(), cache ? cache->hintA : 0,
+                           cache ? cache->hintB : 0);
+  // Early exit on a lower bound above `within`; a simplex point within max(within, contactTol)
+  // of the origin proves the answer true.
+  const double near = std::max(within, contactTol);
+  const Run r = runGjk(support, initialDirection(frame, cache), /*earlyExit=*/true, near, near);
+  updateCache(cache, r, support);
+  switch (r.exit) {
+    case Exit::SeparatingAxis:
+      return false;
+    case Exit::Converged:
+      // v.w >= (1 - kGjkRelative) |v|^2 at convergence: that lower bound decides.
+      return !((1.0 - tol::kGjkRelative) * std::sqrt(r.vv) > near);
+    case Exit::Enclosed:
+    case Exit::NearOrigin:
+    case Exit::MaxIterations:
+      return true;
+  }
+  return true;
+}
+
 }  // namespace deepcheck::deep

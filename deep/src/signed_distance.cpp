@@ -419,8 +419,7 @@ bool overlapsUnchecked(const ConvexShape& A, const Eigen::Isometry3d& X_WA, cons
                        const Eigen::Isometry3d& X_WB, PairCache* cache) {
   const PairFrame frame = PairFrame::makeUnchecked(*A.core, X_WA, *B.core, X_WB);
   if (A.radius == 0 && B.radius == 0) return gjkOverlap(*A.core, *B.core, frame, cache ? &cache->gjk : nullptr);
-  const GjkResult g = gjkDistance(*A.core, *B.core, frame, cache ? &cache->gjk : nullptr);
-  return g.distance <= A.radius + B.radius;
+  return gjkWithin(*A.core, *B.core, frame, A.radius + B.radius, cache ? &cache->gjk : nullptr);
 }
 
 }  // namespace deepcheck::deep

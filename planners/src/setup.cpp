@@ -224,6 +224,18 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
 
 namespace {
 
+/// One pass of OMPL's path shortening: vertex reduction, shortcuts, vertex reduction again, two
+/// rounds of B-spline smoothing. Every change goes through the motion validator. simplifyMax
+/// repeats such passes until nothing improves: on MotionBenchMaker's Panda problems with certified
+/// motions its paths are 4 % shorter at the median and it takes 4x the time (12 ms against 3 ms
+/// with the plan, bench/README.md).
+void shortenPath(ompl::geometric::PathSimplifier& simplifier, ompl::geometric::PathGeometric& path) {
+  simplifier.reduceVertices(path);
+  simplifier.shortcutPath(path);
+  simplifier.reduceVertices(path);
+  simplifier.smoothBSpline(path, 2);
+}
+
 /// The objective's cost of `path` is no worse than `reference` (always true without an objective).
 bool costNotWorse(const ompl::geometric::PathGeometric& path, const ompl::base::OptimizationObjectivePtr& objective,
                   const ompl::base::Cost& reference) {
@@ -245,10 +257,13 @@ bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds) {
   // vertex reduction and B-spline smoothing of simplifyMax ignore it and pull a clearance path
   // onto the obstacles).
   ompl::geometric::PathSimplifier costAware(ss.getSpaceInformation(), pdef->getGoal(), objective);
+  ompl::geometric::PathSimplifier simplifier(ss.getSpaceInformation(), pdef->getGoal());
   // The simplifier is randomized: a failed attempt may succeed the next time.
   for (int attempt = 0; attempt < tol::kSimplifyAttempts; ++attempt) {
     ompl::geometric::PathGeometric& path = ss.getSolutionPath();
-    if (lengthOnly) {
+    if (lengthOnly && seconds == 0.0) {
+      shortenPath(simplifier, path);
+    } else if (lengthOnly) {
       ss.simplifySolution(seconds);
     } else {
       costAware.shortcutPath(path);

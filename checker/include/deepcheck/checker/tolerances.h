@@ -80,7 +80,7 @@ constexpr double kCertifiedResolution = 1e-5;
 
 /// ... and at most this many configurations are tested per motion before it is left Unproven (a
 /// motion sliding along a surface within kCertifiedResolution over a long stretch).
-constexpr int kCertifiedMaxTests = 1 << 14;
+constexpr int kCertifiedMaxTests = 1 << 10;
 
 /// World::certifyMotion tests a sub-motion for clearance only when no point moves more than this
 /// over it (metres): larger clearances are rare in a robot's workspace and the test would fail;

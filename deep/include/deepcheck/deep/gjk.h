@@ -90,4 +90,12 @@ bool enclosesOrigin(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
 bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                 GjkCache* cache = nullptr);
 
+/// Fast boolean: true when the distance between A and B is at most `within` (> 0), or cannot be
+/// shown larger (touching within kContactRelative * L, or the iteration cap). Stops as soon as
+/// GJK's lower bound exceeds `within` (false) or its simplex comes within it (true); at
+/// convergence, false only when the lower bound exceeds `within`, so false is a proof. For
+/// shapes with radii: the cores' distance against the sum of the radii.
+bool gjkWithin(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, double within,
+               GjkCache* cache = nullptr);
+
 }  // namespace deepcheck::deep
