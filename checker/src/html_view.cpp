@@ -185,8 +185,11 @@ void writeFrames(const ViewScene& scene, std::ostream& out) {
   std::vector<double> values;
   std::vector<double> distances;
   std::vector<float> points;  // pointA, pointB, normal per frame
+  std::vector<double> bodyDistances;
+  std::vector<float> bodyPoints;  // as `points`, of the body-level contact
   std::string waypoints;
   std::string hasContact;
+  std::string hasBodyContact;
   std::string labels = "[";
   std::string names = "[";
   for (std::size_t f = 0; f < n; ++f) {
@@ -216,11 +219,24 @@ void writeFrames(const ViewScene& scene, std::ostream& out) {
       for (int i = 0; i < 3; ++i) points.push_back(static_cast<float>((*v)[i]));
     }
     names += (f ? "," : "") + quoted(frame.hasContact ? c.nameA : "") + "," + quoted(frame.hasContact ? c.nameB : "");
+    const ViewContact& b = frame.bodyContact;
+    hasBodyContact += frame.hasBodyContact ? '1' : '0';
+    if (frame.hasBodyContact) {
+      requireFinite(b.pointA, what + " body contact point A");
+      requireFinite(b.pointB, what + " body contact point B");
+      requireFinite(b.normal, what + " body contact normal");
+    }
+    bodyDistances.push_back(frame.hasBodyContact ? b.distance : std::nan(""));
+    for (const Eigen::Vector3d* v : {&b.pointA, &b.pointB, &b.normal}) {
+      for (int i = 0; i < 3; ++i) bodyPoints.push_back(static_cast<float>((*v)[i]));
+    }
   }
   out << "\"frames\":{\"count\":" << n << ",\"tracks\":" << scene.numTracks << ",\"poses\":" << base64Of(poses)
       << ",\"waypoint\":\"" << waypoints << "\",\"value\":" << base64Of(values) << ",\"labels\":" << labels
       << "],\"contact\":{\"has\":\"" << hasContact << "\",\"distance\":" << base64Of(distances)
-      << ",\"points\":" << base64Of(points) << ",\"names\":" << names << "]}}";
+      << ",\"points\":" << base64Of(points) << ",\"names\":" << names << "]},\"bodyContact\":{\"has\":\""
+      << hasBodyContact << "\",\"distance\":" << base64Of(bodyDistances) << ",\"points\":" << base64Of(bodyPoints)
+      << "}}";
 }
 
 /// The template with every "@DEEPCHECK_<NAME>@" replaced by its text, scanned once (inserted text
