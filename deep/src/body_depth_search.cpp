@@ -56,17 +56,33 @@ bool straddles(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& c
 /// Crossing.
 enum class Meets { Disjoint, Covered, Crossing };
 
+/// meets() also appends, per plane of d, whether the polygon straddles it (straddles(), which
+/// faceLines needs for the planes of a crossing difference: the same tests, made once).
 Meets meets(const Difference& d, const std::vector<Eigen::Vector3d>& poly, const Eigen::Vector3d& centre,
-            double radius, double tol) {
+            double radius, double tol, std::vector<char>& straddling) {
   bool covered = true;
+  const std::size_t first = straddling.size();
   for (std::size_t g = 0; g < d.normals.size(); ++g) {
     const double at = d.normals[g].dot(centre) - d.offsets[g];
-    if (at - radius >= -tol) return Meets::Disjoint;  // the polygon's ball is outside the plane
-    if (at + radius < -tol) continue;                   // ... or strictly inside it
+    // The polygon's ball outside the plane: disjoint. Else, for straddles(), its first test
+    // (at - radius > tol) fails too.
+    if (at - radius >= -tol) {
+      straddling.resize(first);
+      return Meets::Disjoint;
+    }
+    if (at + radius < -tol) {  // ... or strictly inside it: not straddling
+      straddling.push_back(0);
+      continue;
+    }
     const auto [lo, hi] = planeRange(poly, d.normals[g], d.offsets[g]);
-    if (lo >= -tol) return Meets::Disjoint;  // interiors cannot meet across this plane
+    if (lo >= -tol) {  // interiors cannot meet across this plane
+      straddling.resize(first);
+      return Meets::Disjoint;
+    }
+    straddling.push_back(lo <= tol && hi >= -tol ? 1 : 0);
     covered = covered && hi < -tol;
   }
+  if (covered) straddling.resize(first);
   return covered ? Meets::Covered : Meets::Crossing;
 }
 
@@ -78,9 +94,10 @@ std::size_t edgeCount(const std::vector<Eigen::Vector3d>& poly, double tol) {
 }
 
 /// The lines bounding the face's candidate regions: its edge lines, and the traces of the planes
-/// of the differences in `crossing` that cross the face polygon.
+/// of the differences in `crossing` that cross the face polygon. `straddling`: per plane of each
+/// crossing difference in turn, whether the face polygon straddles it (from meets()).
 std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vector<int>& crossing,
-                            int k, int f, double tol) {
+                            const std::vector<char>& straddling, int k, int f, double tol) {
   const Difference& own = diffs[static_cast<std::size_t>(k)];
   const std::vector<Eigen::Vector3d>& poly = own.faces[static_cast<std::size_t>(f)];
   const Eigen::Vector3d& n = own.normals[static_cast<std::size_t>(f)];
@@ -91,6 +108,7 @@ std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vec
     if (e.norm() > tol) lines.push_back({poly[i], e.normalized()});
   }
   // (edgeCount(poly, tol) lines so far: the polygon's edges, which faceCandidates tests against.)
+  std::size_t flag = 0;
   for (const int l : crossing) {
     const Difference& other = diffs[static_cast<std::size_t>(l)];
     for (std::size_t g = 0; g < other.normals.size(); ++g) {
@@ -98,8 +116,7 @@ std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vec
       const double e = other.offsets[g];
       // The plane must cross the face, and (M_l's section by the face plane being bounded only
       // by the traces of the facets that cross that plane) its facet must cross the face plane.
-      if (!straddles(poly, own.centres[static_cast<std::size_t>(f)], own.radii[static_cast<std::size_t>(f)], m, e, tol) ||
-          !straddles(other.faces[g], other.centres[g], other.radii[g], n, h, tol)) {
+      if (!straddling[flag++] || !straddles(other.faces[g], other.centres[g], other.radii[g], n, h, tol)) {
         continue;
       }
       const Eigen::Vector3d d = n.cross(m);
@@ -232,16 +249,18 @@ bool onDifference(const Difference& d, const Eigen::Vector3d& x, double tol) {
 
 }  // namespace
 
-SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
-                                   const Eigen::Vector3d& start, int maxFaces, double tol) {
+SearchResult searchNearestBoundary(const std::vector<Difference>& diffs, const Eigen::Vector3d& start,
+                                   double reach, int maxFaces, double tol) {
   SearchResult r;
   r.point = start;
-  double best = start.norm();
+  double best = std::max(reach, start.norm());
   // Min-heap of (bound, (difference, face)); a face enters with its plane's distance and, when
   // first popped, is put back with the polygon's distance (never smaller) before it is searched.
   using Entry = std::pair<double, std::pair<int, int>>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   std::vector<std::vector<char>> refined(diffs.size());
+  std::vector<int> crossing;     // per searched face: the differences crossing it
+  std::vector<char> straddling;  // ... and per plane of each, whether the face straddles it
   for (std::size_t k = 0; k < diffs.size(); ++k) {
     refined[k].assign(diffs[k].normals.size(), 0);
     for (std::size_t f = 0; f < diffs[k].normals.size(); ++f) {
@@ -268,18 +287,19 @@ SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
     }
     ++r.facesSearched;
     // Only the differences whose interiors reach the face bound or cover parts of it.
-    std::vector<int> crossing;
+    crossing.clear();
+    straddling.clear();
     bool covered = false;
     for (int l = 0; l < static_cast<int>(diffs.size()) && !covered; ++l) {
       if (l == k) continue;
       const Meets m = meets(diffs[static_cast<std::size_t>(l)], poly, d.centres[static_cast<std::size_t>(f)],
-                            d.radii[static_cast<std::size_t>(f)], tol);
+                            d.radii[static_cast<std::size_t>(f)], tol, straddling);
       covered = m == Meets::Covered;
       if (m == Meets::Crossing) crossing.push_back(l);
     }
     if (covered) continue;
     const Eigen::Vector3d p0 = d.offsets[static_cast<std::size_t>(f)] * n;
-    const std::vector<Line> lines = faceLines(diffs, crossing, k, f, tol);
+    const std::vector<Line> lines = faceLines(diffs, crossing, straddling, k, f, tol);
     for (const auto& [r2, x] : faceCandidates(p0, lines, edgeCount(poly, tol), n, best, tol)) {
       if (!onDifference(d, x, tol) || insideAny(diffs, crossing, x, tol)) continue;
       best = std::sqrt(r2);
@@ -289,7 +309,7 @@ SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
     }
   }
   r.finished = true;
-  r.lowerBound = best;
+  r.lowerBound = std::min(best, r.point.norm());
   return r;
 }
 
