@@ -28,6 +28,19 @@ struct Line {
   Eigen::Vector3d d;
 };
 
+/// A line of faceCandidates that can hold a candidate, with its parameter interval in the polygon.
+struct NearLine {
+  std::size_t line;
+  double lo, hi;
+};
+
+/// Per-face working space of the search, kept across faces so that each face allocates nothing.
+struct FaceScratch {
+  std::vector<Line> lines;
+  std::vector<NearLine> near;
+  std::vector<std::pair<double, Eigen::Vector3d>> candidates;
+};
+
 /// The range of n.x - h over the points.
 std::pair<double, double> planeRange(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& n,
                                      double h) {
@@ -96,13 +109,13 @@ std::size_t edgeCount(const std::vector<Eigen::Vector3d>& poly, double tol) {
 /// The lines bounding the face's candidate regions: its edge lines, and the traces of the planes
 /// of the differences in `crossing` that cross the face polygon. `straddling`: per plane of each
 /// crossing difference in turn, whether the face polygon straddles it (from meets()).
-std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vector<int>& crossing,
-                            const std::vector<char>& straddling, int k, int f, double tol) {
+void faceLines(const std::vector<Difference>& diffs, const std::vector<int>& crossing,
+               const std::vector<char>& straddling, int k, int f, double tol, std::vector<Line>& lines) {
   const Difference& own = diffs[static_cast<std::size_t>(k)];
   const std::vector<Eigen::Vector3d>& poly = own.faces[static_cast<std::size_t>(f)];
   const Eigen::Vector3d& n = own.normals[static_cast<std::size_t>(f)];
   const double h = own.offsets[static_cast<std::size_t>(f)];
-  std::vector<Line> lines;
+  lines.clear();
   for (std::size_t i = 0; i < poly.size(); ++i) {
     const Eigen::Vector3d e = poly[(i + 1) % poly.size()] - poly[i];
     if (e.norm() > tol) lines.push_back({poly[i], e.normalized()});
@@ -130,7 +143,6 @@ std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vec
       lines.push_back({a * n + b * m, d / sine});
     }
   }
-  return lines;
 }
 
 /// True when x (in the face plane, normal n) is inside the face polygon whose edges are the first
@@ -169,23 +181,20 @@ std::pair<double, double> polygonInterval(const Line& L, const std::vector<Line>
 /// first `edges` lines are the polygon's edges. Lines no nearer than the bound, or missing the
 /// polygon, hold no candidate (a line's points are no nearer than its foot) and are dropped
 /// before the pairs are formed; a pair's intersection counts only inside both lines' intervals.
-std::vector<std::pair<double, Eigen::Vector3d>> faceCandidates(const Eigen::Vector3d& p0,
-                                                               const std::vector<Line>& lines,
-                                                               std::size_t edges,
-                                                               const Eigen::Vector3d& n,
-                                                               double bound, double tol) {
-  std::vector<std::pair<double, Eigen::Vector3d>> out;
+/// The candidates go to scratch.candidates (scratch.lines holds the lines).
+void faceCandidates(const Eigen::Vector3d& p0, std::size_t edges, const Eigen::Vector3d& n, double bound,
+                    double tol, FaceScratch& scratch) {
+  const std::vector<Line>& lines = scratch.lines;
+  std::vector<std::pair<double, Eigen::Vector3d>>& out = scratch.candidates;
+  out.clear();
   const double bound2 = bound * bound;
   auto add = [&](const Eigen::Vector3d& x) {
     const double r2 = x.squaredNorm();
     if (r2 < bound2 && inPolygon(x, lines, edges, n, tol)) out.emplace_back(r2, x);
   };
   add(p0);
-  struct Near {
-    std::size_t line;
-    double lo, hi;
-  };
-  std::vector<Near> near;
+  std::vector<NearLine>& near = scratch.near;
+  near.clear();
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const Line& L = lines[i];
     const Eigen::Vector3d foot = L.q + L.d.dot(p0 - L.q) * L.d;
@@ -211,7 +220,6 @@ std::vector<std::pair<double, Eigen::Vector3d>> faceCandidates(const Eigen::Vect
   }
   std::sort(out.begin(), out.end(),
             [](const auto& x, const auto& y) { return x.first < y.first; });
-  return out;
 }
 
 /// Distance from the origin to the face polygon `poly` (plane n.x = h): |h| when the origin's
@@ -261,6 +269,7 @@ SearchResult searchNearestBoundary(const std::vector<Difference>& diffs, const E
   std::vector<std::vector<char>> refined(diffs.size());
   std::vector<int> crossing;     // per searched face: the differences crossing it
   std::vector<char> straddling;  // ... and per plane of each, whether the face straddles it
+  FaceScratch scratch;
   for (std::size_t k = 0; k < diffs.size(); ++k) {
     refined[k].assign(diffs[k].normals.size(), 0);
     for (std::size_t f = 0; f < diffs[k].normals.size(); ++f) {
@@ -299,8 +308,9 @@ SearchResult searchNearestBoundary(const std::vector<Difference>& diffs, const E
     }
     if (covered) continue;
     const Eigen::Vector3d p0 = d.offsets[static_cast<std::size_t>(f)] * n;
-    const std::vector<Line> lines = faceLines(diffs, crossing, straddling, k, f, tol);
-    for (const auto& [r2, x] : faceCandidates(p0, lines, edgeCount(poly, tol), n, best, tol)) {
+    faceLines(diffs, crossing, straddling, k, f, tol, scratch.lines);
+    faceCandidates(p0, edgeCount(poly, tol), n, best, tol, scratch);
+    for (const auto& [r2, x] : scratch.candidates) {
       if (!onDifference(d, x, tol) || insideAny(diffs, crossing, x, tol)) continue;
       best = std::sqrt(r2);
       r.point = x;
