@@ -250,6 +250,8 @@ void searchAnswer(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedP
   for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
     if (pairs[static_cast<std::size_t>(k)].distanceLower < upper) ensureDifference(pairs, k, P, diffs);
   }
+  // The search asks only about points within the start's distance: the same rule, tighter.
+  for (Difference& d : diffs) body::dropFacetsBeyond(d, upper + 1e4 * tol);
   // The box's point is often the answer itself (a push straight along an axis): the search then
   // also takes a face's point as near, up to tol, so that the answer names the face's pieces
   // rather than whichever difference's boundary is nearest the box's point.

@@ -55,6 +55,9 @@ bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out,
 /// a candidate normal whose support value is `keep` or more is skipped before its face polygon
 /// is formed (most of the cost).
 bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Difference& out, double keep);
+/// Removes the facets whose offset is `keep` or more (buildDifference's rule, for a smaller bound
+/// found later).
+void dropFacetsBeyond(Difference& d, double keep);
 /// From Qhull's hull of all vertex differences (body_difference_hull.cpp).
 bool buildDifferenceFromHull(const PosedPiece& A, const PosedPiece& B, Difference& out);
 /// Appends a facet (unit normal, offset, polygon counter-clockwise about the normal) to d.

@@ -50,6 +50,11 @@ bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out, 
   if (features <= hull) return buildDifferenceFromFeatures(A, B, out, keep);
   if (!buildDifferenceFromHull(A, B, out)) return false;
   // Qhull's facets are all formed at once; the far ones are dropped afterwards.
+  dropFacetsBeyond(out, keep);
+  return true;
+}
+
+void dropFacetsBeyond(Difference& out, double keep) {
   std::size_t kept = 0;
   for (std::size_t f = 0; f < out.normals.size(); ++f) {
     if (!(out.offsets[f] < keep)) continue;
@@ -67,7 +72,6 @@ bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out, 
   out.faces.resize(kept);
   out.centres.resize(kept);
   out.radii.resize(kept);
-  return true;
 }
 
 double planeExcess(const Difference& d, const Eigen::Vector3d& x) {
