@@ -32,16 +32,24 @@ set(browser "${CHROMIUM}" --headless --no-sandbox --use-angle=swiftshader --enab
     --window-size=1200,800 --proxy-server=127.0.0.1:9 "--host-resolver-rules=MAP * ~NOTFOUND"
     --no-first-run --disable-extensions "--user-data-dir=${WORK}/profile")
 
-foreach(frame 0 end)
-  execute_process(COMMAND ${browser} --dump-dom "file://${page}#t=${frame},probe"
+# Loads `url` with the probe, fails unless the page reports ready without a script error, and
+# sets `dom` (the page's DOM) and `root` (its <html> tag) in the caller; `what` names the page.
+function(load_probed url what)
+  execute_process(COMMAND ${browser} --dump-dom "${url}"
                   OUTPUT_VARIABLE dom ERROR_VARIABLE log RESULT_VARIABLE status TIMEOUT 180)
   string(REGEX MATCH "<html[^>]*>" root "${dom}")
   if(NOT status EQUAL 0 OR NOT root MATCHES "data-ready=\"1\"")
-    message(FATAL_ERROR "#t=${frame}: the page did not report ready (status ${status}): ${root}\n${log}")
+    message(FATAL_ERROR "${what}: the page did not report ready (status ${status}): ${root}\n${log}")
   endif()
   if(root MATCHES "data-error=\"([^\"]*)\"")
-    message(FATAL_ERROR "#t=${frame}: script error: ${CMAKE_MATCH_1}")
+    message(FATAL_ERROR "${what}: script error: ${CMAKE_MATCH_1}")
   endif()
+  set(dom "${dom}" PARENT_SCOPE)
+  set(root "${root}" PARENT_SCOPE)
+endfunction()
+
+foreach(frame 0 end)
+  load_probed("file://${page}#t=${frame},probe" "#t=${frame}")
   string(REGEX MATCH "data-pixel-variance=\"([0-9.]+)\"" _ "${root}")
   set(variance "${CMAKE_MATCH_1}")
   string(REGEX MATCH "data-pixel-hash=\"([0-9a-f]+)\"" _ "${root}")
@@ -77,15 +85,7 @@ execute_process(
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "deepcheck view (slab) failed (${status}): ${err}")
 endif()
-execute_process(COMMAND ${browser} --dump-dom "file://${slab_page}#t=0,probe"
-                OUTPUT_VARIABLE dom ERROR_VARIABLE log RESULT_VARIABLE status TIMEOUT 180)
-string(REGEX MATCH "<html[^>]*>" root "${dom}")
-if(NOT status EQUAL 0 OR NOT root MATCHES "data-ready=\"1\"")
-  message(FATAL_ERROR "slab: the page did not report ready (status ${status}): ${root}\n${log}")
-endif()
-if(root MATCHES "data-error=\"([^\"]*)\"")
-  message(FATAL_ERROR "slab: script error: ${CMAKE_MATCH_1}")
-endif()
+load_probed("file://${slab_page}#t=0,probe" "slab")
 if(NOT root MATCHES "data-arrows=\"contact,body depth\"")
   message(FATAL_ERROR "slab: the pair's and the body-depth arrows are not both shown: ${root}")
 endif()
