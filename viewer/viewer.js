@@ -6,9 +6,12 @@
 //             f32 xyz, edges u32 pairs, firsts u32 first vertex of each piece, spheres f32 xyzr);
 //   frames:   count, tracks, poses f32 (count x tracks x 7; x = NaN hides the track), waypoint
 //             ("1"/"0" per frame), value f64 (plotted), labels[], contact {has, distance f64,
-//             points f32 (pointA, pointB, normal per frame), names [A, B per frame]}.
+//             points f32 (pointA, pointB, normal per frame), names [A, B per frame]},
+//             bodyContact {has, distance f64, points f32}: the same pair measured as whole bodies
+//             (each the union of its pieces), where the pair overlaps.
 // URL hash: #t=N | #t=end selects the frame; "probe" adds pixel statistics of the first image
-// (data-pixel-variance, data-pixel-hash on <html>) for the browser test; "timing" shows up to 60
+// (data-pixel-variance, data-pixel-hash on <html>) and the arrows shown (data-arrows: "contact",
+// "body depth", comma-separated, with data-body-depth the body arrow's length) for the browser test; "timing" shows up to 60
 // frames and sets data-frame-ms (for the benchmark); "antialias" multisamples even in software
 // WebGL (for screenshots). When the first image is
 // drawn <html> gets data-ready="1" and data-load-ms (time since navigation start).
@@ -32,6 +35,8 @@
   const values = f64(frames.value);
   const contactDistance = f64(frames.contact.distance);
   const contactPoints = f32(frames.contact.points);
+  const bodyContactDistance = f64(frames.bodyContact.distance);
+  const bodyContactPoints = f32(frames.bodyContact.points);
 
   const LAYER_COLOURS = { robot: 0xd9a45b, attached: 0x6bb36b, scene: 0x8fa3b8, obstacle: 0xb86f5e, 'shape A': 0x4a90d9,
     'shape B': 0xe0a030, answer: 0x3fae49, mesh: 0xb5b5b5 };
@@ -129,7 +134,7 @@
   }
 
   // --- bodies and layers -------------------------------------------------------------------------
-  const layerVisible = {};  // "<layer> shapes" / "<layer> pieces" / "contact" / "grid" -> bool
+  const layerVisible = {};  // "<layer> shapes" / "<layer> pieces" / "contact" / "body depth" / "grid" -> bool
   const bodies = data.bodies.map((b) => {
     const object = new THREE.Group();
     object.name = b.name;
@@ -143,6 +148,7 @@
     return { data: b, object: object, shapes: shapes, pieces: pieces, on: b.visible, hiddenNow: false };
   });
   layerVisible.contact = true;
+  layerVisible['body depth'] = true;
   layerVisible.grid = true;
 
   function applyVisibility() {
@@ -152,6 +158,7 @@
       b.pieces.visible = !!layerVisible[b.data.layer + ' pieces'];
     }
     contact.group.visible = layerVisible.contact && contact.present;
+    bodyContact.group.visible = layerVisible['body depth'] && bodyContact.present;
     grid.visible = layerVisible.grid;
   }
 
@@ -168,8 +175,8 @@
   scene.add(grid);
 
   /// An arrow of solid meshes (lines are one pixel wide): a shaft and a cone along +y, scaled by place().
-  function makeArrow() {
-    const material = new THREE.MeshBasicMaterial({ color: 0x22aa22, depthTest: false, transparent: true });
+  function makeArrow(colour) {
+    const material = new THREE.MeshBasicMaterial({ color: colour, depthTest: false, transparent: true });
     const shaft = new THREE.Mesh(new THREE.CylinderBufferGeometry(1, 1, 1, 12), material);
     const head = new THREE.Mesh(new THREE.ConeBufferGeometry(1, 1, 16), material);
     const object = new THREE.Group();
@@ -193,13 +200,38 @@
     const marker = new THREE.SphereBufferGeometry(size * 0.0035, 16, 8);
     const pointA = new THREE.Mesh(marker, new THREE.MeshBasicMaterial({ color: 0x1a3cc8, depthTest: false, transparent: true }));
     const pointB = new THREE.Mesh(marker, new THREE.MeshBasicMaterial({ color: 0xc81a9c, depthTest: false, transparent: true }));
-    const arrow = makeArrow();
+    const arrow = makeArrow(0x22aa22);
     // Drawn last, over everything (transparent objects are drawn after opaque ones).
     for (const o of [pointA, pointB, arrow.object]) o.traverse((x) => { x.renderOrder = 2; });
     group.add(pointA, pointB, arrow.object);
     scene.add(group);
     return { group: group, pointA: pointA, pointB: pointB, arrow: arrow, present: false };
   })();
+
+  // The body-level push-out: the pair's two bodies as unions of their pieces. Orange, from B's
+  // witness along the normal, its length the body depth: the translation of B that separates the
+  // bodies (the pairwise red arrow separates only the deepest pair of pieces). Slightly thicker,
+  // so that where both arrows agree the red one shows inside it.
+  const bodyContact = (function () {
+    const group = new THREE.Group();
+    const arrow = makeArrow(0xf08c00);
+    arrow.object.scale.set(1.8, 1, 1.8);
+    arrow.object.traverse((x) => { x.renderOrder = 2; });
+    group.add(arrow.object);
+    scene.add(group);
+    return { group: group, arrow: arrow, present: false, depth: 0 };
+  })();
+
+  function showBodyContact(f) {
+    bodyContact.present = frames.bodyContact.has[f] === '1' && bodyContactDistance[f] < 0;
+    if (!bodyContact.present) return;
+    const p = bodyContactPoints;
+    const o = 9 * f;
+    const b = new THREE.Vector3(p[o + 3], p[o + 4], p[o + 5]);
+    const n = new THREE.Vector3(p[o + 6], p[o + 7], p[o + 8]);
+    bodyContact.depth = -bodyContactDistance[f];
+    bodyContact.arrow.place(b, n.normalize(), bodyContact.depth);
+  }
 
   function showContact(f) {
     contact.present = frames.contact.has[f] === '1';
@@ -231,6 +263,7 @@
       if (!b.hiddenNow) setPose(b.object, poses, offset);
     }
     showContact(current);
+    showBodyContact(current);
     applyVisibility();
     slider.value = String(current);
     frameLabel.textContent = frameText(current);
@@ -249,6 +282,7 @@
       text += ' · sd ' + formatNumber(contactDistance[f]) + ' m ' + frames.contact.names[2 * f] + ' – ' +
         frames.contact.names[2 * f + 1];
     }
+    if (frames.bodyContact.has[f] === '1') text += ' · body depth ' + formatNumber(-bodyContactDistance[f]) + ' m';
     return text;
   }
 
@@ -446,6 +480,13 @@
     const n = w * h;
     document.documentElement.setAttribute('data-pixel-variance', (sum2 / n - (sum / n) * (sum / n)).toFixed(3));
     document.documentElement.setAttribute('data-pixel-hash', hash.toString(16));
+    const arrows = [];
+    if (contact.group.visible && contact.arrow.object.visible) arrows.push('contact');
+    if (bodyContact.group.visible) {
+      arrows.push('body depth');
+      document.documentElement.setAttribute('data-body-depth', bodyContact.depth.toPrecision(6));
+    }
+    document.documentElement.setAttribute('data-arrows', arrows.join(','));
   }
 
   /// Mean milliseconds to show a frame (poses, contact, plot, render), over up to 60 frames spread

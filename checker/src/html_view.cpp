@@ -178,15 +178,39 @@ void writeBodies(const ViewScene& scene, std::ostream& out) {
   out << "]";
 }
 
+/// A frame's contact as the page's arrays hold it: "1"/"0" in `has`, the distance (NaN when
+/// absent) and pointA, pointB, normal; checked finite when present.
+struct ContactArrays {
+  std::string has;
+  std::vector<double> distances;
+  std::vector<float> points;
+
+  void append(bool present, const ViewContact& c, const std::string& what) {
+    has += present ? '1' : '0';
+    if (present) {
+      requireFinite(c.pointA, what + " point A");
+      requireFinite(c.pointB, what + " point B");
+      requireFinite(c.normal, what + " normal");
+    }
+    distances.push_back(present ? c.distance : std::nan(""));
+    for (const Eigen::Vector3d* v : {&c.pointA, &c.pointB, &c.normal}) {
+      for (int i = 0; i < 3; ++i) points.push_back(static_cast<float>((*v)[i]));
+    }
+  }
+  /// The JSON fields has, distance, points.
+  std::string json() const {
+    return "\"has\":\"" + has + "\",\"distance\":" + base64Of(distances) + ",\"points\":" + base64Of(points);
+  }
+};
+
 void writeFrames(const ViewScene& scene, std::ostream& out) {
   const std::size_t n = scene.frames.size();
   if (n == 0) throw std::invalid_argument("writeHtmlView: the scene has no frame");
   std::vector<float> poses;
   std::vector<double> values;
-  std::vector<double> distances;
-  std::vector<float> points;  // pointA, pointB, normal per frame
+  ContactArrays contacts;      // the closest pair's
+  ContactArrays bodyContacts;  // the body-level one
   std::string waypoints;
-  std::string hasContact;
   std::string labels = "[";
   std::string names = "[";
   for (std::size_t f = 0; f < n; ++f) {
@@ -203,24 +227,16 @@ void writeFrames(const ViewScene& scene, std::ostream& out) {
     }
     values.push_back(frame.value);
     waypoints += frame.waypoint ? '1' : '0';
-    hasContact += frame.hasContact ? '1' : '0';
     labels += (f ? "," : "") + quoted(frame.label);
     const ViewContact& c = frame.contact;
-    if (frame.hasContact) {
-      requireFinite(c.pointA, what + " contact point A");
-      requireFinite(c.pointB, what + " contact point B");
-      requireFinite(c.normal, what + " contact normal");
-    }
-    distances.push_back(frame.hasContact ? c.distance : std::nan(""));
-    for (const Eigen::Vector3d* v : {&c.pointA, &c.pointB, &c.normal}) {
-      for (int i = 0; i < 3; ++i) points.push_back(static_cast<float>((*v)[i]));
-    }
+    contacts.append(frame.hasContact, c, what + " contact");
     names += (f ? "," : "") + quoted(frame.hasContact ? c.nameA : "") + "," + quoted(frame.hasContact ? c.nameB : "");
+    bodyContacts.append(frame.hasBodyContact, frame.bodyContact, what + " body contact");
   }
   out << "\"frames\":{\"count\":" << n << ",\"tracks\":" << scene.numTracks << ",\"poses\":" << base64Of(poses)
       << ",\"waypoint\":\"" << waypoints << "\",\"value\":" << base64Of(values) << ",\"labels\":" << labels
-      << "],\"contact\":{\"has\":\"" << hasContact << "\",\"distance\":" << base64Of(distances)
-      << ",\"points\":" << base64Of(points) << ",\"names\":" << names << "]}}";
+      << "],\"contact\":{" << contacts.json() << ",\"names\":" << names << "]},\"bodyContact\":{"
+      << bodyContacts.json() << "}}";
 }
 
 /// The template with every "@DEEPCHECK_<NAME>@" replaced by its text, scanned once (inserted text

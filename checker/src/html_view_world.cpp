@@ -1,7 +1,10 @@
 // viewOfWorld: the bodies of a World (robot links on tracks, scenes and obstacles fixed) and its
-// closest pair along a sequence of configurations, densified for animation (html_view.h).
+// closest pair along a sequence of configurations, densified for animation, with the body-level
+// answer of that pair's bodies where they overlap (html_view.h).
 
 #include "deepcheck/checker/html_view.h"
+
+#include "deepcheck/checker/body_distance.h"
 
 #include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/kinematics.h"
@@ -158,6 +161,21 @@ ViewContact contactOf(const Contact& c) {
   return ViewContact{c.distance, c.pointA, c.pointB, c.normal, c.nameA, c.nameB};
 }
 
+/// The body A of a contact: its robot link, or the attached object named by nameA (attached
+/// objects are told apart by name, as World::attachedObjects lists them).
+BodyRef bodyA(const Contact& c, const std::vector<AttachedObjectInfo>& attached) {
+  BodyRef a;
+  a.kind = BodyRef::Kind::RobotLink;
+  a.index = c.linkA;
+  for (std::size_t i = 0; i < attached.size(); ++i) {
+    if (c.nameA == "attached/" + attached[i].object.name) {
+      a.kind = BodyRef::Kind::Attached;
+      a.scene = static_cast<int>(i);
+    }
+  }
+  return a;
+}
+
 }  // namespace
 
 std::vector<ViewBody> linkBodies(const robots::RobotModel& model, const std::vector<Eigen::Isometry3d>& X_WL,
@@ -219,6 +237,7 @@ ViewScene viewOfWorld(const World& world, const std::vector<Eigen::VectorXd>& co
   addScenes(world, worldPieces, scene.bodies);
   addObstacles(world, worldPieces, meshes, scene.bodies);
 
+  const std::vector<AttachedObjectInfo> attached = world.attachedObjects();
   const Densified path = densify(configurations, options.maxStep, options.maxFrames);
   auto context = world.makeContext();
   std::vector<Eigen::Isometry3d> X_WL;
@@ -237,6 +256,11 @@ ViewScene viewOfWorld(const World& world, const std::vector<Eigen::VectorXd>& co
     if (r.found) {
       frame.contact = contactOf(r.closest);
       frame.value = r.closest.distance;
+    }
+    if (r.found && r.closest.distance < 0.0) {
+      const World::BodyContact body = world.bodySignedDistance(path.q[f], bodyA(r.closest, attached), r.closest.bodyB);
+      frame.hasBodyContact = true;
+      frame.bodyContact = contactOf(body.contact);
     }
     scene.frames.push_back(std::move(frame));
   }

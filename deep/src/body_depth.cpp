@@ -111,15 +111,54 @@ struct PairInfo {
   int index = -1;
 };
 
+/// A separating translation from the bodies' bounding boxes (axes of P): the shortest move of B
+/// along an axis after which the boxes only touch, as the point x = -t of the complement of the
+/// union (B moved by -x overlaps no piece of A). Its length bounds the depth from above.
+Eigen::Vector3d boxSeparation(const std::vector<PosedPiece>& A, const std::vector<PosedPiece>& B) {
+  const auto box = [](const std::vector<PosedPiece>& pieces) {
+    Eigen::AlignedBox3d b;
+    for (const PosedPiece& p : pieces) {
+      for (const Eigen::Vector3d& v : p.vertices) b.extend(v);
+    }
+    return b;
+  };
+  const Eigen::AlignedBox3d a = box(A);
+  const Eigen::AlignedBox3d b = box(B);
+  Eigen::Vector3d best = Eigen::Vector3d::Zero();
+  double bestLength = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    // B up to A's top (t > 0) or down to A's bottom (t < 0); x = -t.
+    for (const double t : {a.max()[axis] - b.min()[axis], a.min()[axis] - b.max()[axis]}) {
+      if (std::abs(t) < bestLength) {
+        bestLength = std::abs(t);
+        best = Eigen::Vector3d::Zero();
+        best[axis] = -t;
+      }
+    }
+  }
+  return best;
+}
+
+/// What the search needs of a query: the pieces, and the bound beyond which facets are left out
+/// of the differences (buildDifference's `keep`).
+struct Pieces {
+  const std::vector<PosedPiece>& A;
+  const std::vector<PosedPiece>& B;
+  int nB = 0;
+  double keep = std::numeric_limits<double>::infinity();
+};
+
 /// Builds pair k's difference on first need; returns its index in diffs, or -1 when flat.
-int ensureDifference(std::vector<PairInfo>& pairs, int k, int nB, const std::vector<PosedPiece>& A,
-                     const std::vector<PosedPiece>& B, std::vector<Difference>& diffs) {
+int ensureDifference(std::vector<PairInfo>& pairs, int k, const Pieces& P, std::vector<Difference>& diffs) {
+  const int nB = P.nB;
+  const std::vector<PosedPiece>& A = P.A;
+  const std::vector<PosedPiece>& B = P.B;
   PairInfo& p = pairs[static_cast<std::size_t>(k)];
   if (p.built == 0) {
     Difference d;
     d.pieceA = k / nB;
     d.pieceB = k % nB;
-    if (body::buildDifference(A[static_cast<std::size_t>(d.pieceA)], B[static_cast<std::size_t>(d.pieceB)], d)) {
+    if (body::buildDifference(A[static_cast<std::size_t>(d.pieceA)], B[static_cast<std::size_t>(d.pieceB)], d, P.keep)) {
       p.built = 1;
       p.index = static_cast<int>(diffs.size());
       diffs.push_back(std::move(d));
@@ -133,8 +172,7 @@ int ensureDifference(std::vector<PairInfo>& pairs, int k, int nB, const std::vec
 /// Marches from the origin along u, starting at distance t, across every difference whose
 /// interior holds the current point, to the first point held by none: a point of the complement.
 /// Gives up (returns infinity) once beyond `cap`.
-double marchOut(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
-                const std::vector<PosedPiece>& B, std::vector<Difference>& diffs,
+double marchOut(std::vector<PairInfo>& pairs, const Pieces& P, std::vector<Difference>& diffs,
                 const Eigen::Vector3d& u, double t, double cap, double tol) {
   bool moved = true;
   while (moved) {
@@ -142,7 +180,7 @@ double marchOut(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPie
     for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
       if (t >= cap) return std::numeric_limits<double>::infinity();
       if (pairs[static_cast<std::size_t>(k)].distanceLower >= t) continue;
-      const int idx = ensureDifference(pairs, k, nB, A, B, diffs);
+      const int idx = ensureDifference(pairs, k, P, diffs);
       if (idx < 0 || body::planeExcess(diffs[static_cast<std::size_t>(idx)], t * u) >= -tol) continue;
       t = body::rayExit(diffs[static_cast<std::size_t>(idx)], u);
       moved = true;
@@ -151,20 +189,21 @@ double marchOut(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPie
   return t;
 }
 
-/// The shortest march out (marchOut) along the separating directions of the overlapping pairs:
-/// a point of the complement, the search's start. Each pair's own push-out direction is tried
-/// because the body's answer is often one of them (a pair whose push is not blocked by others).
-Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
-                               const std::vector<PosedPiece>& B, std::vector<Difference>& diffs,
-                               int deepest, double tol) {
-  Eigen::Vector3d best = Eigen::Vector3d::Zero();
-  double bestLength = std::numeric_limits<double>::infinity();
+/// The shortest march out (marchOut) along the separating directions of the overlapping pairs, or
+/// `bound` (a point of the complement) when none ends nearer: a point of the complement, the
+/// search's start. Each pair's own push-out direction is tried because the body's answer is often
+/// one of them (a pair whose push is not blocked by others). Marches stop at |bound|, within
+/// which the differences built with P.keep are exact.
+Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, const Pieces& P, std::vector<Difference>& diffs,
+                               int deepest, const Eigen::Vector3d& bound, double tol) {
+  Eigen::Vector3d best = bound;
+  double bestLength = bound.norm();
   const auto tryPair = [&](int k) {
     const SignedDistanceResult& r = pairs[static_cast<std::size_t>(k)].result;
     const Eigen::Vector3d x = r.distance * r.normal;
     const double r0 = x.norm();
     const Eigen::Vector3d u = r0 > tol ? Eigen::Vector3d(x / r0) : Eigen::Vector3d(-r.normal);
-    const double t = marchOut(pairs, nB, A, B, diffs, u, r0, bestLength, tol);
+    const double t = marchOut(pairs, P, diffs, u, r0, bestLength, tol);
     if (t < bestLength) {
       bestLength = t;
       best = t * u;
@@ -200,13 +239,24 @@ bool coveredByPairs(const std::vector<PairInfo>& pairs, int skip, int nB,
 void searchAnswer(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
                   const std::vector<PosedPiece>& B, int deepest, double tol, int maxFaces,
                   const Eigen::Vector3d& p_WP, BodySignedDistanceResult& out) {
+  // Every point the search asks about is within the bounding boxes' separation R, so facets
+  // beyond R are left out of the differences; the margin (1e4 tol) keeps them out of every
+  // membership test there, and above the round-off between near-parallel candidate normals.
+  const Eigen::Vector3d bound = boxSeparation(A, B);
+  const Pieces P{A, B, nB, bound.norm() + 1e4 * tol};
   std::vector<Difference> diffs;
-  const Eigen::Vector3d start = marchFromPairs(pairs, nB, A, B, diffs, deepest, tol);
+  const Eigen::Vector3d start = marchFromPairs(pairs, P, diffs, deepest, bound, tol);
   const double upper = start.norm();
   for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
-    if (pairs[static_cast<std::size_t>(k)].distanceLower < upper) ensureDifference(pairs, k, nB, A, B, diffs);
+    if (pairs[static_cast<std::size_t>(k)].distanceLower < upper) ensureDifference(pairs, k, P, diffs);
   }
-  const body::SearchResult s = body::searchNearestBoundary(diffs, start, maxFaces, tol);
+  // The search asks only about points within the start's distance: the same rule, tighter.
+  for (Difference& d : diffs) body::dropFacetsBeyond(d, upper + 1e4 * tol);
+  // The box's point is often the answer itself (a push straight along an axis): the search then
+  // also takes a face's point as near, up to tol, so that the answer names the face's pieces
+  // rather than whichever difference's boundary is nearest the box's point.
+  const double reach = start == bound ? upper + tol : upper;
+  const body::SearchResult s = body::searchNearestBoundary(diffs, start, reach, maxFaces, tol);
   const Eigen::Vector3d& x = s.point;
   const double depth = x.norm();
   out.status = s.finished ? BodyDepthStatus::Certified : BodyDepthStatus::FaceLimit;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <vector>
 
 namespace deepcheck::deep::body {
@@ -17,6 +18,10 @@ struct PosedPiece {
   /// In P, computed once per query by posePiece: the vertices and the face normals.
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Eigen::Vector3d> faceNormals;
+  /// Unit edge directions in P, parallel ones (either sense) kept once: filled on first need by
+  /// edgeDirections(), once per piece and query rather than once per difference it takes part in.
+  mutable std::vector<Eigen::Vector3d> edgeDirections;
+  mutable bool hasEdgeDirections = false;
 };
 
 /// The piece `core` at X_PP in P, with its vertices and face normals there.
@@ -38,9 +43,21 @@ struct Difference {
 /// Builds the difference of A and B as its facets, offsets exact support values, by the cheaper of
 /// the two constructions below for the pieces' sizes. Returns false when the difference is flat
 /// (no interior: the pair never overlaps).
-bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out);
-/// From the pieces' face normals and edge-direction cross products (body_difference_features.cpp).
-bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Difference& out);
+///
+/// Facets whose offset is `keep` or more are left out: the query only asks about points nearer
+/// the origin than a known upper bound R on the depth, and with keep = R + margin such a facet
+/// has n.x - offset <= -margin there, so for those points it decides neither "strictly inside"
+/// nor "on" (margin > tol), and a ray leaving through it leaves beyond R. The result is then the
+/// polytope cut by the kept planes only, which may include far points outside the difference.
+bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out,
+                     double keep = std::numeric_limits<double>::infinity());
+/// From the pieces' face normals and edge-direction cross products (body_difference_features.cpp);
+/// a candidate normal whose support value is `keep` or more is skipped before its face polygon
+/// is formed (most of the cost).
+bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Difference& out, double keep);
+/// Removes the facets whose offset is `keep` or more (buildDifference's rule, for a smaller bound
+/// found later).
+void dropFacetsBeyond(Difference& d, double keep);
 /// From Qhull's hull of all vertex differences (body_difference_hull.cpp).
 bool buildDifferenceFromHull(const PosedPiece& A, const PosedPiece& B, Difference& out);
 /// Appends a facet (unit normal, offset, polygon counter-clockwise about the normal) to d.
@@ -65,7 +82,9 @@ struct SearchResult {
 
 /// Nearest point to the origin of the complement of the union of the differences' interiors,
 /// starting from a known point of that complement (`start`). `tol` is the membership tolerance.
-SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
-                                   const Eigen::Vector3d& start, int maxFaces, double tol);
+/// Faces are searched for points nearer than `reach` (at least |start|; more lets a face's point
+/// as near as the start, up to round-off, take its place and name its difference).
+SearchResult searchNearestBoundary(const std::vector<Difference>& diffs, const Eigen::Vector3d& start,
+                                   double reach, int maxFaces, double tol);
 
 }  // namespace deepcheck::deep::body

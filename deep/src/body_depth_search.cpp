@@ -28,6 +28,19 @@ struct Line {
   Eigen::Vector3d d;
 };
 
+/// A line of faceCandidates that can hold a candidate, with its parameter interval in the polygon.
+struct NearLine {
+  std::size_t line;
+  double lo, hi;
+};
+
+/// Per-face working space of the search, kept across faces so that each face allocates nothing.
+struct FaceScratch {
+  std::vector<Line> lines;
+  std::vector<NearLine> near;
+  std::vector<std::pair<double, Eigen::Vector3d>> candidates;
+};
+
 /// The range of n.x - h over the points.
 std::pair<double, double> planeRange(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& n,
                                      double h) {
@@ -56,17 +69,33 @@ bool straddles(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& c
 /// Crossing.
 enum class Meets { Disjoint, Covered, Crossing };
 
+/// meets() also appends, per plane of d, whether the polygon straddles it (straddles(), which
+/// faceLines needs for the planes of a crossing difference: the same tests, made once).
 Meets meets(const Difference& d, const std::vector<Eigen::Vector3d>& poly, const Eigen::Vector3d& centre,
-            double radius, double tol) {
+            double radius, double tol, std::vector<char>& straddling) {
   bool covered = true;
+  const std::size_t first = straddling.size();
   for (std::size_t g = 0; g < d.normals.size(); ++g) {
     const double at = d.normals[g].dot(centre) - d.offsets[g];
-    if (at - radius >= -tol) return Meets::Disjoint;  // the polygon's ball is outside the plane
-    if (at + radius < -tol) continue;                   // ... or strictly inside it
+    // The polygon's ball outside the plane: disjoint. Else, for straddles(), its first test
+    // (at - radius > tol) fails too.
+    if (at - radius >= -tol) {
+      straddling.resize(first);
+      return Meets::Disjoint;
+    }
+    if (at + radius < -tol) {  // ... or strictly inside it: not straddling
+      straddling.push_back(0);
+      continue;
+    }
     const auto [lo, hi] = planeRange(poly, d.normals[g], d.offsets[g]);
-    if (lo >= -tol) return Meets::Disjoint;  // interiors cannot meet across this plane
+    if (lo >= -tol) {  // interiors cannot meet across this plane
+      straddling.resize(first);
+      return Meets::Disjoint;
+    }
+    straddling.push_back(lo <= tol && hi >= -tol ? 1 : 0);
     covered = covered && hi < -tol;
   }
+  if (covered) straddling.resize(first);
   return covered ? Meets::Covered : Meets::Crossing;
 }
 
@@ -78,19 +107,21 @@ std::size_t edgeCount(const std::vector<Eigen::Vector3d>& poly, double tol) {
 }
 
 /// The lines bounding the face's candidate regions: its edge lines, and the traces of the planes
-/// of the differences in `crossing` that cross the face polygon.
-std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vector<int>& crossing,
-                            int k, int f, double tol) {
+/// of the differences in `crossing` that cross the face polygon. `straddling`: per plane of each
+/// crossing difference in turn, whether the face polygon straddles it (from meets()).
+void faceLines(const std::vector<Difference>& diffs, const std::vector<int>& crossing,
+               const std::vector<char>& straddling, int k, int f, double tol, std::vector<Line>& lines) {
   const Difference& own = diffs[static_cast<std::size_t>(k)];
   const std::vector<Eigen::Vector3d>& poly = own.faces[static_cast<std::size_t>(f)];
   const Eigen::Vector3d& n = own.normals[static_cast<std::size_t>(f)];
   const double h = own.offsets[static_cast<std::size_t>(f)];
-  std::vector<Line> lines;
+  lines.clear();
   for (std::size_t i = 0; i < poly.size(); ++i) {
     const Eigen::Vector3d e = poly[(i + 1) % poly.size()] - poly[i];
     if (e.norm() > tol) lines.push_back({poly[i], e.normalized()});
   }
   // (edgeCount(poly, tol) lines so far: the polygon's edges, which faceCandidates tests against.)
+  std::size_t flag = 0;
   for (const int l : crossing) {
     const Difference& other = diffs[static_cast<std::size_t>(l)];
     for (std::size_t g = 0; g < other.normals.size(); ++g) {
@@ -98,8 +129,7 @@ std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vec
       const double e = other.offsets[g];
       // The plane must cross the face, and (M_l's section by the face plane being bounded only
       // by the traces of the facets that cross that plane) its facet must cross the face plane.
-      if (!straddles(poly, own.centres[static_cast<std::size_t>(f)], own.radii[static_cast<std::size_t>(f)], m, e, tol) ||
-          !straddles(other.faces[g], other.centres[g], other.radii[g], n, h, tol)) {
+      if (!straddling[flag++] || !straddles(other.faces[g], other.centres[g], other.radii[g], n, h, tol)) {
         continue;
       }
       const Eigen::Vector3d d = n.cross(m);
@@ -113,7 +143,6 @@ std::vector<Line> faceLines(const std::vector<Difference>& diffs, const std::vec
       lines.push_back({a * n + b * m, d / sine});
     }
   }
-  return lines;
 }
 
 /// True when x (in the face plane, normal n) is inside the face polygon whose edges are the first
@@ -152,23 +181,20 @@ std::pair<double, double> polygonInterval(const Line& L, const std::vector<Line>
 /// first `edges` lines are the polygon's edges. Lines no nearer than the bound, or missing the
 /// polygon, hold no candidate (a line's points are no nearer than its foot) and are dropped
 /// before the pairs are formed; a pair's intersection counts only inside both lines' intervals.
-std::vector<std::pair<double, Eigen::Vector3d>> faceCandidates(const Eigen::Vector3d& p0,
-                                                               const std::vector<Line>& lines,
-                                                               std::size_t edges,
-                                                               const Eigen::Vector3d& n,
-                                                               double bound, double tol) {
-  std::vector<std::pair<double, Eigen::Vector3d>> out;
+/// The candidates go to scratch.candidates (scratch.lines holds the lines).
+void faceCandidates(const Eigen::Vector3d& p0, std::size_t edges, const Eigen::Vector3d& n, double bound,
+                    double tol, FaceScratch& scratch) {
+  const std::vector<Line>& lines = scratch.lines;
+  std::vector<std::pair<double, Eigen::Vector3d>>& out = scratch.candidates;
+  out.clear();
   const double bound2 = bound * bound;
   auto add = [&](const Eigen::Vector3d& x) {
     const double r2 = x.squaredNorm();
     if (r2 < bound2 && inPolygon(x, lines, edges, n, tol)) out.emplace_back(r2, x);
   };
   add(p0);
-  struct Near {
-    std::size_t line;
-    double lo, hi;
-  };
-  std::vector<Near> near;
+  std::vector<NearLine>& near = scratch.near;
+  near.clear();
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const Line& L = lines[i];
     const Eigen::Vector3d foot = L.q + L.d.dot(p0 - L.q) * L.d;
@@ -194,7 +220,6 @@ std::vector<std::pair<double, Eigen::Vector3d>> faceCandidates(const Eigen::Vect
   }
   std::sort(out.begin(), out.end(),
             [](const auto& x, const auto& y) { return x.first < y.first; });
-  return out;
 }
 
 /// Distance from the origin to the face polygon `poly` (plane n.x = h): |h| when the origin's
@@ -232,16 +257,19 @@ bool onDifference(const Difference& d, const Eigen::Vector3d& x, double tol) {
 
 }  // namespace
 
-SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
-                                   const Eigen::Vector3d& start, int maxFaces, double tol) {
+SearchResult searchNearestBoundary(const std::vector<Difference>& diffs, const Eigen::Vector3d& start,
+                                   double reach, int maxFaces, double tol) {
   SearchResult r;
   r.point = start;
-  double best = start.norm();
+  double best = std::max(reach, start.norm());
   // Min-heap of (bound, (difference, face)); a face enters with its plane's distance and, when
   // first popped, is put back with the polygon's distance (never smaller) before it is searched.
   using Entry = std::pair<double, std::pair<int, int>>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   std::vector<std::vector<char>> refined(diffs.size());
+  std::vector<int> crossing;     // per searched face: the differences crossing it
+  std::vector<char> straddling;  // ... and per plane of each, whether the face straddles it
+  FaceScratch scratch;
   for (std::size_t k = 0; k < diffs.size(); ++k) {
     refined[k].assign(diffs[k].normals.size(), 0);
     for (std::size_t f = 0; f < diffs[k].normals.size(); ++f) {
@@ -268,19 +296,21 @@ SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
     }
     ++r.facesSearched;
     // Only the differences whose interiors reach the face bound or cover parts of it.
-    std::vector<int> crossing;
+    crossing.clear();
+    straddling.clear();
     bool covered = false;
     for (int l = 0; l < static_cast<int>(diffs.size()) && !covered; ++l) {
       if (l == k) continue;
       const Meets m = meets(diffs[static_cast<std::size_t>(l)], poly, d.centres[static_cast<std::size_t>(f)],
-                            d.radii[static_cast<std::size_t>(f)], tol);
+                            d.radii[static_cast<std::size_t>(f)], tol, straddling);
       covered = m == Meets::Covered;
       if (m == Meets::Crossing) crossing.push_back(l);
     }
     if (covered) continue;
     const Eigen::Vector3d p0 = d.offsets[static_cast<std::size_t>(f)] * n;
-    const std::vector<Line> lines = faceLines(diffs, crossing, k, f, tol);
-    for (const auto& [r2, x] : faceCandidates(p0, lines, edgeCount(poly, tol), n, best, tol)) {
+    faceLines(diffs, crossing, straddling, k, f, tol, scratch.lines);
+    faceCandidates(p0, edgeCount(poly, tol), n, best, tol, scratch);
+    for (const auto& [r2, x] : scratch.candidates) {
       if (!onDifference(d, x, tol) || insideAny(diffs, crossing, x, tol)) continue;
       best = std::sqrt(r2);
       r.point = x;
@@ -289,7 +319,7 @@ SearchResult searchNearestBoundary(const std::vector<Difference>& diffs,
     }
   }
   r.finished = true;
-  r.lowerBound = best;
+  r.lowerBound = std::min(best, r.point.norm());
   return r;
 }
 

@@ -24,8 +24,9 @@ void addFace(Difference& d, const Eigen::Vector3d& normal, double offset, std::v
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : face) centre += p;
   centre /= static_cast<double>(face.size());
-  double radius = 0.0;
-  for (const Eigen::Vector3d& p : face) radius = std::max(radius, (p - centre).norm());
+  double radius2 = 0.0;  // the largest squared distance: one square root (sqrt is monotonic)
+  for (const Eigen::Vector3d& p : face) radius2 = std::max(radius2, (p - centre).squaredNorm());
+  const double radius = std::sqrt(radius2);
   d.normals.push_back(normal);
   d.offsets.push_back(offset);
   d.faces.push_back(std::move(face));
@@ -33,7 +34,7 @@ void addFace(Difference& d, const Eigen::Vector3d& normal, double offset, std::v
   d.radii.push_back(radius);
 }
 
-bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out) {
+bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out, double keep) {
   out.normals.clear();
   out.offsets.clear();
   out.faces.clear();
@@ -46,7 +47,31 @@ bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out) 
   const double vA = A.core->numVertices(), vB = B.core->numVertices();
   const double features = 0.002 * eA * eB * (vA + vB + eA + eB + A.core->numFaces() + B.core->numFaces());
   const double hull = 30.0 + 0.7 * vA * vB;
-  return features <= hull ? buildDifferenceFromFeatures(A, B, out) : buildDifferenceFromHull(A, B, out);
+  if (features <= hull) return buildDifferenceFromFeatures(A, B, out, keep);
+  if (!buildDifferenceFromHull(A, B, out)) return false;
+  // Qhull's facets are all formed at once; the far ones are dropped afterwards.
+  dropFacetsBeyond(out, keep);
+  return true;
+}
+
+void dropFacetsBeyond(Difference& out, double keep) {
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < out.normals.size(); ++f) {
+    if (!(out.offsets[f] < keep)) continue;
+    if (kept != f) {  // (a vector moved onto itself would be emptied)
+      out.normals[kept] = out.normals[f];
+      out.offsets[kept] = out.offsets[f];
+      out.faces[kept] = std::move(out.faces[f]);
+      out.centres[kept] = out.centres[f];
+      out.radii[kept] = out.radii[f];
+    }
+    ++kept;
+  }
+  out.normals.resize(kept);
+  out.offsets.resize(kept);
+  out.faces.resize(kept);
+  out.centres.resize(kept);
+  out.radii.resize(kept);
 }
 
 double planeExcess(const Difference& d, const Eigen::Vector3d& x) {

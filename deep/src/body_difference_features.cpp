@@ -21,16 +21,24 @@
 namespace deepcheck::deep::body {
 namespace {
 
-/// Points of `pts` within eps of the largest u.x, and that largest value.
-double supportSet(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u, double eps,
-                  std::vector<Eigen::Vector3d>& set) {
+/// The largest u.x over the points (their support value in u), each u.x kept in `dots`.
+double supportValue(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u, std::vector<double>& dots) {
   double best = -std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& p : pts) best = std::max(best, u.dot(p));
-  set.clear();
-  for (const Eigen::Vector3d& p : pts) {
-    if (u.dot(p) >= best - eps) set.push_back(p);
+  dots.resize(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    dots[i] = u.dot(pts[i]);
+    best = std::max(best, dots[i]);
   }
   return best;
+}
+
+/// The points within eps of the support value `best` (supportValue, with its `dots`).
+void supportSet(const std::vector<Eigen::Vector3d>& pts, const std::vector<double>& dots, double best, double eps,
+                std::vector<Eigen::Vector3d>& set) {
+  set.clear();
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (dots[i] >= best - eps) set.push_back(pts[i]);
+  }
 }
 
 double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -85,9 +93,13 @@ std::vector<Eigen::Vector3d> planeHull(const std::vector<Eigen::Vector3d>& pts, 
 }
 
 
-/// Unit edge directions of a piece in P, parallel ones (either sense) kept once.
-std::vector<Eigen::Vector3d> edgeDirections(const PosedPiece& p) {
-  std::vector<Eigen::Vector3d> dirs;
+/// Unit edge directions of a piece in P, parallel ones (either sense) kept once; computed on the
+/// piece's first difference and kept with it (PosedPiece::edgeDirections).
+const std::vector<Eigen::Vector3d>& edgeDirections(const PosedPiece& p) {
+  std::vector<Eigen::Vector3d>& dirs = p.edgeDirections;
+  if (p.hasEdgeDirections) return dirs;
+  p.hasEdgeDirections = true;
+  dirs.clear();
   const ConvexPolytope& core = *p.core;
   for (int v = 0; v < core.numVertices(); ++v) {
     for (const int w : core.neighbors(v)) {
@@ -104,7 +116,7 @@ std::vector<Eigen::Vector3d> edgeDirections(const PosedPiece& p) {
 
 }  // namespace
 
-bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Difference& out) {
+bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Difference& out, double keep) {
   const std::vector<Eigen::Vector3d>& vb = B.vertices;
   std::vector<Eigen::Vector3d> negA;
   negA.reserve(A.vertices.size());
@@ -116,7 +128,7 @@ bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Diffe
 
   std::vector<Eigen::Vector3d> candidates = B.faceNormals;
   for (const Eigen::Vector3d& n : A.faceNormals) candidates.push_back(-n);
-  const std::vector<Eigen::Vector3d> edgesB = edgeDirections(B);
+  const std::vector<Eigen::Vector3d>& edgesB = edgeDirections(B);
   for (const Eigen::Vector3d& da : edgeDirections(A)) {
     for (const Eigen::Vector3d& db : edgesB) {
       const Eigen::Vector3d c = da.cross(db);
@@ -128,14 +140,24 @@ bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Diffe
   }
 
   std::vector<Eigen::Vector3d> sb, sa, diffs;
+  std::vector<double> dotsB, dotsA;
   HullScratch scratch;
+  bool skipped = false;  // some candidate was beyond `keep`
   // |n - u| < s for unit vectors is n.u > 1 - s^2 / 2.
   const double same = 1.0 - 0.5 * tol::kBodyParallelSine * tol::kBodyParallelSine;
   for (const Eigen::Vector3d& u : candidates) {
     const bool known = std::any_of(out.normals.begin(), out.normals.end(),
                                    [&](const Eigen::Vector3d& n) { return n.dot(u) > same; });
     if (known) continue;
-    const double h = supportSet(vb, u, eps, sb) + supportSet(negA, u, eps, sa);
+    const double hb = supportValue(vb, u, dotsB);
+    const double ha = supportValue(negA, u, dotsA);
+    const double h = hb + ha;
+    if (!(h < keep)) {
+      skipped = true;
+      continue;
+    }
+    supportSet(vb, dotsB, hb, eps, sb);
+    supportSet(negA, dotsA, ha, eps, sa);
     diffs.clear();
     for (const Eigen::Vector3d& b : sb) {
       for (const Eigen::Vector3d& a : sa) diffs.push_back(b + a);  // sa holds -a
@@ -144,14 +166,24 @@ bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Diffe
     if (face.empty()) continue;
     addFace(out, u, h, std::move(face));
   }
-  // A flat difference (coplanar polygons): two opposite facets at one offset; no interior.
+  // A flat difference (coplanar polygons): two opposite facets at one offset; no interior. The
+  // offsets are compared first: in a solid difference no two facets pass that test.
   for (std::size_t f = 0; f < out.normals.size(); ++f) {
     for (std::size_t g = f + 1; g < out.normals.size(); ++g) {
-      if ((out.normals[f] + out.normals[g]).norm() < tol::kBodyParallelSine &&
-          out.offsets[f] + out.offsets[g] <= eps) {
+      if (out.offsets[f] + out.offsets[g] <= eps &&
+          (out.normals[f] + out.normals[g]).norm() < tol::kBodyParallelSine) {
         return false;
       }
     }
+  }
+  // Fewer than four facets kept: whether the difference is solid is decided on all of them.
+  if (out.normals.size() < 4 && skipped) {
+    out.normals.clear();
+    out.offsets.clear();
+    out.faces.clear();
+    out.centres.clear();
+    out.radii.clear();
+    return buildDifferenceFromFeatures(A, B, out, std::numeric_limits<double>::infinity());
   }
   return out.normals.size() >= 4;
 }

@@ -1,8 +1,11 @@
 // World::linkPieces / worldPieces (the pieces the queries use, for display) and the HTML view of a
-// world (html_view.h): frames, densifying, the closest pair per frame, and errors with no file
-// written. The page in a real browser is tested by tests/viewer/.
+// world (html_view.h): frames, densifying, the closest pair per frame, the body-level answer where
+// it overlaps, and errors with no file written. The page in a real browser is tested by
+// tests/viewer/.
 
 #include "checker_test_util.h"
+
+#include "common/body_cases.h"
 
 #include "deepcheck/checker/html_view.h"
 #include "deepcheck/checker/world.h"
@@ -89,6 +92,58 @@ BOOST_AUTO_TEST_CASE(paths_are_densified_by_max_step_within_max_frames) {
   BOOST_TEST(std::abs(scene.frames[5].poses[0].translation().x() - 0.5) < 1e-12);
   options.maxFrames = 6;
   BOOST_TEST(viewOfWorld(world, {slide(0.0), slide(1.0), slide(1.05)}, options).frames.size() <= 6u);
+}
+
+// The slab of two touching boxes (tests/common/body_cases.h): the tool 0.04 deep at the seam. The
+// closest pair is 0.035 deep, sideways; the slab as one body is 0.04 deep, straight up. Apart, a
+// frame has no body answer.
+BOOST_AUTO_TEST_CASE(overlapping_frames_carry_the_body_depth_of_the_closest_pairs_bodies) {
+  World world(deepcheck::test::gantryRobot(deepcheck::test::toolBox()), testWorldOptions());
+  world.addScene(deepcheck::test::sceneOf("slab", deepcheck::test::slabCollisions()), Eigen::Isometry3d::Identity());
+  WorldViewOptions options;
+  options.maxStep = 0.0;
+  const ViewScene scene =
+      viewOfWorld(world, {deepcheck::test::gantryQ(0.005, 0, 0.01), deepcheck::test::gantryQ(0.3, 0.1, 0.08)}, options);
+  BOOST_TEST_REQUIRE(scene.frames.size() == 2u);
+  const ViewFrame& in = scene.frames[0];
+  BOOST_TEST_REQUIRE(in.hasContact);
+  BOOST_TEST(in.contact.distance == -0.035, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(std::abs(in.contact.normal.z()) < 1e-9);
+  BOOST_TEST_REQUIRE(in.hasBodyContact);
+  const ViewContact& body = in.bodyContact;
+  BOOST_TEST(body.distance == -0.04, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST((body.normal - Eigen::Vector3d(0, 0, -1)).norm() < 1e-9, "normal " << body.normal.transpose());
+  BOOST_TEST((body.pointB - body.pointA - body.distance * body.normal).norm() < 1e-9);
+  BOOST_TEST(body.nameA == "tool");
+  BOOST_TEST(body.nameB == "scene/slab");
+  BOOST_TEST(scene.frames[1].hasContact);
+  BOOST_TEST(!scene.frames[1].hasBodyContact);
+
+  // The page carries it per frame, beside the pair's contact.
+  std::ostringstream page;
+  writeHtmlView(scene, page);
+  BOOST_TEST(page.str().find("\"bodyContact\":{\"has\":\"10\"") != std::string::npos);
+}
+
+// An attached object as the closest pair's A is measured as the object's body, not its link's.
+BOOST_AUTO_TEST_CASE(an_attached_objects_body_depth_is_the_objects) {
+  World world(deepcheck::test::gantryRobot(deepcheck::test::toolBox()), testWorldOptions());
+  world.addScene(deepcheck::test::sceneOf("slab", deepcheck::test::slabCollisions()), Eigen::Isometry3d::Identity());
+  // A plate 0.2 x 0.1 x 0.02 hanging 0.1 below the tool frame, its bottom 0.11 below it.
+  Eigen::Isometry3d X_TO = Eigen::Isometry3d::Identity();
+  X_TO.translation() = Eigen::Vector3d(0, 0, -0.1);
+  AttachOptions attach;
+  attach.worldFrame = false;
+  world.attach("tool", Obstacle::box("plate", Eigen::Vector3d(0.2, 0.1, 0.02), X_TO), attach);
+  WorldViewOptions options;
+  // The tool frame at z = 0.1: the plate's bottom 0.01 into the slab across the seam, the tool clear.
+  const ViewScene scene = viewOfWorld(world, {deepcheck::test::gantryQ(0.0, 0, 0.1)}, options);
+  const ViewFrame& f = scene.frames[0];
+  BOOST_TEST_REQUIRE(f.hasBodyContact);
+  BOOST_TEST(f.contact.nameA == "attached/plate");
+  BOOST_TEST(f.bodyContact.nameA == "attached/plate");
+  BOOST_TEST(f.bodyContact.distance == -0.01, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST((f.bodyContact.normal - Eigen::Vector3d(0, 0, -1)).norm() < 1e-9);
 }
 
 BOOST_AUTO_TEST_CASE(bad_configurations_and_scenes_are_named_and_nothing_is_written) {

@@ -1,7 +1,10 @@
 # The viewer in a real browser: headless Chromium, no network, loads the shelf demo's page from
 # disk at its first and last frame. Checks that the page reports it is ready, that no script error
 # was recorded, that the image is not blank (luminance variance measured by the page on its own
-# drawing buffer) and that both the image and the screenshot change between the two frames.
+# drawing buffer) and that both the image and the screenshot change between the two frames. Then
+# a page of the gantry's tool pressed 0.04 into the seam of a slab of two touching boxes
+# (gantry_tool.urdf, slab_scene.urdf): the pair's arrow and the body-depth arrow are both shown,
+# the body arrow 0.04 long (the deepest pair is 0.035), and the panel has the "body depth" layer.
 #   cmake -DTOOL=deepcheck -DCHROMIUM=chromium -DDATA=robots/data -DPATH_FILE=path.txt -DWORK=dir
 #         -P browser_test.cmake
 # Prints "skipped: ..." and succeeds when no browser was found (ctest reports it as skipped).
@@ -29,16 +32,24 @@ set(browser "${CHROMIUM}" --headless --no-sandbox --use-angle=swiftshader --enab
     --window-size=1200,800 --proxy-server=127.0.0.1:9 "--host-resolver-rules=MAP * ~NOTFOUND"
     --no-first-run --disable-extensions "--user-data-dir=${WORK}/profile")
 
-foreach(frame 0 end)
-  execute_process(COMMAND ${browser} --dump-dom "file://${page}#t=${frame},probe"
+# Loads `url` with the probe, fails unless the page reports ready without a script error, and
+# sets `dom` (the page's DOM) and `root` (its <html> tag) in the caller; `what` names the page.
+function(load_probed url what)
+  execute_process(COMMAND ${browser} --dump-dom "${url}"
                   OUTPUT_VARIABLE dom ERROR_VARIABLE log RESULT_VARIABLE status TIMEOUT 180)
   string(REGEX MATCH "<html[^>]*>" root "${dom}")
   if(NOT status EQUAL 0 OR NOT root MATCHES "data-ready=\"1\"")
-    message(FATAL_ERROR "#t=${frame}: the page did not report ready (status ${status}): ${root}\n${log}")
+    message(FATAL_ERROR "${what}: the page did not report ready (status ${status}): ${root}\n${log}")
   endif()
   if(root MATCHES "data-error=\"([^\"]*)\"")
-    message(FATAL_ERROR "#t=${frame}: script error: ${CMAKE_MATCH_1}")
+    message(FATAL_ERROR "${what}: script error: ${CMAKE_MATCH_1}")
   endif()
+  set(dom "${dom}" PARENT_SCOPE)
+  set(root "${root}" PARENT_SCOPE)
+endfunction()
+
+foreach(frame 0 end)
+  load_probed("file://${page}#t=${frame},probe" "#t=${frame}")
   string(REGEX MATCH "data-pixel-variance=\"([0-9.]+)\"" _ "${root}")
   set(variance "${CMAKE_MATCH_1}")
   string(REGEX MATCH "data-pixel-hash=\"([0-9a-f]+)\"" _ "${root}")
@@ -64,3 +75,24 @@ if(png_0 STREQUAL png_end)
   message(FATAL_ERROR "the screenshots of the first and the last frame are identical")
 endif()
 message("first and last frame differ (images and screenshots)")
+
+# The body-depth arrow.
+set(slab_page "${WORK}/slab.html")
+execute_process(
+  COMMAND "${TOOL}" view --robot "${CMAKE_CURRENT_LIST_DIR}/gantry_tool.urdf"
+          --scene "${CMAKE_CURRENT_LIST_DIR}/slab_scene.urdf" --config 0.005 0 0.01 0 0 --out "${slab_page}"
+  RESULT_VARIABLE status ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "deepcheck view (slab) failed (${status}): ${err}")
+endif()
+load_probed("file://${slab_page}#t=0,probe" "slab")
+if(NOT root MATCHES "data-arrows=\"contact,body depth\"")
+  message(FATAL_ERROR "slab: the pair's and the body-depth arrows are not both shown: ${root}")
+endif()
+if(NOT root MATCHES "data-body-depth=\"0\\.0400000\"")
+  message(FATAL_ERROR "slab: the body-depth arrow is not 0.04 long: ${root}")
+endif()
+if(NOT dom MATCHES "<label title=\"body depth\">")
+  message(FATAL_ERROR "slab: the panel has no 'body depth' layer")
+endif()
+message("slab: the pair's arrow and the body-depth arrow (0.04) shown, 'body depth' layer in the panel")

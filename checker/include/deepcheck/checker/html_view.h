@@ -10,6 +10,9 @@
 //   - per frame, the closest pair: witness points, normal, and an arrow coloured by sign: green from
 //     A's witness to B's (distance > 0), red for a penetration, depth x normal from B's witness to
 //     A's (the translation of B that separates the pair);
+//   - per frame, where the closest pair overlaps, the body-level push-out: the penetration depth of
+//     the pair's two whole bodies (each the union of its pieces, World::bodySignedDistance) as its
+//     own arrow, depth x normal from B's witness, in its own layer ("body depth");
 //   - per frame, a value (the minimum signed distance) plotted under the view, waypoints marked,
 //     the smallest value marked as the worst frame.
 // The data is JSON inside the page; the page's JavaScript and CSS live in viewer/ and are embedded
@@ -75,6 +78,10 @@ struct ViewFrame {
   bool waypoint = true;                  ///< false for frames interpolated between waypoints
   bool hasContact = false;
   ViewContact contact;
+  /// The body-level answer for the contact's two bodies (World::bodySignedDistance), set where the
+  /// closest pair overlaps: its depth can exceed the pair's and its normal differ.
+  bool hasBodyContact = false;
+  ViewContact bodyContact;
   /// Plotted under the view (NaN: no value for this frame).
   double value = std::numeric_limits<double>::quiet_NaN();
   std::string label;  ///< shown with the frame number (e.g. "waypoint 3", "query on line 12")
@@ -109,7 +116,9 @@ struct WorldViewOptions {
 
 /// The page of `world` along `configurations` (one: a single pose; several: a path): the robot's
 /// links follow the frames, scenes and obstacles stay fixed, every frame carries the world's
-/// closest pair (World::signedDistance).
+/// closest pair (World::signedDistance) and, where that pair overlaps, the body-level signed
+/// distance of its link (or attached object) and the body it overlaps (World::bodySignedDistance
+/// with default options): the deepest pair names the body the link overlaps most deeply.
 ViewScene viewOfWorld(const World& world, const std::vector<Eigen::VectorXd>& configurations,
                       const WorldViewOptions& options = WorldViewOptions());
 

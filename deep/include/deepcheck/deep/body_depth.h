@@ -23,14 +23,18 @@
 //      (a pairwise query with B moved by -x0), x0 is the answer. Otherwise, from each overlapping
 //      pair's separating point, march outwards along its ray across every M_ij whose interior
 //      holds the current point (each step jumps to that M_ij's exit); the first point inside
-//      none is a point of the complement, the nearest of these marches the upper bound;
+//      none is a point of the complement; the nearest of these marches, or the translation
+//      that separates the bodies' bounding boxes along an axis when nearer, is the upper bound;
 //   3. every pair whose distance from the origin (its own signed distance) is below that bound
 //      gets its difference M_ij built exactly as a polytope, including pairs that do not overlap
 //      (they can still cover boundary points of the others): for small pieces its facet normals
 //      are found among the pieces' face normals and the cross products of their edge directions,
 //      each kept when the supporting vertices' differences span a polygon; for larger pieces
 //      (beyond about ten vertices) they are the facets of the hull of all vertex differences;
-//      either way each offset is the exact support value;
+//      either way each offset is the exact support value. Only facets nearer the origin than a
+//      separating translation read off the bodies' bounding boxes are kept (the marches of step
+//      2 stop there, and no point asked about lies beyond, so a farther facet decides nothing);
+//      before the search, only those nearer than the upper bound;
 //   4. best-first search over the faces of those differences, in order of their plane's distance
 //      to the origin (a lower bound for every point of the face). For a face, the nearest point
 //      of (the face minus the interiors of all other differences) is one of: the origin's
