@@ -242,14 +242,16 @@ BOOST_AUTO_TEST_CASE(a_colliding_start_is_repaired_then_planned_from) {
 }
 
 BOOST_AUTO_TEST_CASE(waypoints_after_tolerant_planning_and_smoothing_are_repaired) {
-  // Plan and smooth accepting 5 mm of penetration, then repair against the strict checker with the
-  // clearance motion validator; every repaired path must then be free for FCL too.
+  // Plan and smooth accepting 5 mm of penetration with discrete motion checks, then repair against
+  // the strict checker with the certified motion validator; every repaired path must then be free
+  // for FCL too.
   // Every planner and SimpleSetup draws its seed from OMPL's one global sequence, so which paths
   // this test gets depends on the tests before it: 24 runs make the rate, not one path, decide.
   constexpr int kRuns = 24;
   const auto world = bundledWorld("narrow_passage");
   dp::SetupOptions tolerantOptions = dp::test::bundledOptions();
   tolerantOptions.validity.penetrationTolerance = 0.005;
+  tolerantOptions.motionValidation = dp::MotionValidation::Discrete;
   auto strict = dp::makeSimpleSetup(world, dp::test::bundledOptions());
   const ob::SpaceInformationPtr certifying = dp::certifyingSpaceInformation(*strict);
   const deepcheck::fcl_reference::FclStateValidityChecker fcl(strict->getSpaceInformation(), *world);

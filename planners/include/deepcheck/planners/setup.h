@@ -59,7 +59,8 @@ using SceneSpec = checker::SceneSpec;
 enum class MotionValidation {
   /// CertifiedMotionValidator (certified_motion_validator.h): every motion accepted is proven
   /// valid. With a penetration tolerance (a negative validity threshold), which it cannot
-  /// certify, ClearanceMotionValidator instead.
+  /// certify, ClearanceMotionValidator instead: its distance queries make planning slow, and a
+  /// tolerant plan is usually made with Discrete and repaired by certifyPath on a strict set-up.
   Certified,
   /// OMPL's DiscreteMotionValidator at the state space's resolution: samples motions, and steps
   /// over thin obstacles; for comparison.
