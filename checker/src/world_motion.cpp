@@ -172,7 +172,13 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
   w.pairs.clear();
   std::shared_ptr<const Snapshot> held;
   for (int k = 0; !w.level.empty(); ++k) {
-    const double h = 0.5 / static_cast<double>(std::int64_t{1} << k);
+    // Sub-motion indices are 64-bit: levels past 62 (a robot moving kilometres, halved to
+    // kCertifiedResolution) are left Unproven.
+    if (k > 62) {
+      out.verdict = MotionCertificate::Verdict::Unproven;
+      return true;
+    }
+    const double h = std::ldexp(0.5, -k);
     w.next.clear();
     w.nextPairs.clear();
     for (const SubMotion& sub : w.level) {

@@ -141,6 +141,38 @@ BOOST_AUTO_TEST_CASE(certify_motion_finds_collisions_and_certifies_clear_motions
                   "2 values");
 }
 
+// Degenerate motions: one of length zero is certified exactly when its configuration is free;
+// bounds of a kilometre (a robot that could move anywhere) leave a free motion Unproven, never
+// wrongly certified, and a colliding one still Collides.
+BOOST_AUTO_TEST_CASE(certify_motion_of_nothing_and_with_huge_bounds) {
+  const auto world = armWithObstacles();
+  const int n = world->robot().numLinks();
+  dc::ClearanceDemand bounds;
+  bounds.link = Eigen::VectorXd::Constant(n, 0.5);
+  bounds.self = Eigen::MatrixXd::Constant(n, n, 1.0);
+  dc::ClearanceDemand huge;
+  huge.link = Eigen::VectorXd::Constant(n, 1e3);
+  huge.self = Eigen::MatrixXd::Constant(n, n, 1e3);
+  const Eigen::VectorXd none = Eigen::VectorXd::Zero(world->robot().numVariables());
+  std::mt19937 rng(24);
+  int free = 0;
+  int colliding = 0;
+  for (const Eigen::VectorXd& q : randomConfigurations(world->robot(), 100, rng)) {
+    const bool isFree = world->isFree(q);
+    const dc::MotionCertificate still = world->certifyMotion(q, none, bounds);
+    BOOST_TEST(still.certified() == isFree);
+    const Eigen::VectorXd dq = 0.2 * (randomConfiguration(world->robot(), rng) - q);
+    const dc::MotionCertificate h = world->certifyMotion(q, dq, huge);
+    if (h.verdict == dc::MotionCertificate::Verdict::Certified) {
+      BOOST_TEST(false, "a motion certified with bounds of a kilometre");
+    }
+    BOOST_TEST(h.configurations <= dc::tol::kCertifiedMaxTests + 1);
+    (isFree ? free : colliding) += 1;
+  }
+  BOOST_TEST(free > 10);
+  BOOST_TEST(colliding > 10);
+}
+
 BOOST_AUTO_TEST_CASE(link_extents_hold_attached_objects_and_the_version_moves) {
   auto world = armWithObstacles();
   const int tool = world->robot().linkIndex("link3");
