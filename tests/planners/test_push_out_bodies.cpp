@@ -37,7 +37,7 @@ dp::PushOutResult pushOut(const std::shared_ptr<const dc::World>& world, const E
 
 BOOST_AUTO_TEST_SUITE(planners_push_out_bodies)
 
-BOOST_AUTO_TEST_CASE(body_depth_is_the_default) { BOOST_TEST(dp::PushOutOptions{}.bodyDepth); }
+BOOST_AUTO_TEST_CASE(body_depth_is_asked_for) { BOOST_TEST(!dp::PushOutOptions{}.bodyDepth); }
 
 // The tool 0.04 deep in the slab, 0.005 off the seam: each pair's depth points sideways (into the
 // other box), the slab's as one body straight up. The body answer lifts the tool out in one step,
