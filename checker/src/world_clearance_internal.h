@@ -92,17 +92,13 @@ inline deep::ConvexShape grown(deep::ConvexShape shape, double margin) {
   return shape;
 }
 
-/// What classify found.
+/// What collectNear found.
 enum class Clearance {
   Clear,     ///< every pair is farther apart than its margin
   Near,      ///< some pair is within its margin, none within the base clearance
   Collides,  ///< some pair is within the base clearance (margin 0: overlaps)
 };
 
-/// clearOfAll and, when it fails, the same test at the base clearance, in one traversal: the
-/// pairs after the first one within its margin are tested at the base only (`margins` is dropped
-/// to its base then).
-Clearance classify(Impl& c, const Snapshot& s, Margins& margins);
 
 /// Every pair within its margin at the context's configuration, listed in `near` when none is
 /// within the base clearance (Near; Clear when none is within its margin); Collides at the first

@@ -195,33 +195,6 @@ bool clearOfAll(Impl& c, const Snapshot& s, const Margins& margins) {
   return !forEachPairNear(c, s, margins, narrow);
 }
 
-Clearance classify(Impl& c, const Snapshot& s, Margins& margins) {
-  checkLinkTranslations(c);
-  const double base = margins.base();
-  bool near = false;
-  // A pair within its margin: at the base clearance, the configuration collides; otherwise it is
-  // near, and the rest of the traversal tests the base clearance alone.
-  auto test = [&](const PairKey& k, double m) {
-    if (!near) {
-      if (!narrowWithin(c, s, k, m)) return false;
-      near = true;
-      margins.dropToBase();
-    }
-    return narrowWithin(c, s, k, base);
-  };
-  if (c.lastHit.kind != PairKey::Kind::None) {
-    const PairKey last = c.lastHit;
-    if (pairWithin(c, s, last, margins)) {
-      near = true;
-      margins.dropToBase();
-      if (pairWithin(c, s, last, margins)) return Clearance::Collides;
-    }
-    c.lastHit = PairKey{};
-  }
-  if (forEachPairNear(c, s, margins, test)) return Clearance::Collides;
-  return near ? Clearance::Near : Clearance::Clear;
-}
-
 Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near) {
   checkLinkTranslations(c);
   near.clear();

@@ -125,7 +125,7 @@ Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, doubl
   Clearance found = Clearance::Clear;
   if (sub.first < 0 && !certify) {
     // Too long a sub-motion for a clearance test: q(tm) for collision only.
-    found = classify(c, s, margins);
+    found = clearOfAll(c, s, margins) ? Clearance::Clear : Clearance::Collides;
     all = true;
   } else if (sub.first < 0) {
     found = collectNear(c, s, margins, w.near);
