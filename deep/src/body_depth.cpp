@@ -21,6 +21,7 @@ const char* toString(BodyDepthStatus s) {
     case BodyDepthStatus::Certified: return "certified";
     case BodyDepthStatus::FaceLimit: return "face-limit";
     case BodyDepthStatus::PairNotCertified: return "pair-not-certified";
+    case BodyDepthStatus::BuildLimit: return "build-limit";
   }
   return "unknown";
 }
@@ -139,22 +140,31 @@ Eigen::Vector3d boxSeparation(const std::vector<PosedPiece>& A, const std::vecto
   return best;
 }
 
-/// What the search needs of a query: the pieces, and the bound beyond which facets are left out
-/// of the differences (buildDifference's `keep`).
+/// What the search needs of a query: the pieces, the bound beyond which facets are left out of
+/// the differences (buildDifference's `keep`), and what is left of the build budget.
 struct Pieces {
   const std::vector<PosedPiece>& A;
   const std::vector<PosedPiece>& B;
   int nB = 0;
   double keep = std::numeric_limits<double>::infinity();
+  double budget = std::numeric_limits<double>::infinity();  ///< BodyDepthOptions::maxBuildCost left
+  bool exhausted = false;  ///< a difference was needed that the budget could not pay for
 };
 
-/// Builds pair k's difference on first need; returns its index in diffs, or -1 when flat.
-int ensureDifference(std::vector<PairInfo>& pairs, int k, const Pieces& P, std::vector<Difference>& diffs) {
+/// Builds pair k's difference on first need; returns its index in diffs, or -1 when flat or when
+/// the budget cannot pay for it (then P.exhausted is set and nothing is built).
+int ensureDifference(std::vector<PairInfo>& pairs, int k, Pieces& P, std::vector<Difference>& diffs) {
   const int nB = P.nB;
   const std::vector<PosedPiece>& A = P.A;
   const std::vector<PosedPiece>& B = P.B;
   PairInfo& p = pairs[static_cast<std::size_t>(k)];
   if (p.built == 0) {
+    const double cost = body::differenceCost(A[static_cast<std::size_t>(k / nB)], B[static_cast<std::size_t>(k % nB)]);
+    if (cost > P.budget) {
+      P.exhausted = true;
+      return -1;
+    }
+    P.budget -= cost;
     Difference d;
     d.pieceA = k / nB;
     d.pieceB = k % nB;
@@ -172,7 +182,7 @@ int ensureDifference(std::vector<PairInfo>& pairs, int k, const Pieces& P, std::
 /// Marches from the origin along u, starting at distance t, across every difference whose
 /// interior holds the current point, to the first point held by none: a point of the complement.
 /// Gives up (returns infinity) once beyond `cap`.
-double marchOut(std::vector<PairInfo>& pairs, const Pieces& P, std::vector<Difference>& diffs,
+double marchOut(std::vector<PairInfo>& pairs, Pieces& P, std::vector<Difference>& diffs,
                 const Eigen::Vector3d& u, double t, double cap, double tol) {
   bool moved = true;
   while (moved) {
@@ -181,6 +191,7 @@ double marchOut(std::vector<PairInfo>& pairs, const Pieces& P, std::vector<Diffe
       if (t >= cap) return std::numeric_limits<double>::infinity();
       if (pairs[static_cast<std::size_t>(k)].distanceLower >= t) continue;
       const int idx = ensureDifference(pairs, k, P, diffs);
+      if (P.exhausted) return std::numeric_limits<double>::infinity();
       if (idx < 0 || body::planeExcess(diffs[static_cast<std::size_t>(idx)], t * u) >= -tol) continue;
       t = body::rayExit(diffs[static_cast<std::size_t>(idx)], u);
       moved = true;
@@ -194,7 +205,7 @@ double marchOut(std::vector<PairInfo>& pairs, const Pieces& P, std::vector<Diffe
 /// search's start. Each pair's own push-out direction is tried because the body's answer is often
 /// one of them (a pair whose push is not blocked by others). Marches stop at |bound|, within
 /// which the differences built with P.keep are exact.
-Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, const Pieces& P, std::vector<Difference>& diffs,
+Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, Pieces& P, std::vector<Difference>& diffs,
                                int deepest, const Eigen::Vector3d& bound, double tol) {
   Eigen::Vector3d best = bound;
   double bestLength = bound.norm();
@@ -204,13 +215,13 @@ Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, const Pieces& P, st
     const double r0 = x.norm();
     const Eigen::Vector3d u = r0 > tol ? Eigen::Vector3d(x / r0) : Eigen::Vector3d(-r.normal);
     const double t = marchOut(pairs, P, diffs, u, r0, bestLength, tol);
-    if (t < bestLength) {
+    if (t < bestLength && !P.exhausted) {  // (a march past an unbuilt difference proves nothing)
       bestLength = t;
       best = t * u;
     }
   };
   tryPair(deepest);
-  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+  for (int k = 0; k < static_cast<int>(pairs.size()) && !P.exhausted; ++k) {
     if (k != deepest && pairs[static_cast<std::size_t>(k)].result.distance < 0) tryPair(k);
   }
   return best;
@@ -233,43 +244,21 @@ bool coveredByPairs(const std::vector<PairInfo>& pairs, int skip, int nB,
   return false;
 }
 
-/// Steps 3 and 4 of the header's method, when the deepest pair's point is covered: the upper bound
-/// by the marches, the relevant differences, the search, and the answer's fields in `out`
-/// (depthLower there is the search's bound; the caller raises it by the pairwise one).
-void searchAnswer(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
-                  const std::vector<PosedPiece>& B, int deepest, double tol, int maxFaces,
-                  const Eigen::Vector3d& p_WP, BodySignedDistanceResult& out) {
-  // Every point the search asks about is within the bounding boxes' separation R, so facets
-  // beyond R are left out of the differences; the margin (1e4 tol) keeps them out of every
-  // membership test there, and above the round-off between near-parallel candidate normals.
-  const Eigen::Vector3d bound = boxSeparation(A, B);
-  const Pieces P{A, B, nB, bound.norm() + 1e4 * tol};
-  std::vector<Difference> diffs;
-  const Eigen::Vector3d start = marchFromPairs(pairs, P, diffs, deepest, bound, tol);
-  const double upper = start.norm();
-  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
-    if (pairs[static_cast<std::size_t>(k)].distanceLower < upper) ensureDifference(pairs, k, P, diffs);
-  }
-  // The search asks only about points within the start's distance: the same rule, tighter.
-  for (Difference& d : diffs) body::dropFacetsBeyond(d, upper + 1e4 * tol);
-  // The box's point is often the answer itself (a push straight along an axis): the search then
-  // also takes a face's point as near, up to tol, so that the answer names the face's pieces
-  // rather than whichever difference's boundary is nearest the box's point.
-  const double reach = start == bound ? upper + tol : upper;
-  const body::SearchResult s = body::searchNearestBoundary(diffs, start, reach, maxFaces, tol);
-  const Eigen::Vector3d& x = s.point;
+/// The answer x (a point of the complement, in P) in `out`: distance, normal, bracket, and the
+/// pieces and witnesses of the difference holding it (`holder`, or when -1 the one whose boundary
+/// is nearest x: a march's end lies on the difference it left last). depthLower there is
+/// `lowerBound`; the caller raises it by the pairwise one.
+void setAnswer(const Eigen::Vector3d& x, int holder, BodyDepthStatus status, double lowerBound,
+               const std::vector<Difference>& diffs, const Pieces& P, const Eigen::Vector3d& p_WP,
+               BodySignedDistanceResult& out) {
   const double depth = x.norm();
-  out.status = s.finished ? BodyDepthStatus::Certified : BodyDepthStatus::FaceLimit;
-  out.certified = s.finished;
+  out.status = status;
+  out.certified = status == BodyDepthStatus::Certified;
   out.distance = -depth;
   if (depth > 0) out.normal = -x / depth;  // else the deepest pair's, already in out
   out.depthUpper = depth;
-  out.depthLower = std::min(depth, s.lowerBound);
+  out.depthLower = std::min(depth, lowerBound);
   out.differences = static_cast<int>(diffs.size());
-  out.facesSearched = s.facesSearched;
-  // The difference holding x (when the search kept its start, the march's end: on the
-  // difference the march left last, found here as the one whose boundary is nearest x).
-  int holder = s.difference;
   double closest = std::numeric_limits<double>::infinity();
   for (int k = 0; holder < 0 && k < static_cast<int>(diffs.size()); ++k) {
     const double e = std::abs(body::planeExcess(diffs[static_cast<std::size_t>(k)], x));
@@ -279,7 +268,97 @@ void searchAnswer(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedP
     out.pieceA = diffs[static_cast<std::size_t>(holder)].pieceA;
     out.pieceB = diffs[static_cast<std::size_t>(holder)].pieceB;
   }
-  setWitnesses(A[static_cast<std::size_t>(out.pieceA)], B[static_cast<std::size_t>(out.pieceB)], x, p_WP, out);
+  setWitnesses(P.A[static_cast<std::size_t>(out.pieceA)], P.B[static_cast<std::size_t>(out.pieceB)], x, p_WP, out);
+}
+
+/// Steps 3 and 4 of the header's method, when the deepest pair's point is covered: the upper bound
+/// by the marches, the relevant differences, the search, and the answer in `out` (BuildLimit with
+/// the best verified point when the budget cannot pay for the differences).
+void searchAnswer(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedPiece>& A,
+                  const std::vector<PosedPiece>& B, int deepest, double tol, const BodyDepthOptions& options,
+                  const Eigen::Vector3d& p_WP, BodySignedDistanceResult& out) {
+  // Every point the search asks about is within the bounding boxes' separation R, so facets
+  // beyond R are left out of the differences; the margin (1e4 tol) keeps them out of every
+  // membership test there, and above the round-off between near-parallel candidate normals.
+  const Eigen::Vector3d bound = boxSeparation(A, B);
+  Pieces P{A, B, nB, bound.norm() + 1e4 * tol, options.maxBuildCost};
+  std::vector<Difference> diffs;
+  const Eigen::Vector3d start = marchFromPairs(pairs, P, diffs, deepest, bound, tol);
+  const double upper = start.norm();
+  for (int k = 0; k < static_cast<int>(pairs.size()) && !P.exhausted; ++k) {
+    if (pairs[static_cast<std::size_t>(k)].distanceLower < upper) ensureDifference(pairs, k, P, diffs);
+  }
+  if (P.exhausted) {
+    setAnswer(start, -1, BodyDepthStatus::BuildLimit, 0.0, diffs, P, p_WP, out);
+    return;
+  }
+  // The search asks only about points within the start's distance: the same rule, tighter.
+  for (Difference& d : diffs) body::dropFacetsBeyond(d, upper + 1e4 * tol);
+  // The box's point is often the answer itself (a push straight along an axis): the search then
+  // also takes a face's point as near, up to tol, so that the answer names the face's pieces
+  // rather than whichever difference's boundary is nearest the box's point.
+  const double reach = start == bound ? upper + tol : upper;
+  const body::SearchResult s = body::searchNearestBoundary(diffs, start, reach, options.maxFaces, tol);
+  setAnswer(s.point, s.difference, s.finished ? BodyDepthStatus::Certified : BodyDepthStatus::FaceLimit,
+            s.lowerBound, diffs, P, p_WP, out);
+  out.facesSearched = s.facesSearched;
+}
+
+/// What step 1 found: the nearest pair (the deepest when some overlap), how many overlap, and
+/// the largest pairwise depth lower bound.
+struct PairCounts {
+  int nearest = 0;
+  int overlapping = 0;
+  double depthLower = 0.0;
+};
+
+/// Step 1: each pair's signed distance, where it can matter. A pair whose pieces' bounding spheres
+/// are apart cannot overlap; its distance is computed only when no pair overlaps and it may be the
+/// nearest, and is otherwise bounded from below by the spheres' gap (distanceLower), which is all
+/// the later steps ask of a pair that does not overlap.
+PairCounts measurePairs(const std::vector<PosedPiece>& A, const std::vector<PosedPiece>& B,
+                        const DeepOptions& options, std::vector<PairInfo>& pairs) {
+  const std::size_t nB = B.size();
+  std::vector<double> gap(pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const PosedPiece& a = A[k / nB];
+    const PosedPiece& b = B[k % nB];
+    gap[k] = (a.X_PP * a.core->center() - b.X_PP * b.core->center()).norm() - a.core->boundingRadius() -
+             b.core->boundingRadius();
+  }
+  PairCounts out;
+  double nearestDistance = std::numeric_limits<double>::infinity();
+  const auto measure = [&](std::size_t k) {
+    PairInfo& p = pairs[k];
+    p.result = signedDistance(*A[k / nB].core, A[k / nB].X_PP, *B[k % nB].core, B[k % nB].X_PP, nullptr, options);
+    const bool converged = p.result.status != SignedDistanceStatus::NotConverged;
+    p.distanceLower = p.result.distance > 0 && converged ? p.result.distance : 0.0;
+    if (p.result.distance < 0) {
+      ++out.overlapping;
+      out.depthLower = std::max(out.depthLower, p.result.depthLower);
+    }
+    if (p.result.distance < nearestDistance) {
+      nearestDistance = p.result.distance;
+      out.nearest = static_cast<int>(k);
+    }
+  };
+  std::vector<std::size_t> apart;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (gap[k] > 0.0) {
+      apart.push_back(k);
+      pairs[k].result.distance = gap[k];  // a lower bound until measured: the pair does not overlap
+      pairs[k].distanceLower = gap[k];
+    } else {
+      measure(k);
+    }
+  }
+  if (out.overlapping > 0) return out;
+  std::sort(apart.begin(), apart.end(), [&](std::size_t i, std::size_t j) { return gap[i] < gap[j]; });
+  for (std::size_t k : apart) {
+    if (gap[k] >= nearestDistance) break;
+    measure(k);
+  }
+  return out;
 }
 
 }  // namespace
@@ -289,6 +368,12 @@ BodySignedDistanceResult bodySignedDistance(const Body& bodyA, const Eigen::Isom
                                             const BodyDepthOptions& options) {
   checkBody(bodyA, X_WA, "A");
   checkBody(bodyB, X_WB, "B");
+  if (!(options.maxBuildCost >= 0.0)) {
+    std::ostringstream msg;
+    msg << "bodySignedDistance: maxBuildCost must be >= 0 (microseconds; infinity for no cap), got "
+        << options.maxBuildCost;
+    throw std::invalid_argument(msg.str());
+  }
   const Eigen::Vector3d p_WP = X_WA.translation();
   const std::vector<PosedPiece> A = posePieces(bodyA, X_WA, p_WP);
   const std::vector<PosedPiece> B = posePieces(bodyB, X_WB, p_WP);
@@ -297,22 +382,10 @@ BodySignedDistanceResult bodySignedDistance(const Body& bodyA, const Eigen::Isom
 
   // 1. Every pair's own signed distance; the nearest pair and the deepest.
   std::vector<PairInfo> pairs(A.size() * B.size());
-  int nearest = 0;
-  int overlapping = 0;
-  double depthLower = 0.0;
-  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
-    const PosedPiece& a = A[static_cast<std::size_t>(k / nB)];
-    const PosedPiece& b = B[static_cast<std::size_t>(k % nB)];
-    PairInfo& p = pairs[static_cast<std::size_t>(k)];
-    p.result = signedDistance(*a.core, a.X_PP, *b.core, b.X_PP, nullptr, options.pair);
-    const bool converged = p.result.status != SignedDistanceStatus::NotConverged;
-    p.distanceLower = p.result.distance > 0 && converged ? p.result.distance : 0.0;
-    if (p.result.distance < 0) {
-      ++overlapping;
-      depthLower = std::max(depthLower, p.result.depthLower);
-    }
-    if (p.result.distance < pairs[static_cast<std::size_t>(nearest)].result.distance) nearest = k;
-  }
+  const PairCounts counts = measurePairs(A, B, options.pair, pairs);
+  const int nearest = counts.nearest;
+  const int overlapping = counts.overlapping;
+  const double depthLower = counts.depthLower;
   const SignedDistanceResult& deepest = pairs[static_cast<std::size_t>(nearest)].result;
   BodySignedDistanceResult out = fromPair(deepest, nearest / nB, nearest % nB, p_WP);
   out.overlappingPairs = overlapping;
@@ -335,7 +408,7 @@ BodySignedDistanceResult bodySignedDistance(const Body& bodyA, const Eigen::Isom
   }
 
   // 3, 4. The upper bound, the relevant differences and the exact search.
-  searchAnswer(pairs, nB, A, B, nearest, tol, options.maxFaces, p_WP, out);
+  searchAnswer(pairs, nB, A, B, nearest, tol, options, p_WP, out);
   out.depthLower = std::max(out.depthLower, std::min(depthLower, out.depthUpper));
   return out;
 }

@@ -9,6 +9,22 @@
 #include <limits>
 
 namespace deepcheck::deep::body {
+namespace {
+
+// The cost estimates are in microseconds, fitted on random hulls of 8 to 100 vertices (the
+// features' candidates times the vertices and faces each scans; Qhull's start-up plus its points):
+// the features win up to about ten vertices per piece, the hull beyond.
+double featuresCost(const PosedPiece& A, const PosedPiece& B) {
+  const double eA = A.core->numEdges(), eB = B.core->numEdges();
+  const double vA = A.core->numVertices(), vB = B.core->numVertices();
+  return 0.002 * eA * eB * (vA + vB + eA + eB + A.core->numFaces() + B.core->numFaces());
+}
+
+double hullCost(const PosedPiece& A, const PosedPiece& B) {
+  return 30.0 + 0.7 * A.core->numVertices() * B.core->numVertices();
+}
+
+}  // namespace
 
 PosedPiece posePiece(const ConvexPolytope& core, const Eigen::Isometry3d& X_PP) {
   PosedPiece p;
@@ -34,20 +50,15 @@ void addFace(Difference& d, const Eigen::Vector3d& normal, double offset, std::v
   d.radii.push_back(radius);
 }
 
+double differenceCost(const PosedPiece& A, const PosedPiece& B) { return std::min(featuresCost(A, B), hullCost(A, B)); }
+
 bool buildDifference(const PosedPiece& A, const PosedPiece& B, Difference& out, double keep) {
   out.normals.clear();
   out.offsets.clear();
   out.faces.clear();
   out.centres.clear();
   out.radii.clear();
-  // Estimated costs in microseconds, fitted on random hulls of 8 to 100 vertices (the features'
-  // candidates times the vertices and faces each scans; Qhull's start-up plus its points): the
-  // features win up to about ten vertices per piece, the hull beyond.
-  const double eA = A.core->numEdges(), eB = B.core->numEdges();
-  const double vA = A.core->numVertices(), vB = B.core->numVertices();
-  const double features = 0.002 * eA * eB * (vA + vB + eA + eB + A.core->numFaces() + B.core->numFaces());
-  const double hull = 30.0 + 0.7 * vA * vB;
-  if (features <= hull) return buildDifferenceFromFeatures(A, B, out, keep);
+  if (featuresCost(A, B) <= hullCost(A, B)) return buildDifferenceFromFeatures(A, B, out, keep);
   if (!buildDifferenceFromHull(A, B, out)) return false;
   // Qhull's facets are all formed at once; the far ones are dropped afterwards.
   dropFacetsBeyond(out, keep);

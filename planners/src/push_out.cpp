@@ -138,16 +138,20 @@ class PushOutSearch {
  private:
   /// Replaces every overlapping contact whose A is a robot link by the body answer of its pair
   /// (distance, normal, witnesses, gradient), and the closest pair by the smallest of them. A
-  /// contact of an attached object keeps its pairwise answer.
+  /// contact of an attached object, or one whose body query hit its build cap, keeps its pairwise
+  /// answer.
   void useBodyDepth(const Eigen::VectorXd& q, checker::DistanceResult& d) const {
     checker::World::BodyDistanceOptions options;
     options.gradient = true;
+    options.depth.maxBuildCost = options_.bodyBuildCost;
     for (checker::Contact& c : d.contacts) {
       if (!(c.distance < 0.0) || c.linkA < 0 || c.nameA != world_.robot().link(c.linkA).name) continue;
       checker::BodyRef a;
       a.kind = checker::BodyRef::Kind::RobotLink;
       a.index = c.linkA;
-      checker::Contact body = world_.bodySignedDistance(q, a, c.bodyB, options).contact;
+      checker::World::BodyContact answer = world_.bodySignedDistance(q, a, c.bodyB, options);
+      if (answer.depthStatus == deep::BodyDepthStatus::BuildLimit) continue;  // too costly: pairwise
+      checker::Contact& body = answer.contact;
       c.distance = body.distance;
       c.normal = body.normal;
       c.pointA = body.pointA;
@@ -304,6 +308,10 @@ void checkPushOutOptions(const PushOutOptions& options) {
   positive(options.damping, "damping");
   positive(options.maxJointStep, "maxJointStep");
   positive(options.maxDepth, "maxDepth");
+  if (!(options.bodyBuildCost >= 0.0)) {
+    throw std::invalid_argument("PushOutOptions: bodyBuildCost must be >= 0 (infinity for no cap), got " +
+                                robots::formatNumber(options.bodyBuildCost));
+  }
   if (!std::isfinite(options.targetClearance) || !std::isfinite(options.damping) ||
       !std::isfinite(options.maxJointStep)) {
     throw std::invalid_argument("PushOutOptions: targetClearance, damping and maxJointStep must be finite");

@@ -278,6 +278,7 @@ BOOST_AUTO_TEST_CASE(names) {
   BOOST_TEST(std::string(toString(BodyDepthStatus::Certified)) == "certified");
   BOOST_TEST(std::string(toString(BodyDepthStatus::FaceLimit)) == "face-limit");
   BOOST_TEST(std::string(toString(BodyDepthStatus::PairNotCertified)) == "pair-not-certified");
+  BOOST_TEST(std::string(toString(BodyDepthStatus::BuildLimit)) == "build-limit");
 }
 
 BOOST_AUTO_TEST_CASE(random_unions_agree_with_the_reference) {
@@ -500,6 +501,67 @@ BOOST_AUTO_TEST_CASE(the_face_cap_returns_a_separating_bracketed_answer) {
                              -r.distance * r.normal) >= -1e-12);
 }
 
+BOOST_AUTO_TEST_CASE(the_build_cap_returns_a_separating_bracketed_answer) {
+  const SlabCase s;
+  BodyDepthOptions options;
+  options.maxBuildCost = 0.0;  // no difference can be built: the bounding boxes' separation
+  const BodySignedDistanceResult r =
+      bodySignedDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity(), options);
+  BOOST_TEST(std::string(toString(r.status)) == "build-limit");
+  BOOST_TEST(!r.certified);
+  BOOST_TEST(r.differences == 0);
+  BOOST_TEST(-r.distance >= 0.2 - 1e-12);
+  BOOST_TEST(r.depthLower <= 0.2 + 1e-12);
+  BOOST_TEST(r.depthUpper >= 0.2 - 1e-12);
+  BOOST_TEST(minPairDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity(),
+                             -r.distance * r.normal) >= -1e-12);
+  BOOST_TEST((r.pointB - r.pointA - r.distance * r.normal).norm() <= 1e-12);
+}
+
+// Random unions under random build caps, from none to more than they need: every answer is
+// either the reference depth (certified) or, past the cap, a verified separating translation
+// whose bracket holds the reference; and a larger cap never answers worse.
+BOOST_AUTO_TEST_CASE(random_unions_under_build_caps_separate_and_bracket_the_reference) {
+  std::mt19937 rng(4711);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int capped = 0;
+  int exact = 0;
+  for (int c = 0; c < 40; ++c) {
+    const TestBody A = randomBody(rng, 2 + c % 2);
+    const TestBody B = randomBody(rng, 2 + (c / 2) % 2);
+    const Isometry3d X_WA = makePose(randomRotation(rng), randomUnit(rng) * u(rng));
+    const Isometry3d X_WB = makePose(randomRotation(rng), X_WA.translation() + randomUnit(rng) * (0.3 + 0.6 * u(rng)));
+    const Reference ref = referenceBodyDistance(A.body, X_WA, B.body, X_WB);
+    if (!(ref.distance < 0)) continue;
+    const double depth = -ref.distance;
+    double previous = std::numeric_limits<double>::infinity();
+    for (double cap : {0.0, 50.0 * u(rng), 200.0 + 400.0 * u(rng), std::numeric_limits<double>::infinity()}) {
+      BOOST_TEST_CONTEXT("case " << c << " cap " << cap) {
+        BodyDepthOptions options;
+        options.maxBuildCost = cap;
+        const BodySignedDistanceResult r = bodySignedDistance(A.body, X_WA, B.body, X_WB, options);
+        const double tol = 1e-9 * std::max(depth, 1e-3 * ref.L);
+        BOOST_TEST(r.depthLower <= depth + tol);
+        BOOST_TEST(r.depthUpper >= depth - tol);
+        BOOST_TEST(-r.distance >= depth - tol);
+        BOOST_TEST(minPairDistance(A.body, X_WA, B.body, X_WB, -r.distance * r.normal) >= -1e-10 * ref.L);
+        if (r.status == BodyDepthStatus::BuildLimit) {
+          ++capped;
+        } else {
+          BOOST_TEST(r.certified);
+          BOOST_TEST(std::abs(-r.distance - depth) <= tol);
+          ++exact;
+        }
+        if (std::isinf(cap)) BOOST_TEST(std::string(toString(r.status)) == "certified");
+        BOOST_TEST(-r.distance <= previous + tol);  // (each cap pays for at least what the smaller did)
+        previous = std::min(previous, -r.distance);
+      }
+    }
+  }
+  BOOST_TEST(capped >= 10);
+  BOOST_TEST(exact >= 20);
+}
+
 BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
   const SlabCase s;
   auto message = [&](const Body& A, const Body& B) {
@@ -517,6 +579,16 @@ BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
   Body hollow = s.slab.body;
   hollow.pieces[0].shape.core = nullptr;
   BOOST_TEST(message(hollow, s.box.body).find("body A piece 0 has no core") != std::string::npos);
+  for (double cap : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    BodyDepthOptions options;
+    options.maxBuildCost = cap;
+    try {
+      bodySignedDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity(), options);
+      BOOST_ERROR("a build cap of " << cap << " was accepted");
+    } catch (const std::invalid_argument& e) {
+      BOOST_TEST(std::string(e.what()).find("maxBuildCost must be >= 0") != std::string::npos);
+    }
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,6 +1,7 @@
 // Push-out with the body depth (PushOutOptions::bodyDepth) against the pairwise depth, on the hard
-// cases of issue 38 (tests/common/body_cases.h): a box tool pressed into a slab of two touching
-// boxes, a peg lowered into a U of three boxes, each body one scene link of several pieces.
+// cases (tests/common/body_cases.h): a box tool pressed into a slab of two touching boxes, a peg
+// lowered into a U of three boxes, each body one scene link of several pieces; and the cap on a
+// body query's cost on random starts of the bundled arm.
 
 #include "bundled.h"
 
@@ -8,11 +9,15 @@
 
 #include "deepcheck/planners/push_out.h"
 #include "deepcheck/planners/validity.h"
+#include "deepcheck/robots/random_configuration.h"
 
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <random>
+#include <stdexcept>
 #include <string>
 
 namespace dc = deepcheck::checker;
@@ -37,7 +42,19 @@ dp::PushOutResult pushOut(const std::shared_ptr<const dc::World>& world, const E
 
 BOOST_AUTO_TEST_SUITE(planners_push_out_bodies)
 
-BOOST_AUTO_TEST_CASE(body_depth_is_asked_for) { BOOST_TEST(!dp::PushOutOptions{}.bodyDepth); }
+BOOST_AUTO_TEST_CASE(body_depth_is_the_default_with_a_finite_cap) {
+  const dp::PushOutOptions options;
+  BOOST_TEST(options.bodyDepth);
+  BOOST_TEST(std::isfinite(options.bodyBuildCost));
+  BOOST_TEST(options.bodyBuildCost > 0.0);
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    dp::PushOutOptions o;
+    o.bodyBuildCost = bad;
+    BOOST_CHECK_EXCEPTION(dp::checkPushOutOptions(o), std::invalid_argument, [](const std::invalid_argument& e) {
+      return std::string(e.what()).find("bodyBuildCost") != std::string::npos;
+    });
+  }
+}
 
 // The tool 0.04 deep in the slab, 0.005 off the seam: each pair's depth points sideways (into the
 // other box), the slab's as one body straight up. The body answer lifts the tool out in one step,
@@ -70,6 +87,37 @@ BOOST_AUTO_TEST_CASE(peg_is_lifted_out_of_the_u_in_one_step_with_the_body_depth)
   const dp::PushOutResult pairwise = pushOut(world, start, false);
   BOOST_TEST((!pairwise.success() || pairwise.iterations > 1), "pairwise: " << pairwise.status << " in "
                                                                            << pairwise.iterations << " iterations");
+}
+
+// Random slightly colliding starts of the bundled arm (links and scene objects of many pieces),
+// pushed out with the body depth under no cap, the default cap and a cap of 0 (every body query
+// that needs a Minkowski difference falls back on the pairwise answer): whatever the cap, a start
+// the push-out calls repaired is valid, and the capped push-outs repair about as many starts as the
+// uncapped one.
+BOOST_AUTO_TEST_CASE(capped_body_queries_still_repair_random_starts_of_the_bundled_arm) {
+  const auto world = dp::test::bundledWorld("shelf");
+  std::mt19937_64 rng(20261129);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double caps[] = {inf, dp::PushOutOptions{}.bodyBuildCost, 0.0};
+  int repaired[3] = {0, 0, 0};
+  int starts = 0;
+  while (starts < 30) {
+    const Eigen::VectorXd q = deepcheck::robots::randomConfiguration(world->robot(), rng);
+    const double sd = dp::signedDistanceUpTo(*world, q, 1e-3);
+    if (!(sd < 0.0 && sd >= -0.02)) continue;
+    ++starts;
+    for (int k = 0; k < 3; ++k) {
+      dp::PushOutOptions options;
+      options.bodyBuildCost = caps[k];
+      const dp::PushOutResult r = dp::PushOut(world, {}, options).run(q);
+      if (!r.success()) continue;
+      ++repaired[k];
+      BOOST_TEST(dp::isConfigurationValid(*world, r.q, {}), "cap " << caps[k] << " start " << starts);
+    }
+  }
+  BOOST_TEST(repaired[0] >= 25);
+  BOOST_TEST(repaired[1] >= repaired[0] - 2);
+  BOOST_TEST(repaired[2] >= repaired[0] - 3);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -45,8 +45,9 @@
 // (the union's penetration depth; the pairwise answer where a piece is rounded), and so does the
 // minimum distance that steps and probes are judged by. It converges better on the hard cases and
 // never worse on random starts of the bundled arm (docs/checker.md, "Body-level signed
-// distance"), but it is off by default: a body query between deeply overlapping bodies of many
-// pieces can take seconds, where the pairwise one takes microseconds.
+// distance"). Its cost is bounded: a body query that would have to build more Minkowski
+// differences than deep::BodyDepthOptions::maxBuildCost pays for (deeply overlapping links of many
+// pieces) answers BuildLimit, and that contact keeps its pairwise answer.
 // Departures from a textbook projection: the target is c above the threshold rather than on it,
 // so that the last linearized step does not land exactly on the boundary. The minimum joint-space
 // motion is not guaranteed (the problem is non-convex); the step is the locally smallest one.
@@ -87,8 +88,11 @@ struct PushOutOptions {
   double maxDepth = tol::kPushOutMaxDepth;
   /// Body depth (header comment, "Bodies"): an overlapping contact of a robot link with a body
   /// measured as the union of the body's pieces (checker::World::bodySignedDistance) rather than as
-  /// its deepest piece pair. Off by default (its cost, header comment).
-  bool bodyDepth = false;
+  /// its deepest piece pair. False: always the deepest pair (cheaper, converges less often).
+  bool bodyDepth = true;
+  /// Cap on one body query's cost (deep::BodyDepthOptions::maxBuildCost: estimated microseconds,
+  /// >= 0; infinity for none): a contact whose body query would cost more keeps its pairwise answer.
+  double bodyBuildCost = tol::kPushOutBodyBuildCost;
 };
 
 /// Throws std::invalid_argument naming the option and its value when one is out of its range.
