@@ -29,10 +29,11 @@
 // repairing where it fails) and the certified path checked by FCL again. Checks are the state
 // validity queries made while planning (the discrete motion checks' included).
 //
-// Outputs in OUT (default bench/results/mbm): mbm_<scene>.log (one OMPL experiment per scene, the
+// Outputs in OUT (default bench/results/mbm, a folder git ignores; bench/run_mbm_bench.sh keeps
+// the summary of its runs as bench/results/mbm_bench.csv): mbm_<scene>.log (one OMPL experiment per scene, the
 // problems as runs of the planners geometric_<planner>_<checker>; extra run properties: problem,
 // checks, checks per second, simplified length, certified, certified exact, fcl fine verified), mbm_runs.csv,
-// mbm_bench.csv, mbm_bench.md (also printed), mbm_bench_time.png (gnuplot, bench/mbm_plots.gp), and
+// mbm_bench.csv, mbm_bench.md (also printed), mbm_bench.png (gnuplot, bench/mbm_plots.gp), and
 // for a certified path FCL rejects, fcl_rejected_<scene>_<problem>_<planner>_<checker>.{txt,yaml}.
 // Progress on stderr.
 //

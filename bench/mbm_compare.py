@@ -4,7 +4,7 @@ same --seed, --problems, --planners and --checkers give the planners the same ra
 a run that receives the same answers makes the same queries). Per scene: the median planning time
 of each run, and the median over the paired runs of the time ratio B / A, counting only the runs
 whose number of checks and path length agree. A run stopped by the time limit differs, and runs
-after one that differs can differ too (seen in runs of one build on two machines).
+after one that differs can differ too (the random streams part from there).
 
 Usage: bench/mbm_compare.py A/mbm_runs.csv B/mbm_runs.csv
 """

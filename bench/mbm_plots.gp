@@ -1,6 +1,8 @@
-# Plot of the MotionBenchMaker benchmark, from mbm_bench.csv (gnuplot 5; mbm_bench runs it).
-# Usage: gnuplot -e "csv='results/mbm/mbm_bench.csv'; outdir='results/mbm'" mbm_plots.gp
-# Writes mbm_bench_time.png: one panel per planner; per scene the median planning time (bar) and
+# Plot of the MotionBenchMaker benchmark, from the mbm_bench.csv that mbm_bench writes in its
+# output folder (gnuplot 5; mbm_bench runs it; bench/run_mbm_bench.sh keeps the plot of its
+# certified run as bench/results/mbm_bench.png).
+# Usage: gnuplot -e "csv='OUT/mbm_bench.csv'; outdir='OUT'" mbm_plots.gp
+# Writes mbm_bench.png: one panel per planner; per scene the median planning time (bar) and
 # the 90th percentile (point), one colour per checker, log scale. A missing bar: no run.
 
 if (!exists("csv")) csv = 'results/mbm/mbm_bench.csv'
@@ -20,7 +22,7 @@ set style fill solid 0.8 border -1
 set boxwidth 0.35
 
 set terminal pngcairo noenhanced size 120 * ns + 200, 330 * nl + 60 font "DejaVu Sans,10"
-set output outdir.'/mbm_bench_time.png'
+set output outdir.'/mbm_bench.png'
 set multiplot layout nl, 1 title "MotionBenchMaker, Panda: planning time, ours (deepcheck) against FCL meshes (bar median, point p90; lower is better)"
 set logscale y
 set format y "%g"

@@ -169,7 +169,7 @@ void writeMbmReport(const MbmSettings& s, const std::vector<MbmRecord>& records,
 }
 
 void plotMbmReport(const std::string& out) {
-  runGnuplot(out + "/mbm_bench.csv", out, "mbm_plots.gp", "mbm_bench_time.png", "mbm_bench");
+  runGnuplot(out + "/mbm_bench.csv", out, "mbm_plots.gp", "mbm_bench.png", "mbm_bench");
 }
 
 }  // namespace deepcheck::bench

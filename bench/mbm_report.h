@@ -48,7 +48,7 @@ struct MbmSettings {
 void writeMbmReport(const MbmSettings& settings, const std::vector<MbmRecord>& records,
                     const std::vector<SceneFailure>& failures, bool partial = false);
 
-/// Plots OUT/mbm_bench.csv into OUT/mbm_bench_time.png with gnuplot (skipped when missing).
+/// Plots OUT/mbm_bench.csv into OUT/mbm_bench.png with gnuplot (skipped when missing).
 void plotMbmReport(const std::string& out);
 
 }  // namespace deepcheck::bench

@@ -1,54 +1,90 @@
 #!/usr/bin/env python3
-"""Totals over mbm_bench's runs that its tables do not give (bench/README.md, "MotionBenchMaker
-benchmark"): per planner, the FCL / ours ratio of planning times problem by problem (median over the
-problems both checkers solved); and the certification of the returned paths, in all and by checker.
+"""MotionBenchMaker's one result file (bench/README.md, "MotionBenchMaker benchmark"): reads the
+per-run files of mbm_bench's runs, one per motion validator of our checker (certified, discrete),
+and writes one CSV row per motion check, checker and scene, plus a row `all` over every scene. The
+FCL checker always checks motions discretely (OMPL's DiscreteMotionValidator): its rows say so. Prints the `all` rows
+as the Markdown table bench/README.md shows.
 
-Usage: bench/mbm_summary.py [results/mbm/mbm_runs.csv]
+Columns: runs; solved_pct; median and 90th percentile of the planning time over all runs (a
+failed run counts with its time); median plan + simplify and median certifyPath time over the
+solved runs; returned paths and those FCL's fine check on the meshes accepts as returned.
+Times and quantiles are computed as mbm_bench computes them (linear between order statistics).
+
+Usage: bench/mbm_summary.py OUT.csv MOTIONS=RUNS.csv [MOTIONS=RUNS.csv ...]
+  e.g. bench/mbm_summary.py bench/results/mbm_bench.csv certified=a/mbm_runs.csv discrete=b/mbm_runs.csv
 """
-import collections
 import csv
-import os
-import statistics
+import math
 import sys
 
+COLUMNS = ["motions", "checker", "scene", "runs", "solved_pct", "median_plan_ms", "p90_plan_ms",
+           "median_plan_simplify_ms", "median_certify_ms", "returned", "fcl_ok_as_returned", "fcl_ok_as_returned_pct"]
 
-def main(path):
+
+def quantile(values, q):
+    if not values:
+        return math.nan
+    v = sorted(values)
+    at = q * (len(v) - 1)
+    lo = math.floor(at)
+    hi = min(lo + 1, len(v) - 1)
+    return v[lo] + (at - lo) * (v[hi] - v[lo])
+
+
+def row(motions, checker, scene, runs):
+    solved = [r for r in runs if r["solved"] == "1"]
+    ok = sum(r["fcl_fine_ok_as_returned"] == "1" for r in solved)
+    ms = lambda values, q: f"{1e3 * quantile(values, q):.3g}"
+    return {
+        "motions": motions, "checker": checker, "scene": scene, "runs": len(runs),
+        "solved_pct": f"{100.0 * len(solved) / len(runs):.1f}",
+        "median_plan_ms": ms([float(r["time_s"]) for r in runs], 0.5),
+        "p90_plan_ms": ms([float(r["time_s"]) for r in runs], 0.9),
+        "median_plan_simplify_ms": ms([float(r["time_s"]) + float(r["simplify_s"]) for r in solved], 0.5),
+        "median_certify_ms": ms([float(r["certify_s"]) for r in solved], 0.5),
+        "returned": len(solved), "fcl_ok_as_returned": ok,
+        "fcl_ok_as_returned_pct": f"{100.0 * ok / len(solved):.1f}" if solved else "",
+    }
+
+
+def rows_of(motions, path):
     with open(path, newline="") as f:
         runs = list(csv.DictReader(f))
     if not runs:
         sys.exit(f"mbm_summary: no run in {path}")
-    solved = lambda r: r["solved"] == "1"
-    by_planner = collections.defaultdict(dict)
-    for r in runs:
-        by_planner[r["planner"]][(r["scene"], r["problem"], r["checker"])] = r
-    print(f"{os.path.basename(path)}: {len(runs)} runs")
-    for planner, table in by_planner.items():
-        ratios = [float(table[(s, p, "fcl")]["time_s"]) / float(r["time_s"])
-                  for (s, p, c), r in table.items()
-                  if c == "deepcheck" and solved(r) and (s, p, "fcl") in table and solved(table[(s, p, "fcl")])]
-        if ratios:
-            print(f"{planner}: FCL / ours per problem, median {statistics.median(ratios):.3g}x over {len(ratios)} problems both solved")
-    done = [r for r in runs if solved(r)]
-    certified = [r for r in done if r["certified"] == "1"]
-    refused = [r for r in done if r["certified"] != "1"]
-    print(f"paths returned {len(done)}; certified as planned {sum(r['certified_as_planned'] == '1' for r in done)}, "
-          f"after repair {len(certified)}; FCL fine check accepts {sum(r['fcl_fine_ok'] == '1' for r in certified)} of the certified")
-    if certified and "certified_exact" in certified[0]:
-        print(f"certified with every motion certified by clearance (no fallback step): "
-              f"{sum(r['certified_exact'] == '1' for r in certified)} of {len(certified)}")
-    for checker in ("deepcheck", "fcl"):
-        mine = [r for r in done if r["checker"] == checker]
-        if mine:
-            share = 100.0 * sum(r["certified_as_planned"] == "1" for r in mine) / len(mine)
-            print(f"  planned with {checker}: {len(mine)} paths, {share:.0f} % certified as planned, "
-                  f"{sum(r['certified'] != '1' for r in mine)} not certified after repair")
-    scenes = collections.Counter(r["scene"] for r in refused)
-    print(f"not certified after repair {len(refused)} (by scene: {dict(scenes)}); "
-          f"FCL fine check accepts {sum(r['fcl_fine_ok'] == '1' for r in refused)} of them")
-    for r in certified:
-        if r["fcl_fine_ok"] != "1":
-            print(f"  certified but rejected by FCL: {r['scene']} problem {r['problem']}, {r['planner']} with {r['checker']}")
+    out = []
+    for checker in dict.fromkeys(r["checker"] for r in runs):
+        mine = [r for r in runs if r["checker"] == checker]
+        label = motions if checker == "deepcheck" else "discrete"
+        for scene in dict.fromkeys(r["scene"] for r in mine):
+            out.append(row(label, checker, scene, [r for r in mine if r["scene"] == scene]))
+        out.append(row(label, checker, "all", mine))
+    return out
+
+
+def main(out_path, inputs):
+    rows = []
+    for spec in inputs:
+        motions, sep, path = spec.partition("=")
+        if not sep:
+            sys.exit(__doc__.strip().splitlines()[-2])
+        rows += rows_of(motions, path)
+    with open(out_path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=COLUMNS, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(rows)
+    print("| all scenes | runs | solved | plan: median, p90 (ms) | plan + simplify (ms) | certifyPath (ms) "
+          "| returned paths FCL passes |")
+    print("|---|--:|--:|--:|--:|--:|--:|")
+    for r in rows:
+        if r["scene"] == "all":
+            print(f"| {r['checker']}, {r['motions']} motions | {r['runs']} | {r['solved_pct']} % | "
+                  f"{r['median_plan_ms']}, {r['p90_plan_ms']} | {r['median_plan_simplify_ms']} | "
+                  f"{r['median_certify_ms']} | {r['fcl_ok_as_returned_pct']} % ({r['fcl_ok_as_returned']} of {r['returned']}) |")
+    print(f"wrote {out_path}", file=sys.stderr)
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "bench/results/mbm/mbm_runs.csv")
+    if len(sys.argv) < 3:
+        sys.exit(__doc__.strip().splitlines()[-2])
+    main(sys.argv[1], sys.argv[2:])

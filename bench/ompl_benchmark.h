@@ -23,9 +23,10 @@ class Bench : public ompl::tools::Benchmark {
 /// its own thread (ompl::base::timedPlannerTerminationCondition(seconds)): the time of solve()
 /// alone. ompl::tools::Benchmark's own runs start two threads per run inside the timed span (one
 /// polling the termination condition every millisecond, one collecting progress properties), and
-/// the join waits for the poller's sleep: on one core, a 3 ms run is reported as 4 ms and a 0.3 ms
-/// run as 0.32 ms (bench/README.md, "What is timed"). SimpleSetup::solve(seconds) with a limit of a
-/// second or more polls the same way; `solve(timedPlannerTerminationCondition(seconds))` does not.
+/// the join waits for the poller's sleep, which adds up to a millisecond to a run's reported time
+/// on one core (harness_overhead measures it: bench/README.md, "What is timed").
+/// SimpleSetup::solve(seconds) with a limit of a second or more polls the same way;
+/// `solve(timedPlannerTerminationCondition(seconds))` does not.
 /// The log, the run properties and the pre- and post-run events are Benchmark's; no progress
 /// properties are collected.
 class SolveTimedBenchmark : public Bench {
@@ -39,11 +40,10 @@ class SolveTimedBenchmark : public Bench {
 };
 
 /// Removes a planner's progress properties (the values Benchmark's collector thread reads every
-/// 50 ms while the planner runs). BIT*'s read its search queue unsynchronized: in plan_bench
-/// OMPL 1.5.2 crashed with a segfault inside libompl during a BIT* run (shelf, run 9 of 10), as in
-/// ompl/ompl#779 ("BIT* is failing when added to a benchmark", traced there to
-/// currentVertexProgressProperty). The member is protected; a pointer to it named through a
-/// derived class is the standard way to reach it.
+/// 50 ms while the planner runs). BIT*'s read its search queue unsynchronized, which can crash a
+/// benchmark run inside libompl (OMPL 1.5; ompl/ompl#779, "BIT* is failing when added to a
+/// benchmark", traced there to currentVertexProgressProperty). The member is protected; a pointer
+/// to it named through a derived class is the standard way to reach it.
 struct ProgressPropertyStripper : ompl::base::Planner {
   static void strip(ompl::base::Planner& planner) {
     (planner.*(&ProgressPropertyStripper::plannerProgressProperties_)).clear();

@@ -1,10 +1,10 @@
 # Plots of the penetration-depth benchmark, from pd_bench.csv (gnuplot 5).
 # Usage: gnuplot -e "csv='results/pd_bench.csv'; outdir='results'" pd_plots.gp
 # Writes:
-#   pd_speed_vs_error.png           one panel per family: median time per query (x) against the
-#                                   99th-percentile relative error (y), one point per method
-#   pd_speed_vs_error_verts_100.png the same for the 100-vertex family, larger, with labels
-#   pd_scaling.png                  median time per query against vertices per hull (verts_*)
+#   pd_bench.png            one panel per family: median time per query (x) against the
+#                           99th-percentile relative error (y), one point per method
+#   pd_bench_verts_100.png  the same for the 100-vertex family, larger, with labels
+#   pd_bench_scaling.png    median time per query against vertices per hull (verts_*)
 # Errors of exactly 0 are drawn at 1e-17 (the bottom of the axis).
 
 if (!exists("csv")) csv = 'results/pd_bench.csv'
@@ -29,7 +29,7 @@ eval(styles)
 cols = 5
 rows = int((nf + 1 + cols - 1) / cols)
 set terminal pngcairo noenhanced size 2000, 420 * rows font "DejaVu Sans,10"
-set output outdir.'/pd_speed_vs_error.png'
+set output outdir.'/pd_bench.png'
 set multiplot layout rows, cols title "Penetration depth: median time per query against 99th-percentile relative error (lower left is better)"
 set logscale xy
 set format x "1e%T"
@@ -60,7 +60,7 @@ reset
 eval(styles)
 set datafile separator ","
 set terminal pngcairo noenhanced size 1100, 800 font "DejaVu Sans,11"
-set output outdir.'/pd_speed_vs_error_verts_100.png'
+set output outdir.'/pd_bench_verts_100.png'
 set title "Random 100-vertex hulls: speed against error (lower left is better)"
 set logscale xy
 set format x "1e%T"
@@ -77,7 +77,7 @@ reset
 eval(styles)
 set datafile separator ","
 set terminal pngcairo noenhanced size 1100, 800 font "DejaVu Sans,11"
-set output outdir.'/pd_scaling.png'
+set output outdir.'/pd_bench_scaling.png'
 set title "Time per query against vertices per hull (random ellipsoid hulls, median)"
 set logscale xy
 set format y "1e%T"

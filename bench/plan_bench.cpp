@@ -38,7 +38,7 @@
 //
 // Outputs in OUT (default bench/results): plan_bench_<problem>.log (one OMPL experiment per
 // problem, 8 planner entries named geometric_<planner>_<checker>), plan_bench.csv, plan_bench.md
-// (also printed), plan_bench_time.png (gnuplot, bench/plan_plots.gp; skipped when gnuplot is
+// (also printed), plan_bench.png (gnuplot, bench/plan_plots.gp; skipped when gnuplot is
 // missing). Progress on stderr.
 //
 // Usage: plan_bench [--runs N] [--time S] [--problems a,b] [--planners a,b] [--quick] [--out DIR]

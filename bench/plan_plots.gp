@@ -1,6 +1,6 @@
 # Plot of the planning benchmark, from plan_bench.csv (gnuplot 5; plan_bench runs it).
 # Usage: gnuplot -e "csv='results/plan_bench.csv'; outdir='results'" plan_plots.gp
-# Writes plan_bench_time.png: one column of panels per problem; top row the median planning time
+# Writes plan_bench.png: one column of panels per problem; top row the median planning time
 # (OMPL's "time": RRT* and BIT* use the whole time limit), bottom row the median time to the
 # first exact solution; bars per planner, one colour per checker, log scale. A missing bar: no
 # run of that planner and checker solved the problem.
@@ -22,7 +22,7 @@ set style fill solid 0.8 border -1
 set boxwidth 0.35
 
 set terminal pngcairo noenhanced size 420 * np + 120, 760 font "DejaVu Sans,10"
-set output outdir.'/plan_bench_time.png'
+set output outdir.'/plan_bench.png'
 set multiplot layout 2, np title "Planning benchmark: median time, ours (deepcheck) against FCL meshes (lower is better)"
 set logscale y
 set format y "%g"

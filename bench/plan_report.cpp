@@ -113,7 +113,7 @@ void runGnuplot(const std::string& csv, const std::string& outdir, const std::st
 }
 
 void plotReport(const std::string& out) {
-  runGnuplot(out + "/plan_bench.csv", out, "plan_plots.gp", "plan_bench_time.png", "plan_bench");
+  runGnuplot(out + "/plan_bench.csv", out, "plan_plots.gp", "plan_bench.png", "plan_bench");
 }
 
 }  // namespace deepcheck::bench

@@ -51,7 +51,7 @@ void writeReport(const ReportSettings& settings, const std::vector<Problem>& sel
 void runGnuplot(const std::string& csv, const std::string& outdir, const std::string& script, const std::string& png,
                 const char* who);
 
-/// Plots OUT/plan_bench.csv into OUT/plan_bench_time.png with gnuplot (skipped when missing).
+/// Plots OUT/plan_bench.csv into OUT/plan_bench.png with gnuplot (skipped when missing).
 void plotReport(const std::string& out);
 
 }  // namespace deepcheck::bench

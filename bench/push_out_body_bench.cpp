@@ -1,6 +1,6 @@
 // push_out_body_bench: the push-out (planners/push_out.h) with the pairwise depth against the body
 // depth (PushOutOptions::bodyDepth) with its default cap on a body query's cost and without a cap,
-// on the hard cases and on random starts of the bundled arm.
+// on hard cases where the deepest pair points sideways and on random starts of the bundled arm.
 //
 // Hard cases (tests/common/body_cases.h): a gantry (x, y, z, then z and y rotations) carrying a box
 // tool 0.06 x 0.1 x 0.1,

@@ -3,7 +3,8 @@
 # "MotionBenchMaker benchmark"): perf samples (user space, call graphs by DWARF unwinding) of
 # mbm_bench with RRTConnect on our checker only, 20 runs on each of 3 problems of 4 scenes, split by
 # bench/mbm_profile.py. Needs perf (linux-perf) and kernel.perf_event_paranoid <= 2.
-# Writes bench/results/mbm/profile_rrtconnect.txt; perf's data stays in a temporary folder.
+# Prints the profile and writes it to BUILD_DIR/mbm_profile_rrtconnect.txt (not a kept result);
+# perf's data stays in a temporary folder.
 set -e
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(dirname "$here")
@@ -21,5 +22,5 @@ perf script -i "$tmp/perf.data" -F ip,sym 2>/dev/null >"$tmp/stacks.txt"
   python3 "$here/mbm_profile.py" "$tmp/stacks.txt"
   echo
   cat "$tmp/out/mbm_bench.md"
-} >"$here/results/mbm/profile_rrtconnect.txt"
-cat "$here/results/mbm/profile_rrtconnect.txt"
+} >"$build/mbm_profile_rrtconnect.txt"
+cat "$build/mbm_profile_rrtconnect.txt"

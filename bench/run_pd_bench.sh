@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Penetration-depth benchmark in one command: configure, build, run, plot.
 #
-#   bench/run_pd_bench.sh            full run (~10 min on 2 cores), results in bench/results/,
-#                                    then a swept run (pd_bench --sweep: pairs out of cache) of
-#                                    the main families and methods, in bench/results/swept/
+#   bench/run_pd_bench.sh            full run (~10 min on 2 cores): bench/results/pd_bench.csv and
+#                                    its plots pd_bench.png, pd_bench_verts_100.png and
+#                                    pd_bench_scaling.png; then a swept run (pd_bench --sweep: pairs
+#                                    out of cache) of the main families and methods, whose CSV is
+#                                    kept as bench/results/pd_bench_swept.csv
 #   bench/run_pd_bench.sh --quick    fewer pairs and repetitions (~2 min), results in
 #                                    <build dir>/pd_quick/ (the committed results stay as they are)
 # Options: --build-dir DIR (default: build-bench beside bench/), --out DIR, --jobs N (default 2);
@@ -24,7 +26,7 @@ while [[ $# -gt 0 ]]; do
     --out) out="$2"; shift ;;
     --jobs) jobs="$2"; shift ;;
     --) shift; extra=("$@"); break ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
     *) echo "run_pd_bench.sh: unknown option $1 (try --help)" >&2; exit 2 ;;
   esac
   shift
@@ -49,14 +51,17 @@ args=()
 # on the families and methods the README's tables compare; only with the full run's pair counts,
 # whose hulls exceed the caches.
 if [[ $quick -eq 0 && ${#extra[@]} -eq 0 ]]; then
-  rm -f "$out"/swept/repro_pd_*.txt
+  swept="$build/pd_swept"
+  mkdir -p "$swept"
+  rm -f "$swept"/repro_pd_*.txt
   "$build/bench/pd_bench" --sweep --families verts_30,verts_100,verts_1000,deep,motion,robots,boxes \
-    --methods certified_cold,certified_warm,deep_warm,bullet_signed,fcl_ccd_distance --out "$out/swept"
+    --methods certified_cold,certified_warm,deep_warm,bullet_signed,fcl_ccd_distance --out "$swept"
+  cp "$swept/pd_bench.csv" "$out/pd_bench_swept.csv"
 fi
 
 if command -v gnuplot >/dev/null; then
   gnuplot -e "csv='$out/pd_bench.csv'; outdir='$out'" "$here/pd_plots.gp"
-  echo "plots: $out/pd_speed_vs_error.png $out/pd_speed_vs_error_verts_100.png $out/pd_scaling.png"
+  echo "plots: $out/pd_bench.png $out/pd_bench_verts_100.png $out/pd_bench_scaling.png"
 else
   echo "gnuplot not found: plots skipped (apt-get install gnuplot-nox)"
 fi

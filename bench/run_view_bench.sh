@@ -5,14 +5,17 @@
 # Chromium with software WebGL (SwiftShader), read with --dump-dom; frame_ms is the page's
 # data-frame-ms: the mean time to show one frame (poses, contact, plot, render) over all frames.
 # The same for the shelf demo's page (tests/viewer/shelf_demo_path.txt: 68 frames), for scale.
-# RUNS loads of each, each printed.
+# RUNS loads of each (default 5), written to bench/results/view_bench.csv and printed: page, bytes,
+# run, load_ms, frame_ms, and for view_bench's page the seconds it took to build and write it.
 #   bench/run_view_bench.sh BUILD_DIR [RUNS]      (from the repository root)
 set -eu
 build=${1:?usage: run_view_bench.sh BUILD_DIR [RUNS]}
 runs=${2:-5}
+csv="$(cd "$(dirname "$0")" && pwd)/results/view_bench.csv"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-"$build/bench/view_bench" "$out/bench.html"
+"$build/bench/view_bench" "$out/bench.html" > "$out/written.txt"
+made=$(awk 'NR == 2 {print $5 "," $6}' "$out/written.txt")
 browser=$(command -v chromium || command -v chromium-headless-shell || true)
 if [ -z "$browser" ]; then
   echo "no Chromium: load time not measured" >&2
@@ -22,7 +25,7 @@ data=robots/data
 "$build/tools/deepcheck" view --robot "$data/deepcheck_arm/urdf/deepcheck_arm.urdf" \
   --srdf "$data/deepcheck_arm/srdf/deepcheck_arm.srdf" --scene "$data/scenes/shelf.urdf" --package-path "$data" \
   --path tests/viewer/shelf_demo_path.txt --out "$out/demo.html" 2>/dev/null
-echo "page bytes run load_ms frame_ms"
+echo "page,bytes,run,load_ms,frame_ms,build_s,write_s" > "$out/view_bench.csv"
 for page in bench demo; do
   i=1
   while [ "$i" -le "$runs" ]; do
@@ -31,7 +34,10 @@ for page in bench demo; do
             2>/dev/null | grep -o '<html[^>]*>' | head -n 1)
     load=$(echo "$root" | sed -n 's/.*data-load-ms="\([0-9]*\)".*/\1/p')
     frame=$(echo "$root" | sed -n 's/.*data-frame-ms="\([0-9.]*\)".*/\1/p')
-    echo "$page $(wc -c < "$out/$page.html") $i ${load:-failed} ${frame:-failed}"
+    if [ "$page" = bench ]; then written=$made; else written=","; fi
+    echo "$page,$(wc -c < "$out/$page.html"),$i,${load:-failed},${frame:-failed},$written" >> "$out/view_bench.csv"
     i=$((i + 1))
   done
 done
+cp "$out/view_bench.csv" "$csv"
+cat "$csv"
