@@ -7,7 +7,8 @@
 // each repaired, and over the starts both repaired, the mean joint motion (joint-space Euclidean
 // norm, rad) and the mean largest link displacement (m). The planners suite asserts the same
 // trials' claims (>= 99 % repaired by the push-out, less motion than the jiggle); this prints the
-// figures. Usage: repair_bench (about half a minute).
+// figures; the same rows go to a CSV. Usage: repair_bench [--csv FILE] (about half a minute; the
+// CSV defaults to bench/results/repair_bench.csv, run from the source tree).
 
 #include "repair_starts.h"
 
@@ -48,10 +49,12 @@ struct Totals {
     pushWorkspace += o.pushWorkspace;
     jiggleWorkspace += o.jiggleWorkspace;
   }
-  void print(const std::string& name) const {
+  void print(const std::string& name, std::FILE* csv) const {
     std::printf("%-16s %6d %10d %10d %6d %15.3f %15.3f %13.3f %13.3f\n", name.c_str(), trials, pushRepaired,
                 jiggleRepaired, both, pushMotion / both, jiggleMotion / both, pushWorkspace / both,
                 jiggleWorkspace / both);
+    std::fprintf(csv, "%s,%d,%d,%d,%d,%.5f,%.5f,%.5f,%.5f\n", name.c_str(), trials, pushRepaired, jiggleRepaired,
+                 both, pushMotion / both, jiggleMotion / both, pushWorkspace / both, jiggleWorkspace / both);
   }
 };
 
@@ -79,7 +82,21 @@ Totals runScene(const std::string& scene) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  std::string csvPath = "bench/results/repair_bench.csv";
+  if (argc == 3 && std::string(argv[1]) == "--csv") {
+    csvPath = argv[2];
+  } else if (argc != 1) {
+    std::fprintf(stderr, "usage: repair_bench [--csv FILE]\n");
+    return 2;
+  }
+  std::FILE* csv = std::fopen(csvPath.c_str(), "w");
+  if (!csv) {
+    std::fprintf(stderr, "repair_bench: cannot write %s\n", csvPath.c_str());
+    return 1;
+  }
+  std::fprintf(csv, "scene,starts,push_out_repaired,jiggle_repaired,both,push_out_motion_rad,jiggle_motion_rad,"
+                    "push_out_link_m,jiggle_link_m\n");
   std::printf("repair_bench: %d starts per scene penetrating up to %.0f cm; means over the starts both repaired\n",
               kTrialsPerScene, 100 * kMaxDepth);
   std::printf("%-16s %6s %10s %10s %6s %15s %15s %13s %13s\n", "scene", "starts", "push-out", "jiggle", "both",
@@ -87,9 +104,10 @@ int main() {
   Totals all;
   for (const std::string scene : {"table", "shelf", "narrow_passage"}) {
     const Totals t = runScene(scene);
-    t.print(scene);
+    t.print(scene, csv);
     all.add(t);
   }
-  all.print("all");
+  all.print("all", csv);
+  std::fclose(csv);
   return 0;
 }

@@ -7,7 +7,9 @@
 // disable, and the pairs only one side disables, each with our reason or with the share of our
 // samples in which it collided. The robots suite asserts what must hold whatever the meshes
 // (their Adjacent pairs are ours, our Never pairs stay free in a fresh sample); this prints the
-// table of docs/robots.md. Usage: srdf_agreement (a few seconds; skips without ../shared).
+// table of docs/robots.md, and one row per robot to a CSV. Usage: srdf_agreement [--csv FILE] (a
+// few seconds; skips without ../shared; the CSV defaults to bench/results/srdf_agreement.csv, run
+// from the source tree).
 
 #include "deepcheck/robots/collision_geometry.h"
 #include "deepcheck/robots/pair_filter.h"
@@ -46,7 +48,7 @@ std::string reasonCounts(const PairFilterResult& r) {
   return out;
 }
 
-void compare(const Robot& robot, const std::string& shared) {
+void compare(const Robot& robot, const std::string& shared, std::FILE* csv) {
   LoadOptions load;
   load.packageRoots = {shared + "/" + robot.root};
   load.useRosPackagePath = false;
@@ -64,6 +66,8 @@ void compare(const Robot& robot, const std::string& shared) {
   for (const Key& k : us) both += them.count(k) > 0 ? 1 : 0;
   std::printf("%s: %d link pairs with geometry; we disable %zu (%s), they disable %zu, both %d\n", robot.name.c_str(),
               ours.numPairs(), us.size(), reasonCounts(ours).c_str(), them.size(), both);
+  std::fprintf(csv, "%s,%d,%zu,%zu,%d,%zu,%zu\n", robot.name.c_str(), ours.numPairs(), us.size(), them.size(), both,
+               us.size() - static_cast<std::size_t>(both), them.size() - static_cast<std::size_t>(both));
   for (const Key& k : us) {
     if (them.count(k)) continue;
     std::printf("  only us:   %s - %s (%s)\n", k.first.c_str(), k.second.c_str(), toString(*report.at(k)->reason));
@@ -82,7 +86,20 @@ void compare(const Robot& robot, const std::string& shared) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  std::string csvPath = "bench/results/srdf_agreement.csv";
+  if (argc == 3 && std::string(argv[1]) == "--csv") {
+    csvPath = argv[2];
+  } else if (argc != 1) {
+    std::fprintf(stderr, "usage: srdf_agreement [--csv FILE]\n");
+    return 2;
+  }
+  std::FILE* csv = std::fopen(csvPath.c_str(), "w");
+  if (!csv) {
+    std::fprintf(stderr, "srdf_agreement: cannot write %s\n", csvPath.c_str());
+    return 1;
+  }
+  std::fprintf(csv, "robot,pairs_with_geometry,we_disable,srdf_disables,both,only_us,only_srdf\n");
   const std::string shared = DEEPCHECK_SHARED_DIR;
   const std::vector<Robot> robots = {
       {"Panda", "robots/panda", "moveit_resources_panda_description/urdf/panda.urdf",
@@ -95,7 +112,8 @@ int main() {
       std::printf("%s: skipped (%s/%s absent)\n", robot.name.c_str(), shared.c_str(), robot.root.c_str());
       continue;
     }
-    compare(robot, shared);
+    compare(robot, shared, csv);
   }
+  std::fclose(csv);
   return 0;
 }
