@@ -16,9 +16,9 @@
 #include "options.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/validity_checker.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/moveit_scene.h"
 
 #include <Eigen/Geometry>

@@ -7,9 +7,9 @@
 // Prints one table row: variables, pieces, frames, page bytes, seconds to build the view (with a
 // signed-distance query per frame) and to write it.
 
-#include "deepcheck/viewer/html_view.h"
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/robot_model.h"
+#include "deepcheck/viewer/html_view.h"
 
 #include <chrono>
 #include <cmath>

@@ -5,9 +5,9 @@
 // where the path went, with a page next to it to look at it: viewer/html_view.h), the bundled
 // arm's setup as example_plan_shelf makes it, and the plan-shortcut-certify sequence.
 
-#include <deepcheck/viewer/html_view.h>
 #include <deepcheck/planners/path_tools.h>
 #include <deepcheck/planners/setup.h>
+#include <deepcheck/viewer/html_view.h>
 
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>

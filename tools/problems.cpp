@@ -6,8 +6,8 @@
 #include "subcommands.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/planners/setup.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/random_configuration.h"
 #include "deepcheck/robots/robot_model.h"

@@ -11,12 +11,12 @@
 #include "pd_input.h"
 #include "subcommands.h"
 
-#include "deepcheck/viewer/html_view.h"
 #include "deepcheck/deep/signed_distance.h"
 #include "deepcheck/robots/decomposition.h"
 #include "deepcheck/robots/decomposition_cache.h"
 #include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/package_path.h"
+#include "deepcheck/viewer/html_view.h"
 
 #include <cstdio>
 #include <fstream>

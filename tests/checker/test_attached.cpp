@@ -5,10 +5,10 @@
 
 #include "checker_test_util.h"
 
-#include "deepcheck/viewer/html_view.h"
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/moveit_scene.h"
+#include "deepcheck/viewer/html_view.h"
 
 #include <boost/test/unit_test.hpp>
 

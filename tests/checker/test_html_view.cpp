@@ -7,8 +7,8 @@
 
 #include "common/body_cases.h"
 
-#include "deepcheck/viewer/html_view.h"
 #include "deepcheck/checker/world.h"
+#include "deepcheck/viewer/html_view.h"
 
 #include <boost/test/unit_test.hpp>
 

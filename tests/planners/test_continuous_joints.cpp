@@ -8,9 +8,9 @@
 #include "deepcheck/planners/motion_validator.h"
 #include "deepcheck/planners/objectives.h"
 #include "deepcheck/planners/planner_factory.h"
-#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/state_space.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/joint_angles.h"
 
 #include <boost/test/unit_test.hpp>

@@ -4,8 +4,8 @@
 #include "common/test_paths.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/planners/setup.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/kinematics.h"
 
 #include <boost/test/unit_test.hpp>
