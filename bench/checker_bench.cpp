@@ -276,18 +276,18 @@ void timeDistance(BenchWorld& b, const checker::DistanceOptions& withGradient) {
 
 /// isFree and signedDistance over the random set with each broad phase.
 void timeBroadPhases(const BenchWorld& b, const checker::DistanceOptions& withGradient) {
-  fcl_reference::enableFclBroadPhase();
-  for (checker::BroadPhase phase :
-       {checker::BroadPhase::AabbTree, checker::BroadPhase::FclTree, checker::BroadPhase::None}) {
+  for (int phase = 0; phase < 3; ++phase) {
     checker::WorldOptions o = b.options;
-    o.broadPhase = phase;
+    if (phase == 1) o.externalBroadPhase = fcl_reference::fclBroadPhase();
+    if (phase == 2) o.broadPhase = checker::BroadPhase::None;
+    const std::string name = phase == 1 ? o.externalBroadPhase->name() : checker::toString(o.broadPhase);
     checker::World w(b.robot, o);
     w.addScene(robots::RobotModel::fromUrdfFile(b.spec.scene, b.load));
     auto context = w.makeContext();
-    addTimes(b.spec.name, "isFree", "random", std::string("broad phase ") + checker::toString(phase),
+    addTimes(b.spec.name, "isFree", "random", "broad phase " + name,
              timeEach(b.random, [&](const Eigen::VectorXd& q) { w.isFree(q, context); }));
     auto sdContext = w.makeContext();
-    addTimes(b.spec.name, "sd+grad", "random", std::string("broad phase ") + checker::toString(phase),
+    addTimes(b.spec.name, "sd+grad", "random", "broad phase " + name,
              timeEach(b.random, [&](const Eigen::VectorXd& q) { w.signedDistance(q, sdContext, withGradient); }));
   }
 }

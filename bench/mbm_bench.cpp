@@ -5,7 +5,7 @@
 //
 // Scenes (mbm_problems.h): bookshelf_small, bookshelf_tall, bookshelf_thin, cage, box, table_pick,
 // kitchen, table_bars, each with MotionBenchMaker's variation and query files for the Panda. Per
-// scene, N problems are generated (deepcheck::planners::generateProblems, seeded: the same
+// scene, N problems are generated (deepcheck::problems::generateProblems, seeded: the same
 // --seed and --problems give the same problems); a scene that cannot be loaded or whose problems
 // cannot be generated is reported in the output and the table, and the run goes on.
 // Checkers, on the same problems (the same state space and segment fraction):
@@ -165,7 +165,7 @@ class CountingChecker : public ob::StateValidityChecker {
 
 /// One problem's two setups.
 struct ProblemSetups {
-  const dp::Problem* problem = nullptr;
+  const deepcheck::problems::Problem* problem = nullptr;
   std::shared_ptr<og::SimpleSetup> ours, fcl;
   std::shared_ptr<const dp::StateValidityChecker> ourChecker;
   std::shared_ptr<deepcheck::fcl_reference::FclStateValidityChecker> fclChecker;
@@ -179,7 +179,7 @@ void stopAtFirstSolution(og::SimpleSetup& ss) {
   ss.setOptimizationObjective(objective);
 }
 
-ProblemSetups makeSetups(const std::shared_ptr<deepcheck::checker::World>& world, const dp::Problem& problem,
+ProblemSetups makeSetups(const std::shared_ptr<deepcheck::checker::World>& world, const deepcheck::problems::Problem& problem,
                          dp::MotionValidation motions) {
   ProblemSetups s;
   s.problem = &problem;
@@ -221,7 +221,7 @@ struct SceneRun {
 /// Writes a certified path that FCL's fine check rejects, for a look at it: FILE.yaml, the problem's
 /// scene, and FILE.txt, the path as `deepcheck plan --out` writes it (so that `deepcheck view`
 /// shows it), after comment lines naming the first motion FCL rejects and the scene file.
-void saveRejectedPath(const std::string& file, const dp::Problem& problem, const og::PathGeometric& path,
+void saveRejectedPath(const std::string& file, const deepcheck::problems::Problem& problem, const og::PathGeometric& path,
                       const dp::PathCheck& fclCheck) {
   std::ofstream(file + ".yaml") << deepcheck::robots::writePlanningScene(problem.scene);
   std::ofstream out(file + ".txt");
@@ -406,12 +406,12 @@ std::string oneLine(std::string text) {
 std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std::shared_ptr<deepcheck::checker::World>& world,
                            std::vector<MbmRecord>& records) {
   auto base = dp::makeSimpleSetup(world, pandaArmOptions());
-  std::vector<dp::Problem> problems;
+  std::vector<deepcheck::problems::Problem> problems;
   try {
     std::vector<std::string> notes;
-    const dp::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, &notes);
+    const deepcheck::problems::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, &notes);
     problems = generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems,
-                                   [&](int k, const dp::Problem& p) {
+                                   [&](int k, const deepcheck::problems::Problem& p) {
                                      std::fprintf(stderr, "[%s] problem %d/%d generated: goal %s%s%s, %d scene(s) drawn\n",
                                                   scene.name.c_str(), k + 1, opt.problems, p.goalQuery.c_str(),
                                                   p.startQuery.empty() ? "" : ", start ", p.startQuery.c_str(), p.attempts);

@@ -99,14 +99,14 @@ dp::SetupOptions pandaArmOptions() {
     load.packageRoots = o.packageRoots;
     load.useRosPackagePath = false;
     o.group = "panda_arm";
-    o.lockedVariables = dp::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(pandaUrdf(), load),
-                                               dp::loadRobotConfig(mbmDir() + "/robots/panda.yaml"), o.srdf, o.group);
+    o.lockedVariables = problems::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(pandaUrdf(), load),
+                                               problems::loadRobotConfig(mbmDir() + "/robots/panda.yaml"), o.srdf, o.group);
     return o;
   }();
   return options;
 }
 
-robots::PlanningScene loadNominalScene(const MbmScene& scene, dp::SceneDraw* draw) {
+robots::PlanningScene loadNominalScene(const MbmScene& scene, problems::SceneDraw* draw) {
   if (endsWith(scene.scene, ".urdf")) {
     auto model = std::make_shared<const robots::RobotModel>(loadSceneUrdf(scene));
     if (draw != nullptr) {
@@ -124,25 +124,25 @@ robots::PlanningScene loadNominalScene(const MbmScene& scene, dp::SceneDraw* dra
   return out;
 }
 
-dp::ProblemOptions pandaProblemOptions(const MbmScene& scene, const robots::RobotModel& panda, std::uint64_t seed,
+problems::ProblemOptions pandaProblemOptions(const MbmScene& scene, const robots::RobotModel& panda, std::uint64_t seed,
                                        std::vector<std::string>* notes) {
-  dp::ProblemOptions o;
+  problems::ProblemOptions o;
   o.tipLink = "panda_link8";
   o.eeOffset = scene.eeOffset;
   o.frameAliases = pandaFrameAliases();
-  o.start = dp::configurationOf(panda, dp::loadRobotConfig(mbmDir() + "/robots/panda.yaml"), notes);
+  o.start = problems::configurationOf(panda, problems::loadRobotConfig(mbmDir() + "/robots/panda.yaml"), notes);
   o.seed = seed;
   return o;
 }
 
-std::vector<dp::Problem> generateMbmProblems(const MbmScene& scene, checker::World& world,
-                                             const dp::StateValidityChecker& checker, const dp::ProblemOptions& options,
-                                             int count, const dp::ProblemProgress& progress) {
-  dp::ProblemOptions drawing = options;
+std::vector<problems::Problem> generateMbmProblems(const MbmScene& scene, checker::World& world,
+                                             const dp::StateValidityChecker& checker, const problems::ProblemOptions& options,
+                                             int count, const problems::ProblemProgress& progress) {
+  problems::ProblemOptions drawing = options;
   const robots::PlanningScene nominal = loadNominalScene(scene, &drawing.drawScene);
-  const auto variations = dp::loadSceneVariations(scene.variation);
-  const auto queries = dp::loadQueries(scene.queries);
-  return dp::generateProblems(world, checker, nominal, variations, queries, drawing, count, progress, scene.variation);
+  const auto variations = problems::loadSceneVariations(scene.variation);
+  const auto queries = problems::loadQueries(scene.queries);
+  return problems::generateProblems(world, checker, nominal, variations, queries, drawing, count, progress, scene.variation);
 }
 
 void placeScene(checker::World& world, const robots::PlanningScene& scene) {

@@ -9,16 +9,16 @@
 // a URDF (kitchen, table_bars) become a planning scene here: one object per link with collision
 // geometry, named as the link (the names the variation and query files use), posed for each
 // attempt at joint values drawn uniformly within their limits (the kitchen's doors, the sliding
-// bars), as MotionBenchMaker does; then the variation file moves the links. Problems come from deepcheck::planners::generateProblems (the scene
+// bars), as MotionBenchMaker does; then the variation file moves the links. Problems come from deepcheck::problems::generateProblems (the scene
 // varied, the goal and, when the query file has start queries, the start by collision-free
 // inverse kinematics of panda_hand; otherwise MotionBenchMaker's Panda default state).
 
 #include "options.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/planners/problem_generation.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/validity_checker.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/moveit_scene.h"
 
 #include <Eigen/Geometry>
@@ -59,20 +59,20 @@ planners::SetupOptions pandaArmOptions();
 /// default joint values (header comment); for a URDF, `draw` (when not null) is set to draw its
 /// joints, from the same model. Throws std::invalid_argument (naming the file) when it cannot be
 /// read.
-robots::PlanningScene loadNominalScene(const MbmScene& scene, planners::SceneDraw* draw = nullptr);
+robots::PlanningScene loadNominalScene(const MbmScene& scene, problems::SceneDraw* draw = nullptr);
 
 /// Problem generation options for the Panda in `scene`: the tip panda_link8 (the end of
 /// MotionBenchMaker's panda_arm group) with the scene's ee_offset, the start from MotionBenchMaker's
 /// Panda file (`notes` says what was clamped into the limits).
-planners::ProblemOptions pandaProblemOptions(const MbmScene& scene, const robots::RobotModel& panda, std::uint64_t seed,
+problems::ProblemOptions pandaProblemOptions(const MbmScene& scene, const robots::RobotModel& panda, std::uint64_t seed,
                                              std::vector<std::string>* notes);
 
 /// `count` problems of `scene` in `world` (the Panda alone; its obstacles are left empty), through
 /// generateProblems; `progress` after each. Throws what loading and generation throw.
-std::vector<planners::Problem> generateMbmProblems(const MbmScene& scene, checker::World& world,
+std::vector<problems::Problem> generateMbmProblems(const MbmScene& scene, checker::World& world,
                                                    const planners::StateValidityChecker& checker,
-                                                   const planners::ProblemOptions& options, int count,
-                                                   const planners::ProblemProgress& progress);
+                                                   const problems::ProblemOptions& options, int count,
+                                                   const problems::ProblemProgress& progress);
 
 /// Replaces the obstacles of `world` by the objects of `scene` (frame aliases of the Panda).
 void placeScene(checker::World& world, const robots::PlanningScene& scene);

@@ -119,7 +119,7 @@ class RecordingValidator : public ob::MotionValidator {
 };
 
 /// The motions RRTConnect asks about on one problem (its first solution, at most 10 s).
-std::vector<Motion> recordMotions(const std::shared_ptr<deepcheck::checker::World>& world, const dp::Problem& problem) {
+std::vector<Motion> recordMotions(const std::shared_ptr<deepcheck::checker::World>& world, const deepcheck::problems::Problem& problem) {
   auto ss = dp::makeSimpleSetup(world, pandaArmOptions());
   dp::setStartAndGoal(*ss, problem.start, problem.goal);
   const ob::SpaceInformationPtr& si = ss->getSpaceInformation();
@@ -291,9 +291,9 @@ int main(int argc, char** argv) {
   std::vector<SceneResult> results;
   for (const MbmScene& scene : selectScenes(opt.scenes, usage)) {
     auto base = dp::makeSimpleSetup(world, pandaArmOptions());
-    const dp::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, nullptr);
-    const std::vector<dp::Problem> problems =
-        generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems, [&](int k, const dp::Problem&) {
+    const deepcheck::problems::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, nullptr);
+    const std::vector<deepcheck::problems::Problem> problems =
+        generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems, [&](int k, const deepcheck::problems::Problem&) {
           std::fprintf(stderr, "[%s] problem %d/%d generated\n", scene.name.c_str(), k + 1, opt.problems);
         });
     SceneResult result;

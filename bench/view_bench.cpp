@@ -1,4 +1,4 @@
-// view_bench: how large the viewer's page (checker/html_view.h) gets, and how long writing it
+// view_bench: how large the viewer's page (viewer/html_view.h) gets, and how long writing it
 // takes, for a robot of 20 revolute joints whose links carry 500 convex pieces in all, along a
 // path of 1,000 waypoints (frames = waypoints, no densifying). The browser's load time of the
 // page is measured by bench/run_view_bench.sh, which runs this program first.
@@ -7,9 +7,9 @@
 // Prints one table row: variables, pieces, frames, page bytes, seconds to build the view (with a
 // signed-distance query per frame) and to write it.
 
-#include "deepcheck/checker/html_view.h"
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/robot_model.h"
+#include "deepcheck/viewer/html_view.h"
 
 #include <chrono>
 #include <cmath>
@@ -73,14 +73,14 @@ int main(int argc, char** argv) {
   try {
     const deepcheck::checker::World world(deepcheck::robots::RobotModel::fromUrdfString(chainUrdf(), "."));
     const std::vector<Eigen::VectorXd> path = wavePath();
-    deepcheck::checker::WorldViewOptions options;
+    deepcheck::viewer::WorldViewOptions options;
     options.title = "view_bench: 20 joints, 500 pieces, 1,000 waypoints";
     options.maxStep = 0.0;
     auto start = std::chrono::steady_clock::now();
-    const deepcheck::checker::ViewScene scene = deepcheck::checker::viewOfWorld(world, path, options);
+    const deepcheck::viewer::ViewScene scene = deepcheck::viewer::viewOfWorld(world, path, options);
     const double build = secondsSince(start);
     start = std::chrono::steady_clock::now();
-    deepcheck::checker::writeHtmlView(scene, std::string(argv[1]));
+    deepcheck::viewer::writeHtmlView(scene, std::string(argv[1]));
     const double write = secondsSince(start);
     std::printf("%-9s %-6s %-6s %-11s %-9s %-9s\n", "variables", "pieces", "frames", "page_bytes", "build_s", "write_s");
     std::printf("%-9d %-6d %-6zu %-11ju %-9.3f %-9.3f\n", world.robot().numVariables(), world.summaryCounts().robotPieces,

@@ -2,12 +2,12 @@
 // What the examples share, so that each of them stays about its own point: the report every one
 // prints after planning (planner, time, path length, minimum clearance along the path — signed
 // distance, metres, checked every 0.002 rad of joint motion; overall and to the scene alone — and
-// where the path went, with a page next to it to look at it: checker/html_view.h), the bundled
+// where the path went, with a page next to it to look at it: viewer/html_view.h), the bundled
 // arm's setup as example_plan_shelf makes it, and the plan-shortcut-certify sequence.
 
-#include <deepcheck/checker/html_view.h>
 #include <deepcheck/planners/path_tools.h>
 #include <deepcheck/planners/setup.h>
+#include <deepcheck/viewer/html_view.h>
 
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
@@ -43,10 +43,10 @@ inline void reportAndWrite(const ompl::geometric::SimpleSetup& ss, const std::st
     return std::min(d.world, d.self);
   });
   deepcheck::planners::writePath(path, file);
-  deepcheck::checker::WorldViewOptions view;
+  deepcheck::viewer::WorldViewOptions view;
   view.title = "deepcheck example: " + file.substr(file.find_last_of('/') + 1);
   const std::string viewFile = viewFileOf(file);
-  deepcheck::checker::writeHtmlView(checker->world(), deepcheck::planners::pathConfigurations(path), viewFile, view);
+  deepcheck::viewer::writeHtmlView(checker->world(), deepcheck::planners::pathConfigurations(path), viewFile, view);
   std::printf("planner          %s\n", ss.getPlanner()->getName().c_str());
   std::printf("time             %.3f s\n", ss.getLastPlanComputationTime());
   std::printf("waypoints        %zu\n", path.getStateCount());

@@ -1,4 +1,4 @@
-// Fuzz harness: MotionBenchMaker's problem files (planners/problem_generation.h), the files
+// Fuzz harness: MotionBenchMaker's problem files (problems/problem_generation.h), the files
 // `deepcheck problems` reads. The same bytes are read as each of the three: a variation file
 // (applied to a two-object scene, World included), a query file (each query's pose put in that
 // scene on the bundled arm, and its IK tolerances made), a robot configuration (made a
@@ -8,7 +8,7 @@
 
 #include "harness_support.h"
 
-#include "deepcheck/planners/problem_generation.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/robot_model.h"
 
@@ -22,7 +22,7 @@
 
 namespace {
 
-namespace planners = deepcheck::planners;
+namespace problems = deepcheck::problems;
 namespace robots = deepcheck::robots;
 
 const robots::RobotModel& arm() { return deepcheck::fuzz::bundledArm(); }
@@ -45,20 +45,20 @@ using deepcheck::fuzz::rigid;
 void require(bool ok, const char* what) { deepcheck::fuzz::require(ok, "problem files", what); }
 
 void variations(const std::string& yaml, std::size_t seed) {
-  std::vector<planners::SceneVariation> v;
+  std::vector<problems::SceneVariation> v;
   try {
-    v = planners::parseSceneVariations(yaml, "fuzz_variation.yaml");
+    v = problems::parseSceneVariations(yaml, "fuzz_variation.yaml");
   } catch (const std::invalid_argument&) {
     return;
   }
-  for (const planners::SceneVariation& x : v) {
+  for (const problems::SceneVariation& x : v) {
     require(x.position.allFinite() && x.orientation.allFinite() && (x.position.array() >= 0).all() &&
                 (x.orientation.array() >= 0).all(),
             "a variation's widths are negative or not finite");
   }
   std::mt19937_64 rng(seed);
   try {
-    const robots::PlanningScene varied = planners::varyScene(scene(), v, rng, "fuzz_variation.yaml");
+    const robots::PlanningScene varied = problems::varyScene(scene(), v, rng, "fuzz_variation.yaml");
     for (const auto& object : varied.objects) {
       for (const auto& shape : object.shapes) require(rigid(shape.X_FS), "a varied shape's pose is not rigid");
     }
@@ -68,24 +68,24 @@ void variations(const std::string& yaml, std::size_t seed) {
 }
 
 void queries(const std::string& yaml) {
-  planners::QuerySet set;
+  problems::QuerySet set;
   try {
-    set = planners::parseQueries(yaml, "fuzz_queries.yaml");
+    set = problems::parseQueries(yaml, "fuzz_queries.yaml");
   } catch (const std::invalid_argument&) {
     return;
   }
   require(!set.goal.empty(), "a query set without goal queries");
   const Eigen::VectorXd q = arm().defaultConfiguration();
   for (const auto* list : {&set.start, &set.goal}) {
-    for (const planners::ObjectQuery& query : *list) {
+    for (const problems::ObjectQuery& query : *list) {
       require(rigid(query.offset), "a query offset is not rigid");
       require((query.positionTolerance.array() > 0).all() && query.positionTolerance.allFinite() &&
                   (query.orientationTolerance.array() > 0).all() && query.orientationTolerance.allFinite(),
               "a query tolerance is not positive and finite");
-      const robots::IkOptions ik = planners::queryIkOptions(query, {}, Eigen::Isometry3d::Identity());
+      const robots::IkOptions ik = problems::queryIkOptions(query, {}, Eigen::Isometry3d::Identity());
       require(std::isfinite(ik.orientationTolerance) && ik.positionBox.allFinite(), "IK tolerances not finite");
       try {
-        require(rigid(planners::queryPose(scene(), query, arm(), q, {}, Eigen::Isometry3d::Identity())),
+        require(rigid(problems::queryPose(scene(), query, arm(), q, {}, Eigen::Isometry3d::Identity())),
                 "a query pose is not rigid");
       } catch (const std::invalid_argument&) {
         // An object the scene does not have.
@@ -95,15 +95,15 @@ void queries(const std::string& yaml) {
 }
 
 void robotConfig(const std::string& yaml) {
-  planners::RobotConfig config;
+  problems::RobotConfig config;
   try {
-    config = planners::parseRobotConfig(yaml, "fuzz_robot.yaml");
+    config = problems::parseRobotConfig(yaml, "fuzz_robot.yaml");
   } catch (const std::invalid_argument&) {
     return;
   }
   require(config.jointNames.size() == config.jointPositions.size(), "names and positions of different sizes");
   try {
-    const Eigen::VectorXd q = planners::configurationOf(arm(), config);
+    const Eigen::VectorXd q = problems::configurationOf(arm(), config);
     require(q.size() == arm().numVariables() && q.allFinite(), "a configuration of the wrong size or not finite");
     require((q.array() >= arm().lowerLimits().array()).all() && (q.array() <= arm().upperLimits().array()).all(),
             "a configuration outside the limits");

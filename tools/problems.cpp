@@ -6,8 +6,8 @@
 #include "subcommands.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/planners/problem_generation.h"
 #include "deepcheck/planners/setup.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/random_configuration.h"
 #include "deepcheck/robots/robot_model.h"
@@ -101,7 +101,7 @@ void writeText(const std::filesystem::path& path, const std::string& text) {
   if (!out) throw InputError("cannot write '" + path.string() + "'");
 }
 
-void writeProblem(const std::filesystem::path& dir, int index, const planners::Problem& p,
+void writeProblem(const std::filesystem::path& dir, int index, const problems::Problem& p,
                   const robots::RobotModel& robot) {
   std::ostringstream k;
   k << std::setw(4) << std::setfill('0') << index;
@@ -124,7 +124,7 @@ struct ProblemsArgs {
   std::string robot, srdf, group, scene, variation, queries, robotConfig, out;
   std::map<std::string, double> locks;
   PackageRoots packages;
-  planners::ProblemOptions options;
+  problems::ProblemOptions options;
   int count = 10;
 };
 
@@ -160,7 +160,7 @@ ProblemsArgs takeArgs(std::vector<std::string>& args) {
 
 /// The nominal scene; for a scene URDF also the draw of its joints (options.drawScene).
 robots::PlanningScene loadNominal(const ProblemsArgs& a, const robots::RobotModel& robot,
-                                  planners::ProblemOptions& options) {
+                                  problems::ProblemOptions& options) {
   if (sceneKind(a.scene) == SceneKind::PlanningScene) {
     robots::SceneLoadOptions sceneOptions;
     sceneOptions.packageRoots = a.packages.commandLine;
@@ -182,28 +182,28 @@ int run(std::vector<std::string> args) {
   planners::SetupOptions setup;
   setup.packageRoots = a.packages.commandLine;
   setup.srdf = a.srdf;
-  const planners::RobotConfig config = planners::loadRobotConfig(a.robotConfig);
+  const problems::RobotConfig config = problems::loadRobotConfig(a.robotConfig);
   setup.group = a.group;
   setup.lockedVariables = a.locks;
   if (!a.group.empty()) {
     robots::LoadOptions load;
     load.packageRoots = a.packages.commandLine;
-    const auto outside = planners::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(a.robot, load), config, a.srdf, a.group);
+    const auto outside = problems::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(a.robot, load), config, a.srdf, a.group);
     setup.lockedVariables.insert(outside.begin(), outside.end());  // --lock's values first
   }
   const auto world = planners::loadWorld(a.robot, {}, setup);
   const auto ss = planners::makeSimpleSetup(world, setup);
   const robots::PlanningScene nominal = loadNominal(a, world->robot(), a.options);
-  const auto variations = planners::loadSceneVariations(a.variation);
-  const auto queries = planners::loadQueries(a.queries);
+  const auto variations = problems::loadSceneVariations(a.variation);
+  const auto queries = problems::loadQueries(a.queries);
   std::vector<std::string> notes;
-  a.options.start = planners::configurationOf(world->robot(), config, &notes);
+  a.options.start = problems::configurationOf(world->robot(), config, &notes);
   for (const std::string& note : notes) std::fprintf(stderr, "note: %s\n", note.c_str());
   const std::filesystem::path dir(a.out);
   std::filesystem::create_directories(dir);
-  planners::generateProblems(
+  problems::generateProblems(
       *world, *planners::validityCheckerOf(*ss), nominal, variations, queries, a.options, a.count,
-      [&](int index, const planners::Problem& p) {
+      [&](int index, const problems::Problem& p) {
         writeProblem(dir, index, p, world->robot());
         std::printf("problem %d/%d: goal %s%s%s, %d scene(s) drawn, goal error %.3g m %.3g rad\n", index + 1, a.count,
                     p.goalQuery.c_str(), p.startQuery.empty() ? "" : ", start ", p.startQuery.c_str(), p.attempts,

@@ -1,4 +1,4 @@
-// `deepcheck view`: writes one self-contained HTML page (checker/html_view.h) showing
+// `deepcheck view`: writes one self-contained HTML page (viewer/html_view.h) showing
 //   - a robot in its scenes at a configuration or along a path file (`deepcheck plan --out`),
 //     with the closest pair of every frame;
 //   - a mesh and its convex decomposition with the quality report (--decompose MESH);
@@ -11,12 +11,12 @@
 #include "pd_input.h"
 #include "subcommands.h"
 
-#include "deepcheck/checker/html_view.h"
 #include "deepcheck/deep/signed_distance.h"
 #include "deepcheck/robots/decomposition.h"
 #include "deepcheck/robots/decomposition_cache.h"
 #include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/package_path.h"
+#include "deepcheck/viewer/html_view.h"
 
 #include <cstdio>
 #include <fstream>
@@ -67,11 +67,11 @@ std::vector<Eigen::VectorXd> readPathFile(const std::string& file, const robots:
   return path;
 }
 
-checker::ViewScene worldView(std::vector<std::string>& args) {
+viewer::ViewScene worldView(std::vector<std::string>& args) {
   const WorldArgs worldArgs = takeWorldArgs(args);
   const std::vector<double> config = takeVector(args, "--config");
   const std::string pathFile = takeSingleOption(args, "--path");
-  checker::WorldViewOptions options;
+  viewer::WorldViewOptions options;
   options.hiddenLinks = takeOption(args, "--hide");
   if (const std::string step = takeSingleOption(args, "--step"); !step.empty()) {
     options.maxStep = parseValue(step, "--step");
@@ -98,7 +98,7 @@ checker::ViewScene worldView(std::vector<std::string>& args) {
   options.title = "deepcheck view: " + robot.name();
   options.caption = world.summary();
   if (!pathFile.empty()) options.caption = "path " + pathFile + " (" + std::to_string(configurations.size()) + " waypoints)\n" + options.caption;
-  return checker::viewOfWorld(world, configurations, options);
+  return viewer::viewOfWorld(world, configurations, options);
 }
 
 /// The hull's faces as triangles (fans), for shading.
@@ -112,11 +112,11 @@ std::shared_ptr<robots::TriangleMesh> hullMesh(const deep::ConvexPolytope& hull)
   return mesh;
 }
 
-checker::ViewBody convexBody(const std::string& name, const std::string& layer, const deep::ConvexPolytope& hull) {
-  checker::ViewBody body;
+viewer::ViewBody convexBody(const std::string& name, const std::string& layer, const deep::ConvexPolytope& hull) {
+  viewer::ViewBody body;
   body.name = name;
   body.layer = layer;
-  checker::ViewShape shape;
+  viewer::ViewShape shape;
   shape.geometry.type = robots::GeometryType::Mesh;
   shape.mesh = hullMesh(hull);
   body.shapes.push_back(shape);
@@ -125,7 +125,7 @@ checker::ViewBody convexBody(const std::string& name, const std::string& layer, 
   return body;
 }
 
-checker::ViewScene pdView(const std::string& file) {
+viewer::ViewScene pdView(const std::string& file) {
   std::ifstream in(file);
   if (!in) throw InputError("cannot read the case file '" + file + "'");
   PdInput input;
@@ -144,7 +144,7 @@ checker::ViewScene pdView(const std::string& file) {
   std::vector<std::string> idOf(input.shapes.size());
   for (const auto& [id, index] : input.ids) idOf[static_cast<std::size_t>(index)] = id;
 
-  checker::ViewScene scene;
+  viewer::ViewScene scene;
   scene.title = "deepcheck view: " + file;
   scene.caption = "deepcheck pd cases " + file + ": " + std::to_string(input.queries.size()) +
                   " queries, one per frame.\nGreen ghost: B moved by -sd * normal (the answer's translation: "
@@ -173,7 +173,7 @@ checker::ViewScene pdView(const std::string& file) {
   for (std::size_t i = 0; i < answers.size(); ++i) {
     const PdQuery& q = input.queries[i];
     const Answer& a = answers[i];
-    checker::ViewFrame frame;
+    viewer::ViewFrame frame;
     frame.poses.assign(static_cast<std::size_t>(scene.numTracks), Eigen::Isometry3d::Identity());
     frame.hidden.assign(frame.poses.size(), true);
     Eigen::Isometry3d X_answer = q.X_WB;
@@ -184,7 +184,7 @@ checker::ViewScene pdView(const std::string& file) {
     }
     frame.label = "query on line " + std::to_string(q.line);
     frame.hasContact = true;
-    frame.contact = checker::ViewContact{a.r.distance, a.r.pointA, a.r.pointB, a.r.normal,
+    frame.contact = viewer::ViewContact{a.r.distance, a.r.pointA, a.r.pointB, a.r.normal,
                                          "A '" + idOf[static_cast<std::size_t>(q.a)] + "'",
                                          "B '" + idOf[static_cast<std::size_t>(q.b)] + "'"};
     frame.value = a.r.distance;
@@ -193,17 +193,17 @@ checker::ViewScene pdView(const std::string& file) {
   return scene;
 }
 
-checker::ViewScene decomposeView(const std::string& meshArg, const PackageRoots& packages) {
+viewer::ViewScene decomposeView(const std::string& meshArg, const PackageRoots& packages) {
   const std::string path = robots::resolveUriOrThrow(meshArg, robots::packageRoots(packages.commandLine), "", "--decompose");
   auto mesh = std::make_shared<const robots::TriangleMesh>(robots::loadMesh(path));
   const robots::ConvexDecomposition d = robots::decomposeConvexCached(*mesh, robots::DecompositionParams(),
                                                                       robots::DecompositionCache(""));
-  checker::ViewScene scene;
+  viewer::ViewScene scene;
   scene.title = "deepcheck view: " + meshArg;
-  checker::ViewBody body;
+  viewer::ViewBody body;
   body.name = meshArg;
   body.layer = "mesh";
-  checker::ViewShape shape;
+  viewer::ViewShape shape;
   shape.geometry.type = robots::GeometryType::Mesh;
   shape.mesh = mesh;
   body.shapes.push_back(shape);
@@ -232,7 +232,7 @@ int run(std::vector<std::string> args) {
   const std::string pd = takeSingleOption(args, "--pd");
   if (out.empty()) throw UsageError("option --out is required");
   if (!decompose.empty() && !pd.empty()) throw UsageError("--decompose and --pd exclude each other");
-  checker::ViewScene scene;
+  viewer::ViewScene scene;
   if (!decompose.empty() || !pd.empty()) {
     const PackageRoots packages = takePackageRoots(args);
     rejectUnknownOptions(args);
@@ -241,7 +241,7 @@ int run(std::vector<std::string> args) {
   } else {
     scene = worldView(args);
   }
-  checker::writeHtmlView(scene, out);
+  viewer::writeHtmlView(scene, out);
   std::fprintf(stderr, "wrote %s: %zu bodies, %zu frames\n", out.c_str(), scene.bodies.size(), scene.frames.size());
   return 0;
 }

@@ -1,4 +1,4 @@
-// deepcheck viewer: draws the JSON scene written by checker/html_view.h with three.js.
+// deepcheck viewer: draws the JSON scene written by viewer/html_view.h with three.js.
 //
 // Data (all lengths in metres, world frame z up; base64 strings hold little-endian arrays):
 //   bodies[]: name, layer, visible, track (-1: fixed at pose), pose [x y z qx qy qz qw],

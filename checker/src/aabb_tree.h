@@ -1,5 +1,6 @@
 #pragma once
-// Axis-aligned bounding boxes and a static AABB tree over them: the broad phase of the scene.
+// A static AABB tree over axis-aligned bounding boxes (Aabb, deepcheck/checker/broad_phase.h): the
+// World's own broad phase.
 //
 // The tree is a binary bounding-volume hierarchy built once, top down: a node's items are split
 // at the median of their box centres along the longest axis of the centres' extent, until at
@@ -8,10 +9,12 @@
 //
 // Why not FCL's DynamicAABBTreeCollisionManager: the scene never changes between queries, and a
 // static tree of plain boxes answers "which items are near this sphere" without virtual calls or
-// collision objects; World::Options::broadPhase keeps FCL's tree selectable, and
-// bench/checker_bench.cpp measures both (see the README section).
+// collision objects; WorldOptions::externalBroadPhase takes FCL's tree instead
+// (deepcheck::fcl_reference::fclBroadPhase()), and bench/checker_bench.cpp measures both.
 //
 // Frames: all boxes are in the world frame W. Metres.
+
+#include "deepcheck/checker/broad_phase.h"
 
 #include <Eigen/Core>
 
@@ -21,48 +24,6 @@
 #include <vector>
 
 namespace deepcheck::checker {
-
-struct Aabb {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
-
-  bool empty() const { return !(lo.x() <= hi.x()); }
-  void extend(const Eigen::Vector3d& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  void extend(const Aabb& b) {
-    lo = lo.cwiseMin(b.lo);
-    hi = hi.cwiseMax(b.hi);
-  }
-  Eigen::Vector3d center() const { return 0.5 * (lo + hi); }
-  /// The box of a sphere.
-  static Aabb ofSphere(const Eigen::Vector3d& c, double r) {
-    Aabb b;
-    b.lo = c.array() - r;
-    b.hi = c.array() + r;
-    return b;
-  }
-  /// Euclidean distance from p to the box (0 inside).
-  double distance(const Eigen::Vector3d& p) const { return std::sqrt(squaredDistance(p)); }
-  /// Signed distance from p to the box: the Euclidean distance outside, minus the distance to the
-  /// nearest face inside. signedDistance(c) - r is the exact signed distance between the ball
-  /// (c, r) and the box, so a lower bound on the signed distance between anything inside the
-  /// ball and anything inside the box, overlapping or not (containment only shrinks a depth).
-  /// distance(c) - r is not: inside the box it ignores how deep c lies.
-  double signedDistance(const Eigen::Vector3d& p) const {
-    const Eigen::Vector3d outside = (lo - p).cwiseMax(p - hi);  // > 0 on an axis whose slab p leaves
-    if ((outside.array() > 0.0).any()) return outside.cwiseMax(0.0).norm();
-    return outside.maxCoeff();
-  }
-  /// Its square: what a test against a radius needs (no square root on the query's path).
-  double squaredDistance(const Eigen::Vector3d& p) const {
-    return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
-  }
-  bool overlaps(const Aabb& b) const {
-    return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all();
-  }
-};
 
 class AabbTree {
  public:

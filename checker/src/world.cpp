@@ -4,7 +4,6 @@
 
 #include "deepcheck/checker/world.h"
 
-#include "external_broad_phase.h"
 #include "progress.h"
 #include "self_pair_grid_cache.h"
 #include "world_internal.h"
@@ -186,12 +185,12 @@ WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry
   return w;
 }
 
-void finishPieceSet(PieceSet& set, BroadPhase broadPhase) {
+void finishPieceSet(PieceSet& set, const PieceTreeFactory* external) {
   std::vector<Aabb> boxes;
   boxes.reserve(set.pieces.size());
   for (const WorldPiece& p : set.pieces) boxes.push_back(p.box);
   set.tree = AabbTree(boxes);
-  if (broadPhase == BroadPhase::FclTree) set.fclTree = detail::makeExternalPieceTree(broadPhase, boxes);
+  set.external = external != nullptr && !boxes.empty() ? external->build(boxes) : nullptr;
 }
 
 }  // namespace detail
@@ -203,7 +202,7 @@ namespace {
 std::shared_ptr<const PieceSet> appendScenePieces(const PieceSet& old, const RobotData& robot, SceneData& scene,
                                                   int sceneIndex,
                                                   const std::vector<std::vector<robots::CollisionPiece>>& pieces,
-                                                  double reachMargin, BroadPhase broadPhase) {
+                                                  double reachMargin, const PieceTreeFactory* external) {
   auto set = std::make_shared<PieceSet>();
   set->pieces = old.pieces;
   set->bodies = old.bodies;
@@ -232,7 +231,7 @@ std::shared_ptr<const PieceSet> appendScenePieces(const PieceSet& old, const Rob
       set->bodies.push_back(b);
     }
   }
-  finishPieceSet(*set, broadPhase);
+  finishPieceSet(*set, external);
   return set;
 }
 
@@ -309,7 +308,7 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
     auto known = grids.find({a, b});
     s.selfPairs.push_back({a, b, s.selfCacheSize,
                            known != grids.end()    ? known->second
-                           : options.selfPairGrids ? detail::SelfPairGrid::build(robot, a, b, &gridCache, options.progress)
+                           : s.shortcuts.selfPairGrids ? detail::SelfPairGrid::build(robot, a, b, &gridCache, options.progress)
                                                    : nullptr});
     s.selfCacheSize += robot.links[a].numPieces * robot.links[b].numPieces;
   }
@@ -369,7 +368,7 @@ int sceneBody(PieceSet& set, const SceneData& data, int scene, int link) {
 
 }  // namespace
 
-void reclaimScenePieces(Snapshot& s, double reachMargin, BroadPhase broadPhase) {
+void reclaimScenePieces(Snapshot& s, double reachMargin, const PieceTreeFactory* external) {
   std::shared_ptr<PieceSet> set;
   for (std::size_t k = 0; k < s.scenes.size(); ++k) {
     const SceneData& old = *s.scenes[k];
@@ -393,8 +392,7 @@ void reclaimScenePieces(Snapshot& s, double reachMargin, BroadPhase broadPhase) 
     s.scenes[k] = data;
   }
   if (set == nullptr) return;
-  set->fclTree.reset();
-  finishPieceSet(*set, broadPhase);
+  finishPieceSet(*set, external);
   s.scenePieces = set;
 }
 
@@ -425,10 +423,10 @@ World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std
   buildSelfPairs(*snap, options);
   {
     auto empty = std::make_shared<PieceSet>();
-    finishPieceSet(*empty, options.broadPhase);
+    finishPieceSet(*empty, options.externalBroadPhase.get());
     snap->scenePieces = empty;
   }
-  snap->obstaclePieces = buildObstaclePieces({}, options.broadPhase);
+  snap->obstaclePieces = buildObstaclePieces({}, options.externalBroadPhase.get());
   // The decomposer keeps recording into `excess` for later scenes and obstacles.
   st.excessSink = excess;
   std::lock_guard<std::mutex> lock(st.mutex);
@@ -463,7 +461,7 @@ int World::addSceneLocked(robots::RobotModel scene, const SceneSpec& options) {
   auto snap = std::make_shared<Snapshot>(*st.current);
   const int index = static_cast<int>(snap->scenes.size());
   snap->scenePieces = appendScenePieces(*snap->scenePieces, *snap->robot, *data, index, pieces,
-                                        st.options.reachMargin, st.options.broadPhase);
+                                        st.options.reachMargin, st.options.externalBroadPhase.get());
   snap->scenes.push_back(data);
   publish(st, snap);
   return static_cast<int>(snap->scenes.size()) - 1;

@@ -98,7 +98,7 @@ std::shared_ptr<AttachedData> makeAttached(const Snapshot& s, const std::string&
 /// Publishes `snap` with `s.attached` changed: robot data, self pairs and masks made again.
 void publishAttached(WorldState& st, std::shared_ptr<Snapshot> snap) {
   detail::attachToRobot(*snap, st.robot);
-  detail::reclaimScenePieces(*snap, st.options.reachMargin, st.options.broadPhase);
+  detail::reclaimScenePieces(*snap, st.options.reachMargin, st.options.externalBroadPhase.get());
   detail::rebuildSelfPairs(*snap, st.options);
   detail::publish(st, std::move(snap));
 }
@@ -128,7 +128,7 @@ void World::attachObstacle(int id, const std::string& link, const AttachOptions&
   inWorld.worldFrame = true;
   snap->attached.push_back(makeAttached(*snap, link, (*it)->source, inWorld, (*it)->pieces));
   snap->obstacles.erase(it);
-  snap->obstaclePieces = detail::buildObstaclePieces(snap->obstacles, st.options.broadPhase);
+  snap->obstaclePieces = detail::buildObstaclePieces(snap->obstacles, st.options.externalBroadPhase.get());
   publishAttached(st, std::move(snap));
 }
 
@@ -146,7 +146,7 @@ int World::detach(const std::string& name, bool keepAsObstacle, const Eigen::Vec
     data->pieces = a.pieces;
     data->id = id = st.nextObstacleId++;
     snap->obstacles.push_back(data);
-    snap->obstaclePieces = detail::buildObstaclePieces(snap->obstacles, st.options.broadPhase);
+    snap->obstaclePieces = detail::buildObstaclePieces(snap->obstacles, st.options.externalBroadPhase.get());
   }
   snap->attached.erase(snap->attached.begin() + static_cast<std::ptrdiff_t>(k));
   publishAttached(st, std::move(snap));

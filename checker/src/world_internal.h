@@ -15,6 +15,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -85,14 +86,12 @@ struct WorldBody {
   std::string name;
 };
 
-class ExternalPieceTree;  // external_broad_phase.h
-
 /// World pieces with their broad-phase structures; immutable once built.
 struct PieceSet {
   std::vector<WorldPiece> pieces;
   std::vector<WorldBody> bodies;
   AabbTree tree;
-  std::shared_ptr<const ExternalPieceTree> fclTree;  // only with BroadPhase::FclTree
+  std::shared_ptr<const PieceTree> external;  // WorldOptions::externalBroadPhase's, when set
 };
 
 /// A scene piece the reach filter dropped, kept aside: an attached object may reach it later
@@ -149,7 +148,26 @@ struct AllowedMask {
   }
 };
 
+/// Shortcuts of the queries that never change an answer, both on unless turned off to find the
+/// same answers the long way (a World's internal setting, not an option).
+struct Shortcuts {
+  /// Certified-free grids for the self pairs whose relative pose depends on one or two variables
+  /// (self_pair_grid.h): isFree skips such a pair when q lies in a cell where it was proved apart.
+  bool selfPairGrids = true;
+  /// isFree: before GJK on a robot piece against a world piece of at most 32 faces, test whether
+  /// the robot piece's centroid (a point of its core) lies inside the world piece, deeper than
+  /// twice its hull tolerance: then they overlap, as GJK would find.
+  bool centroidTest = true;
+};
+
+/// Sent to WorldState::onNarrowPhase before every narrow-phase call.
+struct NarrowPhaseEvent {
+  int linkA = -1;
+  BodyRef bodyB;
+};
+
 struct Snapshot {
+  Shortcuts shortcuts;  // carried from snapshot to snapshot
   std::shared_ptr<const RobotData> robot;
   std::vector<std::shared_ptr<const AttachedData>> attached;  // robot->links beyond the own ones
   AllowedNames allowed;
@@ -188,6 +206,9 @@ struct WorldState {
   /// The robot, the same in every snapshot: read without the mutex (World::robot() is called on
   /// every validity query).
   std::shared_ptr<const RobotData> robot;
+  /// When set, called before every narrow-phase call of every query (an observer of which pairs
+  /// get there; set it while no query runs).
+  std::function<void(const NarrowPhaseEvent&)> onNarrowPhase;
 
   std::shared_ptr<const Snapshot> snapshot() const {
     std::lock_guard<std::mutex> lock(mutex);
@@ -210,14 +231,15 @@ void appendLinkGeometry(RobotData& robot, int link, int attached, const std::vec
 /// oriented box.
 WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry3d& X_WB, int body, std::uint64_t uid);
 
-/// Builds the broad phase of `set` (its AABB tree, and FCL's tree when asked).
-void finishPieceSet(PieceSet& set, BroadPhase broadPhase);
+/// Builds the broad phase of `set`: its AABB tree, and the external one when `external` is given
+/// (WorldOptions::externalBroadPhase).
+void finishPieceSet(PieceSet& set, const PieceTreeFactory* external);
 
 /// Appends obstacle o's body and world pieces to `set` (finishPieceSet rebuilds its tree).
 void appendObstacle(PieceSet& set, const ObstacleData& o);
 /// The pieces of the obstacles, in their order (world_obstacles.cpp).
 std::shared_ptr<const PieceSet> buildObstaclePieces(const std::vector<std::shared_ptr<const ObstacleData>>& obstacles,
-                                                    BroadPhase broadPhase);
+                                                    const PieceTreeFactory* external);
 
 /// Reports on options.progress the fixed pairs (World::fixedPairs) not reported before, one line
 /// each naming the pair, its distance and how to allow it (world_fixed_pairs.cpp). Call without
@@ -253,7 +275,7 @@ void attachToRobot(Snapshot& s, const std::shared_ptr<const RobotData>& own);
 bool reachable(const std::vector<ReachSphere>& reach, const Aabb& box, double margin);
 /// Moves the dropped scene pieces that s.robot's reach spheres now reach into s.scenePieces
 /// (world.cpp): after an attachment grew them.
-void reclaimScenePieces(Snapshot& s, double reachMargin, BroadPhase broadPhase);
+void reclaimScenePieces(Snapshot& s, double reachMargin, const PieceTreeFactory* external);
 
 /// Pads a bounding radius for round-off (tol::kBoundingRelative).
 inline double padRadius(double r, const Eigen::Vector3d& center) {

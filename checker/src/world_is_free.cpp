@@ -73,7 +73,7 @@ bool overlapWorld(Impl& c, const RobotData& robot, const PieceSet& set, PairKey:
   const WorldPiece& w = set.pieces[wp];
   ++c.stats.narrowPhase;
   notify(c, p.link, bodyOfWorldPiece(set, w));
-  if (c.state->options.centroidTest && centroidInside(w, c.pieceCenter[i])) {
+  if (c.snap->shortcuts.centroidTest && centroidInside(w, c.pieceCenter[i])) {
     ++c.stats.centroidInside;
     c.lastHit = PairKey{kind, i, wp, -1};
     return true;

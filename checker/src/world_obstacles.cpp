@@ -128,10 +128,10 @@ void appendObstacle(PieceSet& set, const ObstacleData& o) {
 }
 
 std::shared_ptr<const PieceSet> buildObstaclePieces(const std::vector<std::shared_ptr<const ObstacleData>>& obstacles,
-                                                    BroadPhase broadPhase) {
+                                                    const PieceTreeFactory* external) {
   auto set = std::make_shared<PieceSet>();
   for (const auto& o : obstacles) appendObstacle(*set, *o);
-  finishPieceSet(*set, broadPhase);
+  finishPieceSet(*set, external);
   return set;
 }
 
@@ -184,7 +184,6 @@ std::vector<int> World::addObstaclesLocked(const std::vector<Obstacle>& obstacle
   auto snap = std::make_shared<Snapshot>(*st.current);
   // The pieces of the obstacles already there are kept as they are; only the tree is rebuilt.
   auto pieces = std::make_shared<PieceSet>(*snap->obstaclePieces);
-  pieces->fclTree.reset();
   std::vector<int> ids;
   for (const auto& data : added) {
     data->id = st.nextObstacleId++;
@@ -192,7 +191,7 @@ std::vector<int> World::addObstaclesLocked(const std::vector<Obstacle>& obstacle
     snap->obstacles.push_back(data);
     detail::appendObstacle(*pieces, *data);
   }
-  detail::finishPieceSet(*pieces, st.options.broadPhase);
+  detail::finishPieceSet(*pieces, st.options.externalBroadPhase.get());
   snap->obstaclePieces = pieces;
   publish(st, snap);
   return ids;
@@ -204,7 +203,7 @@ void World::removeObstacle(int id) {
   const std::size_t i = findObstacle(*st.current, id);
   auto snap = std::make_shared<Snapshot>(*st.current);
   snap->obstacles.erase(snap->obstacles.begin() + static_cast<std::ptrdiff_t>(i));
-  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.broadPhase);
+  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.externalBroadPhase.get());
   publish(st, snap);
 }
 
@@ -217,7 +216,7 @@ void World::setObstaclePose(int id, const Eigen::Isometry3d& X_WO) {
   auto moved = std::make_shared<ObstacleData>(*snap->obstacles[i]);
   moved->source.X_WO = X_WO;
   snap->obstacles[i] = moved;
-  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.broadPhase);
+  snap->obstaclePieces = buildObstaclePieces(snap->obstacles, st.options.externalBroadPhase.get());
   publish(st, snap);
 }
 

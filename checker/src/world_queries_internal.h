@@ -17,7 +17,6 @@
 #include "deepcheck/deep/expansion_surface.h"
 #include "deepcheck/deep/walk_scratch.h"
 
-#include "external_broad_phase.h"
 #include "world_internal.h"
 
 #include <algorithm>
@@ -29,12 +28,6 @@
 namespace deepcheck::checker {
 
 namespace detail {
-
-/// Sent to a Context's narrow-phase hook (world_test_access.h) before every narrow-phase call.
-struct NarrowPhaseEvent {
-  int linkA = -1;
-  BodyRef bodyB;
-};
 
 
 /// Identifies one narrow-phase pair within a snapshot.
@@ -98,8 +91,6 @@ struct World::Context::Impl {
   std::vector<detail::Candidate> candidates;
   Eigen::Matrix3Xd J_A, J_B;
   QueryStats stats;
-  /// Called before every narrow-phase call when set (tests: world_test_access.h).
-  std::function<void(const detail::NarrowPhaseEvent&)> onNarrowPhase;
 };
 
 namespace detail {
@@ -262,14 +253,14 @@ bool forEachSelfPiecePair(Impl& c, const RobotData& robot, const SelfPair& sp, F
 }
 
 /// Calls visit(worldPiece) for the pieces of `set` whose box overlaps `query`; stops (returns
-/// true) when visit returns true. FCL's tree takes std::function: built from std::ref, it never
-/// allocates (a std::function copy of a lambda with many captures would, on every query).
+/// true) when visit returns true. The external tree (WorldOptions::externalBroadPhase) takes
+/// std::function: built from std::ref, it never allocates (a std::function copy of a lambda with
+/// many captures would, on every query).
 template <class Visit>
 bool forEachOverlapping(const PieceSet& set, BroadPhase broadPhase, const Aabb& query, Visit&& visit) {
+  if (set.external != nullptr) return set.external->visitOverlapping(query, std::function<bool(int)>(std::ref(visit)));
   switch (broadPhase) {
     case BroadPhase::AabbTree: return set.tree.visitOverlapping(query, visit);
-    case BroadPhase::FclTree:
-      return set.fclTree != nullptr && set.fclTree->visitOverlapping(query, std::function<bool(int)>(std::ref(visit)));
     case BroadPhase::None:
       for (int i = 0; i < static_cast<int>(set.pieces.size()); ++i) {
         if (visit(i)) return true;
@@ -284,14 +275,13 @@ bool forEachOverlapping(const PieceSet& set, BroadPhase broadPhase, const Aabb& 
 template <class Bound, class Visit>
 void forEachNear(const PieceSet& set, BroadPhase broadPhase, const Eigen::Vector3d& center, double r,
                  Bound&& bound, Visit&& visit) {
+  if (set.external != nullptr) {
+    set.external->visitNear(center, r, std::function<double()>(std::ref(bound)),
+                            std::function<void(int, double)>(std::ref(visit)));
+    return;
+  }
   switch (broadPhase) {
     case BroadPhase::AabbTree: set.tree.visitNear(center, r, bound, visit); return;
-    case BroadPhase::FclTree:
-      if (set.fclTree != nullptr) {
-        set.fclTree->visitNear(center, r, std::function<double()>(std::ref(bound)),
-                               std::function<void(int, double)>(std::ref(visit)));
-      }
-      return;
     case BroadPhase::None:
       for (int i = 0; i < static_cast<int>(set.pieces.size()); ++i) {
         const double lb = set.pieces[i].box.signedDistance(center) - r;
@@ -305,7 +295,7 @@ inline deep::ConvexShape shapeOf(const RobotPiece& p) { return deep::ConvexShape
 inline deep::ConvexShape shapeOf(const WorldPiece& p) { return deep::ConvexShape{p.core.get(), p.radius}; }
 
 inline void notify(const World::Context::Impl& c, int linkA, const BodyRef& bodyB) {
-  if (c.onNarrowPhase) c.onNarrowPhase(NarrowPhaseEvent{linkA, bodyB});
+  if (c.state->onNarrowPhase) c.state->onNarrowPhase(NarrowPhaseEvent{linkA, bodyB});
 }
 
 /// True when the pair (robot geometry g, body `body` of the world set of `kind`) is allowed.

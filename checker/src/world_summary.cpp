@@ -16,7 +16,6 @@ using detail::SelfPair;
 const char* toString(BroadPhase b) {
   switch (b) {
     case BroadPhase::AabbTree: return "aabb-tree";
-    case BroadPhase::FclTree: return "fcl-dynamic-aabb-tree";
     case BroadPhase::None: return "none";
   }
   return "unknown";
@@ -111,7 +110,10 @@ std::string World::summary() const {
         << " % certified free)\n";
   }
   out << "pairs checked at most: " << worldPairs << " robot-world piece pairs, " << s.selfPiecePairs
-      << " self piece pairs; broad phase " << toString(state_->options.broadPhase) << "\n";
+      << " self piece pairs; broad phase "
+      << (state_->options.externalBroadPhase ? state_->options.externalBroadPhase->name()
+                                             : std::string(toString(state_->options.broadPhase)))
+      << "\n";
   char excess[64];
   std::snprintf(excess, sizeof excess, "%.3g", s.geometryExcess);
   out << "geometry excess (pieces beyond the original shapes): " << (std::isnan(s.geometryExcess) ? "unknown" : excess)

@@ -1,6 +1,6 @@
 #include "deepcheck/fcl_reference/fcl_broad_phase.h"
 
-#include "external_broad_phase.h"
+#include "deepcheck/checker/broad_phase.h"
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
@@ -11,6 +11,7 @@
 #include <limits>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace deepcheck::fcl_reference {
@@ -55,7 +56,7 @@ bool nearCallback(fcl::CollisionObjectd* item, fcl::CollisionObjectd* /*query*/,
   return false;
 }
 
-class FclPieceTree : public checker::detail::ExternalPieceTree {
+class FclPieceTree : public checker::PieceTree {
  public:
   explicit FclPieceTree(const std::vector<Aabb>& boxes);
   FclPieceTree(const FclPieceTree&) = delete;
@@ -109,12 +110,19 @@ void FclPieceTree::visitNear(const Eigen::Vector3d& c, double r, const std::func
   impl_->manager.distance(&object, &data, nearCallback);
 }
 
-std::shared_ptr<const checker::detail::ExternalPieceTree> makeFclPieceTree(const std::vector<Aabb>& boxes) {
-  return std::make_shared<const FclPieceTree>(boxes);
-}
+class FclPieceTreeFactory : public checker::PieceTreeFactory {
+ public:
+  std::string name() const override { return "fcl-dynamic-aabb-tree"; }
+  std::shared_ptr<const checker::PieceTree> build(const std::vector<Aabb>& boxes) const override {
+    return std::make_shared<const FclPieceTree>(boxes);
+  }
+};
 
 }  // namespace
 
-void enableFclBroadPhase() { checker::detail::setExternalBroadPhase(checker::BroadPhase::FclTree, makeFclPieceTree); }
+std::shared_ptr<const checker::PieceTreeFactory> fclBroadPhase() {
+  static const auto factory = std::make_shared<const FclPieceTreeFactory>();
+  return factory;
+}
 
 }  // namespace deepcheck::fcl_reference

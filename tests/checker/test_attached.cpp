@@ -5,10 +5,10 @@
 
 #include "checker_test_util.h"
 
-#include "deepcheck/checker/html_view.h"
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/moveit_scene.h"
+#include "deepcheck/viewer/html_view.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -270,11 +270,11 @@ BOOST_AUTO_TEST_CASE(shown_in_the_html_view_on_its_link) {
   Eigen::VectorXd q = world.robot().defaultConfiguration();
   q[0] = 0.7;
   q[1] = -0.3;
-  const ViewScene view = viewOfWorld(world, {q});
+  const viewer::ViewScene view = viewer::viewOfWorld(world, {q});
   const Eigen::Isometry3d expected =
       robots::forwardKinematics(world.robot(), q)[world.robot().linkIndex("tool")] * boxInTool();
   int found = 0;
-  for (const ViewBody& b : view.bodies) {
+  for (const viewer::ViewBody& b : view.bodies) {
     if (b.name != "attached/box") continue;
     ++found;
     BOOST_TEST(b.layer == "attached");

@@ -315,10 +315,13 @@ BOOST_AUTO_TEST_CASE(world_equals_brute_force_with_swallowing_obstacles) {
 
 // The same with the other broad phases: every world piece a candidate, and FCL's tree.
 BOOST_AUTO_TEST_CASE(world_equals_brute_force_with_other_broad_phases) {
-  fcl_reference::enableFclBroadPhase();
-  for (BroadPhase broadPhase : {BroadPhase::None, BroadPhase::FclTree}) {
+  for (bool fcl : {false, true}) {
     WorldOptions options = testWorldOptions();
-    options.broadPhase = broadPhase;
+    if (fcl) {
+      options.externalBroadPhase = fcl_reference::fclBroadPhase();
+    } else {
+      options.broadPhase = BroadPhase::None;
+    }
     const WorldTrials t = compareWithBruteForce(options, 40, 25, 3904);
     BOOST_TEST(t.swallowed > 50);
   }

@@ -22,8 +22,6 @@
 using namespace deepcheck;
 using namespace deepcheck::checker;
 using namespace deepcheck::checker::test;
-using deepcheck::checker::detail::ContextTestAccess;
-using deepcheck::checker::detail::NarrowPhaseEvent;
 
 namespace {
 
@@ -39,7 +37,7 @@ LinkPair ordered(std::string a, std::string b) {
 std::set<LinkPair> narrowPhasePairs(const World& world, int samples, unsigned seed) {
   std::set<LinkPair> seen;
   auto context = world.makeContext();
-  ContextTestAccess::setNarrowPhaseHook(context, [&](const NarrowPhaseEvent& e) {
+  setNarrowPhaseHook(world, [&](const NarrowPhaseEvent& e) {
     seen.insert(ordered(world.robot().link(e.linkA).name, world.bodyName(e.bodyB)));
   });
   std::mt19937 rng(seed);
@@ -48,6 +46,7 @@ std::set<LinkPair> narrowPhasePairs(const World& world, int samples, unsigned se
     world.isFree(q, context);
     world.signedDistance(q, context);
   }
+  setNarrowPhaseHook(world, {});
   return seen;
 }
 
@@ -123,14 +122,14 @@ BOOST_AUTO_TEST_CASE(far_pieces_skip_the_narrow_phase) {
   world.addObstacle(Obstacle::box("near", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0.5, 0, 0)));
   auto context = world.makeContext();
   int farCalls = 0;
-  ContextTestAccess::setNarrowPhaseHook(
-      context, [&](const NarrowPhaseEvent& e) { farCalls += world.bodyName(e.bodyB) == "obstacle/far"; });
+  setNarrowPhaseHook(world, [&](const NarrowPhaseEvent& e) { farCalls += world.bodyName(e.bodyB) == "obstacle/far"; });
   Eigen::VectorXd q(1);
   for (int k = 0; k <= 200; ++k) {
     q[0] = -1.0 + 0.01 * k;
     world.isFree(q, context);
     world.signedDistance(q, context);  // the near box is always nearer by far: the bound prunes
   }
+  setNarrowPhaseHook(world, {});
   BOOST_TEST(farCalls == 0);
   BOOST_TEST(context.stats().narrowPhase > 0u);
   BOOST_TEST(context.stats().queries == 2 * 201u);
@@ -202,18 +201,21 @@ BOOST_AUTO_TEST_CASE(reach_spheres_contain_every_reachable_point) {
   checkThrowsWith([&] { linkReachSpheres(arm, {}); }, "arm");
 }
 
-// The broad phases (static AABB tree, FCL's dynamic tree, none) only choose which world pieces
-// reach the bounding tests: isFree answers the same with each, and signedDistance finds the same
-// separation (each query cold, so a pair's distance does not depend on what was measured before).
+// The broad phases (static AABB tree, none, and FCL's dynamic tree as the external one) only
+// choose which world pieces reach the bounding tests: isFree answers the same with each, and
+// signedDistance finds the same separation (each query cold, so a pair's distance does not depend
+// on what was measured before).
 BOOST_AUTO_TEST_CASE(broad_phases_give_the_same_answers) {
   const robots::LoadOptions load = bundledLoadOptions();
   const std::string urdf = bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
-  fcl_reference::enableFclBroadPhase();
-  const BroadPhase phases[] = {BroadPhase::AabbTree, BroadPhase::FclTree, BroadPhase::None};
+  std::vector<std::pair<std::string, WorldOptions>> phases(3, {"", testWorldOptions()});
+  phases[0].first = toString(BroadPhase::AabbTree);
+  phases[1].first = "fcl (external)";
+  phases[1].second.externalBroadPhase = fcl_reference::fclBroadPhase();
+  phases[2].first = toString(BroadPhase::None);
+  phases[2].second.broadPhase = BroadPhase::None;
   std::vector<World> worlds;
-  for (BroadPhase b : phases) {
-    WorldOptions options = testWorldOptions();
-    options.broadPhase = b;
+  for (const auto& [name, options] : phases) {
     World& w = worlds.emplace_back(robots::RobotModel::fromUrdfFile(urdf, load), options);
     w.addScene(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/scenes/shelf.urdf", load));
     addCrateBallPost(w);
@@ -221,7 +223,7 @@ BOOST_AUTO_TEST_CASE(broad_phases_give_the_same_answers) {
   std::mt19937 rng(19);
   const std::vector<Eigen::VectorXd> qs = randomConfigurations(worlds[0].robot(), 1500, rng);
   for (std::size_t k = 1; k < worlds.size(); ++k) {
-    const std::string name = std::string("broad phase ") + toString(phases[k]);
+    const std::string name = "broad phase " + phases[k].first;
     const int colliding = compareIsFree(worlds[k], worlds[0], qs, name + " (without: the AABB tree)", nullptr);
     BOOST_TEST(colliding > 100);
     BOOST_TEST(colliding < static_cast<int>(qs.size()) - 100);

@@ -7,8 +7,8 @@
 
 #include "common/body_cases.h"
 
-#include "deepcheck/checker/html_view.h"
 #include "deepcheck/checker/world.h"
+#include "deepcheck/viewer/html_view.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -21,6 +21,7 @@
 
 using namespace deepcheck;
 using namespace deepcheck::checker;
+using namespace deepcheck::viewer;
 using checker::test::armRobot;
 using checker::test::sliderRobot;
 using checker::test::testWorldOptions;

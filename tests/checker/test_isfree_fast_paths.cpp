@@ -1,12 +1,13 @@
-// isFree's fast paths: the centroid test (WorldOptions::centroidTest: a robot piece's centroid
-// inside a world piece decides an overlap without GJK) gives the same answers as GJK alone, on
-// random configurations and short motions of the Panda in the kitchen and of the arm among
-// primitive and mesh obstacles; the tetrahedron kept from a pair's last overlap (re-tested
+// isFree's fast paths: the centroid test (a robot piece's centroid inside a world piece decides
+// an overlap without GJK; turned off through world_test_access.h) gives the same answers as GJK
+// alone, on random configurations and short motions of the Panda in the kitchen and of the arm
+// among primitive and mesh obstacles; the tetrahedron kept from a pair's last overlap (re-tested
 // before GJK) gives the answers of contexts that never saw an earlier query; and a robot pose
 // that left the doubles is reported, not answered (the narrow phase no longer checks poses
 // itself).
 
 #include "checker_test_util.h"
+#include "world_test_access.h"
 
 #include "deepcheck/checker/world.h"
 
@@ -56,8 +57,8 @@ BOOST_AUTO_TEST_CASE(panda_kitchen_same_answers_with_and_without_centroid_test) 
   if (!haveShared("panda_kitchen_same_answers_with_and_without_centroid_test")) return;
   WorldOptions options = testWorldOptions();
   World with(loadPanda(), options);
-  options.centroidTest = false;
   World without(loadPanda(), options);
+  disableCentroidTest(without);
   with.addScene(loadKitchen());
   without.addScene(loadKitchen());
   const std::vector<Eigen::VectorXd> qs = configurations(with.robot(), 6000, 100, 41);
@@ -74,8 +75,8 @@ BOOST_AUTO_TEST_CASE(arm_obstacles_same_answers_with_and_without_centroid_test) 
   // prism and a mesh; obstacles moved between rounds.
   WorldOptions options = testWorldOptions();
   World with(armRobot(), options);
-  options.centroidTest = false;
   World without(armRobot(), options);
+  disableCentroidTest(without);
   Eigen::Isometry3d tilted = translation(0.35, 0.1, 0.55);
   tilted.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const robots::TriangleMesh tetra = tetrahedronMesh();
@@ -105,8 +106,8 @@ BOOST_AUTO_TEST_CASE(kept_enclosing_tetrahedra_give_the_answers_of_fresh_context
   // Motions through the obstacles, queried with one context (its pairs' tetrahedra kept from
   // query to query, even between incoherent ones) and, as the reference, each with a new context.
   WorldOptions options = testWorldOptions();
-  options.centroidTest = false;  // every overlap decided by GJK or by a kept tetrahedron
   World world(armRobot(), options);
+  disableCentroidTest(world);  // every overlap decided by GJK or by a kept tetrahedron
   world.addObstacle(Obstacle::box("crate", Eigen::Vector3d(0.4, 0.5, 0.45), translation(0.35, 0.1, 0.55)));
   world.addObstacle(Obstacle::box("lid", Eigen::Vector3d(0.6, 0.6, 0.2), translation(0.0, 0.0, 1.05)));
   world.addObstacle(Obstacle::fromMesh("tetra", tetrahedronMesh(), translation(-0.4, 0.3, 0.2)));

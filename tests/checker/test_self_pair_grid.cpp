@@ -3,6 +3,7 @@
 // the grids' variables (cell boundaries, the limits, beyond the limits), and the grids are used.
 
 #include "checker_test_util.h"
+#include "world_test_access.h"
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/robots/pair_filter.h"
@@ -47,8 +48,8 @@ BOOST_AUTO_TEST_CASE(panda_same_answers_with_and_without_grids) {
   options.disabledPairs = robots::readSrdfDisabledPairs(
       sharedDir() + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf");
   World with(loadPanda(), options);
-  options.selfPairGrids = false;
   World without(loadPanda(), options);
+  disableSelfPairGrids(without);
   const std::string text = with.summary();
   BOOST_TEST(text.find("certified-free grid: 2") != std::string::npos, text);
   BOOST_TEST(without.summary().find("certified-free grid") == std::string::npos);
@@ -74,8 +75,8 @@ BOOST_AUTO_TEST_CASE(bundled_arm_same_answers_with_and_without_grids) {
   options.disabledPairs = robots::readSrdfDisabledPairs(bundledDataDir() + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
   const std::string urdf = bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
   World with(robots::RobotModel::fromUrdfFile(urdf, bundledLoadOptions()), options);
-  options.selfPairGrids = false;
   World without(robots::RobotModel::fromUrdfFile(urdf, bundledLoadOptions()), options);
+  disableSelfPairGrids(without);
   BOOST_TEST(with.summary().find("certified-free grid") != std::string::npos);
   const robots::RobotModel& m = with.robot();
   const int n = m.numVariables();

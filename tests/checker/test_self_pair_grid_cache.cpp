@@ -79,8 +79,8 @@ std::vector<bool> flags(const SelfPairGrid& grid) {
 struct ArmGrid {
   explicit ArmGrid(robots::RobotModel model = robots::RobotModel::fromUrdfFile(armUrdf(), bundledLoadOptions()))
       : world(std::move(model), armOptions()) {
-    robot = detail::WorldTestAccess::robot(world);
-    for (const detail::SelfPair& p : detail::WorldTestAccess::selfPairs(world)) {
+    robot = robotOf(world);
+    for (const detail::SelfPair& p : selfPairsOf(world)) {
       if (p.grid && a < 0) {
         a = p.a;
         b = p.b;
@@ -154,8 +154,8 @@ BOOST_AUTO_TEST_CASE(warm_world_answers_as_one_without_grids) {
   const auto model = [] { return robots::RobotModel::fromUrdfFile(armUrdf(), bundledLoadOptions()); };
   { World cold(model(), options); }  // stores the grids beside the decomposition cache
   World warm(model(), options);
-  options.selfPairGrids = false;
   World without(model(), options);
+  disableSelfPairGrids(without);
   BOOST_TEST(warm.summary().find("certified-free grid") != std::string::npos);
   std::mt19937 rng(29);
   const std::vector<Eigen::VectorXd> qs = randomConfigurations(warm.robot(), 4000, rng);

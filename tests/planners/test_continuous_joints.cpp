@@ -8,9 +8,9 @@
 #include "deepcheck/planners/motion_validator.h"
 #include "deepcheck/planners/objectives.h"
 #include "deepcheck/planners/planner_factory.h"
-#include "deepcheck/planners/problem_generation.h"
 #include "deepcheck/planners/setup.h"
 #include "deepcheck/planners/state_space.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/joint_angles.h"
 
 #include <boost/test/unit_test.hpp>
@@ -208,7 +208,7 @@ BOOST_AUTO_TEST_CASE(problem_files_read_a_continuous_joint_as_the_same_angle) {
     char yaml[200];
     std::snprintf(yaml, sizeof yaml, "robot_state:\n  joint_state:\n    name: [spin, tilt]\n    position: [%.17g, 0.5]\n",
                   spin);
-    return dp::configurationOf(robot, dp::parseRobotConfig(yaml, "wheel.yaml"), notes);
+    return deepcheck::problems::configurationOf(robot, deepcheck::problems::parseRobotConfig(yaml, "wheel.yaml"), notes);
   };
   std::vector<std::string> notes;
   const Eigen::VectorXd q = readBack(4.0, &notes);

@@ -4,8 +4,8 @@
 #include "common/test_paths.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/planners/problem_generation.h"
 #include "deepcheck/planners/setup.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/kinematics.h"
 
 #include <boost/test/unit_test.hpp>
@@ -15,8 +15,10 @@
 #include <stdexcept>
 #include <string>
 
-namespace deepcheck::planners {
+namespace deepcheck::problems {
 namespace {
+
+using namespace planners;
 
 using deepcheck::test::haveShared;
 using deepcheck::test::sharedDir;
@@ -292,4 +294,4 @@ BOOST_AUTO_TEST_CASE(unreachable_queries_name_the_closest_inverse_kinematics) {
 
 BOOST_AUTO_TEST_SUITE_END()
 
-}  // namespace deepcheck::planners
+}  // namespace deepcheck::problems

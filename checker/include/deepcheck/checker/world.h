@@ -80,6 +80,7 @@
 // NaN, naming the variable; an unknown link, obstacle id or scene; a non-finite pose; a bad
 // obstacle shape).
 
+#include "deepcheck/checker/broad_phase.h"
 #include "deepcheck/checker/tolerances.h"
 #include "deepcheck/deep/signed_distance.h"
 #include "deepcheck/robots/collision_geometry.h"
@@ -104,14 +105,6 @@ namespace deepcheck::checker {
 namespace detail {
 struct WorldState;
 }  // namespace detail
-
-/// Which broad phase finds the world pieces near a robot link (see aabb_tree.h in checker/src).
-enum class BroadPhase {
-  AabbTree,  ///< the static AABB tree of checker/src/aabb_tree.h (default: measured faster)
-  FclTree,   ///< FCL's DynamicAABBTreeCollisionManager over the same boxes
-  None,      ///< every world piece is a candidate (bounding-volume tests only): for tests
-};
-const char* toString(BroadPhase b);
 
 /// What a body of a pair is.
 struct BodyRef {
@@ -223,7 +216,6 @@ struct QueryStats {
                                       ///< cell of their grid certified free (world.cpp summary)
   std::uint64_t centroidInside = 0;   ///< isFree: the part of narrowPhase decided without GJK,
                                       ///< a robot piece's centroid inside a world piece
-                                      ///< (WorldOptions::centroidTest)
   std::uint64_t enclosedAgain = 0;    ///< isFree: the part of narrowPhase decided without GJK,
                                       ///< the four vertex pairs that enclosed the origin when the
                                       ///< pair last overlapped enclosing it again
@@ -231,11 +223,6 @@ struct QueryStats {
   std::uint64_t fullDepth = 0;        ///< signedDistance: overlapping pairs whose one-walk depth
                                       ///< could beat the best, measured again with all restarts
 };
-
-namespace detail {
-struct ContextTestAccess;  // world_test_access.h (checker/src): hooks for the tests
-struct WorldTestAccess;    // world_test_access.h: the world's internals, for the tests
-}  // namespace detail
 
 /// How a World is built.
 struct WorldOptions {
@@ -264,16 +251,11 @@ struct WorldOptions {
   /// pairs of links whose reach spheres stay farther apart than this (metres, >= 0; infinity
   /// keeps everything). Distances below it are exact.
   double reachMargin = tol::kDefaultReachMargin;
+  /// Which world pieces may be near a robot link (broad_phase.h): one of the World's own broad
+  /// phases, or, when externalBroadPhase is set, the trees it builds (then `broadPhase` is not
+  /// used). Neither changes an answer.
   BroadPhase broadPhase = BroadPhase::AabbTree;
-  /// Certified-free grids for the self pairs whose relative pose depends on one or two variables
-  /// (self_pair_grid.h in checker/src): isFree skips such a pair when q lies in a cell where it was
-  /// proved apart at construction. Never changes an answer; off only to compare, in tests.
-  bool selfPairGrids = true;
-  /// isFree: before GJK on a robot piece against a world piece of at most 32 faces, test whether
-  /// the robot piece's centroid (a point of its core) lies inside the world piece, deeper than
-  /// twice its hull tolerance: then they overlap, as GJK would find. Never changes an answer;
-  /// off only to compare, in tests.
-  bool centroidTest = true;
+  std::shared_ptr<const PieceTreeFactory> externalBroadPhase;
 };
 
 /// A scene and where it goes: World::addScene takes the loaded model and this placement;
@@ -342,7 +324,6 @@ class World {
 
    private:
     friend class World;
-    friend struct detail::ContextTestAccess;
     explicit Context(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
   };
@@ -473,7 +454,7 @@ class World {
 
   /// The convex pieces the queries use for robot link `link`, in the link frame (X_LP); empty for
   /// a link without geometry; objects attached to it are not among them (attachedObjects()). For
-  /// display and export (html_view.h). Defined in world_pieces.cpp.
+  /// display and export (deepcheck/viewer/html_view.h). Defined in world_pieces.cpp.
   std::vector<robots::CollisionPiece> linkPieces(int link) const;
   /// A scene or obstacle piece as the queries use it: X_LP is its pose in the world.
   struct WorldPieceRef {
@@ -523,13 +504,15 @@ class World {
   /// Human-readable summary: links, pieces, scene pieces kept and dropped, pairs checked.
   std::string summary() const;
 
+  /// The world's shared state; its type is internal to the library (checker/src/world_internal.h).
+  const std::shared_ptr<detail::WorldState>& internalState() const { return state_; }
+
  private:
   /// The changes made under the world's lock; the public functions then report the new fixed
   /// pairs (world_fixed_pairs.cpp), which queries the world and so needs the lock released.
   int addSceneLocked(robots::RobotModel scene, const SceneSpec& placement);
   std::vector<int> addObstaclesLocked(const std::vector<Obstacle>& obstacles);
 
-  friend struct detail::WorldTestAccess;
   std::shared_ptr<detail::WorldState> state_;
 };
 

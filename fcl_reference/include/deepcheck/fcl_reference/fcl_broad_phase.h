@@ -1,19 +1,21 @@
 #pragma once
-// checker::BroadPhase::FclTree: FCL's DynamicAABBTreeCollisionManager over the boxes of the world
+// FCL's DynamicAABBTreeCollisionManager as a World's broad phase, over the boxes of the world
 // pieces, with the same queries as the checker's own AABB tree, so the two can be compared on one
 // world (tests/checker, bench/checker_bench.cpp). The checker itself does not depend on FCL: this
-// library supplies the broad phase.
+// library supplies the broad phase through the checker's extension point
+// (deepcheck/checker/broad_phase.h).
 //
-//   deepcheck::fcl_reference::enableFclBroadPhase();
 //   checker::WorldOptions options;
-//   options.broadPhase = checker::BroadPhase::FclTree;
-//
-// A World asked for FclTree before enableFclBroadPhase() throws std::invalid_argument.
+//   options.externalBroadPhase = deepcheck::fcl_reference::fclBroadPhase();
+
+#include "deepcheck/checker/broad_phase.h"
+
+#include <memory>
 
 namespace deepcheck::fcl_reference {
 
-/// Makes checker::BroadPhase::FclTree available to the Worlds built afterwards. Thread-safe,
-/// idempotent.
-void enableFclBroadPhase();
+/// The factory of FCL's dynamic AABB tree for WorldOptions::externalBroadPhase (one shared
+/// instance; World::summary() names it "fcl-dynamic-aabb-tree"). Thread-safe.
+std::shared_ptr<const checker::PieceTreeFactory> fclBroadPhase();
 
 }  // namespace deepcheck::fcl_reference

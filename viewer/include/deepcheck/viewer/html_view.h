@@ -16,7 +16,7 @@
 //   - per frame, a value (the minimum signed distance) plotted under the view, waypoints marked,
 //     the smallest value marked as the worst frame.
 // The data is JSON inside the page; the page's JavaScript and CSS live in viewer/ and are embedded
-// when the library is built. The URL hash selects the frame shown first: #t=0, #t=end or #t=N.
+// when the library (deepcheck::viewer) is built. The URL hash selects the frame shown first: #t=0, #t=end or #t=N.
 //
 // Frames: bodies are posed in the world W (z up); a moving body follows a track, one pose per
 // frame. Units: metres.
@@ -39,7 +39,7 @@
 #include <string>
 #include <vector>
 
-namespace deepcheck::checker {
+namespace deepcheck::viewer {
 
 /// An original geometry of a body (shaded in the page).
 struct ViewShape {
@@ -119,11 +119,11 @@ struct WorldViewOptions {
 /// closest pair (World::signedDistance) and, where that pair overlaps, the body-level signed
 /// distance of its link (or attached object) and the body it overlaps (World::bodySignedDistance
 /// with default options): the deepest pair names the body the link overlaps most deeply.
-ViewScene viewOfWorld(const World& world, const std::vector<Eigen::VectorXd>& configurations,
+ViewScene viewOfWorld(const checker::World& world, const std::vector<Eigen::VectorXd>& configurations,
                       const WorldViewOptions& options = WorldViewOptions());
 
 /// writeHtmlView(viewOfWorld(world, configurations, options), file).
-void writeHtmlView(const World& world, const std::vector<Eigen::VectorXd>& configurations, const std::string& file,
+void writeHtmlView(const checker::World& world, const std::vector<Eigen::VectorXd>& configurations, const std::string& file,
                    const WorldViewOptions& options = WorldViewOptions());
 
 /// The bodies of a URDF model's links at the poses X_WL: shapes from their collision elements
@@ -133,4 +133,4 @@ std::vector<ViewBody> linkBodies(const robots::RobotModel& model, const std::vec
                                  const std::vector<std::vector<robots::CollisionPiece>>& pieces,
                                  const std::string& layer, const std::string& namePrefix);
 
-}  // namespace deepcheck::checker
+}  // namespace deepcheck::viewer

@@ -2,7 +2,7 @@
 // closest pair along a sequence of configurations, densified for animation, with the body-level
 // answer of that pair's bodies where they overlap (html_view.h).
 
-#include "deepcheck/checker/html_view.h"
+#include "deepcheck/viewer/html_view.h"
 
 #include "deepcheck/checker/body_distance.h"
 
@@ -18,7 +18,15 @@
 #include <utility>
 #include <vector>
 
-namespace deepcheck::checker {
+namespace deepcheck::viewer {
+
+using checker::AttachedObjectInfo;
+using checker::BodyRef;
+using checker::Contact;
+using checker::DistanceResult;
+using checker::Obstacle;
+using checker::World;
+
 namespace {
 
 /// Meshes loaded once per file and scale.
@@ -272,4 +280,4 @@ void writeHtmlView(const World& world, const std::vector<Eigen::VectorXd>& confi
   writeHtmlView(viewOfWorld(world, configurations, options), file);
 }
 
-}  // namespace deepcheck::checker
+}  // namespace deepcheck::viewer

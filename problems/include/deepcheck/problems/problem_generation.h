@@ -58,7 +58,7 @@ namespace deepcheck::checker {
 class World;
 }
 
-namespace deepcheck::planners {
+namespace deepcheck::problems {
 
 struct SceneVariation {
   std::vector<std::string> names;  ///< objects, or {"World"}
@@ -112,7 +112,7 @@ Eigen::VectorXd configurationOf(const robots::RobotModel& robot, const RobotConf
 
 /// The variables of `robot` outside the planning group `group` of the SRDF `srdf`, at their
 /// values in `config` (clamped into the limits, as configurationOf does): what
-/// SetupOptions::lockedVariables holds when a MotionBenchMaker robot is planned by group, the
+/// planners::SetupOptions::lockedVariables holds when a MotionBenchMaker robot is planned by group, the
 /// other joints at the robot file's default state, as MoveIt holds them. Throws what
 /// readSrdfGroups and groupVariables throw (robots/planning_group.h).
 std::map<std::string, double> lockedOutsideGroup(const robots::RobotModel& robot, const RobotConfig& config,
@@ -168,10 +168,10 @@ using ProblemProgress = std::function<void(int index, const Problem& problem)>;
 /// generation and left empty); `checker` is a validity checker on it. Throws std::runtime_error
 /// when a problem cannot be generated within maxAttempts (naming the queries tried) and
 /// std::invalid_argument for bad input.
-std::vector<Problem> generateProblems(checker::World& world, const StateValidityChecker& checker,
+std::vector<Problem> generateProblems(checker::World& world, const planners::StateValidityChecker& checker,
                                       const robots::PlanningScene& nominal,
                                       const std::vector<SceneVariation>& variations, const QuerySet& queries,
                                       const ProblemOptions& options, int count,
                                       const ProblemProgress& progress = {}, const std::string& variationSource = "");
 
-}  // namespace deepcheck::planners
+}  // namespace deepcheck::problems

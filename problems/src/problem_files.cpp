@@ -1,7 +1,7 @@
 // MotionBenchMaker's variation, query and robot files (problem_generation.h): checked reading,
 // every error naming the file, the line and the value.
 
-#include "deepcheck/planners/problem_generation.h"
+#include "deepcheck/problems/problem_generation.h"
 #include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/planning_group.h"
 
@@ -14,7 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace deepcheck::planners {
+namespace deepcheck::problems {
 
 namespace {
 
@@ -275,4 +275,4 @@ std::map<std::string, double> lockedOutsideGroup(const robots::RobotModel& robot
   return locked;
 }
 
-}  // namespace deepcheck::planners
+}  // namespace deepcheck::problems

@@ -4,9 +4,9 @@
 // Bulk numbers (mesh vertices, piece edges, per-frame poses) are base64 of little-endian float32 /
 // uint32 / float64 arrays: a third of the size of decimal text and decoded without parsing.
 
-#include "deepcheck/checker/html_view.h"
+#include "deepcheck/viewer/html_view.h"
 
-#include "deepcheck_viewer_assets.h"  // generated from viewer/ and libjs-three (CMakeLists.txt)
+#include "deepcheck_viewer_assets.h"  // generated from viewer/ and libjs-three (viewer/CMakeLists.txt)
 
 #include <cmath>
 #include <cstdint>
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-namespace deepcheck::checker {
+namespace deepcheck::viewer {
 namespace {
 
 std::string base64(const void* data, std::size_t size) {
@@ -271,11 +271,11 @@ void writeHtmlView(const ViewScene& scene, std::ostream& out) {
   writeFrames(scene, data);
   data << "}";
   const std::string json = data.str();
-  const std::string page = expand(viewer_assets::kPage, {{"@DEEPCHECK_DATA@", json.c_str()},
-                                                         {"@DEEPCHECK_VIEWER_JS@", viewer_assets::kViewerJs},
-                                                         {"@DEEPCHECK_ORBIT_CONTROLS_JS@", viewer_assets::kOrbitControlsJs},
-                                                         {"@DEEPCHECK_THREE_JS@", viewer_assets::kThreeJs},
-                                                         {"@DEEPCHECK_VIEWER_CSS@", viewer_assets::kViewerCss}});
+  const std::string page = expand(assets::kPage, {{"@DEEPCHECK_DATA@", json.c_str()},
+                                                         {"@DEEPCHECK_VIEWER_JS@", assets::kViewerJs},
+                                                         {"@DEEPCHECK_ORBIT_CONTROLS_JS@", assets::kOrbitControlsJs},
+                                                         {"@DEEPCHECK_THREE_JS@", assets::kThreeJs},
+                                                         {"@DEEPCHECK_VIEWER_CSS@", assets::kViewerCss}});
   out << page;
 }
 
@@ -289,4 +289,4 @@ void writeHtmlView(const ViewScene& scene, const std::string& file) {
   if (!out) throw std::invalid_argument("writeHtmlView: error while writing '" + file + "'");
 }
 
-}  // namespace deepcheck::checker
+}  // namespace deepcheck::viewer

@@ -1,7 +1,7 @@
 // Problem generation as MotionBenchMaker does it (problem_generation.h): vary the scene, ground
 // object-relative queries by collision-free inverse kinematics, retry until valid.
 
-#include "deepcheck/planners/problem_generation.h"
+#include "deepcheck/problems/problem_generation.h"
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/planners/pose_goal.h"
@@ -9,7 +9,9 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace deepcheck::planners {
+namespace deepcheck::problems {
+
+using planners::StateValidityChecker;
 
 namespace {
 
@@ -248,4 +250,4 @@ std::vector<Problem> generateProblems(checker::World& world, const StateValidity
   return problems;
 }
 
-}  // namespace deepcheck::planners
+}  // namespace deepcheck::problems
