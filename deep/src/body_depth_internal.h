@@ -9,6 +9,11 @@
 #include <limits>
 #include <vector>
 
+namespace deepcheck::deep {
+/// The pairwise queries' options under the name body_depth.cpp uses (BodyDepthOptions::pair).
+using DeepOptions = PenetrationOptions;
+}  // namespace deepcheck::deep
+
 namespace deepcheck::deep::body {
 
 /// A piece posed in frame P (world orientation, origin at A's position): x_P = X_PP * vertex.
