@@ -6,7 +6,6 @@
 
 #include "deepcheck/deep/gjk.h"
 #include "deepcheck/deep/signed_distance.h"
-#include "deepcheck/deep/walk_scratch.h"
 
 #include <ccd/ccd.h>
 
@@ -24,42 +23,38 @@ using deep::ConvexPolytope;
 WalkStats walkOf(const deep::SignedDistanceResult& r) {
   WalkStats w;
   w.valid = true;
-  w.starts = r.deep.starts;
-  w.hubs = r.deep.hubs;
-  w.steps = r.deep.steps;
-  w.localMinima = r.deep.localMinima;
+  w.starts = r.walk.starts;
+  w.hubs = r.walk.hubs;
+  w.steps = r.walk.steps;
+  w.localMinima = r.walk.localMinima;
   w.expansions = r.expansions;
-  w.warm = r.deep.warm;
+  w.warm = r.walk.warm;
   w.notConverged = r.status == deep::SignedDistanceStatus::NotConverged;
   return w;
 }
 
-deep::DeepOptions optionsFor(deep::PenetrationMethod method) {
-  deep::DeepOptions o;
+deep::PenetrationOptions optionsFor(deep::PenetrationMethod method) {
+  deep::PenetrationOptions o;
   o.method = method;
   return o;
 }
 
 const char* prefixOf(deep::PenetrationMethod method) {
-  return method == deep::PenetrationMethod::Certified ? "certified" : "deep";
+  return method == deep::PenetrationMethod::CertifiedExpansion ? "certified" : "deep";
 }
 
 /// signedDistance() with a PairCache primed as pd_families.h describes (previous step, or the
-/// same pair at a nearby pose): DEEP's walk ("deep_warm"), the certified method
-/// ("certified_warm"), or the certified method walking first from the last facet, checked by the
-/// cached surface ("certified_walk_warm", DeepOptions::warmWalk). The certified method's scratch
-/// surface is the method's own, reused.
+/// same pair at a nearby pose): the Gauss-map walk ("deep_warm") or the certified method
+/// ("certified_warm"). The methods' scratch space is the benchmark method's own, reused.
 class Warm : public Method {
  public:
   explicit Warm(deep::PenetrationMethod method) : options_(optionsFor(method)), name_(std::string(prefixOf(method)) + "_warm") {}
-  Warm(const deep::DeepOptions& options, std::string name) : options_(options), name_(std::move(name)) {}
   std::string name() const override { return name_; }
 
   void beginFamily(const Family& f) override {
     primed_.assign(f.queries.size(), deep::PairCache{});
     deep::PairCache carried;
-    carried.surface = surface_.get();
-    carried.walk = &walk_;
+    carried.scratch = &scratch_;
     for (std::size_t i = 0; i < f.queries.size(); ++i) {
       const Query& q = f.queries[i];
       const ConvexPolytope& A = f.shapes[q.a];
@@ -70,8 +65,7 @@ class Warm : public Method {
         deep::signedDistance(A, q.X_WA, B, q.X_WB, &carried, options_);
       } else {
         deep::PairCache c;
-        c.surface = surface_.get();
-        c.walk = &walk_;
+        c.scratch = &scratch_;
         deep::signedDistance(A, q.X_WA, B, q.primeB->iso(), &c, options_);
         primed_[i] = c;
       }
@@ -93,10 +87,9 @@ class Warm : public Method {
   }
 
  private:
-  deep::DeepOptions options_;
+  deep::PenetrationOptions options_;
   std::string name_;
-  std::unique_ptr<deep::ExpansionSurface> surface_ = std::make_unique<deep::ExpansionSurface>();
-  deep::WalkScratch walk_;
+  deep::PenetrationScratch scratch_;
   std::vector<deep::PairCache> primed_;   // each query's cache as primed, kept unchanged
   std::vector<deep::PairCache> working_;  // the caches the timed queries use, reset after each
   deep::SignedDistanceResult last_;
@@ -108,8 +101,7 @@ class Warm : public Method {
 class Cold : public Method {
  public:
   explicit Cold(deep::PenetrationMethod method) : options_(optionsFor(method)), prefix_(prefixOf(method)) {
-    cache_.surface = surface_.get();
-    cache_.walk = &walk_;
+    cache_.scratch = &scratch_;
   }
   std::string name() const override { return prefix_ + "_cold"; }
   void beginFamily(const Family&) override {}
@@ -122,10 +114,9 @@ class Cold : public Method {
   WalkStats lastWalk() const override { return walkOf(last_); }
 
  private:
-  deep::DeepOptions options_;
+  deep::PenetrationOptions options_;
   std::string prefix_;
-  std::unique_ptr<deep::ExpansionSurface> surface_ = std::make_unique<deep::ExpansionSurface>();
-  deep::WalkScratch walk_;
+  deep::PenetrationScratch scratch_;
   deep::PairCache cache_;
   deep::SignedDistanceResult last_;
 };
@@ -225,13 +216,10 @@ class CcdPenetration : public Method {
 
 std::vector<std::unique_ptr<Method>> makeMethods() {
   std::vector<std::unique_ptr<Method>> m;
-  m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::Certified));
-  m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::Certified));
-  deep::DeepOptions walkFirst = optionsFor(deep::PenetrationMethod::Certified);
-  walkFirst.warmWalk = true;
-  m.push_back(std::make_unique<Warm>(walkFirst, "certified_walk_warm"));
-  m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::DeepWalk));
-  m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::DeepWalk));
+  m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::CertifiedExpansion));
+  m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::CertifiedExpansion));
+  m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::GaussMapWalk));
+  m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::GaussMapWalk));
   m.push_back(std::make_unique<ProjectGjk>());
   for (auto& peer : makeFclMethods()) m.push_back(std::move(peer));
   m.push_back(std::make_unique<CcdPenetration>(false));

@@ -27,7 +27,6 @@
 #include "deepcheck/deep/body_depth.h"
 #include "deepcheck/deep/exact.h"
 #include "deepcheck/deep/signed_distance.h"
-#include "deepcheck/deep/walk_scratch.h"
 
 #include <Eigen/Geometry>
 
@@ -78,9 +77,9 @@ int runPd(std::vector<std::string> args) {
     throw UsageError("unknown --method '" + method + "' (expected certified, deep-walk or exact)");
   if (exactFlag && method != "exact") throw UsageError("--exact contradicts --method " + method);
   const bool exact = method == "exact";
-  deep::DeepOptions options;
-  options.method = method == "deep-walk" ? deep::PenetrationMethod::DeepWalk
-                                         : deep::PenetrationMethod::Certified;
+  deep::PenetrationOptions options;
+  options.method = method == "deep-walk" ? deep::PenetrationMethod::GaussMapWalk
+                                         : deep::PenetrationMethod::CertifiedExpansion;
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "' (input is read from stdin)");
 
@@ -94,10 +93,8 @@ int runPd(std::vector<std::string> args) {
   }
 
   deep::PairCache cache;
-  deep::ExpansionSurface surface;  // the certified method's scratch, shared by every query
-  deep::WalkScratch walk;          // DEEP's walk's scratch, likewise
-  cache.surface = &surface;
-  cache.walk = &walk;
+  deep::PenetrationScratch scratch;  // the penetration methods' scratch, shared by every query
+  cache.scratch = &scratch;
   int lastA = -1;
   int lastB = -1;
   std::chrono::steady_clock::duration total{0};

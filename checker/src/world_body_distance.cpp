@@ -107,7 +107,7 @@ PosedBody posedBody(const Snapshot& s, const std::vector<Eigen::Isometry3d>& X_W
 
 /// The minimum over piece pairs (the Pairwise method), as a body result: the answer and the
 /// witness pieces; status Separated, Certified (a converged depth) or PairNotCertified.
-deep::BodySignedDistanceResult pairwise(const PosedBody& A, const PosedBody& B, const deep::DeepOptions& options,
+deep::BodySignedDistanceResult pairwise(const PosedBody& A, const PosedBody& B, const deep::PenetrationOptions& options,
                                         deep::SignedDistanceStatus* status) {
   deep::BodySignedDistanceResult out;
   out.distance = std::numeric_limits<double>::infinity();

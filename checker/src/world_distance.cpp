@@ -78,10 +78,10 @@ struct DistanceSearch {
                                           deep::PairCache& cache) {
     warm(c, cache, FarStep::KeepEnclosing);
     // The certified method runs no restarts: one call is the whole query.
-    if (!options.deep.restarts || options.deep.method == deep::PenetrationMethod::Certified)
+    if (!options.deep.walk.restarts || options.deep.method == deep::PenetrationMethod::CertifiedExpansion)
       return deep::signedDistance(A, X_WA, B, X_WB, &cache, options.deep);
-    deep::DeepOptions quick = options.deep;
-    quick.restarts = false;
+    deep::PenetrationOptions quick = options.deep;
+    quick.walk.restarts = false;
     deep::SignedDistanceResult r = deep::signedDistance(A, X_WA, B, X_WB, &cache, quick);
     if (r.status == deep::SignedDistanceStatus::Separated || r.distance >= bound()) return r;
     ++c.stats.fullDepth;

@@ -14,8 +14,6 @@
 // sphere. A pair reaches the narrow phase only when every bounding test passes.
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/deep/expansion_surface.h"
-#include "deepcheck/deep/walk_scratch.h"
 
 #include "world_internal.h"
 
@@ -69,10 +67,9 @@ struct World::Context::Impl {
   std::vector<deep::PairCache> obstacleCaches;  // robot piece * obstacle pieces + world piece
   /// Per pair, indexed as the caches above: the oriented-box axis that last separated it (obb.h).
   std::vector<std::uint8_t> selfAxes, sceneAxes, obstacleAxes;
-  /// Scratch of the certified expansion and of DEEP's walk, shared by every pair of this context
-  /// (a context runs one query at a time): no allocation or large stack frame per pair.
-  std::unique_ptr<deep::ExpansionSurface> surface = std::make_unique<deep::ExpansionSurface>();
-  std::unique_ptr<deep::WalkScratch> walk = std::make_unique<deep::WalkScratch>();
+  /// Scratch of the penetration depth methods, shared by every pair of this context (a context
+  /// runs one query at a time): no allocation or large stack frame per pair.
+  std::unique_ptr<deep::PenetrationScratch> scratch = std::make_unique<deep::PenetrationScratch>();
 
   std::vector<Eigen::Isometry3d> X_WL;
   std::vector<Eigen::Isometry3d> X_WP;  // robot pieces, valid when transformStamp == stamp
@@ -151,8 +148,7 @@ inline deep::PairCache* warm(const Impl& c, deep::PairCache& cache, FarStep far)
       cache.gjk.enclosed = gjk.enclosed;
     }
   }
-  cache.surface = c.surface.get();
-  cache.walk = c.walk.get();
+  cache.scratch = c.scratch.get();
   return &cache;
 }
 

@@ -231,7 +231,7 @@ Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, Pieces& P, std::vec
 /// `skip`, decided by the pair's own signed distance with B moved by -x.
 bool coveredByPairs(const std::vector<PairInfo>& pairs, int skip, int nB,
                     const std::vector<PosedPiece>& A, const std::vector<PosedPiece>& B,
-                    const Eigen::Vector3d& x, double tol, const DeepOptions& options) {
+                    const Eigen::Vector3d& x, double tol, const PenetrationOptions& options) {
   const double r = x.norm();
   for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
     if (k == skip || pairs[static_cast<std::size_t>(k)].distanceLower >= r) continue;
@@ -317,7 +317,7 @@ struct PairCounts {
 /// nearest, and is otherwise bounded from below by the spheres' gap (distanceLower), which is all
 /// the later steps ask of a pair that does not overlap.
 PairCounts measurePairs(const std::vector<PosedPiece>& A, const std::vector<PosedPiece>& B,
-                        const DeepOptions& options, std::vector<PairInfo>& pairs) {
+                        const PenetrationOptions& options, std::vector<PairInfo>& pairs) {
   const std::size_t nB = B.size();
   std::vector<double> gap(pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) {

@@ -1,4 +1,4 @@
-#include "deepcheck/deep/certified.h"
+#include "deepcheck/deep/internal/certified.h"
 
 #include "deepcheck/deep/tolerances.h"
 
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <limits>
 
-namespace deepcheck::deep {
+namespace deepcheck::deep::detail {
 
 const char* toString(CertifiedStatus s) {
   switch (s) {
@@ -205,4 +205,4 @@ CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolyto
   return r;
 }
 
-}  // namespace deepcheck::deep
+}  // namespace deepcheck::deep::detail

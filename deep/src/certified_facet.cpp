@@ -8,7 +8,7 @@
 // offset is one support query in that normal, so the answer is a support value: a valid
 // separating translation, never below the true depth.
 
-#include "deepcheck/deep/certified.h"
+#include "deepcheck/deep/internal/certified.h"
 
 #include "deepcheck/deep/tolerances.h"
 
@@ -17,15 +17,10 @@
 #include <algorithm>
 #include <cmath>
 
-namespace deepcheck::deep {
+namespace deepcheck::deep::detail {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-
-/// Cosine above which a feature's normal counts as the certifying face's: corners on one facet
-/// give a face normal equal to the facet's to round-off, corners on different facets one off by
-/// far more. Only a pre-selection: the support query below decides.
-constexpr double kSameNormalCosine = 1.0 - 1e-6;
 
 /// The distinct values of idx[0..2] in out; returns their count.
 int distinct(const int* idx, int* out) {
@@ -42,10 +37,10 @@ bool adjacent(const ConvexPolytope& P, int v, int w) {
 }
 
 /// Face of P in vertex v's ring whose normal (P's own frame) is closest to `dir` (same frame);
-/// -1 if none agrees to kSameNormalCosine (the corners do not lie on one face).
+/// -1 if none agrees to tol::kSameNormalCosine (the corners do not lie on one face).
 int ringFaceAlong(const ConvexPolytope& P, int v, const Vec3& dir) {
   int best = -1;
-  double bestDot = kSameNormalCosine;
+  double bestDot = tol::kSameNormalCosine;
   for (int f : P.vertexFaces(v)) {
     const double d = P.faceNormal(f).dot(dir);
     if (d > bestDot) {
@@ -60,11 +55,11 @@ int ringFaceAlong(const ConvexPolytope& P, int v, const Vec3& dir) {
 /// vertex moved back by h u (FV), or the point of A's edge on the common perpendicular of the two
 /// edges' lines (EE).
 Vec3 witnessOnA(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
-                const DeepResult& out, const Vec3& u, double h) {
+                const WalkResult& out, const Vec3& u, double h) {
   switch (out.type) {
-    case DeepResult::FacetType::VF: return A.localVertex(out.featureA);
-    case DeepResult::FacetType::FV: return F.vertexB(B, out.featureB) - h * u;
-    case DeepResult::FacetType::EE: break;
+    case WalkResult::FacetType::VF: return A.localVertex(out.featureA);
+    case WalkResult::FacetType::FV: return F.vertexB(B, out.featureB) - h * u;
+    case WalkResult::FacetType::EE: break;
   }
   const Vec3 a0 = A.localVertex(out.featureA), ea = A.localVertex(out.featureA2) - a0;
   const Vec3 b0 = F.vertexB(B, out.featureB), eb = F.vertexB(B, out.featureB2) - b0;
@@ -83,7 +78,7 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   int ia[3], ib[3];
   const int nA = distinct(faceA, ia), nB = distinct(faceB, ib);
   if (nA == 1 && nB == 3) {
-    out.type = DeepResult::FacetType::VF;
+    out.type = WalkResult::FacetType::VF;
     out.featureA = ia[0];
     // B's outward face normal is M's outward normal there (in B's frame).
     out.featureB = ringFaceAlong(B, ib[0], F.toB(normal));
@@ -91,7 +86,7 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
     return out.featureB >= 0;
   }
   if (nB == 1 && nA == 3) {
-    out.type = DeepResult::FacetType::FV;
+    out.type = WalkResult::FacetType::FV;
     out.featureB = ib[0];
     // A's outward face normal is the opposite of M's.
     out.featureA = ringFaceAlong(A, ia[0], -normal);
@@ -106,8 +101,8 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
     if (!(len > tol::kParallelSine * ea.norm() * eb.norm())) return false;
     u /= len;
     if (u.dot(normal) < 0) u = -u;
-    if (u.dot(normal) < kSameNormalCosine) return false;
-    out.type = DeepResult::FacetType::EE;
+    if (u.dot(normal) < tol::kSameNormalCosine) return false;
+    out.type = WalkResult::FacetType::EE;
     out.featureA = ia[0];
     out.featureA2 = ia[1];
     out.featureB = ib[0];
@@ -118,12 +113,12 @@ bool facetOfCorners(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   return false;
 }
 
-/// Writes a named facet's type and features into `out`, as DeepResult holds them.
-void setFeatures(const NamedFacet& facet, DeepResult& out) {
+/// Writes a named facet's type and features into `out`, as WalkResult holds them.
+void setFeatures(const NamedFacet& facet, WalkResult& out) {
   out.type = facet.type;
   out.featureA = facet.featureA;
   out.featureB = facet.featureB;
-  if (facet.type != DeepResult::FacetType::EE) return;
+  if (facet.type != WalkResult::FacetType::EE) return;
   out.featureA2 = facet.featureA2;
   out.featureB2 = facet.featureB2;
 }
@@ -140,13 +135,13 @@ NamedFacet facetOfFace(const ConvexPolytope& A, const ConvexPolytope& B, const P
 
 void facetSupports(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F, const NamedFacet& facet,
                    int& a, int& b) {
-  const bool vf = facet.type == DeepResult::FacetType::VF, fv = facet.type == DeepResult::FacetType::FV;
+  const bool vf = facet.type == WalkResult::FacetType::VF, fv = facet.type == WalkResult::FacetType::FV;
   a = fv ? A.faceSupport(facet.featureA) : A.support(-facet.u, a);
   b = vf ? B.faceSupport(facet.featureB) : B.support(F.toB(facet.u), b);
 }
 
 bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
-                    const CertifiedResult& c, DeepResult& out) {
+                    const CertifiedResult& c, WalkResult& out) {
   if (c.status != CertifiedStatus::Certified) return false;
   const NamedFacet facet = c.facet.state == NamedFacet::State::Unknown
                                ? facetOfFace(A, B, F, c.faceA, c.faceB, c.faceNormal)
@@ -167,7 +162,7 @@ bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   // The corners must support u (else the features are not the facet's) and the offset must lie
   // in the bracket.
   if (h - onFacet > tol::kFeatureRelative * L || h > c.upper + c.tau || h < c.lower - c.tau) return false;
-  out.status = DeepStatus::Converged;
+  out.status = WalkStatus::Converged;
   out.depth = h;
   out.normal = -u;
   out.pointA = witnessOnA(A, B, F, out, u, h);
@@ -175,4 +170,4 @@ bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   return true;
 }
 
-}  // namespace deepcheck::deep
+}  // namespace deepcheck::deep::detail

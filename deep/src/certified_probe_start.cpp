@@ -3,17 +3,17 @@
 // directions, joined as the icosahedron's faces, start the expanding surface in place of GJK's
 // simplex when they form a convex surface strictly around the origin; the best-first expansion
 // then runs as from any start. Twelve supports spread over all directions leave fewer expansions
-// than GJK's four points (bench/README.md, "The certified cold query"), and A's side of each is
-// read from its table (ConvexPolytope::probeSupport), so only B climbs.
+// than GJK's four points, and A's side of each is read from its table (detail::probeSupport), so
+// only B climbs.
 
-#include "deepcheck/deep/certified.h"
+#include "deepcheck/deep/internal/certified.h"
 #include "deepcheck/deep/tolerances.h"
 
 #include "probe_icosahedron.h"
 
 #include <algorithm>
 
-namespace deepcheck::deep {
+namespace deepcheck::deep::detail {
 
 bool certifiedFromProbes(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                          ExpansionSurface& surface, const CertifiedOptions& options, CertifiedResult& result) {
@@ -21,7 +21,7 @@ bool certifiedFromProbes(const ConvexPolytope& A, const ConvexPolytope& B, const
   ExpansionSurface::Vertex w[probe::kDirections];
   int b = 0;
   for (int i = 0; i < probe::kDirections; ++i) {
-    const int a = A.probeSupport(ico.opposite[i]);  // A's vertex lowest along direction i
+    const int a = probeSupport(A, ico.opposite[i]);  // A's vertex lowest along direction i
     b = B.support(frame.toB(ico.direction[i]), b);
     w[i] = {frame.vertexB(B, b) - A.localVertex(a), a, b};
     for (int j = 0; j < i; ++j)
@@ -34,4 +34,4 @@ bool certifiedFromProbes(const ConvexPolytope& A, const ConvexPolytope& B, const
   return true;
 }
 
-}  // namespace deepcheck::deep
+}  // namespace deepcheck::deep::detail

@@ -1,6 +1,7 @@
-// Warm start of the certified penetration depth (see CertifiedWarmStart in certified.h).
+// Warm start of the certified penetration depth (see CertifiedWarmStart in
+// internal/certified_warm_start.h).
 
-#include "deepcheck/deep/certified.h"
+#include "deepcheck/deep/internal/certified.h"
 
 #include "deepcheck/deep/tolerances.h"
 
@@ -10,7 +11,7 @@
 #include <cmath>
 #include <limits>
 
-namespace deepcheck::deep {
+namespace deepcheck::deep::detail {
 
 namespace {
 
@@ -280,19 +281,4 @@ CertifiedResult expandWarm(const ConvexPolytope& A, const ConvexPolytope& B, con
   return r;
 }
 
-CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                                  const W& w, double upper) {
-  CertifiedResult r;
-  r.upper = upper;
-  r.tau = tauOf(A, B, frame);
-  if (!std::isfinite(upper) || !w.belongsTo(A, B)) return r;
-  MovedSurface m(A, B, frame, w);
-  Bound bound;
-  if (!boundFaces(w, m, upper - r.tau, bound)) return r;
-  // No support query: a face still below the bound leaves the depth uncertified.
-  r.lower = std::min(bound.lower, upper);
-  if (upper - r.lower <= r.tau) r.status = CertifiedStatus::Certified;
-  return r;
-}
-
-}  // namespace deepcheck::deep
+}  // namespace deepcheck::deep::detail

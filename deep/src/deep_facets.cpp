@@ -40,10 +40,9 @@ int Walker::gaussPolygonB(int ib, const Vec3& b, Corner* poly) {
 // projection), so the polygon stays exact on the sphere as long as every arc is below 180 degrees.
 // Writes at most n + 1 corners to `out`; returns their number.
 int Walker::clip(const Corner* in, int n, Corner* out, double* side, const Vec3& h, int label) {
-  // Corners are unit directions. Those within this angle of the plane count as on it: keeps
+  // Corners are unit directions. Those within tol::kOnPlaneSine of the plane count as on it: keeps
   // boundary corners of degenerate overlays (parallel faces) instead of letting round-off decide.
-  constexpr double kOnPlane = 1e-13;
-  const double onPlane = -kOnPlane * h.norm();
+  const double onPlane = -tol::kOnPlaneSine * h.norm();
   bool allIn = true;
   for (int i = 0; i < n; ++i) {
     side[i] = in[i].u.dot(h);
@@ -117,7 +116,7 @@ bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
     const int out = poly[i].out;
     if (in == out) continue;  // a corner inside one arc (polygon lune), not a Gauss-map vertex
     const Vec3& approx = poly[i].u;
-    DeepResult::FacetType type;
+    WalkResult::FacetType type;
     Vec3 u;
     int fa = ia, fa2 = -1, fb = ib, fb2 = -1;
     if (!isA(in) && !isA(out)) {
@@ -130,7 +129,7 @@ bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
       } else {
         fb = approx.dot(nb(0)) >= 0 ? 0 : 1;
       }
-      type = DeepResult::FacetType::VF;
+      type = WalkResult::FacetType::VF;
       u = nb(fb);
     } else if (isA(in) && isA(out)) {
       // Two clipping planes of A meet: minus a face normal of A inside N_B(b): FV.
@@ -143,7 +142,7 @@ bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
       } else {
         fa = approx.dot(na(0)) <= 0 ? 0 : 1;
       }
-      type = DeepResult::FacetType::FV;
+      type = WalkResult::FacetType::FV;
       u = -na(fa);
     } else {
       // An arc of B crosses a plane of A: edge-edge.
@@ -158,7 +157,7 @@ bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
       if (len2 <= minSine * minSine * eB.squaredNorm() * eA.squaredNorm()) continue;
       u /= std::sqrt(len2);
       if (u.dot(approx) < 0) u = -u;
-      type = DeepResult::FacetType::EE;
+      type = WalkResult::FacetType::EE;
     }
     // The facet passes through the vertex b - a of M, so its offset is u . (b - a).
     const double d = u.dot(ba);
@@ -222,21 +221,21 @@ void Walker::facetFeatures(const Candidate& c) {
   fb.clear();
   bool generic = false;
   if (c.featuresKnown) switch (c.type) {
-    case DeepResult::FacetType::VF:
+    case WalkResult::FacetType::VF:
       if (aloneOnPlaneA(c.fa, c.u, -1)) {
         fa.push_back(c.fa);
         for (int v : B_.faceVertices(c.fb)) fb.push_back(v);
         generic = true;
       }
       break;
-    case DeepResult::FacetType::FV:
+    case WalkResult::FacetType::FV:
       if (aloneOnPlaneB(c.fb, c.u, -1)) {
         fb.push_back(c.fb);
         for (int v : A_.faceVertices(c.fa)) fa.push_back(v);
         generic = true;
       }
       break;
-    case DeepResult::FacetType::EE:
+    case WalkResult::FacetType::EE:
       if (aloneOnPlaneA(c.fa, c.u, c.fa2) && aloneOnPlaneA(c.fa2, c.u, c.fa) &&
           aloneOnPlaneB(c.fb, c.u, c.fb2) && aloneOnPlaneB(c.fb2, c.u, c.fb)) {
         fa.push_back(c.fa);

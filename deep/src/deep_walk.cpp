@@ -1,23 +1,21 @@
-// DEEP's walks and the query: walks from the warm start's basins or the cold start directions,
-// the best end is the answer, the best distinct ends are the next warm query's basins. Also the
-// facet at one direction without a walk (facetInDirection: a walk's first facet), with which the
-// certified method names answers on parallel faces. Vocabulary in deep_walker.h; the facets a walk
+// The Gauss-map walk (DEEP's walks) and the query: walks from the warm start's basins or the cold
+// start directions, the best end is the answer, the best distinct ends are the next warm query's
+// basins. Also the facet at one direction without a walk (facetInDirection: a walk's first
+// facet), with which the certified method names answers on parallel faces. Vocabulary in deep_walker.h; the facets a walk
 // moves over come from deep_facets.cpp.
 
 #include "deep_walker.h"
 
-#include "deepcheck/deep/walk_scratch.h"
+#include "deepcheck/deep/internal/walk_scratch.h"
 
-namespace deepcheck::deep {
+namespace deepcheck::deep::detail {
 
-WalkScratch::WalkScratch() : data_(std::make_unique<detail::WalkScratchData>()) {}
+WalkScratch::WalkScratch() : data_(std::make_unique<WalkScratchData>()) {}
 WalkScratch::~WalkScratch() = default;
 WalkScratch::WalkScratch(WalkScratch&&) noexcept = default;
 WalkScratch& WalkScratch::operator=(WalkScratch&&) noexcept = default;
 
-namespace detail {
-
-WalkEnd walk(Walker& w, Candidate start, int maxHubs, DeepStats& stats) {
+WalkEnd walk(Walker& w, Candidate start, int maxHubs, WalkStats& stats) {
   WalkEnd end;
   end.facet = start;
   int next[4];
@@ -83,19 +81,19 @@ namespace {
 class Walks {
  public:
   Walks(Walker& w, const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-        const DeepOptions& options, DeepStats& stats)
+        const WalkOptions& options, WalkStats& stats)
       : w_(w), A_(A), B_(B), frame_(frame), options_(options), stats_(stats) {
     best_.facet.d = std::numeric_limits<double>::infinity();
     // The origin lies off M's centre by -t: the nearest boundary is most likely that way.
     centroidDir_ = frame.t.norm() > 0 ? Vec3(-frame.t.normalized()) : Vec3(Vec3::UnitZ());
   }
 
-  void warmStarts(const DeepCache& cache);
+  void warmStarts(const WalkCache& cache);
   void coldStarts();
   /// Fills the answer from the best end; counts the walks that ended in a worse local minimum.
-  void answer(DeepResult& result);
+  void answer(WalkResult& result);
   /// Basins for the next warm query: the answer first, then the best other distinct ends.
-  void rememberBasins(DeepCache& cache, bool warm);
+  void rememberBasins(WalkCache& cache, bool warm);
 
  private:
   void runFrom(int ia, int ib);
@@ -104,8 +102,8 @@ class Walks {
   const ConvexPolytope& A_;
   const ConvexPolytope& B_;
   const PairFrame& frame_;
-  const DeepOptions& options_;
-  DeepStats& stats_;
+  const WalkOptions& options_;
+  WalkStats& stats_;
   Vec3 centroidDir_;
   WalkEnd best_;
   // Where walks ended: to count those that stopped in a worse local minimum, and to remember
@@ -128,7 +126,7 @@ void Walks::runFrom(int ia, int ib) {
   }
 }
 
-void Walks::warmStarts(const DeepCache& cache) {
+void Walks::warmStarts(const WalkCache& cache) {
   stats_.warm = true;
   int ia = 0, ib = 0;
   for (int k = 0; k < cache.count; ++k) {
@@ -180,7 +178,7 @@ void Walks::coldStarts() {
 }
 
 /// The answer's depth, normal, type and features from facet f.
-void setFacet(const Candidate& f, DeepResult& result) {
+void setFacet(const Candidate& f, WalkResult& result) {
   result.depth = f.d;
   result.normal = -f.u;
   result.type = f.type;
@@ -190,12 +188,12 @@ void setFacet(const Candidate& f, DeepResult& result) {
   result.featureB2 = f.fb2;
 }
 
-void Walks::answer(DeepResult& result) {
+void Walks::answer(WalkResult& result) {
   for (int k = 0; k < ended_; ++k) {
     if (ends_[k].d > best_.facet.d + w_.tolImprove()) ++stats_.localMinima;
   }
   const Candidate& f = best_.facet;
-  result.status = best_.converged ? DeepStatus::Converged : DeepStatus::NotConverged;
+  result.status = best_.converged ? WalkStatus::Converged : WalkStatus::NotConverged;
   setFacet(f, result);
   int next[4];
   if (best_.witnessed) {
@@ -207,7 +205,7 @@ void Walks::answer(DeepResult& result) {
   }
 }
 
-void Walks::rememberBasins(DeepCache& cache, bool warm) {
+void Walks::rememberBasins(WalkCache& cache, bool warm) {
   cache.valid = true;
   cache.warmQueries = warm ? cache.warmQueries + 1 : 0;
   cache.count = 0;
@@ -215,7 +213,7 @@ void Walks::rememberBasins(DeepCache& cache, bool warm) {
     for (int k = 0; k < cache.count; ++k) {
       if (cache.hubA[k] == c.hubA && cache.hubB[k] == c.hubB) return;
     }
-    if (cache.count == DeepCache::kBasins) return;
+    if (cache.count == WalkCache::kBasins) return;
     cache.hubA[cache.count] = c.hubA;
     cache.hubB[cache.count] = c.hubB;
     cache.u[cache.count] = c.u;
@@ -227,18 +225,17 @@ void Walks::rememberBasins(DeepCache& cache, bool warm) {
 }
 
 }  // namespace
-}  // namespace detail
 
-DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                           DeepCache* cache, const DeepOptions& options, WalkScratch* scratch) {
-  detail::WalkScratchData local;  // allocates only what this query uses
-  DeepResult result;
-  detail::Walker w(A, B, frame, scratch ? scratch->data() : local);
-  if (detail::lowDimPenetration(w, A, B, frame, result)) return result;
+WalkResult walkPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                           WalkCache* cache, const WalkOptions& options, bool warmStart, WalkScratch* scratch) {
+  WalkScratchData local;  // allocates only what this query uses
+  WalkResult result;
+  Walker w(A, B, frame, scratch ? scratch->data() : local);
+  if (lowDimPenetration(w, A, B, frame, result)) return result;
 
   // General case: walks on the Minkowski difference.
-  detail::Walks walks(w, A, B, frame, options, result.stats);
-  const bool warm = options.warmStart && cache && cache->valid && cache->count > 0 &&
+  Walks walks(w, A, B, frame, options, result.stats);
+  const bool warm = warmStart && cache && cache->valid && cache->count > 0 &&
                     (options.refreshEvery <= 0 || cache->warmQueries < options.refreshEvery);
   if (warm) walks.warmStarts(*cache);
   else walks.coldStarts();
@@ -247,19 +244,19 @@ DeepResult deepPenetration(const ConvexPolytope& A, const ConvexPolytope& B, con
   return result;
 }
 
-DeepResult facetInDirection(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+WalkResult facetInDirection(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                             const Eigen::Vector3d& u, int hintA, int hintB, WalkScratch* scratch) {
-  detail::WalkScratchData local;
-  DeepResult result;
-  detail::Walker w(A, B, frame, scratch ? scratch->data() : local);
+  WalkScratchData local;
+  WalkResult result;
+  Walker w(A, B, frame, scratch ? scratch->data() : local);
   int ia = 0, ib = 0;
   w.hubFor(u, ia, ib, hintA, hintB);
-  detail::Candidate c;
+  Candidate c;
   int next[4];
   if (!w.hub(ia, ib, c, result.stats) || !w.footInFacet(c, result.pointA, result.pointB, next)) return result;
-  result.status = DeepStatus::Converged;
-  detail::setFacet(c, result);
+  result.status = WalkStatus::Converged;
+  setFacet(c, result);
   return result;
 }
 
-}  // namespace deepcheck::deep
+}  // namespace deepcheck::deep::detail

@@ -1,7 +1,8 @@
 #pragma once
 // DEEP's walk, internal: the vocabulary shared by its files (deep_facets.cpp: the local Gauss map
 // overlay and the facets of M it yields; deep_walk.cpp: the walks and the query; low_dim_facets.cpp:
-// points and segments). The algorithm and where it departs from the paper are described in deep.h:
+// points and segments). The algorithm and where it departs from the paper are described in
+// deepcheck/deep/internal/gauss_map_walk.h:
 //   M = B - A          Minkowski difference, in the pair frame P;
 //   hub pair (a, b)    a vertex of A and of B such that b - a is a vertex of M;
 //   C(a, b)            the Gauss region of that vertex of M: N_B(b) ∩ -N_A(a);
@@ -9,7 +10,7 @@
 // The origin is inside M when A and B overlap; the penetration depth is then min_F d_F and the
 // answer's normal (from A to B) is -u.
 
-#include "deepcheck/deep/deep.h"
+#include "deepcheck/deep/internal/gauss_map_walk.h"
 #include "deepcheck/deep/tolerances.h"
 
 #include <algorithm>
@@ -44,7 +45,7 @@ struct Corner {
 struct Candidate {
   double d = std::numeric_limits<double>::infinity();
   Vec3 u = Vec3::UnitZ();
-  DeepResult::FacetType type = DeepResult::FacetType::VF;
+  WalkResult::FacetType type = WalkResult::FacetType::VF;
   int fa = 0, fa2 = -1, fb = 0, fb2 = -1;
   int hubA = 0, hubB = 0;
   bool featuresKnown = true;  // fa..fb2 name the facet's features (false: find them by flooding)
@@ -193,7 +194,7 @@ class Walker {
 
   /// Best candidate of hub pair (ia, ib), memoized for the query. Returns false when the hub
   /// pair has no Gauss region (b - a is not a vertex of M).
-  bool hub(int ia, int ib, Candidate& best, DeepStats& stats) {
+  bool hub(int ia, int ib, Candidate& best, WalkStats& stats) {
     HubMemo::Entry* e = s_.memo.insert(key(ia, ib));
     if (e && e->evaluated) {
       if (e->valid) best = e->best;
@@ -267,7 +268,7 @@ struct WalkEnd {
 
 /// One walk from `start` over the facets of M, until a facet contains its foot point and no facet
 /// at its corners is closer, or maxHubs hub pairs were evaluated (deep_walk.cpp).
-WalkEnd walk(Walker& w, Candidate start, int maxHubs, DeepStats& stats);
+WalkEnd walk(Walker& w, Candidate start, int maxHubs, WalkStats& stats);
 
 bool isLowDim(const ConvexPolytope& P);
 
@@ -275,6 +276,6 @@ bool isLowDim(const ConvexPolytope& P);
 /// directly, or depth 0 for a flat M. Returns false, leaving `result` alone, when both are
 /// polygons or polyhedra with a solid M (the walks' case).
 bool lowDimPenetration(Walker& w, const ConvexPolytope& A, const ConvexPolytope& B,
-                       const PairFrame& frame, DeepResult& result);
+                       const PairFrame& frame, WalkResult& result);
 
 }  // namespace deepcheck::deep::detail

@@ -14,7 +14,7 @@ template <class VertexFn, class NormalFn>
 Candidate lowDimFacets(const ConvexPolytope& X, VertexFn xVertex, NormalFn xNormal, const Vec3& s0,
                        const Vec3& s1, bool segment) {
   Candidate best;
-  auto consider = [&](const Vec3& u, const Vec3& onX, DeepResult::FacetType type) {
+  auto consider = [&](const Vec3& u, const Vec3& onX, WalkResult::FacetType type) {
     const Vec3 s = u.dot(s0) <= u.dot(s1) ? s0 : s1;  // support of S in -u
     const double d = u.dot(onX - s);
     if (d < best.d) {
@@ -24,7 +24,7 @@ Candidate lowDimFacets(const ConvexPolytope& X, VertexFn xVertex, NormalFn xNorm
       best.featuresKnown = false;
     }
   };
-  for (int f = 0; f < X.numFaces(); ++f) consider(xNormal(f), xVertex(X.faceVertices(f)[0]), DeepResult::FacetType::VF);
+  for (int f = 0; f < X.numFaces(); ++f) consider(xNormal(f), xVertex(X.faceVertices(f)[0]), WalkResult::FacetType::VF);
   if (!segment) return best;
   const Vec3 sd = s1 - s0;
   for (int v = 0; v < X.numVertices(); ++v) {
@@ -58,7 +58,7 @@ Candidate lowDimFacets(const ConvexPolytope& X, VertexFn xVertex, NormalFn xNorm
           onArc = u.dot(m) >= 0;
         }
       }
-      if (onArc) consider(u, xv, DeepResult::FacetType::EE);
+      if (onArc) consider(u, xv, WalkResult::FacetType::EE);
     }
   }
   return best;
@@ -75,7 +75,7 @@ bool isFlatPair(const ConvexPolytope& A, const ConvexPolytope& B, const PairFram
 }
 
 void flatPairAnswer(const Walker& w, const ConvexPolytope& A, const ConvexPolytope& B,
-                    const PairFrame& frame, DeepResult& result) {
+                    const PairFrame& frame, WalkResult& result) {
   Vec3 u = Vec3::UnitZ();
   if (A.kind() == PolytopeKind::Polygon) u = A.faceNormal(0);
   else if (B.kind() == PolytopeKind::Polygon) u = frame.R * B.faceNormal(0);
@@ -83,7 +83,7 @@ void flatPairAnswer(const Walker& w, const ConvexPolytope& A, const ConvexPolyto
     const Vec3 c = (w.va(1) - w.va(0)).cross(w.vb(1) - w.vb(0));
     if (c.norm() > 0) u = c.normalized();
   }
-  result.status = DeepStatus::Converged;
+  result.status = WalkStatus::Converged;
   result.depth = 0;
   result.normal = -u;
   result.pointA = w.va(0);
@@ -97,7 +97,7 @@ bool isLowDim(const ConvexPolytope& P) {
 }
 
 bool lowDimPenetration(Walker& w, const ConvexPolytope& A, const ConvexPolytope& B,
-                       const PairFrame& frame, DeepResult& result) {
+                       const PairFrame& frame, WalkResult& result) {
   if (isFlatPair(A, B, frame)) {
     flatPairAnswer(w, A, B, frame, result);
     return true;
@@ -116,7 +116,7 @@ bool lowDimPenetration(Walker& w, const ConvexPolytope& A, const ConvexPolytope&
                      B.kind() == PolytopeKind::Segment);
     c.u = -c.u;
   }
-  result.status = DeepStatus::Converged;
+  result.status = WalkStatus::Converged;
   result.depth = c.d;
   result.normal = -c.u;
   result.type = c.type;

@@ -102,7 +102,7 @@ std::string PolytopeInvariants::kind() const {
       return "";
     case PolytopeKind::Polygon:
       if (nv_ < 3 || nf_ != 2) return message("a Polygon has >= 3 vertices and 2 faces");
-      if ((p_.faceNormals_[0] + p_.faceNormals_[1]).norm() > 1e-12) {
+      if ((p_.faceNormals_[0] + p_.faceNormals_[1]).norm() > tol::kUnitRoundoff) {
         return message("Polygon face normals are not opposite");
       }
       for (int i = 0; i < nv_; ++i) {
@@ -125,7 +125,7 @@ std::string PolytopeInvariants::face(int f) {
   const Vector3d& n = p_.faceNormals_[f];
   const auto& local = p_.local_;
   if (fv.size() < 3) return message("face ", f, " has ", fv.size(), " vertices");
-  if (std::abs(n.norm() - 1.0) > 1e-12) return message("face ", f, " normal is not unit");
+  if (std::abs(n.norm() - 1.0) > tol::kUnitRoundoff) return message("face ", f, " normal is not unit");
   localOffset_[f] = p_.faceOffsets_[f] - n.dot(p_.center_);
   for (int i = 0; i < fv.size(); ++i) {
     const int v = fv[i];

@@ -70,6 +70,6 @@ const Eigen::Matrix3d& genericOrientation() {
 
 namespace deepcheck::deep {
 
-const Eigen::Vector3d& ConvexPolytope::probeDirection(int i) { return probe::icosahedron().direction[i]; }
+const Eigen::Vector3d& detail::probeDirection(int i) { return probe::icosahedron().direction[i]; }
 
 }  // namespace deepcheck::deep

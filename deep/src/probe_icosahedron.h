@@ -2,15 +2,15 @@
 // The probe directions of the certified method's start without GJK (certified_probe_start.cpp):
 // the twelve vertices of a regular icosahedron in a generic orientation, with its twenty faces
 // and their neighbours. Supports of M in these directions, joined as the icosahedron's faces, make
-// the starting surface; a polytope stores its own supports in them (ConvexPolytope::probeSupport).
+// the starting surface; a polytope stores its own supports in them (detail::probeSupport).
 
-#include "deepcheck/deep/polytope.h"
+#include "deepcheck/deep/internal/polytope_access.h"
 
 #include <Eigen/Core>
 
 namespace deepcheck::deep::probe {
 
-constexpr int kDirections = ConvexPolytope::kProbeDirections;
+constexpr int kDirections = detail::kProbeDirections;
 constexpr int kFaces = 20;
 
 struct Icosahedron {

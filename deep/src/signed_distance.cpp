@@ -1,6 +1,10 @@
 #include "deepcheck/deep/signed_distance.h"
 
+#include "deepcheck/deep/internal/certified.h"
+#include "deepcheck/deep/internal/gauss_map_walk.h"
+#include "deepcheck/deep/internal/scratch_access.h"
 #include "deepcheck/deep/tolerances.h"
+#include "deepcheck/deep/internal/polytope_access.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +12,8 @@
 #include <stdexcept>
 
 namespace deepcheck::deep {
+
+using namespace detail;
 
 const char* toString(SignedDistanceStatus s) {
   switch (s) {
@@ -20,8 +26,8 @@ const char* toString(SignedDistanceStatus s) {
 
 const char* toString(PenetrationMethod m) {
   switch (m) {
-    case PenetrationMethod::Certified: return "certified";
-    case PenetrationMethod::DeepWalk: return "deep-walk";
+    case PenetrationMethod::CertifiedExpansion: return "certified";
+    case PenetrationMethod::GaussMapWalk: return "deep-walk";
   }
   return "unknown";
 }
@@ -77,22 +83,22 @@ Feature simplexFeature(const ConvexPolytope& P, const int* idx, int n, const Eig
   return f;
 }
 
-Feature deepFeatureA(const DeepResult& d) {
+Feature deepFeatureA(const WalkResult& d) {
   Feature f;
   switch (d.type) {
-    case DeepResult::FacetType::VF: f.type = Feature::Type::Vertex; f.index = d.featureA; break;
-    case DeepResult::FacetType::FV: f.type = Feature::Type::Face; f.index = d.featureA; break;
-    case DeepResult::FacetType::EE: f.type = Feature::Type::Edge; f.index = d.featureA; f.index2 = d.featureA2; break;
+    case WalkResult::FacetType::VF: f.type = Feature::Type::Vertex; f.index = d.featureA; break;
+    case WalkResult::FacetType::FV: f.type = Feature::Type::Face; f.index = d.featureA; break;
+    case WalkResult::FacetType::EE: f.type = Feature::Type::Edge; f.index = d.featureA; f.index2 = d.featureA2; break;
   }
   return f;
 }
 
-Feature deepFeatureB(const DeepResult& d) {
+Feature deepFeatureB(const WalkResult& d) {
   Feature f;
   switch (d.type) {
-    case DeepResult::FacetType::VF: f.type = Feature::Type::Face; f.index = d.featureB; break;
-    case DeepResult::FacetType::FV: f.type = Feature::Type::Vertex; f.index = d.featureB; break;
-    case DeepResult::FacetType::EE: f.type = Feature::Type::Edge; f.index = d.featureB; f.index2 = d.featureB2; break;
+    case WalkResult::FacetType::VF: f.type = Feature::Type::Face; f.index = d.featureB; break;
+    case WalkResult::FacetType::FV: f.type = Feature::Type::Vertex; f.index = d.featureB; break;
+    case WalkResult::FacetType::EE: f.type = Feature::Type::Edge; f.index = d.featureB; f.index2 = d.featureB2; break;
   }
   return f;
 }
@@ -103,15 +109,15 @@ bool isLowDim(const ConvexPolytope& P) {
 
 /// A penetration depth with its bracket (core depths, frame P).
 struct Penetration {
-  DeepResult deep;
+  WalkResult deep;
   double lower = 0.0;
   bool certified = false;
   int expansions = 0;
 };
 
-/// DEEP's warm start at a certified answer: one basin, at its support pair and direction.
-DeepCache walkStartAt(const CertifiedResult& c) {
-  DeepCache start;
+/// The walk's warm start at a certified answer: one basin, at its support pair and direction.
+WalkCache walkStartAt(const CertifiedResult& c) {
+  WalkCache start;
   start.valid = true;
   start.count = 1;
   start.hubA[0] = c.supportA;
@@ -122,8 +128,8 @@ DeepCache walkStartAt(const CertifiedResult& c) {
 
 /// One walk from the cache's basins: no extra start from the centroid difference, no periodic
 /// cold refresh.
-DeepOptions oneWalk() {
-  DeepOptions one;
+WalkOptions oneWalk() {
+  WalkOptions one;
   one.warmCentroidStart = false;
   one.refreshEvery = 0;
   return one;
@@ -135,62 +141,39 @@ DeepOptions oneWalk() {
 /// is certified by the bracket's lower bound, else DEEP's walk from that direction. A facet's
 /// depth is a facet offset of M, an upper bound; the walk's answer is the better of it and the
 /// expansion's own upper bound.
-DeepResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+WalkResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                      const CertifiedResult& c, WalkScratch* walk) {
-  DeepResult d = facetInDirection(A, B, frame, c.direction, c.supportA, c.supportB, walk);
-  if (d.status == DeepStatus::Converged && d.depth - c.lower <= c.tau) return d;
-  DeepCache start = walkStartAt(c);
-  d = deepPenetration(A, B, frame, &start, oneWalk(), walk);
+  WalkResult d = facetInDirection(A, B, frame, c.direction, c.supportA, c.supportB, walk);
+  if (d.status == WalkStatus::Converged && d.depth - c.lower <= c.tau) return d;
+  WalkCache start = walkStartAt(c);
+  d = walkPenetration(A, B, frame, &start, oneWalk(), true, walk);
   if (d.depth <= c.upper) return d;
   // The walk found nothing better than the support: answer with the support itself.
-  d.status = DeepStatus::Converged;
+  d.status = WalkStatus::Converged;
   d.depth = c.upper;
   d.normal = -c.direction;
   d.pointB = frame.vertexB(B, c.supportB);
   d.pointA = d.pointB + c.upper * d.normal;
-  d.type = DeepResult::FacetType::FV;
+  d.type = WalkResult::FacetType::FV;
   d.featureA = A.vertexFaces(c.supportA)[0];
   d.featureB = c.supportB;
   return d;
 }
 
-/// The warm walk of DeepOptions::warmWalk: one DEEP walk from the pair's last facet, its depth
-/// certified by the cached surface. True, with `p` set, when the surface certifies it.
-bool checkedWarmWalk(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                     PairCache& cache, Penetration& p) {
-  const DeepResult d = deepPenetration(A, B, frame, &cache.deep, oneWalk(), cache.walk);
-  if (d.status != DeepStatus::Converged) return false;
-  const CertifiedResult c = certifyUpperBound(A, B, frame, *cache.certified, d.depth);
-  if (c.status != CertifiedStatus::Certified) return false;
-  p.deep = d;
-  p.lower = c.lower;
-  p.certified = true;
-  return true;
-}
-
 /// Names a certified result's facet (certifiedFacet, else DEEP's walk from its direction) and
 /// fills `p` with it and the bracket's lower bound.
 void nameCertified(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                   const CertifiedResult& c, const DeepOptions& options, PairCache* cache, Penetration& p) {
+                   const CertifiedResult& c, PairCache* cache, Penetration& p) {
   p.lower = c.lower;
   p.expansions = c.expansions;
-  if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c, cache ? cache->walk : nullptr);
-  if (options.warmWalk && cache) cache->deep = walkStartAt(c);  // the next checked walk starts here
+  if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c, scratchWalk(cache));
   p.certified = p.deep.depth - p.lower <= c.tau;
 }
 
-/// Whether the certified warm query runs before GJK (warmPenetration) with these options: the
-/// checked warm walk (DeepOptions::warmWalk) keeps its own order, after GJK.
-bool warmFirst(const DeepOptions& options, const PairCache* cache) {
-  return options.method == PenetrationMethod::Certified && options.warmStart && !options.warmWalk && cache &&
+/// Whether the certified warm query runs before GJK (warmPenetration) with these options.
+bool warmFirst(const PenetrationOptions& options, const PairCache* cache) {
+  return options.method == PenetrationMethod::CertifiedExpansion && options.warmStart && cache &&
          cache->certified && !cache->apart;
-}
-
-/// The certified expansion's options from the query's.
-CertifiedOptions expansionOptions(const DeepOptions& options) {
-  CertifiedOptions co;
-  co.maxExpansions = options.maxExpansions;
-  return co;
 }
 
 /// Keeps a cold query's surface as the pair's warm start (allocated by the pair's first).
@@ -204,35 +187,35 @@ void keepWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const PairF
 /// The certified warm query: the cached surface's supports (certifiedWarm), else its best-first
 /// expansion (expandWarm).
 CertifiedResult warmCertified(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                              const DeepOptions& options, PairCache& cache, ExpansionSurface& surface) {
+                              const PenetrationOptions& options, PairCache& cache, ExpansionSurface& surface) {
   CertifiedResult c = certifiedWarm(A, B, frame, *cache.certified);
   if (c.status == CertifiedStatus::Certified) return c;
-  return expandWarm(A, B, frame, *cache.certified, surface, expansionOptions(options));
+  return expandWarm(A, B, frame, *cache.certified, surface, options.certified);
 }
 
 /// Before a cold expansion (tens of support climbs over both hulls): their support data
 /// requested at once, so that on hulls out of cache the climbs do not each wait on memory. Not
 /// before the warm query, which climbs once or twice.
 void prefetchForExpansion(const ConvexPolytope& A, const ConvexPolytope& B) {
-  A.prefetchSupportData();
-  B.prefetchSupportData();
+  prefetchSupportData(A);
+  prefetchSupportData(B);
 }
 
 /// The certified method's warm query, tried before GJK: a certified answer from the cached
 /// surface also proves the shapes overlap (the moved surface, made of points of M, winds around
 /// the origin), so GJK is not needed. True, with `p` set, when the surface certifies the depth.
 bool warmPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                     const DeepOptions& options, PairCache* cache, ExpansionSurface& surface, Penetration& p) {
+                     const PenetrationOptions& options, PairCache* cache, ExpansionSurface& surface, Penetration& p) {
   if (!warmFirst(options, cache) || isLowDim(A) || isLowDim(B)) return false;
   const CertifiedResult c = warmCertified(A, B, frame, options, *cache, surface);
   if (c.status != CertifiedStatus::Certified) return false;
-  nameCertified(A, B, frame, c, options, cache, p);
+  nameCertified(A, B, frame, c, cache, p);
   return true;
 }
 
-/// The twelve-direction start (certifiedFromProbes) is tried where it mostly succeeds, as measured
-/// on pd_bench's families (bench/README.md, "The certified cold query"): on hulls of more vertices
-/// than this each (on smaller ones two directions often share a support: boxes, 8-vertex hulls)...
+/// The twelve-direction start (certifiedFromProbes) is tried only where it usually makes a start,
+/// since a failed attempt costs twelve supports for nothing: on hulls of more vertices than this
+/// each (on smaller ones two directions often share a support: boxes, 8-vertex hulls)...
 constexpr int kMinProbedVertices = 17;
 /// ...and on pairs whose inside radii add up to at least this share of their bounding radii: the
 /// supports of an elongated pair rarely form a convex surface.
@@ -241,11 +224,11 @@ constexpr double kMinProbedRoundness = 0.2;
 /// The twelve-direction start where it is tried (above): false when it makes no start, else true
 /// with the expansion's result in `c`.
 bool twelveDirectionStart(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                          const DeepOptions& options, ExpansionSurface& surface, CertifiedResult& c) {
+                          const PenetrationOptions& options, ExpansionSurface& surface, CertifiedResult& c) {
   if (A.numVertices() < kMinProbedVertices || B.numVertices() < kMinProbedVertices) return false;
   if (A.insideRadius() + B.insideRadius() < kMinProbedRoundness * (A.boundingRadius() + B.boundingRadius()))
     return false;
-  return certifiedFromProbes(A, B, frame, surface, expansionOptions(options), c);
+  return certifiedFromProbes(A, B, frame, surface, options.certified, c);
 }
 
 /// The certified method's cold query without GJK, for polyhedra whose inscribed balls about their
@@ -256,9 +239,9 @@ bool twelveDirectionStart(const ConvexPolytope& A, const ConvexPolytope& B, cons
 /// True, with `p` set and the warm start saved, when the expansion certifies the depth; otherwise
 /// (a cap hit) the caller goes on with GJK.
 bool probedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                       const DeepOptions& options, PairCache* cache, bool triedWarm, ExpansionSurface& surface,
+                       const PenetrationOptions& options, PairCache* cache, bool triedWarm, ExpansionSurface& surface,
                        Penetration& p) {
-  if (options.method != PenetrationMethod::Certified || A.kind() != PolytopeKind::Polyhedron ||
+  if (options.method != PenetrationMethod::CertifiedExpansion || A.kind() != PolytopeKind::Polyhedron ||
       B.kind() != PolytopeKind::Polyhedron)
     return false;
   if (options.warmStart && cache && cache->certified && cache->certified->valid && !triedWarm) return false;
@@ -266,10 +249,10 @@ bool probedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const P
   prefetchForExpansion(A, B);
   CertifiedResult c;
   if (!twelveDirectionStart(A, B, frame, options, surface, c))
-    c = certifiedWithoutGjk(A, B, frame, surface, expansionOptions(options));
+    c = certifiedWithoutGjk(A, B, frame, surface, options.certified);
   if (c.status != CertifiedStatus::Certified) return false;
   keepWarmStart(A, B, frame, surface, c, cache);
-  nameCertified(A, B, frame, c, options, cache, p);
+  nameCertified(A, B, frame, c, cache, p);
   return true;
 }
 
@@ -278,37 +261,33 @@ bool probedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const P
 /// cap) go to DEEP's walks with all restarts; the bracket's lower bound is kept. `triedWarm`: the
 /// warm query already ran (warmPenetration) and did not certify.
 Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                           const GjkResult& g, ExpansionSurface& surface, const DeepOptions& options,
+                           const GjkResult& g, ExpansionSurface& surface, const PenetrationOptions& options,
                            PairCache* cache, bool triedWarm) {
   Penetration p;
-  WalkScratch* walk = cache ? cache->walk : nullptr;
+  WalkScratch* walk = scratchWalk(cache);
   if (isLowDim(A) || isLowDim(B)) {
-    p.deep = deepPenetration(A, B, frame, nullptr, options, walk);
+    p.deep = walkPenetration(A, B, frame, nullptr, options.walk, options.warmStart, walk);
     p.lower = p.deep.depth;
     p.certified = true;
     return p;
   }
   CertifiedResult c;
   const bool warm = options.warmStart && cache && cache->certified;
-  // The walk's hub indices are trusted only when the cached surface is this pair's.
-  const bool walkable = warm && options.warmWalk && cache->deep.valid && cache->certified->belongsTo(A, B);
-  if (walkable && checkedWarmWalk(A, B, frame, *cache, p)) return p;
   if (warm && !triedWarm) c = warmCertified(A, B, frame, options, *cache, surface);
   if (c.status != CertifiedStatus::Certified) {
     prefetchForExpansion(A, B);
-    c = certifiedPenetration(A, B, frame, g, surface, expansionOptions(options));
+    c = certifiedPenetration(A, B, frame, g, surface, options.certified);
     keepWarmStart(A, B, frame, surface, c, cache);
   }
   if (c.status == CertifiedStatus::Certified) {
-    nameCertified(A, B, frame, c, options, cache, p);
+    nameCertified(A, B, frame, c, cache, p);
     return p;
   }
   p.lower = c.lower;
   p.expansions = c.expansions;
-  DeepOptions full = options;
-  full.warmStart = false;
+  WalkOptions full = options.walk;
   full.restarts = true;
-  p.deep = deepPenetration(A, B, frame, nullptr, full, walk);
+  p.deep = walkPenetration(A, B, frame, nullptr, full, false, walk);
   if (c.upper < p.deep.depth) p.deep = nameFacet(A, B, frame, c, walk);
   p.certified = p.deep.depth - p.lower <= c.tau;
   return p;
@@ -317,7 +296,7 @@ Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, con
 /// signedDistance() in the pair frame, with the certified method's scratch surface (non-null for
 /// that method).
 SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B, const PairFrame& frame,
-                                      PairCache* cache, const DeepOptions& options, ExpansionSurface* surface) {
+                                      PairCache* cache, const PenetrationOptions& options, ExpansionSurface* surface) {
   const ConvexPolytope& a = *A.core;
   const ConvexPolytope& b = *B.core;
   SignedDistanceResult r;
@@ -341,29 +320,29 @@ SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B
       r.featureA = simplexFeature(a, g.simplexA.data(), g.simplexSize, n_P, Eigen::Matrix3d::Identity());
       r.featureB = simplexFeature(b, g.simplexB.data(), g.simplexSize, -n_P, frame.R);
       // The certified warm start stays: its check measures the motion from its own reference.
-      if (cache) cache->deep.valid = false;
-    } else if (options.method == PenetrationMethod::Certified) {
+      if (cache) cache->walk.valid = false;
+    } else if (options.method == PenetrationMethod::CertifiedExpansion) {
       p = certifiedDepth(a, b, frame, g, *surface, options, cache, triedWarm);
     } else {
-      p.deep = deepPenetration(a, b, frame, cache ? &cache->deep : nullptr, options,
-                               cache ? cache->walk : nullptr);
+      p.deep = walkPenetration(a, b, frame, cache ? &cache->walk : nullptr, options.walk, options.warmStart,
+                               scratchWalk(cache));
     }
   }
   if (cache) cache->apart = apart;
   if (!apart) {
-    const DeepResult& d = p.deep;
+    const WalkResult& d = p.deep;
     coreSd = -d.depth;
     n_P = d.normal;
     pA_P = d.pointA;
     pB_P = d.pointB;
     r.certified = p.certified;
-    r.status = d.status == DeepStatus::Converged &&
-                       (p.certified || options.method == PenetrationMethod::DeepWalk)
+    r.status = d.status == WalkStatus::Converged &&
+                       (p.certified || options.method == PenetrationMethod::GaussMapWalk)
                    ? SignedDistanceStatus::Penetrating
                    : SignedDistanceStatus::NotConverged;
     r.featureA = deepFeatureA(d);
     r.featureB = deepFeatureB(d);
-    r.deep = d.stats;
+    r.walk = d.stats;
     r.expansions = p.expansions;
     r.depthLower = p.lower + A.radius + B.radius;
   }
@@ -384,12 +363,12 @@ SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B
 
 SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3d& X_WA,
                                     const ConvexShape& B, const Eigen::Isometry3d& X_WB,
-                                    PairCache* cache, const DeepOptions& options) {
+                                    PairCache* cache, const PenetrationOptions& options) {
   checkShape(A, "A");
   checkShape(B, "B");
   const PairFrame frame = PairFrame::make(*A.core, X_WA, *B.core, X_WB);
-  ExpansionSurface* scratch = cache ? cache->surface : nullptr;
-  if (scratch || options.method != PenetrationMethod::Certified)
+  ExpansionSurface* scratch = scratchSurface(cache);
+  if (scratch || options.method != PenetrationMethod::CertifiedExpansion)
     return signedDistanceIn(A, B, frame, cache, options, scratch);
   ExpansionSurface local;  // no scratch from the caller: one on the stack
   return signedDistanceIn(A, B, frame, cache, options, &local);
@@ -397,7 +376,7 @@ SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3
 
 SignedDistanceResult signedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
                                     const ConvexPolytope& B, const Eigen::Isometry3d& X_WB,
-                                    PairCache* cache, const DeepOptions& options) {
+                                    PairCache* cache, const PenetrationOptions& options) {
   return signedDistance(ConvexShape{&A, 0.0}, X_WA, ConvexShape{&B, 0.0}, X_WB, cache, options);
 }
 

@@ -21,9 +21,8 @@ namespace {
 /// support() scans all vertices up to this count; hill climbing only pays off beyond.
 constexpr int kBruteForceMaxVertices = 16;
 /// prefetchSupportData() requests hulls whose support arrays take at most this many bytes whole
-/// (about 250 vertices). A cold expansion's climbs reach most of such a hull. On larger ones
-/// they reach a part: requesting every line of 1,000-vertex hulls made cold queries 5-7 %
-/// slower on hulls in cache and saved nothing measurable on hulls out of it.
+/// (about 250 vertices). A cold expansion's climbs reach most of such a hull; on larger ones they
+/// reach only a part, so requesting every line would cost more memory traffic than it saves.
 constexpr std::size_t kPrefetchMaxBytes = 16 * 1024;
 /// Bytes of a cache line, the step between requests.
 constexpr std::size_t kCacheLineBytes = 64;

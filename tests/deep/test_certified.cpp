@@ -1,4 +1,4 @@
-// The certified penetration depth (certified.h): exact and certified against the exact
+// The certified penetration depth (internal/certified.h): exact and certified against the exact
 // reference, the bracket always containing the exact depth, degenerate starts, swap symmetry,
 // warm equal to cold along motions, the cap, and the saved reproducers of DEEP's misses.
 //
@@ -6,7 +6,7 @@
 
 #include "shapes.h"
 
-#include "deepcheck/deep/certified.h"
+#include "deepcheck/deep/internal/certified.h"
 #include "deepcheck/deep/exact.h"
 #include "deepcheck/deep/signed_distance.h"
 #include "deepcheck/deep/tolerances.h"
@@ -25,6 +25,7 @@
 #include <vector>
 
 using namespace deepcheck::deep;
+using namespace deepcheck::deep::detail;
 using namespace deepcheck::deep::testing;
 using Eigen::Isometry3d;
 using Eigen::Quaterniond;
@@ -114,7 +115,7 @@ std::vector<Isometry3d> randomMotion(std::mt19937& rng, const Pair& p, int steps
 /// they must agree to 1e-12 and in `certified`; calls onOverlap(step, X_WB, warm, cold) at the
 /// overlapping steps.
 template <class OnOverlap>
-void compareWarmAndCold(const Pair& p, const std::vector<Isometry3d>& poses, const DeepOptions& options, int trial,
+void compareWarmAndCold(const Pair& p, const std::vector<Isometry3d>& poses, const PenetrationOptions& options, int trial,
                         OnOverlap&& onOverlap) {
   PairCache cache;
   for (int k = 0; k < static_cast<int>(poses.size()); ++k) {
@@ -127,8 +128,8 @@ void compareWarmAndCold(const Pair& p, const std::vector<Isometry3d>& poses, con
   }
 }
 
-DeepOptions methodOptions(PenetrationMethod m) {
-  DeepOptions o;
+PenetrationOptions methodOptions(PenetrationMethod m) {
+  PenetrationOptions o;
   o.method = m;
   return o;
 }
@@ -140,8 +141,8 @@ BOOST_AUTO_TEST_SUITE(certified)
 BOOST_AUTO_TEST_CASE(names) {
   BOOST_TEST(std::string(toString(CertifiedStatus::Certified)) == "certified");
   BOOST_TEST(std::string(toString(CertifiedStatus::NotConverged)) == "not-converged");
-  BOOST_TEST(std::string(toString(PenetrationMethod::Certified)) == "certified");
-  BOOST_TEST(std::string(toString(PenetrationMethod::DeepWalk)) == "deep-walk");
+  BOOST_TEST(std::string(toString(PenetrationMethod::CertifiedExpansion)) == "certified");
+  BOOST_TEST(std::string(toString(PenetrationMethod::GaussMapWalk)) == "deep-walk");
 }
 
 // Cold, warm (a cache reused across perturbed re-queries) and swapped, on hulls of 4 to 1,000
@@ -241,7 +242,7 @@ BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
   int overlapping = 0, withoutExpansion = 0;
   for (int trial = 0; trial < 8; ++trial) {
     const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
-    compareWarmAndCold(p, randomMotion(rng, p), DeepOptions{}, trial,
+    compareWarmAndCold(p, randomMotion(rng, p), PenetrationOptions{}, trial,
                        [&](int, const Isometry3d&, const SignedDistanceResult& warm, const SignedDistanceResult& cold) {
                          ++overlapping;
                          withoutExpansion += warm.expansions == 0;
@@ -250,30 +251,6 @@ BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
   }
   BOOST_TEST(overlapping > 200);
   BOOST_TEST(withoutExpansion > overlapping / 2);
-}
-
-// DeepOptions::warmWalk: a warm walk from the last facet, certified by the cached surface, gives
-// the same answers as cold queries, certified, with a bracket around the exact depth; most steps
-// are answered by the walk.
-BOOST_AUTO_TEST_CASE(warm_walk_checked_by_the_surface) {
-  std::mt19937 rng(23);
-  DeepOptions walkFirst;
-  walkFirst.warmWalk = true;
-  int overlapping = 0, walked = 0;
-  for (int trial = 0; trial < 6; ++trial) {
-    const Pair p = randomPair(rng, 100, 100, Vector3d::Zero());
-    compareWarmAndCold(p, randomMotion(rng, p), walkFirst, trial,
-                       [&](int k, const Isometry3d& X_WB, const SignedDistanceResult& warm, const SignedDistanceResult&) {
-                         ++overlapping;
-                         walked += warm.deep.starts > 0 && warm.expansions == 0;
-                         if (k % 10 == 0) {
-                           BOOST_TEST(checkCertified(p.A, p.X_WA, p.B, X_WB, warm, 1e-12).empty(),
-                                      "trial " << trial << " step " << k);
-                         }
-                       });
-  }
-  BOOST_TEST(overlapping > 150);
-  BOOST_TEST(walked > overlapping / 2);
 }
 
 /// Two random overlapping 100-vertex pairs from `seed`: `p`, queried once into `cache`
@@ -287,29 +264,6 @@ struct PrimedPair {
   PairCache cache;
   SignedDistanceResult first;
 };
-
-// certifyUpperBound: the cached surface certifies the exact depth as an upper bound, refuses one
-// that is too deep by more than tau, and refuses to speak for another pair.
-BOOST_AUTO_TEST_CASE(surface_checks_an_upper_bound) {
-  PrimedPair primed(29);
-  const Pair& p = primed.p;
-  const Pair& other = primed.other;
-  PairCache& cache = primed.cache;
-  const SignedDistanceResult& first = primed.first;
-  BOOST_TEST_REQUIRE(first.distance < 0);
-  BOOST_TEST_REQUIRE(static_cast<bool>(cache.certified));
-  const PairFrame frame = PairFrame::make(p.A, p.X_WA, p.B, p.X_WB);
-  const CertifiedResult exact = certifyUpperBound(p.A, p.B, frame, *cache.certified, -first.distance);
-  BOOST_TEST((exact.status == CertifiedStatus::Certified));
-  BOOST_TEST(exact.lower <= exact.upper);
-  const double tooDeep = -first.distance + 1e-6 * certifyScale(p.A, p.X_WA, p.B, p.X_WB);
-  const CertifiedResult deeper = certifyUpperBound(p.A, p.B, frame, *cache.certified, tooDeep);
-  BOOST_TEST((deeper.status == CertifiedStatus::NotConverged));
-  BOOST_TEST(deeper.lower <= -first.distance + deeper.tau);
-  const PairFrame otherFrame = PairFrame::make(other.A, other.X_WA, other.B, other.X_WB);
-  const CertifiedResult foreign = certifyUpperBound(other.A, other.B, otherFrame, *cache.certified, 1.0);
-  BOOST_TEST((foreign.status == CertifiedStatus::NotConverged));
-}
 
 // A jump far beyond the cached surface's margin (faces that could have swept over the origin)
 // sends the query cold; a cache of another pair is not used.
@@ -634,7 +588,7 @@ BOOST_AUTO_TEST_CASE(parallel_faces_named_without_a_walk) {
     const SignedDistanceResult r = signedDistance(A, c.X_WA, B, c.X_WB);
     const std::string why = checkCertified(A, c.X_WA, B, c.X_WB, r, 1e-12);
     BOOST_TEST(why.empty(), c.what << ": " << why);
-    BOOST_TEST(r.deep.starts == 0, c.what);
+    BOOST_TEST(r.walk.starts == 0, c.what);
     const double L = depthScale(A, B);
     // World coordinates carry about 1e-16 of their magnitude: the far case's witnesses are only
     // that close to the boundaries.
@@ -694,12 +648,12 @@ BOOST_AUTO_TEST_CASE(deep_walk_stays_selectable) {
   std::mt19937 rng(16);
   for (int i = 0; i < 30; ++i) {
     const Pair p = randomPair(rng, 60, 60, Vector3d::Zero());
-    const SignedDistanceResult c = signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::Certified));
-    const SignedDistanceResult w = signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::DeepWalk));
+    const SignedDistanceResult c = signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::CertifiedExpansion));
+    const SignedDistanceResult w = signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::GaussMapWalk));
     if (c.distance >= 0) continue;
     BOOST_TEST(!w.certified);
     BOOST_TEST(w.depthLower == 0.0);
-    BOOST_TEST(w.deep.starts > 0);
+    BOOST_TEST(w.walk.starts > 0);
     BOOST_TEST(c.expansions > 0);
     // DEEP's answer is a valid separating translation: never shallower than the certified one.
     BOOST_TEST(-w.distance >= c.depthLower - 1e-14 * certifyScale(p.A, p.X_WA, p.B, p.X_WB));

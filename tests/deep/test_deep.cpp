@@ -107,8 +107,8 @@ BOOST_AUTO_TEST_CASE(agrees_with_exact_reference_on_10000_pairs) {
   const int kPairs = 10000;
   int overlapping = 0, separated = 0, depthMisses = 0, distanceMisses = 0, invalid = 0;
   int notConverged = 0, uncertified = 0, walkMisses = 0;
-  DeepOptions deepWalk;
-  deepWalk.method = PenetrationMethod::DeepWalk;
+  PenetrationOptions deepWalk;
+  deepWalk.method = PenetrationMethod::GaussMapWalk;
   for (int i = 0; i < kPairs; ++i) {
     const RandomPair p = makePair(rng, i);
     const ConvexPolytope A = ConvexPolytope::fromPoints(p.a);
@@ -155,9 +155,9 @@ BOOST_AUTO_TEST_CASE(agrees_with_exact_reference_on_10000_pairs) {
 // and the table needs re-measuring.
 BOOST_AUTO_TEST_CASE(single_walk_local_minimum_rate_is_in_its_band) {
   std::mt19937 rng(31337);
-  DeepOptions single;
-  single.method = PenetrationMethod::DeepWalk;
-  single.restarts = false;
+  PenetrationOptions single;
+  single.method = PenetrationMethod::GaussMapWalk;
+  single.walk.restarts = false;
   int overlapping = 0, misses = 0;
   for (int i = 0; i < 2000; ++i) {
     const RandomPair p = makePair(rng, i + 1);
@@ -203,8 +203,8 @@ BOOST_AUTO_TEST_CASE(warm_start_along_a_motion_matches_cold) {
   std::mt19937 rng(4242);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   int steps = 0, mismatches = 0, walkMismatches = 0;
-  DeepOptions deepWalk;
-  deepWalk.method = PenetrationMethod::DeepWalk;
+  PenetrationOptions deepWalk;
+  deepWalk.method = PenetrationMethod::GaussMapWalk;
   for (int trial = 0; trial < 20; ++trial) {
     const ConvexPolytope A = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 100, Vector3d(1, 0.6, 0.4)));
     const ConvexPolytope B = ConvexPolytope::fromPoints(ellipsoidPoints(rng, 100, Vector3d(0.7, 0.5, 0.3)));
@@ -257,8 +257,8 @@ SignedDistanceResult expectExact(const ConvexPolytope& A, const Isometry3d& X_WA
   signedDistance(A, X_WA, B, X_WB, &cache);
   const SignedDistanceResult warm = signedDistance(A, X_WA, B, X_WB, &cache);
   BOOST_TEST(depthError(warm.distance, exact.distance, L) <= tolRel, "warm sd " << warm.distance << " exact " << exact.distance);
-  DeepOptions deepWalk;
-  deepWalk.method = PenetrationMethod::DeepWalk;
+  PenetrationOptions deepWalk;
+  deepWalk.method = PenetrationMethod::GaussMapWalk;
   const SignedDistanceResult walk = signedDistance(A, X_WA, B, X_WB, nullptr, deepWalk);
   BOOST_TEST(depthError(walk.distance, exact.distance, L) <= tolRel, "DEEP walk sd " << walk.distance << " exact " << exact.distance);
   const std::string why = checkAnswer(A, X_WA, B, X_WB, r);

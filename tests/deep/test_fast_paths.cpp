@@ -6,7 +6,7 @@
 #include "deepcheck/deep/pair_frame.h"
 #include "deepcheck/deep/polytope.h"
 #include "deepcheck/deep/signed_distance.h"
-#include "deepcheck/deep/walk_scratch.h"
+#include "deepcheck/deep/internal/polytope_access.h"
 
 #include "shapes.h"
 
@@ -24,6 +24,7 @@ using deepcheck::deep::ConvexPolytope;
 using deepcheck::deep::ConvexShape;
 using deepcheck::deep::PairCache;
 using deepcheck::deep::PairFrame;
+using deepcheck::deep::detail::supportStart;
 using Eigen::Vector3d;
 namespace t = deepcheck::deep::testing;
 
@@ -76,7 +77,7 @@ BOOST_AUTO_TEST_CASE(direction_index_start_and_support) {
       int startFar = 0;
       const std::vector<Vector3d> dirs = testDirections(rng);
       for (const Vector3d& d : dirs) {
-        const int start = poly.supportStart(d);
+        const int start = supportStart(poly, d);
         if (!indexed) {
           BOOST_TEST(start == -1);
         } else {
@@ -108,10 +109,10 @@ BOOST_AUTO_TEST_CASE(direction_index_rejects_zero_and_non_finite) {
   BOOST_REQUIRE(poly.numVertices() > 16);
   const double inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  BOOST_TEST(poly.supportStart(Vector3d::Zero()) == -1);
-  BOOST_TEST(poly.supportStart(Vector3d(inf, 0, 0)) == -1);
-  BOOST_TEST(poly.supportStart(Vector3d(1, nan, 0)) == -1);
-  BOOST_TEST(poly.supportStart(Vector3d(nan, nan, nan)) == -1);
+  BOOST_TEST(supportStart(poly, Vector3d::Zero()) == -1);
+  BOOST_TEST(supportStart(poly, Vector3d(inf, 0, 0)) == -1);
+  BOOST_TEST(supportStart(poly, Vector3d(1, nan, 0)) == -1);
+  BOOST_TEST(supportStart(poly, Vector3d(nan, nan, nan)) == -1);
   // support() still returns a vertex (the hint's climb) for such directions.
   for (const Vector3d& d : {Vector3d::Zero().eval(), Vector3d(nan, 1, 0), Vector3d(1, inf, 0)}) {
     const int s = poly.support(d, 5);
@@ -120,7 +121,7 @@ BOOST_AUTO_TEST_CASE(direction_index_rejects_zero_and_non_finite) {
   }
   // Small hulls are searched by brute force and have no index.
   const ConvexPolytope box = ConvexPolytope::box(Vector3d(2, 4, 6));
-  BOOST_TEST(box.supportStart(Vector3d(1, 1, 1)) == -1);
+  BOOST_TEST(supportStart(box, Vector3d(1, 1, 1)) == -1);
 }
 
 BOOST_AUTO_TEST_CASE(unchecked_frame_equals_checked) {
@@ -178,7 +179,7 @@ BOOST_AUTO_TEST_CASE(overlaps_unchecked_equals_overlaps) {
 }
 
 BOOST_AUTO_TEST_CASE(shared_scratch_gives_the_local_scratch_answers) {
-  // One ExpansionSurface and one WalkScratch shared by pairs of different sizes and kinds, queried
+  // One PenetrationScratch shared by pairs of different sizes and kinds, queried
   // in turn along a motion (warm), must give bit for bit what queries with local scratch give.
   std::mt19937 rng(71);
   std::vector<ConvexPolytope> cores;
@@ -187,18 +188,15 @@ BOOST_AUTO_TEST_CASE(shared_scratch_gives_the_local_scratch_answers) {
   cores.push_back(ConvexPolytope::fromPoints({Vector3d(0.2, 0.1, -0.3)}));                     // point
   cores.push_back(ConvexPolytope::fromPoints(
       {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(1, 1, 0), Vector3d(0, 1, 0)}));             // polygon
-  auto surface = std::make_unique<deepcheck::deep::ExpansionSurface>();
-  deepcheck::deep::WalkScratch walk;
-  for (auto method : {deepcheck::deep::PenetrationMethod::Certified, deepcheck::deep::PenetrationMethod::DeepWalk}) {
-    deepcheck::deep::DeepOptions options;
+  deepcheck::deep::PenetrationScratch scratch;
+  for (auto method : {deepcheck::deep::PenetrationMethod::CertifiedExpansion,
+                      deepcheck::deep::PenetrationMethod::GaussMapWalk}) {
+    deepcheck::deep::PenetrationOptions options;
     options.method = method;
     const int numPairs = static_cast<int>(cores.size() * cores.size());
     std::vector<PairCache> shared(numPairs);
     std::vector<PairCache> local(numPairs);
-    for (PairCache& c : shared) {
-      c.surface = surface.get();
-      c.walk = &walk;
-    }
+    for (PairCache& c : shared) c.scratch = &scratch;
     std::vector<Eigen::Quaterniond> spin(numPairs);
     for (auto& q : spin) q = t::randomRotation(rng);
     int overlapping = 0;

@@ -5,6 +5,7 @@
 // the hull's support value equals the input's in random directions, and hill-climbing support
 // agrees with brute force from random hints.
 
+#include "deepcheck/deep/internal/polytope_access.h"
 #include "deepcheck/deep/pair_frame.h"
 #include "deepcheck/deep/polytope.h"
 #include "deepcheck/deep/tolerances.h"
@@ -30,6 +31,7 @@ using deepcheck::deep::PairFrame;
 using deepcheck::deep::PolytopeKind;
 using Eigen::Vector3d;
 namespace shapes = deepcheck::deep::testing;
+namespace detail = deepcheck::deep::detail;
 
 namespace {
 
@@ -77,7 +79,7 @@ void checkHull(const ConvexPolytope& poly, const std::vector<Vector3d>& input, s
                const std::string& label) {
   BOOST_TEST_CONTEXT(label << " (" << toString(poly.kind()) << ", " << poly.numVertices()
                            << " vertices)") {
-    BOOST_TEST(poly.validate() == "");
+    BOOST_TEST(detail::validate(poly) == "");
     BOOST_TEST(poly.lengthScale() > 0.0);
 
     // Every hull vertex is one of the input points, exactly.
@@ -134,9 +136,9 @@ void checkHull(const ConvexPolytope& poly, const std::vector<Vector3d>& input, s
 
     // Each probe direction's stored support is as high as brute force finds.
     int badProbe = 0;
-    for (int i = 0; i < ConvexPolytope::kProbeDirections; ++i) {
-      const Vector3d& d = ConvexPolytope::probeDirection(i);
-      const double hs = d.dot(poly.localVertex(poly.probeSupport(i)));
+    for (int i = 0; i < detail::kProbeDirections; ++i) {
+      const Vector3d& d = detail::probeDirection(i);
+      const double hs = d.dot(poly.localVertex(detail::probeSupport(poly, i)));
       const double hb = d.dot(poly.localVertex(poly.supportBruteForce(d)));
       if (hs < hb - tol) ++badProbe;
     }
@@ -395,16 +397,16 @@ BOOST_AUTO_TEST_CASE(box_and_cube_ring_order) {
 // The probe directions are the vertices of a regular icosahedron: unit, in opposite pairs, each
 // with five nearest neighbours at the icosahedron's edge angle, atan(2).
 BOOST_AUTO_TEST_CASE(probe_directions_are_an_icosahedron) {
-  const int n = ConvexPolytope::kProbeDirections;
+  const int n = detail::kProbeDirections;
   BOOST_TEST(n == 12);
   const double edgeAngle = std::atan(2.0);
   for (int i = 0; i < n; ++i) {
-    const Vector3d& d = ConvexPolytope::probeDirection(i);
+    const Vector3d& d = detail::probeDirection(i);
     BOOST_TEST(std::abs(d.norm() - 1.0) < 1e-15);
     int opposite = 0, nearest = 0;
     for (int j = 0; j < n; ++j) {
       if (j == i) continue;
-      const Vector3d& e = ConvexPolytope::probeDirection(j);
+      const Vector3d& e = detail::probeDirection(j);
       const double angle = std::atan2(d.cross(e).norm(), d.dot(e));
       opposite += (d + e).norm() < 1e-15;
       nearest += std::abs(angle - edgeAngle) < 1e-12;

@@ -7,6 +7,7 @@
 // missed target is warned about, duplicated faces are dropped, a budget above 32 pieces is used
 // only by a mesh that needs it, and bad input is rejected with a message.
 
+#include "deepcheck/deep/internal/polytope_access.h"
 #include "deepcheck/robots/decomposition.h"
 #include "deepcheck/robots/decomposition_cache.h"
 #include "deepcheck/robots/mesh_loader.h"
@@ -266,7 +267,7 @@ BOOST_AUTO_TEST_CASE(pieces_become_valid_polytopes) {
   BOOST_REQUIRE_EQUAL(polytopes.size(), d.pieces.size());
   for (const deep::ConvexPolytope& p : polytopes) {
     BOOST_CHECK(p.kind() == deep::PolytopeKind::Polyhedron);
-    BOOST_CHECK_EQUAL(p.validate(), "");
+    BOOST_CHECK_EQUAL(deep::detail::validate(p), "");
   }
 }
 

@@ -166,8 +166,8 @@ struct DistanceOptions {
   /// (`self`). Both by default; with one off, the result is the minimum over the other kind only.
   bool worldPairs = true;
   bool selfPairs = true;
-  /// Options of the penetration-depth walk.
-  deep::DeepOptions deep;
+  /// Options of the penetration depth: the method and its settings.
+  deep::PenetrationOptions deep;
 };
 
 struct DistanceResult {

@@ -98,7 +98,7 @@ const char* toString(BodyDepthStatus s);
 
 struct BodyDepthOptions {
   /// Options of the pairwise queries (method, iteration caps).
-  DeepOptions pair;
+  PenetrationOptions pair;
   /// Cap on the faces the best-first search examines.
   int maxFaces = 100000;
   /// Cap on the estimated cost of building Minkowski differences in one query, in microseconds of

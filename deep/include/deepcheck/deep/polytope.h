@@ -22,6 +22,8 @@
 // (k-1, ..., 1, 0), so the polyhedron rule above holds for polygons too. For a Segment each vertex
 // has the other as its only neighbour. Points and segments have no faces and empty face rings.
 
+#include "deepcheck/deep/tolerances.h"
+
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -29,6 +31,10 @@
 #include <vector>
 
 namespace deepcheck::deep {
+
+namespace detail {
+struct PolytopeAccess;
+}
 
 enum class PolytopeKind {
   Point,       ///< a single point
@@ -95,10 +101,9 @@ class ConvexPolytope {
   /// thinner than this are flat, faces coplanar within it are merged.
   double flatTolerance() const { return flatTol_; }
   /// What the hull guarantees, absolute: every input point is inside every face plane, every
-  /// face's vertices are on its plane, within hullTolerance() = 8 * flatTolerance() (merging
-  /// coplanar facets within flatTolerance() and dropping vertices within it of the hull of their
-  /// neighbours add up to a few times it).
-  double hullTolerance() const { return 8.0 * flatTol_; }
+  /// face's vertices are on its plane, within hullTolerance() = tol::kHullToleranceFactor *
+  /// flatTolerance() (tolerances.h says why).
+  double hullTolerance() const { return tol::kHullToleranceFactor * flatTol_; }
   /// Vertex v relative to center(), stored (support() works on these).
   const Eigen::Vector3d& localVertex(int v) const { return local_[v]; }
 
@@ -106,37 +111,27 @@ class ConvexPolytope {
   /// (any vertex index; out-of-range hints start at vertex 0) or from the direction index's
   /// vertex for dir, whichever is higher along dir; brute force on small hulls.
   int support(const Eigen::Vector3d& dir, int hint = 0) const;
-  /// Asks the processor to bring the arrays support() reads (vertices, vertex rings, direction
-  /// index) towards its caches, without waiting for them. A query about to climb many times
-  /// calls it first, so that on a hull out of cache the loads overlap instead of each climb
-  /// step waiting on memory in turn.
-  void prefetchSupportData() const;
-  /// The direction index's starting vertex for dir (a vertex whose support region is near dir),
-  /// or -1 when the hull has no index (small hulls) or dir is zero or not finite. For tests.
-  int supportStart(const Eigen::Vector3d& dir) const;
-  /// Brute-force support, for tests.
+  /// Index of a vertex maximizing dir.x by testing every vertex: no climb and no direction
+  /// index, so its ties break by vertex order alone. For a few calls on small hulls, and as the
+  /// reference support() is checked against.
   int supportBruteForce(const Eigen::Vector3d& dir) const;
   /// A vertex maximizing faceNormal(f).x: support() in face f's own normal, computed once when
   /// the hull is built. That normal ties a whole face's vertices, which support() would search
   /// as a plateau on every call; penetration depth queries support in it once per answer.
   int faceSupport(int f) const { return faceSupport_[f]; }
-  /// The certified method's probe directions: twelve unit vectors, the vertices of a regular
-  /// icosahedron in a generic orientation, fixed in every polytope's frame.
-  static constexpr int kProbeDirections = 12;
-  static const Eigen::Vector3d& probeDirection(int i);
-  /// A vertex maximizing probeDirection(i), computed once when the hull is built: a query's start
-  /// without GJK reads the first shape's supports here instead of climbing.
-  int probeSupport(int i) const { return probeSupport_[i]; }
   /// Radius of the largest ball about center() inside the hull: the smallest distance from the
   /// centre to a face plane (0 for points, segments and polygons).
   double insideRadius() const { return insideRadius_; }
 
-  /// Checks the internal invariants (Euler characteristic, ring order, convexity within
-  /// tolerance). Returns an empty string when they hold, else a description. For tests.
-  std::string validate() const;
-
  private:
   ConvexPolytope() = default;
+  // Data and checks for deep's own algorithms and tests (internal/polytope_access.h).
+  friend struct detail::PolytopeAccess;
+  static constexpr int kProbeDirections = 12;
+  void prefetchSupportData() const;
+  int supportStart(const Eigen::Vector3d& dir) const;
+  std::string validate() const;
+
   // Computes center, local vertices, radius, axes, face offsets, the inside radius, the direction
   // index, the face supports and the probe supports.
   void finish();

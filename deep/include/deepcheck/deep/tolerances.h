@@ -46,6 +46,26 @@ constexpr double kInsideRelative = 1e-12;
 /// parallel: they span no edge-edge facet of the Minkowski difference.
 constexpr double kParallelSine = 1e-9;
 
+/// Gauss map clipping (the walk's local overlays): a unit direction within this of a clipping plane
+/// (the sine of its angle to the plane, dimensionless) counts as on the plane, so that corners of
+/// degenerate overlays (parallel faces) are kept instead of being decided by round-off.
+constexpr double kOnPlaneSine = 1e-13;
+
+/// Naming the facet a certified surface face lies on: a feature's unit normal whose cosine with
+/// the face's normal exceeds this (dimensionless) may be that facet's. Corners on one facet give a
+/// face normal equal to the facet's to round-off, corners on different facets one off by far
+/// more; a support query then decides, so this only pre-selects.
+constexpr double kSameNormalCosine = 1.0 - 1e-6;
+
+/// What a built hull guarantees, as a multiple of its flatness tolerance (polytope.h,
+/// hullTolerance): merging coplanar facets within the flatness tolerance and dropping vertices
+/// within it of the hull of their neighbours add up to a few times it.
+constexpr double kHullToleranceFactor = 8.0;
+
+/// ConvexPolytope's invariant check: stored unit normals are unit, and a polygon's two face
+/// normals opposite, to this (dimensionless, round-off of a normalised double vector).
+constexpr double kUnitRoundoff = 1e-12;
+
 /// Shapes whose GJK distance is below kContactRelative * L are treated as touching and handed to
 /// DEEP, whose depth is then ~0: this keeps the signed distance continuous through contact.
 constexpr double kContactRelative = 1e-12;

@@ -1,4 +1,5 @@
 #pragma once
+// The certified expansion (PenetrationMethod::CertifiedExpansion), internal to deepcheck::deep.
 // Certified penetration depth: an expanding surface of Minkowski vertices (van den Bergen 2001's
 // expanding polytope), run best-first from GJK's simplex or from supports in twelve directions.
 //
@@ -22,16 +23,13 @@
 // encloses the origin. A flat M (no tetrahedron of positive volume) returns NotConverged with
 // lower bound 0: the caller handles flat pairs (their depth is zero).
 
-#include "deepcheck/deep/deep.h"
-#include "deepcheck/deep/expansion_surface.h"
 #include "deepcheck/deep/gjk.h"
+#include "deepcheck/deep/internal/certified_warm_start.h"
+#include "deepcheck/deep/internal/expansion_surface.h"
+#include "deepcheck/deep/internal/gauss_map_walk.h"
+#include "deepcheck/deep/penetration_options.h"
 
-namespace deepcheck::deep {
-
-struct CertifiedOptions {
-  /// Cap on support points added to the surface (beyond it: NotConverged with the bracket).
-  int maxExpansions = 128;
-};
+namespace deepcheck::deep::detail {
 
 enum class CertifiedStatus {
   Certified,     ///< upper - lower <= tau
@@ -41,7 +39,7 @@ enum class CertifiedStatus {
 const char* toString(CertifiedStatus s);
 
 /// The facet of M that a surface face's corners name (certifiedFacet): DEEP's facet type and
-/// features, set as DeepResult sets them, and the facet's exact unit outward normal u.
+/// features, set as WalkResult sets them, and the facet's exact unit outward normal u.
 struct NamedFacet {
   enum class State {
     Unknown,  ///< not looked up yet
@@ -49,7 +47,7 @@ struct NamedFacet {
     None,     ///< the corners name no facet
   };
   State state = State::Unknown;
-  DeepResult::FacetType type = DeepResult::FacetType::VF;
+  WalkResult::FacetType type = WalkResult::FacetType::VF;
   int featureA = 0;
   int featureA2 = -1;
   int featureB = 0;
@@ -80,7 +78,7 @@ struct CertifiedResult {
 };
 
 /// Certified penetration depth of A and B (cores, Polygon or Polyhedron; for points and segments
-/// the depth is enumerated directly by deepPenetration) in the pair frame. Meaningful when GJK
+/// the depth is enumerated directly by walkPenetration) in the pair frame. Meaningful when GJK
 /// found them overlapping or touching: `gjk` is that result (its simplex seeds the surface).
 /// `surface` is the caller's scratch space, overwritten; no allocation.
 CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B,
@@ -100,54 +98,12 @@ CertifiedResult certifiedFromSurface(const ConvexPolytope& A, const ConvexPolyto
                                      ExpansionSurface& surface, const CertifiedOptions& options = {});
 
 /// certifiedPenetration without GJK, for polyhedra the caller knows overlap: the surface starts
-/// from the supports of M in the twelve probe directions (ConvexPolytope::probeSupport), joined as
+/// from the supports of M in the twelve probe directions (detail::probeSupport), joined as
 /// an icosahedron's faces. False, with `result` untouched, when that is no start: two directions
 /// share a support, or the surface is not convex or does not hold the origin strictly inside (the
 /// caller then starts otherwise: certifiedWithoutGjk). True with the expansion's result otherwise.
 bool certifiedFromProbes(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                          ExpansionSurface& surface, const CertifiedOptions& options, CertifiedResult& result);
-
-/// Warm start of the certified method for one pair: the surface of a cold query (faces as vertex
-/// index pairs, at most kMaxFaces), kept with each face's unit normal n0 and offset
-/// min_k n0.p_k over its corners p_k at that query's pose, the reference (certified_warm.cpp).
-///
-/// After a motion, every vertex b - a of M has moved by the shift t - t0 plus a turn of length at
-/// most |R - R0|_F r_B, in all at most delta = |R - R0|_F r_B + |t - t0| (pair frame: A is fixed,
-/// B's vertices lie within r_B of its centroid). Moving the vertices straight from their reference
-/// positions to their new ones keeps n0.x > 0 on a face whose corners all have n0.q > 0 (their new
-/// positions q; at least offset - delta, and at least offset + n0.(t - t0) - |R - R0|_F r_B), so
-/// that face never crosses the origin; when none does, the moved surface (closed, though no longer
-/// convex) still winds once around the origin, every ray from it meets the surface at a point of
-/// M, and the depth is at least the smallest lower bound on a face's distance: those two, min_k
-/// n0.q_k, or the distance to the face's plane through its moved corners. A query makes one
-/// support query, in the exact normal of the facet of M named by the face that certified last
-/// time (facetOfFace); faces whose bound already reaches that upper bound are not touched, the few
-/// below are evaluated at their new corners, and one more support in the nearest face's normal
-/// settles most queries without expanding. When it does not, expandWarm() expands the moved
-/// surface best-first as a cold query would and makes the result the new reference. A face that
-/// could have crossed the origin sends the query cold (which then becomes the new reference).
-struct CertifiedWarmStart {
-  static constexpr int kMaxFaces = 96;
-  static constexpr int kMaxVertices = kMaxFaces / 2 + 2;  ///< a closed surface of F faces has F/2 + 2 vertices
-  bool valid = false;
-  const ConvexPolytope* A = nullptr;  ///< the pair the surface belongs to (checked before use)
-  const ConvexPolytope* B = nullptr;
-  int numVertices = 0;
-  int numFaces = 0;
-  int a[kMaxVertices];
-  int b[kMaxVertices];
-  int face[kMaxFaces][3];
-  int adj[kMaxFaces][3];              ///< neighbours, as ExpansionSurface::Face::adj
-  double offset[kMaxFaces];          ///< min over the face's corners of normal.p at the reference (all > 0)
-  Eigen::Vector3d normal[kMaxFaces];  ///< unit face normals at the reference pose, frame P
-  Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity();  ///< the reference pair frame
-  Eigen::Vector3d t0 = Eigen::Vector3d::Zero();
-  int last = 0;  ///< the face that certified the last answer
-  int hintA = 0;
-  int hintB = 0;
-  /// A valid surface of the pair (A, B): only then do its index pairs name vertices of theirs.
-  bool belongsTo(const ConvexPolytope& a, const ConvexPolytope& b) const { return valid && A == &a && B == &b; }
-};
 
 /// Saves the surface of a certified cold query at `frame`, the reference of the pair's warm start;
 /// leaves `warm` invalid when the surface has more than kMaxFaces faces or a face at non-positive
@@ -168,22 +124,15 @@ CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
 CertifiedResult expandWarm(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
                            CertifiedWarmStart& warm, ExpansionSurface& surface, const CertifiedOptions& options = {});
 
-/// The cached surface's check of an upper bound found elsewhere (the depth of a facet of M that a
-/// warm DEEP walk reached): Certified when the moved surface bounds the depth from below within tau
-/// of `upper` (faces are bounded as in certifiedWarm, no support query is made); NotConverged
-/// otherwise. `upper` must be h_M(u) for some unit u (a facet offset of M is).
-CertifiedResult certifyUpperBound(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                                  const CertifiedWarmStart& warm, double upper);
-
 /// Names the facet of M a certified result converged on, from its certifying face's corners
 /// (certified_facet.cpp): one vertex of A and a face of B (VF), the reverse (FV), or an edge of
 /// each (EE); the facet's exact normal from those features, its offset from one support query in
 /// that normal, witness points from the features. Returns false when the corners
 /// do not name one facet (they span several coplanar features, or the features found do not
 /// support the normal); the caller then names it otherwise (DEEP's facet at the direction,
-/// facetInDirection in deep.h, or DEEP's walk from it).
+/// facetInDirection in gauss_map_walk.h, or DEEP's walk from it).
 bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                    const CertifiedResult& c, DeepResult& out);
+                    const CertifiedResult& c, WalkResult& out);
 
 /// The facet of M that a surface face's corners (index pairs faceA[k], faceB[k]; unit normal
 /// `normal`) name, looked up as certifiedFacet() looks it up: state Named with its type, features
@@ -199,4 +148,4 @@ NamedFacet facetOfFace(const ConvexPolytope& A, const ConvexPolytope& B, const P
 void facetSupports(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const NamedFacet& facet,
                    int& a, int& b);
 
-}  // namespace deepcheck::deep
+}  // namespace deepcheck::deep::detail

@@ -1,5 +1,5 @@
 #pragma once
-// The expanding surface of the certified penetration depth: a closed triangulated surface whose
+// Internal to deepcheck::deep. The expanding surface of the certified penetration depth: a closed triangulated surface whose
 // vertices are points b - a of the Minkowski difference M = B - A, stored as vertex-index pairs
 // (a of A, b of B) with the point itself in the pair frame P.
 //
@@ -13,14 +13,14 @@
 // the support point of M in its normal and replaces every face that point sees by a cone of faces
 // over the horizon.
 //
-// Fixed capacity, no allocation: the caller owns one surface and reuses it for every query (one
-// per thread). Beyond capacity, expand() refuses and the caller reports the bracket it has.
+// Fixed capacity, no allocation: the caller owns one surface (inside a PenetrationScratch,
+// signed_distance.h) and reuses it for every query (one per thread). Beyond capacity, expand() refuses and the caller reports the bracket it has.
 
 #include <Eigen/Core>
 
 #include <cstdint>
 
-namespace deepcheck::deep {
+namespace deepcheck::deep::detail {
 
 class ExpansionSurface {
  public:
@@ -150,4 +150,4 @@ class ExpansionSurface {
   bool convex_ = true;  // started convex (expansions keep the convex hull)
 };
 
-}  // namespace deepcheck::deep
+}  // namespace deepcheck::deep::detail
