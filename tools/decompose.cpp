@@ -1,5 +1,5 @@
 // `deepcheck decompose MESH`: approximate convex decomposition of one collision mesh (see
-// robots/include/deepcheck/robots/decomposition.h), written as OBJ, with its quality report.
+// deepcheck/decomposition/decomposition.h), written as OBJ, with its quality report.
 // `--report` takes several meshes and prints one table row per mesh, then times reading them all
 // back from the cache (what loading a robot a second time costs).
 //
