@@ -24,7 +24,7 @@
 #include "options.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/robots/decomposition.h"
+#include "deepcheck/decomposition/decomposition.h"
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/srdf.h"
 
@@ -43,6 +43,7 @@
 #include <unistd.h>
 
 namespace dc = deepcheck::checker;
+namespace dd = deepcheck::decomposition;
 namespace dr = deepcheck::robots;
 
 namespace {
@@ -160,8 +161,8 @@ double timeKind(const std::string& kind, int n, int* items, Quality* quality) {
   if (kind == "hand" || kind == "comb") {
     const dr::TriangleMesh mesh = kind == "hand" ? deepcheck::bench::handMesh(n) : deepcheck::bench::combMesh(n);
     *items = static_cast<int>(mesh.triangles.size());
-    dr::ConvexDecomposition d;
-    const double s = seconds([&] { d = dr::decomposeConvex(mesh, dr::DecompositionParams{}); });
+    dd::ConvexDecomposition d;
+    const double s = seconds([&] { d = dd::decomposeConvex(mesh, dd::DecompositionParams{}); });
     quality->pieces = d.report.numPieces;
     quality->excess = d.report.concavity;
     if (!d.report.warning.empty()) std::fprintf(stderr, "load_bench: %s\n", d.report.warning.c_str());

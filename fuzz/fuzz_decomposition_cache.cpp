@@ -1,4 +1,4 @@
-// Fuzz harness: a decomposition cache entry (robots/decomposition_cache.h) read by
+// Fuzz harness: a decomposition cache entry (decomposition/cache.h) read by
 // DecompositionCache::load. The first byte picks how the rest becomes the entry's file:
 //   even: the rest is the entry up to its checksum; the harness writes the current header (the
 //         magic and the format and algorithm versions, as store() writes them) over bytes 0..15
@@ -11,7 +11,7 @@
 
 #include "harness_support.h"
 
-#include "deepcheck/robots/decomposition_cache.h"
+#include "deepcheck/decomposition/cache.h"
 
 #include <unistd.h>
 
@@ -25,7 +25,7 @@
 
 namespace {
 
-namespace robots = deepcheck::robots;
+namespace decomposition = deepcheck::decomposition;
 
 constexpr char kKey[] = "00112233445566778899aabbccddeeff";
 constexpr std::size_t kHeaderSize = 16;  ///< "DCKDECMP", the format and the algorithm version
@@ -37,8 +37,8 @@ std::uint64_t fnv1a(const std::string& bytes) {
   return h;
 }
 
-const robots::DecompositionCache& cache() {
-  static const robots::DecompositionCache c(
+const decomposition::DecompositionCache& cache() {
+  static const decomposition::DecompositionCache c(
       (std::filesystem::temp_directory_path() / ("deepcheck_fuzz_cache_" + std::to_string(::getpid()))).string());
   return c;
 }
@@ -48,7 +48,7 @@ const std::string& currentHeader() {
   static const std::string header = [] {
     std::filesystem::create_directories(cache().directory());
     std::string problem;
-    if (!cache().store(kKey, robots::ConvexDecomposition{}, &problem)) {
+    if (!cache().store(kKey, decomposition::ConvexDecomposition{}, &problem)) {
       throw std::runtime_error("fuzz_decomposition_cache: cannot write a reference entry: " + problem);
     }
     const std::string path = cache().pathFor(kKey);
@@ -93,7 +93,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::filesystem::remove(path);
   if (!hit) return 0;
   require(static_cast<std::size_t>(hit->report.numPieces) == hit->pieces.size(), "a piece count unlike its pieces");
-  for (const robots::ConvexPiece& piece : hit->pieces) {
+  for (const decomposition::ConvexPiece& piece : hit->pieces) {
     for (const Eigen::Vector3d& v : piece.vertices) require(v.allFinite(), "a non-finite vertex");
     for (const auto& t : piece.triangles) {
       for (const int k : t) {

@@ -100,8 +100,8 @@ def source_constant(path, name):
     with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", path)) as f:
         return int(re.search(r"constexpr [a-z:0-9_]+ " + name + r" = (\d+);", f.read()).group(1))
 
-cache_versions = (source_constant("robots/src/decomposition_cache.cpp", "kFormatVersion"),
-                  source_constant("robots/include/deepcheck/robots/decomposition.h", "kDecompositionAlgorithmVersion"))
+cache_versions = (source_constant("decomposition/src/cache.cpp", "kFormatVersion"),
+                  source_constant("decomposition/include/deepcheck/decomposition/decomposition.h", "kDecompositionAlgorithmVersion"))
 
 def entry(pieces):
     body = b"DCKDECMP" + struct.pack("<II", *cache_versions) + bytes.fromhex("00112233445566778899aabbccddeeff")

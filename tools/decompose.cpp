@@ -1,5 +1,5 @@
 // `deepcheck decompose MESH`: approximate convex decomposition of one collision mesh (see
-// robots/include/deepcheck/robots/decomposition.h), written as OBJ, with its quality report.
+// deepcheck/decomposition/decomposition.h), written as OBJ, with its quality report.
 // `--report` takes several meshes and prints one table row per mesh, then times reading them all
 // back from the cache (what loading a robot a second time costs).
 //
@@ -16,8 +16,8 @@
 #include "common.h"
 #include "subcommands.h"
 
-#include "deepcheck/robots/decomposition.h"
-#include "deepcheck/robots/decomposition_cache.h"
+#include "deepcheck/decomposition/cache.h"
+#include "deepcheck/decomposition/decomposition.h"
 #include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/package_path.h"
 
@@ -69,7 +69,7 @@ std::string baseName(const std::string& path) {
   return std::filesystem::path(path).filename().string();
 }
 
-void printReport(const robots::DecompositionReport& r) {
+void printReport(const decomposition::DecompositionReport& r) {
   std::printf("mesh %s\n", r.source.c_str());
   std::printf("triangles %d vertices %d components %d holes-filled %d voids-removed %d\n",
               r.numTriangles, r.numVertices, r.numComponents, r.holesFilled, r.voidsRemoved);
@@ -86,7 +86,7 @@ void printReport(const robots::DecompositionReport& r) {
     std::printf("volume: mesh not closed; pieces %.6g\n", r.piecesVolume);
   }
   std::printf("time %.1f ms (cache %s; decomposition %.1f ms)\n", r.milliseconds,
-              robots::toString(r.cache), r.decomposeMilliseconds);
+              decomposition::toString(r.cache), r.decomposeMilliseconds);
   if (!r.cacheMessage.empty()) std::printf("cache note: %s\n", r.cacheMessage.c_str());
 }
 
@@ -96,15 +96,15 @@ struct DecomposeArgs {
   bool noCache = false;
   std::string out;
   std::string cacheDir;
-  robots::DecompositionParams params;
+  decomposition::DecompositionParams params;
   PackageRoots packages;
   std::vector<std::string> meshes;
 };
 
 /// The decomposition parameters given (--max-concavity, --min-concavity-abs, --max-pieces,
 /// --max-vertices, --max-triangles); UsageError for a value they do not accept.
-robots::DecompositionParams takeParams(std::vector<std::string>& args) {
-  robots::DecompositionParams params;
+decomposition::DecompositionParams takeParams(std::vector<std::string>& args) {
+  decomposition::DecompositionParams params;
   if (const std::string v = takeSingleOption(args, "--max-concavity"); !v.empty()) {
     params.maxConcavity = parseValue(v, "option --max-concavity");
   }
@@ -147,21 +147,21 @@ DecomposeArgs takeDecomposeArgs(std::vector<std::string>& args) {
 
 /// `--report`: one table line per mesh, a summary, and the time to read them all back from the
 /// cache.
-void printReportTable(const std::vector<robots::TriangleMesh>& meshes, const robots::DecompositionParams& params,
-                      const robots::DecompositionCache& cache) {
+void printReportTable(const std::vector<robots::TriangleMesh>& meshes, const decomposition::DecompositionParams& params,
+                      const decomposition::DecompositionCache& cache) {
   std::printf("%-24s %9s %6s %10s %7s %10s %4s %8s %9s %7s\n", "mesh", "triangles", "pieces",
               "concavity", "%diag", "target", "met", "vol.ratio", "ms", "cache");
   bool allMet = true;
   double totalMs = 0.0;
   for (const robots::TriangleMesh& mesh : meshes) {
-    const robots::ConvexDecomposition d = robots::decomposeConvexCached(mesh, params, cache);
-    const robots::DecompositionReport& r = d.report;
+    const decomposition::ConvexDecomposition d = decomposition::decomposeConvexCached(mesh, params, cache);
+    const decomposition::DecompositionReport& r = d.report;
     allMet = allMet && r.targetMet;
     totalMs += r.milliseconds;
     std::printf("%-24s %9d %6d %10.5f %7.3f %10.5f %4s %8.3f %9.1f %7s\n",
                 baseName(r.source).c_str(), r.numTriangles, r.numPieces, r.concavity,
                 100.0 * r.concavityRelative, r.targetConcavity, r.targetMet ? "yes" : "NO",
-                r.volumeRatio, r.decomposeMilliseconds, robots::toString(r.cache));
+                r.volumeRatio, r.decomposeMilliseconds, decomposition::toString(r.cache));
   }
   std::printf("meshes %zu, target met by all: %s, this run %.1f ms\n", meshes.size(),
               allMet ? "yes" : "no", totalMs);
@@ -170,7 +170,7 @@ void printReportTable(const std::vector<robots::TriangleMesh>& meshes, const rob
   const auto start = std::chrono::steady_clock::now();
   int hits = 0;
   for (const robots::TriangleMesh& mesh : meshes) {
-    hits += robots::decomposeConvexCached(mesh, params, cache).report.cache == robots::CacheStatus::Hit;
+    hits += decomposition::decomposeConvexCached(mesh, params, cache).report.cache == decomposition::CacheStatus::Hit;
   }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   std::printf("cached load: %d of %zu meshes from the cache in %.2f ms\n", hits, meshes.size(), ms);
@@ -178,8 +178,8 @@ void printReportTable(const std::vector<robots::TriangleMesh>& meshes, const rob
 
 int run(std::vector<std::string> args) {
   const DecomposeArgs a = takeDecomposeArgs(args);
-  const robots::DecompositionCache cache =
-      a.noCache ? robots::DecompositionCache::disabled() : robots::DecompositionCache(a.cacheDir);
+  const decomposition::DecompositionCache cache =
+      a.noCache ? decomposition::DecompositionCache::disabled() : decomposition::DecompositionCache(a.cacheDir);
   const std::vector<std::string> roots = robots::packageRoots(a.packages.commandLine);
   std::vector<robots::TriangleMesh> meshes;
   for (const std::string& arg : a.meshes) {
@@ -190,8 +190,8 @@ int run(std::vector<std::string> args) {
     printReportTable(meshes, a.params, cache);
     return 0;
   }
-  const robots::ConvexDecomposition d = robots::decomposeConvexCached(meshes[0], a.params, cache);
-  if (!a.out.empty()) robots::writePiecesObj(a.out, d.pieces);
+  const decomposition::ConvexDecomposition d = decomposition::decomposeConvexCached(meshes[0], a.params, cache);
+  if (!a.out.empty()) decomposition::writePiecesObj(a.out, d.pieces);
   printReport(d.report);
   if (!a.out.empty()) std::printf("wrote %s\n", a.out.c_str());
   return 0;

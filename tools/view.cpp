@@ -11,9 +11,9 @@
 #include "pd_input.h"
 #include "subcommands.h"
 
+#include "deepcheck/decomposition/cache.h"
+#include "deepcheck/decomposition/decomposition.h"
 #include "deepcheck/deep/signed_distance.h"
-#include "deepcheck/robots/decomposition.h"
-#include "deepcheck/robots/decomposition_cache.h"
 #include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/package_path.h"
 #include "deepcheck/viewer/html_view.h"
@@ -196,8 +196,8 @@ viewer::ViewScene pdView(const std::string& file) {
 viewer::ViewScene decomposeView(const std::string& meshArg, const PackageRoots& packages) {
   const std::string path = robots::resolveUriOrThrow(meshArg, robots::packageRoots(packages.commandLine), "", "--decompose");
   auto mesh = std::make_shared<const robots::TriangleMesh>(robots::loadMesh(path));
-  const robots::ConvexDecomposition d = robots::decomposeConvexCached(*mesh, robots::DecompositionParams(),
-                                                                      robots::DecompositionCache(""));
+  const decomposition::ConvexDecomposition d = decomposition::decomposeConvexCached(
+      *mesh, decomposition::DecompositionParams(), decomposition::DecompositionCache(""));
   viewer::ViewScene scene;
   scene.title = "deepcheck view: " + meshArg;
   viewer::ViewBody body;
@@ -214,7 +214,7 @@ viewer::ViewScene decomposeView(const std::string& meshArg, const PackageRoots& 
   }
   scene.bodies.push_back(std::move(body));
   scene.frames.emplace_back();
-  const robots::DecompositionReport& r = d.report;
+  const decomposition::DecompositionReport& r = d.report;
   char caption[512];
   std::snprintf(caption, sizeof caption,
                 "%s\n%d triangles, %d pieces (at most %d vertices each)\nconcavity %.4g m = %.2f%% of the "

@@ -8,8 +8,8 @@
 #include "deepcheck/deep/tolerances.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/robots/cache_file.h"
-#include "deepcheck/robots/decomposition_cache.h"
+#include "deepcheck/decomposition/cache.h"
+#include "deepcheck/decomposition/cache_file.h"
 
 #include <cstring>
 #include <filesystem>
@@ -33,11 +33,11 @@ void appendLittleEndian(std::string& data, std::uint64_t x, int bytes) {
   for (int i = 0; i < bytes; ++i) data.push_back(static_cast<char>(x >> (8 * i)));
 }
 
-void hashPose(robots::ContentHasher& h, const Eigen::Isometry3d& X) {
+void hashPose(decomposition::ContentHasher& h, const Eigen::Isometry3d& X) {
   for (int k = 0; k < 16; ++k) h.f64(X.matrix().data()[k]);
 }
 
-void hashPieces(robots::ContentHasher& h, const RobotData& robot, const LinkGeometry& g) {
+void hashPieces(decomposition::ContentHasher& h, const RobotData& robot, const LinkGeometry& g) {
   h.u64(static_cast<std::uint64_t>(g.numPieces));
   for (int j = g.firstPiece; j < g.firstPiece + g.numPieces; ++j) {
     const RobotPiece& piece = robot.pieces[j];
@@ -51,7 +51,7 @@ void hashPieces(robots::ContentHasher& h, const RobotData& robot, const LinkGeom
 }
 
 /// Every joint from `down` up to `up`, and the limits of the variables that move them.
-void hashJoints(robots::ContentHasher& h, const robots::RobotModel& model, int up, int down) {
+void hashJoints(decomposition::ContentHasher& h, const robots::RobotModel& model, int up, int down) {
   for (int l = down; l != up; l = model.link(l).parentLink) {
     const robots::Joint& joint = model.joint(model.link(l).parentJoint);
     h.u64(static_cast<std::uint64_t>(joint.type));
@@ -82,7 +82,7 @@ std::vector<double> gridCertificateTolerances() {
 
 std::string selfPairGridKey(const RobotData& robot, int up, int down, const LinkGeometry& U, const LinkGeometry& D,
                             const std::vector<double>& layout, const std::vector<double>& tolerances) {
-  robots::ContentHasher h;
+  decomposition::ContentHasher h;
   static const char kTag[] = "deepcheck self-pair grid";
   h.bytes(kTag, sizeof kTag);
   h.u64(kGridCacheFormatVersion);
@@ -99,7 +99,7 @@ std::string selfPairGridKey(const RobotData& robot, int up, int down, const Link
 SelfPairGridCache::SelfPairGridCache(std::string directory) : directory_(std::move(directory)) {}
 
 SelfPairGridCache SelfPairGridCache::besideDecompositionCache(const WorldOptions& options) {
-  const robots::DecompositionCache decompositions(options.decompositionCacheDir);
+  const decomposition::DecompositionCache decompositions(options.decompositionCacheDir);
   return SelfPairGridCache(decompositions.enabled() ? decompositions.directory() : "");
 }
 
@@ -111,7 +111,7 @@ std::optional<std::vector<std::uint8_t>> SelfPairGridCache::load(const std::stri
                                                                  std::string* problem) const {
   problem->clear();
   unsigned char wantKey[16];
-  if (!enabled() || !robots::cacheKeyBytes(key, wantKey)) return std::nullopt;
+  if (!enabled() || !decomposition::cacheKeyBytes(key, wantKey)) return std::nullopt;
   const std::string path = pathFor(key);
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return std::nullopt;
@@ -120,11 +120,11 @@ std::optional<std::vector<std::uint8_t>> SelfPairGridCache::load(const std::stri
     return std::nullopt;
   };
   std::string data;
-  if (const std::string why = robots::readWholeFile(path, data); !why.empty()) return bad("cannot be read: " + why);
+  if (const std::string why = decomposition::readWholeFile(path, data); !why.empty()) return bad("cannot be read: " + why);
   if (data.size() < kHeaderBytes + kChecksumBytes) return bad("truncated");
   // Checksum first: it covers everything, so the fields below are read from intact bytes.
   const std::size_t body = data.size() - kChecksumBytes;
-  if (robots::fnv1a(data.data(), body) != readLittleEndian(data, body, 8)) return bad("checksum mismatch");
+  if (decomposition::fnv1a(data.data(), body) != readLittleEndian(data, body, 8)) return bad("checksum mismatch");
   if (std::memcmp(data.data(), kMagic, sizeof kMagic) != 0) return bad("not a grid cache file");
   // Another version or key: an entry of another build or grid, not a corrupt one.
   if (readLittleEndian(data, sizeof kMagic, 4) != kGridCacheFormatVersion) return std::nullopt;
@@ -142,15 +142,15 @@ std::optional<std::vector<std::uint8_t>> SelfPairGridCache::load(const std::stri
 std::string SelfPairGridCache::store(const std::string& key, const std::vector<std::uint8_t>& flags) const {
   unsigned char keyBytes[16];
   if (!enabled()) return "cache disabled";
-  if (!robots::cacheKeyBytes(key, keyBytes)) return "malformed key '" + key + "'";
+  if (!decomposition::cacheKeyBytes(key, keyBytes)) return "malformed key '" + key + "'";
   std::string data(kMagic, sizeof kMagic);
   appendLittleEndian(data, kGridCacheFormatVersion, 4);
   data.append(reinterpret_cast<const char*>(keyBytes), 16);
   appendLittleEndian(data, flags.size(), 4);
   data.append(flags.begin(), flags.end());
-  appendLittleEndian(data, robots::fnv1a(data.data(), data.size()), 8);
+  appendLittleEndian(data, decomposition::fnv1a(data.data(), data.size()), 8);
   try {
-    return robots::writeFileAtomically(directory_, pathFor(key), data);
+    return decomposition::writeFileAtomically(directory_, pathFor(key), data);
   } catch (const std::exception& e) {  // std::bad_alloc, or a filesystem error of the path
     return e.what();
   }

@@ -3,12 +3,12 @@
 // does not certify its grids' cells again (GJK per piece pair per cell plus forward kinematics:
 // most of a warm load's time before it).
 //
-// Where: beside the decomposition cache (robots/decomposition_cache.h), in the directory of
+// Where: beside the decomposition cache (decomposition/cache.h), in the directory of
 // WorldOptions::decompositionCacheDir or its default, and disabled with it. One file per grid,
 // `<directory>/grid-<key>.bin`.
 //
-// Key: a 128-bit hash (robots::ContentHasher) of everything the cells' FREE flags depend on:
-// both links' pieces (core vertices, radii, poses in their links), every joint from the lower
+// Key: a 128-bit hash (decomposition::ContentHasher) of everything the cells' FREE flags depend
+// on: both links' pieces (core vertices, radii, poses in their links), every joint from the lower
 // link up to the upper one (type, origin, axis, limits, variable, multiplier, offset), the grid's
 // layout (variables, lower limits, cell widths and counts, delta), every tolerance the
 // certificate uses (tol::kCertifiedGapRelative, the layout's padding and budgets, the GJK
@@ -27,8 +27,8 @@
 // key and checksum guard against those). It runs GJK from other warm starts than the scan did,
 // so a cell certified within GJK's accuracy of the threshold could in principle fail it: the
 // entry is then rebuilt, which costs time, never an answer. Writes
-// are atomic (robots::writeFileAtomically); a directory that cannot be created or written leaves
-// the grids uncached, silently.
+// are atomic (decomposition::writeFileAtomically); a directory that cannot be created or written
+// leaves the grids uncached, silently.
 
 #include <cstddef>
 #include <cstdint>

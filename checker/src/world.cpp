@@ -9,7 +9,6 @@
 #include "world_internal.h"
 
 #include "deepcheck/deep/pair_frame.h"
-#include "deepcheck/robots/decomposition_cache.h"
 #include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/mesh_loader.h"
@@ -71,26 +70,6 @@ namespace {
 std::uint64_t nextWorldUid() {
   static std::atomic<std::uint64_t> counter{1};
   return counter.fetch_add(1);
-}
-
-/// The default mesh decomposer of a world: convex decomposition through the on-disk cache; it
-/// records the largest concavity reached in `excess`.
-robots::MeshDecomposer makeDecomposer(const WorldOptions& options, std::shared_ptr<double> excess) {
-  if (!options.decompose) {
-    return [excess](const robots::TriangleMesh& mesh) {
-      // One hull: how far it sticks out of the mesh is not measured here.
-      *excess = std::numeric_limits<double>::quiet_NaN();
-      return robots::convexHullDecomposer(mesh);
-    };
-  }
-  options.decomposition.validate();
-  const robots::DecompositionParams params = options.decomposition;
-  const robots::DecompositionCache cache(options.decompositionCacheDir);
-  return [params, cache, excess](const robots::TriangleMesh& mesh) {
-    const robots::ConvexDecomposition d = robots::decomposeConvexCached(mesh, params, cache);
-    if (!std::isnan(*excess)) *excess = std::max(*excess, d.report.concavity);
-    return d.polytopes();
-  };
 }
 
 /// robots::collisionPieces of `model`, with a progress line per mesh made into pieces once the
@@ -408,7 +387,8 @@ World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std
   st.geometry = options.geometry;
   auto excess = std::make_shared<double>(0.0);
   if (!st.geometry.decomposer) {
-    st.geometry.decomposer = makeDecomposer(options, excess);
+    st.geometry.decomposer = robots::meshDecomposer(
+        {options.decompose, options.decomposition, options.decompositionCacheDir}, excess);
   } else {
     *excess = std::numeric_limits<double>::quiet_NaN();  // a custom decomposer: unknown
   }

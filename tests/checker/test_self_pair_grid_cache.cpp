@@ -10,7 +10,7 @@
 #include "world_test_access.h"
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/robots/cache_file.h"
+#include "deepcheck/decomposition/cache_file.h"
 #include "deepcheck/robots/pair_filter.h"
 
 #include <boost/test/unit_test.hpp>
@@ -121,7 +121,7 @@ void forge(const std::string& path, const std::function<void(std::string& cells)
   std::string cells = data.substr(header, data.size() - header - 8);
   edit(cells);
   std::string body = data.substr(0, header) + cells;
-  const std::uint64_t sum = robots::fnv1a(body.data(), body.size());
+  const std::uint64_t sum = decomposition::fnv1a(body.data(), body.size());
   for (int i = 0; i < 8; ++i) body.push_back(static_cast<char>(sum >> (8 * i)));
   writeText(path, body);
 }
@@ -195,7 +195,7 @@ BOOST_AUTO_TEST_CASE(another_version_is_rebuilt_silently) {
   std::string data = readText(path);
   data[8] = static_cast<char>(detail::kGridCacheFormatVersion + 1);
   data.resize(data.size() - 8);
-  const std::uint64_t sum = robots::fnv1a(data.data(), data.size());
+  const std::uint64_t sum = decomposition::fnv1a(data.data(), data.size());
   for (int i = 0; i < 8; ++i) data.push_back(static_cast<char>(sum >> (8 * i)));
   writeText(path, data);
   BOOST_TEST((flags(*arm.build(cache, &notes)) == flags(*arm.truth)));

@@ -3,10 +3,10 @@
 # build and tests:
 #   1. build-asan: Clang build with AddressSanitizer + UndefinedBehaviorSanitizer
 #      (-fno-sanitize-recover=all: the first report fails the run) and libFuzzer's coverage
-#      instrumentation (-fsanitize=fuzzer-no-link) of the deep, robots and checker unit tests and of
-#      the fuzz harnesses, which are libFuzzer binaries; runs the tests, replays every committed
-#      corpus input, then fuzzes each harness for FUZZ_SECONDS from its committed corpus, two at a
-#      time (fuzz/run_fuzzer.sh): any finding fails the stage.
+#      instrumentation (-fsanitize=fuzzer-no-link) of the deep, decomposition, robots and checker
+#      unit tests and of the fuzz harnesses, which are libFuzzer binaries; runs the tests, replays
+#      every committed corpus input, then fuzzes each harness for FUZZ_SECONDS from its committed
+#      corpus, two at a time (fuzz/run_fuzzer.sh): any finding fails the stage.
 #   2. build-tsan: ThreadSanitizer build of the checker's concurrency suite alone; runs it.
 # The long randomized sweeps of test_deep (see SANITIZE_DEEP_SKIP) run in the normal build only:
 # under ASan they alone would take longer than the rest of CI.
@@ -61,7 +61,7 @@ if ! grep -q '^DEEPCHECK_HAVE_LIBFUZZER:INTERNAL=1' build-asan/CMakeCache.txt; t
   exit 1
 fi
 harnesses=(pd_input urdf mesh config_lines moveit_scene scene_text srdf problems decomposition_cache ompl_state goal_pose)
-cmake --build build-asan -j "$jobs" --target test_deep test_robots test_checker "${harnesses[@]/#/fuzz_}"
+cmake --build build-asan -j "$jobs" --target test_deep test_decomposition test_robots test_checker "${harnesses[@]/#/fuzz_}"
 
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
@@ -74,11 +74,12 @@ suite() {
 }
 
 step "ASan+UBSan unit tests"
-# test_deep (the longest) runs beside test_robots and test_checker: on two cores or more the stage
-# takes the time of the longer side; on one, the two sides share it.
+# test_deep (the longest) runs beside test_decomposition, test_robots and test_checker: on two
+# cores or more the stage takes the time of the longer side; on one, the two sides share it.
 failed=0
 suite test_deep --report_level=short "--run_test=$SANITIZE_DEEP_SKIP" &
 deep_pid=$!
+suite test_decomposition --report_level=short || failed=1
 suite test_robots --report_level=short || failed=1
 suite test_checker --report_level=short "--run_test=$SANITIZE_CHECKER_SKIP" || failed=1
 wait "$deep_pid" || failed=1

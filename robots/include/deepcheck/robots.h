@@ -1,11 +1,9 @@
 #pragma once
 // deepcheck::robots in one include: URDF robots and scenes, MoveIt planning scenes, meshes,
-// collision geometry and convex decomposition (with its cache), kinematics, inverse kinematics,
-// random configurations, collision-pair filtering and SRDF files.
+// collision geometry (meshes made into pieces by deepcheck/decomposition.h), kinematics, inverse
+// kinematics, random configurations, collision-pair filtering and SRDF files.
 
 #include "deepcheck/robots/collision_geometry.h"
-#include "deepcheck/robots/decomposition.h"
-#include "deepcheck/robots/decomposition_cache.h"
 #include "deepcheck/robots/inverse_kinematics.h"
 #include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/kinematics.h"

@@ -82,9 +82,9 @@
 
 #include "deepcheck/checker/broad_phase.h"
 #include "deepcheck/checker/tolerances.h"
+#include "deepcheck/decomposition/decomposition.h"
 #include "deepcheck/deep/signed_distance.h"
 #include "deepcheck/robots/collision_geometry.h"
-#include "deepcheck/robots/decomposition.h"
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
@@ -231,12 +231,13 @@ struct WorldOptions {
   /// prints nothing.
   std::ostream* progress = &std::cerr;
   /// Cylinder prisms and how meshes become pieces. An empty `geometry.decomposer` means the
-  /// default: convex decomposition (robots/decomposition.h) with `decomposition` parameters,
-  /// through the on-disk cache in `decompositionCacheDir` ("" = the default directory,
-  /// decomposition_cache.h), unless `decompose` is false (then one convex hull per mesh).
+  /// default, robots::meshDecomposer: convex decomposition (decomposition/decomposition.h) with
+  /// `decomposition` parameters, through the on-disk cache in `decompositionCacheDir` ("" = the
+  /// default directory, decomposition/cache.h), unless `decompose` is false (then one convex hull
+  /// per mesh).
   robots::CollisionGeometryOptions geometry;
   bool decompose = true;
-  robots::DecompositionParams decomposition;
+  deepcheck::decomposition::DecompositionParams decomposition;
   std::string decompositionCacheDir;
   /// Disable self pairs of adjacent links (robots::adjacentLinkPairs: joined by a joint, or
   /// through links without geometry only).

@@ -21,8 +21,8 @@
 //             than a prism), and the deep library's shapes are polytope cores with a radius.
 // Meshes: the mesh is loaded (mesh_loader.h: URDF scale applied, degenerate triangles dropped) and
 // handed to a MeshDecomposer, which returns convex polytopes in the mesh's frame G. The default,
-// convexHullDecomposer, returns the single convex hull of the vertices; the convex decomposition
-// (decomposition.h) plugs in here.
+// convexHullDecomposer, returns the single convex hull of the vertices; meshDecomposer gives the
+// convex decomposition (deepcheck/decomposition/decomposition.h) through its on-disk cache.
 //
 // Frames: L the link, G the collision element (URDF <collision><origin>), P the piece; for every
 // piece built here P = G, so X_LP = CollisionElement::X_LG. Metres.
@@ -32,6 +32,7 @@
 #include "deepcheck/robots/robot_model.h"
 #include "deepcheck/robots/tolerances.h"
 
+#include "deepcheck/decomposition/decomposition.h"
 #include "deepcheck/deep/polytope.h"
 
 #include <Eigen/Geometry>
@@ -58,6 +59,25 @@ using MeshDecomposer = std::function<std::vector<deep::ConvexPolytope>(const Tri
 
 /// The default decomposer: one piece, the convex hull of the mesh's vertices.
 std::vector<deep::ConvexPolytope> convexHullDecomposer(const TriangleMesh& mesh);
+
+/// Which decomposer meshDecomposer makes.
+struct DecomposerOptions {
+  /// Convex decomposition when true; one convex hull per mesh (convexHullDecomposer) when false.
+  bool decompose = true;
+  decomposition::DecompositionParams parameters;
+  /// Directory of the decomposition's on-disk cache; "" means
+  /// decomposition::DecompositionCache::defaultDirectory().
+  std::string cacheDir;
+};
+
+/// The decomposer of `options`: decomposition::decomposeConvexCached with options.parameters
+/// through the cache in options.cacheDir, or convexHullDecomposer. `largestConcavity`, when
+/// given, records how far pieces may stick out of their meshes: raised to the concavity of every
+/// decomposition made (DecompositionReport::concavity, mesh units), NaN once a mesh is made into
+/// its hull, which is not measured. Throws std::invalid_argument for parameters out of range
+/// (DecompositionParams::validate) when `decompose` is on.
+MeshDecomposer meshDecomposer(const DecomposerOptions& options,
+                              std::shared_ptr<double> largestConcavity = nullptr);
 
 struct CollisionGeometryOptions {
   /// Largest distance the prism of a cylinder may stick out of it, metres (> 0).

@@ -1,23 +1,11 @@
 #pragma once
-// Triangle meshes as loaded from collision mesh files (STL, OBJ, DAE through assimp).
-// Shared by the mesh loader and the convex decomposition.
+// The triangle meshes robots reads (mesh_loader.h) and makes into pieces (collision_geometry.h)
+// are the convex decomposition's (deepcheck/decomposition/mesh.h).
 
-#include <Eigen/Core>
-
-#include <array>
-#include <string>
-#include <vector>
+#include "deepcheck/decomposition/mesh.h"
 
 namespace deepcheck::robots {
 
-struct TriangleMesh {
-  std::vector<Eigen::Vector3d> vertices;      ///< in the mesh's frame, metres (after unit/scale)
-  std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside when the file says so
-  std::string source;                         ///< file it came from, for messages ("" if generated)
-
-  bool empty() const { return triangles.empty(); }
-  /// Diagonal of the axis-aligned bounding box (0 for an empty mesh).
-  double boundingBoxDiagonal() const;
-};
+using decomposition::TriangleMesh;
 
 }  // namespace deepcheck::robots

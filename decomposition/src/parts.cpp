@@ -1,6 +1,6 @@
-// Parts of the decomposition: clipping to a cell, cell corners, components (decomposition_internal.h).
+// Parts of the decomposition: clipping to a cell, cell corners, components (decomposer.h).
 
-#include "decomposition_internal.h"
+#include "decomposer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,15 +9,15 @@
 #include <unordered_set>
 #include <unordered_map>
 
-namespace deepcheck::robots::detail::decomp {
+namespace deepcheck::decomposition::detail {
 
 std::vector<PartPolygon> Decomposer::clip(const std::vector<PartPolygon>& polygons,
                                           const Halfspace& keep) const {
   std::vector<PartPolygon> out;
   out.reserve(polygons.size());
-  const double minArea = std::pow(dt::kDegenerateRelative * diagonal_, 2);
+  const double minArea = std::pow(tol::kDegenerateRelative * diagonal_, 2);
   std::vector<Vector3d> clipped;
-  const double onPlane = dt::kOnPlaneRelative * diagonal_;
+  const double onPlane = tol::kOnPlaneRelative * diagonal_;
   for (const PartPolygon& polygon : polygons) {
     bool allIn = true;
     bool allOut = true;
@@ -53,7 +53,7 @@ std::vector<Decomposer::CellCorner> Decomposer::solidCellCorners(const std::vect
   if (k < 3) return corners;
   std::vector<Halfspace> h;
   for (const CellSide& side : cell) h.push_back(halfspaceOf(side));
-  const double tolerance = dt::kOnPlaneRelative * diagonal_;
+  const double tolerance = tol::kOnPlaneRelative * diagonal_;
   for (int a = 0; a < k; ++a) {
     for (int b = a + 1; b < k; ++b) {
       for (int c = b + 1; c < k; ++c) {
@@ -133,7 +133,7 @@ void Decomposer::joinThroughCutFaces(const std::vector<PartPolygon>& polygons, c
     if (inserted) parent->push_back(it->second);
     unite(*parent, sourceNode, it->second);
   };
-  const double onPlane = dt::kOnPlaneRelative * diagonal_;
+  const double onPlane = tol::kOnPlaneRelative * diagonal_;
   for (std::size_t c = 0; c < cell.size(); ++c) {
     const CrossSection& section = planes_[cell[c].plane]->section;
     for (std::size_t i = 0; i < sources.size(); ++i) {
@@ -193,7 +193,7 @@ std::vector<int> Decomposer::cornerOwners(const CellCorner& corner, const std::v
   for (int c : corner.planes) inward -= halfspaces[c].normal;
   const Vector3d axis = inward.normalized();
   std::vector<int> owners;
-  for (int attempt = 0; owners.empty() && attempt < dt::kCornerRays && axis.allFinite(); ++attempt) {
+  for (int attempt = 0; owners.empty() && attempt < tol::kCornerRays && axis.allFinite(); ++attempt) {
     // The axis, then the axis tilted away from each of the corner's planes in turn.
     Vector3d dir = axis;
     if (attempt > 0) dir = (axis - 0.5 * halfspaces[corner.planes[attempt % corner.planes.size()]].normal).normalized();
@@ -238,7 +238,7 @@ void Decomposer::assignCellCorners(const std::vector<CellSide>& cell, const std:
   // may be a void inside the solid (an inner boundary): then the first component touching the
   // cell's planes along the ray gets the corner too. A corner whose rays all leave the cell first
   // goes to every component (safe).
-  const double onPlane = dt::kOnPlaneRelative * diagonal_;
+  const double onPlane = tol::kOnPlaneRelative * diagonal_;
   std::vector<char> touchesCell(out->size(), 0);
   for (std::size_t i = 0; i < out->size(); ++i) {
     for (const PartPolygon& polygon : (*out)[i].polygons) {
@@ -277,7 +277,7 @@ Part Decomposer::makePart(std::vector<CellSide> cell, std::vector<PartPolygon> p
   Target target;
   target.mesh = &meshBvh_;
   addCaps(part, &target.caps);
-  const Concavity c = measureConcavity(part.hull, target, dt::kPartSamples, Extra::Dense, nextSeed(), kInf,
+  const Concavity c = measureConcavity(part.hull, target, tol::kPartSamples, Extra::Dense, nextSeed(), kInf,
                                        diagonal_, hint);
   part.hullConcavity = c.value;
   part.concavity = c.value;
@@ -301,10 +301,10 @@ void Decomposer::finishPart(Part* part) {
   Target target;
   target.mesh = &meshBvh_;
   addCaps(*part, &target.caps);
-  part->concavity = measureConcavity(part->finalHull, target, dt::kPartSamples, Extra::Dense,
+  part->concavity = measureConcavity(part->finalHull, target, tol::kPartSamples, Extra::Dense,
                                      nextSeed(), kInf, diagonal_)
                         .value;
   part->reductionLimited = part->concavity > target_;
 }
 
-}  // namespace deepcheck::robots::detail::decomp
+}  // namespace deepcheck::decomposition::detail

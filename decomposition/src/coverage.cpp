@@ -1,15 +1,18 @@
 // Coverage of a mesh by convex pieces (decomposition.h): the check a decomposition read from the
 // cache passes before it is used.
 
-#include "decomposition_internal.h"
+#include "deepcheck/decomposition/decomposition.h"
+
+#include "basics.h"
+#include "clean_mesh.h"
 
 #include <algorithm>
 #include <string>
 #include <vector>
 
-namespace deepcheck::robots {
+namespace deepcheck::decomposition {
 
-using detail::decomp::kInf;
+using detail::kInf;
 
 namespace {
 
@@ -31,7 +34,7 @@ double distanceToPiece(const ConvexPiece& piece, const Eigen::Vector3d& point) {
 std::vector<char> coveredVertices(const TriangleMesh& mesh, double diagonal) {
   std::vector<char> used(mesh.vertices.size(), 0);
   for (const auto& t : mesh.triangles) {
-    if (detail::decomp::isDegenerate(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], diagonal)) {
+    if (detail::isDegenerate(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], diagonal)) {
       continue;
     }
     for (int k : t) used[k] = 1;
@@ -42,10 +45,10 @@ std::vector<char> coveredVertices(const TriangleMesh& mesh, double diagonal) {
 }  // namespace
 
 std::string coverageProblem(const TriangleMesh& mesh, const std::vector<ConvexPiece>& pieces) {
-  detail::decomp::checkInput(mesh, detail::decomp::meshName(mesh));
-  const Eigen::AlignedBox3d meshBox = detail::decomp::usedBox(mesh);
+  detail::checkInput(mesh, detail::meshName(mesh));
+  const Eigen::AlignedBox3d meshBox = detail::usedBox(mesh);
   const double diagonal = meshBox.diagonal().norm();
-  const double tolerance = kCoverageToleranceRelative * diagonal;
+  const double tolerance = tol::kCoverageToleranceRelative * diagonal;
   std::vector<Eigen::AlignedBox3d> boxes(pieces.size());
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     for (const Eigen::Vector3d& v : pieces[i].vertices) boxes[i].extend(v);
@@ -72,7 +75,7 @@ std::string coverageProblem(const TriangleMesh& mesh, const std::vector<ConvexPi
     if (covered) continue;
     double distance = kInf;
     for (const ConvexPiece& piece : pieces) distance = std::min(distance, distanceToPiece(piece, v));
-    using detail::decomp::roundedNumber;
+    using detail::roundedNumber;
     return "vertex " + std::to_string(k) + " (" + roundedNumber(v.x()) + ", " + roundedNumber(v.y()) + ", " +
            roundedNumber(v.z()) + ") is " + (pieces.empty() ? std::string("outside: no piece") :
                                              roundedNumber(distance) + " outside every piece") +
@@ -81,4 +84,4 @@ std::string coverageProblem(const TriangleMesh& mesh, const std::vector<ConvexPi
   return "";
 }
 
-}  // namespace deepcheck::robots
+}  // namespace deepcheck::decomposition

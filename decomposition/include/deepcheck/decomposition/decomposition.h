@@ -61,8 +61,9 @@
 //
 // Units: whatever the mesh is in (metres for URDF meshes); minConcavityAbs is in the same unit.
 
+#include "deepcheck/decomposition/mesh.h"
+#include "deepcheck/decomposition/tolerances.h"
 #include "deepcheck/deep/polytope.h"
-#include "deepcheck/robots/mesh.h"
 
 #include <Eigen/Core>
 
@@ -71,7 +72,7 @@
 #include <string>
 #include <vector>
 
-namespace deepcheck::robots {
+namespace deepcheck::decomposition {
 
 /// Bumped whenever a change of the algorithm changes its output: it is part of the cache key.
 constexpr int kDecompositionAlgorithmVersion = 10;
@@ -117,7 +118,7 @@ struct ConvexPiece {
   double concavity = 0.0;                     ///< this piece's concavity (sampled, see above)
 };
 
-/// How the on-disk cache took part in a decomposition (see decomposition_cache.h).
+/// How the on-disk cache took part in a decomposition (see cache.h).
 enum class CacheStatus {
   NotUsed,      ///< no cache was used (none given, or caching disabled)
   Hit,          ///< read from the cache: no decomposition ran
@@ -183,13 +184,8 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
 /// target and piece limits: "" when every piece meets the target.
 std::string targetWarning(const DecompositionReport& report, const std::vector<ConvexPiece>& pieces);
 
-/// A mesh vertex counts as covered by the pieces when it lies inside some piece grown by this
-/// fraction of the mesh's bounding-box diagonal: far above the round-off of the hulls (~1e-12 of
-/// the diagonal, see Coverage above), far below any feature of a collision mesh.
-constexpr double kCoverageToleranceRelative = 1e-9;
-
 /// Why `pieces` do not cover `mesh`: "" when every vertex of its non-degenerate triangles lies
-/// inside some piece grown by kCoverageToleranceRelative of the diagonal (the pieces' face
+/// inside some piece grown by tol::kCoverageToleranceRelative of the diagonal (the pieces' face
 /// planes decide); otherwise a phrase naming the first vertex outside, its position and its
 /// distance to the nearest piece. Throws std::invalid_argument for an invalid mesh, as
 /// decomposeConvex does. Costs about (vertices x faces of one piece): a cheap check of a result
@@ -205,4 +201,4 @@ bool pieceContains(const ConvexPiece& piece, const Eigen::Vector3d& point, doubl
 /// naming the file when it cannot be written.
 void writePiecesObj(const std::string& path, const std::vector<ConvexPiece>& pieces);
 
-}  // namespace deepcheck::robots
+}  // namespace deepcheck::decomposition

@@ -1,6 +1,6 @@
-// The cut search: candidate cuts of a part, their scores and the choice (decomposition_internal.h).
+// The cut search: candidate cuts of a part, their scores and the choice (decomposer.h).
 
-#include "decomposition_internal.h"
+#include "decomposer.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -9,7 +9,7 @@
 #include <numeric>
 #include <unordered_set>
 
-namespace deepcheck::robots::detail::decomp {
+namespace deepcheck::decomposition::detail {
 
 Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vector<Keep>& keeps,
                                                 double abortAbove) {
@@ -17,8 +17,8 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vec
   std::vector<Vector3d> points;
   points.reserve(part.points.size());
   std::unordered_set<PositionKey, PositionKeyHash> crossings;
-  const double slab = dt::kMinSlabRelative * diagonal_;
-  const double tolerance = dt::kOnPlaneRelative * diagonal_;
+  const double slab = tol::kMinSlabRelative * diagonal_;
+  const double tolerance = tol::kOnPlaneRelative * diagonal_;
   auto insideKeeps = [&](const Vector3d& x, std::size_t skip) {
     for (std::size_t k = 0; k < keeps.size(); ++k) {
       if (k != skip && keeps[k].plane.signedDistance(x) > tolerance) return false;
@@ -81,7 +81,7 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vec
   addCaps(part, &target.caps);
   for (const Keep& keep : keeps) target.caps.push_back({keep.plane.normal, keep.plane.offset, keep.section});
   const Vector3d* hint = part.hasWorst ? &part.worstSample : nullptr;
-  const Concavity c = measureConcavity(hull, target, dt::kCandidateSamples, Extra::None, nextSeed(),
+  const Concavity c = measureConcavity(hull, target, tol::kCandidateSamples, Extra::None, nextSeed(),
                                        abortAbove, diagonal_, hint);
   result.aborted = c.aborted;
   result.concavity = c.value;
@@ -104,7 +104,7 @@ std::vector<Vector3d> cutDirections(const std::vector<Vector3d>& points) {
   for (int i = 2; i >= 0; --i) {
     const Vector3d d = solver.eigenvectors().col(i).normalized();
     bool repeated = false;
-    for (const Vector3d& e : directions) repeated = repeated || std::abs(d.dot(e)) > dt::kSameDirectionCos;
+    for (const Vector3d& e : directions) repeated = repeated || std::abs(d.dot(e)) > tol::kSameDirectionCos;
     if (!repeated && d.allFinite()) directions.push_back(d);
   }
   return directions;
@@ -119,8 +119,8 @@ struct Decomposer::CutSearch {
   CutSearch(Decomposer& decomposer, const Part& cutPart, bool quickOnly, double scoreBound, double* best)
       : d(decomposer), part(cutPart), quick(quickOnly), bound(scoreBound), bestScore(*best),
         directions(cutDirections(cutPart.points)),
-        tie(dt::kTieFraction * decomposer.target_),
-        slab(dt::kMinSlabRelative * decomposer.diagonal_),
+        tie(tol::kTieFraction * decomposer.target_),
+        slab(tol::kMinSlabRelative * decomposer.diagonal_),
         wallAbove(directions.size(), kInf),
         wallBelow(directions.size(), -kInf) {
     for (const Vector3d& n : directions) ranges.push_back(extentAlong(cutPart.points, n));
@@ -163,7 +163,7 @@ void Decomposer::CutSearch::tryCut(int dir, double offset, bool throughWorst) {
   if (!(offset > r.lo + slab && offset < r.hi - slab)) return;
   // A plane (almost) tried already: the same cut.
   for (const auto& [t, o] : tried) {
-    if (t == dir && std::abs(o - offset) <= dt::kSameOffsetFraction * d.target_) return;
+    if (t == dir && std::abs(o - offset) <= tol::kSameOffsetFraction * d.target_) return;
   }
   tried.emplace_back(dir, offset);
   const Vector3d& n = directions[dir];
@@ -174,11 +174,11 @@ void Decomposer::CutSearch::tryCut(int dir, double offset, bool throughWorst) {
   if (!a.valid || a.aborted) return;
   const SideResult b = d.evaluateSide(part, {{{-n, -offset}, &section}}, abortAbove);
   if (!b.valid || b.aborted) return;
-  if (part.noSlivers && std::min(a.volume, b.volume) < (1.0 - dt::kSliverVolume) * part.hull.volume) return;
+  if (part.noSlivers && std::min(a.volume, b.volume) < (1.0 - tol::kSliverVolume) * part.hull.volume) return;
   const double score = std::max(a.concavity, b.concavity);
   bestScore = std::min(bestScore, score);
   double faceArea = 0.0;
-  const double onPlane = dt::kOnPlaneRelative * d.diagonal_;
+  const double onPlane = tol::kOnPlaneRelative * d.diagonal_;
   for (const PartPolygon& polygon : part.polygons) {
     bool inPlane = true;
     for (const Vector3d& p : polygon.corners) inPlane = inPlane && std::abs(n.dot(p) - offset) <= onPlane;
@@ -214,9 +214,9 @@ void Decomposer::CutSearch::nearWorstCuts() {
     std::vector<double> chosen;
     for (double v : values) {
       bool close = false;
-      for (double c : chosen) close = close || std::abs(c - v) <= dt::kFeatureSpacingFraction * d.target_;
+      for (double c : chosen) close = close || std::abs(c - v) <= tol::kFeatureSpacingFraction * d.target_;
       if (!close) chosen.push_back(v);
-      if (static_cast<int>(chosen.size()) >= (quick ? dt::kQuickFeatureOffsets : dt::kFeatureOffsets)) break;
+      if (static_cast<int>(chosen.size()) >= (quick ? tol::kQuickFeatureOffsets : tol::kFeatureOffsets)) break;
     }
     for (double v : chosen) tryCut(k, v, false);
   }
@@ -250,7 +250,7 @@ void Decomposer::CutSearch::wallCuts() {
       if (!(normal.norm() > 0.0)) continue;
       normal.normalize();
       bool known = false;
-      for (const Vector3d& e : directions) known = known || std::abs(normal.dot(e)) > 1.0 - dt::kOnPlaneNormal;
+      for (const Vector3d& e : directions) known = known || std::abs(normal.dot(e)) > 1.0 - tol::kOnPlaneNormal;
       if (known) continue;
       directions.push_back(normal);
       ranges.push_back(extentAlong(part.points, normal));
@@ -289,7 +289,7 @@ void Decomposer::CutSearch::slabCuts() {
 }
 
 void Decomposer::CutSearch::evenCuts() {
-  const int offsets = dt::kOffsetsPerDirection;
+  const int offsets = tol::kOffsetsPerDirection;
   for (int k = 0; k < static_cast<int>(directions.size()); ++k) {
     const Extent& r = ranges[k];
     for (int i = 0; i < offsets; ++i) tryCut(k, r.lo + (r.hi - r.lo) * (i + 0.5) / offsets, false);
@@ -297,13 +297,13 @@ void Decomposer::CutSearch::evenCuts() {
 }
 
 void Decomposer::CutSearch::refine() {
-  for (int round = 1; round <= dt::kRefinementRounds; ++round) {
+  for (int round = 1; round <= tol::kRefinementRounds; ++round) {
     const Candidate* pick = d.pickBest(part, scored, bestScore);
     if (pick->isSlab()) break;
     const int dir = pick->direction;
     const double offset = pick->cut.offset;
     const Extent& r = ranges[dir];
-    const double step = (r.hi - r.lo) / dt::kOffsetsPerDirection / std::pow(2.0, round);
+    const double step = (r.hi - r.lo) / tol::kOffsetsPerDirection / std::pow(2.0, round);
     tryCut(dir, offset - step, false);
     tryCut(dir, offset + step, false);
   }
@@ -327,7 +327,7 @@ std::vector<Decomposer::Candidate> Decomposer::scoreCuts(const Part& part, bool 
 }
 
 bool Decomposer::betterTie(const Candidate& a, const Candidate& b) const {
-  const double areaTie = dt::kFaceAreaTie * diagonal_ * diagonal_;
+  const double areaTie = tol::kFaceAreaTie * diagonal_ * diagonal_;
   if (std::abs(a.faceArea - b.faceArea) > areaTie) return a.faceArea > b.faceArea;
   return a.volume < b.volume;
 }
@@ -339,7 +339,7 @@ const Decomposer::Candidate* Decomposer::pickBest(const Part& part, const std::v
   // all its walls are cut), then the smaller sum of hull volumes. A part cut only because its reduced hull misses the target
   // (reductionLimited) needs fewer hull vertices per side rather than less concavity: among the
   // cuts whose sides meet the target, the smaller larger vertex count wins.
-  const double tie = dt::kTieFraction * target_;
+  const double tie = tol::kTieFraction * target_;
   const Candidate* pick = nullptr;
   if (part.reductionLimited) {
     for (const Candidate& s : scored) {
@@ -399,7 +399,7 @@ std::vector<const Decomposer::Candidate*> Decomposer::lookaheadOrder(const Part&
   std::vector<const Candidate*> ranked;
   for (const Candidate& c : scored) ranked.push_back(&c);
   std::sort(ranked.begin(), ranked.end(), byScore);
-  for (int k = 0; k < dt::kLookaheadBest && k < static_cast<int>(ranked.size()); ++k) {
+  for (int k = 0; k < tol::kLookaheadBest && k < static_cast<int>(ranked.size()); ++k) {
     order.insert(order.begin() + std::min<std::size_t>(order.size(), 1 + k), ranked[k]);
   }
   // Duplicates from the insertion above are dropped.
@@ -407,14 +407,14 @@ std::vector<const Decomposer::Candidate*> Decomposer::lookaheadOrder(const Part&
   for (const Candidate* c : order) {
     if (std::find(unique.begin(), unique.end(), c) == unique.end()) unique.push_back(c);
   }
-  if (static_cast<int>(unique.size()) > dt::kLookaheadCuts) unique.resize(dt::kLookaheadCuts);
+  if (static_cast<int>(unique.size()) > tol::kLookaheadCuts) unique.resize(tol::kLookaheadCuts);
   return unique;
 }
 
 const Decomposer::Candidate* Decomposer::lookahead(const Part& part, const std::vector<const Candidate*>& order,
                                                    const Candidate* pick, std::vector<Part>* children,
                                                    double* bestAhead) {
-  const double tie = dt::kTieFraction * target_;
+  const double tie = tol::kTieFraction * target_;
   *bestAhead = kInf;
   const Candidate* bestCandidate = nullptr;
   for (const Candidate* candidate : order) {
@@ -455,7 +455,7 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
   double greedy = 0.0;
   for (const Part& kid : *children) greedy = std::max(greedy, kid.concavity);
   const bool plateau = !part.reductionLimited && greedy > target_ &&
-                       greedy > dt::kPlateauFraction * part.concavity;
+                       greedy > tol::kPlateauFraction * part.concavity;
   if (!plateau) return finishChildren();
   // Plateau: no single cut lowers the worst concavity (a slot needs a cut along each wall, a hole
   // two cuts through its axis). Look one cut ahead: split by each of the most promising cuts, and
@@ -465,11 +465,11 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
   const Candidate* bestCandidate = lookahead(part, lookaheadOrder(part, scored, pick), pick, children, &bestAhead);
   // Still no progress two cuts deep (a frame around a pocket needs a cut along each of its
   // walls before any concavity drops): cut along the largest mesh face near the concavity.
-  if (bestAhead > dt::kStructuralFraction * part.concavity) {
-    const double tie = dt::kTieFraction * target_;
+  if (bestAhead > tol::kStructuralFraction * part.concavity) {
+    const double tie = tol::kTieFraction * target_;
     const Candidate* structural = nullptr;
     for (const Candidate& c : scored) {
-      if (c.faceArea <= dt::kFaceAreaTie * diagonal_ * diagonal_ || c.score > part.concavity + tie) continue;
+      if (c.faceArea <= tol::kFaceAreaTie * diagonal_ * diagonal_ || c.score > part.concavity + tie) continue;
       if (structural == nullptr || betterTie(c, *structural)) structural = &c;
     }
     if (structural != nullptr && structural != bestCandidate) *children = applyCut(part, *structural, false);
@@ -485,7 +485,7 @@ std::vector<Part> Decomposer::applyCut(const Part& part, const Candidate& candid
   std::vector<Part> out;
   for (Part& kid : first) {
     const Extent e = extentAlong(kid.points, upper.normal);
-    const double slab = dt::kMinSlabRelative * diagonal_;
+    const double slab = tol::kMinSlabRelative * diagonal_;
     if (e.lo < upper.offset - slab && e.hi > upper.offset + slab) {
       for (Part& piece : split(kid, upper, reduce)) out.push_back(std::move(piece));
     } else {
@@ -513,4 +513,4 @@ std::vector<Part> Decomposer::split(const Part& part, const Halfspace& cut, bool
   return children;
 }
 
-}  // namespace deepcheck::robots::detail::decomp
+}  // namespace deepcheck::decomposition::detail

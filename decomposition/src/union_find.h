@@ -1,12 +1,12 @@
 #pragma once
-// Internal to deepcheck::robots: union-find (disjoint sets) over 0 .. n-1 in a parent array
+// Internal to deepcheck::decomposition: union-find (disjoint sets) over 0 .. n-1 in a parent array
 // (parent[i] == i for a root), with path halving; the smaller index becomes the root, so the
 // roots do not depend on the order of the unions.
 
 #include <algorithm>
 #include <vector>
 
-namespace deepcheck::robots::detail {
+namespace deepcheck::decomposition::detail {
 
 /// The root of x's set.
 inline int findRoot(std::vector<int>& parent, int x) {
@@ -24,4 +24,4 @@ inline void unite(std::vector<int>& parent, int a, int b) {
   if (a != b) parent[std::max(a, b)] = std::min(a, b);
 }
 
-}  // namespace deepcheck::robots::detail
+}  // namespace deepcheck::decomposition::detail

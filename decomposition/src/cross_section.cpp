@@ -1,13 +1,15 @@
-// Cross-sections of the mesh by a plane (decomposition_internal.h, CrossSection).
+// Cross-sections of the mesh by a plane (cross_section.h).
 
-#include "decomposition_internal.h"
+#include "cross_section.h"
+
+#include "union_find.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
 
-namespace deepcheck::robots::detail::decomp {
+namespace deepcheck::decomposition::detail {
 
 CrossSection::CrossSection(const CleanMesh& mesh, const Vector3d& normal, double offset, bool withRegions) {
   generalized_ = !mesh.closed;
@@ -148,4 +150,4 @@ void CrossSection::buildRegions(const std::vector<int>& segmentEdges) {
   for (int i = 0; i < n; ++i) regionOfTriangle_[segments_[i].triangle] = region[loopOf[i]];
 }
 
-}  // namespace deepcheck::robots::detail::decomp
+}  // namespace deepcheck::decomposition::detail

@@ -11,7 +11,7 @@
 #include <limits>
 #include <vector>
 
-namespace deepcheck::robots::detail {
+namespace deepcheck::decomposition::detail {
 
 /// The closed half-space {x : normal.x <= offset}.
 struct Halfspace {
@@ -64,4 +64,4 @@ class TriangleBvh {
   std::vector<Node> nodes_;
 };
 
-}  // namespace deepcheck::robots::detail
+}  // namespace deepcheck::decomposition::detail

@@ -1,10 +1,10 @@
 // Convex hulls for the convex decomposition: Qhull (deep/qhull_hull.h) for the hull itself, our own
 // greedy vertex reduction on top of it (decomposition.h describes the bound).
 
-#include "decomposition_hull.h"
+#include "hull.h"
 
-#include "decomposition_bvh.h"
-#include "decomposition_tolerances.h"
+#include "bvh.h"
+#include "deepcheck/decomposition/tolerances.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -21,7 +21,7 @@
 #include <unordered_map>
 #include <utility>
 
-namespace deepcheck::robots::detail {
+namespace deepcheck::decomposition::detail {
 
 using Eigen::Vector3d;
 
@@ -378,7 +378,7 @@ class ProgressiveHull {
           A.row(0) = planes[a].first;
           A.row(1) = planes[b].first;
           A.row(2) = planes[d].first;
-          if (std::abs(A.determinant()) < decomp::kSingularPlanes) continue;
+          if (std::abs(A.determinant()) < tol::kSingularPlanes) continue;
           const Vector3d p = A.inverse() * Vector3d(planes[a].second, planes[b].second, planes[d].second);
           // The objective first: only a point that would improve on the best needs the
           // feasibility test, which costs a pass over the planes.
@@ -521,4 +521,4 @@ Hull reduceHullVertices(const Hull& hull, int maxVertices, double* excess) {
   return reduced;
 }
 
-}  // namespace deepcheck::robots::detail
+}  // namespace deepcheck::decomposition::detail

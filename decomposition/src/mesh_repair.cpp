@@ -1,6 +1,10 @@
-// Mesh repair for the decomposer: welding, holes, topology, orientation (decomposition_internal.h).
+// Mesh repair for the decomposer: welding, holes, topology, orientation (clean_mesh.h).
 
-#include "decomposition_internal.h"
+#include "clean_mesh.h"
+
+#include "basics.h"
+#include "hull.h"
+#include "union_find.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +14,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-namespace deepcheck::robots::detail::decomp {
+namespace deepcheck::decomposition::detail {
 
 namespace {
 
@@ -215,7 +219,7 @@ bool isVoidComponent(const CleanMesh& mesh, const std::vector<int>& triangles, i
         (mesh.vertices[tri[1]] - mesh.vertices[tri[0]]).cross(mesh.vertices[tri[2]] - mesh.vertices[tri[0]]).norm();
     largest.emplace_back(-area, t);
   }
-  const int probes = std::min<int>(dt::kVoidProbes, static_cast<int>(largest.size()));
+  const int probes = std::min<int>(tol::kVoidProbes, static_cast<int>(largest.size()));
   std::partial_sort(largest.begin(), largest.begin() + probes, largest.end());
   int inside = 0;
   for (int k = 0; k < probes; ++k) {
@@ -267,7 +271,7 @@ void groupComponents(CleanMesh* out) {
   }
   std::vector<int> groupParent(out->numComponents);
   std::iota(groupParent.begin(), groupParent.end(), 0);
-  const double touch = dt::kOnPlaneRelative * out->diagonal;
+  const double touch = tol::kOnPlaneRelative * out->diagonal;
   for (int a = 0; a < out->numComponents; ++a) {
     for (int b = a + 1; b < out->numComponents; ++b) {
       Eigen::AlignedBox3d grown = boxes[a];
@@ -323,7 +327,7 @@ Eigen::AlignedBox3d usedBox(const TriangleMesh& mesh) {
 }
 
 bool isDegenerate(const Vector3d& a, const Vector3d& b, const Vector3d& c, double diagonal) {
-  const double minArea2 = std::pow(dt::kDegenerateRelative * diagonal, 4);
+  const double minArea2 = std::pow(tol::kDegenerateRelative * diagonal, 4);
   return 0.25 * (b - a).cross(c - a).squaredNorm() <= minArea2;
 }
 
@@ -348,4 +352,4 @@ CleanMesh cleanMesh(const TriangleMesh& mesh) {
   return out;
 }
 
-}  // namespace deepcheck::robots::detail::decomp
+}  // namespace deepcheck::decomposition::detail

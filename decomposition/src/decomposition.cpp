@@ -1,7 +1,7 @@
-// Approximate convex decomposition: the driver (decomposition_internal.h describes the
+// Approximate convex decomposition: the driver (decomposer.h describes the
 // algorithm, decomposition.h the contract).
 
-#include "decomposition_internal.h"
+#include "decomposer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace deepcheck::robots {
+namespace deepcheck::decomposition {
 
-namespace detail::decomp {
+namespace detail {
 
 void Decomposer::addPart(std::vector<Piece>* pieces, Part part) {
   pieces->push_back({{static_cast<int>(parts_.size())}, part.hull, part.finalHull, part.concavity});
@@ -94,8 +94,8 @@ bool Decomposer::cutWorst(std::vector<Piece>* pieces) {
   // concavity) is no progress: the part is left as it is.
   bool stuck = false;
   for (const Part& child : children) {
-    stuck = stuck || (child.hull.volume >= dt::kSliverVolume * parts_[index].hull.volume &&
-                      child.concavity >= parts_[index].concavity - dt::kTieFraction * target_);
+    stuck = stuck || (child.hull.volume >= tol::kSliverVolume * parts_[index].hull.volume &&
+                      child.concavity >= parts_[index].concavity - tol::kTieFraction * target_);
   }
   if (stuck) {
     // Once more without the sliver cuts, then give up on this part.
@@ -109,7 +109,7 @@ bool Decomposer::cutWorst(std::vector<Piece>* pieces) {
 }
 
 void Decomposer::cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex) {
-  for (int round = 0; round < dt::kMaxRounds && !alreadyConvex; ++round) {
+  for (int round = 0; round < tol::kMaxRounds && !alreadyConvex; ++round) {
     while (static_cast<int>(pieces->size()) < budget_ && cutWorst(pieces)) reportProgress(*pieces);
     bool over = false;
     for (const Piece& piece : *pieces) over = over || piece.concavity > target_;
@@ -123,7 +123,7 @@ void Decomposer::cutAndMerge(std::vector<Piece>* pieces, bool alreadyConvex) {
 
 void Decomposer::reportProgress(const std::vector<Piece>& pieces) {
   const auto now = std::chrono::steady_clock::now();
-  if (std::chrono::duration<double>(now - lastProgress_).count() < dt::kProgressSeconds) return;
+  if (std::chrono::duration<double>(now - lastProgress_).count() < tol::kProgressSeconds) return;
   lastProgress_ = now;
   double worst = 0.0;
   for (const Piece& piece : pieces) worst = std::max(worst, piece.concavity);
@@ -143,7 +143,7 @@ void Decomposer::capVertices(std::vector<Piece>* pieces) {
 std::vector<Concavity> Decomposer::finalConcavities(const std::vector<Piece>& pieces) {
   std::vector<Concavity> final;
   for (const Piece& piece : pieces) {
-    final.push_back(measureConcavity(piece.finalHull, pieceTarget(piece, nullptr), dt::kReportSamples, Extra::Dense,
+    final.push_back(measureConcavity(piece.finalHull, pieceTarget(piece, nullptr), tol::kReportSamples, Extra::Dense,
                                      nextSeed(), kInf, diagonal_));
   }
   return final;
@@ -162,13 +162,13 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
   // twice the budget, up to maxPieces. A mesh that meets the target within the first budget gets
   // the same pieces whatever maxPieces is, and a larger maxPieces costs nothing for it.
   std::vector<Concavity> final;
-  for (budget_ = std::min(params_.maxPieces, dt::kFirstPieceBudget);;
+  for (budget_ = std::min(params_.maxPieces, tol::kFirstPieceBudget);;
        budget_ = static_cast<int>(std::min<long long>(2LL * budget_, params_.maxPieces))) {
-    for (int verify = 0; verify <= dt::kVerifyRounds; ++verify) {
+    for (int verify = 0; verify <= tol::kVerifyRounds; ++verify) {
       cutAndMerge(&pieces, report->alreadyConvex);
       capVertices(&pieces);
       final = finalConcavities(pieces);  // the final, denser estimate on what is returned
-      if (verify == dt::kVerifyRounds || report->alreadyConvex) break;
+      if (verify == tol::kVerifyRounds || report->alreadyConvex) break;
       if (!reopen(&pieces, final, true)) break;
     }
     if (report->alreadyConvex || budget_ >= params_.maxPieces) break;
@@ -187,13 +187,14 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
   return out;
 }
 
-}  // namespace detail::decomp
+}  // namespace detail
 
 using Eigen::Vector3d;
-using detail::decomp::CleanMesh;
-using detail::decomp::cleanMesh;
-using detail::decomp::Decomposer;
-using detail::decomp::kInf;
+using detail::CleanMesh;
+using detail::cleanMesh;
+using detail::Decomposer;
+using detail::formatNumber;
+using detail::kInf;
 
 // ------------------------------------------------------------------------------------------------
 
@@ -245,7 +246,7 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
   const auto start = std::chrono::steady_clock::now();
   params.validate();
   if (mesh.triangles.size() > static_cast<std::size_t>(params.maxTriangles)) {
-    throw std::invalid_argument("decomposeConvex: mesh " + detail::decomp::meshName(mesh) + " has " +
+    throw std::invalid_argument("decomposeConvex: mesh " + detail::meshName(mesh) + " has " +
                                 std::to_string(mesh.triangles.size()) + " triangles, more than maxTriangles (" +
                                 std::to_string(params.maxTriangles) +
                                 "); raise it (deepcheck decompose --max-triangles N) or simplify the mesh");
@@ -265,7 +266,7 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
   report.meshClosed = clean.closed;
   report.meshVolume = clean.volume;
 
-  Decomposer decomposer(clean, params, report.targetConcavity, detail::decomp::meshName(mesh));
+  Decomposer decomposer(clean, params, report.targetConcavity, detail::meshName(mesh));
   result.pieces = decomposer.run(&report);
 
   report.numPieces = static_cast<int>(result.pieces.size());
@@ -295,8 +296,8 @@ std::string targetWarning(const DecompositionReport& report, const std::vector<C
     worst = std::max(worst, piece.concavity);
   }
   if (above == 0) return "";
-  using detail::decomp::roundedNumber;
-  return "decomposition of " + detail::decomp::meshName(report.source) + " misses its target: " + std::to_string(above) + " of " +
+  using detail::roundedNumber;
+  return "decomposition of " + detail::meshName(report.source) + " misses its target: " + std::to_string(above) + " of " +
          std::to_string(pieces.size()) + " pieces end up to " + roundedNumber(worst) + " m outside the mesh (" +
          roundedNumber(100.0 * worst / report.diagonal) + "% of its diagonal), target " +
          roundedNumber(report.targetConcavity) + " m; more pieces (maxPieces) or vertices per piece " +
@@ -329,4 +330,4 @@ bool pieceContains(const ConvexPiece& piece, const Vector3d& point, double toler
   return best <= tolerance;
 }
 
-}  // namespace deepcheck::robots
+}  // namespace deepcheck::decomposition

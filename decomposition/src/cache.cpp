@@ -1,8 +1,8 @@
-#include "deepcheck/robots/decomposition_cache.h"
+#include "deepcheck/decomposition/cache.h"
 
-#include "decomposition_internal.h"
+#include "deepcheck/decomposition/cache_file.h"
 
-#include "deepcheck/robots/cache_file.h"
+#include "basics.h"
 
 #include <chrono>
 #include <cmath>
@@ -15,7 +15,7 @@
 #include <mutex>
 #include <set>
 
-namespace deepcheck::robots {
+namespace deepcheck::decomposition {
 
 namespace fs = std::filesystem;
 
@@ -340,7 +340,7 @@ ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
     problem = cache.pathFor(key) + ": its pieces do not cover the mesh: " + gap;
   }
   if (!problem.empty()) {
-    noteCacheProblem(problem + "; decomposing " + detail::decomp::meshName(mesh) + " again", cache.directory(),
+    noteCacheProblem(problem + "; decomposing " + detail::meshName(mesh) + " again", cache.directory(),
                      false);
   }
   ConvexDecomposition result = decomposeConvex(mesh, params);
@@ -357,4 +357,4 @@ ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
   return result;
 }
 
-}  // namespace deepcheck::robots
+}  // namespace deepcheck::decomposition

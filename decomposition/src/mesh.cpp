@@ -1,6 +1,6 @@
-#include "deepcheck/robots/mesh.h"
+#include "deepcheck/decomposition/mesh.h"
 
-namespace deepcheck::robots {
+namespace deepcheck::decomposition {
 
 double TriangleMesh::boundingBoxDiagonal() const {
   if (vertices.empty()) return 0.0;
@@ -13,4 +13,4 @@ double TriangleMesh::boundingBoxDiagonal() const {
   return (hi - lo).norm();
 }
 
-}  // namespace deepcheck::robots
+}  // namespace deepcheck::decomposition

@@ -1,12 +1,12 @@
-// Merging pieces whose union still meets the concavity target (decomposition_internal.h).
+// Merging pieces whose union still meets the concavity target (decomposer.h).
 
-#include "decomposition_internal.h"
+#include "decomposer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-namespace deepcheck::robots::detail::decomp {
+namespace deepcheck::decomposition::detail {
 
 Hull Decomposer::pieceHull(const Piece& a, const Piece* b) const {
   std::vector<Vector3d> points = a.hull.vertices;
@@ -38,13 +38,13 @@ double Decomposer::mergeCost(const Piece& a, const Piece& b, double abortAbove, 
   }
   Hull hull = pieceHull(a, &b);
   const Target target = pieceTarget(a, &b);
-  Concavity c = measureConcavity(hull, target, dt::kPartSamples, Extra::Dense, nextSeed(), abortAbove,
+  Concavity c = measureConcavity(hull, target, tol::kPartSamples, Extra::Dense, nextSeed(), abortAbove,
                                  diagonal_);
   if (c.aborted) return kInf;
   Hull reduced = hull;
   if (static_cast<int>(hull.vertices.size()) > params_.maxVerticesPerPiece) {
     reduced = detail::reduceHullVertices(hull, params_.maxVerticesPerPiece);
-    c = measureConcavity(reduced, target, dt::kPartSamples, Extra::Dense, nextSeed(), abortAbove, diagonal_);
+    c = measureConcavity(reduced, target, tol::kPartSamples, Extra::Dense, nextSeed(), abortAbove, diagonal_);
     if (c.aborted) return kInf;
   }
   // The merged piece, kept for when this merge is made: its hulls are not computed twice.
@@ -71,7 +71,7 @@ std::vector<Piece> Decomposer::merge(std::vector<Piece> pieces, bool forced) {
   std::vector<std::vector<Piece>> candidate(n, std::vector<Piece>(n));  // the merged pieces
   std::vector<Eigen::AlignedBox3d> boxes(n);
   for (int i = 0; i < n; ++i) boxes[i] = boxOf(pieces[i]);
-  const double grow = dt::kNeighbourFraction * target_;
+  const double grow = tol::kNeighbourFraction * target_;
   auto neighbours = [&](int i, int j) {
     if (forced) return true;
     Eigen::AlignedBox3d a = boxes[i];
@@ -117,4 +117,4 @@ std::vector<Piece> Decomposer::merge(std::vector<Piece> pieces, bool forced) {
   return kept;
 }
 
-}  // namespace deepcheck::robots::detail::decomp
+}  // namespace deepcheck::decomposition::detail

@@ -17,8 +17,8 @@
 // holds an out-of-range index or a non-finite number is treated as absent: the mesh is decomposed
 // again and the file replaced when possible. An entry that reads well is still checked against
 // the mesh before use (coverageProblem: every vertex inside some piece, within
-// kCoverageToleranceRelative of the diagonal), so a stale or forged entry whose pieces miss part
-// of the mesh is rebuilt too. A directory that cannot be created or written leaves the
+// tol::kCoverageToleranceRelative of the diagonal), so a stale or forged entry whose pieces miss
+// part of the mesh is rebuilt too. A directory that cannot be created or written leaves the
 // decomposition uncached. decomposeConvexCached says so in one line on stderr
 // ("deepcheck: decomposition cache: <file or directory>: <why>; ...", naming the mesh when it is
 // decomposed again, with the system's reason for a failed read or write; a write problem once
@@ -31,13 +31,13 @@
 // (atomic on POSIX), so concurrent processes never see a partial file; at worst two of them both
 // compute and write the same result.
 
-#include "deepcheck/robots/decomposition.h"
-#include "deepcheck/robots/mesh.h"
+#include "deepcheck/decomposition/decomposition.h"
+#include "deepcheck/decomposition/mesh.h"
 
 #include <optional>
 #include <string>
 
-namespace deepcheck::robots {
+namespace deepcheck::decomposition {
 
 class DecompositionCache {
  public:
@@ -84,4 +84,4 @@ ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
                                           const DecompositionParams& params,
                                           const DecompositionCache& cache);
 
-}  // namespace deepcheck::robots
+}  // namespace deepcheck::decomposition

@@ -1,5 +1,5 @@
 #pragma once
-// What the on-disk caches (decomposition_cache.h, the checker's self-pair grid cache) share: a
+// What the on-disk caches (cache.h, the checker's self-pair grid cache) share: a
 // 128-bit content hash for their keys, the FNV-1a checksum of their files, and whole-file reads
 // and atomic writes.
 //
@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <string>
 
-namespace deepcheck::robots {
+namespace deepcheck::decomposition {
 
 /// FNV-1a, 64 bits, of `size` bytes, continuing from `h`.
 std::uint64_t fnv1a(const void* data, std::size_t size, std::uint64_t h = 1469598103934665603ULL);
@@ -49,4 +49,4 @@ std::string readWholeFile(const std::string& path, std::string& data);
 /// renamed over it; "" on success, else what failed and why (the temporary file is removed).
 std::string writeFileAtomically(const std::string& directory, const std::string& path, const std::string& data);
 
-}  // namespace deepcheck::robots
+}  // namespace deepcheck::decomposition

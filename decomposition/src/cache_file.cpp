@@ -1,6 +1,6 @@
 // Content hashes, checksums and atomic file writes of the on-disk caches (cache_file.h).
 
-#include "deepcheck/robots/cache_file.h"
+#include "deepcheck/decomposition/cache_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -15,7 +15,7 @@
 #include <system_error>
 #include <thread>
 
-namespace deepcheck::robots {
+namespace deepcheck::decomposition {
 
 namespace fs = std::filesystem;
 
@@ -147,4 +147,4 @@ std::string writeFileAtomically(const std::string& directory, const std::string&
   return "";
 }
 
-}  // namespace deepcheck::robots
+}  // namespace deepcheck::decomposition

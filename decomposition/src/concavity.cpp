@@ -1,12 +1,12 @@
-// Concavity of a hull by surface sampling (decomposition_internal.h).
+// Concavity of a hull by surface sampling (concavity.h).
 
-#include "decomposition_internal.h"
+#include "concavity.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-namespace deepcheck::robots::detail::decomp {
+namespace deepcheck::decomposition::detail {
 
 namespace {
 
@@ -17,9 +17,9 @@ std::vector<int> capPlanes(const Hull& hull, const Target& target, double diagon
   for (int t = 0; t < numTriangles; ++t) {
     for (int c = 0; c < static_cast<int>(target.caps.size()); ++c) {
       const double cosine = hull.normals[t].dot(target.caps[c].normal);
-      if (std::abs(cosine) < 1.0 - dt::kOnPlaneNormal) continue;
+      if (std::abs(cosine) < 1.0 - tol::kOnPlaneNormal) continue;
       const double offset = cosine > 0.0 ? target.caps[c].offset : -target.caps[c].offset;
-      if (std::abs(hull.offsets[t] - offset) <= dt::kOnPlaneRelative * diagonal) {
+      if (std::abs(hull.offsets[t] - offset) <= tol::kOnPlaneRelative * diagonal) {
         capOf[t] = c;
         break;
       }
@@ -131,7 +131,7 @@ double refineSample(const Hull& hull, const DistanceToTarget& distanceOf, int t,
   const Vector3d uy = normal.cross(e1).normalized();
   double value = distanceOf(*p, t, 0.0, nearest);
   double step = 0.25 * std::sqrt(std::sqrt(area2));
-  for (int iteration = 0; iteration < steps && step > dt::kOnPlaneRelative * diagonal; ++iteration) {
+  for (int iteration = 0; iteration < steps && step > tol::kOnPlaneRelative * diagonal; ++iteration) {
     bool moved = false;
     for (int dirIndex = 0; dirIndex < 6; ++dirIndex) {
       const double angle = dirIndex * kPi / 3.0;
@@ -188,8 +188,8 @@ Concavity measureConcavity(const Hull& hull, const Target& target, int count, Ex
   // Refinement: the maximum of the distance over a facet is usually a small spot (the middle of a
   // hole spanned by the hull) that a few random samples find only roughly. Hill-climb from the
   // last seeds within their hull triangles.
-  const int refineSeeds = extra == Extra::None ? dt::kCandidateRefineSeeds : dt::kRefineSeeds;
-  const int refineSteps = extra == Extra::None ? dt::kCandidateRefineSteps : dt::kRefineSteps;
+  const int refineSeeds = extra == Extra::None ? tol::kCandidateRefineSeeds : tol::kRefineSeeds;
+  const int refineSteps = extra == Extra::None ? tol::kCandidateRefineSteps : tol::kRefineSteps;
   const int firstSeed = std::max(0, static_cast<int>(seeds.size()) - refineSeeds);
   for (int k = static_cast<int>(seeds.size()) - 1; k >= firstSeed; --k) {
     Vector3d p = seeds[k].first;
@@ -205,4 +205,4 @@ Concavity measureConcavity(const Hull& hull, const Target& target, int count, Ex
   return result;
 }
 
-}  // namespace deepcheck::robots::detail::decomp
+}  // namespace deepcheck::decomposition::detail

@@ -1,9 +1,14 @@
 #pragma once
-// Tolerances and effort settings of the convex decomposition, in one place. Lengths are relative
-// to the mesh's bounding-box diagonal D (so a mesh in millimetres decomposes like the same mesh in
-// metres) or to the concavity target T; none is absolute.
+// All tolerances and effort settings of deepcheck::decomposition, in one place. Lengths are
+// relative to the mesh's bounding-box diagonal D (so a mesh in millimetres decomposes like the
+// same mesh in metres) or to the concavity target T; none is absolute.
 
-namespace deepcheck::robots::detail::decomp {
+namespace deepcheck::decomposition::tol {
+
+/// A mesh vertex counts as covered by the pieces (coverageProblem, decomposition.h) when it lies
+/// inside some piece grown by kCoverageToleranceRelative * D: far above the round-off of the
+/// hulls (~1e-12 D, see Coverage in decomposition.h), far below any feature of a collision mesh.
+constexpr double kCoverageToleranceRelative = 1e-9;
 
 /// A hull facet lies on a cut plane when their unit normals differ by less than
 /// kOnPlaneNormal (1 - |n1.n2|) and their offsets by less than kOnPlaneRelative * D. The cut
@@ -35,12 +40,12 @@ constexpr double kProgressSeconds = 1.0;
 
 /// Rounds of cutting (until the budget is spent) and merging (which frees budget).
 constexpr int kMaxRounds = 4;
-/// Times the final estimate may send pieces back to be cut (see Decomposer::run).
+/// Times the final estimate may send pieces back to be cut (decomposition.h, step 4).
 constexpr int kVerifyRounds = 2;
 
 /// Piece budget of the first stage: the decomposition works within min(maxPieces, this) pieces
 /// and doubles the budget (up to maxPieces) only while the target is missed, so the pieces of a
-/// mesh that meets it within this budget do not depend on maxPieces (see Decomposer::run).
+/// mesh that meets it within this budget do not depend on maxPieces (decomposition.h, step 4).
 constexpr int kFirstPieceBudget = 32;
 
 /// Face areas of two cuts (mesh polygons lying in the plane) differing by less than
@@ -102,4 +107,4 @@ constexpr double kSameOffsetFraction = 0.02;
 /// Two cut directions closer than this (|cos| of their angle) are the same direction.
 constexpr double kSameDirectionCos = 0.966;
 
-}  // namespace deepcheck::robots::detail::decomp
+}  // namespace deepcheck::decomposition::tol

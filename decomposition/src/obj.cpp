@@ -1,12 +1,12 @@
 // Writing convex pieces as a Wavefront OBJ file (decomposition.h, writePiecesObj).
 
-#include "deepcheck/robots/decomposition.h"
+#include "deepcheck/decomposition/decomposition.h"
 
 #include <fstream>
 #include <stdexcept>
 #include <string>
 
-namespace deepcheck::robots {
+namespace deepcheck::decomposition {
 
 using Eigen::Vector3d;
 
@@ -28,4 +28,4 @@ void writePiecesObj(const std::string& path, const std::vector<ConvexPiece>& pie
   if (!out) throw std::runtime_error("writePiecesObj: error while writing '" + path + "'");
 }
 
-}  // namespace deepcheck::robots
+}  // namespace deepcheck::decomposition

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-namespace deepcheck::robots::detail {
+namespace deepcheck::decomposition::detail {
 
 /// Bit pattern of a position (-0 turned into +0): identifies a point exactly, to weld vertices
 /// and to tell points apart across hull recomputations.
@@ -58,4 +58,4 @@ Hull convexHull(const std::vector<Eigen::Vector3d>& points);
 /// which bounds the distance from any point of the result to `hull`.
 Hull reduceHullVertices(const Hull& hull, int maxVertices, double* excess = nullptr);
 
-}  // namespace deepcheck::robots::detail
+}  // namespace deepcheck::decomposition::detail

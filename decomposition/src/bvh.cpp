@@ -1,4 +1,4 @@
-#include "decomposition_bvh.h"
+#include "bvh.h"
 
 #include <Eigen/Geometry>
 
@@ -7,7 +7,7 @@
 #include <numeric>
 #include <utility>
 
-namespace deepcheck::robots::detail {
+namespace deepcheck::decomposition::detail {
 
 using Eigen::Vector3d;
 
@@ -177,4 +177,4 @@ double TriangleBvh::distance(const Vector3d& p, const Halfspace* keep, double st
   return std::sqrt(best2);
 }
 
-}  // namespace deepcheck::robots::detail
+}  // namespace deepcheck::decomposition::detail
