@@ -22,7 +22,7 @@
 
 #include "format.h"
 
-#include "deepcheck/deep/body_depth.h"
+#include "deepcheck/geometry/body_depth.h"
 
 #include <Eigen/Geometry>
 
@@ -45,7 +45,7 @@
 #endif
 
 using namespace deepcheck::bench;
-using namespace deepcheck::deep;
+using namespace deepcheck::geometry;
 using Clock = std::chrono::steady_clock;
 
 namespace {

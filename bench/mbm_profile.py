@@ -13,7 +13,7 @@ import sys
 
 CATEGORIES = [
     ("forward kinematics", r"forwardKinematics"),
-    ("narrow phase (GJK, kept tetrahedra, centroid test)", r"deep::|overlapWorld|overlapSelf|overlapPair"),
+    ("narrow phase (GJK, kept tetrahedra, centroid test)", r"geometry::|overlapWorld|overlapSelf|overlapPair"),
     ("broad phase (AABB tree, link spheres, piece bounds and poses)",
      r"linkHitsSet|forEachOverlapping|separated|posePiece|BoundsMeet|selfPairHits|forEachSelfPiecePair"),
     ("isFree rest (prepare, last-hit re-test, loops)",

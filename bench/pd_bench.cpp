@@ -9,7 +9,7 @@
 //                    (sweepQueries), so that a pair's data is out of cache when it is timed;
 //   error            against the exact reference (exactSignedDistance, computed once per query):
 //                    relative |sd - sd_exact| / max(|sd_exact|, 1e-3 L), L the larger bounding
-//                    radius (as tests/deep/test_deep.cpp), and absolute |sd - sd_exact|;
+//                    radius (as tests/geometry/test_geometry.cpp), and absolute |sd - sd_exact|;
 //                    median, 99th percentile and maximum over the scored queries;
 //   counts           wrong sign (sd and sd_exact of opposite signs), missing (a penetration-only
 //                    method reports no contact while the pair overlaps: scored as sd = 0), NaN,
@@ -342,7 +342,7 @@ double hullMegabytes(const Family& f) {
   constexpr double perFace = sizeof(Eigen::Vector3d) + sizeof(double) + 2 * sizeof(int);
   constexpr double perEdge = 6 * sizeof(int);
   double bytes = 0;
-  for (const deepcheck::deep::ConvexPolytope& p : f.shapes)
+  for (const deepcheck::geometry::ConvexPolytope& p : f.shapes)
     bytes += perVertex * p.numVertices() + perFace * p.numFaces() + perEdge * p.numEdges();
   return bytes / (1024.0 * 1024.0);
 }

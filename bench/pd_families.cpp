@@ -15,7 +15,7 @@
 
 namespace deepcheck::bench {
 
-using deep::ConvexPolytope;
+using geometry::ConvexPolytope;
 using Eigen::Quaterniond;
 using Eigen::Vector3d;
 
@@ -36,10 +36,10 @@ double Family::pairScale(const Query& q) const {
   return std::max(shapes[q.a].boundingRadius(), shapes[q.b].boundingRadius());
 }
 
-const deep::ExactResult& exactOf(const Family& family, Query& q) {
+const geometry::ExactResult& exactOf(const Family& family, Query& q) {
   if (!q.exact) {
     const auto t0 = std::chrono::steady_clock::now();
-    q.exact = deep::exactSignedDistance(family.shapes[q.a], q.X_WA, family.shapes[q.b], q.X_WB);
+    q.exact = geometry::exactSignedDistance(family.shapes[q.a], q.X_WA, family.shapes[q.b], q.X_WB);
     const auto t1 = std::chrono::steady_clock::now();
     q.exactMicros = std::chrono::duration<double, std::micro>(t1 - t0).count();
   }
@@ -201,7 +201,7 @@ void moveToSignedDistance(Family& f, Query& q, double target) {
   q.X_WA = q.poseA.iso();
   q.X_WB = q.poseB.iso();
   q.exact.reset();
-  const deep::ExactResult e = exactOf(f, q);
+  const geometry::ExactResult e = exactOf(f, q);
   q.poseB.t += (target - e.distance) * e.normal;
   q.exact.reset();
 }

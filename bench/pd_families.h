@@ -14,8 +14,8 @@
 //     that checks neighbouring states would have made just before. That priming query is not
 //     timed and not scored; only the query at the family's pose is.
 
-#include "deepcheck/deep/exact.h"
-#include "deepcheck/deep/polytope.h"
+#include "deepcheck/geometry/exact.h"
+#include "deepcheck/geometry/polytope.h"
 
 #include <Eigen/Geometry>
 
@@ -40,7 +40,7 @@ struct Query {
   Pose poseA, poseB;
   Eigen::Isometry3d X_WA, X_WB;   ///< poseA.iso(), poseB.iso()
   std::optional<Pose> primeB;     ///< non-sequence families: B's pose of the priming query
-  std::optional<deep::ExactResult> exact;  ///< exact answer, computed once per run
+  std::optional<geometry::ExactResult> exact;  ///< exact answer, computed once per run
   double exactMicros = 0.0;       ///< time of that exact computation
 };
 
@@ -49,7 +49,7 @@ struct Family {
   std::string description;
   int nominalVertices = 0;  ///< vertices per hull for the scaling families, else 0
   bool sequence = false;    ///< queries are consecutive steps of one pair each (trajectories)
-  std::vector<deep::ConvexPolytope> shapes;
+  std::vector<geometry::ConvexPolytope> shapes;
   std::vector<std::vector<Eigen::Vector3d>> points;  ///< the points each shape is the hull of
   std::vector<Query> queries;
 
@@ -70,7 +70,7 @@ std::vector<std::string> familyNames();
 std::optional<Family> makeFamily(const std::string& name, int pairs, const std::string& sharedDir);
 
 /// The exact answer of query q (computed on first use, with its time, then cached in q).
-const deep::ExactResult& exactOf(const Family& family, Query& q);
+const geometry::ExactResult& exactOf(const Family& family, Query& q);
 
 /// Reads the vertices of an STL file (binary or ASCII). Throws std::runtime_error.
 std::vector<Eigen::Vector3d> readStlVertices(const std::string& path);

@@ -4,8 +4,8 @@
 
 #include "pd_peers.h"
 
-#include "deepcheck/deep/gjk.h"
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/gjk.h"
+#include "deepcheck/geometry/signed_distance.h"
 
 #include <ccd/ccd.h>
 
@@ -18,9 +18,9 @@
 namespace deepcheck::bench {
 namespace {
 
-using deep::ConvexPolytope;
+using geometry::ConvexPolytope;
 
-WalkStats walkOf(const deep::SignedDistanceResult& r) {
+WalkStats walkOf(const geometry::SignedDistanceResult& r) {
   WalkStats w;
   w.valid = true;
   w.starts = r.walk.starts;
@@ -29,18 +29,18 @@ WalkStats walkOf(const deep::SignedDistanceResult& r) {
   w.localMinima = r.walk.localMinima;
   w.expansions = r.expansions;
   w.warm = r.walk.warm;
-  w.notConverged = r.status == deep::SignedDistanceStatus::NotConverged;
+  w.notConverged = r.status == geometry::SignedDistanceStatus::NotConverged;
   return w;
 }
 
-deep::PenetrationOptions optionsFor(deep::PenetrationMethod method) {
-  deep::PenetrationOptions o;
+geometry::PenetrationOptions optionsFor(geometry::PenetrationMethod method) {
+  geometry::PenetrationOptions o;
   o.method = method;
   return o;
 }
 
-const char* prefixOf(deep::PenetrationMethod method) {
-  return method == deep::PenetrationMethod::CertifiedExpansion ? "certified" : "deep";
+const char* prefixOf(geometry::PenetrationMethod method) {
+  return method == geometry::PenetrationMethod::CertifiedExpansion ? "certified" : "deep";
 }
 
 /// signedDistance() with a PairCache primed as pd_families.h describes (previous step, or the
@@ -48,12 +48,12 @@ const char* prefixOf(deep::PenetrationMethod method) {
 /// ("certified_warm"). The methods' scratch space is the benchmark method's own, reused.
 class Warm : public Method {
  public:
-  explicit Warm(deep::PenetrationMethod method) : options_(optionsFor(method)), name_(std::string(prefixOf(method)) + "_warm") {}
+  explicit Warm(geometry::PenetrationMethod method) : options_(optionsFor(method)), name_(std::string(prefixOf(method)) + "_warm") {}
   std::string name() const override { return name_; }
 
   void beginFamily(const Family& f) override {
-    primed_.assign(f.queries.size(), deep::PairCache{});
-    deep::PairCache carried;
+    primed_.assign(f.queries.size(), geometry::PairCache{});
+    geometry::PairCache carried;
     carried.scratch = &scratch_;
     for (std::size_t i = 0; i < f.queries.size(); ++i) {
       const Query& q = f.queries[i];
@@ -62,11 +62,11 @@ class Warm : public Method {
       if (f.sequence) {
         if (i == 0 || q.a != f.queries[i - 1].a || q.b != f.queries[i - 1].b) carried.reset();
         primed_[i] = carried;
-        deep::signedDistance(A, q.X_WA, B, q.X_WB, &carried, options_);
+        geometry::signedDistance(A, q.X_WA, B, q.X_WB, &carried, options_);
       } else {
-        deep::PairCache c;
+        geometry::PairCache c;
         c.scratch = &scratch_;
-        deep::signedDistance(A, q.X_WA, B, q.primeB->iso(), &c, options_);
+        geometry::signedDistance(A, q.X_WA, B, q.primeB->iso(), &c, options_);
         primed_[i] = c;
       }
     }
@@ -75,7 +75,7 @@ class Warm : public Method {
 
   Answer run(const Family& f, int qi) override {
     const Query& q = f.queries[qi];
-    last_ = deep::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB, &working_[qi], options_);
+    last_ = geometry::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB, &working_[qi], options_);
     return {Answer::Kind::SignedDistance, last_.distance};
   }
   void afterRun(const Family&, int q) override { working_[q] = primed_[q]; }
@@ -87,12 +87,12 @@ class Warm : public Method {
   }
 
  private:
-  deep::PenetrationOptions options_;
+  geometry::PenetrationOptions options_;
   std::string name_;
-  deep::PenetrationScratch scratch_;
-  std::vector<deep::PairCache> primed_;   // each query's cache as primed, kept unchanged
-  std::vector<deep::PairCache> working_;  // the caches the timed queries use, reset after each
-  deep::SignedDistanceResult last_;
+  geometry::PenetrationScratch scratch_;
+  std::vector<geometry::PairCache> primed_;   // each query's cache as primed, kept unchanged
+  std::vector<geometry::PairCache> working_;  // the caches the timed queries use, reset after each
+  geometry::SignedDistanceResult last_;
 };
 
 /// Every query cold: DEEP's walk with all restarts ("deep_cold") or the certified method
@@ -100,7 +100,7 @@ class Warm : public Method {
 /// certified method's scratch surface).
 class Cold : public Method {
  public:
-  explicit Cold(deep::PenetrationMethod method) : options_(optionsFor(method)), prefix_(prefixOf(method)) {
+  explicit Cold(geometry::PenetrationMethod method) : options_(optionsFor(method)), prefix_(prefixOf(method)) {
     cache_.scratch = &scratch_;
   }
   std::string name() const override { return prefix_ + "_cold"; }
@@ -108,17 +108,17 @@ class Cold : public Method {
   void beforeRun(const Family&, int) override { cache_.reset(); }
   Answer run(const Family& f, int qi) override {
     const Query& q = f.queries[qi];
-    last_ = deep::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB, &cache_, options_);
+    last_ = geometry::signedDistance(f.shapes[q.a], q.X_WA, f.shapes[q.b], q.X_WB, &cache_, options_);
     return {Answer::Kind::SignedDistance, last_.distance};
   }
   WalkStats lastWalk() const override { return walkOf(last_); }
 
  private:
-  deep::PenetrationOptions options_;
+  geometry::PenetrationOptions options_;
   std::string prefix_;
-  deep::PenetrationScratch scratch_;
-  deep::PairCache cache_;
-  deep::SignedDistanceResult last_;
+  geometry::PenetrationScratch scratch_;
+  geometry::PairCache cache_;
+  geometry::SignedDistanceResult last_;
 };
 
 /// The project's GJK distance, cold, on separated pairs only.
@@ -131,8 +131,8 @@ class ProjectGjk : public Method {
     const Query& q = f.queries[qi];
     const ConvexPolytope& A = f.shapes[q.a];
     const ConvexPolytope& B = f.shapes[q.b];
-    const deep::GjkResult g = deep::gjkDistance(A, B, deep::PairFrame::make(A, q.X_WA, B, q.X_WB));
-    const bool apart = g.status == deep::GjkStatus::Separated || g.status == deep::GjkStatus::MaxIterations;
+    const geometry::GjkResult g = geometry::gjkDistance(A, B, geometry::PairFrame::make(A, q.X_WA, B, q.X_WB));
+    const bool apart = g.status == geometry::GjkStatus::Separated || g.status == geometry::GjkStatus::MaxIterations;
     return {Answer::Kind::SignedDistance, apart ? g.distance : 0.0};
   }
 };
@@ -143,7 +143,7 @@ class ProjectGjk : public Method {
 /// coordinates of the size of the shapes, as DEEP does. `hint` is the last support vertex.
 struct CcdShape {
   const ConvexPolytope* polytope = nullptr;
-  const deep::PairFrame* frame = nullptr;  ///< null for A (identity), the pair frame for B
+  const geometry::PairFrame* frame = nullptr;  ///< null for A (identity), the pair frame for B
   int hint = 0;
 };
 
@@ -185,7 +185,7 @@ class CcdPenetration : public Method {
     const Query& q = f.queries[qi];
     const ConvexPolytope& A = f.shapes[q.a];
     const ConvexPolytope& B = f.shapes[q.b];
-    const deep::PairFrame frame = deep::PairFrame::make(A, q.X_WA, B, q.X_WB);
+    const geometry::PairFrame frame = geometry::PairFrame::make(A, q.X_WA, B, q.X_WB);
     const double L = std::max(A.boundingRadius(), B.boundingRadius());
     CcdShape a{&A, nullptr, 0};
     CcdShape b{&B, &frame, 0};
@@ -216,10 +216,10 @@ class CcdPenetration : public Method {
 
 std::vector<std::unique_ptr<Method>> makeMethods() {
   std::vector<std::unique_ptr<Method>> m;
-  m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::CertifiedExpansion));
-  m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::CertifiedExpansion));
-  m.push_back(std::make_unique<Warm>(deep::PenetrationMethod::GaussMapWalk));
-  m.push_back(std::make_unique<Cold>(deep::PenetrationMethod::GaussMapWalk));
+  m.push_back(std::make_unique<Warm>(geometry::PenetrationMethod::CertifiedExpansion));
+  m.push_back(std::make_unique<Cold>(geometry::PenetrationMethod::CertifiedExpansion));
+  m.push_back(std::make_unique<Warm>(geometry::PenetrationMethod::GaussMapWalk));
+  m.push_back(std::make_unique<Cold>(geometry::PenetrationMethod::GaussMapWalk));
   m.push_back(std::make_unique<ProjectGjk>());
   for (auto& peer : makeFclMethods()) m.push_back(std::move(peer));
   m.push_back(std::make_unique<CcdPenetration>(false));

@@ -34,7 +34,7 @@ struct Answer {
   double sd = 0.0;
 };
 
-/// Walk statistics of a DEEP query (copied from deep::WalkStats), the certified expansion's support
+/// Walk statistics of a DEEP query (copied from geometry::WalkStats), the certified expansion's support
 /// points added to its surface, and whether it converged.
 struct WalkStats {
   bool valid = false;

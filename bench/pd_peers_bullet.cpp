@@ -29,7 +29,7 @@ class BulletMethod : public Method {
 
   void beginFamily(const Family& f) override {
     hulls_.clear();
-    for (const deep::ConvexPolytope& P : f.shapes) {
+    for (const geometry::ConvexPolytope& P : f.shapes) {
       auto hull = std::make_unique<btConvexHullShape>();
       for (const Eigen::Vector3d& v : P.vertices()) hull->addPoint(btVector3(v.x(), v.y(), v.z()), false);
       hull->recalcLocalAabb();

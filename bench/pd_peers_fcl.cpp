@@ -17,11 +17,11 @@ namespace {
 /// its faces, coplanar facets merged into polygons, counter-clockwise seen from outside.
 std::vector<std::shared_ptr<fcl::Convexd>> makeConvexes(const Family& f) {
   std::vector<std::shared_ptr<fcl::Convexd>> out;
-  for (const deep::ConvexPolytope& P : f.shapes) {
+  for (const geometry::ConvexPolytope& P : f.shapes) {
     auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(P.vertices().begin(), P.vertices().end());
     auto faces = std::make_shared<std::vector<int>>();
     for (int face = 0; face < P.numFaces(); ++face) {
-      const deep::IndexRange ring = P.faceVertices(face);
+      const geometry::IndexRange ring = P.faceVertices(face);
       faces->push_back(ring.size());
       faces->insert(faces->end(), ring.begin(), ring.end());
     }

@@ -22,7 +22,7 @@ function(deepcheck_add_library name)
   # Eigen and the standard headers most sources include, parsed once per library instead of once
   # per source: a library of several sources compiles in about three quarters of the time. Every
   # source includes what it uses all the same; the sanitizer stage's ThreadSanitizer build compiles
-  # deep, robots and checker with CMAKE_DISABLE_PRECOMPILE_HEADERS=ON to keep that true.
+  # geometry, robots and checker with CMAKE_DISABLE_PRECOMPILE_HEADERS=ON to keep that true.
   list(LENGTH arg_SOURCES num_sources)
   if(num_sources GREATER 3)
     target_precompile_headers(${target} PRIVATE

@@ -6,8 +6,8 @@
 
 #include "pd_input.h"
 
-#include "deepcheck/deep/exact.h"
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/exact.h"
+#include "deepcheck/geometry/signed_distance.h"
 
 #include <cmath>
 #include <cstddef>
@@ -39,16 +39,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::size_t i = 0; i < input.queries.size() && i < kMaxQueries; ++i) {
       const deepcheck::tools::PdQuery& q = input.queries[i];
       if (q.namesBody()) {
-        const auto r = deepcheck::deep::bodySignedDistance(deepcheck::tools::queryBody(input, q.a, q.bodyA), q.X_WA,
+        const auto r = deepcheck::geometry::bodySignedDistance(deepcheck::tools::queryBody(input, q.a, q.bodyA), q.X_WA,
                                                            deepcheck::tools::queryBody(input, q.b, q.bodyB), q.X_WB);
         requireSane(r.distance, r.normal, "bodySignedDistance");
         continue;
       }
       const auto& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
       const auto& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
-      const auto r = deepcheck::deep::signedDistance(A, q.X_WA, B, q.X_WB);
+      const auto r = deepcheck::geometry::signedDistance(A, q.X_WA, B, q.X_WB);
       requireSane(r.distance, r.normal, "signedDistance");
-      const auto e = deepcheck::deep::exactSignedDistance(A, q.X_WA, B, q.X_WB);
+      const auto e = deepcheck::geometry::exactSignedDistance(A, q.X_WA, B, q.X_WB);
       requireSane(e.distance, e.normal, "exactSignedDistance");
     }
   } catch (const std::exception&) {

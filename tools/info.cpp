@@ -107,12 +107,12 @@ double closedMeshVolume(const robots::TriangleMesh& mesh) {
 }
 
 /// Volume of a convex polytope from its faces (0 for points, segments and polygons).
-double polytopeVolume(const deep::ConvexPolytope& p) {
-  if (p.kind() != deep::PolytopeKind::Polyhedron) return 0.0;
+double polytopeVolume(const geometry::ConvexPolytope& p) {
+  if (p.kind() != geometry::PolytopeKind::Polyhedron) return 0.0;
   double volume6 = 0.0;
   const Eigen::Vector3d& c = p.center();
   for (int f = 0; f < p.numFaces(); ++f) {
-    const deep::IndexRange face = p.faceVertices(f);
+    const geometry::IndexRange face = p.faceVertices(f);
     for (int k = 1; k + 1 < face.size(); ++k) {
       const Eigen::Vector3d a = p.vertex(face[0]) - c;
       const Eigen::Vector3d b = p.vertex(face[k]) - c;
@@ -157,7 +157,7 @@ void printMeshes(const robots::RobotModel& model) {
               "volume_m3", "hull_m3", "hull/mesh", "hull_vtx", "links");
   for (const Use& u : uses) {
     const robots::TriangleMesh mesh = robots::loadMesh(u.path, u.scale);
-    const deep::ConvexPolytope hull = deep::ConvexPolytope::fromPoints(mesh.vertices, u.path);
+    const geometry::ConvexPolytope hull = geometry::ConvexPolytope::fromPoints(mesh.vertices, u.path);
     const double volume = closedMeshVolume(mesh);
     const double hullVolume = polytopeVolume(hull);
     std::string links;
@@ -288,7 +288,7 @@ void printLinksAndPieces(const robots::RobotModel& model,
     for (const robots::CollisionPiece& p : pieces[l]) {
       anyPiece = true;
       std::printf("  %-24s %-10s %4d vertices", model.link(l).name.c_str(),
-                  deep::toString(p.core->kind()), p.core->numVertices());
+                  geometry::toString(p.core->kind()), p.core->numVertices());
       if (p.radius > 0.0) std::printf(", radius %.6g", p.radius);
       std::printf("\n");
     }

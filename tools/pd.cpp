@@ -5,7 +5,7 @@
 //   body <id> <shapeId> ... a body: the union of shapes given before, each in the body's frame
 //   query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> <qw> <qx> <qy> <qz>
 //                           idA and idB name shapes or bodies; a query naming a body is answered
-//                           by deep::bodySignedDistance (a shape there is a one-piece body)
+//                           by geometry::bodySignedDistance (a shape there is a one-piece body)
 //   # comment               (lines whose first non-blank character is '#'; blank lines too)
 //
 // Output: one line per query on stdout, "sd nx ny nz" with %.17g (sd > 0 distance, sd < 0 minus
@@ -24,9 +24,9 @@
 #include "pd_input.h"
 #include "subcommands.h"
 
-#include "deepcheck/deep/body_depth.h"
-#include "deepcheck/deep/exact.h"
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/body_depth.h"
+#include "deepcheck/geometry/exact.h"
+#include "deepcheck/geometry/signed_distance.h"
 
 #include <Eigen/Geometry>
 
@@ -43,7 +43,7 @@
 namespace deepcheck::tools {
 namespace {
 
-using deep::ConvexPolytope;
+using geometry::ConvexPolytope;
 
 constexpr const char* kUsage =
     "usage: deepcheck pd [--cold] [--method certified|deep-walk|exact] < cases.txt\n"
@@ -77,9 +77,9 @@ int runPd(std::vector<std::string> args) {
     throw UsageError("unknown --method '" + method + "' (expected certified, deep-walk or exact)");
   if (exactFlag && method != "exact") throw UsageError("--exact contradicts --method " + method);
   const bool exact = method == "exact";
-  deep::PenetrationOptions options;
-  options.method = method == "deep-walk" ? deep::PenetrationMethod::GaussMapWalk
-                                         : deep::PenetrationMethod::CertifiedExpansion;
+  geometry::PenetrationOptions options;
+  options.method = method == "deep-walk" ? geometry::PenetrationMethod::GaussMapWalk
+                                         : geometry::PenetrationMethod::CertifiedExpansion;
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args[0] + "' (input is read from stdin)");
 
@@ -92,8 +92,8 @@ int runPd(std::vector<std::string> args) {
     }
   }
 
-  deep::PairCache cache;
-  deep::PenetrationScratch scratch;  // the penetration methods' scratch, shared by every query
+  geometry::PairCache cache;
+  geometry::PenetrationScratch scratch;  // the penetration methods' scratch, shared by every query
   cache.scratch = &scratch;
   int lastA = -1;
   int lastB = -1;
@@ -107,12 +107,12 @@ int runPd(std::vector<std::string> args) {
     Eigen::Vector3d n;
     try {
       if (q.namesBody()) {
-        const deep::Body bodyA = queryBody(input, q.a, q.bodyA);
-        const deep::Body bodyB = queryBody(input, q.b, q.bodyB);
-        deep::BodyDepthOptions bodyOptions;
+        const geometry::Body bodyA = queryBody(input, q.a, q.bodyA);
+        const geometry::Body bodyB = queryBody(input, q.b, q.bodyB);
+        geometry::BodyDepthOptions bodyOptions;
         bodyOptions.pair = options;
         const auto t0 = std::chrono::steady_clock::now();
-        const deep::BodySignedDistanceResult r = deep::bodySignedDistance(bodyA, q.X_WA, bodyB, q.X_WB, bodyOptions);
+        const geometry::BodySignedDistanceResult r = geometry::bodySignedDistance(bodyA, q.X_WA, bodyB, q.X_WB, bodyOptions);
         total += std::chrono::steady_clock::now() - t0;
         sd = r.distance;
         n = r.normal;
@@ -120,7 +120,7 @@ int runPd(std::vector<std::string> args) {
         const ConvexPolytope& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
         const ConvexPolytope& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
         const auto t0 = std::chrono::steady_clock::now();
-        const deep::ExactResult r = deep::exactSignedDistance(A, q.X_WA, B, q.X_WB);
+        const geometry::ExactResult r = geometry::exactSignedDistance(A, q.X_WA, B, q.X_WB);
         total += std::chrono::steady_clock::now() - t0;
         sd = r.distance;
         n = r.normal;
@@ -128,8 +128,8 @@ int runPd(std::vector<std::string> args) {
         const ConvexPolytope& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
         const ConvexPolytope& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
         const auto t0 = std::chrono::steady_clock::now();
-        const deep::SignedDistanceResult r =
-            deep::signedDistance(A, q.X_WA, B, q.X_WB, &cache, options);
+        const geometry::SignedDistanceResult r =
+            geometry::signedDistance(A, q.X_WA, B, q.X_WB, &cache, options);
         total += std::chrono::steady_clock::now() - t0;
         sd = r.distance;
         n = r.normal;

@@ -4,8 +4,8 @@
 
 #include "common.h"
 
-#include "deepcheck/deep/input_range.h"
-#include "deepcheck/deep/pair_frame.h"
+#include "deepcheck/geometry/input_range.h"
+#include "deepcheck/geometry/pair_frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -52,7 +52,7 @@ Eigen::Isometry3d parsePose(const InputLine& line, std::size_t first, const std:
   X.linear() = q.toRotationMatrix();
   X.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
   try {
-    deep::checkPose(X, which.c_str());
+    geometry::checkPose(X, which.c_str());
   } catch (const std::exception& e) {
     failAt(line, e.what());
   }
@@ -140,7 +140,7 @@ bool readShape(std::istream& in, int& lineNumber, const InputLine& header, Input
     for (int c = 0; c < 3; ++c) {
       p[c] = parseNumber(line, line.tokens[static_cast<std::size_t>(c)]);
       try {
-        deep::range::checkCoordinate(p[c], "'" + line.tokens[static_cast<std::size_t>(c)] + "'");
+        geometry::range::checkCoordinate(p[c], "'" + line.tokens[static_cast<std::size_t>(c)] + "'");
       } catch (const std::exception& e) {
         failAt(line, e.what());
       }
@@ -149,7 +149,7 @@ bool readShape(std::istream& in, int& lineNumber, const InputLine& header, Input
     pending = nextInputLine(in, lineNumber, line);
   }
   try {
-    input.shapes.push_back({deep::ConvexPolytope::fromPoints(points, "shape '" + id + "'"), header.number});
+    input.shapes.push_back({geometry::ConvexPolytope::fromPoints(points, "shape '" + id + "'"), header.number});
   } catch (const std::exception& e) {
     failAt(header, "cannot build the hull of shape '" + id + "': " + e.what());
   }
@@ -198,10 +198,10 @@ PdInput readPdInput(std::istream& in) {
   return input;
 }
 
-deep::Body queryBody(const PdInput& input, int shape, int body) {
-  deep::Body out;
+geometry::Body queryBody(const PdInput& input, int shape, int body) {
+  geometry::Body out;
   const auto piece = [&](int s) {
-    out.pieces.push_back({deep::ConvexShape{&input.shapes[static_cast<std::size_t>(s)].hull, 0.0},
+    out.pieces.push_back({geometry::ConvexShape{&input.shapes[static_cast<std::size_t>(s)].hull, 0.0},
                           Eigen::Isometry3d::Identity()});
   };
   if (body < 0) piece(shape);

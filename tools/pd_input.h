@@ -2,8 +2,8 @@
 // The input of `deepcheck pd` (its format: tools/pd.cpp), read by `deepcheck pd` and
 // `deepcheck view --pd`: shapes, built into hulls, bodies (unions of shapes) and posed queries.
 
-#include "deepcheck/deep/body_depth.h"
-#include "deepcheck/deep/polytope.h"
+#include "deepcheck/geometry/body_depth.h"
+#include "deepcheck/geometry/polytope.h"
 
 #include <Eigen/Geometry>
 
@@ -15,7 +15,7 @@
 namespace deepcheck::tools {
 
 struct PdShape {
-  deep::ConvexPolytope hull;
+  geometry::ConvexPolytope hull;
   int line;  ///< line of its 'shape' header
 };
 
@@ -34,7 +34,7 @@ struct PdQuery {
   Eigen::Isometry3d X_WA;
   Eigen::Isometry3d X_WB;
 
-  /// The query names a body on either side (it is then answered by deep::bodySignedDistance).
+  /// The query names a body on either side (it is then answered by geometry::bodySignedDistance).
   bool namesBody() const { return bodyA >= 0 || bodyB >= 0; }
 };
 
@@ -48,7 +48,7 @@ struct PdInput {
 
 /// The body one side of a query names: a body's shapes, or its one shape, each at the identity in
 /// the body's frame. Points into input.shapes, which must outlive it.
-deep::Body queryBody(const PdInput& input, int shape, int body);
+geometry::Body queryBody(const PdInput& input, int shape, int body);
 
 /// Largest point count of one shape. Building the hull of this many points (Qhull, then deep's
 /// own merging, pruning and checks) takes seconds in an optimized build and minutes under

@@ -13,7 +13,7 @@
 
 #include "deepcheck/decomposition/cache.h"
 #include "deepcheck/decomposition/decomposition.h"
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/signed_distance.h"
 #include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/package_path.h"
 #include "deepcheck/viewer/html_view.h"
@@ -102,17 +102,17 @@ viewer::ViewScene worldView(std::vector<std::string>& args) {
 }
 
 /// The hull's faces as triangles (fans), for shading.
-std::shared_ptr<robots::TriangleMesh> hullMesh(const deep::ConvexPolytope& hull) {
+std::shared_ptr<robots::TriangleMesh> hullMesh(const geometry::ConvexPolytope& hull) {
   auto mesh = std::make_shared<robots::TriangleMesh>();
   mesh->vertices = hull.vertices();
   for (int f = 0; f < hull.numFaces(); ++f) {
-    const deep::IndexRange face = hull.faceVertices(f);
+    const geometry::IndexRange face = hull.faceVertices(f);
     for (int i = 2; i < face.size(); ++i) mesh->triangles.push_back({face[0], face[i - 1], face[i]});
   }
   return mesh;
 }
 
-viewer::ViewBody convexBody(const std::string& name, const std::string& layer, const deep::ConvexPolytope& hull) {
+viewer::ViewBody convexBody(const std::string& name, const std::string& layer, const geometry::ConvexPolytope& hull) {
   viewer::ViewBody body;
   body.name = name;
   body.layer = layer;
@@ -120,7 +120,7 @@ viewer::ViewBody convexBody(const std::string& name, const std::string& layer, c
   shape.geometry.type = robots::GeometryType::Mesh;
   shape.mesh = hullMesh(hull);
   body.shapes.push_back(shape);
-  body.pieces.push_back(robots::CollisionPiece{std::make_shared<const deep::ConvexPolytope>(hull), 0.0,
+  body.pieces.push_back(robots::CollisionPiece{std::make_shared<const geometry::ConvexPolytope>(hull), 0.0,
                                                Eigen::Isometry3d::Identity(), name});
   return body;
 }
@@ -161,12 +161,12 @@ viewer::ViewScene pdView(const std::string& file) {
   };
   struct Answer {
     int a, b, answer;
-    deep::SignedDistanceResult r;
+    geometry::SignedDistanceResult r;
   };
   std::vector<Answer> answers;
   for (const PdQuery& q : input.queries) {
     const Answer answer{track(q.a, "shape A"), track(q.b, "shape B"), track(q.b, "answer"),
-                        deep::signedDistance(input.shapes[static_cast<std::size_t>(q.a)].hull, q.X_WA,
+                        geometry::signedDistance(input.shapes[static_cast<std::size_t>(q.a)].hull, q.X_WA,
                                              input.shapes[static_cast<std::size_t>(q.b)].hull, q.X_WB)};
     answers.push_back(answer);
   }
@@ -209,7 +209,7 @@ viewer::ViewScene decomposeView(const std::string& meshArg, const PackageRoots& 
   body.shapes.push_back(shape);
   for (std::size_t i = 0; i < d.pieces.size(); ++i) {
     body.pieces.push_back(robots::CollisionPiece{
-        std::make_shared<const deep::ConvexPolytope>(deep::ConvexPolytope::fromPoints(d.pieces[i].vertices)), 0.0,
+        std::make_shared<const geometry::ConvexPolytope>(geometry::ConvexPolytope::fromPoints(d.pieces[i].vertices)), 0.0,
         Eigen::Isometry3d::Identity(), "piece " + std::to_string(i)});
   }
   scene.bodies.push_back(std::move(body));

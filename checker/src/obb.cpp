@@ -2,7 +2,7 @@
 
 namespace deepcheck::checker {
 
-Obb Obb::ofPiece(const deep::ConvexPolytope& core, double radius) {
+Obb Obb::ofPiece(const geometry::ConvexPolytope& core, double radius) {
   Obb b;
   b.R = core.principalAxes();
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());

@@ -4,14 +4,14 @@
 // each box and the 9 cross products of their edges).
 //
 // The box of a piece is aligned with the principal axes of its core's vertices
-// (deep::ConvexPolytope::principalAxes), spans the vertices' extent along them, and is grown by
+// (geometry::ConvexPolytope::principalAxes), spans the vertices' extent along them, and is grown by
 // the piece's radius (a sphere or capsule core), so it contains the whole piece.
 //
 // Frames: an Obb is expressed in one frame F (R_FB: the box axes as columns, center_F: its
 // centre); transform() moves it to another frame. Metres.
 
 #include "deepcheck/checker/tolerances.h"
-#include "deepcheck/deep/polytope.h"
+#include "deepcheck/geometry/polytope.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -28,7 +28,7 @@ struct Obb {
   Eigen::Vector3d half = Eigen::Vector3d::Zero();   ///< half extents along the axes, >= 0
 
   /// The box of `core` grown by `radius`, in the core's frame (padded by tol::kBoundingRelative).
-  static Obb ofPiece(const deep::ConvexPolytope& core, double radius);
+  static Obb ofPiece(const geometry::ConvexPolytope& core, double radius);
 
   /// This box seen from frame G when it is expressed in F and X_GF is the pose of F in G.
   Obb transformed(const Eigen::Isometry3d& X_GF) const {

@@ -5,8 +5,8 @@
 #include "self_pair_grid_cache.h"
 #include "world_internal.h"
 
-#include "deepcheck/deep/gjk.h"
-#include "deepcheck/deep/pair_frame.h"
+#include "deepcheck/geometry/gjk.h"
+#include "deepcheck/geometry/pair_frame.h"
 #include "deepcheck/robots/kinematics.h"
 
 #include <algorithm>
@@ -82,7 +82,7 @@ std::map<int, double> motionRadii(const RobotData& robot, const Chain& chain) {
 /// True when every piece pair of U and D (D posed by X_UD in U's frame) is certified apart by
 /// more than delta over the cell. `caches`: one GJK warm start per piece pair.
 bool cellCertified(const RobotData& robot, const LinkGeometry& U, const LinkGeometry& D,
-                   const Eigen::Isometry3d& X_UD, double delta, std::vector<deep::GjkCache>* caches) {
+                   const Eigen::Isometry3d& X_UD, double delta, std::vector<geometry::GjkCache>* caches) {
   for (int i = 0; i < U.numPieces; ++i) {
     const RobotPiece& pa = robot.pieces[U.firstPiece + i];
     const Eigen::Isometry3d& X_UA = pa.X_LP;
@@ -93,9 +93,9 @@ bool cellCertified(const RobotData& robot, const LinkGeometry& U, const LinkGeom
       const Eigen::Vector3d centerB = X_UD * pb.center_L;
       if ((centerB - pa.center_L).norm() - size > need) continue;
       const Eigen::Isometry3d X_UB = X_UD * pb.X_LP;
-      const deep::PairFrame frame = deep::PairFrame::make(*pa.core, X_UA, *pb.core, X_UB);
-      const deep::GjkResult r = deep::gjkDistance(*pa.core, *pb.core, frame, &(*caches)[i * D.numPieces + j]);
-      if (r.status != deep::GjkStatus::Separated || !(r.distance - pa.radius - pb.radius > need)) return false;
+      const geometry::PairFrame frame = geometry::PairFrame::make(*pa.core, X_UA, *pb.core, X_UB);
+      const geometry::GjkResult r = geometry::gjkDistance(*pa.core, *pb.core, frame, &(*caches)[i * D.numPieces + j]);
+      if (r.status != geometry::GjkStatus::Separated || !(r.distance - pa.radius - pb.radius > need)) return false;
       // GJK's distance is an upper bound; the separation along its normal is a lower bound.
       const Eigen::Vector3d n = frame.X_WP.linear() * r.normal;
       if (!(separationAlong(pa, X_UA, pb, X_UB, n) > need)) return false;
@@ -163,7 +163,7 @@ void SelfPairGrid::certifyCells(const RobotData& robot, int up, int down, const 
   // change D's pose in U).
   Eigen::VectorXd q = robot.model.defaultConfiguration();
   std::vector<Eigen::Isometry3d> X_WL;
-  std::vector<deep::GjkCache> caches(static_cast<std::size_t>(U.numPieces) * D.numPieces);  // warm along the scan
+  std::vector<geometry::GjkCache> caches(static_cast<std::size_t>(U.numPieces) * D.numPieces);  // warm along the scan
   const int total = cells_[0] * cells_[1];
   free_.assign(total, 0);
   for (int cell = 0; cell < total; ++cell) {
@@ -195,7 +195,7 @@ bool SelfPairGrid::spotCheck(const RobotData& robot, int up, int down, const Lin
   const bool all = n <= tol::kGridCacheSpotChecks;
   Eigen::VectorXd q = robot.model.defaultConfiguration();
   std::vector<Eigen::Isometry3d> X_WL;
-  std::vector<deep::GjkCache> caches(static_cast<std::size_t>(U.numPieces) * D.numPieces);
+  std::vector<geometry::GjkCache> caches(static_cast<std::size_t>(U.numPieces) * D.numPieces);
   // Golden-ratio steps through the FREE cells: spread over them, and over both variables (an
   // even stride could keep hitting the same column of the grid).
   const double golden = 0.5 * (std::sqrt(5.0) - 1.0);

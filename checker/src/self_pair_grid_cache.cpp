@@ -5,7 +5,7 @@
 #include "world_internal.h"
 
 #include "deepcheck/checker/tolerances.h"
-#include "deepcheck/deep/tolerances.h"
+#include "deepcheck/geometry/tolerances.h"
 
 #include "deepcheck/checker/world.h"
 #include "deepcheck/decomposition/cache.h"
@@ -74,10 +74,10 @@ std::vector<double> gridCertificateTolerances() {
           tol::kGridCellPaddingAbsolute,
           static_cast<double>(tol::kGridMaxCells),
           static_cast<double>(tol::kGridMaxPiecePairTests),
-          deep::tol::kGjkRelative,
-          deep::tol::kContactRelative,
-          deep::tol::kCertifyRelative,
-          deep::tol::kCoordinateRoundoff};
+          geometry::tol::kGjkRelative,
+          geometry::tol::kContactRelative,
+          geometry::tol::kCertifyRelative,
+          geometry::tol::kCoordinateRoundoff};
 }
 
 std::string selfPairGridKey(const RobotData& robot, int up, int down, const LinkGeometry& U, const LinkGeometry& D,

@@ -8,7 +8,7 @@
 #include "self_pair_grid_cache.h"
 #include "world_internal.h"
 
-#include "deepcheck/deep/pair_frame.h"
+#include "deepcheck/geometry/pair_frame.h"
 #include "deepcheck/robots/format_number.h"
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/mesh_loader.h"
@@ -85,7 +85,7 @@ std::vector<std::vector<robots::CollisionPiece>> piecesWithProgress(const robots
   std::size_t meshes = 0;
   robots::CollisionGeometryOptions counted = geometry;
   counted.decomposer = [&](const robots::TriangleMesh& mesh) {
-    std::vector<deep::ConvexPolytope> polytopes =
+    std::vector<geometry::ConvexPolytope> polytopes =
         geometry.decomposer ? geometry.decomposer(mesh) : robots::convexHullDecomposer(mesh);
     progress.update(++meshes);
     return polytopes;

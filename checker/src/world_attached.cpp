@@ -11,7 +11,7 @@
 #include "near_matches.h"
 #include "world_internal.h"
 
-#include "deepcheck/deep/pair_frame.h"
+#include "deepcheck/geometry/pair_frame.h"
 #include "deepcheck/robots/kinematics.h"
 
 #include <algorithm>
@@ -85,7 +85,7 @@ std::shared_ptr<AttachedData> makeAttached(const Snapshot& s, const std::string&
   for (const auto& a : s.attached) {
     if (a->source.name == object.name) throw std::invalid_argument(what + ": an object of that name is attached");
   }
-  deep::checkPose(object.X_WO, what.c_str());
+  geometry::checkPose(object.X_WO, what.c_str());
   auto data = std::make_shared<AttachedData>();
   data->source = object;
   data->link = linkOf(model, link, what);

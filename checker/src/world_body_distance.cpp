@@ -1,5 +1,5 @@
 // World::bodySignedDistance (deepcheck/checker/body_distance.h): two bodies' posed pieces from the
-// world's current snapshot, measured as unions by deep::bodySignedDistance, or pairwise when a
+// world's current snapshot, measured as unions by geometry::bodySignedDistance, or pairwise when a
 // piece is rounded.
 
 #include "deepcheck/checker/body_distance.h"
@@ -29,7 +29,7 @@ namespace {
 
 /// One side of the query: its pieces in the frame of X_W, and what the contact says about it.
 struct PosedBody {
-  deep::Body body;
+  geometry::Body body;
   Eigen::Isometry3d X_W = Eigen::Isometry3d::Identity();
   int link = -1;  ///< the robot link moving it, -1 for a scene link or obstacle
   std::string name;
@@ -71,7 +71,7 @@ PosedBody robotBody(const Snapshot& s, const std::vector<Eigen::Isometry3d>& X_W
   out.name = lg.attached < 0 ? robot.model.link(lg.link).name : "attached/" + s.attached[lg.attached]->source.name;
   for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
     const RobotPiece& p = robot.pieces[i];
-    out.body.pieces.push_back({deep::ConvexShape{p.core.get(), p.radius}, p.X_LP});
+    out.body.pieces.push_back({geometry::ConvexShape{p.core.get(), p.radius}, p.X_LP});
     out.rounded = out.rounded || p.radius > 0.0;
   }
   return out;
@@ -84,7 +84,7 @@ PosedBody worldBody(const Snapshot& s, const BodyRef& b) {
   for (const WorldPiece& w : set.pieces) {
     if (set.bodies[w.body].ref != b) continue;
     out.name = set.bodies[w.body].name;
-    out.body.pieces.push_back({deep::ConvexShape{w.core.get(), w.radius}, w.X_WP});
+    out.body.pieces.push_back({geometry::ConvexShape{w.core.get(), w.radius}, w.X_WP});
     out.rounded = out.rounded || w.radius > 0.0;
   }
   if (!out.body.pieces.empty()) return out;
@@ -107,16 +107,16 @@ PosedBody posedBody(const Snapshot& s, const std::vector<Eigen::Isometry3d>& X_W
 
 /// The minimum over piece pairs (the Pairwise method), as a body result: the answer and the
 /// witness pieces; status Separated, Certified (a converged depth) or PairNotCertified.
-deep::BodySignedDistanceResult pairwise(const PosedBody& A, const PosedBody& B, const deep::PenetrationOptions& options,
-                                        deep::SignedDistanceStatus* status) {
-  deep::BodySignedDistanceResult out;
+geometry::BodySignedDistanceResult pairwise(const PosedBody& A, const PosedBody& B, const geometry::PenetrationOptions& options,
+                                        geometry::SignedDistanceStatus* status) {
+  geometry::BodySignedDistanceResult out;
   out.distance = std::numeric_limits<double>::infinity();
   for (int i = 0; i < static_cast<int>(A.body.pieces.size()); ++i) {
     const Eigen::Isometry3d X_WA = A.X_W * A.body.pieces[i].X_BP;
     for (int j = 0; j < static_cast<int>(B.body.pieces.size()); ++j) {
       const Eigen::Isometry3d X_WB = B.X_W * B.body.pieces[j].X_BP;
-      const deep::SignedDistanceResult r =
-          deep::signedDistance(A.body.pieces[i].shape, X_WA, B.body.pieces[j].shape, X_WB, nullptr, options);
+      const geometry::SignedDistanceResult r =
+          geometry::signedDistance(A.body.pieces[i].shape, X_WA, B.body.pieces[j].shape, X_WB, nullptr, options);
       if (r.distance < 0.0) ++out.overlappingPairs;
       if (!(r.distance < out.distance)) continue;
       out.distance = r.distance;
@@ -128,10 +128,10 @@ deep::BodySignedDistanceResult pairwise(const PosedBody& A, const PosedBody& B, 
       *status = r.status;
     }
   }
-  const bool converged = *status != deep::SignedDistanceStatus::NotConverged;
-  out.status = out.distance >= 0.0 ? deep::BodyDepthStatus::Separated
-               : converged         ? deep::BodyDepthStatus::Certified
-                                   : deep::BodyDepthStatus::PairNotCertified;
+  const bool converged = *status != geometry::SignedDistanceStatus::NotConverged;
+  out.status = out.distance >= 0.0 ? geometry::BodyDepthStatus::Separated
+               : converged         ? geometry::BodyDepthStatus::Certified
+                                   : geometry::BodyDepthStatus::PairNotCertified;
   out.depthLower = out.depthUpper = -out.distance;
   out.certified = converged;
   out.pairDepth = std::max(-out.distance, 0.0);
@@ -161,16 +161,16 @@ World::BodyContact World::bodySignedDistance(const Eigen::Ref<const Eigen::Vecto
   const PosedBody B = posedBody(s, X_WL, b);
 
   BodyContact out;
-  deep::BodySignedDistanceResult r;
-  deep::SignedDistanceStatus pairStatus = deep::SignedDistanceStatus::NotConverged;
+  geometry::BodySignedDistanceResult r;
+  geometry::SignedDistanceStatus pairStatus = geometry::SignedDistanceStatus::NotConverged;
   if (A.rounded || B.rounded) {
     out.method = BodyDistanceMethod::Pairwise;
     r = pairwise(A, B, options.depth.pair, &pairStatus);
   } else {
-    r = deep::bodySignedDistance(A.body, A.X_W, B.body, B.X_W, options.depth);
-    pairStatus = !r.certified                ? deep::SignedDistanceStatus::NotConverged
-                 : r.distance >= 0.0 ? deep::SignedDistanceStatus::Separated
-                                             : deep::SignedDistanceStatus::Penetrating;
+    r = geometry::bodySignedDistance(A.body, A.X_W, B.body, B.X_W, options.depth);
+    pairStatus = !r.certified                ? geometry::SignedDistanceStatus::NotConverged
+                 : r.distance >= 0.0 ? geometry::SignedDistanceStatus::Separated
+                                             : geometry::SignedDistanceStatus::Penetrating;
   }
   out.depthStatus = r.status;
   out.depthLower = r.depthLower;

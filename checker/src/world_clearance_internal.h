@@ -87,7 +87,7 @@ class Margins {
 };
 
 /// `shape` grown by `margin`: the pair overlaps grown exactly when it is within margin.
-inline deep::ConvexShape grown(deep::ConvexShape shape, double margin) {
+inline geometry::ConvexShape grown(geometry::ConvexShape shape, double margin) {
   shape.radius += margin;
   return shape;
 }

@@ -30,7 +30,7 @@ const QueryStats& World::Context::stats() const { return impl_->stats; }
 void World::Context::resetStats() { impl_->stats = QueryStats{}; }
 void World::Context::resetCaches() {
   for (auto* v : {&impl_->selfCaches, &impl_->sceneCaches, &impl_->obstacleCaches}) {
-    for (deep::PairCache& c : *v) c.reset();
+    for (geometry::PairCache& c : *v) c.reset();
   }
   impl_->lastHit = PairKey{};
   impl_->lastClosest = PairKey{};
@@ -75,17 +75,17 @@ void refresh(Impl& c) {
     sameSelf = prev->selfPairs[i].a == next->selfPairs[i].a && prev->selfPairs[i].b == next->selfPairs[i].b;
   }
   if (!sameSelf) {
-    c.selfCaches.assign(next->selfCacheSize, deep::PairCache{});
+    c.selfCaches.assign(next->selfCacheSize, geometry::PairCache{});
     c.selfAxes.assign(next->selfCacheSize, 0);
   }
   if (prev == nullptr || prev->scenePieces != next->scenePieces) {
-    c.sceneCaches.assign(nRobot * next->scenePieces->pieces.size(), deep::PairCache{});
+    c.sceneCaches.assign(nRobot * next->scenePieces->pieces.size(), geometry::PairCache{});
     c.sceneAxes.assign(c.sceneCaches.size(), 0);
   }
   if (prev == nullptr || prev->obstaclePieces != next->obstaclePieces) {
     // Obstacle pieces are renumbered by every change; carry the caches over by piece uid.
     const std::vector<WorldPiece>& now = next->obstaclePieces->pieces;
-    std::vector<deep::PairCache> caches(nRobot * now.size());
+    std::vector<geometry::PairCache> caches(nRobot * now.size());
     if (prev != nullptr) {
       const std::vector<WorldPiece>& before = prev->obstaclePieces->pieces;
       std::unordered_map<std::uint64_t, std::size_t> old;

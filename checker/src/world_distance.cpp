@@ -30,7 +30,7 @@ struct DistanceSearch {
   /// (piece centres lie inside their cores, so each is an upper bound on that pair's distance).
   double upper = std::numeric_limits<double>::infinity();
   PairKey bestKey;
-  deep::SignedDistanceResult bestResult;
+  geometry::SignedDistanceResult bestResult;
   PairKey skip;  // already evaluated first (the previous closest pair)
 
   DistanceSearch(Impl& c_, const Snapshot& s_, const DistanceOptions& options_)
@@ -48,7 +48,7 @@ struct DistanceSearch {
     return std::min(need, options.maxDistance);
   }
 
-  void record(const PairKey& key, int groupA, int setKind, int body, const deep::SignedDistanceResult& r) {
+  void record(const PairKey& key, int groupA, int setKind, int body, const geometry::SignedDistanceResult& r) {
     if (r.distance < options.maxDistance && (!found || r.distance < best)) {
       found = true;
       best = r.distance;
@@ -73,19 +73,19 @@ struct DistanceSearch {
   /// asked for, one walk runs first: its depth is a valid separating translation, an upper bound
   /// on the depth, so its distance is a LOWER bound on the pair's signed distance; when that is
   /// already at least bound(), the pair cannot matter and the restarts are skipped.
-  deep::SignedDistanceResult pairDistance(const deep::ConvexShape& A, const Eigen::Isometry3d& X_WA,
-                                          const deep::ConvexShape& B, const Eigen::Isometry3d& X_WB,
-                                          deep::PairCache& cache) {
+  geometry::SignedDistanceResult pairDistance(const geometry::ConvexShape& A, const Eigen::Isometry3d& X_WA,
+                                          const geometry::ConvexShape& B, const Eigen::Isometry3d& X_WB,
+                                          geometry::PairCache& cache) {
     warm(c, cache, FarStep::KeepEnclosing);
     // The certified method runs no restarts: one call is the whole query.
-    if (!options.deep.walk.restarts || options.deep.method == deep::PenetrationMethod::CertifiedExpansion)
-      return deep::signedDistance(A, X_WA, B, X_WB, &cache, options.deep);
-    deep::PenetrationOptions quick = options.deep;
+    if (!options.penetration.walk.restarts || options.penetration.method == geometry::PenetrationMethod::CertifiedExpansion)
+      return geometry::signedDistance(A, X_WA, B, X_WB, &cache, options.penetration);
+    geometry::PenetrationOptions quick = options.penetration;
     quick.walk.restarts = false;
-    deep::SignedDistanceResult r = deep::signedDistance(A, X_WA, B, X_WB, &cache, quick);
-    if (r.status == deep::SignedDistanceStatus::Separated || r.distance >= bound()) return r;
+    geometry::SignedDistanceResult r = geometry::signedDistance(A, X_WA, B, X_WB, &cache, quick);
+    if (r.status == geometry::SignedDistanceStatus::Separated || r.distance >= bound()) return r;
     ++c.stats.fullDepth;
-    return deep::signedDistance(A, X_WA, B, X_WB, &cache, options.deep);
+    return geometry::signedDistance(A, X_WA, B, X_WB, &cache, options.penetration);
   }
 
   /// Measures the pair (both pieces posed).
@@ -97,7 +97,7 @@ struct DistanceSearch {
       const RobotPiece& b = robot.pieces[k.other];
       ++c.stats.selfNarrowPhase;
       notify(c, a.link, robotBody(b.link));
-      const deep::SignedDistanceResult r =
+      const geometry::SignedDistanceResult r =
           pairDistance(shapeOf(a), pieceTransform(c, robot, k.robotPiece), shapeOf(b),
                        pieceTransform(c, robot, k.other), c.selfCaches[k.cache]);
       record(k, a.group, 0, b.group, r);
@@ -106,7 +106,7 @@ struct DistanceSearch {
     const PieceSet& set = worldPieces(s, k.kind);
     const WorldPiece& w = set.pieces[k.other];
     notify(c, a.link, bodyOfWorldPiece(set, w));
-    const deep::SignedDistanceResult r =
+    const geometry::SignedDistanceResult r =
         pairDistance(shapeOf(a), pieceTransform(c, robot, k.robotPiece), shapeOf(w), w.X_WP,
                      worldCaches(c, k.kind)[pairIndex(set, k.robotPiece, k.other)]);
     record(k, a.group, k.kind == PairKey::Kind::Scene ? 1 : 2, w.body, r);
@@ -118,7 +118,7 @@ struct DistanceSearch {
     const RobotData& robot = *s.robot;
     const RobotPiece& a = robot.pieces[k.robotPiece];
     const Eigen::Isometry3d& X_WA = pieceTransform(c, robot, k.robotPiece);
-    const deep::ConvexPolytope* coreB;
+    const geometry::ConvexPolytope* coreB;
     const Eigen::Isometry3d* X_WB;
     double rB;
     Eigen::Vector3d centerB;
@@ -229,7 +229,7 @@ std::string geometryName(const Snapshot& s, int g) {
 }
 
 /// Fills names and, when asked, the gradient of a pair's distance.
-Contact makeContact(Impl& c, const Snapshot& s, const PairKey& key, const deep::SignedDistanceResult& r,
+Contact makeContact(Impl& c, const Snapshot& s, const PairKey& key, const geometry::SignedDistanceResult& r,
                     bool gradient) {
   const RobotData& robot = *s.robot;
   Contact out;

@@ -78,8 +78,8 @@ using detail::RobotPiece;
 Contact pieceContact(const detail::Snapshot& s, int g, const RobotPiece& p, const Eigen::Isometry3d& X_WP,
                      const PieceSet& set, int wp) {
   const detail::WorldPiece& w = set.pieces[static_cast<std::size_t>(wp)];
-  const deep::SignedDistanceResult r =
-      deep::signedDistance(deep::ConvexShape{p.core.get(), p.radius}, X_WP, deep::ConvexShape{w.core.get(), w.radius},
+  const geometry::SignedDistanceResult r =
+      geometry::signedDistance(geometry::ConvexShape{p.core.get(), p.radius}, X_WP, geometry::ConvexShape{w.core.get(), w.radius},
                            w.X_WP);
   Contact c;
   c.distance = r.distance;

@@ -26,7 +26,7 @@ namespace deepcheck::checker::detail {
 
 /// A robot piece in its link's frame, with its bounding sphere (centre in the link frame).
 struct RobotPiece {
-  std::shared_ptr<const deep::ConvexPolytope> core;
+  std::shared_ptr<const geometry::ConvexPolytope> core;
   double radius = 0.0;
   Eigen::Isometry3d X_LP = Eigen::Isometry3d::Identity();
   Eigen::Vector3d center_L = Eigen::Vector3d::Zero();
@@ -70,7 +70,7 @@ struct RobotData {
 
 /// A world piece (scene or obstacle), posed in the world.
 struct WorldPiece {
-  std::shared_ptr<const deep::ConvexPolytope> core;
+  std::shared_ptr<const geometry::ConvexPolytope> core;
   double radius = 0.0;
   Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
   Eigen::Vector3d center_W = Eigen::Vector3d::Zero();

@@ -18,12 +18,12 @@ using namespace detail;  // NOLINT: the queries' own internals
 
 namespace {
 
-/// isFree's narrow phase calls deep::overlapsUnchecked, skipping the shape and pose checks of
-/// deep::overlaps on every pair: the pieces are checked when built, world poses when set
+/// isFree's narrow phase calls geometry::overlapsUnchecked, skipping the shape and pose checks of
+/// geometry::overlaps on every pair: the pieces are checked when built, world poses when set
 /// (obstacles) or loaded (scenes: URDF origins, a checked base pose), and a robot piece's pose is
 /// a link pose from forward kinematics of a finite q times a fixed offset: rotations orthonormal
 /// by construction. Only a translation can leave the doubles (a prismatic joint near 1e308); that
-/// is checked here, once per query, and reported as deep::overlaps would.
+/// is checked here, once per query, and reported as geometry::overlaps would.
 void checkLinkTranslations(const Impl& c) {
   bool finite = true;
   for (const Eigen::Isometry3d& X : c.X_WL) finite &= X.translation().allFinite();
@@ -41,7 +41,7 @@ constexpr int kCentroidTestMaxFaces = 32;
 /// boxes and slabs of a few faces; about a third of the robot-world overlaps on random Panda
 /// configurations in the kitchen are decided here, without GJK.
 inline bool centroidInside(const WorldPiece& w, const Eigen::Vector3d& x_W) {
-  const deep::ConvexPolytope& B = *w.core;
+  const geometry::ConvexPolytope& B = *w.core;
   const int faces = B.numFaces();
   if (faces == 0 || faces > kCentroidTestMaxFaces) return false;
   const Eigen::Vector3d x = w.X_WP.linear().transpose() * (x_W - w.X_WP.translation());  // in B's frame
@@ -55,14 +55,14 @@ inline bool centroidInside(const WorldPiece& w, const Eigen::Vector3d& x_W) {
 /// The narrow phase of a pair: first the tetrahedron that enclosed the origin when the pair last
 /// overlapped (the same four vertex pairs usually still enclose it at a nearby configuration:
 /// four vertex transforms instead of a GJK run), then GJK.
-bool overlapPair(Impl& c, const deep::ConvexShape& A, const Eigen::Isometry3d& X_WA, const deep::ConvexShape& B,
-                 const Eigen::Isometry3d& X_WB, deep::PairCache& pairCache) {
-  deep::PairCache* cache = warm(c, pairCache, FarStep::KeepGjk);
-  if (cache->gjk.enclosed && deep::enclosesOrigin(A, X_WA, B, X_WB, cache->gjk.enclosing)) {
+bool overlapPair(Impl& c, const geometry::ConvexShape& A, const Eigen::Isometry3d& X_WA, const geometry::ConvexShape& B,
+                 const Eigen::Isometry3d& X_WB, geometry::PairCache& pairCache) {
+  geometry::PairCache* cache = warm(c, pairCache, FarStep::KeepGjk);
+  if (cache->gjk.enclosed && geometry::enclosesOrigin(A, X_WA, B, X_WB, cache->gjk.enclosing)) {
     ++c.stats.enclosedAgain;
     return true;
   }
-  return deep::overlapsUnchecked(A, X_WA, B, X_WB, cache);
+  return geometry::overlapsUnchecked(A, X_WA, B, X_WB, cache);
 }
 
 /// Narrow phase of robot piece i against world piece wp of `set`, of pair kind `kind` (after the

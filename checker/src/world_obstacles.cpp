@@ -5,7 +5,7 @@
 #include "progress.h"
 #include "world_internal.h"
 
-#include "deepcheck/deep/pair_frame.h"
+#include "deepcheck/geometry/pair_frame.h"
 #include "deepcheck/robots/mesh_loader.h"
 
 #include <algorithm>
@@ -93,7 +93,7 @@ std::vector<robots::CollisionPiece> piecesOfGeometry(const robots::Geometry& g, 
     }
     mesh = &loaded;
   }
-  std::vector<deep::ConvexPolytope> polytopes;
+  std::vector<geometry::ConvexPolytope> polytopes;
   try {
     polytopes = robots::meshPolytopes(*mesh, options);
   } catch (const std::invalid_argument& e) {
@@ -102,7 +102,7 @@ std::vector<robots::CollisionPiece> piecesOfGeometry(const robots::Geometry& g, 
   std::vector<robots::CollisionPiece> out;
   for (std::size_t i = 0; i < polytopes.size(); ++i) {
     robots::CollisionPiece piece;
-    piece.core = std::make_shared<const deep::ConvexPolytope>(std::move(polytopes[i]));
+    piece.core = std::make_shared<const geometry::ConvexPolytope>(std::move(polytopes[i]));
     piece.origin = what + " mesh piece " + std::to_string(i);
     out.push_back(std::move(piece));
   }
@@ -139,10 +139,10 @@ std::shared_ptr<const PieceSet> buildObstaclePieces(const std::vector<std::share
 
 namespace {
 
-/// The narrow phase's own check of a pose (finite, a rotation within deep::tol::kOrthonormal),
+/// The narrow phase's own check of a pose (finite, a rotation within geometry::tol::kOrthonormal),
 /// made once when an obstacle is placed: isFree's narrow phase skips it (overlapsUnchecked).
 void checkObstaclePose(const Eigen::Isometry3d& X_WO, const std::string& name) {
-  deep::checkPose(X_WO, ("obstacle '" + name + "'").c_str());
+  geometry::checkPose(X_WO, ("obstacle '" + name + "'").c_str());
 }
 
 std::size_t findObstacle(const Snapshot& s, int id) {

@@ -45,7 +45,7 @@ struct BodyPairBest {
   int setKind = 0;  ///< 0 robot link, 1 scene body, 2 obstacle body
   int body = -1;    ///< robot geometry or body index in its set
   PairKey key;
-  deep::SignedDistanceResult result;
+  geometry::SignedDistanceResult result;
 };
 
 /// A piece pair that passed the bounding tests, waiting for the narrow phase.
@@ -62,14 +62,14 @@ struct World::Context::Impl {
   std::uint64_t generation = 0;
   std::shared_ptr<const detail::Snapshot> snap;
 
-  std::vector<deep::PairCache> selfCaches;
-  std::vector<deep::PairCache> sceneCaches;     // robot piece * scene pieces + world piece
-  std::vector<deep::PairCache> obstacleCaches;  // robot piece * obstacle pieces + world piece
+  std::vector<geometry::PairCache> selfCaches;
+  std::vector<geometry::PairCache> sceneCaches;     // robot piece * scene pieces + world piece
+  std::vector<geometry::PairCache> obstacleCaches;  // robot piece * obstacle pieces + world piece
   /// Per pair, indexed as the caches above: the oriented-box axis that last separated it (obb.h).
   std::vector<std::uint8_t> selfAxes, sceneAxes, obstacleAxes;
   /// Scratch of the penetration depth methods, shared by every pair of this context (a context
   /// runs one query at a time): no allocation or large stack frame per pair.
-  std::unique_ptr<deep::PenetrationScratch> scratch = std::make_unique<deep::PenetrationScratch>();
+  std::unique_ptr<geometry::PenetrationScratch> scratch = std::make_unique<geometry::PenetrationScratch>();
 
   std::vector<Eigen::Isometry3d> X_WL;
   std::vector<Eigen::Isometry3d> X_WP;  // robot pieces, valid when transformStamp == stamp
@@ -134,12 +134,12 @@ enum class FarStep {
 /// The pair's warm-start cache for this query: kept when the query is near the previous one,
 /// reset first otherwise (a start from an unrelated configuration makes DEEP run fewer
 /// restarts, so a stale start costs accuracy), except for what `far` keeps. A cold pair's support
-/// climbs start from each hull's direction index (deep::ConvexPolytope::support). The
+/// climbs start from each hull's direction index (geometry::ConvexPolytope::support). The
 /// tetrahedron that last enclosed the origin is kept either way: isFree tests it afresh
-/// (deep::enclosesOrigin, a certificate), never trusts it.
-inline deep::PairCache* warm(const Impl& c, deep::PairCache& cache, FarStep far) {
+/// (geometry::enclosesOrigin, a certificate), never trusts it.
+inline geometry::PairCache* warm(const Impl& c, geometry::PairCache& cache, FarStep far) {
   if (!c.coherent) {
-    const deep::GjkCache gjk = cache.gjk;
+    const geometry::GjkCache gjk = cache.gjk;
     cache.reset();
     if (far == FarStep::KeepGjk) {
       cache.gjk = gjk;
@@ -157,7 +157,7 @@ inline deep::PairCache* warm(const Impl& c, deep::PairCache& cache, FarStep far)
 inline const PieceSet& worldPieces(const Snapshot& s, PairKey::Kind kind) {
   return kind == PairKey::Kind::Scene ? *s.scenePieces : *s.obstaclePieces;
 }
-inline std::vector<deep::PairCache>& worldCaches(Impl& c, PairKey::Kind kind) {
+inline std::vector<geometry::PairCache>& worldCaches(Impl& c, PairKey::Kind kind) {
   return kind == PairKey::Kind::Scene ? c.sceneCaches : c.obstacleCaches;
 }
 inline std::vector<std::uint8_t>& worldAxes(Impl& c, PairKey::Kind kind) {
@@ -184,8 +184,8 @@ inline double pieceWorldLowerBound(const Impl& c, const RobotPiece& p, int i, co
 ///   - if the cores overlap, the penetration depth is min over unit v of h_M(v) <= h_M(u);
 ///   - if they are apart, every m in M has u.m <= h_M(u), so |m| >= -h_M(u) when h_M(u) < 0;
 /// in both cases the core signed distance is >= -h_M(u). Radii are subtracted as usual.
-inline double supportLowerBound(const deep::ConvexPolytope& A, const Eigen::Isometry3d& X_WA, double rA,
-                                const deep::ConvexPolytope& B, const Eigen::Isometry3d& X_WB, double rB,
+inline double supportLowerBound(const geometry::ConvexPolytope& A, const Eigen::Isometry3d& X_WA, double rA,
+                                const geometry::ConvexPolytope& B, const Eigen::Isometry3d& X_WB, double rB,
                                 const Eigen::Vector3d& u) {
   const Eigen::Vector3d uA = X_WA.linear().transpose() * u;
   const Eigen::Vector3d uB = X_WB.linear().transpose() * u;
@@ -287,8 +287,8 @@ void forEachNear(const PieceSet& set, BroadPhase broadPhase, const Eigen::Vector
   }
 }
 
-inline deep::ConvexShape shapeOf(const RobotPiece& p) { return deep::ConvexShape{p.core.get(), p.radius}; }
-inline deep::ConvexShape shapeOf(const WorldPiece& p) { return deep::ConvexShape{p.core.get(), p.radius}; }
+inline geometry::ConvexShape shapeOf(const RobotPiece& p) { return geometry::ConvexShape{p.core.get(), p.radius}; }
+inline geometry::ConvexShape shapeOf(const WorldPiece& p) { return geometry::ConvexShape{p.core.get(), p.radius}; }
 
 inline void notify(const World::Context::Impl& c, int linkA, const BodyRef& bodyB) {
   if (c.state->onNarrowPhase) c.state->onNarrowPhase(NarrowPhaseEvent{linkA, bodyB});

@@ -3,7 +3,7 @@
 // hierarchy of axis-aligned boxes over a part's triangles, queried with an optional half-space
 // that clips the triangles on the fly (so one hierarchy serves every candidate cut of a part).
 
-#include "deepcheck/deep/closest_point.h"
+#include "deepcheck/geometry/closest_point.h"
 
 #include <Eigen/Core>
 
@@ -23,7 +23,7 @@ struct Halfspace {
 
 using Triangle = std::array<Eigen::Vector3d, 3>;
 
-using deep::closestPointOnTriangle;
+using geometry::closestPointOnTriangle;
 
 /// Parameter t > 0 where the ray origin + t dir meets the triangle (a, b, c), or -1 when it misses
 /// (Moller-Trumbore; rays grazing the triangle's plane miss).

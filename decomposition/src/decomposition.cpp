@@ -231,13 +231,13 @@ const char* toString(CacheStatus status) {
   return "?";
 }
 
-std::vector<deep::ConvexPolytope> ConvexDecomposition::polytopes() const {
-  std::vector<deep::ConvexPolytope> out;
+std::vector<geometry::ConvexPolytope> ConvexDecomposition::polytopes() const {
+  std::vector<geometry::ConvexPolytope> out;
   out.reserve(pieces.size());
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const std::string name =
         (report.source.empty() ? std::string("mesh") : report.source) + " piece " + std::to_string(i);
-    out.push_back(deep::ConvexPolytope::fromPoints(pieces[i].vertices, name));
+    out.push_back(geometry::ConvexPolytope::fromPoints(pieces[i].vertices, name));
   }
   return out;
 }

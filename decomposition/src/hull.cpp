@@ -10,7 +10,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-#include <deepcheck/deep/qhull_hull.h>
+#include <deepcheck/geometry/qhull_hull.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,8 +28,8 @@ using Eigen::Vector3d;
 namespace {
 
 /// Qhull's options here: Qhull's own start (no 'Qs') and merging, triangles when asked.
-deep::QhullOptions qhullOptions(bool triangulate) {
-  deep::QhullOptions options;
+geometry::QhullOptions qhullOptions(bool triangulate) {
+  geometry::QhullOptions options;
   options.triangulate = triangulate;
   options.searchAllPoints = false;
   return options;
@@ -113,10 +113,10 @@ std::vector<Vector3d> halfspaceIntersection(const std::vector<Vector3d>& normals
     if (!(h > 0.0)) return {};
     dual[i] = normals[i] / h;
   }
-  deep::QhullHull polar;
+  geometry::QhullHull polar;
   try {
-    polar = deep::qhullHull(dual, qhullOptions(false), "halfspace intersection");
-  } catch (const deep::QhullError&) {
+    polar = geometry::qhullHull(dual, qhullOptions(false), "halfspace intersection");
+  } catch (const geometry::QhullError&) {
     return {};
   }
   std::vector<Vector3d> corners;
@@ -131,11 +131,11 @@ std::vector<Vector3d> halfspaceIntersection(const std::vector<Vector3d>& normals
 }  // namespace
 
 Hull convexHull(const std::vector<Vector3d>& points) {
-  if (points.size() < static_cast<std::size_t>(deep::kQhullMinPoints)) return flatHull(points);
-  deep::QhullHull q;
+  if (points.size() < static_cast<std::size_t>(geometry::kQhullMinPoints)) return flatHull(points);
+  geometry::QhullHull q;
   try {
-    q = deep::qhullHull(points, qhullOptions(true), "convex decomposition hull");
-  } catch (const deep::QhullError&) {
+    q = geometry::qhullHull(points, qhullOptions(true), "convex decomposition hull");
+  } catch (const geometry::QhullError&) {
     return flatHull(points);  // flat or collinear part: its planar hull
   }
   Hull hull;

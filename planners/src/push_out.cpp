@@ -150,7 +150,7 @@ class PushOutSearch {
       a.kind = checker::BodyRef::Kind::RobotLink;
       a.index = c.linkA;
       checker::World::BodyContact answer = world_.bodySignedDistance(q, a, c.bodyB, options);
-      if (answer.depthStatus == deep::BodyDepthStatus::BuildLimit) continue;  // too costly: pairwise
+      if (answer.depthStatus == geometry::BodyDepthStatus::BuildLimit) continue;  // too costly: pairwise
       checker::Contact& body = answer.contact;
       c.distance = body.distance;
       c.normal = body.normal;

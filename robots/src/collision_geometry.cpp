@@ -14,7 +14,7 @@
 namespace deepcheck::robots {
 namespace {
 
-using PolytopeList = std::vector<std::shared_ptr<const deep::ConvexPolytope>>;
+using PolytopeList = std::vector<std::shared_ptr<const geometry::ConvexPolytope>>;
 
 /// Meshes already turned into pieces during one call, keyed by (path, scale).
 using MeshCache = std::map<std::tuple<std::string, double, double, double>, PolytopeList>;
@@ -32,9 +32,9 @@ const PolytopeList& meshPieces(const RobotModel& model, int link, int collision,
   if (it != cache.end()) return it->second;
   PolytopeList pieces;
   try {
-    std::vector<deep::ConvexPolytope> polytopes = meshPolytopes(loadMesh(g.meshPath, g.meshScale, options.meshLoad), options);
-    for (deep::ConvexPolytope& p : polytopes) {
-      pieces.push_back(std::make_shared<const deep::ConvexPolytope>(std::move(p)));
+    std::vector<geometry::ConvexPolytope> polytopes = meshPolytopes(loadMesh(g.meshPath, g.meshScale, options.meshLoad), options);
+    for (geometry::ConvexPolytope& p : polytopes) {
+      pieces.push_back(std::make_shared<const geometry::ConvexPolytope>(std::move(p)));
     }
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(describe(model, link, collision) + ": " + e.what());
@@ -86,7 +86,7 @@ CollisionPiece primitivePiece(const Geometry& g, const CollisionGeometryOptions&
         msg << what << ": box size (" << g.boxSize.transpose() << ") must be positive and finite";
         throw std::invalid_argument(msg.str());
       }
-      piece.core = std::make_shared<const deep::ConvexPolytope>(deep::ConvexPolytope::box(g.boxSize));
+      piece.core = std::make_shared<const geometry::ConvexPolytope>(geometry::ConvexPolytope::box(g.boxSize));
       piece.origin = what + " box";
       return piece;
     case GeometryType::Sphere:
@@ -95,8 +95,8 @@ CollisionPiece primitivePiece(const Geometry& g, const CollisionGeometryOptions&
                                     " must be positive and finite");
       }
       piece.origin = what + " sphere";
-      piece.core = std::make_shared<const deep::ConvexPolytope>(
-          deep::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}, piece.origin));
+      piece.core = std::make_shared<const geometry::ConvexPolytope>(
+          geometry::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}, piece.origin));
       piece.radius = g.radius;
       return piece;
     case GeometryType::Cylinder:
@@ -104,7 +104,7 @@ CollisionPiece primitivePiece(const Geometry& g, const CollisionGeometryOptions&
         throw std::invalid_argument(what + ": cylinder radius " + formatNumber(g.radius) + " and length " +
                                     formatNumber(g.length) + " must be positive and finite");
       }
-      piece.core = std::make_shared<const deep::ConvexPolytope>(
+      piece.core = std::make_shared<const geometry::ConvexPolytope>(
           cylinderPrism(g.radius, g.length, options.cylinderMaxDeviation));
       piece.origin = what + " cylinder (" + std::to_string(cylinderSides(g.radius, options.cylinderMaxDeviation)) +
                      "-sided prism)";
@@ -115,16 +115,16 @@ CollisionPiece primitivePiece(const Geometry& g, const CollisionGeometryOptions&
   throw std::invalid_argument(what + ": a mesh is not a primitive");
 }
 
-std::vector<deep::ConvexPolytope> meshPolytopes(const TriangleMesh& mesh, const CollisionGeometryOptions& options) {
+std::vector<geometry::ConvexPolytope> meshPolytopes(const TriangleMesh& mesh, const CollisionGeometryOptions& options) {
   if (mesh.empty()) throw std::invalid_argument("the mesh has no triangle");
-  std::vector<deep::ConvexPolytope> polytopes = options.decomposer ? options.decomposer(mesh) : convexHullDecomposer(mesh);
+  std::vector<geometry::ConvexPolytope> polytopes = options.decomposer ? options.decomposer(mesh) : convexHullDecomposer(mesh);
   if (polytopes.empty()) throw std::invalid_argument("the mesh decomposer returned no piece");
   return polytopes;
 }
 
-std::vector<deep::ConvexPolytope> convexHullDecomposer(const TriangleMesh& mesh) {
-  std::vector<deep::ConvexPolytope> out;
-  out.push_back(deep::ConvexPolytope::fromPoints(mesh.vertices, mesh.source));
+std::vector<geometry::ConvexPolytope> convexHullDecomposer(const TriangleMesh& mesh) {
+  std::vector<geometry::ConvexPolytope> out;
+  out.push_back(geometry::ConvexPolytope::fromPoints(mesh.vertices, mesh.source));
   return out;
 }
 
@@ -141,7 +141,7 @@ int cylinderSides(double radius, double maxDeviation) {
   return static_cast<int>(std::clamp(n, double(tol::kCylinderMinSides), double(tol::kCylinderMaxSides)));
 }
 
-deep::ConvexPolytope cylinderPrism(double radius, double length, double maxDeviation) {
+geometry::ConvexPolytope cylinderPrism(double radius, double length, double maxDeviation) {
   if (!(length > 0.0) || !std::isfinite(length) || !std::isfinite(radius)) {
     std::ostringstream msg;
     msg << "cylinder length " << length << " and radius " << radius << " must be positive and finite";
@@ -157,7 +157,7 @@ deep::ConvexPolytope cylinderPrism(double radius, double length, double maxDevia
       points.emplace_back(corner * std::cos(angle), corner * std::sin(angle), z);
     }
   }
-  return deep::ConvexPolytope::fromPoints(points, "cylinder");
+  return geometry::ConvexPolytope::fromPoints(points, "cylinder");
 }
 
 std::vector<CollisionPiece> linkCollisionPieces(const RobotModel& model, int link,

@@ -4,7 +4,7 @@
 
 #include "collada_check.h"
 
-#include <deepcheck/deep/input_range.h>
+#include <deepcheck/geometry/input_range.h>
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -85,12 +85,12 @@ class Merger {
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D& p = mesh.mVertices[v];
       const Eigen::Vector3d x = A * Eigen::Vector3d(p.x, p.y, p.z) + b;
-      if (!(x.cwiseAbs().maxCoeff() <= deep::range::kMaxCoordinate)) {
+      if (!(x.cwiseAbs().maxCoeff() <= geometry::range::kMaxCoordinate)) {
         std::ostringstream msg;
         msg << "mesh file " << inQuotes(out_.source) << ": vertex " << v << " of mesh "
             << inQuotes(mesh.mName.C_Str()) << " (" << p.x << " " << p.y << " " << p.z << ") is at ("
             << format(x) << ") after the node transforms and the scale (" << format(scale_)
-            << "); coordinates up to " << deep::range::kMaxCoordinate << " are supported";
+            << "); coordinates up to " << geometry::range::kMaxCoordinate << " are supported";
         throw std::invalid_argument(msg.str());
       }
       const std::array<double, 3> key{x.x(), x.y(), x.z()};
@@ -185,10 +185,10 @@ namespace {
 
 /// Throws unless every component of the scale is non-zero with magnitude at most kMaxCoordinate.
 void checkScale(const std::string& path, const Eigen::Vector3d& scale) {
-  if ((scale.array() != 0.0).all() && scale.cwiseAbs().maxCoeff() <= deep::range::kMaxCoordinate) return;
+  if ((scale.array() != 0.0).all() && scale.cwiseAbs().maxCoeff() <= geometry::range::kMaxCoordinate) return;
   std::ostringstream msg;
   msg << "mesh file " << inQuotes(path) << ": scale (" << format(scale)
-      << ") must have non-zero components of magnitude at most " << deep::range::kMaxCoordinate;
+      << ") must have non-zero components of magnitude at most " << geometry::range::kMaxCoordinate;
   throw std::invalid_argument(msg.str());
 }
 

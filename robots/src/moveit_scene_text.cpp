@@ -1,7 +1,7 @@
 // MoveIt's .scene text format read into a PlanningScene (moveit_scene.h: parseSceneText).
 #include "deepcheck/robots/moveit_scene.h"
 
-#include <deepcheck/deep/input_range.h>
+#include <deepcheck/geometry/input_range.h>
 
 #include <array>
 #include <cctype>
@@ -113,9 +113,9 @@ class SceneTextReader {
     char* end = nullptr;
     const double value = std::strtod(t.text.c_str(), &end);
     if (t.text.empty() || *end != '\0') fail(t, what + " must be a number, is '" + t.text + "'");
-    if (!std::isfinite(value) || std::abs(value) > deep::range::kMaxCoordinate) {
+    if (!std::isfinite(value) || std::abs(value) > geometry::range::kMaxCoordinate) {
       std::ostringstream msg;
-      msg << what << " must be finite with magnitude at most " << deep::range::kMaxCoordinate << ", is '" << t.text
+      msg << what << " must be finite with magnitude at most " << geometry::range::kMaxCoordinate << ", is '" << t.text
           << "'";
       fail(t, msg.str());
     }

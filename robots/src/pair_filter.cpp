@@ -3,7 +3,7 @@
 #include "deepcheck/robots/kinematics.h"
 #include "deepcheck/robots/random_configuration.h"
 
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/signed_distance.h"
 
 #include <algorithm>
 #include <random>
@@ -28,7 +28,7 @@ std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 /// A piece posed in the world, with its bounding sphere for a cheap rejection test.
 struct PosedPiece {
-  deep::ConvexShape shape;
+  geometry::ConvexShape shape;
   Eigen::Isometry3d X_WP;
   Eigen::Vector3d centre_W;
   double sphereRadius;
@@ -39,7 +39,7 @@ void posePieces(const std::vector<CollisionPiece>& pieces, const Eigen::Isometry
   out.clear();
   for (const CollisionPiece& p : pieces) {
     PosedPiece posed;
-    posed.shape = deep::ConvexShape{p.core.get(), p.radius};
+    posed.shape = geometry::ConvexShape{p.core.get(), p.radius};
     posed.X_WP = X_WL * p.X_LP;
     posed.centre_W = posed.X_WP * p.core->center();
     posed.sphereRadius = p.core->boundingRadius() + p.radius;
@@ -54,7 +54,7 @@ bool posedOverlap(const std::vector<PosedPiece>& a, const std::vector<PosedPiece
       // Strictly farther apart than the two spheres: the pieces cannot touch. Compared squared;
       // touching pieces (distance == reach) go on to the exact test.
       if ((pa.centre_W - pb.centre_W).squaredNorm() > reach * reach) continue;
-      if (deep::overlaps(pa.shape, pa.X_WP, pb.shape, pb.X_WP)) return true;
+      if (geometry::overlaps(pa.shape, pa.X_WP, pb.shape, pb.X_WP)) return true;
     }
   }
   return false;

@@ -6,7 +6,7 @@
 
 #include "xml_text.h"
 
-#include <deepcheck/deep/input_range.h>
+#include <deepcheck/geometry/input_range.h>
 
 #include <console_bridge/console.h>
 #include <tinyxml.h>
@@ -147,10 +147,10 @@ class Prepass {
       char* end = nullptr;
       const double value = std::strtod(p, &end);
       if (end == p) throw std::invalid_argument(where + " is not a list of numbers");
-      if (!(std::abs(value) <= deep::range::kMaxCoordinate)) {
+      if (!(std::abs(value) <= geometry::range::kMaxCoordinate)) {
         std::ostringstream msg;
         msg << where << " has a " << (std::isfinite(value) ? "value out of range" : "non-finite value")
-            << " (component " << n << "; magnitudes up to " << deep::range::kMaxCoordinate
+            << " (component " << n << "; magnitudes up to " << geometry::range::kMaxCoordinate
             << " are supported)";
         throw std::invalid_argument(msg.str());
       }

@@ -2,7 +2,7 @@
 
 #include "deepcheck/robots/moveit_scene.h"
 
-#include <deepcheck/deep/input_range.h>
+#include <deepcheck/geometry/input_range.h>
 
 #include <yaml-cpp/eventhandler.h>
 
@@ -121,9 +121,9 @@ double readNumber(const Context& ctx, const YAML::Node& node, const std::string&
     ctx.fail(node, what + " must be a number, is '" + node.Scalar() + "'");
   }
   if (!std::isfinite(value)) ctx.fail(node, what + " must be finite, is '" + node.Scalar() + "'");
-  if (std::abs(value) > deep::range::kMaxCoordinate) {
+  if (std::abs(value) > geometry::range::kMaxCoordinate) {
     std::ostringstream msg;
-    msg << what << " must have magnitude at most " << deep::range::kMaxCoordinate << ", is '" << node.Scalar() << "'";
+    msg << what << " must have magnitude at most " << geometry::range::kMaxCoordinate << ", is '" << node.Scalar() << "'";
     ctx.fail(node, msg.str());
   }
   return value;

@@ -1,6 +1,6 @@
 // World::bodySignedDistance (body_distance.h): a link against a body of several pieces measured
 // as one union, on the hard cases of issue 38 built as worlds (a box pressed into a slab of two
-// touching boxes, a peg in a U of three boxes), against deep::bodySignedDistance on the same posed
+// touching boxes, a peg in a U of three boxes), against geometry::bodySignedDistance on the same posed
 // pieces, link against link, the rounded-piece rule and the errors.
 
 #include "checker_test_util.h"
@@ -8,7 +8,7 @@
 #include "common/body_cases.h"
 
 #include "deepcheck/checker/body_distance.h"
-#include "deepcheck/deep/body_depth.h"
+#include "deepcheck/geometry/body_depth.h"
 #include "deepcheck/robots/kinematics.h"
 
 #include <boost/test/unit_test.hpp>
@@ -68,15 +68,15 @@ Both measure(const World& world, const Eigen::VectorXd& q, const BodyRef& other)
   return out;
 }
 
-/// The deep::Body of posed pieces: a robot link's (linkPieces, at its pose X_WL) or a world
+/// The geometry::Body of posed pieces: a robot link's (linkPieces, at its pose X_WL) or a world
 /// body's (worldPieces, posed in the world).
-deep::Body linkBody(const World& world, int link) {
-  deep::Body b;
+geometry::Body linkBody(const World& world, int link) {
+  geometry::Body b;
   for (const robots::CollisionPiece& p : world.linkPieces(link)) b.pieces.push_back({{p.core.get(), p.radius}, p.X_LP});
   return b;
 }
-deep::Body worldBody(const std::vector<World::WorldPieceRef>& pieces, const BodyRef& body) {
-  deep::Body b;
+geometry::Body worldBody(const std::vector<World::WorldPieceRef>& pieces, const BodyRef& body) {
+  geometry::Body b;
   for (const World::WorldPieceRef& p : pieces) {
     if (p.body == body) b.pieces.push_back({{p.piece.core.get(), p.piece.radius}, p.piece.X_LP});
   }
@@ -96,8 +96,8 @@ BOOST_AUTO_TEST_CASE(slab_of_two_touching_boxes_is_pushed_up_not_sideways) {
   const Both r = measure(world, gantryQ(0.005, 0, 0.01), sceneLink(world, 0, "slab"));
   const Contact& c = r.body.contact;
   BOOST_TEST(toString(r.body.method) == std::string("body"));
-  BOOST_TEST(deep::toString(r.body.depthStatus) == std::string("certified"));
-  BOOST_TEST(deep::toString(c.status) == std::string("penetrating"));
+  BOOST_TEST(geometry::toString(r.body.depthStatus) == std::string("certified"));
+  BOOST_TEST(geometry::toString(c.status) == std::string("penetrating"));
   BOOST_TEST(c.distance == -0.04, boost::test_tools::tolerance(1e-9));
   BOOST_TEST((c.normal - Eigen::Vector3d(0, 0, -1)).norm() < 1e-9, "normal " << c.normal.transpose());
   BOOST_TEST((c.pointB - c.pointA - c.distance * c.normal).norm() < 1e-9);
@@ -124,7 +124,7 @@ BOOST_AUTO_TEST_CASE(peg_in_a_u_of_three_boxes_is_lifted_out) {
   world.addScene(sceneOf("u", kU), Eigen::Isometry3d::Identity());
   const Both r = measure(world, gantryQ(0.001, 0, 0.12), sceneLink(world, 0, "u"));
   const Contact& c = r.body.contact;
-  BOOST_TEST(deep::toString(r.body.depthStatus) == std::string("certified"));
+  BOOST_TEST(geometry::toString(r.body.depthStatus) == std::string("certified"));
   BOOST_TEST(c.distance == -0.03, boost::test_tools::tolerance(1e-9));
   BOOST_TEST((c.normal - Eigen::Vector3d(0, 0, -1)).norm() < 1e-9, "normal " << c.normal.transpose());
   BOOST_TEST(r.body.overlappingPairs == 2);
@@ -137,15 +137,15 @@ BOOST_AUTO_TEST_CASE(separated_bodies_give_the_nearest_pair) {
   World world(gantryRobot(kToolBox), testWorldOptions());
   world.addScene(sceneOf("slab", kSlab), Eigen::Isometry3d::Identity());
   const Both r = measure(world, gantryQ(0.3, 0.1, 0.08), sceneLink(world, 0, "slab"));
-  BOOST_TEST(deep::toString(r.body.depthStatus) == std::string("separated"));
-  BOOST_TEST(deep::toString(r.body.contact.status) == std::string("separated"));
+  BOOST_TEST(geometry::toString(r.body.depthStatus) == std::string("separated"));
+  BOOST_TEST(geometry::toString(r.body.contact.status) == std::string("separated"));
   BOOST_TEST(r.body.contact.distance == 0.03, boost::test_tools::tolerance(1e-9));
   BOOST_TEST(r.pairwise.distance == 0.03, boost::test_tools::tolerance(1e-9));
   BOOST_TEST(r.body.contact.gradient[2] == 1.0, boost::test_tools::tolerance(1e-9));
 }
 
 // An L-shaped tool of two boxes, turned and moved at random about the slab and the U: the world's
-// answer is deep::bodySignedDistance's on the pieces the world reports (linkPieces at the link's
+// answer is geometry::bodySignedDistance's on the pieces the world reports (linkPieces at the link's
 // pose, worldPieces of the body).
 BOOST_AUTO_TEST_CASE(agrees_with_the_body_depth_on_the_posed_pieces) {
   const std::string tool = kToolBox + boxCollision({0.1, 0.04, 0.04}, {0.08, 0, 0.03});
@@ -153,7 +153,7 @@ BOOST_AUTO_TEST_CASE(agrees_with_the_body_depth_on_the_posed_pieces) {
   world.addScene(sceneOf("slab", kSlab), Eigen::Isometry3d::Identity());
   world.addScene(sceneOf("u", kU), translation(0.6, 0, 0));
   const int toolLink = world.robot().linkIndex("tool");
-  const deep::Body toolBody = linkBody(world, toolLink);
+  const geometry::Body toolBody = linkBody(world, toolLink);
   BOOST_REQUIRE(toolBody.pieces.size() == 2);
   const std::vector<World::WorldPieceRef> pieces = world.worldPieces();
   std::mt19937_64 rng(38);
@@ -170,14 +170,14 @@ BOOST_AUTO_TEST_CASE(agrees_with_the_body_depth_on_the_posed_pieces) {
     const BodyRef other = sceneLink(world, scene, scene == 0 ? "slab" : "u");
     const World::BodyContact got = world.bodySignedDistance(q, robotLink(world, "tool"), other);
     const std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(world.robot(), q);
-    const deep::BodySignedDistanceResult want =
-        deep::bodySignedDistance(toolBody, X_WL[toolLink], worldBody(pieces, other), Eigen::Isometry3d::Identity());
+    const geometry::BodySignedDistanceResult want =
+        geometry::bodySignedDistance(toolBody, X_WL[toolLink], worldBody(pieces, other), Eigen::Isometry3d::Identity());
     BOOST_TEST_CONTEXT("configuration " << k << ": " << q.transpose()) {
       BOOST_TEST(got.contact.distance == want.distance, boost::test_tools::tolerance(1e-9));
       BOOST_TEST((got.contact.normal - want.normal).norm() < 1e-9);
       BOOST_TEST((got.contact.pointA - want.pointA).norm() < 1e-9);
       BOOST_TEST((got.contact.pointB - want.pointB).norm() < 1e-9);
-      BOOST_TEST(deep::toString(got.depthStatus) == deep::toString(want.status));
+      BOOST_TEST(geometry::toString(got.depthStatus) == geometry::toString(want.status));
       BOOST_TEST(got.overlappingPairs == want.overlappingPairs);
     }
     overlapping += want.distance < 0.0 ? 1 : 0;

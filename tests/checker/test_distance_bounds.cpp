@@ -9,7 +9,7 @@
 #include "world_internal.h"
 #include "world_queries_internal.h"
 
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/signed_distance.h"
 #include "deepcheck/fcl_reference/fcl_broad_phase.h"
 #include "deepcheck/robots/kinematics.h"
 
@@ -30,9 +30,9 @@
 using namespace deepcheck;
 using namespace deepcheck::checker;
 using namespace deepcheck::checker::test;
-using deep::testing::makePose;
-using deep::testing::randomRotation;
-using deep::testing::randomUnit;
+using geometry::testing::makePose;
+using geometry::testing::randomRotation;
+using geometry::testing::randomUnit;
 
 namespace {
 
@@ -46,24 +46,24 @@ constexpr double kWorldAgreement = 1e-9;
 
 /// The shape kinds of the world's pieces: box, sphere (a point core), cylinder (a prism core),
 /// capsule (a segment core) and a mesh piece (a random hull).
-std::shared_ptr<const deep::ConvexPolytope> randomCore(std::mt19937& rng, int kind, double size, double* radius) {
+std::shared_ptr<const geometry::ConvexPolytope> randomCore(std::mt19937& rng, int kind, double size, double* radius) {
   std::uniform_real_distribution<double> u(0.3, 1.0);
   *radius = 0.0;
   switch (kind) {
-    case 0: return std::make_shared<deep::ConvexPolytope>(deep::ConvexPolytope::box(2.0 * size * Eigen::Vector3d(u(rng), u(rng), u(rng))));
+    case 0: return std::make_shared<geometry::ConvexPolytope>(geometry::ConvexPolytope::box(2.0 * size * Eigen::Vector3d(u(rng), u(rng), u(rng))));
     case 1:
       *radius = size;
-      return std::make_shared<deep::ConvexPolytope>(deep::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}));
+      return std::make_shared<geometry::ConvexPolytope>(geometry::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}));
     case 2:
-      return std::make_shared<deep::ConvexPolytope>(
-          deep::ConvexPolytope::fromPoints(deep::testing::prismPoints(size * u(rng), 2 * size * u(rng), 16)));
+      return std::make_shared<geometry::ConvexPolytope>(
+          geometry::ConvexPolytope::fromPoints(geometry::testing::prismPoints(size * u(rng), 2 * size * u(rng), 16)));
     case 3:
       *radius = 0.3 * size * u(rng);
-      return std::make_shared<deep::ConvexPolytope>(
-          deep::ConvexPolytope::fromPoints({Eigen::Vector3d(0, 0, -size), Eigen::Vector3d(0, 0, size)}));
+      return std::make_shared<geometry::ConvexPolytope>(
+          geometry::ConvexPolytope::fromPoints({Eigen::Vector3d(0, 0, -size), Eigen::Vector3d(0, 0, size)}));
     default:
-      return std::make_shared<deep::ConvexPolytope>(deep::ConvexPolytope::fromPoints(
-          deep::testing::ellipsoidPoints(rng, 24, size * Eigen::Vector3d(u(rng), u(rng), u(rng)))));
+      return std::make_shared<geometry::ConvexPolytope>(geometry::ConvexPolytope::fromPoints(
+          geometry::testing::ellipsoidPoints(rng, 24, size * Eigen::Vector3d(u(rng), u(rng), u(rng)))));
   }
 }
 
@@ -75,8 +75,8 @@ detail::WorldPiece randomPiece(std::mt19937& rng, double size, const Eigen::Vect
   return detail::makeWorldPiece(p, makePose(randomRotation(rng), at), 0, 0);
 }
 
-deep::SignedDistanceResult exact(const detail::WorldPiece& a, const detail::WorldPiece& b) {
-  return deep::signedDistance(detail::shapeOf(a), a.X_WP, detail::shapeOf(b), b.X_WP);
+geometry::SignedDistanceResult exact(const detail::WorldPiece& a, const detail::WorldPiece& b) {
+  return geometry::signedDistance(detail::shapeOf(a), a.X_WP, detail::shapeOf(b), b.X_WP);
 }
 
 enum Regime { kSeparated, kTouching, kShallow, kDeep, kContained, kRegimes };
@@ -102,7 +102,7 @@ std::pair<detail::WorldPiece, detail::WorldPiece> randomPair(std::mt19937& rng, 
   detail::WorldPiece b = randomPiece(rng, 0.05 + 0.5 * u(rng), a.center_W + offset * randomUnit(rng));
   if (regime == kTouching || regime == kShallow) {
     // Move B along the normal until it touches A, then (shallow) a little into it.
-    const deep::SignedDistanceResult r = exact(a, b);
+    const geometry::SignedDistanceResult r = exact(a, b);
     const double into = regime == kShallow ? 0.02 * u(rng) * a.sphereRadius : 0.0;
     robots::CollisionPiece p{b.core, b.radius, b.X_WP, ""};
     p.X_LP.translation() -= (r.distance + into) * r.normal;
@@ -203,8 +203,8 @@ BruteForce bruteForce(const World& world, const Eigen::VectorXd& q) {
   BruteForce out;
   auto measure = [&](int link, const robots::CollisionPiece& p, const BodyRef& body,
                      const robots::CollisionPiece& o, const Eigen::Isometry3d& X_WO) {
-    const double sd = deep::signedDistance(deep::ConvexShape{p.core.get(), p.radius}, X_WL[link] * p.X_LP,
-                                           deep::ConvexShape{o.core.get(), o.radius}, X_WO)
+    const double sd = geometry::signedDistance(geometry::ConvexShape{p.core.get(), p.radius}, X_WL[link] * p.X_LP,
+                                           geometry::ConvexShape{o.core.get(), o.radius}, X_WO)
                           .distance;
     out.minimum = std::min(out.minimum, sd);
     auto [it, added] = out.bodies.emplace(bodyPair(link, body), sd);

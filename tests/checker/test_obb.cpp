@@ -3,7 +3,7 @@
 // all axes, one axis alone, or a remembered axis first.
 
 #include "obb.h"
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/signed_distance.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -21,13 +21,13 @@ Eigen::Matrix3d randomRotation(std::mt19937& rng) {
 }
 
 /// The 8 corners of the box, as a polytope in the box's frame F.
-deep::ConvexPolytope cornersOf(const Obb& b) {
+geometry::ConvexPolytope cornersOf(const Obb& b) {
   std::vector<Eigen::Vector3d> corners;
   for (int k = 0; k < 8; ++k) {
     const Eigen::Vector3d s((k & 1) ? 1 : -1, (k & 2) ? 1 : -1, (k & 4) ? 1 : -1);
     corners.push_back(b.center + b.R * s.cwiseProduct(b.half));
   }
-  return deep::ConvexPolytope::fromPoints(corners, "obb");
+  return geometry::ConvexPolytope::fromPoints(corners, "obb");
 }
 
 }  // namespace
@@ -42,7 +42,7 @@ BOOST_AUTO_TEST_CASE(box_contains_its_piece) {
     std::vector<Eigen::Vector3d> points;
     const Eigen::Matrix3d R = randomRotation(rng);
     for (int i = 0; i < 30; ++i) points.push_back(R * Eigen::Vector3d(3 * u(rng), u(rng), 0.2 * u(rng)) + Eigen::Vector3d(5, -2, 1));
-    const deep::ConvexPolytope core = deep::ConvexPolytope::fromPoints(points);
+    const geometry::ConvexPolytope core = geometry::ConvexPolytope::fromPoints(points);
     const double radius = k % 2 ? 0.1 : 0.0;
     const Obb b = Obb::ofPiece(core, radius);
     for (const Eigen::Vector3d& v : core.vertices()) {
@@ -67,17 +67,17 @@ BOOST_AUTO_TEST_CASE(separated_boxes_never_overlap) {
     b.half = Eigen::Vector3d(size(rng), size(rng), size(rng));
     a.center = Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
     b.center = Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
-    const deep::ConvexPolytope pa = cornersOf(a);
-    const deep::ConvexPolytope pb = cornersOf(b);
-    const bool overlap = deep::overlaps({&pa, 0.0}, Eigen::Isometry3d::Identity(), {&pb, 0.0}, Eigen::Isometry3d::Identity());
+    const geometry::ConvexPolytope pa = cornersOf(a);
+    const geometry::ConvexPolytope pb = cornersOf(b);
+    const bool overlap = geometry::overlaps({&pa, 0.0}, Eigen::Isometry3d::Identity(), {&pb, 0.0}, Eigen::Isometry3d::Identity());
     const bool sep = separated(a, b);
     BOOST_TEST(!(overlap && sep), "overlapping boxes reported separated (case " << k << ")");
     separatedCount += sep;
     overlapping += overlap;
     // The test is exact up to its padding: boxes clearly apart are found separated.
     if (!overlap) {
-      const deep::SignedDistanceResult d =
-          deep::signedDistance(pa, Eigen::Isometry3d::Identity(), pb, Eigen::Isometry3d::Identity());
+      const geometry::SignedDistanceResult d =
+          geometry::signedDistance(pa, Eigen::Isometry3d::Identity(), pb, Eigen::Isometry3d::Identity());
       if (d.distance > 1e-6) BOOST_TEST(sep, "boxes " << d.distance << " apart not separated (case " << k << ")");
     }
     // Symmetric.

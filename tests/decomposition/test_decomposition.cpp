@@ -6,7 +6,7 @@
 // faces are dropped, a budget above 32 pieces is used only by a mesh that needs it, and bad input
 // is rejected with a message.
 
-#include "deepcheck/deep/internal/polytope_access.h"
+#include "deepcheck/geometry/internal/polytope_access.h"
 #include "deepcheck/decomposition/cache.h"
 #include "deepcheck/decomposition/decomposition.h"
 
@@ -50,11 +50,11 @@ BOOST_AUTO_TEST_CASE(a_convex_mesh_is_one_piece_without_decomposition) {
 
 BOOST_AUTO_TEST_CASE(pieces_become_valid_polytopes) {
   const ConvexDecomposition d = decomposeConvex(uShape());
-  const std::vector<deep::ConvexPolytope> polytopes = d.polytopes();
+  const std::vector<geometry::ConvexPolytope> polytopes = d.polytopes();
   BOOST_REQUIRE_EQUAL(polytopes.size(), d.pieces.size());
-  for (const deep::ConvexPolytope& p : polytopes) {
-    BOOST_CHECK(p.kind() == deep::PolytopeKind::Polyhedron);
-    BOOST_CHECK_EQUAL(deep::detail::validate(p), "");
+  for (const geometry::ConvexPolytope& p : polytopes) {
+    BOOST_CHECK(p.kind() == geometry::PolytopeKind::Polyhedron);
+    BOOST_CHECK_EQUAL(geometry::detail::validate(p), "");
   }
 }
 

@@ -1,9 +1,9 @@
-// The umbrella headers (<deepcheck/deep.h>, robots.h, checker.h, planners.h) declare what an OMPL
+// The umbrella headers (<deepcheck/geometry.h>, robots.h, checker.h, planners.h) declare what an OMPL
 // user needs: this file includes nothing else of deepcheck, plugs the validity checker and the
 // motion validator into its own SimpleSetup through the Ptr aliases, and checks a motion.
 
 #include <deepcheck/checker.h>
-#include <deepcheck/deep.h>
+#include <deepcheck/geometry.h>
 #include <deepcheck/planners.h>
 #include <deepcheck/robots.h>
 

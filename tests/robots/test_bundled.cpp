@@ -11,7 +11,7 @@
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
 
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/signed_distance.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -80,9 +80,9 @@ double piecesDistance(const std::vector<CollisionPiece>& a, const Eigen::Isometr
   double best = std::numeric_limits<double>::infinity();
   for (const CollisionPiece& pa : a) {
     for (const CollisionPiece& pb : b) {
-      const auto r = deepcheck::deep::signedDistance(deepcheck::deep::ConvexShape{pa.core.get(), pa.radius},
+      const auto r = deepcheck::geometry::signedDistance(deepcheck::geometry::ConvexShape{pa.core.get(), pa.radius},
                                                      X_WA * pa.X_LP,
-                                                     deepcheck::deep::ConvexShape{pb.core.get(), pb.radius},
+                                                     deepcheck::geometry::ConvexShape{pb.core.get(), pb.radius},
                                                      X_WB * pb.X_LP);
       best = std::min(best, r.distance);
     }
@@ -108,7 +108,7 @@ double closedVolume(const TriangleMesh& mesh, bool& closed) {
   return volume6 / 6.0;
 }
 
-double hullVolume(const deepcheck::deep::ConvexPolytope& p) {
+double hullVolume(const deepcheck::geometry::ConvexPolytope& p) {
   double volume6 = 0.0;
   for (int f = 0; f < p.numFaces(); ++f) {
     const auto face = p.faceVertices(f);
@@ -179,7 +179,7 @@ BOOST_AUTO_TEST_CASE(meshes_small_closed_nonconvex) {
       const TriangleMesh mesh = loadMesh(c.geometry.meshPath);
       bool closed = false;
       const double volume = closedVolume(mesh, closed);
-      const auto hull = deepcheck::deep::ConvexPolytope::fromPoints(mesh.vertices);
+      const auto hull = deepcheck::geometry::ConvexPolytope::fromPoints(mesh.vertices);
       const double ratio = hullVolume(hull) / volume;
       BOOST_TEST(mesh.triangles.size() <= 400u, c.geometry.meshUri);
       BOOST_TEST(closed, c.geometry.meshUri << " is not closed");

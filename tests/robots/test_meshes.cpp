@@ -21,8 +21,8 @@
 
 namespace fs = std::filesystem;
 using namespace deepcheck::robots;
-using deepcheck::deep::ConvexPolytope;
-using deepcheck::deep::PolytopeKind;
+using deepcheck::geometry::ConvexPolytope;
+using deepcheck::geometry::PolytopeKind;
 using deepcheck::robots::test::checkThrows;
 using deepcheck::robots::test::haveShared;
 using deepcheck::robots::test::sharedDir;

@@ -3,12 +3,12 @@
 # build and tests:
 #   1. build-asan: Clang build with AddressSanitizer + UndefinedBehaviorSanitizer
 #      (-fno-sanitize-recover=all: the first report fails the run) and libFuzzer's coverage
-#      instrumentation (-fsanitize=fuzzer-no-link) of the deep, decomposition, robots and checker
+#      instrumentation (-fsanitize=fuzzer-no-link) of the geometry, decomposition, robots and checker
 #      unit tests and of the fuzz harnesses, which are libFuzzer binaries; runs the tests, replays
 #      every committed corpus input, then fuzzes each harness for FUZZ_SECONDS from its committed
 #      corpus, two at a time (fuzz/run_fuzzer.sh): any finding fails the stage.
 #   2. build-tsan: ThreadSanitizer build of the checker's concurrency suite alone; runs it.
-# The long randomized sweeps of test_deep (see SANITIZE_DEEP_SKIP) run in the normal build only:
+# The long randomized sweeps of test_geometry (see SANITIZE_DEEP_SKIP) run in the normal build only:
 # under ASan they alone would take longer than the rest of CI.
 #
 # Environment: JOBS (parallel build jobs, default: the number of cores); FUZZ_SECONDS (per
@@ -25,13 +25,13 @@ command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 common=("${generator[@]}" "${launcher[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo
         "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" -DDEEPCHECK_BUILD_BENCH=OFF)
 
-# test_deep suites and cases left to the normal build (minutes of randomized sweeps under ASan).
+# test_geometry suites and cases left to the normal build (minutes of randomized sweeps under ASan).
 SANITIZE_DEEP_SKIP='!deep_random:!deep_hard_cases/spheres_with_2000_vertices:!fast_paths/overlaps_unchecked_equals_overlaps'
 # ... and the body depth's sweeps against its brute-force reference (the reference enumerates
 # every plane triple of every Minkowski difference: seconds in Release, many minutes here).
 SANITIZE_DEEP_SKIP+=':!body_depth/random_unions_agree_with_the_reference:!body_depth/identical_bodies_at_one_pose'
 SANITIZE_DEEP_SKIP+=':!body_depth/large_pieces_agree_with_the_reference'
-# test_deep cases that fail in this Clang build only, left to the normal (GCC) build, where they
+# test_geometry cases that fail in this Clang build only, left to the normal (GCC) build, where they
 # pass (docs/testing.md, "Sanitizers"): they draw random values inside one argument list, whose
 # order of evaluation differs between the compilers, so Clang's run tests other random pairs, on
 # which two expect at least one cold query to need an expansion (none does) and one expects fewer
@@ -61,7 +61,7 @@ if ! grep -q '^DEEPCHECK_HAVE_LIBFUZZER:INTERNAL=1' build-asan/CMakeCache.txt; t
   exit 1
 fi
 harnesses=(pd_input urdf mesh config_lines moveit_scene scene_text srdf problems decomposition_cache ompl_state goal_pose)
-cmake --build build-asan -j "$jobs" --target test_deep test_decomposition test_robots test_checker "${harnesses[@]/#/fuzz_}"
+cmake --build build-asan -j "$jobs" --target test_geometry test_decomposition test_robots test_checker "${harnesses[@]/#/fuzz_}"
 
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
@@ -74,10 +74,10 @@ suite() {
 }
 
 step "ASan+UBSan unit tests"
-# test_deep (the longest) runs beside test_decomposition, test_robots and test_checker: on two
+# test_geometry (the longest) runs beside test_decomposition, test_robots and test_checker: on two
 # cores or more the stage takes the time of the longer side; on one, the two sides share it.
 failed=0
-suite test_deep --report_level=short "--run_test=$SANITIZE_DEEP_SKIP" &
+suite test_geometry --report_level=short "--run_test=$SANITIZE_DEEP_SKIP" &
 deep_pid=$!
 suite test_decomposition --report_level=short || failed=1
 suite test_robots --report_level=short || failed=1
@@ -120,7 +120,7 @@ if (( fuzz_seconds > 0 )); then
 fi
 
 step "TSan build"
-# Without precompiled headers: deep, robots and checker's sources must compile on their own includes.
+# Without precompiled headers: geometry, robots and checker's sources must compile on their own includes.
 cmake -S . -B build-tsan "${common[@]}" -DDEEPCHECK_TSAN=ON -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON >/dev/null
 cmake --build build-tsan -j "$jobs" --target test_checker_concurrency
 step "TSan concurrency test"

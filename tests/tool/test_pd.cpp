@@ -3,8 +3,8 @@
 
 #include "tool_runner.h"
 
-#include "deepcheck/deep/exact.h"
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/exact.h"
+#include "deepcheck/geometry/signed_distance.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -19,7 +19,7 @@
 #include <tuple>
 #include <vector>
 
-using namespace deepcheck::deep;
+using namespace deepcheck::geometry;
 using namespace deepcheck::tool_test;
 namespace fs = std::filesystem;
 

@@ -139,7 +139,7 @@ std::string piecesJson(const std::vector<robots::CollisionPiece>& pieces, const 
   std::vector<float> spheres;
   for (const robots::CollisionPiece& p : pieces) {
     if (!p.core) throw std::invalid_argument("writeHtmlView: a piece of " + what + " has no core");
-    const deep::ConvexPolytope& core = *p.core;
+    const geometry::ConvexPolytope& core = *p.core;
     const auto first = static_cast<std::uint32_t>(vertices.size() / 3);
     firsts.push_back(first);
     for (int v = 0; v < core.numVertices(); ++v) {

@@ -5,7 +5,7 @@
 // pieces of one body its depth and direction are the deepest PAIR's: a box pressed into a slab
 // made of two touching boxes reads the depth into one of them and points sideways, into the other.
 // bodySignedDistance measures two whole bodies, each the union of its pieces, with
-// deep::bodySignedDistance (deep/body_depth.h): overlapping, -distance is the length of the
+// geometry::bodySignedDistance (deep/body_depth.h): overlapping, -distance is the length of the
 // shortest translation of B after which no piece of A overlaps a piece of B.
 //
 // Bodies. A (BodyRef `a`): a robot link (its own pieces, not its attached objects) or an attached
@@ -23,11 +23,11 @@
 //
 // Rounded pieces. A sphere or capsule piece (radius > 0) has no polytope Minkowski difference, so
 // the body depth cannot take it. Rule: when either body has a piece with a radius, the answer is
-// the pairwise one, the minimum over all piece pairs of deep::signedDistance (what
+// the pairwise one, the minimum over all piece pairs of geometry::signedDistance (what
 // World::signedDistance reports for that body pair), and BodyContact::method is Pairwise.
 
 #include "deepcheck/checker/world.h"
-#include "deepcheck/deep/body_depth.h"
+#include "deepcheck/geometry/body_depth.h"
 
 #include <Eigen/Core>
 
@@ -35,7 +35,7 @@ namespace deepcheck::checker {
 
 /// Which answer a World::BodyContact holds (body_distance.h: rounded pieces).
 enum class BodyDistanceMethod {
-  Body,      ///< deep::bodySignedDistance of the two unions
+  Body,      ///< geometry::bodySignedDistance of the two unions
   Pairwise,  ///< a piece has a radius: the minimum over piece pairs
 };
 const char* toString(BodyDistanceMethod m);
@@ -45,7 +45,7 @@ struct World::BodyDistanceOptions {
   bool gradient = false;
   /// The body query's options (its pairwise queries' options in depth.pair also serve the
   /// Pairwise method).
-  deep::BodyDepthOptions depth;
+  geometry::BodyDepthOptions depth;
 };
 
 struct World::BodyContact {
@@ -54,10 +54,10 @@ struct World::BodyContact {
   /// separating translation whose depth is an upper bound).
   Contact contact;
   BodyDistanceMethod method = BodyDistanceMethod::Body;
-  /// Body method: the body query's status and bracket on the depth (deep::BodySignedDistanceResult).
+  /// Body method: the body query's status and bracket on the depth (geometry::BodySignedDistanceResult).
   /// Pairwise method: Separated, or Certified when the pairwise depth converged (PairNotCertified
   /// when not), the bracket -distance twice.
-  deep::BodyDepthStatus depthStatus = deep::BodyDepthStatus::Separated;
+  geometry::BodyDepthStatus depthStatus = geometry::BodyDepthStatus::Separated;
   double depthLower = 0.0;
   double depthUpper = 0.0;
   int overlappingPairs = 0;  ///< piece pairs with a negative signed distance

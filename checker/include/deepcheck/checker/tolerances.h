@@ -39,7 +39,7 @@ constexpr double kDefaultReachMargin = 0.05;
 /// Self-pair grids (self_pair_grid.h): a cell is certified free only when the pieces' distance at
 /// its centre exceeds the motion bound by this fraction of the pair's size (the sum of the two
 /// pieces' bounding radii) on top of the GJK's own relative accuracy: far above the round-off of
-/// posing the pieces and of the contact tolerance of the narrow phase (deep::tol::kContactRelative
+/// posing the pieces and of the contact tolerance of the narrow phase (geometry::tol::kContactRelative
 /// times the pair's length scale), so a certified pair is one the narrow phase finds apart.
 constexpr double kCertifiedGapRelative = 1e-9;
 

@@ -83,7 +83,7 @@
 #include "deepcheck/checker/broad_phase.h"
 #include "deepcheck/checker/tolerances.h"
 #include "deepcheck/decomposition/decomposition.h"
-#include "deepcheck/deep/signed_distance.h"
+#include "deepcheck/geometry/signed_distance.h"
 #include "deepcheck/robots/collision_geometry.h"
 #include "deepcheck/robots/moveit_scene.h"
 #include "deepcheck/robots/pair_filter.h"
@@ -148,7 +148,7 @@ struct Contact {
   BodyRef bodyB;
   std::string nameA;  ///< link name or "attached/<name>"
   std::string nameB;  ///< link name, "attached/<name>", "scene/<link>" or "obstacle/<name>"
-  deep::SignedDistanceStatus status = deep::SignedDistanceStatus::NotConverged;
+  geometry::SignedDistanceStatus status = geometry::SignedDistanceStatus::NotConverged;
   /// d distance / dq (numVariables entries) when DistanceOptions::gradient, else empty.
   Eigen::VectorXd gradient;
 };
@@ -167,7 +167,7 @@ struct DistanceOptions {
   bool worldPairs = true;
   bool selfPairs = true;
   /// Options of the penetration depth: the method and its settings.
-  deep::PenetrationOptions deep;
+  geometry::PenetrationOptions penetration;
 };
 
 struct DistanceResult {
@@ -210,7 +210,7 @@ struct QueryStats {
   std::uint64_t linkCandidates = 0;   ///< (robot link, world piece or robot link) pairs from the
                                       ///< broad phase
   std::uint64_t pieceTests = 0;       ///< piece pairs whose bounding volumes were compared
-  std::uint64_t narrowPhase = 0;      ///< deep::overlaps / deep::signedDistance calls
+  std::uint64_t narrowPhase = 0;      ///< geometry::overlaps / geometry::signedDistance calls
   std::uint64_t selfNarrowPhase = 0;  ///< the part of narrowPhase on self pairs
   std::uint64_t certifiedSelf = 0;    ///< isFree: self link pairs skipped because q lies in a
                                       ///< cell of their grid certified free (world.cpp summary)
@@ -219,7 +219,7 @@ struct QueryStats {
   std::uint64_t enclosedAgain = 0;    ///< isFree: the part of narrowPhase decided without GJK,
                                       ///< the four vertex pairs that enclosed the origin when the
                                       ///< pair last overlapped enclosing it again
-                                      ///< (deep::enclosesOrigin)
+                                      ///< (geometry::enclosesOrigin)
   std::uint64_t fullDepth = 0;        ///< signedDistance: overlapping pairs whose one-walk depth
                                       ///< could beat the best, measured again with all restarts
 };
@@ -308,7 +308,7 @@ class World {
  public:
   using Options = WorldOptions;
 
-  /// Per-thread query state: warm-start caches (one deep::PairCache per piece pair), scratch
+  /// Per-thread query state: warm-start caches (one geometry::PairCache per piece pair), scratch
   /// poses and statistics. Made by World::makeContext(); bound to that world (using it with
   /// another is an error) and must not be used after the world is destroyed; movable, not
   /// copyable; must not be used by two threads at once.

@@ -63,7 +63,7 @@
 
 #include "deepcheck/decomposition/mesh.h"
 #include "deepcheck/decomposition/tolerances.h"
-#include "deepcheck/deep/polytope.h"
+#include "deepcheck/geometry/polytope.h"
 
 #include <Eigen/Core>
 
@@ -172,7 +172,7 @@ struct ConvexDecomposition {
   DecompositionReport report;
 
   /// The pieces as polytopes (ConvexPolytope::fromPoints of each piece's vertices).
-  std::vector<deep::ConvexPolytope> polytopes() const;
+  std::vector<geometry::ConvexPolytope> polytopes() const;
 };
 
 /// Decomposes `mesh` as described above. Throws std::invalid_argument, with a message naming the

@@ -46,7 +46,7 @@
 // minimum distance that steps and probes are judged by. It converges better on the hard cases and
 // never worse on random starts of the bundled arm (docs/checker.md, "Body-level signed
 // distance"). Its cost is bounded: a body query that would have to build more Minkowski
-// differences than deep::BodyDepthOptions::maxBuildCost pays for (deeply overlapping links of many
+// differences than geometry::BodyDepthOptions::maxBuildCost pays for (deeply overlapping links of many
 // pieces) answers BuildLimit, and that contact keeps its pairwise answer.
 // Departures from a textbook projection: the target is c above the threshold rather than on it,
 // so that the last linearized step does not land exactly on the boundary. The minimum joint-space
@@ -90,7 +90,7 @@ struct PushOutOptions {
   /// measured as the union of the body's pieces (checker::World::bodySignedDistance) rather than as
   /// its deepest piece pair. False: always the deepest pair (cheaper, converges less often).
   bool bodyDepth = true;
-  /// Cap on one body query's cost (deep::BodyDepthOptions::maxBuildCost: estimated microseconds,
+  /// Cap on one body query's cost (geometry::BodyDepthOptions::maxBuildCost: estimated microseconds,
   /// >= 0; infinity for none): a contact whose body query would cost more keeps its pairwise answer.
   double bodyBuildCost = tol::kPushOutBodyBuildCost;
 };

@@ -83,7 +83,7 @@ constexpr int kPushOutMaxIterations = 50;
 constexpr double kPushOutMaxDepth = 0.05;
 
 /// Cap on the estimated cost of one body query of the push-out (PushOutOptions::bodyBuildCost,
-/// deep::BodyDepthOptions::maxBuildCost: microseconds of a current x86-64 core, estimated from the
+/// geometry::BodyDepthOptions::maxBuildCost: microseconds of a current x86-64 core, estimated from the
 /// pieces' sizes). It covers the body queries of small decompositions (a few hundred) and of most
 /// contacts of the bundled arm; a contact past it keeps its pairwise answer.
 constexpr double kPushOutBodyBuildCost = 2000.0;

@@ -1,7 +1,7 @@
 #pragma once
 // The convex pieces of each link, as the collision checker consumes them.
 //
-// A piece is a convex core (a deep::ConvexPolytope: point, segment, polygon or polyhedron) plus a
+// A piece is a convex core (a geometry::ConvexPolytope: point, segment, polygon or polyhedron) plus a
 // radius, placed in its link's frame by X_LP. The checker poses it at X_WL * X_LP. Pieces are
 // shared (shared_ptr to const): the same mesh used twice (the Panda's two fingers) is loaded and
 // decomposed once per call.
@@ -33,7 +33,7 @@
 #include "deepcheck/robots/tolerances.h"
 
 #include "deepcheck/decomposition/decomposition.h"
-#include "deepcheck/deep/polytope.h"
+#include "deepcheck/geometry/polytope.h"
 
 #include <Eigen/Geometry>
 
@@ -45,7 +45,7 @@
 namespace deepcheck::robots {
 
 struct CollisionPiece {
-  std::shared_ptr<const deep::ConvexPolytope> core;
+  std::shared_ptr<const geometry::ConvexPolytope> core;
   double radius = 0.0;                                     ///< >= 0, metres
   Eigen::Isometry3d X_LP = Eigen::Isometry3d::Identity();  ///< pose of the piece in its link
   /// Where it comes from, for messages and reports, e.g.
@@ -55,10 +55,10 @@ struct CollisionPiece {
 
 /// Turns a collision mesh (in its frame G, metres) into convex polytopes in G whose union
 /// contains it. Throws std::invalid_argument on failure.
-using MeshDecomposer = std::function<std::vector<deep::ConvexPolytope>(const TriangleMesh& mesh)>;
+using MeshDecomposer = std::function<std::vector<geometry::ConvexPolytope>(const TriangleMesh& mesh)>;
 
 /// The default decomposer: one piece, the convex hull of the mesh's vertices.
-std::vector<deep::ConvexPolytope> convexHullDecomposer(const TriangleMesh& mesh);
+std::vector<geometry::ConvexPolytope> convexHullDecomposer(const TriangleMesh& mesh);
 
 /// Which decomposer meshDecomposer makes.
 struct DecomposerOptions {
@@ -92,7 +92,7 @@ struct CollisionGeometryOptions {
 int cylinderSides(double radius, double maxDeviation);
 
 /// The circumscribed prism of a cylinder along z, centred at the origin (see above).
-deep::ConvexPolytope cylinderPrism(double radius, double length, double maxDeviation);
+geometry::ConvexPolytope cylinderPrism(double radius, double length, double maxDeviation);
 
 /// The piece of a primitive geometry (box, sphere or cylinder, as above) in its own frame G
 /// (X_LP identity). `what` names it: the piece's origin is `what` followed by " box", " sphere" or
@@ -103,7 +103,7 @@ CollisionPiece primitivePiece(const Geometry& geometry, const CollisionGeometryO
 
 /// The convex polytopes of a mesh by options.decomposer (convexHullDecomposer when empty).
 /// Throws std::invalid_argument for an empty mesh, or when the decomposer fails or returns none.
-std::vector<deep::ConvexPolytope> meshPolytopes(const TriangleMesh& mesh, const CollisionGeometryOptions& options);
+std::vector<geometry::ConvexPolytope> meshPolytopes(const TriangleMesh& mesh, const CollisionGeometryOptions& options);
 
 /// Pieces of one link (empty for a link without collision geometry).
 std::vector<CollisionPiece> linkCollisionPieces(const RobotModel& model, int link,

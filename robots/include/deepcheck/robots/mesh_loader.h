@@ -50,8 +50,8 @@ struct MeshLoadOptions {
 /// whitespace, an array without a count or an accessor reaching beyond its array (assimp 5.2 would
 /// exhaust memory or crash on them; the line is named), when assimp fails (assimp's error string
 /// is included), when the scale has a zero component or one of magnitude above
-/// deep::range::kMaxCoordinate, when a vertex is not finite or, placed and scaled, lies beyond
-/// deep::range::kMaxCoordinate (the message names the scale), or when no non-degenerate
+/// geometry::range::kMaxCoordinate, when a vertex is not finite or, placed and scaled, lies beyond
+/// geometry::range::kMaxCoordinate (the message names the scale), or when no non-degenerate
 /// triangle is left.
 TriangleMesh loadMesh(const std::string& path,
                       const Eigen::Vector3d& scale = Eigen::Vector3d::Ones(),

@@ -70,7 +70,7 @@
 // malformed YAML, a missing key, an unknown key or primitive type, a wrong number of dimensions,
 // a size that is not positive, a number that is not finite (.nan, .inf), a quaternion far from
 // unit norm, a mesh that cannot be found (every place searched is listed), a number of magnitude
-// above deep::range::kMaxCoordinate (1e50), maps and sequences nested deeper than
+// above geometry::range::kMaxCoordinate (1e50), maps and sequences nested deeper than
 // kMaxNestingDepth (robot_model.h), more shapes than SceneLoadOptions::maxShapes.
 //
 // Frames: F the object's frame (header.frame_id), O the object (pose), S a shape, W the world.
@@ -199,7 +199,7 @@ PlanningScene parsePlanningScene(const std::string& yaml, const std::string& bas
 // (MoveIt's model frame is the root link or, with an SRDF virtual joint, the joint's parent frame,
 // which the robot's root sits on). Cones become pyramids as in YAML; a mesh becomes an in-memory
 // TriangleMesh (SceneShape::mesh); a plane is an error (not modelled). Numbers must be finite with
-// magnitude at most deep::range::kMaxCoordinate, sizes positive, quaternions of unit norm within
+// magnitude at most geometry::range::kMaxCoordinate, sizes positive, quaternions of unit norm within
 // tol::kSceneQuaternionNorm; every count is checked against the tokens left in the file before
 // anything is allocated for it, and the shapes against SceneLoadOptions::maxShapes.
 // Errors: std::invalid_argument, "planning scene '<file>', line <n>, object '<id>': <what>".

@@ -26,7 +26,7 @@
 //
 // Collision test at a configuration q: forward kinematics (kinematics.h) gives X_WL of every
 // link; piece P of link L is posed at X_WL * X_LP; two links collide when any piece of one
-// overlaps any piece of the other (deep::overlaps: GJK, touching counts as overlap), after a
+// overlaps any piece of the other (geometry::overlaps: GJK, touching counts as overlap), after a
 // bounding-sphere test. Random samples are uniform in the joint limits of every variable
 // (continuous joints in [-pi, pi], robot_model.h), drawn from a std::mt19937_64 seeded with
 // `seed`; the uniform numbers are made from its raw output (not std::uniform_real_distribution,

@@ -51,7 +51,7 @@
 //
 // Limits. Elements nested deeper than kMaxNestingDepth are rejected before TinyXML reads the
 // text; a URDF with more than LoadOptions::maxLinks links (or joints) before urdfdom reads it;
-// every number read must be finite with magnitude at most deep::range::kMaxCoordinate (1e50, the
+// every number read must be finite with magnitude at most geometry::range::kMaxCoordinate (1e50, the
 // range the distance queries support), so that a pose far out is rejected here, naming the link
 // or joint, and not by a query later.
 //

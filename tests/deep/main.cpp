@@ -1,3 +1,0 @@
-#define BOOST_TEST_MODULE deepcheck_deep
-#define BOOST_TEST_DYN_LINK
-#include <boost/test/unit_test.hpp>
