@@ -103,8 +103,8 @@ double microsSince(Clock::time_point t0) {
 }
 
 /// One signedDistance per piece pair, as bodySignedDistance runs them; returns the time.
-double pairwiseMicros(const Body& A, const Eigen::Isometry3d& X_WA, const Body& B,
-                      const Eigen::Isometry3d& X_WB, double& sink) {
+double pairwiseMicros(const Body& A, const Eigen::Isometry3d& X_WA, const Body& B, const Eigen::Isometry3d& X_WB,
+                      double& sink) {
   const auto t0 = Clock::now();
   for (const BodyPiece& a : A.pieces) {
     for (const BodyPiece& b : B.pieces) {
@@ -187,7 +187,9 @@ int main(int argc, char** argv) {
       if (a == "--queries") queries = intOption(argv, i, argc, "--queries");
       else if (a == "--reps") reps = intOption(argv, i, argc, "--reps");
       else if (a == "--out" && i + 1 < argc) out = argv[++i];
-      else throw std::invalid_argument("unknown argument '" + a + "' (usage: body_pd_bench [--queries N] [--reps N] [--out DIR])");
+      else
+        throw std::invalid_argument("unknown argument '" + a +
+                                    "' (usage: body_pd_bench [--queries N] [--reps N] [--out DIR])");
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "body_pd_bench: %s\n", e.what());
@@ -202,13 +204,14 @@ int main(int argc, char** argv) {
   std::ofstream csv(out + "/body_pd_bench.csv");
   csv << "family,pairs,queries,all_overlapping,body_us,pairs_us,ratio_median,ratio_p90,pair_err_median,"
          "pair_err_max,pair_wrong_share,search_share,mean_differences,mean_faces\n";
-  std::printf("| family | pairs | body µs | pairs µs | ratio (median, p90) | pair error (median, max) | pair wrong | searched | differences | faces |\n");
+  std::printf(
+      "| family | pairs | body µs | pairs µs | ratio (median, p90) | pair error (median, max) | pair wrong | searched "
+      "| differences | faces |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Row& r : rows) {
     csv << r.family << ',' << r.pairs << ',' << r.queries << ',' << r.overlapping << ',' << r.bodyMedian << ','
-        << r.pairsMedian << ',' << r.ratioMedian << ',' << r.ratioP90 << ',' << r.pairErrMedian << ','
-        << r.pairErrMax << ',' << r.pairWrongShare << ',' << r.searchShare << ',' << r.meanDifferences
-        << ',' << r.meanFaces << '\n';
+        << r.pairsMedian << ',' << r.ratioMedian << ',' << r.ratioP90 << ',' << r.pairErrMedian << ',' << r.pairErrMax
+        << ',' << r.pairWrongShare << ',' << r.searchShare << ',' << r.meanDifferences << ',' << r.meanFaces << '\n';
     std::printf("| %s | %d | %s | %s | %s, %s | %s, %s | %s %% | %s %% | %s | %s |\n", r.family.c_str(), r.pairs,
                 fmt(r.bodyMedian).c_str(), fmt(r.pairsMedian).c_str(), fmt(r.ratioMedian).c_str(),
                 fmt(r.ratioP90).c_str(), fmt(r.pairErrMedian).c_str(), fmt(r.pairErrMax).c_str(),

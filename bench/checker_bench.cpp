@@ -68,9 +68,10 @@ struct Row {
 
 std::vector<Row> rows;
 
-void addTimes(const std::string& world, const std::string& query, const std::string& set,
-              const std::string& backend, const std::vector<double>& us, const std::string& note = "") {
-  rows.push_back({world, query, set, backend, percentile(us, 0.5), percentile(us, 0.9), bench::mean(us), us.size(), note});
+void addTimes(const std::string& world, const std::string& query, const std::string& set, const std::string& backend,
+              const std::vector<double>& us, const std::string& note = "") {
+  rows.push_back(
+      {world, query, set, backend, percentile(us, 0.5), percentile(us, 0.9), bench::mean(us), us.size(), note});
   std::printf("  %-10s %-8s %-22s median %8.2f us  p90 %8.2f us  mean %8.2f us  (%zu)%s%s\n", query.c_str(),
               set.c_str(), backend.c_str(), rows.back().median, rows.back().p90, rows.back().average, us.size(),
               note.empty() ? "" : "  ", note.c_str());
@@ -147,8 +148,9 @@ struct Throughput {
 /// per CPU-second shows whether the threads slow each other down (contention, false sharing).
 /// The set is run `repeat` times so that a run lasts long enough (about a second) for the
 /// scheduler to give each thread a core.
-Throughput throughput(const checker::World& world, const std::vector<Eigen::VectorXd>& qs, int threads, int repeat,
-                      const std::function<void(const checker::World&, checker::World::Context&, const Eigen::VectorXd&)>& perQuery) {
+Throughput throughput(
+    const checker::World& world, const std::vector<Eigen::VectorXd>& qs, int threads, int repeat,
+    const std::function<void(const checker::World&, checker::World::Context&, const Eigen::VectorXd&)>& perQuery) {
   std::vector<std::thread> pool;
   std::vector<double> cpu(threads, 0.0);
   const auto t0 = Clock::now();
@@ -216,8 +218,9 @@ void timeIsFree(BenchWorld& b) {
   // Forward kinematics alone: a floor under both backends' isFree (both pose every link).
   {
     std::vector<Eigen::Isometry3d> X_WL;
-    addTimes(b.spec.name, "kinematics", "random", "robots::forwardKinematics",
-             timeEach(b.random, [&](const Eigen::VectorXd& q) { robots::forwardKinematics(b.world.robot(), q, X_WL); }));
+    addTimes(
+        b.spec.name, "kinematics", "random", "robots::forwardKinematics",
+        timeEach(b.random, [&](const Eigen::VectorXd& q) { robots::forwardKinematics(b.world.robot(), q, X_WL); }));
   }
   // isFree: ours (one context, warm starts across the set, as a planner thread has) and FCL's.
   for (const auto& [setName, qs] : b.sets()) {
@@ -249,10 +252,11 @@ void isFreeWork(const BenchWorld& b, int repeat) {
     for (const Eigen::VectorXd& q : *qs) b.world.isFree(q, counted);
     const checker::QueryStats& st = counted.stats();
     const double n = static_cast<double>(st.queries);
-    std::printf("  isFree %-8s per query: %.2f link candidates, %.2f piece tests, %.2f narrow phase (%.2f self), "
-                "%.2f self pairs in a certified-free cell, %.2f overlaps decided by a centroid inside a world piece\n",
-                setName.c_str(), st.linkCandidates / n, st.pieceTests / n, st.narrowPhase / n,
-                st.selfNarrowPhase / n, st.certifiedSelf / n, st.centroidInside / n);
+    std::printf(
+        "  isFree %-8s per query: %.2f link candidates, %.2f piece tests, %.2f narrow phase (%.2f self), "
+        "%.2f self pairs in a certified-free cell, %.2f overlaps decided by a centroid inside a world piece\n",
+        setName.c_str(), st.linkCandidates / n, st.pieceTests / n, st.narrowPhase / n, st.selfNarrowPhase / n,
+        st.certifiedSelf / n, st.centroidInside / n);
   }
 }
 
@@ -295,12 +299,15 @@ void timeBroadPhases(const BenchWorld& b, const checker::DistanceOptions& withGr
 /// Throughput of isFree and signedDistance with 1 and 2 threads.
 void timeThroughput(const BenchWorld& b, const checker::DistanceOptions& withGradient) {
   for (int threads : {1, 2}) {
-    const Throughput isFreeRate = throughput(b.world, b.random, threads, 40, [](const checker::World& w, checker::World::Context& c,
-                                                                        const Eigen::VectorXd& q) { w.isFree(q, c); });
-    const Throughput sdRate = throughput(b.world, b.random, threads, 6, [&](const checker::World& w, checker::World::Context& c,
-                                                                     const Eigen::VectorXd& q) { w.signedDistance(q, c, withGradient); });
-    std::printf("  throughput %d thread%s: isFree %.0f /s (%.0f per CPU-second), sd+grad %.0f /s (%.0f per CPU-second)\n",
-                threads, threads > 1 ? "s" : " ", isFreeRate.wall, isFreeRate.cpu, sdRate.wall, sdRate.cpu);
+    const Throughput isFreeRate = throughput(
+        b.world, b.random, threads, 40,
+        [](const checker::World& w, checker::World::Context& c, const Eigen::VectorXd& q) { w.isFree(q, c); });
+    const Throughput sdRate = throughput(b.world, b.random, threads, 6,
+                                         [&](const checker::World& w, checker::World::Context& c,
+                                             const Eigen::VectorXd& q) { w.signedDistance(q, c, withGradient); });
+    std::printf(
+        "  throughput %d thread%s: isFree %.0f /s (%.0f per CPU-second), sd+grad %.0f /s (%.0f per CPU-second)\n",
+        threads, threads > 1 ? "s" : " ", isFreeRate.wall, isFreeRate.cpu, sdRate.wall, sdRate.cpu);
     for (const auto& [query, rate] : {std::pair<std::string, Throughput>{"isFree", isFreeRate}, {"sd+grad", sdRate}}) {
       rows.push_back({b.spec.name, query, "random", "throughput " + std::to_string(threads) + " thread(s)", 0, 0, 0,
                       b.random.size(),
@@ -398,13 +405,19 @@ int main(int argc, char** argv) {
     const std::string panda = shared + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf";
     const std::string srdf = shared + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf";
     worlds.push_back({"panda-shelf", panda, {shared + "/robots/panda"}, srdf, data + "/scenes/shelf.urdf"});
-    worlds.push_back({"panda-kitchen", panda, {shared + "/robots/panda", shared + "/scenes"}, srdf,
+    worlds.push_back({"panda-kitchen",
+                      panda,
+                      {shared + "/robots/panda", shared + "/scenes"},
+                      srdf,
                       shared + "/scenes/motion_bench_maker/configs/scenes/kitchen/kitchen.urdf"});
   } else {
     std::printf("(../shared absent: the Panda worlds are skipped)\n");
   }
-  worlds.push_back({"arm-shelf", data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", {data},
-                    data + "/deepcheck_arm/srdf/deepcheck_arm.srdf", data + "/scenes/shelf.urdf"});
+  worlds.push_back({"arm-shelf",
+                    data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
+                    {data},
+                    data + "/deepcheck_arm/srdf/deepcheck_arm.srdf",
+                    data + "/scenes/shelf.urdf"});
   for (const WorldSpec& w : worlds) {
     if (run.world.empty() || run.world == w.name) runWorld(w, run);
   }

@@ -22,8 +22,8 @@ struct Path {
 
 /// A straight segment from `a` up along `up` for `straight` metres, then an arc of `angle` radians
 /// of radius `bend` curling towards `curl` (perpendicular to `up`), sampled by `steps` points.
-Path fingerPath(const Vector3d& a, const Vector3d& up, const Vector3d& curl, double straight, double bend,
-                double angle, int steps) {
+Path fingerPath(const Vector3d& a, const Vector3d& up, const Vector3d& curl, double straight, double bend, double angle,
+                int steps) {
   Path path{{}, up.cross(curl).normalized()};
   const double total = straight + bend * angle;
   for (int i = 0; i <= steps; ++i) {
@@ -44,8 +44,7 @@ void appendTube(const Path& path, double radius, int segments, robots::TriangleM
   const int base = static_cast<int>(mesh->vertices.size());
   const int rings = static_cast<int>(path.points.size());
   for (int i = 0; i < rings; ++i) {
-    const Vector3d tangent =
-        (path.points[std::min(i + 1, rings - 1)] - path.points[std::max(i - 1, 0)]).normalized();
+    const Vector3d tangent = (path.points[std::min(i + 1, rings - 1)] - path.points[std::max(i - 1, 0)]).normalized();
     const Vector3d u = path.planeNormal;
     const Vector3d v = tangent.cross(u);
     for (int k = 0; k < segments; ++k) {
@@ -87,8 +86,8 @@ void appendPalm(int perTube, robots::TriangleMesh* mesh) {
   int segments = 0;
   int steps = 0;
   tubeResolution(0.09, 0.025, perTube, &segments, &steps);
-  appendTube(fingerPath({-0.045, 0, 0}, Vector3d::UnitX(), Vector3d::UnitY(), 0.09, 0.01, 0.0, steps), 0.025,
-             segments, mesh);
+  appendTube(fingerPath({-0.045, 0, 0}, Vector3d::UnitX(), Vector3d::UnitY(), 0.09, 0.01, 0.0, steps), 0.025, segments,
+             mesh);
 }
 
 }  // namespace
@@ -105,8 +104,8 @@ robots::TriangleMesh combMesh(int triangles) {
     int segments = 0;
     int steps = 0;
     tubeResolution(straight + 0.02 * 3.5, 0.005, perTube, &segments, &steps);
-    appendTube(fingerPath(root, Vector3d::UnitZ(), Vector3d::UnitY(), straight, 0.02, 3.5, steps), 0.005,
-               segments, &mesh);
+    appendTube(fingerPath(root, Vector3d::UnitZ(), Vector3d::UnitY(), straight, 0.02, 3.5, steps), 0.005, segments,
+               &mesh);
   }
   return mesh;
 }
@@ -123,8 +122,8 @@ robots::TriangleMesh handMesh(int triangles) {
     const Vector3d root(-0.036 + 0.024 * f, 0.0, 0.01);
     const double straight = 0.05 + 0.006 * (f % 2);
     tubeResolution(straight + 0.025 * 2.6, 0.008, perTube, &segments, &steps);
-    appendTube(fingerPath(root, Vector3d::UnitZ(), Vector3d::UnitY(), straight, 0.025, 2.6, steps), 0.008,
-               segments, &mesh);
+    appendTube(fingerPath(root, Vector3d::UnitZ(), Vector3d::UnitY(), straight, 0.025, 2.6, steps), 0.008, segments,
+               &mesh);
   }
   return mesh;
 }

@@ -71,9 +71,8 @@ struct Options {
 std::vector<double> benchmarkTimes(og::SimpleSetup& ss, ot::Benchmark& bench, double seconds, int runs) {
   bench.addPlanner(std::make_shared<WorkingPlanner>(ss.getSpaceInformation(), seconds));
   std::vector<double> times;
-  bench.setPostRunEvent([&](const ob::PlannerPtr&, ot::Benchmark::RunProperties& run) {
-    times.push_back(std::stod(run["time REAL"]));
-  });
+  bench.setPostRunEvent(
+      [&](const ob::PlannerPtr&, ot::Benchmark::RunProperties& run) { times.push_back(std::stod(run["time REAL"])); });
   ot::Benchmark::Request req(10.0, 4096.0, static_cast<unsigned>(runs));
   req.displayProgress = false;
   req.saveConsoleOutput = false;
@@ -121,8 +120,9 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(std::filesystem::path(opt.out).parent_path());
   std::ofstream csv(opt.out);
   csv << "work_ms,harness,median_ms,p90_ms\n";
-  std::printf("| work (ms) | ompl::tools::Benchmark: median / p90 (ms) | SolveTimedBenchmark | SimpleSetup::solve(10 s) |\n"
-              "|--:|--:|--:|--:|\n");
+  std::printf(
+      "| work (ms) | ompl::tools::Benchmark: median / p90 (ms) | SolveTimedBenchmark | SimpleSetup::solve(10 s) |\n"
+      "|--:|--:|--:|--:|\n");
   for (double ms : {0.1, 0.3, 1.0, 2.0, 3.0, 5.0, 10.0}) {
     ot::Benchmark plain(ss, "plain");
     SolveTimedBenchmark timed(ss, "timed");

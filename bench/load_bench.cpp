@@ -81,7 +81,8 @@ std::string planningSceneYaml(int n) {
       << "        position: {x: " << p.x() << ", y: " << p.y() << ", z: " << p.z() << "}\n"
       << "        orientation: {x: 0, y: 0, z: 0, w: 1}\n"
       << "      primitives:\n        - type: box\n          dimensions: [0.02, 0.02, 0.02]\n"
-      << "      primitive_poses:\n        - position: {x: 0, y: 0, z: 0}\n          orientation: {x: 0, y: 0, z: 0, w: 1}\n";
+      << "      primitive_poses:\n        - position: {x: 0, y: 0, z: 0}\n          orientation: {x: 0, y: 0, z: 0, w: "
+         "1}\n";
   }
   return y.str();
 }
@@ -95,8 +96,9 @@ std::string sceneUrdf(int n) {
   u << "<robot name='grid'><link name='world'/>";
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d p = gridPosition(i);
-    u << boxLink("b" + std::to_string(i)) << "<joint name='j" << i << "' type='fixed'><parent link='world'/><child link='b"
-      << i << "'/><origin xyz='" << p.x() << " " << p.y() << " " << p.z() << "'/></joint>";
+    u << boxLink("b" + std::to_string(i)) << "<joint name='j" << i
+      << "' type='fixed'><parent link='world'/><child link='b" << i << "'/><origin xyz='" << p.x() << " " << p.y()
+      << " " << p.z() << "'/></joint>";
   }
   u << "</robot>";
   return u.str();
@@ -109,8 +111,9 @@ std::string starUrdf(int n, bool hubGeometry) {
   u << "<robot name='star'>" << (hubGeometry ? boxLink("base") : std::string("<link name='base'/>"));
   for (int i = 0; i < n; ++i) {
     const double a = 2 * M_PI * i / n;
-    u << boxLink("l" + std::to_string(i)) << "<joint name='j" << i << "' type='revolute'><parent link='base'/><child link='l"
-      << i << "'/><origin xyz='" << std::cos(a) << " " << std::sin(a) << " 0'/><axis xyz='0 0 1'/>"
+    u << boxLink("l" + std::to_string(i)) << "<joint name='j" << i
+      << "' type='revolute'><parent link='base'/><child link='l" << i << "'/><origin xyz='" << std::cos(a) << " "
+      << std::sin(a) << " 0'/><axis xyz='0 0 1'/>"
       << "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint>";
   }
   u << "</robot>";
@@ -192,9 +195,7 @@ double timeKind(const std::string& kind, int n, int* items, Quality* quality) {
   }
   if (kind == "robot_star" || kind == "robot_hub") {
     const std::string urdf = starUrdf(n, kind == "robot_star");
-    return seconds([&] {
-      dc::World world(dr::RobotModel::fromUrdfString(urdf, ".", {}, "star.urdf"));
-    });
+    return seconds([&] { dc::World world(dr::RobotModel::fromUrdfString(urdf, ".", {}, "star.urdf")); });
   }
   if (kind == "mesh") {
     dr::TriangleMesh mesh = sphereMesh(n);
@@ -209,7 +210,9 @@ double timeKind(const std::string& kind, int n, int* items, Quality* quality) {
     std::filesystem::remove_all(cache);
     return s;
   }
-  throw std::invalid_argument("unknown kind '" + kind + "' (scene_yaml, obstacles, obstacles_batch, scene_urdf, robot_star, robot_hub, mesh, hand, comb)");
+  throw std::invalid_argument(
+      "unknown kind '" + kind +
+      "' (scene_yaml, obstacles, obstacles_batch, scene_urdf, robot_star, robot_hub, mesh, hand, comb)");
 }
 
 }  // namespace
@@ -217,14 +220,16 @@ double timeKind(const std::string& kind, int n, int* items, Quality* quality) {
 void usage(const std::string& error) {
   if (!error.empty()) std::fprintf(stderr, "load_bench: %s\n", error.c_str());
   std::fprintf(stderr,
-               "usage: load_bench [--sizes 250,500,1000,2000,4000] [--kinds scene_yaml,obstacles,obstacles_batch,scene_urdf,robot_star,robot_hub,mesh,hand,comb]\n"
+               "usage: load_bench [--sizes 250,500,1000,2000,4000] [--kinds "
+               "scene_yaml,obstacles,obstacles_batch,scene_urdf,robot_star,robot_hub,mesh,hand,comb]\n"
                "                  [--out folder (default bench/results)]\n");
   std::exit(2);
 }
 
 int main(int argc, char** argv) {
   std::vector<int> sizes = {250, 500, 1000, 2000, 4000};
-  std::vector<std::string> kinds = {"scene_yaml", "obstacles", "obstacles_batch", "scene_urdf", "robot_star", "robot_hub", "mesh", "hand"};
+  std::vector<std::string> kinds = {
+      "scene_yaml", "obstacles", "obstacles_batch", "scene_urdf", "robot_star", "robot_hub", "mesh", "hand"};
   std::string out = DEEPCHECK_BENCH_RESULTS_DIR;
   deepcheck::bench::readOptions(argc, argv, usage, [&](const std::string& arg, auto value) {
     if (arg == "--sizes") {

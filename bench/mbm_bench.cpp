@@ -95,17 +95,18 @@ struct Options {
 
 [[noreturn]] void usage(const std::string& error) {
   if (!error.empty()) std::fprintf(stderr, "mbm_bench: %s\n", error.c_str());
-  std::fprintf(stderr,
-               "usage: mbm_bench [--problems N] [--runs R] [--time SECONDS] [--seed S] [--scenes a,b] [--planners a,b]\n"
-               "                 [--checkers a,b] [--motions certified|discrete] [--out DIR]\n"
-               "  --problems N   generated problems per scene (default 100)\n"
-               "  --time S       time limit per planning run, seconds (default 10)\n"
-               "  --seed S       seed of problem generation and of every run's random numbers (default 1)\n"
-               "  --scenes       bookshelf_small, bookshelf_tall, bookshelf_thin, cage, box, table_pick, kitchen,\n"
-               "                 table_bars (default all)\n"
-               "  --planners     names deepcheck::planners::makePlanner knows (default RRTConnect,BiEST,PRM)\n"
-               "  --motions M    our motion validator: certified (default) or discrete (OMPL's, for comparison)\n"
-               "  --out DIR      output folder (default bench/results/mbm)\n");
+  std::fprintf(
+      stderr,
+      "usage: mbm_bench [--problems N] [--runs R] [--time SECONDS] [--seed S] [--scenes a,b] [--planners a,b]\n"
+      "                 [--checkers a,b] [--motions certified|discrete] [--out DIR]\n"
+      "  --problems N   generated problems per scene (default 100)\n"
+      "  --time S       time limit per planning run, seconds (default 10)\n"
+      "  --seed S       seed of problem generation and of every run's random numbers (default 1)\n"
+      "  --scenes       bookshelf_small, bookshelf_tall, bookshelf_thin, cage, box, table_pick, kitchen,\n"
+      "                 table_bars (default all)\n"
+      "  --planners     names deepcheck::planners::makePlanner knows (default RRTConnect,BiEST,PRM)\n"
+      "  --motions M    our motion validator: certified (default) or discrete (OMPL's, for comparison)\n"
+      "  --out DIR      output folder (default bench/results/mbm)\n");
   std::exit(2);
 }
 
@@ -179,8 +180,8 @@ void stopAtFirstSolution(og::SimpleSetup& ss) {
   ss.setOptimizationObjective(objective);
 }
 
-ProblemSetups makeSetups(const std::shared_ptr<deepcheck::checker::World>& world, const deepcheck::problems::Problem& problem,
-                         dp::MotionValidation motions) {
+ProblemSetups makeSetups(const std::shared_ptr<deepcheck::checker::World>& world,
+                         const deepcheck::problems::Problem& problem, dp::MotionValidation motions) {
   ProblemSetups s;
   s.problem = &problem;
   dp::SetupOptions options = pandaArmOptions();
@@ -221,8 +222,8 @@ struct SceneRun {
 /// Writes a certified path that FCL's fine check rejects, for a look at it: FILE.yaml, the problem's
 /// scene, and FILE.txt, the path as `deepcheck plan --out` writes it (so that `deepcheck view`
 /// shows it), after comment lines naming the first motion FCL rejects and the scene file.
-void saveRejectedPath(const std::string& file, const deepcheck::problems::Problem& problem, const og::PathGeometric& path,
-                      const dp::PathCheck& fclCheck) {
+void saveRejectedPath(const std::string& file, const deepcheck::problems::Problem& problem,
+                      const og::PathGeometric& path, const dp::PathCheck& fclCheck) {
   std::ofstream(file + ".yaml") << deepcheck::robots::writePlanningScene(problem.scene);
   std::ofstream out(file + ".txt");
   out << "# certified, rejected by FCL at " << fmt(dp::tol::kFineResolution, "%.17g") << " rad (first rejected motion "
@@ -296,8 +297,8 @@ std::uint_fast32_t runSeed(unsigned seed, const std::string& scene, int problem,
                            RunStage stage) {
   std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the names
   for (const char ch : scene + '/' + planner) h = (h ^ static_cast<unsigned char>(ch)) * 1099511628211ULL;
-  for (const std::uint64_t v : {std::uint64_t{seed}, static_cast<std::uint64_t>(problem), static_cast<std::uint64_t>(run),
-                                static_cast<std::uint64_t>(stage)}) {
+  for (const std::uint64_t v : {std::uint64_t{seed}, static_cast<std::uint64_t>(problem),
+                                static_cast<std::uint64_t>(run), static_cast<std::uint64_t>(stage)}) {
     h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
   }
   h ^= h >> 31;
@@ -339,7 +340,8 @@ void benchmarkChecker(SceneRun& ctx, int k, int count, const ProblemSetups& setu
     }
   };
   auto checks = [&setups, checker]() {
-    return static_cast<double>(checker == "deepcheck" ? setups.ourChecker->validityQueries() : setups.fclCounter->count());
+    return static_cast<double>(checker == "deepcheck" ? setups.ourChecker->validityQueries()
+                                                      : setups.fclCounter->count());
   };
   SceneRun* c = &ctx;
   og::SimpleSetup* setup = &ss;
@@ -359,11 +361,11 @@ void benchmarkChecker(SceneRun& ctx, int k, int count, const ProblemSetups& setu
     r.problem = k;
     r.planner = planner->getName();
     run["problem INTEGER"] = std::to_string(k);
-    std::fprintf(stderr, "[%s %d/%d] %-9s %-10s %s %.4f s, %.0f checks%s\n", c->scene.name.c_str(), k + 1, count,
-                 checker.c_str(), r.planner.c_str(), r.solved ? "solved" : "NOT solved", r.time, r.checks,
-                 r.solved ? (r.certified ? (r.fclFine ? ", certified, FCL ok" : ", certified, FCL REJECTS")
-                                         : ", NOT certified")
-                          : "");
+    std::fprintf(
+        stderr, "[%s %d/%d] %-9s %-10s %s %.4f s, %.0f checks%s\n", c->scene.name.c_str(), k + 1, count,
+        checker.c_str(), r.planner.c_str(), r.solved ? "solved" : "NOT solved", r.time, r.checks,
+        r.solved ? (r.certified ? (r.fclFine ? ", certified, FCL ok" : ", certified, FCL REJECTS") : ", NOT certified")
+                 : "");
     c->records.push_back(r);
   });
   ot::Benchmark::Request req(ctx.opt.time, 4096.0, static_cast<unsigned>(ctx.opt.runs));
@@ -380,7 +382,8 @@ void benchmarkChecker(SceneRun& ctx, int k, int count, const ProblemSetups& setu
     return;
   }
   for (const auto& p : data.planners) {
-    auto it = std::find_if(merged.planners.begin(), merged.planners.end(), [&](const auto& m) { return m.name == p.name; });
+    auto it =
+        std::find_if(merged.planners.begin(), merged.planners.end(), [&](const auto& m) { return m.name == p.name; });
     if (it == merged.planners.end()) {
       merged.planners.push_back(p);
     } else {
@@ -403,19 +406,20 @@ std::string oneLine(std::string text) {
 }
 
 /// Generates the scene's problems and runs them; the reason when the scene could not be run.
-std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std::shared_ptr<deepcheck::checker::World>& world,
-                           std::vector<MbmRecord>& records) {
+std::string benchmarkScene(const Options& opt, const MbmScene& scene,
+                           const std::shared_ptr<deepcheck::checker::World>& world, std::vector<MbmRecord>& records) {
   auto base = dp::makeSimpleSetup(world, pandaArmOptions());
   std::vector<deepcheck::problems::Problem> problems;
   try {
     std::vector<std::string> notes;
     const deepcheck::problems::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, &notes);
-    problems = generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems,
-                                   [&](int k, const deepcheck::problems::Problem& p) {
-                                     std::fprintf(stderr, "[%s] problem %d/%d generated: goal %s%s%s, %d scene(s) drawn\n",
-                                                  scene.name.c_str(), k + 1, opt.problems, p.goalQuery.c_str(),
-                                                  p.startQuery.empty() ? "" : ", start ", p.startQuery.c_str(), p.attempts);
-                                   });
+    problems =
+        generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems,
+                            [&](int k, const deepcheck::problems::Problem& p) {
+                              std::fprintf(stderr, "[%s] problem %d/%d generated: goal %s%s%s, %d scene(s) drawn\n",
+                                           scene.name.c_str(), k + 1, opt.problems, p.goalQuery.c_str(),
+                                           p.startQuery.empty() ? "" : ", start ", p.startQuery.c_str(), p.attempts);
+                            });
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mbm_bench: scene %s is not run: %s\n", scene.name.c_str(), e.what());
     for (int id : world->obstacleIds()) world->removeObstacle(id);
@@ -436,8 +440,10 @@ std::string benchmarkScene(const Options& opt, const MbmScene& scene, const std:
   carrier.data().host = "-";
   carrier.data().cpuInfo.clear();
   carrier.data().setupInfo = "MotionBenchMaker " + scene.name + ": scene " + fileName(scene.scene) + ", variation " +
-                             fileName(scene.variation) + ", queries " + fileName(scene.queries) + "; planner names end in the checker (deepcheck, fcl); run k "
-                             "of a planner is problem k / runs (see the problem property)\n" + carrier.data().setupInfo;
+                             fileName(scene.variation) + ", queries " + fileName(scene.queries) +
+                             "; planner names end in the checker (deepcheck, fcl); run k "
+                             "of a planner is problem k / runs (see the problem property)\n" +
+                             carrier.data().setupInfo;
   const std::string log = opt.out + "/mbm_" + scene.name + ".log";
   if (!carrier.saveResultsToFile(log.c_str())) return "cannot write " + log;
   std::fprintf(stderr, "wrote %s\n", log.c_str());
@@ -450,7 +456,8 @@ int main(int argc, char** argv) {
   const Options opt = parseOptions(argc, argv);
   const std::vector<MbmScene> scenes = selectScenes(opt.scenes, usage);
   if (!haveShared()) {
-    std::fprintf(stderr, "mbm_bench: ../shared is absent (%s): no Panda, no MotionBenchMaker scenes\n", sharedDir().c_str());
+    std::fprintf(stderr, "mbm_bench: ../shared is absent (%s): no Panda, no MotionBenchMaker scenes\n",
+                 sharedDir().c_str());
     return 1;
   }
   std::filesystem::create_directories(opt.out);

@@ -71,23 +71,22 @@ robots::PlanningScene linksAsScene(const robots::RobotModel& model, const Eigen:
 std::vector<MbmScene> mbmScenes() {
   // base_offset and ee_offset of MotionBenchMaker's configs/problems/<name>_panda.yaml.
   const std::array<double, 7> ee{0, 0, -0.08, -0.271, -0.653, -0.271, 0.653};
-  return {
-      sceneOf("bookshelf_small", "bookshelf", "scene_small.yaml", "variation_small.yaml", "all_queries_small.yaml",
-              {0.2, 0, -0.7, 0, 0, 0, 1}, ee),
-      sceneOf("bookshelf_tall", "bookshelf", "scene_tall.yaml", "variation_tall.yaml", "all_queries_tall.yaml",
-              {0.3, 0, -0.7, 0, 0, 0, 1}, ee),
-      sceneOf("bookshelf_thin", "bookshelf", "scene_thin.yaml", "variation_thin.yaml", "all_queries_thin.yaml",
-              {-0.1, 0, -0.7, 0, 0, 0, 1}, ee),
-      sceneOf("cage", "cage", "scene_cage.yaml", "variation_cage.yaml", "queries_cage.yaml", {0, 0, -0.18, 0, 0, 0, 1},
-              {0.13, -0.13, 0.11, 0, 0, 0.924, 0.383}),
-      sceneOf("box", "box", "scene_box.yaml", "variation_box.yaml", "hard_queries_box.yaml",
-              {-0.15, 0, -1.02, 0, 0, 0, 1}, {0, 0, -0.08, -0.653, -0.271, -0.653, 0.271}),
-      sceneOf("table_pick", "table", "scene_table.yaml", "variation_table.yaml", "queries_pick_table.yaml",
-              {0.1, 0.1, -0.5, 0, 0, 0, 1}, ee),
-      sceneOf("kitchen", "kitchen", "kitchen.urdf", "variation.yaml", "hard_queries.yaml", {0.2, 0.4, -0.7, 0, 0, 0, 1},
-              {0.2, 0.2, 0.03, -0.271, -0.653, -0.271, 0.653}),
-      sceneOf("table_bars", "table_bars", "table_bars.urdf", "variation.yaml", "single_arm_queries.yaml",
-              {0.6, 0, -0.6, 0, 0, 0, 1}, {0.29, -0.29, 0.35, -0.271, -0.653, -0.271, 0.653})};
+  return {sceneOf("bookshelf_small", "bookshelf", "scene_small.yaml", "variation_small.yaml", "all_queries_small.yaml",
+                  {0.2, 0, -0.7, 0, 0, 0, 1}, ee),
+          sceneOf("bookshelf_tall", "bookshelf", "scene_tall.yaml", "variation_tall.yaml", "all_queries_tall.yaml",
+                  {0.3, 0, -0.7, 0, 0, 0, 1}, ee),
+          sceneOf("bookshelf_thin", "bookshelf", "scene_thin.yaml", "variation_thin.yaml", "all_queries_thin.yaml",
+                  {-0.1, 0, -0.7, 0, 0, 0, 1}, ee),
+          sceneOf("cage", "cage", "scene_cage.yaml", "variation_cage.yaml", "queries_cage.yaml",
+                  {0, 0, -0.18, 0, 0, 0, 1}, {0.13, -0.13, 0.11, 0, 0, 0.924, 0.383}),
+          sceneOf("box", "box", "scene_box.yaml", "variation_box.yaml", "hard_queries_box.yaml",
+                  {-0.15, 0, -1.02, 0, 0, 0, 1}, {0, 0, -0.08, -0.653, -0.271, -0.653, 0.271}),
+          sceneOf("table_pick", "table", "scene_table.yaml", "variation_table.yaml", "queries_pick_table.yaml",
+                  {0.1, 0.1, -0.5, 0, 0, 0, 1}, ee),
+          sceneOf("kitchen", "kitchen", "kitchen.urdf", "variation.yaml", "hard_queries.yaml",
+                  {0.2, 0.4, -0.7, 0, 0, 0, 1}, {0.2, 0.2, 0.03, -0.271, -0.653, -0.271, 0.653}),
+          sceneOf("table_bars", "table_bars", "table_bars.urdf", "variation.yaml", "single_arm_queries.yaml",
+                  {0.6, 0, -0.6, 0, 0, 0, 1}, {0.29, -0.29, 0.35, -0.271, -0.653, -0.271, 0.653})};
 }
 
 robots::FrameAliases pandaFrameAliases() { return {{"base_link", "panda_link0"}}; }
@@ -99,8 +98,9 @@ dp::SetupOptions pandaArmOptions() {
     load.packageRoots = o.packageRoots;
     load.useRosPackagePath = false;
     o.group = "panda_arm";
-    o.lockedVariables = problems::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(pandaUrdf(), load),
-                                               problems::loadRobotConfig(mbmDir() + "/robots/panda.yaml"), o.srdf, o.group);
+    o.lockedVariables =
+        problems::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(pandaUrdf(), load),
+                                     problems::loadRobotConfig(mbmDir() + "/robots/panda.yaml"), o.srdf, o.group);
     return o;
   }();
   return options;
@@ -125,7 +125,7 @@ robots::PlanningScene loadNominalScene(const MbmScene& scene, problems::SceneDra
 }
 
 problems::ProblemOptions pandaProblemOptions(const MbmScene& scene, const robots::RobotModel& panda, std::uint64_t seed,
-                                       std::vector<std::string>* notes) {
+                                             std::vector<std::string>* notes) {
   problems::ProblemOptions o;
   o.tipLink = "panda_link8";
   o.eeOffset = scene.eeOffset;
@@ -136,13 +136,15 @@ problems::ProblemOptions pandaProblemOptions(const MbmScene& scene, const robots
 }
 
 std::vector<problems::Problem> generateMbmProblems(const MbmScene& scene, checker::World& world,
-                                             const dp::StateValidityChecker& checker, const problems::ProblemOptions& options,
-                                             int count, const problems::ProblemProgress& progress) {
+                                                   const dp::StateValidityChecker& checker,
+                                                   const problems::ProblemOptions& options, int count,
+                                                   const problems::ProblemProgress& progress) {
   problems::ProblemOptions drawing = options;
   const robots::PlanningScene nominal = loadNominalScene(scene, &drawing.drawScene);
   const auto variations = problems::loadSceneVariations(scene.variation);
   const auto queries = problems::loadQueries(scene.queries);
-  return problems::generateProblems(world, checker, nominal, variations, queries, drawing, count, progress, scene.variation);
+  return problems::generateProblems(world, checker, nominal, variations, queries, drawing, count, progress,
+                                    scene.variation);
 }
 
 void placeScene(checker::World& world, const robots::PlanningScene& scene) {

@@ -9,9 +9,9 @@
 // a URDF (kitchen, table_bars) become a planning scene here: one object per link with collision
 // geometry, named as the link (the names the variation and query files use), posed for each
 // attempt at joint values drawn uniformly within their limits (the kitchen's doors, the sliding
-// bars), as MotionBenchMaker does; then the variation file moves the links. Problems come from deepcheck::problems::generateProblems (the scene
-// varied, the goal and, when the query file has start queries, the start by collision-free
-// inverse kinematics of panda_hand; otherwise MotionBenchMaker's Panda default state).
+// bars), as MotionBenchMaker does; then the variation file moves the links. Problems come from
+// deepcheck::problems::generateProblems (the scene varied, the goal and, when the query file has start queries, the
+// start by collision-free inverse kinematics of panda_hand; otherwise MotionBenchMaker's Panda default state).
 
 #include "options.h"
 

@@ -114,9 +114,8 @@ void writeHeadline(std::ostringstream& md, const MbmSettings& s, const std::vect
   for (const std::string& planner : s.planners) {
     double medians[2] = {std::nan(""), std::nan("")};
     for (std::size_t c = 0; c < s.checkers.size(); ++c) {
-      const MbmRow r = summarize(records, [&](const MbmRecord& x) {
-        return x.planner == planner && x.checker == s.checkers[c];
-      });
+      const MbmRow r =
+          summarize(records, [&](const MbmRecord& x) { return x.planner == planner && x.checker == s.checkers[c]; });
       if (r.runs == 0) continue;
       if (c < 2) medians[c] = r.tMed;
       md << "| " << planner << " | " << s.checkers[c] << " | " << r.runs << " | " << pct(r.successPct()) << " | "
@@ -124,7 +123,8 @@ void writeHeadline(std::ostringstream& md, const MbmSettings& s, const std::vect
          << ms(r.planSimplifyMed) << " | " << ms(r.certifyMed) << " | " << pct(r.pctOfSolved(r.fclReturned)) << " |\n";
     }
     if (!std::isnan(medians[0]) && !std::isnan(medians[1])) {
-      md << "| " << planner << " | FCL median / ours | | | " << fmt(medians[1] / medians[0], "%.2g") << "x | | | | | |\n";
+      md << "| " << planner << " | FCL median / ours | | | " << fmt(medians[1] / medians[0], "%.2g")
+         << "x | | | | | |\n";
     }
   }
   md << "\n";
@@ -139,13 +139,14 @@ void writeMbmReport(const MbmSettings& s, const std::vector<MbmRecord>& records,
   std::ostringstream md;
   md << "# MotionBenchMaker benchmark (mbm_bench)\n\n";
   md << "The Panda, " << s.problems << " generated problems per scene (seed " << s.seed << "), time limit " << s.time
-     << " s per run, " << s.runs << " run(s) per problem, planner and checker. Wall time " << fmt(s.wallSeconds / 60.0, "%.1f")
-     << " min.\n\n";
+     << " s per run, " << s.runs << " run(s) per problem, planner and checker. Wall time "
+     << fmt(s.wallSeconds / 60.0, "%.1f") << " min.\n\n";
   md << "success = exact solution within the limit; time = planning time (OMPL's, without simplification), median "
         "and 90th percentile over all runs (a failed run counts with its time); checks/s = state validity queries "
         "(motion checks included) per second of planning; length = joint-space length of the simplified path (rad, "
         "median of the solved runs); certified = simplified paths that certifyPath accepts as planned / after its "
-        "repair / after its repair with every motion certified (no fallback step near contact); plan + simplify and certify = "
+        "repair / after its repair with every motion certified (no fallback step near contact); plan + simplify and "
+        "certify = "
         "medians over the solved runs; FCL ok = paths free for FCL on the original meshes at every "
      << dp::tol::kFineResolution << " rad, as returned (simplified) and after certification.\n\n";
   writeHeadline(md, s, records);
@@ -153,11 +154,10 @@ void writeMbmReport(const MbmSettings& s, const std::vector<MbmRecord>& records,
         "FCL ok |\n";
   md << "|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   for (const MbmRow& r : rows) {
-    md << "| " << r.scene << " | " << r.planner << " | " << r.checker << " | " << r.runs << " | "
-       << pct(r.successPct()) << " | " << ms(r.tMed) << " | " << ms(r.tP90) << " | "
-       << fmt(r.checksPerSecond, "%.3g") << " | " << fmt(r.lengthMed, "%.3g") << " | "
-       << pct(r.pctOfSolved(r.certifiedAsPlanned)) << " / " << pct(r.pctOfSolved(r.certified)) << " / "
-       << pct(r.pctOfSolved(r.certifiedExact)) << " | "
+    md << "| " << r.scene << " | " << r.planner << " | " << r.checker << " | " << r.runs << " | " << pct(r.successPct())
+       << " | " << ms(r.tMed) << " | " << ms(r.tP90) << " | " << fmt(r.checksPerSecond, "%.3g") << " | "
+       << fmt(r.lengthMed, "%.3g") << " | " << pct(r.pctOfSolved(r.certifiedAsPlanned)) << " / "
+       << pct(r.pctOfSolved(r.certified)) << " / " << pct(r.pctOfSolved(r.certifiedExact)) << " | "
        << pct(r.pctOfSolved(r.fclFine)) << " |\n";
   }
   for (const SceneFailure& f : failures) {

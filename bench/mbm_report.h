@@ -14,16 +14,16 @@ namespace deepcheck::bench {
 struct MbmRecord {
   std::string scene, checker, planner;
   int problem = 0;
-  bool solved = false;       ///< exact solution within the time limit
-  double time = 0.0;         ///< planning time, seconds (OMPL's "time REAL")
-  double checks = 0.0;       ///< state validity queries while planning (motion checks included)
-  double length = std::nan("");  ///< joint-space length of the simplified path, rad
-  bool certifiedAsPlanned = false;  ///< certifyPath accepted the simplified path without repair
-  bool certified = false;           ///< ... after repair
-  bool certifiedExact = false;      ///< ... with every motion certified by clearance (no fallback
-                                    ///< step near contact: PathCertificate::exact())
-  bool fclFine = false;             ///< the certified path passes the fine FCL check
-  bool fclReturned = false;         ///< the simplified path, as returned, passes the fine FCL check
+  bool solved = false;                 ///< exact solution within the time limit
+  double time = 0.0;                   ///< planning time, seconds (OMPL's "time REAL")
+  double checks = 0.0;                 ///< state validity queries while planning (motion checks included)
+  double length = std::nan("");        ///< joint-space length of the simplified path, rad
+  bool certifiedAsPlanned = false;     ///< certifyPath accepted the simplified path without repair
+  bool certified = false;              ///< ... after repair
+  bool certifiedExact = false;         ///< ... with every motion certified by clearance (no fallback
+                                       ///< step near contact: PathCertificate::exact())
+  bool fclFine = false;                ///< the certified path passes the fine FCL check
+  bool fclReturned = false;            ///< the simplified path, as returned, passes the fine FCL check
   double simplifyTime = std::nan("");  ///< simplifySolutionChecked, seconds
   double certifyTime = std::nan("");   ///< certifyPath on the simplified path, seconds
 };

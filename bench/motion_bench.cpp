@@ -119,7 +119,8 @@ class RecordingValidator : public ob::MotionValidator {
 };
 
 /// The motions RRTConnect asks about on one problem (its first solution, at most 10 s).
-std::vector<Motion> recordMotions(const std::shared_ptr<deepcheck::checker::World>& world, const deepcheck::problems::Problem& problem) {
+std::vector<Motion> recordMotions(const std::shared_ptr<deepcheck::checker::World>& world,
+                                  const deepcheck::problems::Problem& problem) {
   auto ss = dp::makeSimpleSetup(world, pandaArmOptions());
   dp::setStartAndGoal(*ss, problem.start, problem.goal);
   const ob::SpaceInformationPtr& si = ss->getSpaceInformation();
@@ -158,17 +159,17 @@ void replayOnce(const ob::MotionValidator& validator, const ob::SpaceInformation
 
 struct SceneResult {
   std::string scene;
-  std::vector<double> ours, certified, fcl;  ///< microseconds per motion
+  std::vector<double> ours, certified, fcl;             ///< microseconds per motion
   std::vector<double> oursAccepted, certifiedAccepted;  ///< ... of the motions each accepted
-  long states = 0;                ///< states of the motions at the space's resolution
-  long tested = 0;                ///< states our discrete check tested (motions stop at the first invalid one)
-  int valid = 0;                  ///< motions valid for our discrete check
-  int certifiedValid = 0;         ///< motions the certified validator accepts
-  int oursOnlyInvalid = 0;        ///< motions FCL accepts and ours rejects
-  int fclOnlyInvalid = 0;         ///< motions ours (either validator) accepts and FCL rejects (must be 0)
-  int discreteOnlyValid = 0;      ///< motions the discrete check accepts and the certified one rejects
-  int certifiedOnlyValid = 0;     ///< motions the certified validator accepts and the discrete check rejects
-  long configurations = 0;        ///< configurations the certified validator tested
+  long states = 0;                                      ///< states of the motions at the space's resolution
+  long tested = 0;             ///< states our discrete check tested (motions stop at the first invalid one)
+  int valid = 0;               ///< motions valid for our discrete check
+  int certifiedValid = 0;      ///< motions the certified validator accepts
+  int oursOnlyInvalid = 0;     ///< motions FCL accepts and ours rejects
+  int fclOnlyInvalid = 0;      ///< motions ours (either validator) accepts and FCL rejects (must be 0)
+  int discreteOnlyValid = 0;   ///< motions the discrete check accepts and the certified one rejects
+  int certifiedOnlyValid = 0;  ///< motions the certified validator accepts and the discrete check rejects
+  long configurations = 0;     ///< configurations the certified validator tested
 
   /// Adds another scene's motions (the "all" row).
   void add(const SceneResult& r) {
@@ -246,12 +247,13 @@ void replayProblem(const std::shared_ptr<deepcheck::checker::World>& world, cons
 
 void printRow(const SceneResult& r) {
   const double n = static_cast<double>(r.ours.size());
-  std::printf("| %s | %zu | %.0f %% | %.0f %% | %d | %d | %.1f | %.1f | %s | %s | %s | %s | %s | %s | %.1f | %s | %s |\n",
-              r.scene.c_str(), r.ours.size(), 100.0 * r.valid / n, 100.0 * r.certifiedValid / n, r.discreteOnlyValid,
-              r.certifiedOnlyValid, r.states / n, r.tested / n, fmt(mean(r.ours)).c_str(), fmt(median(r.ours)).c_str(),
-              fmt(mean(r.oursAccepted)).c_str(), fmt(mean(r.certified)).c_str(), fmt(median(r.certified)).c_str(),
-              fmt(mean(r.certifiedAccepted)).c_str(), r.configurations / n,
-              fmt(mean(r.fcl)).c_str(), fmt(median(r.fcl)).c_str());
+  std::printf(
+      "| %s | %zu | %.0f %% | %.0f %% | %d | %d | %.1f | %.1f | %s | %s | %s | %s | %s | %s | %.1f | %s | %s |\n",
+      r.scene.c_str(), r.ours.size(), 100.0 * r.valid / n, 100.0 * r.certifiedValid / n, r.discreteOnlyValid,
+      r.certifiedOnlyValid, r.states / n, r.tested / n, fmt(mean(r.ours)).c_str(), fmt(median(r.ours)).c_str(),
+      fmt(mean(r.oursAccepted)).c_str(), fmt(mean(r.certified)).c_str(), fmt(median(r.certified)).c_str(),
+      fmt(mean(r.certifiedAccepted)).c_str(), r.configurations / n, fmt(mean(r.fcl)).c_str(),
+      fmt(median(r.fcl)).c_str());
 }
 
 void writeCsv(const std::string& path, const std::vector<SceneResult>& results) {
@@ -265,7 +267,8 @@ void writeCsv(const std::string& path, const std::vector<SceneResult>& results) 
       const char* name;
       const std::vector<double>* t;
       int valid;
-    } rows[] = {{"deepcheck_discrete", &r.ours, r.valid}, {"deepcheck_certified", &r.certified, r.certifiedValid},
+    } rows[] = {{"deepcheck_discrete", &r.ours, r.valid},
+                {"deepcheck_certified", &r.certified, r.certifiedValid},
                 {"fcl_discrete", &r.fcl, r.valid + r.oursOnlyInvalid}};
     for (const auto& row : rows) {
       out << r.scene << ',' << row.name << ',' << r.ours.size() << ',' << row.valid / n << ',' << mean(*row.t) << ','
@@ -292,8 +295,9 @@ int main(int argc, char** argv) {
   for (const MbmScene& scene : selectScenes(opt.scenes, usage)) {
     auto base = dp::makeSimpleSetup(world, pandaArmOptions());
     const deepcheck::problems::ProblemOptions options = pandaProblemOptions(scene, world->robot(), opt.seed, nullptr);
-    const std::vector<deepcheck::problems::Problem> problems =
-        generateMbmProblems(scene, *world, *dp::validityCheckerOf(*base), options, opt.problems, [&](int k, const deepcheck::problems::Problem&) {
+    const std::vector<deepcheck::problems::Problem> problems = generateMbmProblems(
+        scene, *world, *dp::validityCheckerOf(*base), options, opt.problems,
+        [&](int k, const deepcheck::problems::Problem&) {
           std::fprintf(stderr, "[%s] problem %d/%d generated\n", scene.name.c_str(), k + 1, opt.problems);
         });
     SceneResult result;
@@ -308,14 +312,15 @@ int main(int argc, char** argv) {
     for (int id : world->obstacleIds()) world->removeObstacle(id);
     results.push_back(std::move(result));
   }
-  std::printf("# Motion checks of RRTConnect on MotionBenchMaker problems (motion_bench)\n\n"
-              "%d problem(s) per scene (seed %u), fastest of %d round(s); OMPL's DiscreteMotionValidator on our "
-              "checker and on FCL's, and our CertifiedMotionValidator; times in microseconds per motion.\n\n"
-              "| scene | motions | valid (discrete) | valid (certified) | discrete only | certified only | "
-              "states per motion | tested | discrete: mean | median | mean accepted | certified: mean | median | "
-              "mean accepted | configurations | FCL: mean | median |\n"
-              "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n",
-              opt.problems, opt.seed, opt.rounds);
+  std::printf(
+      "# Motion checks of RRTConnect on MotionBenchMaker problems (motion_bench)\n\n"
+      "%d problem(s) per scene (seed %u), fastest of %d round(s); OMPL's DiscreteMotionValidator on our "
+      "checker and on FCL's, and our CertifiedMotionValidator; times in microseconds per motion.\n\n"
+      "| scene | motions | valid (discrete) | valid (certified) | discrete only | certified only | "
+      "states per motion | tested | discrete: mean | median | mean accepted | certified: mean | median | "
+      "mean accepted | configurations | FCL: mean | median |\n"
+      "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n",
+      opt.problems, opt.seed, opt.rounds);
   SceneResult all;
   all.scene = "all";
   for (const SceneResult& r : results) {
@@ -326,6 +331,7 @@ int main(int argc, char** argv) {
   results.push_back(all);
   writeCsv(opt.out, results);
   const int disagreements = all.fclOnlyInvalid;
-  if (disagreements > 0) std::fprintf(stderr, "motion_bench: %d motion(s) accepted by ours and rejected by FCL\n", disagreements);
+  if (disagreements > 0)
+    std::fprintf(stderr, "motion_bench: %d motion(s) accepted by ours and rejected by FCL\n", disagreements);
   return disagreements > 0 ? 1 : 0;
 }

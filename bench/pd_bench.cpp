@@ -24,8 +24,8 @@
 //
 // Usage: pd_bench [--quick] [--families a,b,...] [--methods a,b,...] [--reps N] [--sweep] [--out DIR]
 //                 [--shared DIR]
-// Writes DIR/pd_bench.csv, the table as Markdown in DIR/pd_bench.md and, for DEEP answers off by more than 1e-9 relative (or NaN,
-// failed, thrown), reproducers DIR/repro_pd_<family>_<query>_<method>.txt in the input format of
+// Writes DIR/pd_bench.csv, the table as Markdown in DIR/pd_bench.md and, for DEEP answers off by more than 1e-9
+// relative (or NaN, failed, thrown), reproducers DIR/repro_pd_<family>_<query>_<method>.txt in the input format of
 // `deepcheck pd` (DESIGN.md).
 
 #include "format.h"
@@ -69,8 +69,8 @@ struct Options {
   bool quick = false;
   std::vector<std::string> families;
   std::vector<std::string> methods;  // empty: all
-  int reps = 0;  // 0: default for the mode
-  bool sweep = false;  // each repetition a sweep of the family (sweepQueries) instead of back to back
+  int reps = 0;                      // 0: default for the mode
+  bool sweep = false;                // each repetition a sweep of the family (sweepQueries) instead of back to back
   std::string out = DEEPCHECK_BENCH_RESULTS_DIR;
   std::string shared = DEEPCHECK_SHARED_DIR;
 };
@@ -78,9 +78,11 @@ struct Options {
 /// Queries per family: full run, quick run. Large hulls get fewer pairs: the exact reference
 /// is the hull of nA * nB points (9 million at 3,000 vertices).
 std::pair<int, int> pairCounts(const std::string& family) {
-  static const std::map<std::string, std::pair<int, int>> counts = {
-      {"verts_300", {300, 60}}, {"verts_1000", {50, 10}}, {"verts_3000", {10, 3}},
-      {"motion", {2000, 500}},  {"robots", {500, 100}}};
+  static const std::map<std::string, std::pair<int, int>> counts = {{"verts_300", {300, 60}},
+                                                                    {"verts_1000", {50, 10}},
+                                                                    {"verts_3000", {10, 3}},
+                                                                    {"motion", {2000, 500}},
+                                                                    {"robots", {500, 100}}};
   const auto it = counts.find(family);
   return it != counts.end() ? it->second : std::pair<int, int>{1000, 150};
 }
@@ -132,8 +134,8 @@ struct Tally {
 using deepcheck::bench::fmt;
 
 void writePose(std::ostream& out, const Pose& p) {
-  out << p.t.x() << ' ' << p.t.y() << ' ' << p.t.z() << ' ' << p.q.w() << ' ' << p.q.x() << ' '
-      << p.q.y() << ' ' << p.q.z();
+  out << p.t.x() << ' ' << p.t.y() << ' ' << p.t.z() << ' ' << p.q.w() << ' ' << p.q.x() << ' ' << p.q.y() << ' '
+      << p.q.z();
 }
 
 /// Writes a `deepcheck pd` input reproducing query qi of the family for `method`.
@@ -143,12 +145,13 @@ void writeRepro(const Options& opt, const Family& f, int qi, const std::string& 
   const std::string path = opt.out + "/repro_pd_" + f.name + "_" + std::to_string(qi) + "_" + method + ".txt";
   std::ofstream out(path);
   out.precision(17);
-  out << "# deepcheck pd reproducer from bench/pd_bench: family " << f.name << ", query " << qi << ", method "
-      << method << "\n# got sd = " << sd << ", exact sd = " << exact << ", relative error " << rel << "\n";
+  out << "# deepcheck pd reproducer from bench/pd_bench: family " << f.name << ", query " << qi << ", method " << method
+      << "\n# got sd = " << sd << ", exact sd = " << exact << ", relative error " << rel << "\n";
   const bool warm = method.size() > 5 && method.compare(method.size() - 5, 5, "_warm") == 0;
   if (warm) {
-    out << (f.sequence ? "# warm: the queries before the last are the trajectory's earlier steps (run without --cold)\n"
-                       : "# warm: the first query primes the cache, the second is the one that fails (run without --cold)\n");
+    out << (f.sequence
+                ? "# warm: the queries before the last are the trajectory's earlier steps (run without --cold)\n"
+                : "# warm: the first query primes the cache, the second is the one that fails (run without --cold)\n");
   } else {
     out << "# cold: run with --cold\n";
   }
@@ -239,14 +242,13 @@ void writeCsv(const std::string& path, const std::vector<Row>& rows) {
   auto num = [](double x) { return std::isnan(x) ? std::string("") : fmt(x, "%.6g"); };
   for (const Row& r : rows) {
     out << r.family << ',' << r.method << ',' << r.queries << ',' << r.overlapping << ',' << r.separated << ','
-        << num(r.meanVertices) << ',' << num(r.tMed) << ',' << num(r.tP90) << ',' << r.scored << ','
-        << num(r.relMed) << ',' << num(r.relP99) << ',' << num(r.relMax) << ',' << num(r.absMed) << ','
-        << num(r.absP99) << ',' << num(r.absMax) << ',' << num(r.exactShare) << ',' << r.wrongSign << ','
-        << r.missing << ',' << r.nan << ',' << r.failed << ',' << (r.walks ? num(r.localMinRate) : "") << ','
-        << (r.walks ? num(r.startsMean) : "") << ',' << (r.walks ? num(r.hubsMean) : "") << ','
-        << (r.walks ? num(r.stepsMean) : "") << ',' << (r.walks ? num(r.warmShare) : "") << ','
-        << (r.walks ? std::to_string(r.notConverged) : "") << ',' << num(r.tMedOverlap) << ','
-        << num(r.tP90Overlap) << ',' << (r.walks ? num(r.expansionsMean) : "") << '\n';
+        << num(r.meanVertices) << ',' << num(r.tMed) << ',' << num(r.tP90) << ',' << r.scored << ',' << num(r.relMed)
+        << ',' << num(r.relP99) << ',' << num(r.relMax) << ',' << num(r.absMed) << ',' << num(r.absP99) << ','
+        << num(r.absMax) << ',' << num(r.exactShare) << ',' << r.wrongSign << ',' << r.missing << ',' << r.nan << ','
+        << r.failed << ',' << (r.walks ? num(r.localMinRate) : "") << ',' << (r.walks ? num(r.startsMean) : "") << ','
+        << (r.walks ? num(r.hubsMean) : "") << ',' << (r.walks ? num(r.stepsMean) : "") << ','
+        << (r.walks ? num(r.warmShare) : "") << ',' << (r.walks ? std::to_string(r.notConverged) : "") << ','
+        << num(r.tMedOverlap) << ',' << num(r.tP90Overlap) << ',' << (r.walks ? num(r.expansionsMean) : "") << '\n';
   }
 }
 
@@ -261,13 +263,14 @@ void writeMarkdown(const std::string& path, const std::vector<Row>& rows, bool s
       family = r.family;
       out << "\n### " << family << " (" << r.overlapping << " overlapping, " << r.separated << " separated, "
           << fmt(r.meanVertices, "%.0f") << " vertices per hull on average)\n\n"
-          << "| method | n | t med (µs) | t p90 (µs) | t med overlapping (µs) | rel med | rel p99 | rel max | abs p99 | "
+          << "| method | n | t med (µs) | t p90 (µs) | t med overlapping (µs) | rel med | rel p99 | rel max | abs p99 "
+             "| "
              "≤1e-12 | wrong sign | missing | NaN | failed | local min | hubs |\n"
           << "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     }
     out << "| " << r.method << " | " << r.queries << " | " << fmt(r.tMed, "%.3g") << " | " << fmt(r.tP90, "%.3g")
-        << " | " << fmt(r.tMedOverlap, "%.3g") << " | " << fmt(r.relMed, "%.1e") << " | " << fmt(r.relP99, "%.1e") << " | " << fmt(r.relMax, "%.1e")
-        << " | " << fmt(r.absP99, "%.1e") << " | "
+        << " | " << fmt(r.tMedOverlap, "%.3g") << " | " << fmt(r.relMed, "%.1e") << " | " << fmt(r.relP99, "%.1e")
+        << " | " << fmt(r.relMax, "%.1e") << " | " << fmt(r.absP99, "%.1e") << " | "
         << (std::isnan(r.exactShare) ? std::string("-") : fmt(100.0 * r.exactShare, "%.2f") + " %") << " | "
         << r.wrongSign << " | " << r.missing << " | " << r.nan << " | " << r.failed << " | "
         << (r.walks ? fmt(100.0 * r.localMinRate, "%.1f") + " %" : std::string("-")) << " | "
@@ -531,8 +534,8 @@ bool runFamily(const Options& opt, const std::string& name, const std::vector<st
   for (auto& m : methods) m->beginFamily(f);
   const int nm = static_cast<int>(methods.size());
   std::vector<Tally> tally(nm);
-  const std::vector<std::vector<Run>> swept = opt.sweep ? sweepQueries(opt, methods, f, overhead)
-                                                        : std::vector<std::vector<Run>>{};
+  const std::vector<std::vector<Run>> swept =
+      opt.sweep ? sweepQueries(opt, methods, f, overhead) : std::vector<std::vector<Run>>{};
   for (int qi = 0; qi < static_cast<int>(f.queries.size()); ++qi) {
     const std::vector<Run> runs = opt.sweep ? swept[qi] : runQuery(opt, methods, f, qi, overhead);
     const double exact = f.queries[qi].exact->distance;
@@ -542,8 +545,8 @@ bool runFamily(const Options& opt, const std::string& name, const std::vector<st
     }
   }
   for (int mi = 0; mi < nm; ++mi) {
-    rows->push_back(summarize(f, methods[mi]->name(), tally[mi], counts.overlapping, counts.separated,
-                              counts.meanVertices));
+    rows->push_back(
+        summarize(f, methods[mi]->name(), tally[mi], counts.overlapping, counts.separated, counts.meanVertices));
     printRow(rows->back());
   }
   rows->push_back(exactRow(f, counts));
@@ -566,9 +569,9 @@ int main(int argc, char** argv) {
   }
   std::filesystem::create_directories(opt.out);
   const double overhead = clockOverheadMicros();
-  std::cerr << "pd_bench: " << (opt.quick ? "quick" : "full") << " run, " << opt.reps
-            << " repetitions per query" << (opt.sweep ? ", each a sweep of the family" : "")
-            << ", clock overhead " << fmt(overhead * 1e3, "%.1f") << " ns (subtracted)\n";
+  std::cerr << "pd_bench: " << (opt.quick ? "quick" : "full") << " run, " << opt.reps << " repetitions per query"
+            << (opt.sweep ? ", each a sweep of the family" : "") << ", clock overhead " << fmt(overhead * 1e3, "%.1f")
+            << " ns (subtracted)\n";
 
   std::vector<std::unique_ptr<Method>> methods;
   for (auto& m : makeMethods()) {

@@ -15,9 +15,9 @@
 
 namespace deepcheck::bench {
 
-using geometry::ConvexPolytope;
 using Eigen::Quaterniond;
 using Eigen::Vector3d;
+using geometry::ConvexPolytope;
 
 Eigen::Isometry3d Pose::iso() const {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -47,10 +47,9 @@ const geometry::ExactResult& exactOf(const Family& family, Query& q) {
 }
 
 std::vector<std::string> familyNames() {
-  return {"verts_8",   "verts_30",   "verts_100",  "verts_300",  "verts_1000", "verts_3000",
-          "aspect_10", "aspect_100", "aspect_1000", "far_1e4",   "scale_1e-3", "scale_1e3",
-          "touching",  "deep",       "separated",  "boxes",      "polygons",   "motion",
-          "robots"};
+  return {"verts_8",    "verts_30",    "verts_100", "verts_300",  "verts_1000", "verts_3000", "aspect_10",
+          "aspect_100", "aspect_1000", "far_1e4",   "scale_1e-3", "scale_1e3",  "touching",   "deep",
+          "separated",  "boxes",       "polygons",  "motion",     "robots"};
 }
 
 std::vector<Eigen::Vector3d> readStlVertices(const std::string& path) {
@@ -147,8 +146,8 @@ std::vector<Vector3d> boxCorners(const Vector3d& h) {
 
 /// Translation of B that puts B's centroid at the point of A that is the fraction s of the way
 /// from A's centroid to A's vertex v (inside A for s in [0, 1], so the pair overlaps).
-Vector3d insidePlacement(const ConvexPolytope& A, const Pose& poseA, int v, double s,
-                         const ConvexPolytope& B, const Quaterniond& qB) {
+Vector3d insidePlacement(const ConvexPolytope& A, const Pose& poseA, int v, double s, const ConvexPolytope& B,
+                         const Quaterniond& qB) {
   const Vector3d target_A = A.center() + s * (A.vertex(v) - A.center());
   const Vector3d target_W = poseA.q * target_A + poseA.t;
   return target_W - qB * B.center();
@@ -178,8 +177,8 @@ Pose nearbyPose(Generator& g, const Pose& p, double L) {
 
 /// Random pairs of ellipsoid hulls: `vertices` each, A of size `scale`, B of 0.5..1 times that,
 /// `semi` giving the semi-axes; B's centroid inside A at fraction [smin, smax).
-void addEllipsoidPairs(Family& f, Generator& g, int pairs, int vertices, double scale, double smin,
-                       double smax, const Vector3d& base, bool elongated, double aspect) {
+void addEllipsoidPairs(Family& f, Generator& g, int pairs, int vertices, double scale, double smin, double smax,
+                       const Vector3d& base, bool elongated, double aspect) {
   for (int i = 0; i < pairs; ++i) {
     auto semi = [&](double s) -> Vector3d {
       if (!elongated) return g.roundSemi(s);
@@ -360,7 +359,8 @@ std::optional<Family> robotFamily(int pairs, const std::string& sharedDir) {
     const std::string p = entry.path().string();
     std::string ext = entry.path().extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (entry.is_regular_file() && ext == ".stl" && p.find("collision") != std::string::npos) files.push_back(entry.path());
+    if (entry.is_regular_file() && ext == ".stl" && p.find("collision") != std::string::npos)
+      files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   if (files.empty()) {
@@ -375,8 +375,8 @@ std::optional<Family> robotFamily(int pairs, const std::string& sharedDir) {
     f.addShape(readStlVertices(file.string()), file.filename().string());
     totalVertices += f.shapes.back().numVertices();
   }
-  f.description = "hulls of the " + std::to_string(files.size()) +
-                  " Panda and UR5 collision meshes (" + std::to_string(totalVertices / static_cast<int>(files.size())) +
+  f.description = "hulls of the " + std::to_string(files.size()) + " Panda and UR5 collision meshes (" +
+                  std::to_string(totalVertices / static_cast<int>(files.size())) +
                   " vertices on average), random overlapping poses";
   const int n = static_cast<int>(f.shapes.size());
   for (int i = 0; i < pairs; ++i) {
@@ -407,8 +407,7 @@ std::optional<Family> makeFamily(const std::string& name, int pairs, const std::
     f.name = name;
     f.description = "100-vertex hulls of size 1 placed 1e4 from the world origin";
     Generator g(name);
-    for (int i = 0; i < pairs; ++i)
-      addEllipsoidPairs(f, g, 1, 100, 1.0, 0.0, 1.0, 1e4 * g.unit(), false, 1.0);
+    for (int i = 0; i < pairs; ++i) addEllipsoidPairs(f, g, 1, 100, 1.0, 0.0, 1.0, 1e4 * g.unit(), false, 1.0);
     family = std::move(f);
   } else if (name == "scale_1e-3" || name == "scale_1e3") {
     const double scale = name == "scale_1e3" ? 1e3 : 1e-3;
@@ -434,8 +433,8 @@ std::optional<Family> makeFamily(const std::string& name, int pairs, const std::
       Query& q = f.queries[i];
       const double L = f.pairScale(q);
       // touching: signed distance -1e-9 L and +1e-9 L alternately; separated: 1e-4 L .. L.
-      const double target = name == "touching" ? (i % 2 == 0 ? -1e-9 : 1e-9) * L
-                                               : std::pow(10.0, g.uniform(-4.0, 0.0)) * L;
+      const double target =
+          name == "touching" ? (i % 2 == 0 ? -1e-9 : 1e-9) * L : std::pow(10.0, g.uniform(-4.0, 0.0)) * L;
       moveToSignedDistance(f, q, target);
     }
     f.description = name == "touching" ? "100-vertex hulls moved to signed distance -1e-9 L and +1e-9 L (alternately)"

@@ -38,10 +38,10 @@ struct Query {
   int a = 0;  ///< shape index of A
   int b = 0;  ///< shape index of B
   Pose poseA, poseB;
-  Eigen::Isometry3d X_WA, X_WB;   ///< poseA.iso(), poseB.iso()
-  std::optional<Pose> primeB;     ///< non-sequence families: B's pose of the priming query
+  Eigen::Isometry3d X_WA, X_WB;                ///< poseA.iso(), poseB.iso()
+  std::optional<Pose> primeB;                  ///< non-sequence families: B's pose of the priming query
   std::optional<geometry::ExactResult> exact;  ///< exact answer, computed once per run
-  double exactMicros = 0.0;       ///< time of that exact computation
+  double exactMicros = 0.0;                    ///< time of that exact computation
 };
 
 struct Family {

@@ -48,7 +48,8 @@ const char* prefixOf(geometry::PenetrationMethod method) {
 /// ("certified_warm"). The methods' scratch space is the benchmark method's own, reused.
 class Warm : public Method {
  public:
-  explicit Warm(geometry::PenetrationMethod method) : options_(optionsFor(method)), name_(std::string(prefixOf(method)) + "_warm") {}
+  explicit Warm(geometry::PenetrationMethod method)
+      : options_(optionsFor(method)), name_(std::string(prefixOf(method)) + "_warm") {}
   std::string name() const override { return name_; }
 
   void beginFamily(const Family& f) override {

@@ -35,7 +35,8 @@ class FclMethod : public Method {
   FclMethod(fcl::GJKSolverType solver, bool distance) : solver_(solver), distance_(distance) {}
 
   std::string name() const override {
-    return std::string("fcl_") + (solver_ == fcl::GST_LIBCCD ? "ccd" : "indep") + (distance_ ? "_distance" : "_collide");
+    return std::string("fcl_") + (solver_ == fcl::GST_LIBCCD ? "ccd" : "indep") +
+           (distance_ ? "_distance" : "_collide");
   }
 
   void beginFamily(const Family& f) override {
@@ -46,7 +47,8 @@ class FclMethod : public Method {
   void endFamily() override {
     convexes_.clear();
     if (unsafe_ > 0)
-      std::cerr << "  " << name() << ": " << unsafe_ << " queries skipped (counted as failed, not timed): FCL 0.7 would abort"
+      std::cerr << "  " << name() << ": " << unsafe_
+                << " queries skipped (counted as failed, not timed): FCL 0.7 would abort"
                 << " on an assertion (distance-inl.h: no contact of positive depth after a colliding GJK)\n";
   }
 

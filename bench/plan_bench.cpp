@@ -271,14 +271,13 @@ void addRunEvents(Bench& b, og::SimpleSetup& ss, const std::string& checker, Run
   setup->getProblemDefinition()->setIntermediateSolutionCallback(
       [runStart, firstSolution](const ob::Planner*, const std::vector<const ob::State*>&, const ob::Cost) {
         if (std::isnan(firstSolution->load())) {
-          firstSolution->store(
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - *runStart).count());
+          firstSolution->store(std::chrono::duration<double>(std::chrono::steady_clock::now() - *runStart).count());
         }
       });
   bench->setPreRunEvent([=](const ob::PlannerPtr& planner) {
     std::fprintf(stderr, "[%zu/%zu %s] %-9s %-10s run %u of %d\n", context->index + 1, context->count,
-                 context->problem.name.c_str(),
-                 checker.c_str(), planner->getName().c_str(), bench->getStatus().activeRun + 1, context->opt.runs);
+                 context->problem.name.c_str(), checker.c_str(), planner->getName().c_str(),
+                 bench->getStatus().activeRun + 1, context->opt.runs);
     firstSolution->store(std::nan(""));
     *runStart = std::chrono::steady_clock::now();
   });
@@ -295,14 +294,15 @@ void addRunEvents(Bench& b, og::SimpleSetup& ss, const std::string& checker, Run
       r.length = path.length();
       r.minClearance = dp::minClearanceAlong(
           path, [context](const Eigen::VectorXd& q) { return context->setups.ourChecker->clearance(q); });
-      const dp::PathCheck check =
-          dp::checkPathFine(path, [context](const Eigen::VectorXd& q) { return context->setups.fclChecker->isFree(q); });
+      const dp::PathCheck check = dp::checkPathFine(
+          path, [context](const Eigen::VectorXd& q) { return context->setups.fclChecker->isFree(q); });
       r.fclVerified = check.valid;
       // The intermediate solution when one was reported (RRT*, BIT*); else the run's time when
       // the planner stopped before the limit (RRTConnect). PRM runs to the limit and reports
       // none: unknown.
       r.firstSolution = firstSolution->load();
-      if (std::isnan(r.firstSolution) && !dp::isOptimizingPlanner(planner->getName()) && r.time < 0.95 * context->opt.time) {
+      if (std::isnan(r.firstSolution) && !dp::isOptimizingPlanner(planner->getName()) &&
+          r.time < 0.95 * context->opt.time) {
         r.firstSolution = r.time;
       }
       run["min clearance REAL"] = fmt(r.minClearance, "%.17g");
@@ -311,8 +311,8 @@ void addRunEvents(Bench& b, og::SimpleSetup& ss, const std::string& checker, Run
       run["fcl invalid waypoints INTEGER"] = std::to_string(check.invalidWaypoints);
       if (!std::isnan(r.firstSolution)) run["first solution time REAL"] = fmt(r.firstSolution, "%.17g");
       if (!check.valid) {
-        const std::string file = context->opt.out + "/rejected_" + context->problem.name + "_" + checker + "_" + r.planner + "_" +
-                                 std::to_string(bench->getStatus().activeRun + 1) + ".txt";
+        const std::string file = context->opt.out + "/rejected_" + context->problem.name + "_" + checker + "_" +
+                                 r.planner + "_" + std::to_string(bench->getStatus().activeRun + 1) + ".txt";
         dp::writePath(path, file);
         context->rejected.push_back(file);
         std::fprintf(stderr, "  FCL rejects the path (%d invalid waypoints, %d invalid motions, first at %d): %s\n",

@@ -49,7 +49,8 @@ int certifyRejected(const std::string& dir) {
     const std::string name = std::filesystem::path(file).filename().string();
     const Problem* problem = nullptr;
     for (const Problem& p : all) {
-      if (name.rfind("rejected_" + p.name + "_", 0) == 0 && (problem == nullptr || p.name.size() > problem->name.size())) {
+      if (name.rfind("rejected_" + p.name + "_", 0) == 0 &&
+          (problem == nullptr || p.name.size() > problem->name.size())) {
         problem = &p;
       }
     }
@@ -92,9 +93,10 @@ int certifyRejected(const std::string& dir) {
 
 int main(int argc, char** argv) {
   if (argc != 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
-    std::fprintf(stderr, "usage: plan_certify DIR\n"
-                         "  certifyPath + fine FCL check of the rejected_*.txt paths plan_bench wrote in DIR;\n"
-                         "  writes DIR/plan_bench_certify.md\n");
+    std::fprintf(stderr,
+                 "usage: plan_certify DIR\n"
+                 "  certifyPath + fine FCL check of the rejected_*.txt paths plan_bench wrote in DIR;\n"
+                 "  writes DIR/plan_bench_certify.md\n");
     return 2;
   }
   if (!std::filesystem::is_directory(argv[1])) {

@@ -46,8 +46,9 @@ std::string sourceDir() { return DEEPCHECK_SOURCE_DIR; }
 /// The first configuration found, from seeded random starts refined by damped least squares on
 /// the fingertip position (panda_hand origin + 0.1034 m along its z), within 1 cm of `target`, at
 /// least 2 cm from everything by our signed distance, and free for FCL. Finger at 0.035 m.
-Eigen::VectorXd pickEndpoint(const deepcheck::checker::World& world, deepcheck::fcl_reference::FclStateValidityChecker& fcl,
-                             const Eigen::Vector3d& target, std::mt19937& rng, int* attemptsOut) {
+Eigen::VectorXd pickEndpoint(const deepcheck::checker::World& world,
+                             deepcheck::fcl_reference::FclStateValidityChecker& fcl, const Eigen::Vector3d& target,
+                             std::mt19937& rng, int* attemptsOut) {
   const auto& model = world.robot();
   const int n = model.numVariables();
   const int hand = model.linkIndex("panda_hand");
@@ -97,9 +98,7 @@ Eigen::Isometry3d tableBarsPose() {
   return X;
 }
 
-std::string pandaUrdf() {
-  return sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf";
-}
+std::string pandaUrdf() { return sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf"; }
 std::string mbmScene(const std::string& name) {
   return sharedDir() + "/scenes/motion_bench_maker/configs/scenes/" + name + "/" + name + ".urdf";
 }
@@ -124,13 +123,30 @@ std::vector<Problem> problems() {
   arm.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
   const Eigen::VectorXd armStart = vec({0, -0.4, 0, -1.6, 0, 1.2, 0});
   const std::string readme = "robots/data/README.md, Suggested planning problems";
-  list.push_back({"table", data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", arm, {data + "/scenes/table.urdf"},
-                  armStart, vec({-0.14, 0.61, 0.24, -0.77, -0.14, 1.77, -2.23}), false, readme});
-  list.push_back({"shelf", data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", arm, {data + "/scenes/shelf.urdf"},
-                  armStart, vec({1.05, 0.75, -1.17, -1.30, 0.05, -0.07, -2.79}), false, readme});
-  list.push_back({"narrow_passage", data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", arm,
-                  {data + "/scenes/narrow_passage.urdf"}, armStart,
-                  vec({-0.40, 1.72, -0.40, 1.79, 0.31, 1.50, 0.59}), false, readme});
+  list.push_back({"table",
+                  data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
+                  arm,
+                  {data + "/scenes/table.urdf"},
+                  armStart,
+                  vec({-0.14, 0.61, 0.24, -0.77, -0.14, 1.77, -2.23}),
+                  false,
+                  readme});
+  list.push_back({"shelf",
+                  data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
+                  arm,
+                  {data + "/scenes/shelf.urdf"},
+                  armStart,
+                  vec({1.05, 0.75, -1.17, -1.30, 0.05, -0.07, -2.79}),
+                  false,
+                  readme});
+  list.push_back({"narrow_passage",
+                  data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
+                  arm,
+                  {data + "/scenes/narrow_passage.urdf"},
+                  armStart,
+                  vec({-0.40, 1.72, -0.40, 1.79, 0.31, 1.50, 0.59}),
+                  false,
+                  readme});
   // Panda: 8 variables (panda_joint1..7, panda_finger_joint1; finger 2 mimics finger 1). The
   // MotionBenchMaker configs give end-effector poses relative to scene objects, not joint
   // values; the configurations below were found by `plan_bench --pick-panda-endpoints`
@@ -145,17 +161,28 @@ std::vector<Problem> problems() {
   //   table_bars (at tableBarsPose()): MotionBenchMaker's queries.yaml "ArmAboveShelfR" ->
   //     "ArmBelowShelfR": shelves + (0.35, -0.2, 0.7) -> shelves + (0.35, -0.2, 0.25), above and
   //     below the middle shelf.
-  list.push_back({"panda_kitchen", pandaUrdf(), pandaOptions(), {mbmScene("kitchen")},
-                  vec({PANDA_KITCHEN_START}), vec({PANDA_KITCHEN_GOAL}), true,
+  list.push_back({"panda_kitchen",
+                  pandaUrdf(),
+                  pandaOptions(),
+                  {mbmScene("kitchen")},
+                  vec({PANDA_KITCHEN_START}),
+                  vec({PANDA_KITCHEN_GOAL}),
+                  true,
                   "picked by --pick-panda-endpoints (seed 1)"});
-  list.push_back({"panda_table_bars", pandaUrdf(), pandaOptions(), {dp::SceneSpec(mbmScene("table_bars"), tableBarsPose())},
-                  vec({PANDA_TABLE_BARS_START}), vec({PANDA_TABLE_BARS_GOAL}), true,
+  list.push_back({"panda_table_bars",
+                  pandaUrdf(),
+                  pandaOptions(),
+                  {dp::SceneSpec(mbmScene("table_bars"), tableBarsPose())},
+                  vec({PANDA_TABLE_BARS_START}),
+                  vec({PANDA_TABLE_BARS_GOAL}),
+                  true,
                   "picked by --pick-panda-endpoints (seed 1)"});
   return list;
 }
 
-std::shared_ptr<og::SimpleSetup> makeFclSetup(const og::SimpleSetup& ours, const deepcheck::checker::World& world,
-                                              std::shared_ptr<deepcheck::fcl_reference::FclStateValidityChecker>* checkerOut) {
+std::shared_ptr<og::SimpleSetup> makeFclSetup(
+    const og::SimpleSetup& ours, const deepcheck::checker::World& world,
+    std::shared_ptr<deepcheck::fcl_reference::FclStateValidityChecker>* checkerOut) {
   auto space = dp::makeStateSpace(world.robot());
   space->setLongestValidSegmentFraction(ours.getStateSpace()->getLongestValidSegmentFraction());
   auto ss = std::make_shared<og::SimpleSetup>(space);
@@ -184,12 +211,11 @@ int pickPandaEndpoints() {
     Eigen::Vector3d start, goal;
   };
   const Eigen::Vector3d shelves = tableBarsPose().translation();
-  const std::vector<Target> targets{
-      {"panda_kitchen", {mbmScene("kitchen")}, {0.45, 0.2, 1.0}, {0.2, -0.5, 0.6}},
-      {"panda_table_bars",
-       {dp::SceneSpec(mbmScene("table_bars"), tableBarsPose())},
-       shelves + Eigen::Vector3d(0.35, -0.2, 0.7),
-       shelves + Eigen::Vector3d(0.35, -0.2, 0.25)}};
+  const std::vector<Target> targets{{"panda_kitchen", {mbmScene("kitchen")}, {0.45, 0.2, 1.0}, {0.2, -0.5, 0.6}},
+                                    {"panda_table_bars",
+                                     {dp::SceneSpec(mbmScene("table_bars"), tableBarsPose())},
+                                     shelves + Eigen::Vector3d(0.35, -0.2, 0.7),
+                                     shelves + Eigen::Vector3d(0.35, -0.2, 0.25)}};
   for (const Target& t : targets) {
     auto world = dp::loadWorld(pandaUrdf(), t.scenes, pandaOptions());
     auto ss = dp::makeSimpleSetup(world);
@@ -221,6 +247,5 @@ int pickPandaEndpoints() {
   }
   return 0;
 }
-
 
 }  // namespace deepcheck::bench

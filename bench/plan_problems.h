@@ -45,9 +45,9 @@ std::vector<Problem> problems();
 
 /// An OMPL SimpleSetup with the FCL checker on the same state space (bounds, names, segment
 /// fraction) as `ours`.
-std::shared_ptr<ompl::geometric::SimpleSetup> makeFclSetup(const ompl::geometric::SimpleSetup& ours,
-                                                           const checker::World& world,
-                                                           std::shared_ptr<fcl_reference::FclStateValidityChecker>* checkerOut);
+std::shared_ptr<ompl::geometric::SimpleSetup> makeFclSetup(
+    const ompl::geometric::SimpleSetup& ours, const checker::World& world,
+    std::shared_ptr<fcl_reference::FclStateValidityChecker>* checkerOut);
 
 /// Sets the start and goal states of `ss`.
 void setEndpoints(ompl::geometric::SimpleSetup& ss, const Eigen::VectorXd& start, const Eigen::VectorXd& goal);

@@ -67,8 +67,8 @@ void writeReport(const ReportSettings& settings, const std::vector<Problem>& sel
   }
   std::ostringstream md;
   md << "# Planning benchmark (plan_bench)\n\n";
-  md << "Runs per planner, checker and problem: " << settings.runs << ", time limit " << settings.time << " s, OMPL seed "
-     << settings.seed << ". Wall time " << fmt(settings.wallSeconds / 60.0, "%.1f") << " min.\n\n";
+  md << "Runs per planner, checker and problem: " << settings.runs << ", time limit " << settings.time
+     << " s, OMPL seed " << settings.seed << ". Wall time " << fmt(settings.wallSeconds / 60.0, "%.1f") << " min.\n\n";
   md << "success = exact solution within the time limit; medians over all runs (time) or the solved runs (the "
         "rest); first = time to the first exact solution; length = joint-space length of the simplified path "
         "(rad); clearance = minimum of our signed distance along the simplified path every "
@@ -94,7 +94,6 @@ void writeReport(const ReportSettings& settings, const std::vector<Problem>& sel
   std::cout << md.str();
   std::ofstream(settings.out + "/plan_bench.md") << md.str();
   std::fprintf(stderr, "wrote %s/plan_bench.csv and plan_bench.md\n", settings.out.c_str());
-
 }
 
 void runGnuplot(const std::string& csv, const std::string& outdir, const std::string& script, const std::string& png,
@@ -103,8 +102,8 @@ void runGnuplot(const std::string& csv, const std::string& outdir, const std::st
     std::fprintf(stderr, "%s: gnuplot not found, no plot\n", who);
     return;
   }
-  const std::string cmd = "gnuplot -e \"csv='" + csv + "'; outdir='" + outdir + "'\" '" + std::string(DEEPCHECK_BENCH_DIR) +
-                          "/" + script + "'";
+  const std::string cmd = "gnuplot -e \"csv='" + csv + "'; outdir='" + outdir + "'\" '" +
+                          std::string(DEEPCHECK_BENCH_DIR) + "/" + script + "'";
   if (std::system(cmd.c_str()) == 0) {
     std::fprintf(stderr, "wrote %s/%s\n", outdir.c_str(), png.c_str());
   } else {

@@ -31,7 +31,6 @@ struct Row {
 Row summarize(const std::vector<Record>& all, const std::string& problem, const std::string& checker,
               const std::string& planner);
 
-
 /// What the report says about the run besides its records.
 struct ReportSettings {
   std::string out;  ///< output folder

@@ -91,8 +91,8 @@ void print(const std::string& family, const char* option, const Tally& t, int al
   const double motion = all ? t.motion / all : 0.0;
   const double median = 1e3 * quantile(t.seconds, 0.5), p99 = 1e3 * quantile(t.seconds, 0.99);
   const double worst = 1e3 * quantile(t.seconds, 1.0);
-  std::printf("%-18s %-10s %6d %8d %8d %10.2f %12.4f %9.3f %9.2f %9.2f\n", family.c_str(), option, t.starts,
-              t.repaired, t.oneStep, meanIterations, motion, median, p99, worst);
+  std::printf("%-18s %-10s %6d %8d %8d %10.2f %12.4f %9.3f %9.2f %9.2f\n", family.c_str(), option, t.starts, t.repaired,
+              t.oneStep, meanIterations, motion, median, p99, worst);
   if (csv) {
     std::fprintf(csv, "%s,%s,%d,%d,%d,%.4f,%.6f,%.4f,%.4f,%.4f\n", family.c_str(), option, t.starts, t.repaired,
                  t.oneStep, meanIterations, motion, median, p99, worst);

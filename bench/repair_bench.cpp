@@ -53,15 +53,16 @@ struct Totals {
     std::printf("%-16s %6d %10d %10d %6d %15.3f %15.3f %13.3f %13.3f\n", name.c_str(), trials, pushRepaired,
                 jiggleRepaired, both, pushMotion / both, jiggleMotion / both, pushWorkspace / both,
                 jiggleWorkspace / both);
-    std::fprintf(csv, "%s,%d,%d,%d,%d,%.5f,%.5f,%.5f,%.5f\n", name.c_str(), trials, pushRepaired, jiggleRepaired,
-                 both, pushMotion / both, jiggleMotion / both, pushWorkspace / both, jiggleWorkspace / both);
+    std::fprintf(csv, "%s,%d,%d,%d,%d,%.5f,%.5f,%.5f,%.5f\n", name.c_str(), trials, pushRepaired, jiggleRepaired, both,
+                 pushMotion / both, jiggleMotion / both, pushWorkspace / both, jiggleWorkspace / both);
   }
 };
 
 Totals runScene(const std::string& scene) {
   const auto world = deepcheck::bench::bundledArmWorld(scene);
   std::mt19937_64 rng(1234);
-  const std::vector<Eigen::VectorXd> starts = deepcheck::bench::penetratingStarts(*world, kTrialsPerScene, kMaxDepth, rng);
+  const std::vector<Eigen::VectorXd> starts =
+      deepcheck::bench::penetratingStarts(*world, kTrialsPerScene, kMaxDepth, rng);
   const dp::PushOut pushOut(world);
   Totals t;
   for (const Eigen::VectorXd& q : starts) {
@@ -95,8 +96,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "repair_bench: cannot write %s\n", csvPath.c_str());
     return 1;
   }
-  std::fprintf(csv, "scene,starts,push_out_repaired,jiggle_repaired,both,push_out_motion_rad,jiggle_motion_rad,"
-                    "push_out_link_m,jiggle_link_m\n");
+  std::fprintf(csv,
+               "scene,starts,push_out_repaired,jiggle_repaired,both,push_out_motion_rad,jiggle_motion_rad,"
+               "push_out_link_m,jiggle_link_m\n");
   std::printf("repair_bench: %d starts per scene penetrating up to %.0f cm; means over the starts both repaired\n",
               kTrialsPerScene, 100 * kMaxDepth);
   std::printf("%-16s %6s %10s %10s %6s %15s %15s %13s %13s\n", "scene", "starts", "push-out", "jiggle", "both",

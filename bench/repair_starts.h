@@ -23,8 +23,8 @@ inline std::shared_ptr<checker::World> bundledArmWorld(const std::string& scene)
   options.packageRoots = {data};
   options.useRosPackagePath = false;
   options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
-  return planners::loadWorld(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
-                             {data + "/scenes/" + scene + ".urdf"}, options);
+  return planners::loadWorld(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", {data + "/scenes/" + scene + ".urdf"},
+                             options);
 }
 
 /// `count` random configurations drawn with `rng` whose signed distance lies in [-maxDepth, 0).

@@ -39,8 +39,8 @@ struct Robot {
 
 std::string reasonCounts(const PairFilterResult& r) {
   std::string out;
-  for (DisableReason reason : {DisableReason::Adjacent, DisableReason::Default, DisableReason::Always,
-                               DisableReason::Never}) {
+  for (DisableReason reason :
+       {DisableReason::Adjacent, DisableReason::Default, DisableReason::Always, DisableReason::Never}) {
     const int n = r.count(reason);
     if (n == 0) continue;
     out += (out.empty() ? "" : ", ") + std::to_string(n) + " " + toString(reason);
@@ -76,7 +76,8 @@ void compare(const Robot& robot, const std::string& shared, std::FILE* csv) {
     if (us.count(k)) continue;
     const auto it = report.find(k);
     if (it == report.end()) {
-      std::printf("  only them: %s - %s (not a pair of links with geometry for us)\n", k.first.c_str(), k.second.c_str());
+      std::printf("  only them: %s - %s (not a pair of links with geometry for us)\n", k.first.c_str(),
+                  k.second.c_str());
       continue;
     }
     std::printf("  only them: %s - %s (collides in %d of our %d samples)\n", k.first.c_str(), k.second.c_str(),

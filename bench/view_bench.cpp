@@ -40,9 +40,10 @@ std::string chainUrdf() {
       u << "  <collision><origin xyz=\"" << 0.03 * std::cos(angle) << " " << 0.03 * std::sin(angle) << " " << z
         << "\"/><geometry><cylinder radius=\"0.012\" length=\"0.02\"/></geometry></collision>\n";
     }
-    u << "</link>\n<joint name=\"j" << j << "\" type=\"revolute\"><parent link=\"" << (j ? "l" + std::to_string(j - 1) : "base")
-      << "\"/><child link=\"l" << j << "\"/><origin xyz=\"0 0 " << (j ? kLinkLength : 0.0) << "\"/><axis xyz=\""
-      << (j % 2 ? "0 1 0" : "0 0 1") << "\"/><limit lower=\"-2.5\" upper=\"2.5\" effort=\"1\" velocity=\"1\"/></joint>\n";
+    u << "</link>\n<joint name=\"j" << j << "\" type=\"revolute\"><parent link=\""
+      << (j ? "l" + std::to_string(j - 1) : "base") << "\"/><child link=\"l" << j << "\"/><origin xyz=\"0 0 "
+      << (j ? kLinkLength : 0.0) << "\"/><axis xyz=\"" << (j % 2 ? "0 1 0" : "0 0 1")
+      << "\"/><limit lower=\"-2.5\" upper=\"2.5\" effort=\"1\" velocity=\"1\"/></joint>\n";
   }
   u << "</robot>\n";
   return u.str();
@@ -82,9 +83,11 @@ int main(int argc, char** argv) {
     start = std::chrono::steady_clock::now();
     deepcheck::viewer::writeHtmlView(scene, std::string(argv[1]));
     const double write = secondsSince(start);
-    std::printf("%-9s %-6s %-6s %-11s %-9s %-9s\n", "variables", "pieces", "frames", "page_bytes", "build_s", "write_s");
-    std::printf("%-9d %-6d %-6zu %-11ju %-9.3f %-9.3f\n", world.robot().numVariables(), world.summaryCounts().robotPieces,
-                scene.frames.size(), static_cast<std::uintmax_t>(std::filesystem::file_size(argv[1])), build, write);
+    std::printf("%-9s %-6s %-6s %-11s %-9s %-9s\n", "variables", "pieces", "frames", "page_bytes", "build_s",
+                "write_s");
+    std::printf("%-9d %-6d %-6zu %-11ju %-9.3f %-9.3f\n", world.robot().numVariables(),
+                world.summaryCounts().robotPieces, scene.frames.size(),
+                static_cast<std::uintmax_t>(std::filesystem::file_size(argv[1])), build, write);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "view_bench: %s\n", e.what());

@@ -28,8 +28,7 @@
 namespace {
 
 /// A new RRT* on `objective` for `seconds`; false without an exact solution.
-bool planWith(ompl::geometric::SimpleSetup& ss, const ompl::base::OptimizationObjectivePtr& objective,
-              double seconds) {
+bool planWith(ompl::geometric::SimpleSetup& ss, const ompl::base::OptimizationObjectivePtr& objective, double seconds) {
   ss.clear();  // forget the previous run's solution
   ss.setOptimizationObjective(objective);
   auto planner = std::make_shared<ompl::geometric::RRTstar>(ss.getSpaceInformation());

@@ -1,6 +1,6 @@
 // Plan the Franka Emika Panda's arm (MoveIt's panda description, meshes through assimp, its SRDF's
-// disabled pairs and its panda_arm planning group) in MotionBenchMaker's kitchen, both from ../shared when present: the Panda's
-// collision meshes are convex-decomposed on first use and cached on disk.
+// disabled pairs and its panda_arm planning group) in MotionBenchMaker's kitchen, both from ../shared when present: the
+// Panda's collision meshes are convex-decomposed on first use and cached on disk.
 //
 //   example_plan_panda [SHARED_DIR] [OUT_FILE] [CACHE_DIR]
 //
@@ -29,8 +29,7 @@ int main(int argc, char** argv) {
   const std::string panda = shared + "/robots/panda";
   const std::string kitchen = shared + "/scenes/motion_bench_maker/configs/scenes/kitchen/kitchen.urdf";
   if (!std::filesystem::is_directory(panda) || !std::filesystem::is_regular_file(kitchen)) {
-    std::printf("skipped: no Panda and kitchen under %s (robots/panda, scenes/motion_bench_maker)\n",
-                shared.c_str());
+    std::printf("skipped: no Panda and kitchen under %s (robots/panda, scenes/motion_bench_maker)\n", shared.c_str());
     return 0;
   }
   ompl::RNG::setSeed(1);  // before any OMPL object: reproducible samples

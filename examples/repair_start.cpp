@@ -42,10 +42,10 @@ int main(int argc, char** argv) {
     std::mt19937_64 rng(1);
     const deepcheck::planners::PushOutResult jiggled =
         deepcheck::planners::jiggle(checker->world(), checker->validityOptions(), start, {}, rng);
-    std::printf("random jiggle    %s after %d tries, joint motion %.3f rad, farthest link moved %.3f m\n",
-                deepcheck::planners::toString(jiggled.status), jiggled.iterations, jiggled.jointMotion,
-                jiggled.success() ? deepcheck::planners::maxLinkDisplacement(checker->world().robot(), start, jiggled.q)
-                                  : 0.0);
+    std::printf(
+        "random jiggle    %s after %d tries, joint motion %.3f rad, farthest link moved %.3f m\n",
+        deepcheck::planners::toString(jiggled.status), jiggled.iterations, jiggled.jointMotion,
+        jiggled.success() ? deepcheck::planners::maxLinkDisplacement(checker->world().robot(), start, jiggled.q) : 0.0);
 
     // 3. Push-out: damped least squares on the signed-distance gradients of every pair in
     //    contact, joint limits respected. repairStartAndGoal() replaces the start in the
@@ -53,12 +53,12 @@ int main(int argc, char** argv) {
     deepcheck::planners::setStartAndGoal(*ss, start, goal);
     const deepcheck::planners::EndpointRepair repair = deepcheck::planners::repairStartAndGoal(*ss);
     const deepcheck::planners::PushOutResult& pushed = repair.starts.front();
-    std::printf("push-out         %s in %d iterations, joint motion %.3f rad, farthest link moved %.3f m, "
-                "signed distance %.4f m\n",
-                deepcheck::planners::toString(pushed.status), pushed.iterations, pushed.jointMotion,
-                pushed.success() ? deepcheck::planners::maxLinkDisplacement(checker->world().robot(), start, pushed.q)
-                                 : 0.0,
-                pushed.finalDistance);
+    std::printf(
+        "push-out         %s in %d iterations, joint motion %.3f rad, farthest link moved %.3f m, "
+        "signed distance %.4f m\n",
+        deepcheck::planners::toString(pushed.status), pushed.iterations, pushed.jointMotion,
+        pushed.success() ? deepcheck::planners::maxLinkDisplacement(checker->world().robot(), start, pushed.q) : 0.0,
+        pushed.finalDistance);
     if (!repair.ok()) {
       std::fprintf(stderr, "the start could not be repaired\n");
       return 1;

@@ -38,7 +38,8 @@ inline void reportAndWrite(const ompl::geometric::SimpleSetup& ss, const std::st
   // alone is what a clearance objective can change; the overall one is the smaller of the two.
   double sceneClearance = std::numeric_limits<double>::infinity();
   const double clearance = deepcheck::planners::minClearanceAlong(path, [&](const Eigen::VectorXd& q) {
-    const deepcheck::planners::SplitDistance d = checker->splitClearanceUpTo(q, std::numeric_limits<double>::infinity());
+    const deepcheck::planners::SplitDistance d =
+        checker->splitClearanceUpTo(q, std::numeric_limits<double>::infinity());
     sceneClearance = std::min(sceneClearance, d.world);
     return std::min(d.world, d.self);
   });

@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
     const auto scene = deepcheck::robots::loadPlanningScene(DEEPCHECK_DATA_DIR "/scenes/ur5_table.yaml");
     world->addPlanningScene(scene);  // its objects, and its allowed_collision_matrix
     world->setFixedPairReports(reports);
-    for (const auto& [a, b] : world->allowedCollisions()) std::printf("allowed          %s - %s\n", a.c_str(), b.c_str());
+    for (const auto& [a, b] : world->allowedCollisions())
+      std::printf("allowed          %s - %s\n", a.c_str(), b.c_str());
 
     // 2. From the left of the crate to its right, reaching over it. The UR5's 6 joints, radians.
     auto ss = deepcheck::planners::makeSimpleSetup(world, options);

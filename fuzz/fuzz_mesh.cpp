@@ -21,8 +21,7 @@ namespace {
 const char* const kExtensions[] = {".stl", ".obj", ".dae"};
 
 std::string tempPath(const char* extension) {
-  return (std::filesystem::temp_directory_path() /
-          ("deepcheck_fuzz_mesh_" + std::to_string(::getpid()) + extension))
+  return (std::filesystem::temp_directory_path() / ("deepcheck_fuzz_mesh_" + std::to_string(::getpid()) + extension))
       .string();
 }
 

@@ -46,8 +46,8 @@ const Setup& setup() {
     options.useRosPackagePath = false;
     options.srdf = data + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
     Setup out;
-    out.ss = planners::makeSimpleSetup(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
-                                       {data + "/scenes/shelf.urdf"}, options);
+    out.ss = planners::makeSimpleSetup(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf", {data + "/scenes/shelf.urdf"},
+                                       options);
     out.checker = planners::validityCheckerOf(*out.ss);
     return out;
   }();
@@ -85,10 +85,21 @@ double value(Bytes& in, double lower, double upper, double fallback) {
     }
     case 4: {
       constexpr double inf = std::numeric_limits<double>::infinity();
-      const double special[] = {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::quiet_NaN(),
-                                inf, -inf, 0.0, -0.0, std::numeric_limits<double>::denorm_min(),
-                                std::numeric_limits<double>::max(), std::numeric_limits<double>::lowest(), lower,
-                                upper, std::nextafter(lower, -inf), std::nextafter(upper, inf), 1e-300, 1e300,
+      const double special[] = {std::numeric_limits<double>::quiet_NaN(),
+                                -std::numeric_limits<double>::quiet_NaN(),
+                                inf,
+                                -inf,
+                                0.0,
+                                -0.0,
+                                std::numeric_limits<double>::denorm_min(),
+                                std::numeric_limits<double>::max(),
+                                std::numeric_limits<double>::lowest(),
+                                lower,
+                                upper,
+                                std::nextafter(lower, -inf),
+                                std::nextafter(upper, inf),
+                                1e-300,
+                                1e300,
                                 std::numeric_limits<double>::epsilon()};
       std::uint8_t k = 0;
       in.take(&k, 1);
@@ -131,7 +142,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             "a state that is not finite has a clearance above -infinity");
   }
   require(valid == validWithDistance, "isValid(state) and isValid(state, dist) disagree");
-  if (inside) require(std::isfinite(dist) && std::isfinite(clearance), "a state within the limits has no finite clearance");
+  if (inside)
+    require(std::isfinite(dist) && std::isfinite(clearance), "a state within the limits has no finite clearance");
 
   if (size > 0 && data[size - 1] % 16 == 1) {
     ompl::base::ScopedState<> pushed(s.ss->getStateSpace());

@@ -25,8 +25,8 @@ constexpr std::size_t kMaxQueries = 8;
 
 void requireSane(double distance, const Eigen::Vector3d& normal, const char* which) {
   if (std::isfinite(distance) && normal.allFinite() && std::abs(normal.norm() - 1.0) < 1e-6) return;
-  std::fprintf(stderr, "%s: non-finite distance or non-unit normal (%g; %g %g %g)\n", which, distance,
-               normal.x(), normal.y(), normal.z());
+  std::fprintf(stderr, "%s: non-finite distance or non-unit normal (%g; %g %g %g)\n", which, distance, normal.x(),
+               normal.y(), normal.z());
   std::abort();
 }
 
@@ -39,8 +39,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::size_t i = 0; i < input.queries.size() && i < kMaxQueries; ++i) {
       const deepcheck::tools::PdQuery& q = input.queries[i];
       if (q.namesBody()) {
-        const auto r = deepcheck::geometry::bodySignedDistance(deepcheck::tools::queryBody(input, q.a, q.bodyA), q.X_WA,
-                                                           deepcheck::tools::queryBody(input, q.b, q.bodyB), q.X_WB);
+        const auto r =
+            deepcheck::geometry::bodySignedDistance(deepcheck::tools::queryBody(input, q.a, q.bodyA), q.X_WA,
+                                                    deepcheck::tools::queryBody(input, q.b, q.bodyB), q.X_WB);
         requireSane(r.distance, r.normal, "bodySignedDistance");
         continue;
       }

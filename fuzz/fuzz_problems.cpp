@@ -31,11 +31,13 @@ const robots::RobotModel& arm() { return deepcheck::fuzz::bundledArm(); }
 const robots::PlanningScene& scene() {
   static const robots::PlanningScene s = robots::parsePlanningScene(
       "world:\n  collision_objects:\n"
-      "    - header: {frame_id: base_link}\n      id: box\n      primitives: [{type: box, dimensions: [0.2, 0.2, 0.2]}]\n"
+      "    - header: {frame_id: base_link}\n      id: box\n      primitives: [{type: box, dimensions: [0.2, 0.2, "
+      "0.2]}]\n"
       "      primitive_poses: [{position: [0.5, 0, 0.3], orientation: [0, 0, 0, 1]}]\n"
       "    - header: {frame_id: base_link}\n      id: can\n"
       "      primitives: [{type: cylinder, dimensions: [0.1, 0.03]}]\n"
-      "      primitive_poses: [{position: [0.4, 0.2, 0.3], orientation: [0, 0.707106781186548, 0, 0.707106781186548]}]\n",
+      "      primitive_poses: [{position: [0.4, 0.2, 0.3], orientation: [0, 0.707106781186548, 0, "
+      "0.707106781186548]}]\n",
       ".", {}, "fuzz_scene.yaml");
   return s;
 }

@@ -33,8 +33,8 @@ void disabledPairs(const std::string& xml) {
     return;  // rejected as a pair list
   }
   // What was read must survive a write and a read unchanged (names escaped, reasons spelled).
-  const std::vector<robots::DisabledPair> again = robots::parseSrdfDisabledPairs(robots::srdfText("fuzz", pairs),
-                                                                                 "written.srdf");
+  const std::vector<robots::DisabledPair> again =
+      robots::parseSrdfDisabledPairs(robots::srdfText("fuzz", pairs), "written.srdf");
   bool same = again.size() == pairs.size();
   for (std::size_t i = 0; same && i < pairs.size(); ++i) {
     same = again[i].link1 == pairs[i].link1 && again[i].link2 == pairs[i].link2 && again[i].reason == pairs[i].reason;

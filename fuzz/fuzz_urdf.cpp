@@ -49,8 +49,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     deepcheck::robots::LoadOptions options;
     options.useRosPackagePath = false;
-    const auto model = deepcheck::robots::RobotModel::fromUrdfString(xml, "/nonexistent-deepcheck-fuzz", options,
-                                                                     "fuzz.urdf");
+    const auto model =
+        deepcheck::robots::RobotModel::fromUrdfString(xml, "/nonexistent-deepcheck-fuzz", options, "fuzz.urdf");
     kinematicsAtDefault(model);
     planningGroups(model, xml);
   } catch (const std::exception&) {

@@ -29,11 +29,14 @@ inline const robots::RobotModel& twoLinkRobot() {
 inline bool wellFormed(const robots::SceneShape& s) {
   const auto& g = s.geometry;
   switch (g.type) {
-    case robots::GeometryType::Box: return (g.boxSize.array() > 0.0).all() && g.boxSize.allFinite();
-    case robots::GeometryType::Sphere: return g.radius > 0.0 && std::isfinite(g.radius);
+    case robots::GeometryType::Box:
+      return (g.boxSize.array() > 0.0).all() && g.boxSize.allFinite();
+    case robots::GeometryType::Sphere:
+      return g.radius > 0.0 && std::isfinite(g.radius);
     case robots::GeometryType::Cylinder:
       return g.radius > 0.0 && g.length > 0.0 && std::isfinite(g.radius) && std::isfinite(g.length);
-    case robots::GeometryType::Mesh: return s.mesh ? !s.mesh->empty() && g.meshPath.empty() : !g.meshPath.empty();
+    case robots::GeometryType::Mesh:
+      return s.mesh ? !s.mesh->empty() && g.meshPath.empty() : !g.meshPath.empty();
   }
   return false;
 }
@@ -49,10 +52,11 @@ inline void requireWellFormed(const robots::PlanningScene& scene) {
   };
   for (const auto& object : scene.objects) check(object);
   for (const auto& attached : scene.attached) check(attached.object);
-  const auto poses = robots::shapeWorldPoses(scene, twoLinkRobot(), twoLinkRobot().defaultConfiguration(),
-                                             {{"world", "base"}});
+  const auto poses =
+      robots::shapeWorldPoses(scene, twoLinkRobot(), twoLinkRobot().defaultConfiguration(), {{"world", "base"}});
   for (const auto& objectPoses : poses) {
-    for (const Eigen::Isometry3d& X_WS : objectPoses) require(rigid(X_WS), "planning scene", "a world pose that is not rigid");
+    for (const Eigen::Isometry3d& X_WS : objectPoses)
+      require(rigid(X_WS), "planning scene", "a world pose that is not rigid");
   }
 }
 

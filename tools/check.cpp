@@ -46,7 +46,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                       [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
-    "                       [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--gradient]\n"
+    "                       [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... "
+    "[--gradient]\n"
     "                       [--clamp-to-limits] < configs.txt\n"
     "\n"
     "Minimum signed distance of the robot to its scenes and to itself, one configuration per\n"
@@ -58,10 +59,8 @@ constexpr const char* kUsage =
     "error naming the line, the joint, the value and the limits (see --clamp-to-limits).\n"
     "On stderr: the world's summary and a last line 'configurations N total_us T'.\n"
     "\n"
-    "options:\n"
-    DEEPCHECK_WORLD_OPTIONS_HELP
-    "  --gradient          append the gradient of sd with respect to the joint values\n"
-    DEEPCHECK_CLAMP_HELP;
+    "options:\n" DEEPCHECK_WORLD_OPTIONS_HELP
+    "  --gradient          append the gradient of sd with respect to the joint values\n" DEEPCHECK_CLAMP_HELP;
 
 int run(std::vector<std::string> args) {
   const bool gradient = takeFlag(args, "--gradient");
@@ -123,7 +122,6 @@ int run(std::vector<std::string> args) {
 
 }  // namespace
 
-const Subcommand kCheckCommand = {"check", "signed distance of a robot in its scenes, per configuration", kUsage,
-                                  run};
+const Subcommand kCheckCommand = {"check", "signed distance of a robot in its scenes, per configuration", kUsage, run};
 
 }  // namespace deepcheck::tools

@@ -42,8 +42,7 @@ std::vector<std::string> takeOption(std::vector<std::string>& args, const std::s
   return values;
 }
 
-std::string takeSingleOption(std::vector<std::string>& args, const std::string& name,
-                             const std::string& fallback) {
+std::string takeSingleOption(std::vector<std::string>& args, const std::string& name, const std::string& fallback) {
   const std::vector<std::string> values = takeOption(args, name);
   if (values.size() > 1) throw UsageError("option " + name + " given more than once");
   return values.empty() ? fallback : values.front();
@@ -143,10 +142,10 @@ void takeWorldOptions(std::vector<std::string>& args, std::string& robot, std::v
       SceneArg& s = scenes.back();
       s.posed = true;
       s.X_WS.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-      s.X_WS.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) *
-                         Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
-                         Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
-                            .toRotationMatrix();
+      s.X_WS.linear() =
+          (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
+           Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
+              .toRotationMatrix();
     } else {
       rest.push_back(args[i]);
     }

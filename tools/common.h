@@ -37,8 +37,7 @@ std::vector<std::string> takeOption(std::vector<std::string>& args, const std::s
 
 /// The value of an option given at most once (`name VALUE` or `name=VALUE`, removed from `args`);
 /// `fallback` when absent. Throws UsageError when it is given more than once.
-std::string takeSingleOption(std::vector<std::string>& args, const std::string& name,
-                             const std::string& fallback = "");
+std::string takeSingleOption(std::vector<std::string>& args, const std::string& name, const std::string& fallback = "");
 
 /// Package roots given by `--package-path DIR` (repeatable), in the order given, to search for
 /// `package://` URIs. The environment (ROS_PACKAGE_PATH, AMENT_PREFIX_PATH) is searched after them

@@ -65,28 +65,24 @@ constexpr const char* kUsage =
 /// Largest value of --max-pieces and --max-vertices.
 constexpr std::uint64_t kMaxCount = 1000000;
 
-std::string baseName(const std::string& path) {
-  return std::filesystem::path(path).filename().string();
-}
+std::string baseName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
 void printReport(const decomposition::DecompositionReport& r) {
   std::printf("mesh %s\n", r.source.c_str());
-  std::printf("triangles %d vertices %d components %d holes-filled %d voids-removed %d\n",
-              r.numTriangles, r.numVertices, r.numComponents, r.holesFilled, r.voidsRemoved);
+  std::printf("triangles %d vertices %d components %d holes-filled %d voids-removed %d\n", r.numTriangles,
+              r.numVertices, r.numComponents, r.holesFilled, r.voidsRemoved);
   std::printf("pieces %d (at most %d vertices each)\n", r.numPieces, r.maxPieceVertices);
-  std::printf("concavity %.6g = %.3f%% of the bounding-box diagonal %.6g; target %.6g: %s\n",
-              r.concavity, 100.0 * r.concavityRelative, r.diagonal, r.targetConcavity,
-              r.targetMet ? "met" : "NOT met");
+  std::printf("concavity %.6g = %.3f%% of the bounding-box diagonal %.6g; target %.6g: %s\n", r.concavity,
+              100.0 * r.concavityRelative, r.diagonal, r.targetConcavity, r.targetMet ? "met" : "NOT met");
   std::printf("hull of the whole mesh: concavity %.6g; already convex: %s\n", r.hullConcavity,
               r.alreadyConvex ? "yes" : "no");
   if (r.meshClosed) {
-    std::printf("volume: mesh %.6g pieces %.6g ratio %.4f\n", r.meshVolume, r.piecesVolume,
-                r.volumeRatio);
+    std::printf("volume: mesh %.6g pieces %.6g ratio %.4f\n", r.meshVolume, r.piecesVolume, r.volumeRatio);
   } else {
     std::printf("volume: mesh not closed; pieces %.6g\n", r.piecesVolume);
   }
-  std::printf("time %.1f ms (cache %s; decomposition %.1f ms)\n", r.milliseconds,
-              decomposition::toString(r.cache), r.decomposeMilliseconds);
+  std::printf("time %.1f ms (cache %s; decomposition %.1f ms)\n", r.milliseconds, decomposition::toString(r.cache),
+              r.decomposeMilliseconds);
   if (!r.cacheMessage.empty()) std::printf("cache note: %s\n", r.cacheMessage.c_str());
 }
 
@@ -149,8 +145,8 @@ DecomposeArgs takeDecomposeArgs(std::vector<std::string>& args) {
 /// cache.
 void printReportTable(const std::vector<robots::TriangleMesh>& meshes, const decomposition::DecompositionParams& params,
                       const decomposition::DecompositionCache& cache) {
-  std::printf("%-24s %9s %6s %10s %7s %10s %4s %8s %9s %7s\n", "mesh", "triangles", "pieces",
-              "concavity", "%diag", "target", "met", "vol.ratio", "ms", "cache");
+  std::printf("%-24s %9s %6s %10s %7s %10s %4s %8s %9s %7s\n", "mesh", "triangles", "pieces", "concavity", "%diag",
+              "target", "met", "vol.ratio", "ms", "cache");
   bool allMet = true;
   double totalMs = 0.0;
   for (const robots::TriangleMesh& mesh : meshes) {
@@ -158,13 +154,11 @@ void printReportTable(const std::vector<robots::TriangleMesh>& meshes, const dec
     const decomposition::DecompositionReport& r = d.report;
     allMet = allMet && r.targetMet;
     totalMs += r.milliseconds;
-    std::printf("%-24s %9d %6d %10.5f %7.3f %10.5f %4s %8.3f %9.1f %7s\n",
-                baseName(r.source).c_str(), r.numTriangles, r.numPieces, r.concavity,
-                100.0 * r.concavityRelative, r.targetConcavity, r.targetMet ? "yes" : "NO",
+    std::printf("%-24s %9d %6d %10.5f %7.3f %10.5f %4s %8.3f %9.1f %7s\n", baseName(r.source).c_str(), r.numTriangles,
+                r.numPieces, r.concavity, 100.0 * r.concavityRelative, r.targetConcavity, r.targetMet ? "yes" : "NO",
                 r.volumeRatio, r.decomposeMilliseconds, decomposition::toString(r.cache));
   }
-  std::printf("meshes %zu, target met by all: %s, this run %.1f ms\n", meshes.size(),
-              allMet ? "yes" : "no", totalMs);
+  std::printf("meshes %zu, target met by all: %s, this run %.1f ms\n", meshes.size(), allMet ? "yes" : "no", totalMs);
   if (!cache.enabled()) return;
   // Reading everything back, as a second load of the same robot does (meshes already parsed).
   const auto start = std::chrono::steady_clock::now();
@@ -199,7 +193,7 @@ int run(std::vector<std::string> args) {
 
 }  // namespace
 
-const Subcommand kDecomposeCommand = {
-    "decompose", "convex decomposition of a mesh: OBJ pieces and a quality report", kUsage, run};
+const Subcommand kDecomposeCommand = {"decompose", "convex decomposition of a mesh: OBJ pieces and a quality report",
+                                      kUsage, run};
 
 }  // namespace deepcheck::tools

@@ -19,7 +19,8 @@ namespace {
 Eigen::Isometry3d poseOfValues(const std::vector<std::string>& words) {
   static const char* const names[7] = {"x", "y", "z", "qx", "qy", "qz", "qw"};
   double v[7];
-  for (int k = 0; k < 7; ++k) v[k] = parseValue(words[static_cast<std::size_t>(k)], std::string("--goal-pose ") + names[k]);
+  for (int k = 0; k < 7; ++k)
+    v[k] = parseValue(words[static_cast<std::size_t>(k)], std::string("--goal-pose ") + names[k]);
   // stableNorm: the plain norm squares the components, which overflows to infinity from about
   // 1e154 and would make every component zero after the division.
   const double norm = Eigen::Vector4d(v[3], v[4], v[5], v[6]).stableNorm();

@@ -24,7 +24,7 @@ struct GoalPoseArg {
   Eigen::Isometry3d X_WT = Eigen::Isometry3d::Identity();
   double positionTolerance = robots::tol::kIkPositionTolerance;        ///< metres
   double orientationTolerance = robots::tol::kIkOrientationTolerance;  ///< radians
-  std::optional<Eigen::Vector3d> positionBox;  ///< edge lengths, metres (--position-box)
+  std::optional<Eigen::Vector3d> positionBox;                          ///< edge lengths, metres (--position-box)
 };
 
 /// Removes --goal-pose and its tolerances from `args`; empty when --goal-pose is absent (then the

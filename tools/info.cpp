@@ -123,9 +123,7 @@ double polytopeVolume(const geometry::ConvexPolytope& p) {
   return volume6 / 6.0;
 }
 
-std::string fileName(const std::string& path) {
-  return std::filesystem::path(path).filename().string();
-}
+std::string fileName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
 void printMeshes(const robots::RobotModel& model) {
   // One line per distinct (file, scale), with the links that use it.
@@ -153,8 +151,8 @@ void printMeshes(const robots::RobotModel& model) {
     std::printf("  none\n");
     return;
   }
-  std::printf("  %-22s %9s %8s %12s %12s %9s %8s  %s\n", "mesh", "triangles", "vertices",
-              "volume_m3", "hull_m3", "hull/mesh", "hull_vtx", "links");
+  std::printf("  %-22s %9s %8s %12s %12s %9s %8s  %s\n", "mesh", "triangles", "vertices", "volume_m3", "hull_m3",
+              "hull/mesh", "hull_vtx", "links");
   for (const Use& u : uses) {
     const robots::TriangleMesh mesh = robots::loadMesh(u.path, u.scale);
     const geometry::ConvexPolytope hull = geometry::ConvexPolytope::fromPoints(mesh.vertices, u.path);
@@ -168,12 +166,12 @@ void printMeshes(const robots::RobotModel& model) {
     } else {
       std::snprintf(ratio, sizeof ratio, "open");
     }
-    std::printf("  %-22s %9zu %8zu %12.6g %12.6g %9s %8d  %s\n", fileName(u.path).c_str(),
-                mesh.triangles.size(), mesh.vertices.size(), volume, hullVolume, ratio,
-                hull.numVertices(), links.c_str());
+    std::printf("  %-22s %9zu %8zu %12.6g %12.6g %9s %8d  %s\n", fileName(u.path).c_str(), mesh.triangles.size(),
+                mesh.vertices.size(), volume, hullVolume, ratio, hull.numVertices(), links.c_str());
   }
-  std::printf("  (hull/mesh > 1: the hull is larger than the mesh by that volume factor; 'open':\n"
-              "  the mesh is not closed, so it has no volume)\n");
+  std::printf(
+      "  (hull/mesh > 1: the hull is larger than the mesh by that volume factor; 'open':\n"
+      "  the mesh is not closed, so it has no volume)\n");
 }
 
 /// The command line of `deepcheck info`.
@@ -181,11 +179,11 @@ struct InfoArgs {
   std::string file;
   PackageRoots roots;
   robots::PairFilterOptions filter;
-  std::string srdfPath;  ///< --write-srdf
-  bool pairFilterOptions = false;  ///< --samples, --seed or --write-srdf given
-  std::vector<std::string> groupSrdfs;   ///< --srdf, in command-line order
-  std::string group;                     ///< --group
-  std::map<std::string, double> locks;   ///< --lock
+  std::string srdfPath;                 ///< --write-srdf
+  bool pairFilterOptions = false;       ///< --samples, --seed or --write-srdf given
+  std::vector<std::string> groupSrdfs;  ///< --srdf, in command-line order
+  std::string group;                    ///< --group
+  std::map<std::string, double> locks;  ///< --lock
 };
 
 InfoArgs takeInfoArgs(std::vector<std::string>& args) {
@@ -202,9 +200,8 @@ InfoArgs takeInfoArgs(std::vector<std::string>& args) {
   }
   rejectUnknownOptions(args);
   if (args.size() != 1) {
-    throw UsageError(args.empty() ? "missing ROBOT.urdf (or SCENE.yaml, SCENE.scene)" : "expected one file, got " +
-                                                               std::to_string(args.size()) +
-                                                               " arguments");
+    throw UsageError(args.empty() ? "missing ROBOT.urdf (or SCENE.yaml, SCENE.scene)"
+                                  : "expected one file, got " + std::to_string(args.size()) + " arguments");
   }
   a.file = args[0];
   a.pairFilterOptions = !samplesText.empty() || !seedText.empty() || !a.srdfPath.empty();
@@ -225,16 +222,16 @@ void printSummary(const robots::RobotModel& model, const std::vector<std::vector
     numPieces += static_cast<int>(p.size());
   }
   std::printf("robot '%s' (%s)\n", model.name().c_str(), model.source().c_str());
-  std::printf("%d links (%d with collision geometry), %d joints, %d variables, %d collision "
-              "elements, %d convex pieces\n",
-              model.numLinks(), geometryLinks, model.numJoints(), model.numVariables(),
-              model.numCollisionElements(), numPieces);
+  std::printf(
+      "%d links (%d with collision geometry), %d joints, %d variables, %d collision "
+      "elements, %d convex pieces\n",
+      model.numLinks(), geometryLinks, model.numJoints(), model.numVariables(), model.numCollisionElements(),
+      numPieces);
 }
 
 void printJoints(const robots::RobotModel& model) {
   std::printf("\nvariables (configuration order):\n");
-  std::printf("  %5s  %-24s %-10s %12s %12s %12s\n", "index", "joint", "type", "lower", "upper",
-              "velocity");
+  std::printf("  %5s  %-24s %-10s %12s %12s %12s\n", "index", "joint", "type", "lower", "upper", "velocity");
   for (int v = 0; v < model.numVariables(); ++v) {
     const robots::Joint& j = model.joint(model.variableJoint(v));
     std::printf("  %5d  %-24s %-10s %12.6g %12.6g %12.6g\n", v, j.name.c_str(), toString(j.type),
@@ -245,8 +242,8 @@ void printJoints(const robots::RobotModel& model) {
   for (const robots::Joint& j : model.joints()) {
     if (!j.isMimic()) continue;
     anyMimic = true;
-    std::printf("  %s = %.6g * %s + %.6g\n", j.name.c_str(), j.multiplier,
-                model.variableNames()[j.variable].c_str(), j.offset);
+    std::printf("  %s = %.6g * %s + %.6g\n", j.name.c_str(), j.multiplier, model.variableNames()[j.variable].c_str(),
+                j.offset);
   }
   if (!anyMimic) std::printf("  none\n");
   std::printf("\nlocked joints:\n");
@@ -272,14 +269,13 @@ std::vector<std::vector<robots::CollisionPiece>> checkerPieces(const robots::Rob
 void printLinksAndPieces(const robots::RobotModel& model,
                          const std::vector<std::vector<robots::CollisionPiece>>& pieces) {
   std::printf("\nlinks:\n");
-  std::printf("  %5s  %-24s %-24s %-24s %8s %6s\n", "index", "link", "parent", "joint",
-              "elements", "pieces");
+  std::printf("  %5s  %-24s %-24s %-24s %8s %6s\n", "index", "link", "parent", "joint", "elements", "pieces");
   for (int l = 0; l < model.numLinks(); ++l) {
     const robots::Link& link = model.link(l);
     std::printf("  %5d  %-24s %-24s %-24s %8zu %6zu\n", l, link.name.c_str(),
                 link.parentLink < 0 ? "-" : model.link(link.parentLink).name.c_str(),
-                link.parentJoint < 0 ? "-" : model.joint(link.parentJoint).name.c_str(),
-                link.collisions.size(), pieces[l].size());
+                link.parentJoint < 0 ? "-" : model.joint(link.parentJoint).name.c_str(), link.collisions.size(),
+                pieces[l].size());
   }
 
   std::printf("\npieces:\n");
@@ -287,8 +283,8 @@ void printLinksAndPieces(const robots::RobotModel& model,
   for (int l = 0; l < model.numLinks(); ++l) {
     for (const robots::CollisionPiece& p : pieces[l]) {
       anyPiece = true;
-      std::printf("  %-24s %-10s %4d vertices", model.link(l).name.c_str(),
-                  geometry::toString(p.core->kind()), p.core->numVertices());
+      std::printf("  %-24s %-10s %4d vertices", model.link(l).name.c_str(), geometry::toString(p.core->kind()),
+                  p.core->numVertices());
       if (p.radius > 0.0) std::printf(", radius %.6g", p.radius);
       std::printf("\n");
     }
@@ -300,19 +296,15 @@ void printCollisionPairs(const robots::RobotModel& model, const robots::PairFilt
                          const robots::PairFilterOptions& filter) {
   std::printf("\ncollision pairs (pair filter: %d random samples, seed %llu):\n", result.samples,
               static_cast<unsigned long long>(filter.seed));
-  std::printf("  links with geometry: %d, link pairs: %d\n", result.numGeometryLinks,
-              result.numPairs());
-  std::printf("  disabled: %zu (Adjacent %d, Default %d, Always %d, Never %d)\n",
-              result.disabled.size(), result.count(robots::DisableReason::Adjacent),
-              result.count(robots::DisableReason::Default),
-              result.count(robots::DisableReason::Always),
-              result.count(robots::DisableReason::Never));
+  std::printf("  links with geometry: %d, link pairs: %d\n", result.numGeometryLinks, result.numPairs());
+  std::printf("  disabled: %zu (Adjacent %d, Default %d, Always %d, Never %d)\n", result.disabled.size(),
+              result.count(robots::DisableReason::Adjacent), result.count(robots::DisableReason::Default),
+              result.count(robots::DisableReason::Always), result.count(robots::DisableReason::Never));
   std::printf("  remaining (checked): %d\n", result.numEnabled());
   for (const robots::LinkPairReport& r : result.pairs) {
     if (r.reason) continue;
-    std::printf("    %-24s %-24s collides in %d of %d samples\n",
-                model.link(r.link1).name.c_str(), model.link(r.link2).name.c_str(), r.collisions,
-                result.samples);
+    std::printf("    %-24s %-24s collides in %d of %d samples\n", model.link(r.link1).name.c_str(),
+                model.link(r.link2).name.c_str(), r.collisions, result.samples);
   }
 }
 
@@ -334,11 +326,10 @@ robots::SrdfContents srdfContents(const robots::RobotModel& model, const robots:
 }
 
 void writeDisabledPairs(const robots::RobotModel& model, const robots::PairFilterResult& result, const InfoArgs& a) {
-  const std::string comment =
-      "Disabled collision pairs of " + model.name() + ", written by `deepcheck info " +
-      fileName(a.file) + "` (pair filter: robots/include/deepcheck/robots/pair_filter.h)\n" +
-      "     on the convex hull of each collision mesh, with " + std::to_string(result.samples) +
-      " random samples, seed " + std::to_string(a.filter.seed) + ".";
+  const std::string comment = "Disabled collision pairs of " + model.name() + ", written by `deepcheck info " +
+                              fileName(a.file) + "` (pair filter: robots/include/deepcheck/robots/pair_filter.h)\n" +
+                              "     on the convex hull of each collision mesh, with " + std::to_string(result.samples) +
+                              " random samples, seed " + std::to_string(a.filter.seed) + ".";
   const robots::SrdfContents contents = srdfContents(model, result, a);
   robots::writeSrdf(a.srdfPath, model.name(), contents, comment);
   std::printf("\nwrote %s (%zu disabled pairs, %zu planning groups)\n", a.srdfPath.c_str(), result.disabled.size(),
@@ -416,8 +407,7 @@ int runInfo(std::vector<std::string> args) {
   printLinksAndPieces(model, pieces);
   printMeshes(model);
   // The pair filter works on one hull per mesh, as the SRDF written says.
-  const robots::PairFilterResult result =
-      robots::computeDisabledPairs(model, robots::collisionPieces(model), a.filter);
+  const robots::PairFilterResult result = robots::computeDisabledPairs(model, robots::collisionPieces(model), a.filter);
   printCollisionPairs(model, result, a.filter);
   if (!a.srdfPath.empty()) writeDisabledPairs(model, result, a);
   return 0;
@@ -425,8 +415,7 @@ int runInfo(std::vector<std::string> args) {
 
 }  // namespace
 
-const Subcommand kInfoCommand = {"info",
-                                 "describe a URDF robot (links, joints, pieces, pairs) or a planning scene",
+const Subcommand kInfoCommand = {"info", "describe a URDF robot (links, joints, pieces, pairs) or a planning scene",
                                  kUsage, runInfo};
 
 }  // namespace deepcheck::tools

@@ -32,7 +32,8 @@ void applyJointLimits(const robots::RobotModel& robot, Eigen::VectorXd& q, const
     const bool below = q[v] < lower;
     char text[240];
     std::snprintf(text, sizeof text, " = %.6g %s is %s its %s limit %.6g %s (limits [%.6g, %.6g] %s)", q[v], unit,
-                  below ? "below" : "above", below ? "lower" : "upper", below ? lower : upper, unit, lower, upper, unit);
+                  below ? "below" : "above", below ? "lower" : "upper", below ? lower : upper, unit, lower, upper,
+                  unit);
     throw InputError(what + " is outside the joint limits: joint '" + name + "'" + text +
                      "; --clamp-to-limits clamps it");
   }
@@ -64,9 +65,11 @@ void warnVisualOnlyLinks(const std::string& subcommand, const robots::RobotModel
     if (link.hasVisual && link.collisions.empty()) visualOnly.push_back(link.name);
   }
   if (visualOnly.empty()) return;
-  std::fprintf(stderr, "deepcheck %s: warning: robot '%s'%s: links with <visual> but no <collision> geometry, "
-               "not checked: %s\n", subcommand.c_str(), robot.name().c_str(),
-               anyCollision ? "" : " has no collision geometry at all", quotedNames(visualOnly).c_str());
+  std::fprintf(stderr,
+               "deepcheck %s: warning: robot '%s'%s: links with <visual> but no <collision> geometry, "
+               "not checked: %s\n",
+               subcommand.c_str(), robot.name().c_str(), anyCollision ? "" : " has no collision geometry at all",
+               quotedNames(visualOnly).c_str());
 }
 
 std::vector<Eigen::VectorXd> readConfigurations(std::istream& in, const robots::RobotModel& robot,
@@ -191,8 +194,8 @@ WorldArgs takeWorldArgs(std::vector<std::string>& args) {
 checker::World loadWorld(const WorldArgs& args) {
   robots::LoadOptions load;
   load.packageRoots = args.packages.commandLine;
-  robots::RobotModel robot =
-      robots::planningGroupModel(robots::RobotModel::fromUrdfFile(args.robot, load), args.srdfs, args.group, args.locks);
+  robots::RobotModel robot = robots::planningGroupModel(robots::RobotModel::fromUrdfFile(args.robot, load), args.srdfs,
+                                                        args.group, args.locks);
   checker::WorldOptions options;
   std::vector<robots::SrdfVirtualJoint> virtualJoints;
   for (const std::string& srdf : args.srdfs) {

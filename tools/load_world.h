@@ -24,34 +24,34 @@
 #include <vector>
 
 /// The help text of the world options, for the usage text of the subcommands that take them.
-#define DEEPCHECK_WORLD_OPTIONS_HELP                                                                  \
-  "  --robot FILE        the robot's URDF (required)\n"                                               \
-  "  --scene FILE        a scene (repeatable): FILE.urdf is a URDF whose links are obstacles (its\n"  \
-  "                      joints at their default values); FILE.yaml or FILE.yml is a MoveIt\n"        \
-  "                      planning scene, its collision objects posed in the robot links their\n"      \
-  "                      header.frame_id names (at the robot's default configuration);\n"            \
-  "                      FILE.scene is MoveIt's scene text (Export/Import), posed on the root link\n" \
-  "  --scene-pose x y z roll pitch yaw\n"                                                            \
-  "                      places the URDF scene given just before (metres, radians; URDF rpy:\n"       \
-  "                      R = Rz(yaw) Ry(pitch) Rx(roll)); default: the identity. Not after a\n"       \
-  "                      planning scene, whose objects are placed by their frames\n"                 \
-  "  --frame-alias NAME=LINK\n"                                                                      \
-  "                      a planning scene's frame NAME is the robot's link LINK (repeatable),\n"      \
-  "                      e.g. base_link=panda_link0 for MotionBenchMaker scenes with the Panda;\n"    \
-  "                      an --srdf's virtual_joint parent frame (world, odom_combined) is already\n"  \
-  "                      an alias of its child link\n"                                               \
+#define DEEPCHECK_WORLD_OPTIONS_HELP                                                                   \
+  "  --robot FILE        the robot's URDF (required)\n"                                                \
+  "  --scene FILE        a scene (repeatable): FILE.urdf is a URDF whose links are obstacles (its\n"   \
+  "                      joints at their default values); FILE.yaml or FILE.yml is a MoveIt\n"         \
+  "                      planning scene, its collision objects posed in the robot links their\n"       \
+  "                      header.frame_id names (at the robot's default configuration);\n"              \
+  "                      FILE.scene is MoveIt's scene text (Export/Import), posed on the root link\n"  \
+  "  --scene-pose x y z roll pitch yaw\n"                                                              \
+  "                      places the URDF scene given just before (metres, radians; URDF rpy:\n"        \
+  "                      R = Rz(yaw) Ry(pitch) Rx(roll)); default: the identity. Not after a\n"        \
+  "                      planning scene, whose objects are placed by their frames\n"                   \
+  "  --frame-alias NAME=LINK\n"                                                                        \
+  "                      a planning scene's frame NAME is the robot's link LINK (repeatable),\n"       \
+  "                      e.g. base_link=panda_link0 for MotionBenchMaker scenes with the Panda;\n"     \
+  "                      an --srdf's virtual_joint parent frame (world, odom_combined) is already\n"   \
+  "                      an alias of its child link\n"                                                 \
   "  --srdf FILE         disable the self-collision pairs of this SRDF and read its planning groups\n" \
-  "                      (repeatable: the files' pairs and groups are merged; a group two files\n"   \
-  "                      define differently is an error)\n"                                          \
-  "  --group NAME        move only the variables of the SRDF's planning group NAME (needs --srdf);\n" \
-  "                      the others are held at their --lock value, else their default\n"          \
-  "  --lock JOINT=VALUE  hold JOINT at VALUE (rad or m; repeatable); configurations then omit it\n"   \
-  "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"    \
-  "                      also read)\n"                                                               \
-  "  --allow-collision A:B\n"                                                                         \
-  "                      let bodies A and B touch (repeatable); A:* lets A touch anything. Names:\n"  \
-  "                      robot links, obstacles and planning-scene object ids, scene links\n"       \
-  "                      (scene/LINK), attached objects; e.g. base_link:table for a robot bolted\n"  \
+  "                      (repeatable: the files' pairs and groups are merged; a group two files\n"     \
+  "                      define differently is an error)\n"                                            \
+  "  --group NAME        move only the variables of the SRDF's planning group NAME (needs --srdf);\n"  \
+  "                      the others are held at their --lock value, else their default\n"              \
+  "  --lock JOINT=VALUE  hold JOINT at VALUE (rad or m; repeatable); configurations then omit it\n"    \
+  "  --package-path DIR  a root to search for package:// URIs (repeatable; ROS_PACKAGE_PATH is\n"      \
+  "                      also read)\n"                                                                 \
+  "  --allow-collision A:B\n"                                                                          \
+  "                      let bodies A and B touch (repeatable); A:* lets A touch anything. Names:\n"   \
+  "                      robot links, obstacles and planning-scene object ids, scene links\n"          \
+  "                      (scene/LINK), attached objects; e.g. base_link:table for a robot bolted\n"    \
   "                      to a table\n"
 
 namespace deepcheck::tools {
@@ -60,12 +60,12 @@ namespace deepcheck::tools {
 /// naming the joint, the value and the limits) or, with --clamp-to-limits, clamp it and warn.
 /// Continuous joints have no limits: their values are taken as they are.
 struct JointLimitPolicy {
-  bool clamp = false;              ///< clamp instead of refusing
-  std::set<std::string> clamped;   ///< the joints clamped so far, for warnClamped()
+  bool clamp = false;             ///< clamp instead of refusing
+  std::set<std::string> clamped;  ///< the joints clamped so far, for warnClamped()
 };
 
 /// The help line of --clamp-to-limits.
-#define DEEPCHECK_CLAMP_HELP                                                                       \
+#define DEEPCHECK_CLAMP_HELP                                                                         \
   "  --clamp-to-limits   clamp a joint value outside its limits into them (one warning line names\n" \
   "                      the clamped joints) instead of refusing it; continuous joints have none\n"
 
@@ -102,8 +102,8 @@ struct WorldArgs {
   std::vector<std::string> srdfs;  ///< --srdf, in command-line order
   PackageRoots packages;
   robots::FrameAliases frameAliases;
-  std::string group;                     ///< --group
-  std::map<std::string, double> locks;   ///< --lock
+  std::string group;                    ///< --group
+  std::map<std::string, double> locks;  ///< --lock
   /// --allow-collision A:B, in command-line order ("*" for anything).
   std::vector<std::pair<std::string, std::string>> allowed;
 };
@@ -133,8 +133,9 @@ SceneKind sceneKind(const std::string& path);
 /// Loads the robot (its --group's variables only, its --lock joints held), disables the pairs of
 /// every SRDF (an unknown link in one is an error naming the file), adds the scenes in
 /// command-line order and allows the --allow-collision pairs (an unknown name is an error naming
-/// it and its near matches); the world reports its fixed pairs (world.h) after all of that. Throws std::invalid_argument naming the bad file
-/// (for a planning scene, its line, object and frame; an unknown frame's message suggests
+/// it and its near matches); the world reports its fixed pairs (world.h) after all of that. Throws
+/// std::invalid_argument naming the bad file (for a planning scene, its line, object and frame; an unknown frame's
+/// message suggests
 /// --frame-alias).
 checker::World loadWorld(const WorldArgs& args);
 

@@ -15,12 +15,8 @@ namespace {
 using deepcheck::tools::Subcommand;
 
 const Subcommand* const kSubcommands[] = {
-    &deepcheck::tools::kPdCommand,
-    &deepcheck::tools::kInfoCommand,
-    &deepcheck::tools::kCheckCommand,
-    &deepcheck::tools::kDecomposeCommand,
-    &deepcheck::tools::kPlanCommand,
-    &deepcheck::tools::kViewCommand,
+    &deepcheck::tools::kPdCommand,        &deepcheck::tools::kInfoCommand, &deepcheck::tools::kCheckCommand,
+    &deepcheck::tools::kDecomposeCommand, &deepcheck::tools::kPlanCommand, &deepcheck::tools::kViewCommand,
     &deepcheck::tools::kProblemsCommand,
 };
 

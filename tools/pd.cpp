@@ -112,7 +112,8 @@ int runPd(std::vector<std::string> args) {
         geometry::BodyDepthOptions bodyOptions;
         bodyOptions.pair = options;
         const auto t0 = std::chrono::steady_clock::now();
-        const geometry::BodySignedDistanceResult r = geometry::bodySignedDistance(bodyA, q.X_WA, bodyB, q.X_WB, bodyOptions);
+        const geometry::BodySignedDistanceResult r =
+            geometry::bodySignedDistance(bodyA, q.X_WA, bodyB, q.X_WB, bodyOptions);
         total += std::chrono::steady_clock::now() - t0;
         sd = r.distance;
         n = r.normal;
@@ -128,8 +129,7 @@ int runPd(std::vector<std::string> args) {
         const ConvexPolytope& A = input.shapes[static_cast<std::size_t>(q.a)].hull;
         const ConvexPolytope& B = input.shapes[static_cast<std::size_t>(q.b)].hull;
         const auto t0 = std::chrono::steady_clock::now();
-        const geometry::SignedDistanceResult r =
-            geometry::signedDistance(A, q.X_WA, B, q.X_WB, &cache, options);
+        const geometry::SignedDistanceResult r = geometry::signedDistance(A, q.X_WA, B, q.X_WB, &cache, options);
         total += std::chrono::steady_clock::now() - t0;
         sd = r.distance;
         n = r.normal;
@@ -141,15 +141,14 @@ int runPd(std::vector<std::string> args) {
     std::printf("%.17g %.17g %.17g %.17g\n", sd, n.x(), n.y(), n.z());
   }
   std::fflush(stdout);
-  const long long micros = static_cast<long long>(
-      std::llround(std::chrono::duration<double, std::micro>(total).count()));
+  const long long micros =
+      static_cast<long long>(std::llround(std::chrono::duration<double, std::micro>(total).count()));
   std::fprintf(stderr, "queries %zu total_us %lld\n", input.queries.size(), micros);
   return 0;
 }
 
 }  // namespace
 
-const Subcommand kPdCommand = {"pd", "signed distance / penetration depth of posed convex shapes",
-                               kUsage, runPd};
+const Subcommand kPdCommand = {"pd", "signed distance / penetration depth of posed convex shapes", kUsage, runPd};
 
 }  // namespace deepcheck::tools

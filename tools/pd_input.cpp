@@ -25,13 +25,12 @@ namespace {
 constexpr double kQuaternionNormTolerance = 1e-6;
 
 int parsePointCount(const InputLine& line, const std::string& token) {
-  const bool digits = !token.empty() && token.size() <= 9 &&
-                      token.find_first_not_of("0123456789") == std::string::npos;
+  const bool digits = !token.empty() && token.size() <= 9 && token.find_first_not_of("0123456789") == std::string::npos;
   const int n = digits ? std::atoi(token.c_str()) : 0;
   if (n < 1) failAt(line, "the point count '" + token + "' is not a positive integer");
   if (n > kMaxShapePoints) {
-    failAt(line, "the point count " + token + " exceeds the supported " +
-                     std::to_string(kMaxShapePoints) + " points per shape");
+    failAt(line, "the point count " + token + " exceeds the supported " + std::to_string(kMaxShapePoints) +
+                     " points per shape");
   }
   return n;
 }
@@ -45,7 +44,7 @@ Eigen::Isometry3d parsePose(const InputLine& line, std::size_t first, const std:
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.17g", norm);
     failAt(line, "the quaternion of " + which + " has norm " + buf +
-                   " (must be 1 within 1e-6; quaternions are not normalized for you)");
+                     " (must be 1 within 1e-6; quaternions are not normalized for you)");
   }
   q.coeffs() /= norm;
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
@@ -112,8 +111,7 @@ void readBody(const InputLine& line, PdInput& input) {
 /// Reads the points of the shape whose header is `header` (`line` holds the line after it) and
 /// builds its hull; on return `line` holds the line after the points and the result says whether
 /// there is one.
-bool readShape(std::istream& in, int& lineNumber, const InputLine& header, InputLine& line,
-               PdInput& input) {
+bool readShape(std::istream& in, int& lineNumber, const InputLine& header, InputLine& line, PdInput& input) {
   if (header.tokens.size() != 3) failAt(header, "expected 'shape <id> <n>'");
   const std::string id = header.tokens[1];
   const int n = parsePointCount(header, header.tokens[2]);
@@ -124,17 +122,16 @@ bool readShape(std::istream& in, int& lineNumber, const InputLine& header, Input
   bool pending = nextInputLine(in, lineNumber, line);
   while (static_cast<int>(points.size()) < n) {
     if (!pending) {
-      failAt(header, "shape '" + id + "' declares " + std::to_string(n) +
-                         " points but the input ends after " + std::to_string(points.size()));
+      failAt(header, "shape '" + id + "' declares " + std::to_string(n) + " points but the input ends after " +
+                         std::to_string(points.size()));
     }
     if (line.tokens[0] == "shape" || line.tokens[0] == "query" || line.tokens[0] == "body") {
-      failAt(line, "shape '" + id + "' (line " + std::to_string(header.number) + ") declares " +
-                       std::to_string(n) + " points but only " + std::to_string(points.size()) +
-                       " precede this line");
+      failAt(line, "shape '" + id + "' (line " + std::to_string(header.number) + ") declares " + std::to_string(n) +
+                       " points but only " + std::to_string(points.size()) + " precede this line");
     }
     if (line.tokens.size() != 3) {
-      failAt(line, "expected a point '<x> <y> <z>' (point " + std::to_string(points.size() + 1) +
-                       " of " + std::to_string(n) + " of shape '" + id + "')");
+      failAt(line, "expected a point '<x> <y> <z>' (point " + std::to_string(points.size() + 1) + " of " +
+                       std::to_string(n) + " of shape '" + id + "')");
     }
     Eigen::Vector3d p;
     for (int c = 0; c < 3; ++c) {
@@ -159,9 +156,10 @@ bool readShape(std::istream& in, int& lineNumber, const InputLine& header, Input
 
 PdQuery readQuery(const InputLine& line, const PdInput& input) {
   if (line.tokens.size() != 17) {
-    failAt(line, "expected 'query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> "
-                 "<qw> <qx> <qy> <qz>' (17 fields, got " +
-                     std::to_string(line.tokens.size()) + ")");
+    failAt(line,
+           "expected 'query <idA> <tx> <ty> <tz> <qw> <qx> <qy> <qz> <idB> <tx> <ty> <tz> "
+           "<qw> <qx> <qy> <qz>' (17 fields, got " +
+               std::to_string(line.tokens.size()) + ")");
   }
   PdQuery q;
   q.line = line.number;
@@ -201,11 +199,12 @@ PdInput readPdInput(std::istream& in) {
 geometry::Body queryBody(const PdInput& input, int shape, int body) {
   geometry::Body out;
   const auto piece = [&](int s) {
-    out.pieces.push_back({geometry::ConvexShape{&input.shapes[static_cast<std::size_t>(s)].hull, 0.0},
-                          Eigen::Isometry3d::Identity()});
+    out.pieces.push_back(
+        {geometry::ConvexShape{&input.shapes[static_cast<std::size_t>(s)].hull, 0.0}, Eigen::Isometry3d::Identity()});
   };
   if (body < 0) piece(shape);
-  else for (const int s : input.bodies[static_cast<std::size_t>(body)].shapes) piece(s);
+  else
+    for (const int s : input.bodies[static_cast<std::size_t>(body)].shapes) piece(s);
   return out;
 }
 

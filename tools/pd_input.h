@@ -27,8 +27,8 @@ struct PdBody {
 
 struct PdQuery {
   int line;
-  int a;  ///< index in PdInput::shapes, or -1 when A is a body
-  int b;  ///< likewise for B
+  int a;           ///< index in PdInput::shapes, or -1 when A is a body
+  int b;           ///< likewise for B
   int bodyA = -1;  ///< index in PdInput::bodies when A is a body, else -1
   int bodyB = -1;
   Eigen::Isometry3d X_WA;

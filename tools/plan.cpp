@@ -67,7 +67,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck plan --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
-    "                      [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... --start q1 ... qn\n"
+    "                      [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... --start q1 "
+    "... qn\n"
     "                      (--goal q1 ... qn | --goal-pose LINK x y z qx qy qz qw\n"
     "                                          [--position-tol M | --position-box X Y Z] [--orientation-tol RAD])\n"
     "                      [--planner NAME] [--time SECONDS] [--objective length|clearance]\n"
@@ -77,12 +78,12 @@ constexpr const char* kUsage =
     "Plans with OMPL and deepcheck's checker and writes the path, one configuration per line\n"
     "(joint values in the order `deepcheck info` prints). Every motion the planner and the\n"
     "shortcutting accept is proven collision free (certified, not sampled); the path is checked\n"
-    "once more (and repaired where that fails). Exit status 0 only for an exact, certified solution. A start or goal value outside\n"
+    "once more (and repaired where that fails). Exit status 0 only for an exact, certified solution. A start or goal "
+    "value outside\n"
     "its joint's limits is an error naming the joint, the value and the limits (see\n"
     "--clamp-to-limits); a continuous joint's value is taken as the same angle in (-pi, pi].\n"
     "\n"
-    "options:\n"
-    DEEPCHECK_WORLD_OPTIONS_HELP
+    "options:\n" DEEPCHECK_WORLD_OPTIONS_HELP
     "  --start q1 ... qn   the start configuration (required; n = the robot's variables)\n"
     "  --goal q1 ... qn    the goal configuration (this or --goal-pose is required)\n"
     "  --goal-pose LINK x y z qx qy qz qw\n"
@@ -105,8 +106,7 @@ constexpr const char* kUsage =
     "  --repair-start      push a start (and goal) in slight collision out to the nearest\n"
     "                      configuration with --repair-margin of clearance first\n"
     "                      (planners/push_out.h)\n"
-    "  --repair-margin M   the clearance a repaired start or goal gets, metres (default 0.001)\n"
-    DEEPCHECK_CLAMP_HELP
+    "  --repair-margin M   the clearance a repaired start or goal gets, metres (default 0.001)\n" DEEPCHECK_CLAMP_HELP
     "  --seed N            OMPL's random seed, 0 to 4294967295 (default: OMPL's own, different\n"
     "                      each run), and the first seed of a pose goal's IK (default 0)\n"
     "  --out FILE          where to write the path (required)\n";
@@ -339,9 +339,9 @@ void checkOrRepairEndpoints(ompl::geometric::SimpleSetup& ss, const PlanArgs& a)
 void setObjective(ompl::geometric::SimpleSetup& ss, ompl::base::Planner& planner, const std::string& name) {
   const auto si = ss.getSpaceInformation();
   if (name == "clearance") {
-    ss.setOptimizationObjective(planners::makeLengthClearanceObjective(
-        si, planners::validityCheckerOf(ss), planners::tol::kDefaultSafeDistance, planners::tol::kDefaultHingeWeight,
-        planners::linkSpeedBoundOf(ss)));
+    ss.setOptimizationObjective(
+        planners::makeLengthClearanceObjective(si, planners::validityCheckerOf(ss), planners::tol::kDefaultSafeDistance,
+                                               planners::tol::kDefaultHingeWeight, planners::linkSpeedBoundOf(ss)));
     planners::prepareForCostlyObjective(planner);  // RRT*: radius neighbours (planner_factory.h)
   } else {
     ss.setOptimizationObjective(planners::makePathLengthObjective(si));
@@ -370,8 +370,9 @@ void reportPoseError(const planners::PoseGoal& goal, const ompl::geometric::Path
 /// Simplifies, certifies (repairing where needed) and writes the solution, with its report.
 void finishPath(ompl::geometric::SimpleSetup& ss, const PlanArgs& a, const planners::PoseGoal* goal) {
   if (!planners::simplifySolutionChecked(ss)) {
-    std::fprintf(stderr, "path simplification: no simplified path passed the planner's checks without a worse "
-                         "objective cost; the path as planned is kept\n");
+    std::fprintf(stderr,
+                 "path simplification: no simplified path passed the planner's checks without a worse "
+                 "objective cost; the path as planned is kept\n");
   }
   ompl::geometric::PathGeometric& path = ss.getSolutionPath();
   const auto t0 = std::chrono::steady_clock::now();

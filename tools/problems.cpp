@@ -141,19 +141,26 @@ ProblemsArgs takeArgs(std::vector<std::string>& args) {
   a.robotConfig = takeSingleOption(args, "--robot-config");
   a.options.frameAliases = takeFrameAliases(args);
   a.options.tipLink = takeSingleOption(args, "--tip", "panda_hand");
-  a.options.eeOffset = parsePose(takeSingleOption(args, "--ee-offset", "0 0 0 0 -0.70710678118654752 0 0.70710678118654752"),
-                                 "--ee-offset");
+  a.options.eeOffset = parsePose(
+      takeSingleOption(args, "--ee-offset", "0 0 0 0 -0.70710678118654752 0 0.70710678118654752"), "--ee-offset");
   a.count = static_cast<int>(parseCount(takeSingleOption(args, "--count", "10"), "--count", 1, 1000000));
-  a.options.seed = parseCount(takeSingleOption(args, "--seed", "0"), "--seed", 0, std::numeric_limits<std::uint64_t>::max());
-  a.options.maxAttempts = static_cast<int>(parseCount(takeSingleOption(args, "--max-attempts", "100"), "--max-attempts", 1, 1000000));
+  a.options.seed =
+      parseCount(takeSingleOption(args, "--seed", "0"), "--seed", 0, std::numeric_limits<std::uint64_t>::max());
+  a.options.maxAttempts =
+      static_cast<int>(parseCount(takeSingleOption(args, "--max-attempts", "100"), "--max-attempts", 1, 1000000));
   a.out = takeSingleOption(args, "--out");
   rejectUnknownOptions(args);
   if (!args.empty()) throw UsageError("unexpected argument '" + args.front() + "'");
-  for (const auto& [value, name] : {std::pair{a.robot, "--robot"}, {a.scene, "--scene"}, {a.variation, "--variation"},
-                                    {a.queries, "--queries"}, {a.robotConfig, "--robot-config"}, {a.out, "--out"}}) {
+  for (const auto& [value, name] : {std::pair{a.robot, "--robot"},
+                                    {a.scene, "--scene"},
+                                    {a.variation, "--variation"},
+                                    {a.queries, "--queries"},
+                                    {a.robotConfig, "--robot-config"},
+                                    {a.out, "--out"}}) {
     if (value.empty()) throw UsageError(std::string("option ") + name + " is required");
   }
-  if (!a.group.empty() && a.srdf.empty()) throw UsageError("--group " + a.group + " needs --srdf: the planning groups are the SRDF's");
+  if (!a.group.empty() && a.srdf.empty())
+    throw UsageError("--group " + a.group + " needs --srdf: the planning groups are the SRDF's");
   sceneKind(a.scene);  // a known extension, or a UsageError naming the file
   return a;
 }
@@ -188,7 +195,8 @@ int run(std::vector<std::string> args) {
   if (!a.group.empty()) {
     robots::LoadOptions load;
     load.packageRoots = a.packages.commandLine;
-    const auto outside = problems::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(a.robot, load), config, a.srdf, a.group);
+    const auto outside =
+        problems::lockedOutsideGroup(robots::RobotModel::fromUrdfFile(a.robot, load), config, a.srdf, a.group);
     setup.lockedVariables.insert(outside.begin(), outside.end());  // --lock's values first
   }
   const auto world = planners::loadWorld(a.robot, {}, setup);

@@ -17,12 +17,12 @@ struct Subcommand {
   int (*run)(std::vector<std::string> args);
 };
 
-extern const Subcommand kPdCommand;    // pd.cpp
-extern const Subcommand kInfoCommand;  // info.cpp
-extern const Subcommand kCheckCommand;  // check.cpp
+extern const Subcommand kPdCommand;         // pd.cpp
+extern const Subcommand kInfoCommand;       // info.cpp
+extern const Subcommand kCheckCommand;      // check.cpp
 extern const Subcommand kDecomposeCommand;  // decompose.cpp
-extern const Subcommand kPlanCommand;  // plan.cpp
-extern const Subcommand kViewCommand;  // view.cpp
-extern const Subcommand kProblemsCommand;  // problems.cpp
+extern const Subcommand kPlanCommand;       // plan.cpp
+extern const Subcommand kViewCommand;       // view.cpp
+extern const Subcommand kProblemsCommand;   // problems.cpp
 
 }  // namespace deepcheck::tools

@@ -32,7 +32,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: deepcheck view --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
-    "                      [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--config q1 ... qn | --path FILE]\n"
+    "                      [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--config "
+    "q1 ... qn | --path FILE]\n"
     "                      [--hide LINK]... [--step S] --out view.html\n"
     "       deepcheck view --decompose MESH [--package-path DIR]... --out view.html\n"
     "       deepcheck view --pd CASES.txt --out view.html\n"
@@ -43,8 +44,7 @@ constexpr const char* kUsage =
     "a path animated with a slider and play button, its minimum signed distance plotted per frame\n"
     "and the worst frame marked. The URL hash #t=N or #t=end selects the frame shown first.\n"
     "\n"
-    "options:\n"
-    DEEPCHECK_WORLD_OPTIONS_HELP
+    "options:\n" DEEPCHECK_WORLD_OPTIONS_HELP
     "  --config q1 ... qn  the configuration shown (default: the robot's default configuration)\n"
     "  --path FILE         a path, one configuration per line (the `deepcheck plan --out` format)\n"
     "  --hide LINK         start with this robot link hidden (repeatable)\n"
@@ -88,16 +88,19 @@ viewer::ViewScene worldView(std::vector<std::string>& args) {
     configurations = readPathFile(pathFile, robot);
   } else if (!config.empty()) {
     if (static_cast<int>(config.size()) != robot.numVariables()) {
-      throw InputError("--config has " + std::to_string(config.size()) + " values, robot '" + robot.name() +
-                       "' has " + std::to_string(robot.numVariables()) + " variables");
+      throw InputError("--config has " + std::to_string(config.size()) + " values, robot '" + robot.name() + "' has " +
+                       std::to_string(robot.numVariables()) + " variables");
     }
-    configurations.push_back(Eigen::Map<const Eigen::VectorXd>(config.data(), static_cast<Eigen::Index>(config.size())));
+    configurations.push_back(
+        Eigen::Map<const Eigen::VectorXd>(config.data(), static_cast<Eigen::Index>(config.size())));
   } else {
     configurations.push_back(robot.defaultConfiguration());
   }
   options.title = "deepcheck view: " + robot.name();
   options.caption = world.summary();
-  if (!pathFile.empty()) options.caption = "path " + pathFile + " (" + std::to_string(configurations.size()) + " waypoints)\n" + options.caption;
+  if (!pathFile.empty())
+    options.caption =
+        "path " + pathFile + " (" + std::to_string(configurations.size()) + " waypoints)\n" + options.caption;
   return viewer::viewOfWorld(world, configurations, options);
 }
 
@@ -154,7 +157,8 @@ viewer::ViewScene pdView(const std::string& file) {
   const auto track = [&](int shape, const std::string& role) {
     const auto key = std::make_pair(shape, role);
     if (const auto it = trackOf.find(key); it != trackOf.end()) return it->second;
-    const std::string name = (role == "answer" ? "B answer" : role) + ": shape '" + idOf[static_cast<std::size_t>(shape)] + "'";
+    const std::string name =
+        (role == "answer" ? "B answer" : role) + ": shape '" + idOf[static_cast<std::size_t>(shape)] + "'";
     scene.bodies.push_back(convexBody(name, role, input.shapes[static_cast<std::size_t>(shape)].hull));
     scene.bodies.back().track = scene.numTracks;
     return trackOf[key] = scene.numTracks++;
@@ -167,7 +171,7 @@ viewer::ViewScene pdView(const std::string& file) {
   for (const PdQuery& q : input.queries) {
     const Answer answer{track(q.a, "shape A"), track(q.b, "shape B"), track(q.b, "answer"),
                         geometry::signedDistance(input.shapes[static_cast<std::size_t>(q.a)].hull, q.X_WA,
-                                             input.shapes[static_cast<std::size_t>(q.b)].hull, q.X_WB)};
+                                                 input.shapes[static_cast<std::size_t>(q.b)].hull, q.X_WB)};
     answers.push_back(answer);
   }
   for (std::size_t i = 0; i < answers.size(); ++i) {
@@ -178,15 +182,19 @@ viewer::ViewScene pdView(const std::string& file) {
     frame.hidden.assign(frame.poses.size(), true);
     Eigen::Isometry3d X_answer = q.X_WB;
     X_answer.pretranslate(-a.r.distance * a.r.normal);
-    for (const auto& [t, X] : {std::make_pair(a.a, q.X_WA), std::make_pair(a.b, q.X_WB), std::make_pair(a.answer, X_answer)}) {
+    for (const auto& [t, X] :
+         {std::make_pair(a.a, q.X_WA), std::make_pair(a.b, q.X_WB), std::make_pair(a.answer, X_answer)}) {
       frame.poses[static_cast<std::size_t>(t)] = X;
       frame.hidden[static_cast<std::size_t>(t)] = false;
     }
     frame.label = "query on line " + std::to_string(q.line);
     frame.hasContact = true;
-    frame.contact = viewer::ViewContact{a.r.distance, a.r.pointA, a.r.pointB, a.r.normal,
-                                         "A '" + idOf[static_cast<std::size_t>(q.a)] + "'",
-                                         "B '" + idOf[static_cast<std::size_t>(q.b)] + "'"};
+    frame.contact = viewer::ViewContact{a.r.distance,
+                                        a.r.pointA,
+                                        a.r.pointB,
+                                        a.r.normal,
+                                        "A '" + idOf[static_cast<std::size_t>(q.a)] + "'",
+                                        "B '" + idOf[static_cast<std::size_t>(q.b)] + "'"};
     frame.value = a.r.distance;
     scene.frames.push_back(std::move(frame));
   }
@@ -194,7 +202,8 @@ viewer::ViewScene pdView(const std::string& file) {
 }
 
 viewer::ViewScene decomposeView(const std::string& meshArg, const PackageRoots& packages) {
-  const std::string path = robots::resolveUriOrThrow(meshArg, robots::packageRoots(packages.commandLine), "", "--decompose");
+  const std::string path =
+      robots::resolveUriOrThrow(meshArg, robots::packageRoots(packages.commandLine), "", "--decompose");
   auto mesh = std::make_shared<const robots::TriangleMesh>(robots::loadMesh(path));
   const decomposition::ConvexDecomposition d = decomposition::decomposeConvexCached(
       *mesh, decomposition::DecompositionParams(), decomposition::DecompositionCache(""));
@@ -209,8 +218,8 @@ viewer::ViewScene decomposeView(const std::string& meshArg, const PackageRoots& 
   body.shapes.push_back(shape);
   for (std::size_t i = 0; i < d.pieces.size(); ++i) {
     body.pieces.push_back(robots::CollisionPiece{
-        std::make_shared<const geometry::ConvexPolytope>(geometry::ConvexPolytope::fromPoints(d.pieces[i].vertices)), 0.0,
-        Eigen::Isometry3d::Identity(), "piece " + std::to_string(i)});
+        std::make_shared<const geometry::ConvexPolytope>(geometry::ConvexPolytope::fromPoints(d.pieces[i].vertices)),
+        0.0, Eigen::Isometry3d::Identity(), "piece " + std::to_string(i)});
   }
   scene.bodies.push_back(std::move(body));
   scene.frames.emplace_back();

@@ -45,8 +45,8 @@ class AabbTree {
   /// Branch and bound around a sphere (centre c, radius r): calls visit(item, lowerBound) for the
   /// items whose box is within bound() of the sphere (lowerBound = the item box's signed distance
   /// from c minus r, Aabb::signedDistance: a lower bound on the signed distance of anything in the
-  /// sphere to anything in the box, however deep), nearer subtrees first. bound() is read again before every node, so visit
-  /// may tighten it (a best-so-far distance).
+  /// sphere to anything in the box, however deep), nearer subtrees first. bound() is read again before every node, so
+  /// visit may tighten it (a best-so-far distance).
   template <class Bound, class Visit>
   void visitNear(const Eigen::Vector3d& c, double r, Bound&& bound, Visit&& visit) const;
 
@@ -56,8 +56,8 @@ class AabbTree {
     int first = 0;  ///< leaf: first index into items_; inner: index of the right child
     int count = 0;  ///< leaf: number of items (> 0); inner: 0 (the left child is this + 1)
   };
-  int build(std::vector<int>& order, const std::vector<Aabb>& boxes,
-            const std::vector<Eigen::Vector3d>& centers, int begin, int end);
+  int build(std::vector<int>& order, const std::vector<Aabb>& boxes, const std::vector<Eigen::Vector3d>& centers,
+            int begin, int end);
 
   std::vector<Node> nodes_;
   std::vector<int> items_;

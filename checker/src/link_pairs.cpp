@@ -22,7 +22,7 @@ LinkPairIndex::LinkPairIndex(const robots::RobotModel& model, const std::vector<
   hubAbove_.assign(n, -1);
   group_.assign(n, 0);
   std::vector<int> hubOf(n, -1);  // for links without geometry: the top of their subtree
-  for (int l = 0; l < n; ++l) {  // parents precede children
+  for (int l = 0; l < n; ++l) {   // parents precede children
     const robots::Link& link = model.link(l);
     const int p = link.parentLink;
     parent_[l] = p;

@@ -25,7 +25,7 @@ namespace deepcheck::checker {
 struct Obb {
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< box axes (columns), a rotation
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  Eigen::Vector3d half = Eigen::Vector3d::Zero();   ///< half extents along the axes, >= 0
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();  ///< half extents along the axes, >= 0
 
   /// The box of `core` grown by `radius`, in the core's frame (padded by tol::kBoundingRelative).
   static Obb ofPiece(const geometry::ConvexPolytope& core, double radius);
@@ -85,16 +85,14 @@ inline bool separatedAlong(const Obb& a, const Obb& b, int k) {
   auto cosine = [&](int i, int j) { return a.R.col(i).dot(b.R.col(j)); };
   auto bound = [&](double c) { return std::abs(c) + tol::kObbParallel; };
   if (k < 3) {
-    return std::abs(a.R.col(k).dot(d)) >
-           a.half[k] + bound(cosine(k, 0)) * b.half[0] + bound(cosine(k, 1)) * b.half[1] +
-               bound(cosine(k, 2)) * b.half[2];
+    return std::abs(a.R.col(k).dot(d)) > a.half[k] + bound(cosine(k, 0)) * b.half[0] + bound(cosine(k, 1)) * b.half[1] +
+                                             bound(cosine(k, 2)) * b.half[2];
   }
   const Eigen::Vector3d t = a.R.transpose() * d;
   if (k < 6) {
     const int j = k - 3;
     const Eigen::Vector3d c(cosine(0, j), cosine(1, j), cosine(2, j));
-    return std::abs(t.dot(c)) >
-           bound(c[0]) * a.half[0] + bound(c[1]) * a.half[1] + bound(c[2]) * a.half[2] + b.half[j];
+    return std::abs(t.dot(c)) > bound(c[0]) * a.half[0] + bound(c[1]) * a.half[1] + bound(c[2]) * a.half[2] + b.half[j];
   }
   const int i = (k - 6) / 3, j = (k - 6) % 3;
   const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;

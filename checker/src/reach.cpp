@@ -17,8 +17,7 @@ double prismaticTravel(const robots::RobotModel& model, const robots::Joint& joi
   if (joint.variable < 0) return std::abs(joint.offset);
   const double lo = model.lowerLimits()[joint.variable];
   const double hi = model.upperLimits()[joint.variable];
-  return std::max(std::abs(joint.multiplier * lo + joint.offset),
-                  std::abs(joint.multiplier * hi + joint.offset));
+  return std::max(std::abs(joint.multiplier * lo + joint.offset), std::abs(joint.multiplier * hi + joint.offset));
 }
 
 }  // namespace
@@ -27,8 +26,8 @@ std::vector<ReachSphere> linkReachSpheres(const robots::RobotModel& model,
                                           const std::vector<std::vector<robots::CollisionPiece>>& pieces) {
   if (static_cast<int>(pieces.size()) != model.numLinks()) {
     throw std::invalid_argument("linkReachSpheres: robot '" + model.name() + "' has " +
-                                std::to_string(model.numLinks()) + " links but " +
-                                std::to_string(pieces.size()) + " piece lists were given");
+                                std::to_string(model.numLinks()) + " links but " + std::to_string(pieces.size()) +
+                                " piece lists were given");
   }
   // Poses at the default configuration: only the poses of rigid parts (above the first moving
   // joint of each path) are used, and those do not depend on q.
@@ -40,7 +39,7 @@ std::vector<ReachSphere> linkReachSpheres(const robots::RobotModel& model,
     s.valid = true;
     // Path from the root: walk up, remembering the topmost moving joint and summing the
     // offsets below it.
-    double chain = 0.0;        // sum of |t_k| + travel_k of joints below the topmost moving one
+    double chain = 0.0;           // sum of |t_k| + travel_k of joints below the topmost moving one
     double pendingOffsets = 0.0;  // sum since the last moving joint met while walking up
     int topMoving = -1;
     for (int link = l; model.link(link).parentJoint >= 0; link = model.link(link).parentLink) {
@@ -84,8 +83,8 @@ std::vector<ReachSphere> linkReachSpheres(const robots::RobotModel& model,
   return out;
 }
 
-std::vector<std::pair<int, int>> pairsWithinReach(const std::vector<ReachSphere>& spheres, const std::vector<int>& links,
-                                                  double margin) {
+std::vector<std::pair<int, int>> pairsWithinReach(const std::vector<ReachSphere>& spheres,
+                                                  const std::vector<int>& links, double margin) {
   const int n = static_cast<int>(links.size());
   std::vector<Aabb> boxes;
   std::vector<int> unbounded;  // positions in `links` of the spheres that hold within the limits only

@@ -48,7 +48,7 @@ std::vector<ReachSphere> linkReachSpheres(const robots::RobotModel& model,
 /// within the joint limits only is paired with every other (configurations beyond the limits are
 /// accepted by the queries). A tree over the spheres' boxes finds the pairs: the time grows with
 /// their number, not with the square of the links'.
-std::vector<std::pair<int, int>> pairsWithinReach(const std::vector<ReachSphere>& spheres, const std::vector<int>& links,
-                                                  double margin);
+std::vector<std::pair<int, int>> pairsWithinReach(const std::vector<ReachSphere>& spheres,
+                                                  const std::vector<int>& links, double margin);
 
 }  // namespace deepcheck::checker

@@ -34,10 +34,10 @@ double separationAlong(const RobotPiece& a, const Eigen::Isometry3d& X_UA, const
 
 /// The two link geometries of a self pair, the upper one an ancestor of the lower one.
 struct Chain {
-  int up;             ///< link
-  int down;           ///< link
-  int upGeometry;     ///< index into RobotData::links
-  int downGeometry;   ///< index into RobotData::links
+  int up;            ///< link
+  int down;          ///< link
+  int upGeometry;    ///< index into RobotData::links
+  int downGeometry;  ///< index into RobotData::links
 };
 
 /// The pair (a, b) as a chain, or false when the links are on different branches.
@@ -81,8 +81,8 @@ std::map<int, double> motionRadii(const RobotData& robot, const Chain& chain) {
 
 /// True when every piece pair of U and D (D posed by X_UD in U's frame) is certified apart by
 /// more than delta over the cell. `caches`: one GJK warm start per piece pair.
-bool cellCertified(const RobotData& robot, const LinkGeometry& U, const LinkGeometry& D,
-                   const Eigen::Isometry3d& X_UD, double delta, std::vector<geometry::GjkCache>* caches) {
+bool cellCertified(const RobotData& robot, const LinkGeometry& U, const LinkGeometry& D, const Eigen::Isometry3d& X_UD,
+                   double delta, std::vector<geometry::GjkCache>* caches) {
   for (int i = 0; i < U.numPieces; ++i) {
     const RobotPiece& pa = robot.pieces[U.firstPiece + i];
     const Eigen::Isometry3d& X_UA = pa.X_LP;
@@ -157,8 +157,8 @@ Eigen::Isometry3d SelfPairGrid::poseAtCentre(const robots::RobotModel& model, in
   return X_WL[up].inverse() * X_WL[down];
 }
 
-void SelfPairGrid::certifyCells(const RobotData& robot, int up, int down, const LinkGeometry& U,
-                                const LinkGeometry& D, const double step[2]) {
+void SelfPairGrid::certifyCells(const RobotData& robot, int up, int down, const LinkGeometry& U, const LinkGeometry& D,
+                                const double step[2]) {
   // Each cell: the variables at its centre, the others at the default configuration (they do not
   // change D's pose in U).
   Eigen::VectorXd q = robot.model.defaultConfiguration();

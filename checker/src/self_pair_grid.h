@@ -111,8 +111,7 @@ class SelfPairGrid {
   /// The grid's variables, cells and delta for the motion radii `rho` (variable -> rho) within
   /// the cell budget for `piecePairs` piece pairs; the cell widths in `step`. False when the
   /// limits are degenerate or the budget too small.
-  bool layout(const robots::RobotModel& model, const std::map<int, double>& rho, long long piecePairs,
-              double step[2]);
+  bool layout(const robots::RobotModel& model, const std::map<int, double>& rho, long long piecePairs, double step[2]);
   /// Marks each cell free when every piece pair of U and D is certified apart over it.
   void certifyCells(const RobotData& robot, int up, int down, const LinkGeometry& U, const LinkGeometry& D,
                     const double step[2]);

@@ -120,7 +120,8 @@ std::optional<std::vector<std::uint8_t>> SelfPairGridCache::load(const std::stri
     return std::nullopt;
   };
   std::string data;
-  if (const std::string why = decomposition::readWholeFile(path, data); !why.empty()) return bad("cannot be read: " + why);
+  if (const std::string why = decomposition::readWholeFile(path, data); !why.empty())
+    return bad("cannot be read: " + why);
   if (data.size() < kHeaderBytes + kChecksumBytes) return bad("truncated");
   // Checksum first: it covers everything, so the fields below are read from intact bytes.
   const std::size_t body = data.size() - kChecksumBytes;

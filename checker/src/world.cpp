@@ -24,9 +24,13 @@
 
 namespace deepcheck::checker {
 
+using detail::buildObstaclePieces;
+using detail::finishPieceSet;
 using detail::LinkGeometry;
+using detail::makeWorldPiece;
 using detail::ObstacleData;
 using detail::PieceSet;
+using detail::publish;
 using detail::RobotData;
 using detail::RobotPiece;
 using detail::SceneData;
@@ -35,10 +39,6 @@ using detail::Snapshot;
 using detail::WorldBody;
 using detail::WorldPiece;
 using detail::WorldState;
-using detail::buildObstaclePieces;
-using detail::finishPieceSet;
-using detail::makeWorldPiece;
-using detail::publish;
 
 // --- adjacency -------------------------------------------------------------------------------
 
@@ -145,8 +145,7 @@ void appendLinkGeometry(RobotData& robot, int link, int attached, const std::vec
   robot.links.push_back(lg);
 }
 
-WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry3d& X_WB, int body,
-                          std::uint64_t uid) {
+WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry3d& X_WB, int body, std::uint64_t uid) {
   WorldPiece w;
   w.core = p.core;
   w.radius = p.radius;
@@ -286,9 +285,10 @@ void buildSelfPairs(Snapshot& s, const WorldOptions& options) {
     if (disabled(links[a], links[b])) continue;
     auto known = grids.find({a, b});
     s.selfPairs.push_back({a, b, s.selfCacheSize,
-                           known != grids.end()    ? known->second
-                           : s.shortcuts.selfPairGrids ? detail::SelfPairGrid::build(robot, a, b, &gridCache, options.progress)
-                                                   : nullptr});
+                           known != grids.end() ? known->second
+                           : s.shortcuts.selfPairGrids
+                               ? detail::SelfPairGrid::build(robot, a, b, &gridCache, options.progress)
+                               : nullptr});
     s.selfCacheSize += robot.links[a].numPieces * robot.links[b].numPieces;
   }
   const long long n = static_cast<long long>(links.size());
@@ -313,8 +313,8 @@ namespace detail {
 
 void publish(WorldState& st, std::shared_ptr<Snapshot> snap) {
   buildAllowedMasks(*snap);
-  snap->excess = std::isnan(*st.excessSink) ? *st.excessSink
-                                            : std::max(*st.excessSink, st.options.geometry.cylinderMaxDeviation);
+  snap->excess =
+      std::isnan(*st.excessSink) ? *st.excessSink : std::max(*st.excessSink, st.options.geometry.cylinderMaxDeviation);
   st.current = std::move(snap);
   st.generation.fetch_add(1, std::memory_order_acq_rel);
 }
@@ -387,8 +387,8 @@ World::World(robots::RobotModel robot, const WorldOptions& options) : state_(std
   st.geometry = options.geometry;
   auto excess = std::make_shared<double>(0.0);
   if (!st.geometry.decomposer) {
-    st.geometry.decomposer = robots::meshDecomposer(
-        {options.decompose, options.decomposition, options.decompositionCacheDir}, excess);
+    st.geometry.decomposer =
+        robots::meshDecomposer({options.decompose, options.decomposition, options.decompositionCacheDir}, excess);
   } else {
     *excess = std::numeric_limits<double>::quiet_NaN();  // a custom decomposer: unknown
   }
@@ -440,8 +440,8 @@ int World::addSceneLocked(robots::RobotModel scene, const SceneSpec& options) {
       piecesWithProgress(data->model, st.geometry, st.options.progress, "scene '" + data->model.name() + "'");
   auto snap = std::make_shared<Snapshot>(*st.current);
   const int index = static_cast<int>(snap->scenes.size());
-  snap->scenePieces = appendScenePieces(*snap->scenePieces, *snap->robot, *data, index, pieces,
-                                        st.options.reachMargin, st.options.externalBroadPhase.get());
+  snap->scenePieces = appendScenePieces(*snap->scenePieces, *snap->robot, *data, index, pieces, st.options.reachMargin,
+                                        st.options.externalBroadPhase.get());
   snap->scenes.push_back(data);
   publish(st, snap);
   return static_cast<int>(snap->scenes.size()) - 1;

@@ -77,8 +77,7 @@ Eigen::Isometry3d linkPose(const robots::RobotModel& model, int link, const Eige
 
 /// The attached data of `object` on `link` (its pieces already made), checked against `s`.
 std::shared_ptr<AttachedData> makeAttached(const Snapshot& s, const std::string& link, const Obstacle& object,
-                                           const AttachOptions& options,
-                                           std::vector<robots::CollisionPiece> pieces) {
+                                           const AttachOptions& options, std::vector<robots::CollisionPiece> pieces) {
   const robots::RobotModel& model = s.robot->model;
   const std::string what = "attach '" + object.name + "'";
   if (object.name.empty()) throw std::invalid_argument("attach: the object has no name");
@@ -123,7 +122,8 @@ void World::attachObstacle(int id, const std::string& link, const AttachOptions&
   std::lock_guard<std::mutex> lock(st.mutex);
   auto snap = std::make_shared<Snapshot>(*st.current);
   auto it = std::find_if(snap->obstacles.begin(), snap->obstacles.end(), [&](const auto& o) { return o->id == id; });
-  if (it == snap->obstacles.end()) throw std::invalid_argument("attachObstacle: no obstacle with id " + std::to_string(id));
+  if (it == snap->obstacles.end())
+    throw std::invalid_argument("attachObstacle: no obstacle with id " + std::to_string(id));
   AttachOptions inWorld = options;
   inWorld.worldFrame = true;
   snap->attached.push_back(makeAttached(*snap, link, (*it)->source, inWorld, (*it)->pieces));

@@ -19,8 +19,10 @@ using namespace detail;  // NOLINT: the world's own internals
 
 const char* toString(BodyDistanceMethod m) {
   switch (m) {
-    case BodyDistanceMethod::Body: return "body";
-    case BodyDistanceMethod::Pairwise: return "pairwise";
+    case BodyDistanceMethod::Body:
+      return "body";
+    case BodyDistanceMethod::Pairwise:
+      return "pairwise";
   }
   return "unknown";
 }
@@ -107,8 +109,9 @@ PosedBody posedBody(const Snapshot& s, const std::vector<Eigen::Isometry3d>& X_W
 
 /// The minimum over piece pairs (the Pairwise method), as a body result: the answer and the
 /// witness pieces; status Separated, Certified (a converged depth) or PairNotCertified.
-geometry::BodySignedDistanceResult pairwise(const PosedBody& A, const PosedBody& B, const geometry::PenetrationOptions& options,
-                                        geometry::SignedDistanceStatus* status) {
+geometry::BodySignedDistanceResult pairwise(const PosedBody& A, const PosedBody& B,
+                                            const geometry::PenetrationOptions& options,
+                                            geometry::SignedDistanceStatus* status) {
   geometry::BodySignedDistanceResult out;
   out.distance = std::numeric_limits<double>::infinity();
   for (int i = 0; i < static_cast<int>(A.body.pieces.size()); ++i) {
@@ -168,9 +171,9 @@ World::BodyContact World::bodySignedDistance(const Eigen::Ref<const Eigen::Vecto
     r = pairwise(A, B, options.depth.pair, &pairStatus);
   } else {
     r = geometry::bodySignedDistance(A.body, A.X_W, B.body, B.X_W, options.depth);
-    pairStatus = !r.certified                ? geometry::SignedDistanceStatus::NotConverged
+    pairStatus = !r.certified        ? geometry::SignedDistanceStatus::NotConverged
                  : r.distance >= 0.0 ? geometry::SignedDistanceStatus::Separated
-                                             : geometry::SignedDistanceStatus::Penetrating;
+                                     : geometry::SignedDistanceStatus::Penetrating;
   }
   out.depthStatus = r.status;
   out.depthLower = r.depthLower;

@@ -99,7 +99,6 @@ enum class Clearance {
   Collides,  ///< some pair is within the base clearance (margin 0: overlaps)
 };
 
-
 /// Every pair within its margin at the context's configuration, listed in `near` when none is
 /// within the base clearance (Near; Clear when none is within its margin); Collides at the first
 /// pair within the base clearance (the list is then incomplete).

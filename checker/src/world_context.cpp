@@ -108,8 +108,7 @@ void refresh(Impl& c) {
 }
 
 /// Refresh, check q, forward kinematics, link sphere centres; a new stamp for piece poses.
-const Snapshot& prepare(const WorldState& state, Impl& c,
-                        const Eigen::Ref<const Eigen::VectorXd>& q) {
+const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q) {
   if (c.worldUid != state.uid) {
     throw std::invalid_argument("World: the Context was made by another world");
   }
@@ -164,9 +163,7 @@ World::Context& threadContext(const World& world, const std::shared_ptr<WorldSta
 
 }  // namespace
 
-bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q) const {
-  return isFree(q, threadContext(*this, state_));
-}
+bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q) const { return isFree(q, threadContext(*this, state_)); }
 
 bool World::isClear(const Eigen::Ref<const Eigen::VectorXd>& q, const ClearanceDemand& demand) const {
   return isClear(q, threadContext(*this, state_), demand);

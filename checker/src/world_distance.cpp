@@ -33,8 +33,7 @@ struct DistanceSearch {
   geometry::SignedDistanceResult bestResult;
   PairKey skip;  // already evaluated first (the previous closest pair)
 
-  DistanceSearch(Impl& c_, const Snapshot& s_, const DistanceOptions& options_)
-      : c(c_), s(s_), options(options_) {}
+  DistanceSearch(Impl& c_, const Snapshot& s_, const DistanceOptions& options_) : c(c_), s(s_), options(options_) {}
 
   bool collectContacts() const { return options.contactMargin > -std::numeric_limits<double>::infinity(); }
 
@@ -74,11 +73,12 @@ struct DistanceSearch {
   /// on the depth, so its distance is a LOWER bound on the pair's signed distance; when that is
   /// already at least bound(), the pair cannot matter and the restarts are skipped.
   geometry::SignedDistanceResult pairDistance(const geometry::ConvexShape& A, const Eigen::Isometry3d& X_WA,
-                                          const geometry::ConvexShape& B, const Eigen::Isometry3d& X_WB,
-                                          geometry::PairCache& cache) {
+                                              const geometry::ConvexShape& B, const Eigen::Isometry3d& X_WB,
+                                              geometry::PairCache& cache) {
     warm(c, cache, FarStep::KeepEnclosing);
     // The certified method runs no restarts: one call is the whole query.
-    if (!options.penetration.walk.restarts || options.penetration.method == geometry::PenetrationMethod::CertifiedExpansion)
+    if (!options.penetration.walk.restarts ||
+        options.penetration.method == geometry::PenetrationMethod::CertifiedExpansion)
       return geometry::signedDistance(A, X_WA, B, X_WB, &cache, options.penetration);
     geometry::PenetrationOptions quick = options.penetration;
     quick.walk.restarts = false;
@@ -150,23 +150,24 @@ struct DistanceSearch {
     if (set.pieces.empty()) return;
     const RobotData& robot = *s.robot;
     const LinkGeometry& lg = robot.links[g];
-    forEachNear(set, c.state->options.broadPhase, c.linkCenter[g], lg.radius, [this] { return bound(); },
-                [&](int wp, double /*linkLowerBound*/) {
-                  const WorldPiece& w = set.pieces[wp];
-                  ++c.stats.linkCandidates;
-                  if (worldPairAllowed(s, kind, g, w.body)) return;
-                  for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
-                    posePiece(c, robot, i);
-                    const RobotPiece& p = robot.pieces[i];
-                    ++c.stats.pieceTests;
-                    upper = std::min(upper, (c.pieceCenter[i] - w.center_W).norm() - p.radius - w.radius);
-                    const double lb = pieceWorldLowerBound(c, p, i, w);
-                    if (lb >= bound()) continue;
-                    const PairKey key{kind, i, wp, -1};
-                    if (key == skip) continue;
-                    c.candidates.push_back(Candidate{lb, key});
-                  }
-                });
+    forEachNear(
+        set, c.state->options.broadPhase, c.linkCenter[g], lg.radius, [this] { return bound(); },
+        [&](int wp, double /*linkLowerBound*/) {
+          const WorldPiece& w = set.pieces[wp];
+          ++c.stats.linkCandidates;
+          if (worldPairAllowed(s, kind, g, w.body)) return;
+          for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
+            posePiece(c, robot, i);
+            const RobotPiece& p = robot.pieces[i];
+            ++c.stats.pieceTests;
+            upper = std::min(upper, (c.pieceCenter[i] - w.center_W).norm() - p.radius - w.radius);
+            const double lb = pieceWorldLowerBound(c, p, i, w);
+            if (lb >= bound()) continue;
+            const PairKey key{kind, i, wp, -1};
+            if (key == skip) continue;
+            c.candidates.push_back(Candidate{lb, key});
+          }
+        });
   }
 
   void gatherSelf(const SelfPair& sp) {

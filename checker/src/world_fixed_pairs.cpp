@@ -6,7 +6,6 @@
 
 #include "world_internal.h"
 
-
 #include "deepcheck/robots/kinematics.h"
 
 #include <algorithm>
@@ -43,8 +42,8 @@ std::string metres(double d) {
 
 std::string fixedPairMessage(const Contact& c, const robots::RobotModel& robot) {
   const std::string link = robot.link(c.linkA).name;
-  const std::string what = c.distance <= 0.0 ? "every configuration collides"
-                                             : "no configuration has a clearance above it";
+  const std::string what =
+      c.distance <= 0.0 ? "every configuration collides" : "no configuration has a clearance above it";
   return "deepcheck: warning: " + c.nameA + " and " + c.nameB + " are " + metres(c.distance) +
          " m apart in every configuration (no joint moves " + link + "): " + what + "; " + allowHint(c);
 }
@@ -78,9 +77,8 @@ using detail::RobotPiece;
 Contact pieceContact(const detail::Snapshot& s, int g, const RobotPiece& p, const Eigen::Isometry3d& X_WP,
                      const PieceSet& set, int wp) {
   const detail::WorldPiece& w = set.pieces[static_cast<std::size_t>(wp)];
-  const geometry::SignedDistanceResult r =
-      geometry::signedDistance(geometry::ConvexShape{p.core.get(), p.radius}, X_WP, geometry::ConvexShape{w.core.get(), w.radius},
-                           w.X_WP);
+  const geometry::SignedDistanceResult r = geometry::signedDistance(
+      geometry::ConvexShape{p.core.get(), p.radius}, X_WP, geometry::ConvexShape{w.core.get(), w.radius}, w.X_WP);
   Contact c;
   c.distance = r.distance;
   c.normal = r.normal;

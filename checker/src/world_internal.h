@@ -62,9 +62,9 @@ struct SelfPair {
 /// (world_attached.cpp).
 struct RobotData {
   robots::RobotModel model;
-  std::vector<RobotPiece> pieces;   // grouped by link, in link order
-  std::vector<LinkGeometry> links;  // links with pieces, in link order
-  std::vector<ReachSphere> reach;   // per link
+  std::vector<RobotPiece> pieces;                  // grouped by link, in link order
+  std::vector<LinkGeometry> links;                 // links with pieces, in link order
+  std::vector<ReachSphere> reach;                  // per link
   std::shared_ptr<const LinkPairIndex> linkPairs;  // adjacent and rigid link pairs
 };
 
@@ -76,9 +76,9 @@ struct WorldPiece {
   Eigen::Vector3d center_W = Eigen::Vector3d::Zero();
   double sphereRadius = 0.0;
   Aabb box;
-  Obb obb_W;                // oriented box in the world
-  int body = -1;            // index into PieceSet::bodies
-  std::uint64_t uid = 0;    // stable across snapshots (obstacle id << 24 | piece), for caches
+  Obb obb_W;              // oriented box in the world
+  int body = -1;          // index into PieceSet::bodies
+  std::uint64_t uid = 0;  // stable across snapshots (obstacle id << 24 | piece), for caches
 };
 
 struct WorldBody {
@@ -171,7 +171,7 @@ struct Snapshot {
   std::shared_ptr<const RobotData> robot;
   std::vector<std::shared_ptr<const AttachedData>> attached;  // robot->links beyond the own ones
   AllowedNames allowed;
-  AllowedMask sceneAllowed;     // from `allowed`, rebuilt by publish()
+  AllowedMask sceneAllowed;  // from `allowed`, rebuilt by publish()
   AllowedMask obstacleAllowed;
   std::vector<std::shared_ptr<const SceneData>> scenes;
   std::vector<std::shared_ptr<const ObstacleData>> obstacles;  // by increasing id
@@ -190,7 +190,7 @@ struct Snapshot {
 /// World keeps its contexts valid).
 struct WorldState {
   World::Options options;
-  std::uint64_t uid = 0;  // unique per World ever made in this process
+  std::uint64_t uid = 0;     // unique per World ever made in this process
   mutable std::mutex mutex;  // guards `current` and the fields below during changes
   std::shared_ptr<const Snapshot> current;
   std::atomic<std::uint64_t> generation{0};
@@ -217,8 +217,7 @@ struct WorldState {
 };
 
 /// Pieces of one URDF-like geometry (box, sphere, cylinder prism, decomposed mesh) in its frame G.
-std::vector<robots::CollisionPiece> piecesOfGeometry(const robots::Geometry& geometry,
-                                                     const robots::TriangleMesh* mesh,
+std::vector<robots::CollisionPiece> piecesOfGeometry(const robots::Geometry& geometry, const robots::TriangleMesh* mesh,
                                                      const robots::CollisionGeometryOptions& options,
                                                      const std::string& what);
 

@@ -238,8 +238,7 @@ bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context)
   return clearOfAll(c, prepare(*state_, c, q), Margins());
 }
 
-bool World::isClear(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context,
-                    const ClearanceDemand& demand) const {
+bool World::isClear(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context, const ClearanceDemand& demand) const {
   Impl& c = *context.impl_;
   const Snapshot& s = prepare(*state_, c, q);
   return clearOfAll(c, s, Margins(demand, *s.robot, demand.scale));

@@ -112,8 +112,8 @@ enum class Outcome { Certified, Split, Collides, Unproven };
 
 /// Examines one sub-motion (middle q(tm), half length h) at the context's current pose; on
 /// Split, w.near holds the pairs its halves must test (or `all` is set: every pair).
-Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, double h, double move,
-                const SubMotion& sub, MotionScratch& w, bool& all) {
+Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, double h, double move, const SubMotion& sub,
+                MotionScratch& w, bool& all) {
   const RobotData& robot = *s.robot;
   const bool certify = h * move <= tol::kCertifyBelowMove;
   if (certify) {
@@ -190,8 +190,8 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
       bool all = false;
       const Outcome o = examine(c, s, motion, h, move, sub, w, all);
       if (o == Outcome::Collides || o == Outcome::Unproven || out.configurations > tol::kCertifiedMaxTests) {
-        out.verdict = o == Outcome::Collides ? MotionCertificate::Verdict::Collides
-                                             : MotionCertificate::Verdict::Unproven;
+        out.verdict =
+            o == Outcome::Collides ? MotionCertificate::Verdict::Collides : MotionCertificate::Verdict::Unproven;
         return true;
       }
       if (o == Outcome::Split) split(sub, all, w);

@@ -14,13 +14,13 @@
 
 namespace deepcheck::checker {
 
+using detail::buildObstaclePieces;
 using detail::ObstacleData;
 using detail::PieceSet;
+using detail::publish;
 using detail::Snapshot;
 using detail::WorldBody;
 using detail::WorldState;
-using detail::buildObstaclePieces;
-using detail::publish;
 
 Obstacle Obstacle::box(const std::string& name, const Eigen::Vector3d& size, const Eigen::Isometry3d& X_WO) {
   Obstacle o;
@@ -40,8 +40,7 @@ Obstacle Obstacle::sphere(const std::string& name, double radius, const Eigen::I
   return o;
 }
 
-Obstacle Obstacle::cylinder(const std::string& name, double radius, double length,
-                            const Eigen::Isometry3d& X_WO) {
+Obstacle Obstacle::cylinder(const std::string& name, double radius, double length, const Eigen::Isometry3d& X_WO) {
   Obstacle o;
   o.name = name;
   o.geometry.type = robots::GeometryType::Cylinder;

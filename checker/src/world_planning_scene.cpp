@@ -80,7 +80,8 @@ std::vector<int> World::addPlanningScene(const robots::PlanningScene& scene, con
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const robots::SceneObject& object = scene.objects[i];
     for (std::size_t k = 0; k < object.shapes.size(); ++k) {
-      obstacles.push_back(obstacleOfShape(object.shapes[k], shapeName(object.id, k, object.shapes.size()), poses[i][k]));
+      obstacles.push_back(
+          obstacleOfShape(object.shapes[k], shapeName(object.id, k, object.shapes.size()), poses[i][k]));
     }
   }
   // All at once: one change of the world, and none added when a shape cannot become pieces.

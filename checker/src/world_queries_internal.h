@@ -27,16 +27,13 @@ namespace deepcheck::checker {
 
 namespace detail {
 
-
 /// Identifies one narrow-phase pair within a snapshot.
 struct PairKey {
   enum class Kind { None, Self, Scene, Obstacle } kind = Kind::None;
   int robotPiece = -1;  ///< piece of A
   int other = -1;       ///< Self: robot piece of B; Scene / Obstacle: world piece index
   int cache = -1;       ///< Self: index into selfCaches
-  bool operator==(const PairKey& o) const {
-    return kind == o.kind && robotPiece == o.robotPiece && other == o.other;
-  }
+  bool operator==(const PairKey& o) const { return kind == o.kind && robotPiece == o.robotPiece && other == o.other; }
 };
 
 /// The minimum over the piece pairs of one body pair, for the contact list.
@@ -72,7 +69,7 @@ struct World::Context::Impl {
   std::unique_ptr<geometry::PenetrationScratch> scratch = std::make_unique<geometry::PenetrationScratch>();
 
   std::vector<Eigen::Isometry3d> X_WL;
-  std::vector<Eigen::Isometry3d> X_WP;  // robot pieces, valid when transformStamp == stamp
+  std::vector<Eigen::Isometry3d> X_WP;       // robot pieces, valid when transformStamp == stamp
   std::vector<Eigen::Vector3d> pieceCenter;  // valid when pieceStamp == stamp, as pieceObb
   std::vector<Obb> pieceObb;
   std::vector<std::uint32_t> pieceStamp;
@@ -80,8 +77,8 @@ struct World::Context::Impl {
   std::uint32_t stamp = 0;
   std::vector<Eigen::Vector3d> linkCenter;  // per LinkGeometry
 
-  Eigen::VectorXd lastQ;  // the previous query's configuration
-  bool coherent = false;  // this query is within tol::kWarmStartMaxStep of the previous one
+  Eigen::VectorXd lastQ;        // the previous query's configuration
+  bool coherent = false;        // this query is within tol::kWarmStartMaxStep of the previous one
   detail::PairKey lastHit;      // isFree: the pair that overlapped last time
   detail::PairKey lastClosest;  // signedDistance: the closest pair last time
   std::vector<detail::BodyPairBest> bodyPairs;
@@ -256,7 +253,8 @@ template <class Visit>
 bool forEachOverlapping(const PieceSet& set, BroadPhase broadPhase, const Aabb& query, Visit&& visit) {
   if (set.external != nullptr) return set.external->visitOverlapping(query, std::function<bool(int)>(std::ref(visit)));
   switch (broadPhase) {
-    case BroadPhase::AabbTree: return set.tree.visitOverlapping(query, visit);
+    case BroadPhase::AabbTree:
+      return set.tree.visitOverlapping(query, visit);
     case BroadPhase::None:
       for (int i = 0; i < static_cast<int>(set.pieces.size()); ++i) {
         if (visit(i)) return true;
@@ -269,15 +267,17 @@ bool forEachOverlapping(const PieceSet& set, BroadPhase broadPhase, const Aabb& 
 /// Calls visit(worldPiece, lowerBound) for the pieces of `set` whose box is within bound() of
 /// the sphere (center, r).
 template <class Bound, class Visit>
-void forEachNear(const PieceSet& set, BroadPhase broadPhase, const Eigen::Vector3d& center, double r,
-                 Bound&& bound, Visit&& visit) {
+void forEachNear(const PieceSet& set, BroadPhase broadPhase, const Eigen::Vector3d& center, double r, Bound&& bound,
+                 Visit&& visit) {
   if (set.external != nullptr) {
     set.external->visitNear(center, r, std::function<double()>(std::ref(bound)),
                             std::function<void(int, double)>(std::ref(visit)));
     return;
   }
   switch (broadPhase) {
-    case BroadPhase::AabbTree: set.tree.visitNear(center, r, bound, visit); return;
+    case BroadPhase::AabbTree:
+      set.tree.visitNear(center, r, bound, visit);
+      return;
     case BroadPhase::None:
       for (int i = 0; i < static_cast<int>(set.pieces.size()); ++i) {
         const double lb = set.pieces[i].box.signedDistance(center) - r;

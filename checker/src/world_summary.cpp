@@ -15,8 +15,10 @@ using detail::SelfPair;
 
 const char* toString(BroadPhase b) {
   switch (b) {
-    case BroadPhase::AabbTree: return "aabb-tree";
-    case BroadPhase::None: return "none";
+    case BroadPhase::AabbTree:
+      return "aabb-tree";
+    case BroadPhase::None:
+      return "none";
   }
   return "unknown";
 }
@@ -76,8 +78,8 @@ std::string World::summary() const {
   const auto snap = state_->snapshot();
   const robots::RobotModel& m = snap->robot->model;
   std::ostringstream out;
-  out << "robot '" << m.name() << "': " << s.robotLinks << " links (" << s.robotLinksWithGeometry
-      << " with geometry), " << m.numVariables() << " variables, " << s.robotPieces << " pieces\n";
+  out << "robot '" << m.name() << "': " << s.robotLinks << " links (" << s.robotLinksWithGeometry << " with geometry), "
+      << m.numVariables() << " variables, " << s.robotPieces << " pieces\n";
   out << "self pairs: " << s.selfPairs << " link pairs checked (" << s.selfPiecePairs << " piece pairs), "
       << s.disabledAdjacent << " disabled as adjacent, " << s.disabledRigid << " as rigidly attached, "
       << s.disabledByUser << " by name (SRDF)";
@@ -86,13 +88,14 @@ std::string World::summary() const {
   for (std::size_t i = 0; i < snap->scenes.size(); ++i) {
     const SceneData& sc = *snap->scenes[i];
     out << "scene " << i << " '" << sc.model.name() << "': " << sc.model.numLinks() << " links ("
-        << sc.linksWithGeometry << " with geometry), pieces kept " << sc.piecesKept << ", dropped "
-        << sc.piecesDropped << " (unreachable)\n";
+        << sc.linksWithGeometry << " with geometry), pieces kept " << sc.piecesKept << ", dropped " << sc.piecesDropped
+        << " (unreachable)\n";
   }
-  out << "scene pieces: kept " << s.scenePiecesKept << ", dropped " << s.scenePiecesDropped
-      << " (reach margin " << state_->options.reachMargin << " m)\n";
+  out << "scene pieces: kept " << s.scenePiecesKept << ", dropped " << s.scenePiecesDropped << " (reach margin "
+      << state_->options.reachMargin << " m)\n";
   out << "obstacles: " << s.obstacles << " (" << s.obstaclePieces << " pieces)\n";
-  if (s.attachedObjects > 0) out << "attached objects: " << s.attachedObjects << " (" << s.attachedPieces << " pieces)\n";
+  if (s.attachedObjects > 0)
+    out << "attached objects: " << s.attachedObjects << " (" << s.attachedPieces << " pieces)\n";
   if (s.allowedCollisions > 0) out << "allowed collisions: " << s.allowedCollisions << " entries (pairs and names)\n";
   const long long worldPairs =
       static_cast<long long>(s.robotPieces + s.attachedPieces) * (s.scenePiecesKept + s.obstaclePieces);

@@ -47,8 +47,7 @@ double rayTriangle(const Vector3d& origin, const Vector3d& dir, const Vector3d& 
   return e2.dot(q) / det;
 }
 
-void clipPolygon(const std::vector<Vector3d>& in, const Halfspace& keep,
-                 std::vector<Vector3d>* out) {
+void clipPolygon(const std::vector<Vector3d>& in, const Halfspace& keep, std::vector<Vector3d>* out) {
   out->clear();
   const std::size_t n = in.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -113,8 +112,7 @@ void TriangleBvh::buildNode(int node, int first, int count, const std::vector<Ve
   buildNode(left + 1, first + half, count - half, centers, order);
 }
 
-double TriangleBvh::distance(const Vector3d& p, const Halfspace* keep, double stopBelow,
-                             Vector3d* closest) const {
+double TriangleBvh::distance(const Vector3d& p, const Halfspace* keep, double stopBelow, Vector3d* closest) const {
   double best2 = std::numeric_limits<double>::infinity();
   if (nodes_.empty()) return best2;
   const double stop2 = stopBelow > 0.0 ? stopBelow * stopBelow : 0.0;

@@ -32,8 +32,7 @@ double rayTriangle(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, co
 
 /// Clips a convex polygon to a half-space (Sutherland-Hodgman). Points with signed distance <= 0
 /// are kept; crossing points are interpolated. The result may have fewer than 3 points.
-void clipPolygon(const std::vector<Eigen::Vector3d>& in, const Halfspace& keep,
-                 std::vector<Eigen::Vector3d>* out);
+void clipPolygon(const std::vector<Eigen::Vector3d>& in, const Halfspace& keep, std::vector<Eigen::Vector3d>* out);
 
 class TriangleBvh {
  public:
@@ -57,8 +56,7 @@ class TriangleBvh {
     int first = 0;  // leaf: first triangle; inner node: index of the left child (right = left + 1)
     int count = 0;  // leaf: number of triangles; inner node: 0
   };
-  void buildNode(int node, int first, int count, const std::vector<Eigen::Vector3d>& centers,
-                 std::vector<int>& order);
+  void buildNode(int node, int first, int count, const std::vector<Eigen::Vector3d>& centers, std::vector<int>& order);
 
   std::vector<Triangle> triangles_;
   std::vector<Node> nodes_;

@@ -31,9 +31,7 @@ constexpr std::uint32_t kMaxVerticesInFile = 1u << 24;
 // Little-endian encoding.
 class Writer {
  public:
-  void raw(const void* data, std::size_t size) {
-    buffer_.append(static_cast<const char*>(data), size);
-  }
+  void raw(const void* data, std::size_t size) { buffer_.append(static_cast<const char*>(data), size); }
   void u32(std::uint32_t x) {
     for (int i = 0; i < 4; ++i) buffer_.push_back(static_cast<char>(x >> (8 * i)));
   }
@@ -90,12 +88,12 @@ class Reader {
 
 /// The report fields that describe the result (not the call: source, times of this call, cache).
 void writeReport(Writer& w, const DecompositionReport& r) {
-  for (int x : {r.numTriangles, r.numVertices, r.numComponents, r.numPieces, r.maxPieceVertices,
-                r.holesFilled, r.voidsRemoved, r.duplicatesRemoved}) {
+  for (int x : {r.numTriangles, r.numVertices, r.numComponents, r.numPieces, r.maxPieceVertices, r.holesFilled,
+                r.voidsRemoved, r.duplicatesRemoved}) {
     w.u32(static_cast<std::uint32_t>(x));
   }
-  for (double x : {r.diagonal, r.targetConcavity, r.concavity, r.concavityRelative, r.hullConcavity,
-                   r.meshVolume, r.piecesVolume, r.volumeRatio, r.decomposeMilliseconds}) {
+  for (double x : {r.diagonal, r.targetConcavity, r.concavity, r.concavityRelative, r.hullConcavity, r.meshVolume,
+                   r.piecesVolume, r.volumeRatio, r.decomposeMilliseconds}) {
     w.f64(x);
   }
   w.u32((r.targetMet ? 1u : 0u) | (r.alreadyConvex ? 2u : 0u) | (r.meshClosed ? 4u : 0u));
@@ -114,9 +112,8 @@ bool readReport(Reader& rd, DecompositionReport* r) {
   r->holesFilled = static_cast<int>(counts[5]);
   r->voidsRemoved = static_cast<int>(counts[6]);
   r->duplicatesRemoved = static_cast<int>(counts[7]);
-  for (double* x : {&r->diagonal, &r->targetConcavity, &r->concavity, &r->concavityRelative,
-                    &r->hullConcavity, &r->meshVolume, &r->piecesVolume, &r->volumeRatio,
-                    &r->decomposeMilliseconds}) {
+  for (double* x : {&r->diagonal, &r->targetConcavity, &r->concavity, &r->concavityRelative, &r->hullConcavity,
+                    &r->meshVolume, &r->piecesVolume, &r->volumeRatio, &r->decomposeMilliseconds}) {
     if (!rd.f64(x)) return false;
   }
   std::uint32_t flags;
@@ -197,8 +194,7 @@ std::string DecompositionCache::pathFor(const std::string& key) const {
   return (fs::path(directory_) / ("decomposition-" + key + ".bin")).string();
 }
 
-std::optional<ConvexDecomposition> DecompositionCache::load(const std::string& key,
-                                                            std::string* problem) const {
+std::optional<ConvexDecomposition> DecompositionCache::load(const std::string& key, std::string* problem) const {
   setProblem(problem, "");
   if (!enabled_) return std::nullopt;
   const std::string path = pathFor(key);
@@ -267,8 +263,7 @@ std::optional<ConvexDecomposition> DecompositionCache::load(const std::string& k
   return result;
 }
 
-bool DecompositionCache::store(const std::string& key, const ConvexDecomposition& result,
-                               std::string* problem) const {
+bool DecompositionCache::store(const std::string& key, const ConvexDecomposition& result, std::string* problem) const {
   setProblem(problem, "");
   if (!enabled_) {
     setProblem(problem, "cache disabled");
@@ -309,8 +304,7 @@ bool DecompositionCache::store(const std::string& key, const ConvexDecomposition
   return true;
 }
 
-ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
-                                          const DecompositionParams& params,
+ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh, const DecompositionParams& params,
                                           const DecompositionCache& cache) {
   const auto start = std::chrono::steady_clock::now();
   params.validate();
@@ -340,8 +334,7 @@ ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
     problem = cache.pathFor(key) + ": its pieces do not cover the mesh: " + gap;
   }
   if (!problem.empty()) {
-    noteCacheProblem(problem + "; decomposing " + detail::meshName(mesh) + " again", cache.directory(),
-                     false);
+    noteCacheProblem(problem + "; decomposing " + detail::meshName(mesh) + " again", cache.directory(), false);
   }
   ConvexDecomposition result = decomposeConvex(mesh, params);
   result.report.cache = problem.empty() ? CacheStatus::Stored : CacheStatus::Replaced;

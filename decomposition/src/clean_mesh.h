@@ -24,14 +24,14 @@ struct CleanMesh {
   std::vector<int> edgeTris;
   std::vector<int> component;  ///< connected component of each triangle (through edges)
   int numComponents = 0;
-  std::vector<int> group;      ///< components with overlapping bounding boxes, per triangle
+  std::vector<int> group;  ///< components with overlapping bounding boxes, per triangle
   int numGroups = 0;
   double diagonal = 0.0;
   bool closed = false;  ///< after filling holes
   int holesFilled = 0;
-  int voidsRemoved = 0;    ///< closed inward-facing components sealed inside others
+  int voidsRemoved = 0;       ///< closed inward-facing components sealed inside others
   int duplicatesRemoved = 0;  ///< triangles on the same three vertices as an earlier one
-  int inputVertices = 0;   ///< before filling holes
+  int inputVertices = 0;      ///< before filling holes
   int inputTriangles = 0;
   double volume = 0.0;  ///< sum of the components' volumes (voids count negative); NaN when open
 };

@@ -57,9 +57,9 @@ void addRandomSamples(const Hull& hull, int count, std::uint64_t seed, std::vect
   double total = 0.0;
   for (int t = 0; t < numTriangles; ++t) {
     const auto& tri = hull.triangles[t];
-    total += 0.5 * (hull.vertices[tri[1]] - hull.vertices[tri[0]])
-                       .cross(hull.vertices[tri[2]] - hull.vertices[tri[0]])
-                       .norm();
+    total +=
+        0.5 *
+        (hull.vertices[tri[1]] - hull.vertices[tri[0]]).cross(hull.vertices[tri[2]] - hull.vertices[tri[0]]).norm();
     cumulative[t] = total;
   }
   Rng rng(seed);
@@ -163,9 +163,8 @@ bool recordMaximum(Concavity* result, double value, const Vector3d& p, const Vec
 
 }  // namespace
 
-Concavity measureConcavity(const Hull& hull, const Target& target, int count, Extra extra,
-                           std::uint64_t seed, double abortAbove, double diagonal,
-                           const Vector3d* hint) {
+Concavity measureConcavity(const Hull& hull, const Target& target, int count, Extra extra, std::uint64_t seed,
+                           double abortAbove, double diagonal, const Vector3d* hint) {
   Concavity result;
   const int numTriangles = static_cast<int>(hull.triangles.size());
   if (numTriangles == 0 || !(hull.area > 0.0)) return result;  // a segment or point: on the mesh

@@ -44,8 +44,7 @@ enum class Extra {
 /// Samples `count` random points on the surface of `hull` (area-weighted), plus the `extra`
 /// points, and returns the largest distance to `target`.
 /// Stops as soon as the largest distance exceeds `abortAbove` (aborted = true).
-Concavity measureConcavity(const Hull& hull, const Target& target, int count, Extra extra,
-                           std::uint64_t seed, double abortAbove, double diagonal,
-                           const Vector3d* hint = nullptr);
+Concavity measureConcavity(const Hull& hull, const Target& target, int count, Extra extra, std::uint64_t seed,
+                           double abortAbove, double diagonal, const Vector3d* hint = nullptr);
 
 }  // namespace deepcheck::decomposition::detail

@@ -21,8 +21,8 @@ double distanceToPiece(const ConvexPiece& piece, const Eigen::Vector3d& point) {
   if (pieceContains(piece, point, 0.0)) return 0.0;
   double best = kInf;
   for (const auto& t : piece.triangles) {
-    const Eigen::Vector3d q = detail::closestPointOnTriangle(point, piece.vertices[t[0]], piece.vertices[t[1]],
-                                                             piece.vertices[t[2]]);
+    const Eigen::Vector3d q =
+        detail::closestPointOnTriangle(point, piece.vertices[t[0]], piece.vertices[t[1]], piece.vertices[t[2]]);
     best = std::min(best, (q - point).norm());
   }
   for (const Eigen::Vector3d& v : piece.vertices) best = std::min(best, (v - point).norm());
@@ -77,8 +77,8 @@ std::string coverageProblem(const TriangleMesh& mesh, const std::vector<ConvexPi
     for (const ConvexPiece& piece : pieces) distance = std::min(distance, distanceToPiece(piece, v));
     using detail::roundedNumber;
     return "vertex " + std::to_string(k) + " (" + roundedNumber(v.x()) + ", " + roundedNumber(v.y()) + ", " +
-           roundedNumber(v.z()) + ") is " + (pieces.empty() ? std::string("outside: no piece") :
-                                             roundedNumber(distance) + " outside every piece") +
+           roundedNumber(v.z()) + ") is " +
+           (pieces.empty() ? std::string("outside: no piece") : roundedNumber(distance) + " outside every piece") +
            " (tolerance " + roundedNumber(tolerance) + ")";
   }
   return "";

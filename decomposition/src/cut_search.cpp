@@ -11,8 +11,7 @@
 
 namespace deepcheck::decomposition::detail {
 
-Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vector<Keep>& keeps,
-                                                double abortAbove) {
+Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vector<Keep>& keeps, double abortAbove) {
   SideResult result;
   std::vector<Vector3d> points;
   points.reserve(part.points.size());
@@ -81,8 +80,8 @@ Decomposer::SideResult Decomposer::evaluateSide(const Part& part, const std::vec
   addCaps(part, &target.caps);
   for (const Keep& keep : keeps) target.caps.push_back({keep.plane.normal, keep.plane.offset, keep.section});
   const Vector3d* hint = part.hasWorst ? &part.worstSample : nullptr;
-  const Concavity c = measureConcavity(hull, target, tol::kCandidateSamples, Extra::None, nextSeed(),
-                                       abortAbove, diagonal_, hint);
+  const Concavity c =
+      measureConcavity(hull, target, tol::kCandidateSamples, Extra::None, nextSeed(), abortAbove, diagonal_, hint);
   result.aborted = c.aborted;
   result.concavity = c.value;
   result.volume = hull.volume;
@@ -117,7 +116,11 @@ std::vector<Vector3d> cutDirections(const std::vector<Vector3d>& points) {
 /// the concavity estimates depend on it).
 struct Decomposer::CutSearch {
   CutSearch(Decomposer& decomposer, const Part& cutPart, bool quickOnly, double scoreBound, double* best)
-      : d(decomposer), part(cutPart), quick(quickOnly), bound(scoreBound), bestScore(*best),
+      : d(decomposer),
+        part(cutPart),
+        quick(quickOnly),
+        bound(scoreBound),
+        bestScore(*best),
         directions(cutDirections(cutPart.points)),
         tie(tol::kTieFraction * decomposer.target_),
         slab(tol::kMinSlabRelative * decomposer.diagonal_),
@@ -185,8 +188,8 @@ void Decomposer::CutSearch::tryCut(int dir, double offset, bool throughWorst) {
     if (!inPlane) continue;
     faceArea += 0.5 * doubleVectorArea(polygon.corners).norm();
   }
-  scored.push_back({{n, offset}, score, a.volume + b.volume, std::max(a.vertices, b.vertices), throughWorst,
-                    faceArea, dir});
+  scored.push_back(
+      {{n, offset}, score, a.volume + b.volume, std::max(a.vertices, b.vertices), throughWorst, faceArea, dir});
 }
 
 void Decomposer::CutSearch::throughWorstCuts() {
@@ -210,7 +213,8 @@ void Decomposer::CutSearch::nearWorstCuts() {
     const double center = directions[k].dot(part.worstSample);
     std::vector<double> values;
     for (const Vector3d* p : near) values.push_back(directions[k].dot(*p));
-    std::sort(values.begin(), values.end(), [&](double a, double b) { return std::abs(a - center) < std::abs(b - center); });
+    std::sort(values.begin(), values.end(),
+              [&](double a, double b) { return std::abs(a - center) < std::abs(b - center); });
     std::vector<double> chosen;
     for (double v : values) {
       bool close = false;
@@ -281,8 +285,8 @@ void Decomposer::CutSearch::slabCuts() {
     if (!c.valid || c.aborted) continue;
     const double score = std::max({a.concavity, b.concavity, c.concavity});
     bestScore = std::min(bestScore, score);
-    Candidate slabCut{{n, lo}, score, a.volume + b.volume + c.volume,
-                      std::max({a.vertices, b.vertices, c.vertices}), false, 0.0, k};
+    Candidate slabCut{
+        {n, lo}, score, a.volume + b.volume + c.volume, std::max({a.vertices, b.vertices, c.vertices}), false, 0.0, k};
     slabCut.slabOffset = hi;
     scored.push_back(slabCut);
   }
@@ -333,19 +337,18 @@ bool Decomposer::betterTie(const Candidate& a, const Candidate& b) const {
 }
 
 const Decomposer::Candidate* Decomposer::pickBest(const Part& part, const std::vector<Candidate>& scored,
-                                                   double bestScore) const {
+                                                  double bestScore) const {
   // Among the cuts within `tie` of the best score: the one along the most mesh face area first
   // (cutting along a wall of a pocket or slot is progress that the concavities only show once
-  // all its walls are cut), then the smaller sum of hull volumes. A part cut only because its reduced hull misses the target
-  // (reductionLimited) needs fewer hull vertices per side rather than less concavity: among the
-  // cuts whose sides meet the target, the smaller larger vertex count wins.
+  // all its walls are cut), then the smaller sum of hull volumes. A part cut only because its reduced hull misses the
+  // target (reductionLimited) needs fewer hull vertices per side rather than less concavity: among the cuts whose sides
+  // meet the target, the smaller larger vertex count wins.
   const double tie = tol::kTieFraction * target_;
   const Candidate* pick = nullptr;
   if (part.reductionLimited) {
     for (const Candidate& s : scored) {
       if (s.score > target_) continue;
-      if (pick == nullptr || s.vertices < pick->vertices ||
-          (s.vertices == pick->vertices && s.volume < pick->volume)) {
+      if (pick == nullptr || s.vertices < pick->vertices || (s.vertices == pick->vertices && s.volume < pick->volume)) {
         pick = &s;
       }
     }
@@ -359,8 +362,8 @@ const Decomposer::Candidate* Decomposer::pickBest(const Part& part, const std::v
 }
 
 std::vector<const Decomposer::Candidate*> Decomposer::lookaheadOrder(const Part& part,
-                                                                    const std::vector<Candidate>& scored,
-                                                                    const Candidate* pick) const {
+                                                                     const std::vector<Candidate>& scored,
+                                                                     const Candidate* pick) const {
   // First cuts tried: through the worst sample (a hole needs two of those), the nearest cut on
   // each side of it along each direction (a slot needs one along each wall), and the best scores.
   std::vector<const Candidate*> order = {pick};
@@ -454,8 +457,7 @@ bool Decomposer::chooseSplit(const Part& part, std::vector<Part>* children) {
   // The sides' concavities as the children measure them (more samples than the candidates had).
   double greedy = 0.0;
   for (const Part& kid : *children) greedy = std::max(greedy, kid.concavity);
-  const bool plateau = !part.reductionLimited && greedy > target_ &&
-                       greedy > tol::kPlateauFraction * part.concavity;
+  const bool plateau = !part.reductionLimited && greedy > target_ && greedy > tol::kPlateauFraction * part.concavity;
   if (!plateau) return finishChildren();
   // Plateau: no single cut lowers the worst concavity (a slot needs a cut along each wall, a hole
   // two cuts through its axis). Look one cut ahead: split by each of the most promising cuts, and
@@ -498,8 +500,8 @@ std::vector<Part> Decomposer::applyCut(const Part& part, const Candidate& candid
 
 std::vector<Part> Decomposer::split(const Part& part, const Halfspace& cut, bool reduce) {
   const int plane = static_cast<int>(planes_.size());
-  planes_.push_back(std::make_unique<CutPlane>(
-      CutPlane{cut.normal, cut.offset, CrossSection(mesh_, cut.normal, cut.offset, true)}));
+  planes_.push_back(
+      std::make_unique<CutPlane>(CutPlane{cut.normal, cut.offset, CrossSection(mesh_, cut.normal, cut.offset, true)}));
   std::vector<Part> children;
   for (bool flipped : {false, true}) {
     const Halfspace keep = flipped ? cut.flipped() : cut;

@@ -98,24 +98,24 @@ struct Part {
   /// Corners of the cell inside the solid and bordering this part: the solid's cut faces end
   /// there, so the hull needs them (the cut faces are not in the polygons).
   std::vector<Vector3d> cellCorners;
-  std::vector<Vector3d> points;  ///< distinct corners of the polygons, and the cell corners
-  Hull hull;                     ///< hull of the points
-  Hull finalHull;                ///< hull, reduced to the vertex budget when it met the target
-  double hullConcavity = 0.0;    ///< concavity of `hull`
-  double concavity = 0.0;        ///< concavity of `finalHull`: what has to meet the target
-  bool reductionLimited = false; ///< hull meets the target, but not once reduced
+  std::vector<Vector3d> points;   ///< distinct corners of the polygons, and the cell corners
+  Hull hull;                      ///< hull of the points
+  Hull finalHull;                 ///< hull, reduced to the vertex budget when it met the target
+  double hullConcavity = 0.0;     ///< concavity of `hull`
+  double concavity = 0.0;         ///< concavity of `finalHull`: what has to meet the target
+  bool reductionLimited = false;  ///< hull meets the target, but not once reduced
   bool hasWorst = false;
   Vector3d worstSample = Vector3d::Zero();   ///< hull surface point farthest from the part
   Vector3d worstNearest = Vector3d::Zero();  ///< the part's point nearest to it
-  bool unsplittable = false;  ///< no valid cut was found
-  bool reduced = false;       ///< finishPart ran
-  bool noSlivers = false;     ///< a sliver cut made no progress: cuts leaving a sliver are skipped
+  bool unsplittable = false;                 ///< no valid cut was found
+  bool reduced = false;                      ///< finishPart ran
+  bool noSlivers = false;                    ///< a sliver cut made no progress: cuts leaving a sliver are skipped
 };
 
 struct Piece {
   std::vector<int> parts;
-  Hull hull;       ///< hull of the parts' points
-  Hull finalHull;  ///< hull reduced to the vertex budget
+  Hull hull;               ///< hull of the parts' points
+  Hull finalHull;          ///< hull reduced to the vertex budget
   double concavity = 0.0;  ///< of finalHull
 };
 
@@ -132,7 +132,8 @@ class Decomposer {
         name_(std::move(name)) {
     std::vector<Triangle> triangles;
     triangles.reserve(mesh.triangles.size());
-    for (const auto& t : mesh.triangles) triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
+    for (const auto& t : mesh.triangles)
+      triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
     meshBvh_ = TriangleBvh(std::move(triangles));
   }
 
@@ -177,16 +178,15 @@ class Decomposer {
 
   /// A part from its cell and polygons: points, hull, concavity; with `reduce`, finishPart too.
   /// `hint`: where the parent's worst hull sample was (sampled first, see measureConcavity).
-  Part makePart(std::vector<CellSide> cell, std::vector<PartPolygon> polygons,
-                std::vector<Vector3d> cellCorners, bool reduce = true, const Vector3d* hint = nullptr);
+  Part makePart(std::vector<CellSide> cell, std::vector<PartPolygon> polygons, std::vector<Vector3d> cellCorners,
+                bool reduce = true, const Vector3d* hint = nullptr);
   /// Reduces the part's hull to the vertex budget (once) and measures the reduced hull.
   void finishPart(Part* part);
   struct Component {
     std::vector<PartPolygon> polygons;
     std::vector<Vector3d> cellCorners;
   };
-  std::vector<Component> components(std::vector<PartPolygon> polygons,
-                                    const std::vector<CellSide>& cell) const;
+  std::vector<Component> components(std::vector<PartPolygon> polygons, const std::vector<CellSide>& cell) const;
   // The steps of components() (parts.cpp): union-find over the source triangles
   // (`node`: triangle -> index in `sources`) and the regions of the cut faces.
   void joinAcrossEdges(const std::unordered_map<int, int>& node, const std::vector<int>& sources,
@@ -244,8 +244,7 @@ class Decomposer {
   std::vector<Candidate> scoreCuts(const Part& part, bool quick, double bound, double* bestScore);
   /// The state and steps of one scoreCuts call (cut_search.cpp).
   struct CutSearch;
-  const Candidate* pickBest(const Part& part, const std::vector<Candidate>& scored,
-                            double bestScore) const;
+  const Candidate* pickBest(const Part& part, const std::vector<Candidate>& scored, double bestScore) const;
   /// Tie-break between two cuts of equal score.
   bool betterTie(const Candidate& a, const Candidate& b) const;
   /// Chooses the cut of `part` (with a one-cut lookahead on plateaus) and returns its children.

@@ -127,7 +127,8 @@ void Decomposer::reportProgress(const std::vector<Piece>& pieces) {
   lastProgress_ = now;
   double worst = 0.0;
   for (const Piece& piece : pieces) worst = std::max(worst, piece.concavity);
-  std::fprintf(stderr, "deepcheck: decomposing %s (%zu triangles): %zu pieces, worst concavity %s (target %s), %.0f s\n",
+  std::fprintf(stderr,
+               "deepcheck: decomposing %s (%zu triangles): %zu pieces, worst concavity %s (target %s), %.0f s\n",
                name_.c_str(), mesh_.triangles.size(), pieces.size(), roundedNumber(worst).c_str(),
                roundedNumber(reportTarget_).c_str(), std::chrono::duration<double>(now - start_).count());
 }
@@ -189,12 +190,12 @@ std::vector<ConvexPiece> Decomposer::run(DecompositionReport* report) {
 
 }  // namespace detail
 
-using Eigen::Vector3d;
 using detail::CleanMesh;
 using detail::cleanMesh;
 using detail::Decomposer;
 using detail::formatNumber;
 using detail::kInf;
+using Eigen::Vector3d;
 
 // ------------------------------------------------------------------------------------------------
 
@@ -203,12 +204,9 @@ double DecompositionParams::targetConcavity(double diagonal) const {
 }
 
 void DecompositionParams::validate() const {
-  auto fail = [](const std::string& what) {
-    throw std::invalid_argument("DecompositionParams: " + what);
-  };
+  auto fail = [](const std::string& what) { throw std::invalid_argument("DecompositionParams: " + what); };
   if (!(maxConcavity > 0.0 && maxConcavity <= 1.0)) {
-    fail("maxConcavity must be in (0, 1] (a fraction of the bounding-box diagonal), got " +
-         formatNumber(maxConcavity));
+    fail("maxConcavity must be in (0, 1] (a fraction of the bounding-box diagonal), got " + formatNumber(maxConcavity));
   }
   if (!(minConcavityAbs >= 0.0 && std::isfinite(minConcavityAbs))) {
     fail("minConcavityAbs must be finite and >= 0, got " + formatNumber(minConcavityAbs));
@@ -222,11 +220,16 @@ void DecompositionParams::validate() const {
 
 const char* toString(CacheStatus status) {
   switch (status) {
-    case CacheStatus::NotUsed: return "not used";
-    case CacheStatus::Hit: return "hit";
-    case CacheStatus::Stored: return "stored";
-    case CacheStatus::Replaced: return "replaced";
-    case CacheStatus::StoreFailed: return "store failed";
+    case CacheStatus::NotUsed:
+      return "not used";
+    case CacheStatus::Hit:
+      return "hit";
+    case CacheStatus::Stored:
+      return "stored";
+    case CacheStatus::Replaced:
+      return "replaced";
+    case CacheStatus::StoreFailed:
+      return "store failed";
   }
   return "?";
 }
@@ -278,9 +281,8 @@ ConvexDecomposition decomposeConvex(const TriangleMesh& mesh, const Decompositio
     report.piecesVolume += piece.volume;
     report.maxPieceVertices = std::max(report.maxPieceVertices, static_cast<int>(piece.vertices.size()));
   }
-  report.volumeRatio = report.meshClosed && report.meshVolume > 0.0
-                           ? report.piecesVolume / report.meshVolume
-                           : std::numeric_limits<double>::quiet_NaN();
+  report.volumeRatio = report.meshClosed && report.meshVolume > 0.0 ? report.piecesVolume / report.meshVolume
+                                                                    : std::numeric_limits<double>::quiet_NaN();
   report.decomposeMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   report.milliseconds = report.decomposeMilliseconds;
@@ -297,9 +299,9 @@ std::string targetWarning(const DecompositionReport& report, const std::vector<C
   }
   if (above == 0) return "";
   using detail::roundedNumber;
-  return "decomposition of " + detail::meshName(report.source) + " misses its target: " + std::to_string(above) + " of " +
-         std::to_string(pieces.size()) + " pieces end up to " + roundedNumber(worst) + " m outside the mesh (" +
-         roundedNumber(100.0 * worst / report.diagonal) + "% of its diagonal), target " +
+  return "decomposition of " + detail::meshName(report.source) + " misses its target: " + std::to_string(above) +
+         " of " + std::to_string(pieces.size()) + " pieces end up to " + roundedNumber(worst) +
+         " m outside the mesh (" + roundedNumber(100.0 * worst / report.diagonal) + "% of its diagonal), target " +
          roundedNumber(report.targetConcavity) + " m; more pieces (maxPieces) or vertices per piece " +
          "(maxVerticesPerPiece) may meet it";
 }
@@ -318,8 +320,8 @@ bool pieceContains(const ConvexPiece& piece, const Vector3d& point, double toler
   // Flat or lower-dimensional: distance to the polygon, segment or point.
   double best = kInf;
   for (const auto& t : piece.triangles) {
-    const Vector3d q = detail::closestPointOnTriangle(point, piece.vertices[t[0]], piece.vertices[t[1]],
-                                                      piece.vertices[t[2]]);
+    const Vector3d q =
+        detail::closestPointOnTriangle(point, piece.vertices[t[0]], piece.vertices[t[1]], piece.vertices[t[2]]);
     best = std::min(best, (q - point).norm());
   }
   if (piece.triangles.empty() && !piece.vertices.empty()) {

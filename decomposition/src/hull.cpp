@@ -64,9 +64,8 @@ Hull flatHull(const std::vector<Vector3d>& points) {
   std::iota(order.begin(), order.end(), 0);
   std::vector<Eigen::Vector2d> q(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) q[i] = {u.dot(points[i] - c), v.dot(points[i] - c)};
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return q[a].x() < q[b].x() || (q[a].x() == q[b].x() && q[a].y() < q[b].y());
-  });
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return q[a].x() < q[b].x() || (q[a].x() == q[b].x() && q[a].y() < q[b].y()); });
   auto cross = [&](int o, int a, int b) {
     return (q[a] - q[o]).x() * (q[b] - q[o]).y() - (q[a] - q[o]).y() * (q[b] - q[o]).x();
   };
@@ -94,9 +93,7 @@ Hull flatHull(const std::vector<Vector3d>& points) {
     hull.triangles.push_back({0, i, i + 1});
     hull.normals.push_back(n);
     hull.offsets.push_back(offset);
-    hull.area += 0.5 * (hull.vertices[i] - hull.vertices[0])
-                           .cross(hull.vertices[i + 1] - hull.vertices[0])
-                           .norm();
+    hull.area += 0.5 * (hull.vertices[i] - hull.vertices[0]).cross(hull.vertices[i + 1] - hull.vertices[0]).norm();
   }
   return hull;
 }
@@ -104,8 +101,7 @@ Hull flatHull(const std::vector<Vector3d>& points) {
 /// Vertices of the intersection of the half-spaces {x : n_i.x <= d_i}, which must contain
 /// `interior` strictly and be bounded: the facets of the hull of the polar points
 /// n_i / (d_i - n_i.interior) are the vertices. Empty on failure.
-std::vector<Vector3d> halfspaceIntersection(const std::vector<Vector3d>& normals,
-                                            const std::vector<double>& offsets,
+std::vector<Vector3d> halfspaceIntersection(const std::vector<Vector3d>& normals, const std::vector<double>& offsets,
                                             const Vector3d& interior) {
   std::vector<Vector3d> dual(normals.size());
   for (std::size_t i = 0; i < normals.size(); ++i) {
@@ -155,9 +151,7 @@ Hull convexHull(const std::vector<Vector3d>& points) {
   }
   const Vector3d c = centroid(hull.vertices);
   for (const auto& t : hull.triangles) {
-    hull.volume += (hull.vertices[t[0]] - c)
-                       .dot((hull.vertices[t[1]] - c).cross(hull.vertices[t[2]] - c)) /
-                   6.0;
+    hull.volume += (hull.vertices[t[0]] - c).dot((hull.vertices[t[1]] - c).cross(hull.vertices[t[2]] - c)) / 6.0;
   }
   if (!(hull.volume > 0.0)) return flatHull(points);
   return hull;
@@ -202,8 +196,7 @@ Hull circumscribedReduction(const Hull& hull, int maxVertices) {
     }
   } else {
     const double s = 1.0 / std::sqrt(3.0);
-    for (const Vector3d& d : {Vector3d(1, 1, 1), Vector3d(1, -1, -1), Vector3d(-1, 1, -1),
-                              Vector3d(-1, -1, 1)}) {
+    for (const Vector3d& d : {Vector3d(1, 1, 1), Vector3d(1, -1, -1), Vector3d(-1, 1, -1), Vector3d(-1, -1, 1)}) {
       normals.push_back(axes * (s * d));
       offsets.push_back(support(normals.back()));
     }
@@ -363,7 +356,8 @@ class ProgressiveHull {
         const auto& t = hull_.triangles[f];
         objective += (hull_.vertices[t[1]] - hull_.vertices[t[0]]).cross(hull_.vertices[t[2]] - hull_.vertices[t[0]]);
         bool repeated = false;
-        for (const auto& q : planes) repeated = repeated || (q.first == hull_.normals[f] && q.second == hull_.offsets[f]);
+        for (const auto& q : planes)
+          repeated = repeated || (q.first == hull_.normals[f] && q.second == hull_.offsets[f]);
         if (!repeated) planes.emplace_back(hull_.normals[f], hull_.offsets[f]);
       }
     }
@@ -444,8 +438,7 @@ class ProgressiveHull {
   /// Applies a batch of collapses (independentBatch) on one new hull when every collapsed u and v
   /// lies inside it; otherwise marks the failing ones invalid in the cache and leaves the hull as
   /// it was, for the next batch to do without them. False when there is nothing left to try.
-  bool collapseBatch(const std::vector<std::pair<double, Choice>>& ranked, const Neighbourhoods& around,
-                     int count) {
+  bool collapseBatch(const std::vector<std::pair<double, Choice>>& ranked, const Neighbourhoods& around, int count) {
     const std::vector<Choice> batch = independentBatch(ranked, around, count);
     if (batch.empty()) return false;
     const int n = static_cast<int>(hull_.vertices.size());

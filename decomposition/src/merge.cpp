@@ -38,8 +38,7 @@ double Decomposer::mergeCost(const Piece& a, const Piece& b, double abortAbove, 
   }
   Hull hull = pieceHull(a, &b);
   const Target target = pieceTarget(a, &b);
-  Concavity c = measureConcavity(hull, target, tol::kPartSamples, Extra::Dense, nextSeed(), abortAbove,
-                                 diagonal_);
+  Concavity c = measureConcavity(hull, target, tol::kPartSamples, Extra::Dense, nextSeed(), abortAbove, diagonal_);
   if (c.aborted) return kInf;
   Hull reduced = hull;
   if (static_cast<int>(hull.vertices.size()) > params_.maxVerticesPerPiece) {

@@ -159,8 +159,7 @@ void weldTriangles(const TriangleMesh& mesh, const std::string& name, CleanMesh*
     out->triangles.push_back(w);
   }
   if (out->triangles.empty() || !(out->diagonal > 0.0)) {
-    throw std::invalid_argument("decomposeConvex: mesh " + name + ": all " +
-                                std::to_string(mesh.triangles.size()) +
+    throw std::invalid_argument("decomposeConvex: mesh " + name + ": all " + std::to_string(mesh.triangles.size()) +
                                 " triangles are degenerate (zero area)");
   }
 }
@@ -300,16 +299,16 @@ void checkInput(const TriangleMesh& mesh, const std::string& name) {
     if (!mesh.vertices[i].allFinite()) {
       const Vector3d& v = mesh.vertices[i];
       throw std::invalid_argument("decomposeConvex: mesh " + name + ": vertex " + std::to_string(i) +
-                                  " is not finite (" + formatNumber(v.x()) + ", " +
-                                  formatNumber(v.y()) + ", " + formatNumber(v.z()) + ")");
+                                  " is not finite (" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " +
+                                  formatNumber(v.z()) + ")");
     }
   }
   for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
     for (int k : mesh.triangles[t]) {
       if (k < 0 || k >= n) {
-        throw std::invalid_argument("decomposeConvex: mesh " + name + ": triangle " +
-                                    std::to_string(t) + " has vertex index " + std::to_string(k) +
-                                    " out of range [0, " + std::to_string(n) + ")");
+        throw std::invalid_argument("decomposeConvex: mesh " + name + ": triangle " + std::to_string(t) +
+                                    " has vertex index " + std::to_string(k) + " out of range [0, " +
+                                    std::to_string(n) + ")");
       }
     }
   }

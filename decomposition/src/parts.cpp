@@ -11,8 +11,7 @@
 
 namespace deepcheck::decomposition::detail {
 
-std::vector<PartPolygon> Decomposer::clip(const std::vector<PartPolygon>& polygons,
-                                          const Halfspace& keep) const {
+std::vector<PartPolygon> Decomposer::clip(const std::vector<PartPolygon>& polygons, const Halfspace& keep) const {
   std::vector<PartPolygon> out;
   out.reserve(polygons.size());
   const double minArea = std::pow(tol::kDegenerateRelative * diagonal_, 2);
@@ -243,7 +242,8 @@ void Decomposer::assignCellCorners(const std::vector<CellSide>& cell, const std:
   for (std::size_t i = 0; i < out->size(); ++i) {
     for (const PartPolygon& polygon : (*out)[i].polygons) {
       for (const Vector3d& p : polygon.corners) {
-        for (const Halfspace& h : halfspaces) touchesCell[i] = touchesCell[i] || std::abs(h.signedDistance(p)) <= onPlane;
+        for (const Halfspace& h : halfspaces)
+          touchesCell[i] = touchesCell[i] || std::abs(h.signedDistance(p)) <= onPlane;
       }
     }
   }
@@ -277,8 +277,8 @@ Part Decomposer::makePart(std::vector<CellSide> cell, std::vector<PartPolygon> p
   Target target;
   target.mesh = &meshBvh_;
   addCaps(part, &target.caps);
-  const Concavity c = measureConcavity(part.hull, target, tol::kPartSamples, Extra::Dense, nextSeed(), kInf,
-                                       diagonal_, hint);
+  const Concavity c =
+      measureConcavity(part.hull, target, tol::kPartSamples, Extra::Dense, nextSeed(), kInf, diagonal_, hint);
   part.hullConcavity = c.value;
   part.concavity = c.value;
   part.hasWorst = c.hasWorst;
@@ -293,17 +293,15 @@ void Decomposer::finishPart(Part* part) {
   if (part->reduced) return;
   part->reduced = true;
   // Only a hull that meets the target is worth reducing: the others will be cut anyway.
-  if (part->hullConcavity > target_ ||
-      static_cast<int>(part->hull.vertices.size()) <= params_.maxVerticesPerPiece) {
+  if (part->hullConcavity > target_ || static_cast<int>(part->hull.vertices.size()) <= params_.maxVerticesPerPiece) {
     return;
   }
   part->finalHull = detail::reduceHullVertices(part->hull, params_.maxVerticesPerPiece);
   Target target;
   target.mesh = &meshBvh_;
   addCaps(*part, &target.caps);
-  part->concavity = measureConcavity(part->finalHull, target, tol::kPartSamples, Extra::Dense,
-                                     nextSeed(), kInf, diagonal_)
-                        .value;
+  part->concavity =
+      measureConcavity(part->finalHull, target, tol::kPartSamples, Extra::Dense, nextSeed(), kInf, diagonal_).value;
   part->reductionLimited = part->concavity > target_;
 }
 

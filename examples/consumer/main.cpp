@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
       return 1;
     }
     const og::PathGeometric& path = ss.getSolutionPath();
-    const double clearance = dp::minClearanceAlong(path, [&](const Eigen::VectorXd& q) { return checker->clearance(q); });
+    const double clearance =
+        dp::minClearanceAlong(path, [&](const Eigen::VectorXd& q) { return checker->clearance(q); });
     std::printf("waypoints      %zu\n", path.getStateCount());
     std::printf("path length    %.3f rad\n", path.length());
     std::printf("min clearance  %.4f m\n", clearance);

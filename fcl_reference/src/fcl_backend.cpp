@@ -39,9 +39,12 @@ GeometryPtr meshGeometry(const robots::TriangleMesh& mesh) {
 GeometryPtr fclGeometry(const robots::Geometry& g, const robots::TriangleMesh* inMemory,
                         std::map<MeshKey, GeometryPtr>& meshes, const std::string& what) {
   switch (g.type) {
-    case robots::GeometryType::Box: return std::make_shared<fcl::Boxd>(g.boxSize);
-    case robots::GeometryType::Sphere: return std::make_shared<fcl::Sphered>(g.radius);
-    case robots::GeometryType::Cylinder: return std::make_shared<fcl::Cylinderd>(g.radius, g.length);
+    case robots::GeometryType::Box:
+      return std::make_shared<fcl::Boxd>(g.boxSize);
+    case robots::GeometryType::Sphere:
+      return std::make_shared<fcl::Sphered>(g.radius);
+    case robots::GeometryType::Cylinder:
+      return std::make_shared<fcl::Cylinderd>(g.radius, g.length);
     case robots::GeometryType::Mesh: {
       if (inMemory != nullptr) return meshGeometry(*inMemory);
       const MeshKey key(g.meshPath, g.meshScale.x(), g.meshScale.y(), g.meshScale.z());
@@ -72,9 +75,9 @@ struct WorldObject {
 
 struct FclWorld::Impl {
   robots::RobotModel robot;
-  std::vector<RobotObject> robotObjects;                // grouped by link
-  std::vector<std::pair<int, int>> linkObjects;         // per link: [first, end) in robotObjects
-  std::vector<std::pair<int, int>> selfPairs;           // allowed link pairs
+  std::vector<RobotObject> robotObjects;         // grouped by link
+  std::vector<std::pair<int, int>> linkObjects;  // per link: [first, end) in robotObjects
+  std::vector<std::pair<int, int>> selfPairs;    // allowed link pairs
   std::vector<WorldObject> worldObjects;
   fcl::DynamicAABBTreeCollisionManagerd manager;
   std::vector<Eigen::Isometry3d> X_WL;

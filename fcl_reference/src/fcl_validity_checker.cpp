@@ -25,8 +25,7 @@ FclStateValidityChecker::FclStateValidityChecker(ompl::base::SpaceInformation* s
   specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
 }
 
-FclStateValidityChecker::FclStateValidityChecker(const ompl::base::SpaceInformationPtr& si,
-                                                 const checker::World& world)
+FclStateValidityChecker::FclStateValidityChecker(const ompl::base::SpaceInformationPtr& si, const checker::World& world)
     : FclStateValidityChecker(si.get(), world) {}
 
 FclStateValidityChecker::~FclStateValidityChecker() = default;

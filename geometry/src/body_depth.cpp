@@ -17,11 +17,16 @@ namespace deepcheck::geometry {
 
 const char* toString(BodyDepthStatus s) {
   switch (s) {
-    case BodyDepthStatus::Separated: return "separated";
-    case BodyDepthStatus::Certified: return "certified";
-    case BodyDepthStatus::FaceLimit: return "face-limit";
-    case BodyDepthStatus::PairNotCertified: return "pair-not-certified";
-    case BodyDepthStatus::BuildLimit: return "build-limit";
+    case BodyDepthStatus::Separated:
+      return "separated";
+    case BodyDepthStatus::Certified:
+      return "certified";
+    case BodyDepthStatus::FaceLimit:
+      return "face-limit";
+    case BodyDepthStatus::PairNotCertified:
+      return "pair-not-certified";
+    case BodyDepthStatus::BuildLimit:
+      return "build-limit";
   }
   return "unknown";
 }
@@ -42,8 +47,7 @@ void checkBody(const Body& b, const Eigen::Isometry3d& X_W, const char* which) {
     piece << msg.str() << " piece " << i;
     if (p.shape.core == nullptr) throw std::invalid_argument(piece.str() + " has no core polytope");
     if (p.shape.radius != 0.0) {
-      piece << " has radius " << p.shape.radius
-            << ": body depth supports polytope pieces only (radius 0)";
+      piece << " has radius " << p.shape.radius << ": body depth supports polytope pieces only (radius 0)";
       throw std::invalid_argument(piece.str());
     }
     checkPose(p.X_BP, (piece.str() + " pose").c_str());
@@ -53,8 +57,7 @@ void checkBody(const Body& b, const Eigen::Isometry3d& X_W, const char* which) {
 /// The pieces of body b posed in P: world orientation, origin at p_WP. The translation is
 /// formed as R_W * p_BP + (p_W - p_WP) so that a body far from the world's origin keeps the
 /// digits of its offset from A.
-std::vector<PosedPiece> posePieces(const Body& b, const Eigen::Isometry3d& X_W,
-                                   const Eigen::Vector3d& p_WP) {
+std::vector<PosedPiece> posePieces(const Body& b, const Eigen::Isometry3d& X_W, const Eigen::Vector3d& p_WP) {
   std::vector<PosedPiece> out;
   const Eigen::Vector3d offset = X_W.translation() - p_WP;
   for (const BodyPiece& p : b.pieces) {
@@ -78,8 +81,7 @@ double lengthScale(const std::vector<PosedPiece>& A, const std::vector<PosedPiec
 }
 
 /// The pairwise answer of pair (i, j) turned into a body result (witnesses to the world).
-BodySignedDistanceResult fromPair(const SignedDistanceResult& r, int i, int j,
-                                  const Eigen::Vector3d& p_WP) {
+BodySignedDistanceResult fromPair(const SignedDistanceResult& r, int i, int j, const Eigen::Vector3d& p_WP) {
   BodySignedDistanceResult out;
   out.distance = r.distance;
   out.normal = r.normal;
@@ -93,8 +95,8 @@ BodySignedDistanceResult fromPair(const SignedDistanceResult& r, int i, int j,
 
 /// Witnesses for a separating point x (in P) on the difference of pieces a and b: B_j moved by
 /// -x touches A_i, and GJK between them names the touching points.
-void setWitnesses(const PosedPiece& a, const PosedPiece& b, const Eigen::Vector3d& x,
-                  const Eigen::Vector3d& p_WP, BodySignedDistanceResult& out) {
+void setWitnesses(const PosedPiece& a, const PosedPiece& b, const Eigen::Vector3d& x, const Eigen::Vector3d& p_WP,
+                  BodySignedDistanceResult& out) {
   Eigen::Isometry3d X_moved = b.X_PP;
   X_moved.translation() -= x;
   const PairFrame frame = PairFrame::makeUnchecked(*a.core, a.X_PP, *b.core, X_moved);
@@ -168,7 +170,8 @@ int ensureDifference(std::vector<PairInfo>& pairs, int k, Pieces& P, std::vector
     Difference d;
     d.pieceA = k / nB;
     d.pieceB = k % nB;
-    if (body::buildDifference(A[static_cast<std::size_t>(d.pieceA)], B[static_cast<std::size_t>(d.pieceB)], d, P.keep)) {
+    if (body::buildDifference(A[static_cast<std::size_t>(d.pieceA)], B[static_cast<std::size_t>(d.pieceB)], d,
+                              P.keep)) {
       p.built = 1;
       p.index = static_cast<int>(diffs.size());
       diffs.push_back(std::move(d));
@@ -182,8 +185,8 @@ int ensureDifference(std::vector<PairInfo>& pairs, int k, Pieces& P, std::vector
 /// Marches from the origin along u, starting at distance t, across every difference whose
 /// interior holds the current point, to the first point held by none: a point of the complement.
 /// Gives up (returns infinity) once beyond `cap`.
-double marchOut(std::vector<PairInfo>& pairs, Pieces& P, std::vector<Difference>& diffs,
-                const Eigen::Vector3d& u, double t, double cap, double tol) {
+double marchOut(std::vector<PairInfo>& pairs, Pieces& P, std::vector<Difference>& diffs, const Eigen::Vector3d& u,
+                double t, double cap, double tol) {
   bool moved = true;
   while (moved) {
     moved = false;
@@ -205,8 +208,8 @@ double marchOut(std::vector<PairInfo>& pairs, Pieces& P, std::vector<Difference>
 /// search's start. Each pair's own push-out direction is tried because the body's answer is often
 /// one of them (a pair whose push is not blocked by others). Marches stop at |bound|, within
 /// which the differences built with P.keep are exact.
-Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, Pieces& P, std::vector<Difference>& diffs,
-                               int deepest, const Eigen::Vector3d& bound, double tol) {
+Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, Pieces& P, std::vector<Difference>& diffs, int deepest,
+                               const Eigen::Vector3d& bound, double tol) {
   Eigen::Vector3d best = bound;
   double bestLength = bound.norm();
   const auto tryPair = [&](int k) {
@@ -229,9 +232,9 @@ Eigen::Vector3d marchFromPairs(std::vector<PairInfo>& pairs, Pieces& P, std::vec
 
 /// True when the point x (in P) is strictly inside the difference of some pair other than
 /// `skip`, decided by the pair's own signed distance with B moved by -x.
-bool coveredByPairs(const std::vector<PairInfo>& pairs, int skip, int nB,
-                    const std::vector<PosedPiece>& A, const std::vector<PosedPiece>& B,
-                    const Eigen::Vector3d& x, double tol, const PenetrationOptions& options) {
+bool coveredByPairs(const std::vector<PairInfo>& pairs, int skip, int nB, const std::vector<PosedPiece>& A,
+                    const std::vector<PosedPiece>& B, const Eigen::Vector3d& x, double tol,
+                    const PenetrationOptions& options) {
   const double r = x.norm();
   for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
     if (k == skip || pairs[static_cast<std::size_t>(k)].distanceLower >= r) continue;
@@ -299,8 +302,8 @@ void searchAnswer(std::vector<PairInfo>& pairs, int nB, const std::vector<PosedP
   // rather than whichever difference's boundary is nearest the box's point.
   const double reach = start == bound ? upper + tol : upper;
   const body::SearchResult s = body::searchNearestBoundary(diffs, start, reach, options.maxFaces, tol);
-  setAnswer(s.point, s.difference, s.finished ? BodyDepthStatus::Certified : BodyDepthStatus::FaceLimit,
-            s.lowerBound, diffs, P, p_WP, out);
+  setAnswer(s.point, s.difference, s.finished ? BodyDepthStatus::Certified : BodyDepthStatus::FaceLimit, s.lowerBound,
+            diffs, P, p_WP, out);
   out.facesSearched = s.facesSearched;
 }
 
@@ -363,9 +366,8 @@ PairCounts measurePairs(const std::vector<PosedPiece>& A, const std::vector<Pose
 
 }  // namespace
 
-BodySignedDistanceResult bodySignedDistance(const Body& bodyA, const Eigen::Isometry3d& X_WA,
-                                            const Body& bodyB, const Eigen::Isometry3d& X_WB,
-                                            const BodyDepthOptions& options) {
+BodySignedDistanceResult bodySignedDistance(const Body& bodyA, const Eigen::Isometry3d& X_WA, const Body& bodyB,
+                                            const Eigen::Isometry3d& X_WB, const BodyDepthOptions& options) {
   checkBody(bodyA, X_WA, "A");
   checkBody(bodyB, X_WB, "B");
   if (!(options.maxBuildCost >= 0.0)) {

@@ -77,17 +77,17 @@ double rayExit(const Difference& d, const Eigen::Vector3d& u);
 /// Outcome of the best-first search (body_depth_search.cpp).
 struct SearchResult {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< nearest point of the complement found
-  int difference = -1;  ///< index of the difference whose face holds it (-1: the start point)
+  int difference = -1;      ///< index of the difference whose face holds it (-1: the start point)
   double lowerBound = 0.0;  ///< no point of the complement is nearer than this
   int facesSearched = 0;
-  bool finished = false;    ///< the search ended before the face cap
+  bool finished = false;  ///< the search ended before the face cap
 };
 
 /// Nearest point to the origin of the complement of the union of the differences' interiors,
 /// starting from a known point of that complement (`start`). `tol` is the membership tolerance.
 /// Faces are searched for points nearer than `reach` (at least |start|; more lets a face's point
 /// as near as the start, up to round-off, take its place and name its difference).
-SearchResult searchNearestBoundary(const std::vector<Difference>& diffs, const Eigen::Vector3d& start,
-                                   double reach, int maxFaces, double tol);
+SearchResult searchNearestBoundary(const std::vector<Difference>& diffs, const Eigen::Vector3d& start, double reach,
+                                   int maxFaces, double tol);
 
 }  // namespace deepcheck::geometry::body

@@ -42,8 +42,7 @@ struct FaceScratch {
 };
 
 /// The range of n.x - h over the points.
-std::pair<double, double> planeRange(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& n,
-                                     double h) {
+std::pair<double, double> planeRange(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& n, double h) {
   double lo = std::numeric_limits<double>::infinity();
   double hi = -lo;
   for (const Eigen::Vector3d& v : pts) {
@@ -64,15 +63,15 @@ bool straddles(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& c
   return lo <= tol && hi >= -tol;
 }
 
-/// How the face polygon `poly` (in the ball of `radius` about `centre`) meets difference d: Disjoint (some plane of d has the whole polygon
-/// outside it), Covered (every vertex strictly inside d: the whole face is inside d's interior) or
-/// Crossing.
+/// How the face polygon `poly` (in the ball of `radius` about `centre`) meets difference d: Disjoint (some plane of d
+/// has the whole polygon outside it), Covered (every vertex strictly inside d: the whole face is inside d's interior)
+/// or Crossing.
 enum class Meets { Disjoint, Covered, Crossing };
 
 /// meets() also appends, per plane of d, whether the polygon straddles it (straddles(), which
 /// faceLines needs for the planes of a crossing difference: the same tests, made once).
-Meets meets(const Difference& d, const std::vector<Eigen::Vector3d>& poly, const Eigen::Vector3d& centre,
-            double radius, double tol, std::vector<char>& straddling) {
+Meets meets(const Difference& d, const std::vector<Eigen::Vector3d>& poly, const Eigen::Vector3d& centre, double radius,
+            double tol, std::vector<char>& straddling) {
   bool covered = true;
   const std::size_t first = straddling.size();
   for (std::size_t g = 0; g < d.normals.size(); ++g) {
@@ -147,8 +146,8 @@ void faceLines(const std::vector<Difference>& diffs, const std::vector<int>& cro
 
 /// True when x (in the face plane, normal n) is inside the face polygon whose edges are the first
 /// `edges` lines (counter-clockwise about n: the inside is on the left of each).
-bool inPolygon(const Eigen::Vector3d& x, const std::vector<Line>& lines, std::size_t edges,
-               const Eigen::Vector3d& n, double tol) {
+bool inPolygon(const Eigen::Vector3d& x, const std::vector<Line>& lines, std::size_t edges, const Eigen::Vector3d& n,
+               double tol) {
   for (std::size_t i = 0; i < edges; ++i) {
     if (n.cross(lines[i].d).dot(x - lines[i].q) < -tol) return false;
   }
@@ -182,8 +181,8 @@ std::pair<double, double> polygonInterval(const Line& L, const std::vector<Line>
 /// polygon, hold no candidate (a line's points are no nearer than its foot) and are dropped
 /// before the pairs are formed; a pair's intersection counts only inside both lines' intervals.
 /// The candidates go to scratch.candidates (scratch.lines holds the lines).
-void faceCandidates(const Eigen::Vector3d& p0, std::size_t edges, const Eigen::Vector3d& n, double bound,
-                    double tol, FaceScratch& scratch) {
+void faceCandidates(const Eigen::Vector3d& p0, std::size_t edges, const Eigen::Vector3d& n, double bound, double tol,
+                    FaceScratch& scratch) {
   const std::vector<Line>& lines = scratch.lines;
   std::vector<std::pair<double, Eigen::Vector3d>>& out = scratch.candidates;
   out.clear();
@@ -218,14 +217,12 @@ void faceCandidates(const Eigen::Vector3d& p0, std::size_t edges, const Eigen::V
       add(x);
     }
   }
-  std::sort(out.begin(), out.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
 }
 
 /// Distance from the origin to the face polygon `poly` (plane n.x = h): |h| when the origin's
 /// projection is inside it, else the distance to the nearest edge segment.
-double polygonDistance(const std::vector<Eigen::Vector3d>& poly, const Eigen::Vector3d& n, double h,
-                       double tol) {
+double polygonDistance(const std::vector<Eigen::Vector3d>& poly, const Eigen::Vector3d& n, double h, double tol) {
   const Eigen::Vector3d p0 = h * n;
   double nearest = std::numeric_limits<double>::infinity();
   bool inside = true;
@@ -242,8 +239,8 @@ double polygonDistance(const std::vector<Eigen::Vector3d>& poly, const Eigen::Ve
 }
 
 /// True when x is strictly inside one of the differences listed.
-bool insideAny(const std::vector<Difference>& diffs, const std::vector<int>& which,
-               const Eigen::Vector3d& x, double tol) {
+bool insideAny(const std::vector<Difference>& diffs, const std::vector<int>& which, const Eigen::Vector3d& x,
+               double tol) {
   for (const int l : which) {
     if (planeExcess(diffs[static_cast<std::size_t>(l)], x) < -tol) return true;
   }
@@ -251,14 +248,12 @@ bool insideAny(const std::vector<Difference>& diffs, const std::vector<int>& whi
 }
 
 /// True when x lies on difference k's face (inside all of k's planes within tol).
-bool onDifference(const Difference& d, const Eigen::Vector3d& x, double tol) {
-  return planeExcess(d, x) <= tol;
-}
+bool onDifference(const Difference& d, const Eigen::Vector3d& x, double tol) { return planeExcess(d, x) <= tol; }
 
 }  // namespace
 
-SearchResult searchNearestBoundary(const std::vector<Difference>& diffs, const Eigen::Vector3d& start,
-                                   double reach, int maxFaces, double tol) {
+SearchResult searchNearestBoundary(const std::vector<Difference>& diffs, const Eigen::Vector3d& start, double reach,
+                                   int maxFaces, double tol) {
   SearchResult r;
   r.point = start;
   double best = std::max(reach, start.norm());

@@ -54,8 +54,8 @@ struct HullScratch {
   std::vector<Eigen::Vector2d> hull;
 };
 
-std::vector<Eigen::Vector3d> planeHull(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u,
-                                       double h, double eps, HullScratch& scratch) {
+std::vector<Eigen::Vector3d> planeHull(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u, double h,
+                                       double eps, HullScratch& scratch) {
   if (pts.size() < 3) return {};
   const Eigen::Vector3d e1 = u.unitOrthogonal();
   const Eigen::Vector3d e2 = u.cross(e1);
@@ -92,7 +92,6 @@ std::vector<Eigen::Vector3d> planeHull(const std::vector<Eigen::Vector3d>& pts, 
   return out;
 }
 
-
 /// Unit edge directions of a piece in P, parallel ones (either sense) kept once; computed on the
 /// piece's first difference and kept with it (PosedPiece::edgeDirections).
 const std::vector<Eigen::Vector3d>& edgeDirections(const PosedPiece& p) {
@@ -106,8 +105,9 @@ const std::vector<Eigen::Vector3d>& edgeDirections(const PosedPiece& p) {
       if (w <= v) continue;
       const Eigen::Vector3d e =
           (p.vertices[static_cast<std::size_t>(w)] - p.vertices[static_cast<std::size_t>(v)]).normalized();
-      const bool known = std::any_of(dirs.begin(), dirs.end(),
-                                     [&](const Eigen::Vector3d& d) { return d.cross(e).norm() < tol::kBodyParallelSine; });
+      const bool known = std::any_of(dirs.begin(), dirs.end(), [&](const Eigen::Vector3d& d) {
+        return d.cross(e).norm() < tol::kBodyParallelSine;
+      });
       if (!known) dirs.push_back(e);
     }
   }
@@ -123,8 +123,7 @@ bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Diffe
   for (const Eigen::Vector3d& a : A.vertices) negA.push_back(-a);
   // A vertex within the pieces' own hull tolerance of a face plane belongs to that face.
   const double scale = std::max(A.core->lengthScale(), B.core->lengthScale());
-  const double eps = std::max(A.core->hullTolerance(), B.core->hullTolerance()) +
-                     tol::kBodyMemberRelative * scale;
+  const double eps = std::max(A.core->hullTolerance(), B.core->hullTolerance()) + tol::kBodyMemberRelative * scale;
 
   std::vector<Eigen::Vector3d> candidates = B.faceNormals;
   for (const Eigen::Vector3d& n : A.faceNormals) candidates.push_back(-n);
@@ -146,8 +145,8 @@ bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Diffe
   // |n - u| < s for unit vectors is n.u > 1 - s^2 / 2.
   const double same = 1.0 - 0.5 * tol::kBodyParallelSine * tol::kBodyParallelSine;
   for (const Eigen::Vector3d& u : candidates) {
-    const bool known = std::any_of(out.normals.begin(), out.normals.end(),
-                                   [&](const Eigen::Vector3d& n) { return n.dot(u) > same; });
+    const bool known =
+        std::any_of(out.normals.begin(), out.normals.end(), [&](const Eigen::Vector3d& n) { return n.dot(u) > same; });
     if (known) continue;
     const double hb = supportValue(vb, u, dotsB);
     const double ha = supportValue(negA, u, dotsA);
@@ -170,8 +169,7 @@ bool buildDifferenceFromFeatures(const PosedPiece& A, const PosedPiece& B, Diffe
   // offsets are compared first: in a solid difference no two facets pass that test.
   for (std::size_t f = 0; f < out.normals.size(); ++f) {
     for (std::size_t g = f + 1; g < out.normals.size(); ++g) {
-      if (out.offsets[f] + out.offsets[g] <= eps &&
-          (out.normals[f] + out.normals[g]).norm() < tol::kBodyParallelSine) {
+      if (out.offsets[f] + out.offsets[g] <= eps && (out.normals[f] + out.normals[g]).norm() < tol::kBodyParallelSine) {
         return false;
       }
     }

@@ -14,8 +14,10 @@ namespace deepcheck::geometry::detail {
 
 const char* toString(CertifiedStatus s) {
   switch (s) {
-    case CertifiedStatus::Certified: return "certified";
-    case CertifiedStatus::NotConverged: return "not-converged";
+    case CertifiedStatus::Certified:
+      return "certified";
+    case CertifiedStatus::NotConverged:
+      return "not-converged";
   }
   return "unknown";
 }
@@ -187,9 +189,8 @@ CertifiedResult startAndExpand(const ConvexPolytope& A, const ConvexPolytope& B,
 
 }  // namespace
 
-CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B,
-                                     const PairFrame& frame, const GjkResult& gjk,
-                                     ExpansionSurface& surface, const CertifiedOptions& options) {
+CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                                     const GjkResult& gjk, ExpansionSurface& surface, const CertifiedOptions& options) {
   return startAndExpand(A, B, frame, &gjk, surface, options);
 }
 

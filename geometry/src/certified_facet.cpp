@@ -54,12 +54,15 @@ int ringFaceAlong(const ConvexPolytope& P, int v, const Vec3& dir) {
 /// Witness on A for the facet named in `out` with normal u and offset h: A's vertex (VF), B's
 /// vertex moved back by h u (FV), or the point of A's edge on the common perpendicular of the two
 /// edges' lines (EE).
-Vec3 witnessOnA(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
-                const WalkResult& out, const Vec3& u, double h) {
+Vec3 witnessOnA(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F, const WalkResult& out,
+                const Vec3& u, double h) {
   switch (out.type) {
-    case WalkResult::FacetType::VF: return A.localVertex(out.featureA);
-    case WalkResult::FacetType::FV: return F.vertexB(B, out.featureB) - h * u;
-    case WalkResult::FacetType::EE: break;
+    case WalkResult::FacetType::VF:
+      return A.localVertex(out.featureA);
+    case WalkResult::FacetType::FV:
+      return F.vertexB(B, out.featureB) - h * u;
+    case WalkResult::FacetType::EE:
+      break;
   }
   const Vec3 a0 = A.localVertex(out.featureA), ea = A.localVertex(out.featureA2) - a0;
   const Vec3 b0 = F.vertexB(B, out.featureB), eb = F.vertexB(B, out.featureB2) - b0;
@@ -128,8 +131,8 @@ void setFeatures(const NamedFacet& facet, WalkResult& out) {
 NamedFacet facetOfFace(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const int* faceA,
                        const int* faceB, const Vec3& normal) {
   NamedFacet facet;
-  facet.state = facetOfCorners(A, B, frame, faceA, faceB, normal, facet) ? NamedFacet::State::Named
-                                                                          : NamedFacet::State::None;
+  facet.state =
+      facetOfCorners(A, B, frame, faceA, faceB, normal, facet) ? NamedFacet::State::Named : NamedFacet::State::None;
   return facet;
 }
 
@@ -140,12 +143,11 @@ void facetSupports(const ConvexPolytope& A, const ConvexPolytope& B, const PairF
   b = vf ? B.faceSupport(facet.featureB) : B.support(F.toB(facet.u), b);
 }
 
-bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F,
-                    const CertifiedResult& c, WalkResult& out) {
+bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& F, const CertifiedResult& c,
+                    WalkResult& out) {
   if (c.status != CertifiedStatus::Certified) return false;
-  const NamedFacet facet = c.facet.state == NamedFacet::State::Unknown
-                               ? facetOfFace(A, B, F, c.faceA, c.faceB, c.faceNormal)
-                               : c.facet;
+  const NamedFacet facet =
+      c.facet.state == NamedFacet::State::Unknown ? facetOfFace(A, B, F, c.faceA, c.faceB, c.faceNormal) : c.facet;
   if (facet.state != NamedFacet::State::Named) return false;
   setFeatures(facet, out);
   const Vec3& u = facet.u;

@@ -215,8 +215,7 @@ NamedFacet facetOf(const ConvexPolytope& A, const ConvexPolytope& B, const PairF
 
 }  // namespace
 
-CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
-                              const PairFrame& frame, W& w) {
+CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, W& w) {
   CertifiedResult r;
   r.upper = std::numeric_limits<double>::infinity();
   r.tau = tauOf(A, B, frame);

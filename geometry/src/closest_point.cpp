@@ -7,8 +7,7 @@ namespace deepcheck::geometry {
 
 using Eigen::Vector3d;
 
-Vector3d closestPointOnTriangle(const Vector3d& p, const Vector3d& a, const Vector3d& b,
-                                const Vector3d& c) {
+Vector3d closestPointOnTriangle(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
   const Vector3d ab = b - a;
   const Vector3d ac = c - a;
   const Vector3d ap = p - a;

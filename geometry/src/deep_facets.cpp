@@ -180,8 +180,7 @@ bool Walker::evaluateHub(int ia, int ib, Candidate& best) {
 
 // Vertices of P supporting the plane with normal u (B: maximizing u.x; A: minimizing), found by
 // flooding the vertex graph from a supporting vertex.
-void Walker::supportFeature(const ConvexPolytope& P, bool isB, int start, const Vec3& u,
-                            std::vector<int>& out) const {
+void Walker::supportFeature(const ConvexPolytope& P, bool isB, int start, const Vec3& u, std::vector<int>& out) const {
   out.clear();
   auto value = [&](int v) { return isB ? u.dot(vb(v)) : -u.dot(va(v)); };
   const double top = value(start);
@@ -221,31 +220,31 @@ void Walker::facetFeatures(const Candidate& c) {
   fb.clear();
   bool generic = false;
   if (c.featuresKnown) switch (c.type) {
-    case WalkResult::FacetType::VF:
-      if (aloneOnPlaneA(c.fa, c.u, -1)) {
-        fa.push_back(c.fa);
-        for (int v : B_.faceVertices(c.fb)) fb.push_back(v);
-        generic = true;
-      }
-      break;
-    case WalkResult::FacetType::FV:
-      if (aloneOnPlaneB(c.fb, c.u, -1)) {
-        fb.push_back(c.fb);
-        for (int v : A_.faceVertices(c.fa)) fa.push_back(v);
-        generic = true;
-      }
-      break;
-    case WalkResult::FacetType::EE:
-      if (aloneOnPlaneA(c.fa, c.u, c.fa2) && aloneOnPlaneA(c.fa2, c.u, c.fa) &&
-          aloneOnPlaneB(c.fb, c.u, c.fb2) && aloneOnPlaneB(c.fb2, c.u, c.fb)) {
-        fa.push_back(c.fa);
-        fa.push_back(c.fa2);
-        fb.push_back(c.fb);
-        fb.push_back(c.fb2);
-        generic = true;
-      }
-      break;
-  }
+      case WalkResult::FacetType::VF:
+        if (aloneOnPlaneA(c.fa, c.u, -1)) {
+          fa.push_back(c.fa);
+          for (int v : B_.faceVertices(c.fb)) fb.push_back(v);
+          generic = true;
+        }
+        break;
+      case WalkResult::FacetType::FV:
+        if (aloneOnPlaneB(c.fb, c.u, -1)) {
+          fb.push_back(c.fb);
+          for (int v : A_.faceVertices(c.fa)) fa.push_back(v);
+          generic = true;
+        }
+        break;
+      case WalkResult::FacetType::EE:
+        if (aloneOnPlaneA(c.fa, c.u, c.fa2) && aloneOnPlaneA(c.fa2, c.u, c.fa) && aloneOnPlaneB(c.fb, c.u, c.fb2) &&
+            aloneOnPlaneB(c.fb2, c.u, c.fb)) {
+          fa.push_back(c.fa);
+          fa.push_back(c.fa2);
+          fb.push_back(c.fb);
+          fb.push_back(c.fb2);
+          generic = true;
+        }
+        break;
+    }
   if (!generic) {
     supportFeature(B_, true, c.hubB, c.u, fb);
     supportFeature(A_, false, c.hubA, c.u, fa);
@@ -292,8 +291,8 @@ void Walker::facetPolygon(const Candidate& c) {
   hull.resize(k - 1);
 }
 
-void Walker::witness(const FacetPoint& x, const FacetPoint& y, const FacetPoint& z, double wx,
-                     double wy, double wz, Vec3& pA, Vec3& pB) const {
+void Walker::witness(const FacetPoint& x, const FacetPoint& y, const FacetPoint& z, double wx, double wy, double wz,
+                     Vec3& pA, Vec3& pB) const {
   pA = wx * va(x.ia) + wy * va(y.ia) + wz * va(z.ia);
   pB = wx * vb(x.ib) + wy * vb(y.ib) + wz * vb(z.ib);
 }

@@ -1,8 +1,8 @@
 // The Gauss-map walk (DEEP's walks) and the query: walks from the warm start's basins or the cold
 // start directions, the best end is the answer, the best distinct ends are the next warm query's
 // basins. Also the facet at one direction without a walk (facetInDirection: a walk's first
-// facet), with which the certified method names answers on parallel faces. Vocabulary in deep_walker.h; the facets a walk
-// moves over come from deep_facets.cpp.
+// facet), with which the certified method names answers on parallel faces. Vocabulary in deep_walker.h; the facets a
+// walk moves over come from deep_facets.cpp.
 
 #include "deep_walker.h"
 
@@ -80,8 +80,8 @@ namespace {
 /// The walks of one query: where they ended and the best end so far.
 class Walks {
  public:
-  Walks(Walker& w, const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-        const WalkOptions& options, WalkStats& stats)
+  Walks(Walker& w, const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const WalkOptions& options,
+        WalkStats& stats)
       : w_(w), A_(A), B_(B), frame_(frame), options_(options), stats_(stats) {
     best_.facet.d = std::numeric_limits<double>::infinity();
     // The origin lies off M's centre by -t: the nearest boundary is most likely that way.
@@ -226,8 +226,8 @@ void Walks::rememberBasins(WalkCache& cache, bool warm) {
 
 }  // namespace
 
-WalkResult walkPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                           WalkCache* cache, const WalkOptions& options, bool warmStart, WalkScratch* scratch) {
+WalkResult walkPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, WalkCache* cache,
+                           const WalkOptions& options, bool warmStart, WalkScratch* scratch) {
   WalkScratchData local;  // allocates only what this query uses
   WalkResult result;
   Walker w(A, B, frame, scratch ? scratch->data() : local);

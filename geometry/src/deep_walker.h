@@ -239,8 +239,8 @@ class Walker {
   void supportFeature(const ConvexPolytope& P, bool isB, int start, const Vec3& u, std::vector<int>& out) const;
   void facetFeatures(const Candidate& c);
   void facetPolygon(const Candidate& c);
-  void witness(const FacetPoint& x, const FacetPoint& y, const FacetPoint& z, double wx, double wy,
-               double wz, Vec3& pA, Vec3& pB) const;
+  void witness(const FacetPoint& x, const FacetPoint& y, const FacetPoint& z, double wx, double wy, double wz, Vec3& pA,
+               Vec3& pB) const;
   bool footOnSegmentFacet(Vec3& pA, Vec3& pB, int next[4]) const;
   int mostViolatedEdge() const;
   void insideWitnesses(Vec3& pA, Vec3& pB) const;
@@ -275,7 +275,7 @@ bool isLowDim(const ConvexPolytope& P);
 /// The depth when A or B is a point or a segment (low_dim_facets.cpp): M's facets enumerated
 /// directly, or depth 0 for a flat M. Returns false, leaving `result` alone, when both are
 /// polygons or polyhedra with a solid M (the walks' case).
-bool lowDimPenetration(Walker& w, const ConvexPolytope& A, const ConvexPolytope& B,
-                       const PairFrame& frame, WalkResult& result);
+bool lowDimPenetration(Walker& w, const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                       WalkResult& result);
 
 }  // namespace deepcheck::geometry::detail

@@ -35,8 +35,7 @@ namespace deepcheck::geometry {
 namespace {
 
 /// Closest point to the origin on triangle (a, b, c).
-Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                  const Eigen::Vector3d& c) {
+Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   return closestPointOnTriangle(Eigen::Vector3d::Zero(), a, b, c);
 }
 
@@ -79,8 +78,7 @@ void sortAround(std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& u) {
   std::vector<std::pair<double, Eigen::Vector3d>> keyed;
   keyed.reserve(pts.size());
   for (const auto& p : pts) keyed.emplace_back(std::atan2(e2.dot(p - c), e1.dot(p - c)), p);
-  std::sort(keyed.begin(), keyed.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   for (std::size_t i = 0; i < pts.size(); ++i) pts[i] = keyed[i].second;
 }
 
@@ -127,9 +125,8 @@ void qhullSolid(const std::vector<Eigen::Vector3d>& points, MinkowskiHull& hull)
 /// 2-d convex hull (Andrew's monotone chain) of points in the plane through `origin` with the
 /// orthonormal in-plane axes e1, e2 and normal e1 x e2; returns the 3-d corners counter-clockwise
 /// about that normal. Collinear boundary points are dropped.
-std::vector<Eigen::Vector3d> planarHull(const std::vector<Eigen::Vector3d>& pts,
-                                        const Eigen::Vector3d& origin, const Eigen::Vector3d& e1,
-                                        const Eigen::Vector3d& e2) {
+std::vector<Eigen::Vector3d> planarHull(const std::vector<Eigen::Vector3d>& pts, const Eigen::Vector3d& origin,
+                                        const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
   struct P2 {
     double x, y;
     std::size_t i;
@@ -139,8 +136,7 @@ std::vector<Eigen::Vector3d> planarHull(const std::vector<Eigen::Vector3d>& pts,
   for (std::size_t i = 0; i < pts.size(); ++i) {
     q.push_back({e1.dot(pts[i] - origin), e2.dot(pts[i] - origin), i});
   }
-  std::sort(q.begin(), q.end(),
-            [](const P2& a, const P2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  std::sort(q.begin(), q.end(), [](const P2& a, const P2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   const auto cross = [](const P2& o, const P2& a, const P2& b) {
     return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
   };
@@ -243,8 +239,7 @@ std::vector<Eigen::Vector3d> differencePoints(const ConvexPolytope& A, const Con
 }
 
 /// Mean of the difference points: centroid of B's vertices minus centroid of A's, in P.
-Eigen::Vector3d meanDifference(const ConvexPolytope& A, const ConvexPolytope& B,
-                               const PairFrame& frame) {
+Eigen::Vector3d meanDifference(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
   Eigen::Vector3d ma = Eigen::Vector3d::Zero();
   Eigen::Vector3d mb = Eigen::Vector3d::Zero();
   for (int i = 0; i < A.numVertices(); ++i) ma += PairFrame::vertexA(A, i);
@@ -254,21 +249,19 @@ Eigen::Vector3d meanDifference(const ConvexPolytope& A, const ConvexPolytope& B,
 
 void checkRadius(double r, const char* what) {
   if (!std::isfinite(r) || r < 0.0) {
-    throw std::invalid_argument(std::string("exactSignedDistance: ") + what +
-                                " must be finite and >= 0, got " + std::to_string(r));
+    throw std::invalid_argument(std::string("exactSignedDistance: ") + what + " must be finite and >= 0, got " +
+                                std::to_string(r));
   }
 }
 
 }  // namespace
 
-MinkowskiHull minkowskiDifferenceHull(const ConvexPolytope& A, const ConvexPolytope& B,
-                                      const PairFrame& frame) {
+MinkowskiHull minkowskiDifferenceHull(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
   return buildHull(differencePoints(A, B, frame), meanDifference(A, B, frame));
 }
 
-ExactResult exactSignedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
-                                const ConvexPolytope& B, const Eigen::Isometry3d& X_WB,
-                                double radiusA, double radiusB) {
+ExactResult exactSignedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexPolytope& B,
+                                const Eigen::Isometry3d& X_WB, double radiusA, double radiusB) {
   checkRadius(radiusA, "radiusA");
   checkRadius(radiusB, "radiusB");
   const PairFrame frame = PairFrame::make(A, X_WA, B, X_WB);

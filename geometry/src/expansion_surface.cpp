@@ -19,7 +19,9 @@ using Vec3 = Eigen::Vector3d;
 // Min-heap order on the plane distance.
 struct Farther {
   template <class E>
-  bool operator()(const E& x, const E& y) const { return x.d > y.d; }
+  bool operator()(const E& x, const E& y) const {
+    return x.d > y.d;
+  }
 };
 
 /// The normal of the plane through p0, p1, p2 (counter-clockwise seen from outside), not

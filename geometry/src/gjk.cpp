@@ -84,8 +84,8 @@ struct SupportPoint {
 /// Support mapping of M - shift, in frame P, with hill-climbing hints carried from call to call.
 class MinkowskiSupport {
  public:
-  MinkowskiSupport(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                   const Vector3d& shift, int hintA, int hintB)
+  MinkowskiSupport(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const Vector3d& shift,
+                   int hintA, int hintB)
       : A_(A), B_(B), frame_(frame), shift_(shift), hintA_(hintA), hintB_(hintB) {}
 
   /// The point of M - shift maximizing d.x.
@@ -252,9 +252,9 @@ constexpr int kTetraFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};  
 /// The signed volumes of a tetrahedron s[0..3] and of the four with one vertex replaced by the
 /// origin.
 struct TetrahedronVolumes {
-  double det = 0.0;             ///< 6 * signed volume
-  std::array<double, 4> c{};    ///< det with vertex i replaced by the origin; they sum to det
-  bool flat = true;             ///< coplanar points, or worse: the signs are noise
+  double det = 0.0;           ///< 6 * signed volume
+  std::array<double, 4> c{};  ///< det with vertex i replaced by the origin; they sum to det
+  bool flat = true;           ///< coplanar points, or worse: the signs are noise
 
   /// The origin strictly inside. A flat tetrahedron never claims this: it could only enclose the
   /// origin within round-off of its plane anyway.
@@ -269,16 +269,14 @@ TetrahedronVolumes tetrahedronVolumes(const Vector3d* s) {
   const Vector3d e3 = s[3] - s[0];
   TetrahedronVolumes t;
   t.det = e1.dot(e2.cross(e3));
-  const double longest2 =
-      std::max({e1.squaredNorm(), e2.squaredNorm(), e3.squaredNorm(), (s[2] - s[1]).squaredNorm(),
-                (s[3] - s[1]).squaredNorm(), (s[3] - s[2]).squaredNorm()});
+  const double longest2 = std::max({e1.squaredNorm(), e2.squaredNorm(), e3.squaredNorm(), (s[2] - s[1]).squaredNorm(),
+                                    (s[3] - s[1]).squaredNorm(), (s[3] - s[2]).squaredNorm()});
   // Flat: |det| = 6 * volume is below kParallelSine * longest^3.
   t.flat = !(std::abs(t.det) > tol::kParallelSine * longest2 * std::sqrt(longest2));
   // c[i] / det is the origin's barycentric weight. Each is computed on differences from a vertex,
   // so that operands have the size of the simplex: e.g. c[3] = det[e1, e2, 0 - s0].
   const Vector3d o0 = -s[0];
-  t.c = {s[1].dot((s[2] - s[1]).cross(s[3] - s[1])), o0.dot(e2.cross(e3)), e1.dot(o0.cross(e3)),
-         e1.dot(e2.cross(o0))};
+  t.c = {s[1].dot((s[2] - s[1]).cross(s[3] - s[1])), o0.dot(e2.cross(e3)), e1.dot(o0.cross(e3)), e1.dot(e2.cross(o0))};
   return t;
 }
 
@@ -349,8 +347,7 @@ Vector3d accurateDirection(const Run& r) {
   const Vector3d e1 = r.pts[1].w - r.pts[0].w;
   const Vector3d e2 = r.pts[2].w - r.pts[0].w;
   const Vector3d n = e1.cross(e2);
-  const double longest =
-      std::sqrt(std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()}));
+  const double longest = std::sqrt(std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()}));
   if (!(n.norm() > longest * std::sqrt(r.vv))) return vHat;
   const Vector3d nHat = n.normalized();
   return nHat.dot(vHat) >= 0.0 ? nHat : Vector3d(-nHat);
@@ -397,8 +394,7 @@ constexpr int kMaxStallRetries = 4;
 
 /// One GJK run on M - shift (the shift is inside `support`). With `earlyExit`, stops at the first
 /// direction proving the distance exceeds sepTol.
-Run runGjk(MinkowskiSupport& support, const Vector3d& dir0, bool earlyExit, double sepTol,
-           double nearTol) {
+Run runGjk(MinkowskiSupport& support, const Vector3d& dir0, bool earlyExit, double sepTol, double nearTol) {
   Run r;
   r.lastDir = dir0;
   const SupportPoint first = support(-dir0);
@@ -474,26 +470,24 @@ Vector3d initialDirection(const PairFrame& frame, const GjkCache* cache) {
 /// symmetric simplices that made the classification necessary.
 const std::array<Vector3d, 4>& probeDirections() {
   static const std::array<Vector3d, 4> probes = [] {
-    const Eigen::Matrix3d R =
-        Eigen::AngleAxisd(0.9, Vector3d(0.3, 0.5, 0.8).normalized()).toRotationMatrix();
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Vector3d(0.3, 0.5, 0.8).normalized()).toRotationMatrix();
     const double k = 1.0 / std::sqrt(3.0);
-    return std::array<Vector3d, 4>{R * Vector3d(k, k, k), R * Vector3d(k, -k, -k),
-                                   R * Vector3d(-k, k, -k), R * Vector3d(-k, -k, k)};
+    return std::array<Vector3d, 4>{R * Vector3d(k, k, k), R * Vector3d(k, -k, -k), R * Vector3d(-k, k, -k),
+                                   R * Vector3d(-k, -k, k)};
   }();
   return probes;
 }
 
 /// Overlapping when the ball of radius kFlatRelative * L / 3 about the origin is certified to lie
 /// in M, else Touching (see the header comment of this file).
-GjkStatus classifyContact(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                          double L, const Vector3d& dir, int hintA, int hintB) {
+GjkStatus classifyContact(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, double L,
+                          const Vector3d& dir, int hintA, int hintB) {
   const double delta = tol::kFlatRelative * L;
   for (const Vector3d& g : probeDirections()) {
     MinkowskiSupport support(A, B, frame, delta * g, hintA, hintB);
     // Any positive v.w proves the probe outside M; the contact tolerance (a hundredth of delta)
     // marks an inconclusive run, which also counts as "not certified".
-    const Run r = runGjk(support, dir, /*earlyExit=*/true, /*sepTol=*/0.0,
-                         tol::kContactRelative * L);
+    const Run r = runGjk(support, dir, /*earlyExit=*/true, /*sepTol=*/0.0, tol::kContactRelative * L);
     if (r.exit != Exit::Enclosed) return GjkStatus::Touching;
   }
   return GjkStatus::Overlapping;
@@ -514,14 +508,11 @@ void updateCache(GjkCache* cache, const Run& r, const MinkowskiSupport& support)
 
 }  // namespace
 
-GjkResult gjkDistance(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                      GjkCache* cache) {
+GjkResult gjkDistance(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, GjkCache* cache) {
   const double L = pairLengthScale(A, B, frame);
   const double contactTol = tol::kContactRelative * L;
-  MinkowskiSupport support(A, B, frame, Vector3d::Zero(), cache ? cache->hintA : 0,
-                           cache ? cache->hintB : 0);
-  const Run r = runGjk(support, initialDirection(frame, cache), /*earlyExit=*/false, 0.0,
-                       contactTol);
+  MinkowskiSupport support(A, B, frame, Vector3d::Zero(), cache ? cache->hintA : 0, cache ? cache->hintB : 0);
+  const Run r = runGjk(support, initialDirection(frame, cache), /*earlyExit=*/false, 0.0, contactTol);
 
   GjkResult res;
   res.iterations = r.iterations;
@@ -550,8 +541,7 @@ GjkResult gjkDistance(const ConvexPolytope& A, const ConvexPolytope& B, const Pa
     case Exit::Enclosed: {
       const bool certain = r.exit == Exit::Enclosed && nearestFacePlane(r.pts) > contactTol;
       res.status = certain ? GjkStatus::Overlapping
-                           : classifyContact(A, B, frame, L, r.lastDir, support.hintA(),
-                                             support.hintB());
+                           : classifyContact(A, B, frame, L, r.lastDir, support.hintA(), support.hintB());
       res.distance = 0.0;
       if (res.status == GjkStatus::Touching && r.vv > 0.0) res.normal = r.v / std::sqrt(r.vv);
       break;
@@ -568,13 +558,10 @@ bool enclosesOrigin(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
   return tetrahedronVolumes(s.data()).enclosesOrigin();
 }
 
-bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                GjkCache* cache) {
+bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, GjkCache* cache) {
   const double contactTol = tol::kContactRelative * pairLengthScale(A, B, frame);
-  MinkowskiSupport support(A, B, frame, Vector3d::Zero(), cache ? cache->hintA : 0,
-                           cache ? cache->hintB : 0);
-  const Run r = runGjk(support, initialDirection(frame, cache), /*earlyExit=*/true, contactTol,
-                       contactTol);
+  MinkowskiSupport support(A, B, frame, Vector3d::Zero(), cache ? cache->hintA : 0, cache ? cache->hintB : 0);
+  const Run r = runGjk(support, initialDirection(frame, cache), /*earlyExit=*/true, contactTol, contactTol);
   updateCache(cache, r, support);
   switch (r.exit) {
     case Exit::SeparatingAxis:
@@ -594,8 +581,7 @@ bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFram
 bool gjkWithin(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, double within,
                GjkCache* cache) {
   const double contactTol = tol::kContactRelative * pairLengthScale(A, B, frame);
-  MinkowskiSupport support(A, B, frame, Vector3d::Zero(), cache ? cache->hintA : 0,
-                           cache ? cache->hintB : 0);
+  MinkowskiSupport support(A, B, frame, Vector3d::Zero(), cache ? cache->hintA : 0, cache ? cache->hintB : 0);
   // Early exit on a lower bound above `within`; a simplex point within max(within, contactTol)
   // of the origin proves the answer true.
   const double near = std::max(within, contactTol);

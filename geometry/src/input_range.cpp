@@ -26,9 +26,9 @@ std::string number(double x) {
 
 void checkCoordinate(double x, const std::string& what) {
   if (std::abs(x) <= kMaxCoordinate) return;
-  throw std::invalid_argument(what + " = " + number(x) + " is " +
-                              (std::isfinite(x) ? "out of range (|value| > " + number(kMaxCoordinate) + ")"
-                                                : std::string("non-finite")));
+  throw std::invalid_argument(
+      what + " = " + number(x) + " is " +
+      (std::isfinite(x) ? "out of range (|value| > " + number(kMaxCoordinate) + ")" : std::string("non-finite")));
 }
 
 void checkPoints(const std::vector<Eigen::Vector3d>& points, const std::string& name) {

@@ -11,8 +11,8 @@ namespace {
 /// vertices s0, s1 (equal for a point), all in frame P. `xVertex`/`xNormal` map X's vertex and
 /// face normal into P. Returns the facet of smallest offset.
 template <class VertexFn, class NormalFn>
-Candidate lowDimFacets(const ConvexPolytope& X, VertexFn xVertex, NormalFn xNormal, const Vec3& s0,
-                       const Vec3& s1, bool segment) {
+Candidate lowDimFacets(const ConvexPolytope& X, VertexFn xVertex, NormalFn xNormal, const Vec3& s0, const Vec3& s1,
+                       bool segment) {
   Candidate best;
   auto consider = [&](const Vec3& u, const Vec3& onX, WalkResult::FacetType type) {
     const Vec3 s = u.dot(s0) <= u.dot(s1) ? s0 : s1;  // support of S in -u
@@ -74,8 +74,8 @@ bool isFlatPair(const ConvexPolytope& A, const ConvexPolytope& B, const PairFram
           A.faceNormal(0).cross(frame.R * B.faceNormal(0)).norm() < tol::kParallelSine);
 }
 
-void flatPairAnswer(const Walker& w, const ConvexPolytope& A, const ConvexPolytope& B,
-                    const PairFrame& frame, WalkResult& result) {
+void flatPairAnswer(const Walker& w, const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                    WalkResult& result) {
   Vec3 u = Vec3::UnitZ();
   if (A.kind() == PolytopeKind::Polygon) u = A.faceNormal(0);
   else if (B.kind() == PolytopeKind::Polygon) u = frame.R * B.faceNormal(0);
@@ -92,12 +92,10 @@ void flatPairAnswer(const Walker& w, const ConvexPolytope& A, const ConvexPolyto
 
 }  // namespace
 
-bool isLowDim(const ConvexPolytope& P) {
-  return P.kind() == PolytopeKind::Point || P.kind() == PolytopeKind::Segment;
-}
+bool isLowDim(const ConvexPolytope& P) { return P.kind() == PolytopeKind::Point || P.kind() == PolytopeKind::Segment; }
 
-bool lowDimPenetration(Walker& w, const ConvexPolytope& A, const ConvexPolytope& B,
-                       const PairFrame& frame, WalkResult& result) {
+bool lowDimPenetration(Walker& w, const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                       WalkResult& result) {
   if (isFlatPair(A, B, frame)) {
     flatPairAnswer(w, A, B, frame, result);
     return true;
@@ -107,13 +105,13 @@ bool lowDimPenetration(Walker& w, const ConvexPolytope& A, const ConvexPolytope&
   Candidate c;
   if (isLowDim(A)) {
     const Vec3 s0 = w.va(0), s1 = w.va(A.numVertices() - 1);
-    c = lowDimFacets(B, [&](int v) { return w.vb(v); }, [&](int f) { return w.nb(f); }, s0, s1,
-                     A.kind() == PolytopeKind::Segment);
+    c = lowDimFacets(
+        B, [&](int v) { return w.vb(v); }, [&](int f) { return w.nb(f); }, s0, s1, A.kind() == PolytopeKind::Segment);
   } else {
     // M = B - A = -(A - B): facets of A - B with normals negated.
     const Vec3 s0 = w.vb(0), s1 = w.vb(B.numVertices() - 1);
-    c = lowDimFacets(A, [&](int v) { return w.va(v); }, [&](int f) { return w.na(f); }, s0, s1,
-                     B.kind() == PolytopeKind::Segment);
+    c = lowDimFacets(
+        A, [&](int v) { return w.va(v); }, [&](int f) { return w.na(f); }, s0, s1, B.kind() == PolytopeKind::Segment);
     c.u = -c.u;
   }
   result.status = WalkStatus::Converged;

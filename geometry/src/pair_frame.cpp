@@ -43,8 +43,8 @@ void checkPose(const Eigen::Isometry3d& X, const char* what) {
       const double x = c < 3 ? R(r, c) : p[r];
       if (!std::isfinite(x)) {
         std::ostringstream msg;
-        msg << what << ": pose has a non-finite " << (c < 3 ? "rotation" : "translation")
-            << " entry (" << r << ", " << c << ") = " << x;
+        msg << what << ": pose has a non-finite " << (c < 3 ? "rotation" : "translation") << " entry (" << r << ", "
+            << c << ") = " << x;
         throw std::invalid_argument(msg.str());
       }
     }
@@ -66,15 +66,15 @@ void checkPose(const Eigen::Isometry3d& X, const char* what) {
   }
 }
 
-PairFrame PairFrame::make(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
-                          const ConvexPolytope& B, const Eigen::Isometry3d& X_WB) {
+PairFrame PairFrame::make(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexPolytope& B,
+                          const Eigen::Isometry3d& X_WB) {
   checkPose(X_WA, "X_WA");
   checkPose(X_WB, "X_WB");
   return makeUnchecked(A, X_WA, B, X_WB);
 }
 
-PairFrame PairFrame::makeUnchecked(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
-                                   const ConvexPolytope& B, const Eigen::Isometry3d& X_WB) {
+PairFrame PairFrame::makeUnchecked(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexPolytope& B,
+                                   const Eigen::Isometry3d& X_WB) {
   const Eigen::Matrix3d R_WA = X_WA.linear();
   const Eigen::Matrix3d R_WB = X_WB.linear();
   PairFrame frame;

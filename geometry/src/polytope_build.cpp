@@ -240,8 +240,7 @@ bool PolytopeBuilder::makePolygon(const Vector3d& normal, ConvexPolytope* out) c
   return true;
 }
 
-ConvexPolytope ConvexPolytope::fromPoints(const std::vector<Vector3d>& points,
-                                          const std::string& name) {
+ConvexPolytope ConvexPolytope::fromPoints(const std::vector<Vector3d>& points, const std::string& name) {
   if (points.empty()) throw std::invalid_argument(name + ": no points");
   range::checkPoints(points, name);
   return PolytopeBuilder(points, name).build();
@@ -257,8 +256,7 @@ ConvexPolytope ConvexPolytope::box(const Vector3d& size) {
   const Vector3d halfExtents = 0.5 * size;
   std::vector<Vector3d> corners;
   for (int i = 0; i < 8; ++i) {
-    corners.emplace_back((i & 1) ? halfExtents.x() : -halfExtents.x(),
-                         (i & 2) ? halfExtents.y() : -halfExtents.y(),
+    corners.emplace_back((i & 1) ? halfExtents.x() : -halfExtents.x(), (i & 2) ? halfExtents.y() : -halfExtents.y(),
                          (i & 4) ? halfExtents.z() : -halfExtents.z());
   }
   return fromPoints(corners, "box");

@@ -56,8 +56,7 @@ using Eigen::Vector3d;
 namespace detail {
 
 inline std::uint64_t edgeKey(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
 /// Newell's area vector of a closed loop: twice the vector area, along the normal for which the
@@ -196,8 +195,7 @@ Vector3d fitNormal(const Loop& loop, const Coord& coord) {
 /// Builds polytopes; a friend of ConvexPolytope. One builder per fromPoints call.
 class PolytopeBuilder {
  public:
-  PolytopeBuilder(const std::vector<Vector3d>& points, const std::string& name)
-      : points_(points), name_(name) {}
+  PolytopeBuilder(const std::vector<Vector3d>& points, const std::string& name) : points_(points), name_(name) {}
 
   ConvexPolytope build();
 
@@ -212,18 +210,14 @@ class PolytopeBuilder {
   };
   ConvexPolytope makeSolid(double thickness) const;
   SolidAttempt pruneRounds(bool merge) const;
-  ConvexPolytope makePolyhedron(const std::vector<int>& ids, double qhullMerge,
-                                std::vector<int>* vertexIds, std::vector<int>* redundant) const;
+  ConvexPolytope makePolyhedron(const std::vector<int>& ids, double qhullMerge, std::vector<int>* vertexIds,
+                                std::vector<int>* redundant) const;
   bool covers(const ConvexPolytope& p, const std::vector<int>& vertexIds) const;
   void dropNearDuplicates();
-  ConvexPolytope assembleSolid(const std::vector<std::vector<int>>& faces,
-                               std::vector<int>* vertexIds) const;
+  ConvexPolytope assembleSolid(const std::vector<std::vector<int>>& faces, std::vector<int>* vertexIds) const;
   void buildRings(ConvexPolytope& p) const;
-  void findRedundant(const ConvexPolytope& p, const std::vector<int>& vertexIds,
-                     std::vector<int>* redundant) const;
-  [[noreturn]] void topologyError(const std::string& what) const {
-    detail::throwTopologyError(name_, what);
-  }
+  void findRedundant(const ConvexPolytope& p, const std::vector<int>& vertexIds, std::vector<int>* redundant) const;
+  [[noreturn]] void topologyError(const std::string& what) const { detail::throwTopologyError(name_, what); }
 
   const std::vector<Vector3d>& points_;
   const std::string& name_;

@@ -43,7 +43,6 @@ class UnionFind {
 
 }  // namespace
 
-
 // The solid hull, in rounds. Qhull merging facets within h_ gives clean faces on noisy coplanar
 // input; on sets only tens of h_ thick its merge thresholds (several h_) reach across the whole
 // thickness and it can fail or collapse the rim, so thin sets, and sets where the merged hull
@@ -126,8 +125,8 @@ bool PolytopeBuilder::covers(const ConvexPolytope& p, const std::vector<int>& ve
   auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
   };
-  const std::vector<Eigen::Vector2d> outline = monotoneChain(
-      shadow, [&](const auto& o, const auto& a, const auto& b) { return !(turn(o, a, b) <= 0.0); });
+  const std::vector<Eigen::Vector2d> outline =
+      monotoneChain(shadow, [&](const auto& o, const auto& a, const auto& b) { return !(turn(o, a, b) <= 0.0); });
   for (const Vector3d& point : points_) {
     const Vector3d x = point - p.center();
     const Eigen::Vector2d y(e0.dot(x), e1.dot(x));
@@ -156,8 +155,7 @@ namespace {
 /// Loops are counter-clockwise seen from outside and index the builder's points.
 class SolidFaces {
  public:
-  SolidFaces(const std::vector<Vector3d>& q, double h, const std::string& name)
-      : q_(q), h_(h), name_(name) {}
+  SolidFaces(const std::vector<Vector3d>& q, double h, const std::string& name) : q_(q), h_(h), name_(name) {}
 
   std::vector<std::vector<int>> build(const std::vector<int>& ids, double qhullMerge) {
     runQhull(ids, qhullMerge);
@@ -193,10 +191,10 @@ class SolidFaces {
   const std::vector<Vector3d>& q_;
   const double h_;
   const std::string& name_;
-  std::vector<std::vector<int>> loops_;  // Qhull's facets, indices into q_
+  std::vector<std::vector<int>> loops_;               // Qhull's facets, indices into q_
   std::unordered_map<std::uint64_t, int> edgeFacet_;  // directed edge -> its facet
-  std::vector<Group> group_;             // by root facet
-  std::vector<Vector3d> facetNormal_;    // each facet's own fitted normal
+  std::vector<Group> group_;                          // by root facet
+  std::vector<Vector3d> facetNormal_;                 // each facet's own fitted normal
   UnionFind groups_{0};
   std::vector<std::vector<int>> members_;  // facets of each root
   std::vector<char> dissolved_;            // groups whose merge hid a real corner
@@ -254,9 +252,7 @@ int SolidFaces::twinFacet(int a, int b) const {
   return it->second;
 }
 
-double angleBetween(const Vector3d& m, const Vector3d& n) {
-  return std::atan2(m.cross(n).norm(), m.dot(n));
-}
+double angleBetween(const Vector3d& m, const Vector3d& n) { return std::atan2(m.cross(n).norm(), m.dot(n)); }
 
 // Merges adjacent faces whose normals differ by less than kCoplanarAngle and whose union is
 // planar within h_ (Qhull's merging catches most; this enforces our own criterion on the fitted
@@ -305,8 +301,8 @@ bool SolidFaces::tryMerge(int rf, int rg) {
   }
   auto coord = [&](int i) { return q_[i]; };
   Group u;
-  std::merge(group_[rf].verts.begin(), group_[rf].verts.end(), group_[rg].verts.begin(),
-             group_[rg].verts.end(), std::back_inserter(u.verts));
+  std::merge(group_[rf].verts.begin(), group_[rf].verts.end(), group_[rg].verts.begin(), group_[rg].verts.end(),
+             std::back_inserter(u.verts));
   u.verts.erase(std::unique(u.verts.begin(), u.verts.end()), u.verts.end());
   u.area = group_[rf].area + group_[rg].area;
   u.plane = fitPlane(u.verts, coord, u.area);
@@ -422,8 +418,7 @@ void SolidFaces::removeEdgeVertices() {
       changed = changed || l.size() != before;
     }
     const std::size_t before = faces_.size();
-    faces_.erase(std::remove_if(faces_.begin(), faces_.end(),
-                                [](const std::vector<int>& l) { return l.size() < 3; }),
+    faces_.erase(std::remove_if(faces_.begin(), faces_.end(), [](const std::vector<int>& l) { return l.size() < 3; }),
                  faces_.end());
     changed = changed || faces_.size() != before;
   }
@@ -434,8 +429,7 @@ void SolidFaces::removeEdgeVertices() {
 // The hull of the points `ids` (indices into points_); reports its vertices' indices and the
 // vertices found redundant (see makeSolid).
 ConvexPolytope PolytopeBuilder::makePolyhedron(const std::vector<int>& ids, double qhullMerge,
-                                               std::vector<int>* vertexIds,
-                                               std::vector<int>* redundant) const {
+                                               std::vector<int>* vertexIds, std::vector<int>* redundant) const {
   const std::vector<std::vector<int>> faces = SolidFaces(q_, h_, name_).build(ids, qhullMerge);
   ConvexPolytope p = assembleSolid(faces, vertexIds);
   buildRings(p);
@@ -484,8 +478,7 @@ void PolytopeBuilder::buildRings(ConvexPolytope& p) const {
     const int s = p.faceStart_[f];
     const int k = p.faceStart_[f + 1] - s;
     for (int i = 0; i < k; ++i) {
-      around[p.faceVerts_[s + i]].push_back(
-          {f, p.faceVerts_[s + (i + 1) % k], p.faceVerts_[s + (i + k - 1) % k]});
+      around[p.faceVerts_[s + i]].push_back({f, p.faceVerts_[s + (i + 1) % k], p.faceVerts_[s + (i + k - 1) % k]});
     }
   }
   p.adjStart_.push_back(0);

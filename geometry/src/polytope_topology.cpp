@@ -29,7 +29,10 @@ std::string message(const Parts&... parts) {
 class PolytopeInvariants {
  public:
   explicit PolytopeInvariants(const ConvexPolytope& p)
-      : p_(p), nv_(p.numVertices()), nf_(p.numFaces()), tol_(p.hullTolerance()),
+      : p_(p),
+        nv_(p.numVertices()),
+        nf_(p.numFaces()),
+        tol_(p.hullTolerance()),
         solid_(p.kind_ == PolytopeKind::Polyhedron) {}
 
   std::string check(bool globalConvexity) {
@@ -74,8 +77,7 @@ class PolytopeInvariants {
 std::string PolytopeInvariants::counts() const {
   if (nv_ < 1) return message("no vertices");
   if (static_cast<int>(p_.local_.size()) != nv_ || static_cast<int>(p_.adjStart_.size()) != nv_ + 1 ||
-      static_cast<int>(p_.faceStart_.size()) != nf_ + 1 ||
-      static_cast<int>(p_.faceOffsets_.size()) != nf_) {
+      static_cast<int>(p_.faceStart_.size()) != nf_ + 1 || static_cast<int>(p_.faceOffsets_.size()) != nf_) {
     return message("array sizes do not match the counts");
   }
   if (p_.adjStart_[nv_] != static_cast<int>(p_.adjVerts_.size())) return message("adjacency size");
@@ -155,10 +157,10 @@ std::string PolytopeInvariants::face(int f) {
   // into one face may disagree. Rings may turn the wrong way by that much at nearly flat
   // vertices (where merging and vertex removal within the tolerance decide the last digits).
   const double roundoff = 16.0 * std::numeric_limits<double>::epsilon() * p_.radius_;
-  const PlaneFit fit = fitPlane(fv, [&](int v) { return local[v]; }, n);
-  normalUncertainty_[f] = fit.width > 0.0
-                              ? (fit.band + p_.flatTol_ + roundoff) / fit.width + tol::kCoplanarAngle
-                              : std::numeric_limits<double>::infinity();
+  const PlaneFit fit = fitPlane(
+      fv, [&](int v) { return local[v]; }, n);
+  normalUncertainty_[f] = fit.width > 0.0 ? (fit.band + p_.flatTol_ + roundoff) / fit.width + tol::kCoplanarAngle
+                                          : std::numeric_limits<double>::infinity();
   return "";
 }
 
@@ -240,8 +242,7 @@ std::string PolytopeInvariants::ringEdge(int v, int j) const {
   const IndexRange fv = p_.faceVertices(f);
   const int m = fv.size();
   if (fv[(i + 1) % m] != nb[j] || fv[(i + m - 1) % m] != nb[(j + 1) % k]) {
-    return message("ring of vertex ", v, ": face ", f, " is not between neighbours ", nb[j], " and ",
-                   nb[(j + 1) % k]);
+    return message("ring of vertex ", v, ": face ", f, " is not between neighbours ", nb[j], " and ", nb[(j + 1) % k]);
   }
   if (!solid_) return "";
   for (int t = 0; t < j; ++t) {
@@ -255,8 +256,8 @@ std::string PolytopeInvariants::ringEdge(int v, int j) const {
   const Vector3d turn = p_.faceNormals_[prev].cross(p_.faceNormals_[f]);
   const Vector3d edge = (p_.local_[u] - p_.local_[v]).normalized();
   if (!(turn.dot(edge) < normalUncertainty_[prev] + normalUncertainty_[f])) {
-    return message("ring normals of vertex ", v, " are not counter-clockwise at edge to ", u, " (by ",
-                   turn.dot(edge), " rad)");
+    return message("ring normals of vertex ", v, " are not counter-clockwise at edge to ", u, " (by ", turn.dot(edge),
+                   " rad)");
   }
   return "";
 }

@@ -67,10 +67,8 @@ class MessageStream {
 [[noreturn]] void badCoordinate(double x, int point, int axis, const std::string& name) {
   char value[32];
   std::snprintf(value, sizeof value, "%.17g", x);
-  throw std::invalid_argument(name + ": point " + std::to_string(point) + " coordinate " +
-                              "xyz"[axis] + " = " + value + " is " +
-                              (std::isfinite(x) ? "out of Qhull's range (|value| > 1e+100)"
-                                                : "non-finite"));
+  throw std::invalid_argument(name + ": point " + std::to_string(point) + " coordinate " + "xyz"[axis] + " = " + value +
+                              " is " + (std::isfinite(x) ? "out of Qhull's range (|value| > 1e+100)" : "non-finite"));
 }
 
 std::string optionString(const QhullOptions& options) {
@@ -90,8 +88,8 @@ std::string optionString(const QhullOptions& options) {
 /// Makes the loop counter-clockwise about `normal` (Newell's area vector against it): reversed,
 /// or for a triangle of a triangulated hull its last two corners swapped (so that it still starts
 /// at Qhull's first vertex).
-void orientLoop(std::vector<int>& loop, const std::vector<Eigen::Vector3d>& points,
-                const Eigen::Vector3d& normal, bool triangulated) {
+void orientLoop(std::vector<int>& loop, const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal,
+                bool triangulated) {
   Eigen::Vector3d area = Eigen::Vector3d::Zero();
   const Eigen::Vector3d& origin = points[loop[0]];
   for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
@@ -138,12 +136,11 @@ int collectFacets(qhT* qh, int numPoints, QhullHull& out, bool* badId) {
 
 }  // namespace
 
-QhullHull qhullHull(const std::vector<Eigen::Vector3d>& points, const QhullOptions& options,
-                    const std::string& name) {
+QhullHull qhullHull(const std::vector<Eigen::Vector3d>& points, const QhullOptions& options, const std::string& name) {
   const int n = static_cast<int>(points.size());
   if (n < kQhullMinPoints) {
-    throw QhullError(name + ": a 3-d hull needs at least " + std::to_string(kQhullMinPoints) +
-                     " points, got " + std::to_string(n));
+    throw QhullError(name + ": a 3-d hull needs at least " + std::to_string(kQhullMinPoints) + " points, got " +
+                     std::to_string(n));
   }
   std::vector<coordT> coords(3 * points.size());
   for (int i = 0; i < n; ++i) {
@@ -166,8 +163,8 @@ QhullHull qhullHull(const std::vector<Eigen::Vector3d>& points, const QhullOptio
   int totLong = 0;
   qh_memfreeshort(qh, &curLong, &totLong);
   if (code != 0) {
-    throw QhullError(name + ": Qhull failed on " + std::to_string(n) + " points (exit code " +
-                     std::to_string(code) + "): " + messages.text());
+    throw QhullError(name + ": Qhull failed on " + std::to_string(n) + " points (exit code " + std::to_string(code) +
+                     "): " + messages.text());
   }
   if (badId) throw QhullError(name + ": Qhull returned an unknown point id");
   for (std::size_t f = 0; f < out.loops.size(); ++f) {

@@ -17,17 +17,22 @@ using namespace detail;
 
 const char* toString(SignedDistanceStatus s) {
   switch (s) {
-    case SignedDistanceStatus::Separated: return "separated";
-    case SignedDistanceStatus::Penetrating: return "penetrating";
-    case SignedDistanceStatus::NotConverged: return "not-converged";
+    case SignedDistanceStatus::Separated:
+      return "separated";
+    case SignedDistanceStatus::Penetrating:
+      return "penetrating";
+    case SignedDistanceStatus::NotConverged:
+      return "not-converged";
   }
   return "unknown";
 }
 
 const char* toString(PenetrationMethod m) {
   switch (m) {
-    case PenetrationMethod::CertifiedExpansion: return "certified";
-    case PenetrationMethod::GaussMapWalk: return "deep-walk";
+    case PenetrationMethod::CertifiedExpansion:
+      return "certified";
+    case PenetrationMethod::GaussMapWalk:
+      return "deep-walk";
   }
   return "unknown";
 }
@@ -35,11 +40,11 @@ const char* toString(PenetrationMethod m) {
 namespace {
 
 void checkShape(const ConvexShape& s, const char* which) {
-  if (s.core == nullptr) throw std::invalid_argument(std::string("signedDistance: shape ") + which + " has no core polytope");
+  if (s.core == nullptr)
+    throw std::invalid_argument(std::string("signedDistance: shape ") + which + " has no core polytope");
   if (!std::isfinite(s.radius) || s.radius < 0) {
     std::ostringstream msg;
-    msg << "signedDistance: shape " << which << " has an invalid radius " << s.radius
-        << " (must be finite and >= 0)";
+    msg << "signedDistance: shape " << which << " has an invalid radius " << s.radius << " (must be finite and >= 0)";
     throw std::invalid_argument(msg.str());
   }
 }
@@ -86,9 +91,19 @@ Feature simplexFeature(const ConvexPolytope& P, const int* idx, int n, const Eig
 Feature deepFeatureA(const WalkResult& d) {
   Feature f;
   switch (d.type) {
-    case WalkResult::FacetType::VF: f.type = Feature::Type::Vertex; f.index = d.featureA; break;
-    case WalkResult::FacetType::FV: f.type = Feature::Type::Face; f.index = d.featureA; break;
-    case WalkResult::FacetType::EE: f.type = Feature::Type::Edge; f.index = d.featureA; f.index2 = d.featureA2; break;
+    case WalkResult::FacetType::VF:
+      f.type = Feature::Type::Vertex;
+      f.index = d.featureA;
+      break;
+    case WalkResult::FacetType::FV:
+      f.type = Feature::Type::Face;
+      f.index = d.featureA;
+      break;
+    case WalkResult::FacetType::EE:
+      f.type = Feature::Type::Edge;
+      f.index = d.featureA;
+      f.index2 = d.featureA2;
+      break;
   }
   return f;
 }
@@ -96,16 +111,24 @@ Feature deepFeatureA(const WalkResult& d) {
 Feature deepFeatureB(const WalkResult& d) {
   Feature f;
   switch (d.type) {
-    case WalkResult::FacetType::VF: f.type = Feature::Type::Face; f.index = d.featureB; break;
-    case WalkResult::FacetType::FV: f.type = Feature::Type::Vertex; f.index = d.featureB; break;
-    case WalkResult::FacetType::EE: f.type = Feature::Type::Edge; f.index = d.featureB; f.index2 = d.featureB2; break;
+    case WalkResult::FacetType::VF:
+      f.type = Feature::Type::Face;
+      f.index = d.featureB;
+      break;
+    case WalkResult::FacetType::FV:
+      f.type = Feature::Type::Vertex;
+      f.index = d.featureB;
+      break;
+    case WalkResult::FacetType::EE:
+      f.type = Feature::Type::Edge;
+      f.index = d.featureB;
+      f.index2 = d.featureB2;
+      break;
   }
   return f;
 }
 
-bool isLowDim(const ConvexPolytope& P) {
-  return P.kind() == PolytopeKind::Point || P.kind() == PolytopeKind::Segment;
-}
+bool isLowDim(const ConvexPolytope& P) { return P.kind() == PolytopeKind::Point || P.kind() == PolytopeKind::Segment; }
 
 /// A penetration depth with its bracket (core depths, frame P).
 struct Penetration {
@@ -141,8 +164,8 @@ WalkOptions oneWalk() {
 /// is certified by the bracket's lower bound, else DEEP's walk from that direction. A facet's
 /// depth is a facet offset of M, an upper bound; the walk's answer is the better of it and the
 /// expansion's own upper bound.
-WalkResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                     const CertifiedResult& c, WalkScratch* walk) {
+WalkResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const CertifiedResult& c,
+                     WalkScratch* walk) {
   WalkResult d = facetInDirection(A, B, frame, c.direction, c.supportA, c.supportB, walk);
   if (d.status == WalkStatus::Converged && d.depth - c.lower <= c.tau) return d;
   WalkCache start = walkStartAt(c);
@@ -162,8 +185,8 @@ WalkResult nameFacet(const ConvexPolytope& A, const ConvexPolytope& B, const Pai
 
 /// Names a certified result's facet (certifiedFacet, else DEEP's walk from its direction) and
 /// fills `p` with it and the bracket's lower bound.
-void nameCertified(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                   const CertifiedResult& c, PairCache* cache, Penetration& p) {
+void nameCertified(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const CertifiedResult& c,
+                   PairCache* cache, Penetration& p) {
   p.lower = c.lower;
   p.expansions = c.expansions;
   if (!certifiedFacet(A, B, frame, c, p.deep)) p.deep = nameFacet(A, B, frame, c, scratchWalk(cache));
@@ -172,8 +195,8 @@ void nameCertified(const ConvexPolytope& A, const ConvexPolytope& B, const PairF
 
 /// Whether the certified warm query runs before GJK (warmPenetration) with these options.
 bool warmFirst(const PenetrationOptions& options, const PairCache* cache) {
-  return options.method == PenetrationMethod::CertifiedExpansion && options.warmStart && cache &&
-         cache->certified && !cache->apart;
+  return options.method == PenetrationMethod::CertifiedExpansion && options.warmStart && cache && cache->certified &&
+         !cache->apart;
 }
 
 /// Keeps a cold query's surface as the pair's warm start (allocated by the pair's first).
@@ -260,9 +283,9 @@ bool probedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const P
 /// segments (M's facets are enumerated exactly) and expansions that did not converge (flat M,
 /// cap) go to DEEP's walks with all restarts; the bracket's lower bound is kept. `triedWarm`: the
 /// warm query already ran (warmPenetration) and did not certify.
-Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                           const GjkResult& g, ExpansionSurface& surface, const PenetrationOptions& options,
-                           PairCache* cache, bool triedWarm) {
+Penetration certifiedDepth(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const GjkResult& g,
+                           ExpansionSurface& surface, const PenetrationOptions& options, PairCache* cache,
+                           bool triedWarm) {
   Penetration p;
   WalkScratch* walk = scratchWalk(cache);
   if (isLowDim(A) || isLowDim(B)) {
@@ -315,8 +338,8 @@ SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B
       n_P = g.normal;
       pA_P = g.pointA;
       pB_P = g.pointB;
-      r.status = g.status == GjkStatus::Separated ? SignedDistanceStatus::Separated
-                                                  : SignedDistanceStatus::NotConverged;
+      r.status =
+          g.status == GjkStatus::Separated ? SignedDistanceStatus::Separated : SignedDistanceStatus::NotConverged;
       r.featureA = simplexFeature(a, g.simplexA.data(), g.simplexSize, n_P, Eigen::Matrix3d::Identity());
       r.featureB = simplexFeature(b, g.simplexB.data(), g.simplexSize, -n_P, frame.R);
       // The certified warm start stays: its check measures the motion from its own reference.
@@ -336,8 +359,7 @@ SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B
     pA_P = d.pointA;
     pB_P = d.pointB;
     r.certified = p.certified;
-    r.status = d.status == WalkStatus::Converged &&
-                       (p.certified || options.method == PenetrationMethod::GaussMapWalk)
+    r.status = d.status == WalkStatus::Converged && (p.certified || options.method == PenetrationMethod::GaussMapWalk)
                    ? SignedDistanceStatus::Penetrating
                    : SignedDistanceStatus::NotConverged;
     r.featureA = deepFeatureA(d);
@@ -361,9 +383,9 @@ SignedDistanceResult signedDistanceIn(const ConvexShape& A, const ConvexShape& B
 
 }  // namespace
 
-SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3d& X_WA,
-                                    const ConvexShape& B, const Eigen::Isometry3d& X_WB,
-                                    PairCache* cache, const PenetrationOptions& options) {
+SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
+                                    const Eigen::Isometry3d& X_WB, PairCache* cache,
+                                    const PenetrationOptions& options) {
   checkShape(A, "A");
   checkShape(B, "B");
   const PairFrame frame = PairFrame::make(*A.core, X_WA, *B.core, X_WB);
@@ -374,14 +396,14 @@ SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3
   return signedDistanceIn(A, B, frame, cache, options, &local);
 }
 
-SignedDistanceResult signedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
-                                    const ConvexPolytope& B, const Eigen::Isometry3d& X_WB,
-                                    PairCache* cache, const PenetrationOptions& options) {
+SignedDistanceResult signedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexPolytope& B,
+                                    const Eigen::Isometry3d& X_WB, PairCache* cache,
+                                    const PenetrationOptions& options) {
   return signedDistance(ConvexShape{&A, 0.0}, X_WA, ConvexShape{&B, 0.0}, X_WB, cache, options);
 }
 
-bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
-              const Eigen::Isometry3d& X_WB, PairCache* cache) {
+bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B, const Eigen::Isometry3d& X_WB,
+              PairCache* cache) {
   checkShape(A, "A");
   checkShape(B, "B");
   checkPose(X_WA, "X_WA");

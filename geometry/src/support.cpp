@@ -196,8 +196,7 @@ int ConvexPolytope::support(const Vector3d& dir, int hint) const {
             bestValue = s;
             best = u;
           } else if (s >= value - slack && count < kMaxPlateau &&
-                     std::find(plateau.begin(), plateau.begin() + count, u) ==
-                         plateau.begin() + count) {
+                     std::find(plateau.begin(), plateau.begin() + count, u) == plateau.begin() + count) {
             plateau[count++] = u;
           }
         }

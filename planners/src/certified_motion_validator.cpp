@@ -72,8 +72,8 @@ void CertifiedMotionValidator::prepare(const ompl::base::State* s1, const ompl::
 }
 
 checker::MotionCertificate CertifiedMotionValidator::certify(const Motion& m, double fraction) const {
-  const checker::MotionCertificate c = fraction == 1.0 ? checker_->world().certifyMotion(m.q1, m.dq, m.demand)
-                                                       : prefix(m, fraction);
+  const checker::MotionCertificate c =
+      fraction == 1.0 ? checker_->world().certifyMotion(m.q1, m.dq, m.demand) : prefix(m, fraction);
   configurations_.fetch_add(static_cast<std::uint64_t>(c.configurations), std::memory_order_relaxed);
   if (c.verdict == checker::MotionCertificate::Verdict::Unproven) {
     unproven_.fetch_add(1, std::memory_order_relaxed);

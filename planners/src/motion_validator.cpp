@@ -15,8 +15,7 @@ namespace deepcheck::planners {
 
 ClearanceMotionValidator::ClearanceMotionValidator(ompl::base::SpaceInformation* si,
                                                    std::shared_ptr<const StateValidityChecker> checker,
-                                                   std::shared_ptr<const LinkSpeedBound> bound,
-                                                   double fallbackFraction)
+                                                   std::shared_ptr<const LinkSpeedBound> bound, double fallbackFraction)
     : ompl::base::MotionValidator(si),
       checker_(std::move(checker)),
       bound_(std::move(bound)),
@@ -37,8 +36,7 @@ ClearanceMotionValidator::ClearanceMotionValidator(ompl::base::SpaceInformation*
 
 ClearanceMotionValidator::ClearanceMotionValidator(const ompl::base::SpaceInformationPtr& si,
                                                    std::shared_ptr<const StateValidityChecker> checker,
-                                                   std::shared_ptr<const LinkSpeedBound> bound,
-                                                   double fallbackFraction)
+                                                   std::shared_ptr<const LinkSpeedBound> bound, double fallbackFraction)
     : ClearanceMotionValidator(si.get(), std::move(checker), std::move(bound), fallbackFraction) {}
 
 namespace {

@@ -92,7 +92,8 @@ ClearanceHingeObjective::ClearanceHingeObjective(const ompl::base::SpaceInformat
                                 robots::formatNumber(safeDistance));
   }
   if (std::isnan(resolution) || std::isinf(resolution)) {
-    throw std::invalid_argument("ClearanceHingeObjective: resolution must be finite, got " + robots::formatNumber(resolution));
+    throw std::invalid_argument("ClearanceHingeObjective: resolution must be finite, got " +
+                                robots::formatNumber(resolution));
   }
   description_ = "Clearance hinge (d_safe " + robots::formatNumber(safeDistance) + " m)";
 }
@@ -156,7 +157,9 @@ struct ClearanceHingeObjective::Motion {
   /// between is 0 and is not evaluated. Otherwise the middle state is evaluated and both halves
   /// looked at. The sum is the full trapezoid sum: only zero terms are skipped.
   bool bisectionSum(const LinkSpeedBound& bound, double* sum) const {
-    const auto reach = [&](int i, int j) { return bound.pairDisplacement(dq * (static_cast<double>(j - i) / segments)); };
+    const auto reach = [&](int i, int j) {
+      return bound.pairDisplacement(dq * (static_cast<double>(j - i) / segments));
+    };
     const auto zeroBetween = [&](const SplitDistance& a, const SplitDistance& b, double B) {
       return (a.world + b.world - B) / 2.0 >= objective.safeDistance_ &&
              (!selfTerm || (a.self + b.self - B) / 2.0 >= objective.selfSafeDistance_);
@@ -225,7 +228,8 @@ ompl::base::OptimizationObjectivePtr makeLengthClearanceObjective(const ompl::ba
                                                                   std::shared_ptr<const LinkSpeedBound> bound,
                                                                   double resolution) {
   if (!std::isfinite(weight) || weight < 0.0) {
-    throw std::invalid_argument("makeLengthClearanceObjective: weight must be finite and >= 0, got " + robots::formatNumber(weight));
+    throw std::invalid_argument("makeLengthClearanceObjective: weight must be finite and >= 0, got " +
+                                robots::formatNumber(weight));
   }
   auto objective = std::make_shared<LengthClearanceObjective>(si);
   objective->addObjective(std::make_shared<ompl::base::PathLengthOptimizationObjective>(si), 1.0);

@@ -38,7 +38,8 @@ StateMapping mappingOf(const ompl::geometric::PathGeometric& path) {
 void forEachState(const ompl::geometric::PathGeometric& path, double resolution,
                   const std::function<bool(const Eigen::VectorXd&, int motion, bool waypoint)>& visit) {
   if (!(resolution > 0.0) || std::isinf(resolution)) {
-    throw std::invalid_argument("path check: resolution must be finite and > 0, got " + robots::formatNumber(resolution));
+    throw std::invalid_argument("path check: resolution must be finite and > 0, got " +
+                                robots::formatNumber(resolution));
   }
   const std::size_t count = path.getStateCount();
   if (count == 0) return;
@@ -117,8 +118,9 @@ double minClearanceAlong(const ompl::geometric::PathGeometric& path,
 PathRepair repairPath(ompl::geometric::PathGeometric& path, const ompl::base::SpaceInformationPtr& si, int maxDepth) {
   auto checker = std::dynamic_pointer_cast<const StateValidityChecker>(si->getStateValidityChecker());
   if (!checker) {
-    throw std::invalid_argument("repairPath: the validity checker of the space information is not a "
-                                "deepcheck::planners::StateValidityChecker");
+    throw std::invalid_argument(
+        "repairPath: the validity checker of the space information is not a "
+        "deepcheck::planners::StateValidityChecker");
   }
   if (maxDepth < 0) throw std::invalid_argument("repairPath: maxDepth must be >= 0, got " + std::to_string(maxDepth));
   const StateMapping& mapping = checker->mapping();
@@ -127,8 +129,8 @@ PathRepair repairPath(ompl::geometric::PathGeometric& path, const ompl::base::Sp
   // Repaired states stand a few millimetres off the surface, not one: the chord between two states
   // on the two faces of an edge cuts the edge unless they stand off it. So the push-out used here
   // treats everything nearer than kRepairClearance (above the threshold) as invalid.
-  const PushOut pushOut = standOffPushOut(checker->worldPtr(), checker->validityOptions(),
-                                         checker->pushOut().options(), tol::kRepairClearance);
+  const PushOut pushOut = standOffPushOut(checker->worldPtr(), checker->validityOptions(), checker->pushOut().options(),
+                                          tol::kRepairClearance);
 
   // Pushes `state` off when it is nearer than the stand-off; true when it is valid afterwards.
   auto standOffState = [&](ompl::base::State* state) {

@@ -12,8 +12,9 @@ namespace {
 std::shared_ptr<const StateValidityChecker> deepcheckChecker(const ompl::base::SpaceInformationPtr& si) {
   auto checker = si ? std::dynamic_pointer_cast<const StateValidityChecker>(si->getStateValidityChecker()) : nullptr;
   if (!checker) {
-    throw std::invalid_argument("PoseGoal: the space information's validity checker is not a "
-                                "deepcheck::planners::StateValidityChecker");
+    throw std::invalid_argument(
+        "PoseGoal: the space information's validity checker is not a "
+        "deepcheck::planners::StateValidityChecker");
   }
   return checker;
 }

@@ -37,12 +37,12 @@ struct Row {
 /// One damped-least-squares step within the joint limits (push_out.h, steps 2 and 3), with the
 /// rows farther than the target joining the constraints when the step would bring them inside it.
 Eigen::VectorXd limitedStep(const std::vector<Row>& rows, double target, const Eigen::VectorXd& q,
-                            const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                            const PushOutOptions& options) {
+                            const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, const PushOutOptions& options) {
   const int n = static_cast<int>(q.size());
   const int m = static_cast<int>(rows.size());
   std::vector<bool> active(static_cast<std::size_t>(m));
-  for (int i = 0; i < m; ++i) active[static_cast<std::size_t>(i)] = rows[static_cast<std::size_t>(i)].distance <= target;
+  for (int i = 0; i < m; ++i)
+    active[static_cast<std::size_t>(i)] = rows[static_cast<std::size_t>(i)].distance <= target;
   std::vector<bool> fixed(static_cast<std::size_t>(n), false);
   Eigen::VectorXd dq = Eigen::VectorXd::Zero(n);  // the clipped joints' motion onto their limits
   Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
@@ -244,8 +244,8 @@ bool PushOutSearch::iterate(checker::DistanceResult d, PushOutResult* result) {
   for (int iteration = 0; iteration < options_.maxIterations && !valid; ++iteration) {
     result->iterations = iteration + 1;
     const std::vector<Row> rows = rowsAt(d, result->q);
-    const Eigen::VectorXd dq = rows.empty() ? Eigen::VectorXd::Zero(size_)
-                                            : limitedStep(rows, target_, result->q, lower_, upper_, options_);
+    const Eigen::VectorXd dq =
+        rows.empty() ? Eigen::VectorXd::Zero(size_) : limitedStep(rows, target_, result->q, lower_, upper_, options_);
     if (!(dq.cwiseAbs().maxCoeff() > 0.0) || stalled >= tol::kPushOutStallIterations) {
       // No step from the gradients (every useful joint on its limit, or a flat distance), or no
       // progress: probe single joints.
@@ -290,10 +290,14 @@ bool PushOutSearch::iterate(checker::DistanceResult d, PushOutResult* result) {
 
 const char* toString(PushOutStatus status) {
   switch (status) {
-    case PushOutStatus::AlreadyValid: return "AlreadyValid";
-    case PushOutStatus::Repaired: return "Repaired";
-    case PushOutStatus::TooDeep: return "TooDeep";
-    case PushOutStatus::NotConverged: return "NotConverged";
+    case PushOutStatus::AlreadyValid:
+      return "AlreadyValid";
+    case PushOutStatus::Repaired:
+      return "Repaired";
+    case PushOutStatus::TooDeep:
+      return "TooDeep";
+    case PushOutStatus::NotConverged:
+      return "NotConverged";
   }
   return "?";
 }
@@ -301,7 +305,8 @@ const char* toString(PushOutStatus status) {
 void checkPushOutOptions(const PushOutOptions& options) {
   auto positive = [](double v, const char* name) {
     if (!(v > 0.0) || std::isnan(v)) {
-      throw std::invalid_argument(std::string("PushOutOptions: ") + name + " must be > 0, got " + robots::formatNumber(v));
+      throw std::invalid_argument(std::string("PushOutOptions: ") + name + " must be > 0, got " +
+                                  robots::formatNumber(v));
     }
   };
   positive(options.targetClearance, "targetClearance");
@@ -354,10 +359,11 @@ std::string blockingFixedPair(const checker::World& world, double threshold) {
   const checker::Contact& c = fixed.front();
   char distance[32];
   std::snprintf(distance, sizeof distance, "%.3g", c.distance);
-  return "the link " + world.robot().link(c.linkA).name + " is moved by no joint, and " + c.nameA + " is " + distance + " m from " + c.nameB +
-         " in every configuration (at most the validity threshold " + robots::formatNumber(threshold) +
-         " m): no push-out can repair it; allow the pair if it is meant to touch: --allow-collision " + c.nameA +
-         ":" + c.nameB + " (checker::World::allowCollision)";
+  return "the link " + world.robot().link(c.linkA).name + " is moved by no joint, and " + c.nameA + " is " + distance +
+         " m from " + c.nameB + " in every configuration (at most the validity threshold " +
+         robots::formatNumber(threshold) +
+         " m): no push-out can repair it; allow the pair if it is meant to touch: --allow-collision " + c.nameA + ":" +
+         c.nameB + " (checker::World::allowCollision)";
 }
 
 }  // namespace
@@ -401,11 +407,11 @@ PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& given) const
 }
 
 PushOutResult jiggle(const checker::World& world, const ValidityOptions& validity,
-                     const Eigen::Ref<const Eigen::VectorXd>& q, const JiggleOptions& options,
-                     std::mt19937_64& rng) {
+                     const Eigen::Ref<const Eigen::VectorXd>& q, const JiggleOptions& options, std::mt19937_64& rng) {
   checkValidityOptions(validity);
   if (!(options.fraction > 0.0) || !std::isfinite(options.fraction)) {
-    throw std::invalid_argument("JiggleOptions: fraction must be finite and > 0, got " + robots::formatNumber(options.fraction));
+    throw std::invalid_argument("JiggleOptions: fraction must be finite and > 0, got " +
+                                robots::formatNumber(options.fraction));
   }
   if (options.attempts < 1) {
     throw std::invalid_argument("JiggleOptions: attempts must be >= 1, got " + std::to_string(options.attempts));

@@ -44,8 +44,8 @@ void checkConfigurationNamed(const robots::RobotModel& model, const Eigen::Ref<c
 std::shared_ptr<checker::World> loadWorld(const std::string& robotUrdf, const std::vector<SceneSpec>& scenes,
                                           const SetupOptions& options) {
   const robots::LoadOptions load = loadOptions(options);
-  robots::RobotModel robot = robots::planningGroupModel(robots::RobotModel::fromUrdfFile(robotUrdf, load),
-                                                        options.srdf, options.group, options.lockedVariables);
+  robots::RobotModel robot = robots::planningGroupModel(robots::RobotModel::fromUrdfFile(robotUrdf, load), options.srdf,
+                                                        options.group, options.lockedVariables);
   checker::WorldOptions worldOptions = options.world;
   if (!options.srdf.empty()) {
     const std::vector<robots::DisabledPair> pairs = robots::readSrdfDisabledPairs(options.srdf);
@@ -66,8 +66,9 @@ namespace {
 /// variable of lockedVariables that it does not hold at that value, or a variable outside
 /// `options.group` that it still moves (a world built without the options).
 void checkGroupOfWorld(const robots::RobotModel& robot, const SetupOptions& options) {
-  const std::string hint = " (build the world with loadWorld(urdf, scenes, options), or leave the group and the "
-                           "locked variables out of the options)";
+  const std::string hint =
+      " (build the world with loadWorld(urdf, scenes, options), or leave the group and the "
+      "locked variables out of the options)";
   for (const auto& [name, value] : options.lockedVariables) {
     const int j = robot.jointIndex(name);
     if (j < 0 || !robot.joint(j).locked || robot.joint(j).lockedValue != value) {
@@ -141,8 +142,9 @@ std::shared_ptr<ompl::geometric::SimpleSetup> makeSimpleSetup(const std::string&
 std::shared_ptr<const StateValidityChecker> validityCheckerOf(const ompl::geometric::SimpleSetup& ss) {
   auto checker = std::dynamic_pointer_cast<const StateValidityChecker>(ss.getStateValidityChecker());
   if (!checker) {
-    throw std::invalid_argument("validityCheckerOf: the SimpleSetup's validity checker is not a "
-                                "deepcheck::planners::StateValidityChecker");
+    throw std::invalid_argument(
+        "validityCheckerOf: the SimpleSetup's validity checker is not a "
+        "deepcheck::planners::StateValidityChecker");
   }
   return checker;
 }
@@ -245,7 +247,8 @@ bool costNotWorse(const ompl::geometric::PathGeometric& path, const ompl::base::
 }  // namespace
 
 bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds) {
-  if (!ss.haveSolutionPath()) throw std::invalid_argument("simplifySolutionChecked: the SimpleSetup has no solution path");
+  if (!ss.haveSolutionPath())
+    throw std::invalid_argument("simplifySolutionChecked: the SimpleSetup has no solution path");
   const ompl::base::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();
   const ompl::base::OptimizationObjectivePtr objective =
       pdef->hasOptimizationObjective() ? pdef->getOptimizationObjective() : nullptr;
@@ -315,7 +318,8 @@ EndpointRepair repairStartAndGoal(ompl::geometric::SimpleSetup& ss, double margi
   };
   const ompl::base::ProblemDefinitionPtr& pdef = ss.getProblemDefinition();
   EndpointRepair repair;
-  for (unsigned int i = 0; i < pdef->getStartStateCount(); ++i) repair.starts.push_back(repairState(pdef->getStartState(i)));
+  for (unsigned int i = 0; i < pdef->getStartStateCount(); ++i)
+    repair.starts.push_back(repairState(pdef->getStartState(i)));
   if (auto goal = std::dynamic_pointer_cast<ompl::base::GoalState>(pdef->getGoal())) {
     repair.goalIsState = true;
     repair.goal = repairState(goal->getState());

@@ -36,21 +36,29 @@ struct Leaf {
 
 std::string typeName(const ob::StateSpace& space) {
   switch (space.getType()) {
-    case ob::STATE_SPACE_REAL_VECTOR: return "RealVector";
-    case ob::STATE_SPACE_SO2: return "SO2";
-    case ob::STATE_SPACE_SO3: return "SO3";
-    case ob::STATE_SPACE_SE2: return "SE2";
-    case ob::STATE_SPACE_SE3: return "SE3";
-    case ob::STATE_SPACE_TIME: return "Time";
-    case ob::STATE_SPACE_DISCRETE: return "Discrete";
-    default: return space.isCompound() ? "Compound" : "unknown type";
+    case ob::STATE_SPACE_REAL_VECTOR:
+      return "RealVector";
+    case ob::STATE_SPACE_SO2:
+      return "SO2";
+    case ob::STATE_SPACE_SO3:
+      return "SO3";
+    case ob::STATE_SPACE_SE2:
+      return "SE2";
+    case ob::STATE_SPACE_SE3:
+      return "SE3";
+    case ob::STATE_SPACE_TIME:
+      return "Time";
+    case ob::STATE_SPACE_DISCRETE:
+      return "Discrete";
+    default:
+      return space.isCompound() ? "Compound" : "unknown type";
   }
 }
 
 /// The layout of `space` for messages: type, name, dimension, and the components of a compound.
 std::string layout(const ob::StateSpace& space) {
-  std::string text = typeName(space) + " '" + space.getName() + "' (dimension " +
-                     std::to_string(space.getDimension()) + ")";
+  std::string text =
+      typeName(space) + " '" + space.getName() + "' (dimension " + std::to_string(space.getDimension()) + ")";
   if (const auto* compound = dynamic_cast<const ob::CompoundStateSpace*>(&space)) {
     text += " [";
     for (unsigned int i = 0; i < compound->getSubspaceCount(); ++i) {
@@ -214,7 +222,8 @@ StateMapping makeStateMapping(const ompl::base::StateSpace& space, const robots:
         "variable (" +
         std::to_string(robot.numVariables()) + "); any other layout needs a StateMapping::custom");
   };
-  if (!collectLeaves(space, components, leaves, unknown)) throw reject("its component " + unknown + " is not understood");
+  if (!collectLeaves(space, components, leaves, unknown))
+    throw reject("its component " + unknown + " is not understood");
   if (leaves.size() != static_cast<std::size_t>(robot.numVariables())) {
     throw reject("it holds " + std::to_string(leaves.size()) + " values");
   }
@@ -225,7 +234,8 @@ StateMapping makeStateMapping(const ompl::base::StateSpace& space, const robots:
   bool identity = true;
   for (std::size_t i = 0; i < leaves.size(); ++i) {
     angular[static_cast<std::size_t>(leaves[i].variable)] = leaves[i].angular;
-    identity = identity && leaves[i].components.empty() && !leaves[i].angular && leaves[i].variable == static_cast<int>(i);
+    identity =
+        identity && leaves[i].components.empty() && !leaves[i].angular && leaves[i].variable == static_cast<int>(i);
   }
   const int n = robot.numVariables();
   if (identity) {  // a plain RealVectorStateSpace in variable order: copy the values

@@ -19,10 +19,9 @@ void checkLimits(const robots::RobotModel& model, int v) {
   const double lo = model.lowerLimits()[v];
   const double hi = model.upperLimits()[v];
   if (std::isfinite(lo) && std::isfinite(hi) && lo < hi) return;
-  throw std::invalid_argument("makeStateSpace: robot '" + model.name() + "', variable '" +
-                              model.variableNames()[static_cast<std::size_t>(v)] + "' has limits [" +
-                              robots::formatNumber(lo) + ", " + robots::formatNumber(hi) +
-                              "] (need finite lower < upper)");
+  throw std::invalid_argument(
+      "makeStateSpace: robot '" + model.name() + "', variable '" + model.variableNames()[static_cast<std::size_t>(v)] +
+      "' has limits [" + robots::formatNumber(lo) + ", " + robots::formatNumber(hi) + "] (need finite lower < upper)");
 }
 
 /// A RealVectorStateSpace of the variables first .. last - 1 (none of them wrapping), each
@@ -45,7 +44,7 @@ std::shared_ptr<ompl::base::RealVectorStateSpace> boundedSpace(const robots::Rob
 /// The compound of makeStateSpace for a model with wrapping variables: in variable order, an SO2
 /// space per wrapping variable (named after it) and a RealVector space per run of the others.
 std::shared_ptr<ompl::base::CompoundStateSpace> compoundSpace(const robots::RobotModel& model,
-                                                               const std::vector<bool>& wraps) {
+                                                              const std::vector<bool>& wraps) {
   auto space = std::make_shared<ompl::base::CompoundStateSpace>();
   const int n = model.numVariables();
   int v = 0;

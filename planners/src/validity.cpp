@@ -32,8 +32,7 @@ void checkValidityOptions(const ValidityOptions& options) {
   }
 }
 
-double signedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q,
-                          double cap) {
+double signedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q, double cap) {
   checker::DistanceOptions options;
   options.maxDistance = cap;
   return cappedMinimum(world.signedDistance(q, options), cap);

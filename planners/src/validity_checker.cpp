@@ -26,14 +26,14 @@ ompl::base::SpaceInformation* nonNull(ompl::base::SpaceInformation* si) {
 }  // namespace
 
 StateValidityChecker::StateValidityChecker(ompl::base::SpaceInformation* si,
-                                           std::shared_ptr<const checker::World> world,
-                                           const ValidityOptions& validity, const PushOutOptions& pushOut)
+                                           std::shared_ptr<const checker::World> world, const ValidityOptions& validity,
+                                           const PushOutOptions& pushOut)
     : StateValidityChecker(si, world, makeStateMapping(*nonNull(si)->getStateSpace(), nonNull(world)->robot()),
                            validity, pushOut) {}
 
 StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr& si,
-                                           std::shared_ptr<const checker::World> world,
-                                           const ValidityOptions& validity, const PushOutOptions& pushOut)
+                                           std::shared_ptr<const checker::World> world, const ValidityOptions& validity,
+                                           const PushOutOptions& pushOut)
     : StateValidityChecker(si.get(), std::move(world), validity, pushOut) {}
 
 StateValidityChecker::StateValidityChecker(ompl::base::SpaceInformation* si,
@@ -94,8 +94,8 @@ double StateValidityChecker::clearanceUpTo(const Eigen::Ref<const Eigen::VectorX
   return signedDistanceUpTo(*world_, q, cap);
 }
 
-SplitDistance StateValidityChecker::splitClearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                                       double cap, bool selfPairs) const {
+SplitDistance StateValidityChecker::splitClearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q, double cap,
+                                                       bool selfPairs) const {
   distanceQueries_.fetch_add(1, std::memory_order_relaxed);
   if (!finite(q)) {
     constexpr double worst = -std::numeric_limits<double>::infinity();
@@ -104,7 +104,9 @@ SplitDistance StateValidityChecker::splitClearanceUpTo(const Eigen::Ref<const Ei
   return splitSignedDistanceUpTo(*world_, q, cap, selfPairs);
 }
 
-bool StateValidityChecker::isValid(const ompl::base::State* state) const { return isValid(mapping_.configuration(state)); }
+bool StateValidityChecker::isValid(const ompl::base::State* state) const {
+  return isValid(mapping_.configuration(state));
+}
 
 bool StateValidityChecker::isValid(const ompl::base::State* state, double& dist) const {
   const Eigen::VectorXd q = mapping_.configuration(state);

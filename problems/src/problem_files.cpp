@@ -254,8 +254,8 @@ Eigen::VectorXd configurationOf(const robots::RobotModel& robot, const RobotConf
     q[v] = std::clamp(x, robot.lowerLimits()[v], robot.upperLimits()[v]);
     if (q[v] != x && notes) {
       std::ostringstream m;
-      m << where << ": joint '" << name << "' = " << x << " is outside its limits [" << robot.lowerLimits()[v]
-        << ", " << robot.upperLimits()[v] << "] of '" << robot.source() << "'; clamped to " << q[v];
+      m << where << ": joint '" << name << "' = " << x << " is outside its limits [" << robot.lowerLimits()[v] << ", "
+        << robot.upperLimits()[v] << "] of '" << robot.source() << "'; clamped to " << q[v];
       notes->push_back(m.str());
     }
   }

@@ -74,9 +74,9 @@ robots::PlanningScene varyScene(const robots::PlanningScene& nominal, const std:
   return scene;
 }
 
-Eigen::Isometry3d queryPose(const robots::PlanningScene& scene, const ObjectQuery& query, const robots::RobotModel& robot,
-                            const Eigen::Ref<const Eigen::VectorXd>& q, const robots::FrameAliases& aliases,
-                            const Eigen::Isometry3d& eeOffset) {
+Eigen::Isometry3d queryPose(const robots::PlanningScene& scene, const ObjectQuery& query,
+                            const robots::RobotModel& robot, const Eigen::Ref<const Eigen::VectorXd>& q,
+                            const robots::FrameAliases& aliases, const Eigen::Isometry3d& eeOffset) {
   const int i = scene.objectIndex(query.object);
   if (i < 0) {
     throw std::invalid_argument("query '" + query.name() + "' (line " + std::to_string(query.line) + "): object '" +
@@ -196,7 +196,9 @@ bool tryProblem(const Generation& g, std::mt19937_64& rng, Problem& p, ClosestMi
     for (const ObjectQuery& s : queries.start) {
       if (s.name() != goal.name()) starts.push_back(&s);
     }
-    if (starts.empty()) throw std::invalid_argument("query file '" + queries.source + "': no start query differs from the goal query '" + goal.name() + "'");
+    if (starts.empty())
+      throw std::invalid_argument("query file '" + queries.source + "': no start query differs from the goal query '" +
+                                  goal.name() + "'");
     const ObjectQuery& start = *starts[std::uniform_int_distribution<std::size_t>(0, starts.size() - 1)(rng)];
     p.startQuery = start.name();
     Eigen::Isometry3d X_WS;
@@ -226,7 +228,12 @@ std::vector<Problem> generateProblems(checker::World& world, const StateValidity
   }
   if (count < 0 || options.maxAttempts < 1) throw std::invalid_argument("count must be >= 0 and maxAttempts >= 1");
   checkQueries(queries, nominal);
-  const Generation g{world, checker, nominal, variations, queries, options,
+  const Generation g{world,
+                     checker,
+                     nominal,
+                     variations,
+                     queries,
+                     options,
                      options.start.size() == robot.numVariables() ? options.start : robot.defaultConfiguration(),
                      variationSource};
   std::mt19937_64 rng(options.seed);
@@ -238,8 +245,9 @@ std::vector<Problem> generateProblems(checker::World& world, const StateValidity
       if (++p.attempts >= options.maxAttempts) {
         std::ostringstream m;
         m << "problem " << n << ": no collision-free start and goal in " << options.maxAttempts
-          << " varied scenes (last goal query '" << p.goalQuery << "'" << (p.startQuery.empty() ? "" : ", start query '" + p.startQuery + "'")
-          << ", tip '" << options.tipLink << "')" << miss.describe();
+          << " varied scenes (last goal query '" << p.goalQuery << "'"
+          << (p.startQuery.empty() ? "" : ", start query '" + p.startQuery + "'") << ", tip '" << options.tipLink
+          << "')" << miss.describe();
         throw std::runtime_error(m.str());
       }
     }

@@ -31,8 +31,7 @@ constexpr std::array<std::string_view, 7> kArrays{"float_array", "int_array",   
                                                   "IDREF_array", "SIDREF_array", "token_array"};
 
 std::string lowercase(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 
@@ -187,10 +186,13 @@ class Checker {
       const auto value = attribute(text_, tag, key);
       if (!value) return fallback;
       const auto n = parseCount(*value);
-      if (!n) reject(tag.at, "<accessor> of '" + std::string(*source) + "' has " + std::string(key) + " \"" + std::string(*value) + "\", not a non-negative integer");
+      if (!n)
+        reject(tag.at, "<accessor> of '" + std::string(*source) + "' has " + std::string(key) + " \"" +
+                           std::string(*value) + "\", not a non-negative integer");
       return *n;
     };
-    if (!attribute(text_, tag, "count")) reject(tag.at, "<accessor> of '" + std::string(*source) + "' has no count attribute");
+    if (!attribute(text_, tag, "count"))
+      reject(tag.at, "<accessor> of '" + std::string(*source) + "' has no count attribute");
     const std::uint64_t count = number("count", 0), stride = number("stride", 1), offset = number("offset", 0);
     const unsigned __int128 needed = static_cast<unsigned __int128>(count) * stride + offset;
     if (needed > array->second) {

@@ -1,8 +1,7 @@
 #pragma once
 // Checks of an XML mesh file made before assimp reads it. Every XML format: elements nested deeper
-// than kMaxNestingDepth (assimp's readers recurse once per level). COLLADA also: inputs on which assimp 5.2's COLLADA reader
-// loops until memory runs out or reads outside its arrays, rejected with a message naming the
-// line.
+// than kMaxNestingDepth (assimp's readers recurse once per level). COLLADA also: inputs on which assimp 5.2's COLLADA
+// reader loops until memory runs out or reads outside its arrays, rejected with a message naming the line.
 //
 //  - Index lists: a primitive's <p> list is read as unsigned integers until the end of the text; a
 //    character that is neither a digit nor whitespace is never consumed, and the reader appends

@@ -20,19 +20,18 @@ using PolytopeList = std::vector<std::shared_ptr<const geometry::ConvexPolytope>
 using MeshCache = std::map<std::tuple<std::string, double, double, double>, PolytopeList>;
 
 std::string describe(const RobotModel& model, int link, int collision) {
-  return "URDF '" + model.source() + "', link '" + model.link(link).name + "', collision " +
-         std::to_string(collision);
+  return "URDF '" + model.source() + "', link '" + model.link(link).name + "', collision " + std::to_string(collision);
 }
 
-const PolytopeList& meshPieces(const RobotModel& model, int link, int collision,
-                               const Geometry& g, const CollisionGeometryOptions& options,
-                               MeshCache& cache) {
+const PolytopeList& meshPieces(const RobotModel& model, int link, int collision, const Geometry& g,
+                               const CollisionGeometryOptions& options, MeshCache& cache) {
   const auto key = std::make_tuple(g.meshPath, g.meshScale.x(), g.meshScale.y(), g.meshScale.z());
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
   PolytopeList pieces;
   try {
-    std::vector<geometry::ConvexPolytope> polytopes = meshPolytopes(loadMesh(g.meshPath, g.meshScale, options.meshLoad), options);
+    std::vector<geometry::ConvexPolytope> polytopes =
+        meshPolytopes(loadMesh(g.meshPath, g.meshScale, options.meshLoad), options);
     for (geometry::ConvexPolytope& p : polytopes) {
       pieces.push_back(std::make_shared<const geometry::ConvexPolytope>(std::move(p)));
     }
@@ -42,8 +41,7 @@ const PolytopeList& meshPieces(const RobotModel& model, int link, int collision,
   return cache.emplace(key, std::move(pieces)).first->second;
 }
 
-std::vector<CollisionPiece> piecesOfLink(const RobotModel& model, int link,
-                                         const CollisionGeometryOptions& options,
+std::vector<CollisionPiece> piecesOfLink(const RobotModel& model, int link, const CollisionGeometryOptions& options,
                                          MeshCache& cache) {
   if (!(options.cylinderMaxDeviation > 0.0)) {
     throw std::invalid_argument("cylinderMaxDeviation must be positive, is " +
@@ -117,7 +115,8 @@ CollisionPiece primitivePiece(const Geometry& g, const CollisionGeometryOptions&
 
 std::vector<geometry::ConvexPolytope> meshPolytopes(const TriangleMesh& mesh, const CollisionGeometryOptions& options) {
   if (mesh.empty()) throw std::invalid_argument("the mesh has no triangle");
-  std::vector<geometry::ConvexPolytope> polytopes = options.decomposer ? options.decomposer(mesh) : convexHullDecomposer(mesh);
+  std::vector<geometry::ConvexPolytope> polytopes =
+      options.decomposer ? options.decomposer(mesh) : convexHullDecomposer(mesh);
   if (polytopes.empty()) throw std::invalid_argument("the mesh decomposer returned no piece");
   return polytopes;
 }
@@ -131,8 +130,7 @@ std::vector<geometry::ConvexPolytope> convexHullDecomposer(const TriangleMesh& m
 int cylinderSides(double radius, double maxDeviation) {
   if (!(radius > 0.0) || !(maxDeviation > 0.0)) {
     std::ostringstream msg;
-    msg << "cylinder radius " << radius << " and maximum deviation " << maxDeviation
-        << " must be positive";
+    msg << "cylinder radius " << radius << " and maximum deviation " << maxDeviation << " must be positive";
     throw std::invalid_argument(msg.str());
   }
   // r / cos(pi / N) - r <= d  <=>  pi / N <= acos(r / (r + d)).
@@ -163,8 +161,7 @@ geometry::ConvexPolytope cylinderPrism(double radius, double length, double maxD
 std::vector<CollisionPiece> linkCollisionPieces(const RobotModel& model, int link,
                                                 const CollisionGeometryOptions& options) {
   if (link < 0 || link >= model.numLinks()) {
-    throw std::invalid_argument("robot '" + model.name() + "': link index " + std::to_string(link) +
-                                " out of range");
+    throw std::invalid_argument("robot '" + model.name() + "': link index " + std::to_string(link) + " out of range");
   }
   MeshCache cache;
   return piecesOfLink(model, link, options, cache);

@@ -47,9 +47,9 @@ PoseError errorOf(const Eigen::Isometry3d& X_WL, const Eigen::Isometry3d& X_WT, 
   PoseError error;
   error.orientation = e.head<3>().norm();
   error.position = (X_WT.translation() - X_WL.translation()).norm();
-  const double positionPart = hasBox(options)
-                                  ? boxOffset(X_WL, X_WT, options).cwiseAbs().cwiseQuotient(0.5 * options.positionBox).maxCoeff()
-                                  : error.position / options.positionTolerance;
+  const double positionPart =
+      hasBox(options) ? boxOffset(X_WL, X_WT, options).cwiseAbs().cwiseQuotient(0.5 * options.positionBox).maxCoeff()
+                      : error.position / options.positionTolerance;
   error.normalized = std::max(positionPart, error.orientation / options.orientationTolerance);
   return error;
 }
@@ -83,8 +83,8 @@ Eigen::VectorXd projectedStep(const RobotModel& model, Jacobian J, const Vector6
     bool froze = false;
     for (int v = 0; v < q.size(); ++v) {
       if (isContinuous(model, v) || J.col(v).isZero()) continue;
-      const bool outwards = (q[v] <= model.lowerLimits()[v] && dq[v] < 0.0) ||
-                            (q[v] >= model.upperLimits()[v] && dq[v] > 0.0);
+      const bool outwards =
+          (q[v] <= model.lowerLimits()[v] && dq[v] < 0.0) || (q[v] >= model.upperLimits()[v] && dq[v] > 0.0);
       if (outwards) {
         J.col(v).setZero();
         froze = true;
@@ -103,7 +103,8 @@ PoseError runAttempt(const RobotModel& model, int link, const Eigen::Isometry3d&
   std::vector<Eigen::Isometry3d> X_WL = forwardKinematics(model, q);
   std::vector<Eigen::Isometry3d> X_WL_trial;
   Vector6d e = errorVector(X_WL[link], X_WT, options);
-  const Eigen::Vector3d jacobianPoint = hasBox(options) ? Eigen::Vector3d(options.boxPose.translation()) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d jacobianPoint =
+      hasBox(options) ? Eigen::Vector3d(options.boxPose.translation()) : Eigen::Vector3d::Zero();
   double lambda = options.damping;
   Jacobian J;
   Eigen::VectorXd trial;
@@ -142,8 +143,8 @@ bool isRigid(const Eigen::Isometry3d& X) {
 void checkTarget(const RobotModel& model, const std::string& link, const Eigen::Isometry3d& X_WT) {
   if (!isRigid(X_WT)) {
     std::ostringstream msg;
-    msg << "robot '" << model.name() << "': target pose of link '" << link
-        << "' is not a finite rigid transform:\n" << X_WT.matrix();
+    msg << "robot '" << model.name() << "': target pose of link '" << link << "' is not a finite rigid transform:\n"
+        << X_WT.matrix();
     throw std::invalid_argument(msg.str());
   }
 }
@@ -181,9 +182,12 @@ void checkOptions(const RobotModel& model, const IkOptions& options) {
 
 const char* toString(IkStatus status) {
   switch (status) {
-    case IkStatus::Converged: return "converged";
-    case IkStatus::NotConverged: return "not converged";
-    case IkStatus::Rejected: return "every solution rejected";
+    case IkStatus::Converged:
+      return "converged";
+    case IkStatus::NotConverged:
+      return "not converged";
+    case IkStatus::Rejected:
+      return "every solution rejected";
   }
   return "?";
 }
@@ -203,8 +207,8 @@ Eigen::Isometry3d poseFromQuaternion(const Eigen::Vector3d& p_WT, double qx, dou
   const double norm = quaternion.norm();
   if (!p_WT.allFinite() || !quaternion.coeffs().allFinite() || !(std::abs(norm - 1.0) <= tol::kQuaternionUnitNorm)) {
     std::ostringstream msg;
-    msg << "pose: position (" << p_WT.transpose() << "), quaternion (x y z w) (" << qx << " " << qy << " " << qz
-        << " " << qw << ")";
+    msg << "pose: position (" << p_WT.transpose() << "), quaternion (x y z w) (" << qx << " " << qy << " " << qz << " "
+        << qw << ")";
     if (!p_WT.allFinite() || !quaternion.coeffs().allFinite()) {
       msg << " has a value that is not finite";
     } else {

@@ -27,9 +27,15 @@ inline void rotateAbout(Eigen::Matrix3d& R, double c, double s) {
 /// forward kinematics about twice as slow (the same arithmetic, the same bits).
 inline void rotateAboutCoordinateAxis(Eigen::Matrix3d& R, int k, double c, double s) {
   switch (k) {
-    case 0: rotateAbout<0>(R, c, s); break;
-    case 1: rotateAbout<1>(R, c, s); break;
-    default: rotateAbout<2>(R, c, s); break;
+    case 0:
+      rotateAbout<0>(R, c, s);
+      break;
+    case 1:
+      rotateAbout<1>(R, c, s);
+      break;
+    default:
+      rotateAbout<2>(R, c, s);
+      break;
   }
 }
 
@@ -54,12 +60,12 @@ inline void sinCos(Pair x, Pair& sine, Pair& cosine) {
   constexpr double kHalfPiHigh = 1.5707963267948965579989817342720925807952880859375;  // double(pi/2), exact
   // double(pi/2) with its low 21 bits cleared, and the rest of pi/2 (to 1e-33).
   constexpr double kHalfPi1 = 1.57079632673412561416625976562500;
-  constexpr double kHalfPi2 = kHalfPiHigh - kHalfPi1;  // exact: the cleared bits
-  constexpr double kHalfPi3 = 6.123233995736766035868820147292e-17;  // pi/2 - double(pi/2)
+  constexpr double kHalfPi2 = kHalfPiHigh - kHalfPi1;                          // exact: the cleared bits
+  constexpr double kHalfPi3 = 6.123233995736766035868820147292e-17;            // pi/2 - double(pi/2)
   constexpr std::int64_t kSignBit = std::numeric_limits<std::int64_t>::min();  // the sign bit alone
   // k = x 2/pi rounded half away from zero: 0.5 with the sign of x, then truncation.
-  const Pair half = reinterpret_cast<Pair>((reinterpret_cast<PairBits>(x) & kSignBit) |
-                                           reinterpret_cast<PairBits>(Pair{0.5, 0.5}));
+  const Pair half =
+      reinterpret_cast<Pair>((reinterpret_cast<PairBits>(x) & kSignBit) | reinterpret_cast<PairBits>(Pair{0.5, 0.5}));
   const PairInt k = __builtin_convertvector(x * kTwoOverPi + half, PairInt);
   const Pair kd = __builtin_convertvector(k, Pair);
   const Pair r = ((x - kd * kHalfPi1) - kd * kHalfPi2) - kd * kHalfPi3;
@@ -67,8 +73,8 @@ inline void sinCos(Pair x, Pair& sine, Pair& cosine) {
   // 1/n! for n = 3 .. 18.
   constexpr double f3 = 1.0 / 6, f5 = f3 / 20, f7 = f5 / 42, f9 = f7 / 72, f11 = f9 / 110, f13 = f11 / 156,
                    f15 = f13 / 210, f17 = f15 / 272;
-  constexpr double f2 = 0.5, f4 = f2 / 12, f6 = f4 / 30, f8 = f6 / 56, f10 = f8 / 90, f12 = f10 / 132,
-                   f14 = f12 / 182, f16 = f14 / 240, f18 = f16 / 306;
+  constexpr double f2 = 0.5, f4 = f2 / 12, f6 = f4 / 30, f8 = f6 / 56, f10 = f8 / 90, f12 = f10 / 132, f14 = f12 / 182,
+                   f16 = f14 / 240, f18 = f16 / 306;
   // Estrin's scheme (pairs, then pairs of pairs): a short dependency chain.
   const Pair r4 = r2 * r2;
   const Pair r8 = r4 * r4;
@@ -124,14 +130,13 @@ inline int coordinateAxis(const Eigen::Vector3d& axis, double& sign) {
 void checkLink(const RobotModel& model, const std::vector<Eigen::Isometry3d>& X_WL, int link) {
   if (link < 0 || link >= model.numLinks()) {
     std::ostringstream msg;
-    msg << "robot '" << model.name() << "': link index " << link << " out of range [0, "
-        << model.numLinks() << ")";
+    msg << "robot '" << model.name() << "': link index " << link << " out of range [0, " << model.numLinks() << ")";
     throw std::invalid_argument(msg.str());
   }
   if (static_cast<int>(X_WL.size()) != model.numLinks()) {
     std::ostringstream msg;
-    msg << "robot '" << model.name() << "': " << X_WL.size() << " link poses given, the robot has "
-        << model.numLinks() << " links";
+    msg << "robot '" << model.name() << "': " << X_WL.size() << " link poses given, the robot has " << model.numLinks()
+        << " links";
     throw std::invalid_argument(msg.str());
   }
 }
@@ -161,8 +166,8 @@ void accumulate(const RobotModel& model, const std::vector<Eigen::Isometry3d>& X
 void checkConfiguration(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q) {
   if (q.size() != model.numVariables()) {
     std::ostringstream msg;
-    msg << "robot '" << model.name() << "': configuration has " << q.size()
-        << " values, the robot has " << model.numVariables() << " variables (";
+    msg << "robot '" << model.name() << "': configuration has " << q.size() << " values, the robot has "
+        << model.numVariables() << " variables (";
     for (int v = 0; v < model.numVariables(); ++v) {
       msg << (v ? ", " : "") << model.variableNames()[v];
     }
@@ -172,8 +177,8 @@ void checkConfiguration(const RobotModel& model, const Eigen::Ref<const Eigen::V
   for (int v = 0; v < q.size(); ++v) {
     if (!std::isfinite(q[v])) {
       std::ostringstream msg;
-      msg << "robot '" << model.name() << "': configuration value q[" << v << "] ("
-          << model.variableNames()[v] << ") is " << q[v];
+      msg << "robot '" << model.name() << "': configuration value q[" << v << "] (" << model.variableNames()[v]
+          << ") is " << q[v];
       throw std::invalid_argument(msg.str());
     }
   }
@@ -222,7 +227,8 @@ void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::Ve
       Eigen::Vector3d t = X_WP.translation();
       t.noalias() += X_WP.linear() * joint.X_PJ.translation();
       switch (joint.type) {
-        case JointType::Fixed: break;
+        case JointType::Fixed:
+          break;
         case JointType::Revolute:
         case JointType::Continuous: {
           const int k = axes[i - first];
@@ -247,8 +253,7 @@ void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::Ve
   }
 }
 
-std::vector<Eigen::Isometry3d> forwardKinematics(const RobotModel& model,
-                                                 const Eigen::Ref<const Eigen::VectorXd>& q) {
+std::vector<Eigen::Isometry3d> forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q) {
   std::vector<Eigen::Isometry3d> X_WL;
   forwardKinematics(model, q, X_WL);
   return X_WL;
@@ -263,15 +268,15 @@ void pointJacobian(const RobotModel& model, const std::vector<Eigen::Isometry3d>
   accumulate<Eigen::Matrix3Xd>(model, X_WL, link, p_WQ, nullptr, J_WQ);
 }
 
-Eigen::Matrix3Xd pointJacobian(const RobotModel& model, const std::vector<Eigen::Isometry3d>& X_WL,
-                               int link, const Eigen::Vector3d& p_LQ) {
+Eigen::Matrix3Xd pointJacobian(const RobotModel& model, const std::vector<Eigen::Isometry3d>& X_WL, int link,
+                               const Eigen::Vector3d& p_LQ) {
   Eigen::Matrix3Xd J;
   pointJacobian(model, X_WL, link, p_LQ, J);
   return J;
 }
 
-Eigen::Matrix3Xd pointJacobian(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                               int link, const Eigen::Vector3d& p_LQ) {
+Eigen::Matrix3Xd pointJacobian(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q, int link,
+                               const Eigen::Vector3d& p_LQ) {
   return pointJacobian(model, forwardKinematics(model, q), link, p_LQ);
 }
 

@@ -78,19 +78,17 @@ class Merger {
     }
   }
 
-
-  void addMesh(const aiMesh& mesh, const Eigen::Matrix3d& A, const Eigen::Vector3d& b,
-               bool mirrored) {
+  void addMesh(const aiMesh& mesh, const Eigen::Matrix3d& A, const Eigen::Vector3d& b, bool mirrored) {
     std::vector<int> index(mesh.mNumVertices);
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D& p = mesh.mVertices[v];
       const Eigen::Vector3d x = A * Eigen::Vector3d(p.x, p.y, p.z) + b;
       if (!(x.cwiseAbs().maxCoeff() <= geometry::range::kMaxCoordinate)) {
         std::ostringstream msg;
-        msg << "mesh file " << inQuotes(out_.source) << ": vertex " << v << " of mesh "
-            << inQuotes(mesh.mName.C_Str()) << " (" << p.x << " " << p.y << " " << p.z << ") is at ("
-            << format(x) << ") after the node transforms and the scale (" << format(scale_)
-            << "); coordinates up to " << geometry::range::kMaxCoordinate << " are supported";
+        msg << "mesh file " << inQuotes(out_.source) << ": vertex " << v << " of mesh " << inQuotes(mesh.mName.C_Str())
+            << " (" << p.x << " " << p.y << " " << p.z << ") is at (" << format(x)
+            << ") after the node transforms and the scale (" << format(scale_) << "); coordinates up to "
+            << geometry::range::kMaxCoordinate << " are supported";
         throw std::invalid_argument(msg.str());
       }
       const std::array<double, 3> key{x.x(), x.y(), x.z()};
@@ -101,8 +99,7 @@ class Merger {
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) continue;  // points and lines carry no surface
-      std::array<int, 3> t{index[face.mIndices[0]], index[face.mIndices[1]],
-                           index[face.mIndices[2]]};
+      std::array<int, 3> t{index[face.mIndices[0]], index[face.mIndices[1]], index[face.mIndices[2]]};
       if (mirrored) std::swap(t[1], t[2]);
       out_.triangles.push_back(t);
     }
@@ -137,9 +134,8 @@ std::string binaryStlHint(const std::string& path) {
   std::memcpy(&count, header + 80, 4);
   const std::uintmax_t expected = 84 + 50 * static_cast<std::uintmax_t>(count);
   if (expected == size) return "";
-  return " (as binary STL: the header declares " + std::to_string(count) + " triangles, " +
-         std::to_string(expected) + " bytes, but the file has " + std::to_string(size) +
-         " bytes: truncated or corrupt)";
+  return " (as binary STL: the header declares " + std::to_string(count) + " triangles, " + std::to_string(expected) +
+         " bytes, but the file has " + std::to_string(size) + " bytes: truncated or corrupt)";
 }
 
 }  // namespace
@@ -207,10 +203,10 @@ void checkFile(const std::string& path, const MeshLoadOptions& options) {
   }
   const std::uintmax_t size = fs::file_size(path, ec);
   if (!ec && size > options.maxFileBytes) {
-    throw std::invalid_argument("mesh file " + inQuotes(path) + " has " + std::to_string(size) +
-                                " bytes, more than MeshLoadOptions::maxFileBytes = " +
-                                std::to_string(options.maxFileBytes) +
-                                " (a robot's or world's: CollisionGeometryOptions::meshLoad)");
+    throw std::invalid_argument(
+        "mesh file " + inQuotes(path) + " has " + std::to_string(size) +
+        " bytes, more than MeshLoadOptions::maxFileBytes = " + std::to_string(options.maxFileBytes) +
+        " (a robot's or world's: CollisionGeometryOptions::meshLoad)");
   }
 }
 
@@ -223,12 +219,11 @@ TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale, con
   Assimp::Importer importer;
   // Use COLLADA coordinates as written (see the header comment); keep its unit.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     throw std::invalid_argument("mesh file " + inQuotes(path) +
-                                " cannot be read by assimp: " + importer.GetErrorString() +
-                                binaryStlHint(path));
+                                " cannot be read by assimp: " + importer.GetErrorString() + binaryStlHint(path));
   }
 
   TriangleMesh mesh;

@@ -83,9 +83,8 @@ SceneShape readPrimitive(Reader& r, const YAML::Node& node, int index) {
   std::string names;
   for (const char* n : type.dimensions) names += (names.empty() ? "" : ", ") + std::string(n);
   if (dimensionsNode.IsSequence() && dimensionsNode.size() != type.dimensions.size()) {
-    ctx.fail(dimensionsNode, std::string("a ") + type.name + " needs " +
-                                 std::to_string(type.dimensions.size()) + " dimensions [" + names +
-                                 "], has " + std::to_string(dimensionsNode.size()));
+    ctx.fail(dimensionsNode, std::string("a ") + type.name + " needs " + std::to_string(type.dimensions.size()) +
+                                 " dimensions [" + names + "], has " + std::to_string(dimensionsNode.size()));
   }
   const std::vector<double> d = readNumbers(ctx, dimensionsNode, "dimensions");
   for (size_t i = 0; i < d.size(); ++i) {
@@ -136,8 +135,8 @@ SceneShape readInlineMeshShape(Reader& r, const YAML::Node& node, int index) {
   mesh->source = r.ctx.source + " " + r.ctx.object + " mesh " + std::to_string(index);
   SceneShape shape;
   shape.geometry.type = GeometryType::Mesh;
-  shape.name = "mesh " + std::to_string(index) + " (inline, " + std::to_string(mesh->vertices.size()) +
-               " vertices, " + std::to_string(mesh->triangles.size()) + " triangles)";
+  shape.name = "mesh " + std::to_string(index) + " (inline, " + std::to_string(mesh->vertices.size()) + " vertices, " +
+               std::to_string(mesh->triangles.size()) + " triangles)";
   shape.mesh = std::move(mesh);
   return shape;
 }
@@ -160,16 +159,16 @@ SceneShape readMesh(Reader& r, const YAML::Node& node, int index) {
   }
   shape.geometry.meshPath = resolveUriOrThrow(shape.geometry.meshUri, r.roots, r.baseDirectory,
                                               ctx.where(uriNode) + ", mesh " + std::to_string(index));
-  shape.name = "mesh " + std::to_string(index) + " (" +
-               std::filesystem::path(shape.geometry.meshPath).filename().string() + ")";
+  shape.name =
+      "mesh " + std::to_string(index) + " (" + std::filesystem::path(shape.geometry.meshPath).filename().string() + ")";
   return shape;
 }
 
 using ShapeReader = SceneShape (*)(Reader&, const YAML::Node&, int);
 
 /// Appends the shapes listed under `listKey`, posed by the entries of `posesKey`.
-void readShapes(Reader& r, const YAML::Node& object, const char* listKey,
-                const char* posesKey, ShapeReader readShape, SceneObject& out) {
+void readShapes(Reader& r, const YAML::Node& object, const char* listKey, const char* posesKey, ShapeReader readShape,
+                SceneObject& out) {
   const Context& ctx = r.ctx;
   const YAML::Node list = object[listKey];
   const YAML::Node poses = object[posesKey];
@@ -179,19 +178,17 @@ void readShapes(Reader& r, const YAML::Node& object, const char* listKey,
   if (!haveList) ctx.fail(poses, std::string("'") + posesKey + "' without '" + listKey + "'");
   if (!list.IsSequence()) ctx.fail(list, std::string("'") + listKey + "' must be a list");
   if (!havePoses && list.size() > 0) {
-    ctx.fail(list, std::string("missing '") + posesKey + "': every entry of '" + listKey +
-                       "' needs a pose");
+    ctx.fail(list, std::string("missing '") + posesKey + "': every entry of '" + listKey + "' needs a pose");
   }
   if (havePoses && (!poses.IsSequence() || poses.size() != list.size())) {
-    ctx.fail(poses, std::string("'") + posesKey + "' must be a list with one pose per entry of '" +
-                        listKey + "' (" + std::to_string(list.size()) + ")");
+    ctx.fail(poses, std::string("'") + posesKey + "' must be a list with one pose per entry of '" + listKey + "' (" +
+                        std::to_string(list.size()) + ")");
   }
   checkShapeCount(r, list, list.size(), "shapes");
   r.shapeCount += list.size();
   for (size_t i = 0; i < list.size(); ++i) {
     SceneShape shape = readShape(r, list[i], static_cast<int>(i));
-    const Eigen::Isometry3d X_OS =
-        readPose(ctx, poses[i], std::string(posesKey) + "[" + std::to_string(i) + "]");
+    const Eigen::Isometry3d X_OS = readPose(ctx, poses[i], std::string(posesKey) + "[" + std::to_string(i) + "]");
     shape.X_FS = out.X_FO * X_OS;
     shape.line = lineOf(list[i]);
     out.shapes.push_back(std::move(shape));
@@ -220,9 +217,8 @@ SceneObject readObject(Reader& r, const YAML::Node& node, int index, const std::
   if (object.id.empty()) ctx.fail(idNode, "the id is empty");
   ctx.object = label + " '" + object.id + "'";
   scene_yaml::checkKeys(ctx, node, "a collision object",
-                        {"header", "id", "pose", "type", "primitives", "primitive_poses", "meshes",
-                         "mesh_poses", "planes", "plane_poses", "subframe_names", "subframe_poses",
-                         "operation"});
+                        {"header", "id", "pose", "type", "primitives", "primitive_poses", "meshes", "mesh_poses",
+                         "planes", "plane_poses", "subframe_names", "subframe_poses", "operation"});
   const YAML::Node header = required(ctx, node, "header");
   scene_yaml::checkKeys(ctx, header, "header", {"frame_id", "seq", "stamp"});
   const YAML::Node frameNode = required(ctx, header, "frame_id");
@@ -232,8 +228,8 @@ SceneObject readObject(Reader& r, const YAML::Node& node, int index, const std::
   if (operation.IsDefined()) {
     const std::string op = lowercase(readString(ctx, operation, "operation"));
     if (op != "add" && op != "0" && op != kEchoedAdd) {
-      ctx.fail(operation, "operation '" + operation.Scalar() +
-                              "' is not supported: a scene file can only add objects (add, 0)");
+      ctx.fail(operation,
+               "operation '" + operation.Scalar() + "' is not supported: a scene file can only add objects (add, 0)");
     }
   }
   const YAML::Node pose = node["pose"];
@@ -256,8 +252,9 @@ void readFixedFrameTransforms(Reader& r, const YAML::Node& list) {
     const Eigen::Isometry3d X =
         scene_yaml::readTransform(r.ctx, required(r.ctx, list[i], "transform"), what + ".transform");
     if (!X.isApprox(Eigen::Isometry3d::Identity(), 0.0)) {
-      r.ctx.fail(list[i], what + " is not the identity; frames other than robot links are not "
-                                 "supported (map the frame to a link with a frame alias)");
+      r.ctx.fail(list[i], what +
+                              " is not the identity; frames other than robot links are not "
+                              "supported (map the frame to a link with a frame alias)");
     }
   }
 }
@@ -336,8 +333,7 @@ PlanningScene readScene(Reader& r, const YAML::Node& root) {
   if (!root.IsMap()) r.ctx.fail(root, "expected a map with 'world' (a MoveIt planning scene)");
   scene_yaml::checkKeys(r.ctx, root, "the planning scene",
                         {"world", "name", "robot_state", "robot_model_name", "fixed_frame_transforms",
-                         "allowed_collision_matrix", "link_padding", "link_scale", "object_colors",
-                         "is_diff"});
+                         "allowed_collision_matrix", "link_padding", "link_scale", "object_colors", "is_diff"});
   readFixedFrameTransforms(r, root["fixed_frame_transforms"]);
   PlanningScene scene;
   scene.source = r.ctx.source;
@@ -379,8 +375,7 @@ PlanningScene parsePlanningScene(const std::string& yaml, const std::string& bas
   r.maxShapes = options.maxShapes;
   r.meshBudget = options.maxInlineMeshElements;
   if (!(options.coneMaxDeviation > 0.0) || !std::isfinite(options.coneMaxDeviation)) {
-    throw std::invalid_argument("planning scene '" + r.ctx.source +
-                                "': coneMaxDeviation must be positive and finite");
+    throw std::invalid_argument("planning scene '" + r.ctx.source + "': coneMaxDeviation must be positive and finite");
   }
   try {
     return readScene(r, scene_yaml::loadYaml(yaml, r.ctx.source));

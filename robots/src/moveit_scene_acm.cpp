@@ -27,8 +27,8 @@ std::vector<std::string> readNames(const Context& ctx, const YAML::Node& node, c
     names.push_back(scene_yaml::readString(ctx, node[i], what));
     const auto [it, inserted] = lines.emplace(names.back(), scene_yaml::lineOf(node[i]));
     if (!inserted) {
-      ctx.fail(node[i], what + " '" + names.back() + "' is listed twice (first at line " +
-                            std::to_string(it->second) + ")");
+      ctx.fail(node[i],
+               what + " '" + names.back() + "' is listed twice (first at line " + std::to_string(it->second) + ")");
     }
   }
   return names;
@@ -39,9 +39,9 @@ std::vector<std::string> readNames(const Context& ctx, const YAML::Node& node, c
 void checkSameSize(const Context& ctx, const YAML::Node& parent, const YAML::Node& values, const std::string& valuesKey,
                    std::size_t names, const char* namesKey) {
   if (values.size() == names) return;
-  ctx.fail(scene_yaml::lineOf(values) > 0 ? values : parent,
-           valuesKey + " has " + std::to_string(values.size()) + " entries, " + namesKey +
-                       " has " + std::to_string(names) + ": one per name expected");
+  ctx.fail(scene_yaml::lineOf(values) > 0 ? values : parent, valuesKey + " has " + std::to_string(values.size()) +
+                                                                 " entries, " + namesKey + " has " +
+                                                                 std::to_string(names) + ": one per name expected");
 }
 
 void readMatrix(const Context& ctx, const YAML::Node& acm, AllowedCollisions& out) {
@@ -62,8 +62,7 @@ void readMatrix(const Context& ctx, const YAML::Node& acm, AllowedCollisions& ou
 }
 
 void readDefaults(const Context& ctx, const YAML::Node& acm, AllowedCollisions& out) {
-  const std::vector<std::string> names =
-      readNames(ctx, list(ctx, acm, "default_entry_names"), "default_entry_names");
+  const std::vector<std::string> names = readNames(ctx, list(ctx, acm, "default_entry_names"), "default_entry_names");
   const YAML::Node values = list(ctx, acm, "default_entry_values");
   checkSameSize(ctx, acm, values, "default_entry_values", names.size(), "default_entry_names");
   for (std::size_t i = 0; i < values.size(); ++i) {

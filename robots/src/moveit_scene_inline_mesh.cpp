@@ -12,7 +12,8 @@ using scene_yaml::Context;
 /// The non-empty list under `key`, its size taken from `budget`.
 YAML::Node budgetedList(const Context& ctx, const YAML::Node& node, const char* key, std::size_t& budget) {
   const YAML::Node list = scene_yaml::required(ctx, node, key);
-  if (!list.IsSequence() || list.size() == 0) ctx.fail(list, std::string("inline mesh '") + key + "' must be a list, not empty");
+  if (!list.IsSequence() || list.size() == 0)
+    ctx.fail(list, std::string("inline mesh '") + key + "' must be a list, not empty");
   if (list.size() > budget) {
     ctx.fail(list, std::string("inline mesh '") + key + "' has " + std::to_string(list.size()) +
                        " entries, more than the " + std::to_string(budget) +

@@ -247,8 +247,8 @@ class SceneTextReader {
     const std::size_t vertices = count("the mesh's vertex count", remaining() / 3);
     const std::size_t afterCounts = remaining() == 0 ? 0 : remaining() - 1;  // the triangle count read
     if (3 * vertices > afterCounts) {
-      fail(line, "the mesh has " + std::to_string(vertices) + " vertices, the file has " +
-                     std::to_string(afterCounts) + " tokens left");
+      fail(line, "the mesh has " + std::to_string(vertices) + " vertices, the file has " + std::to_string(afterCounts) +
+                     " tokens left");
     }
     why_ = "three indices each, and the file has " + std::to_string(afterCounts - 3 * vertices) +
            " tokens left after the vertices";
@@ -257,15 +257,16 @@ class SceneTextReader {
     TriangleMesh mesh;
     for (std::size_t v = 0; v < vertices; ++v) {
       Eigen::Vector3d p;
-      for (int k = 0; k < 3; ++k) p[k] = number("mesh vertex " + std::to_string(v) + " coordinate " + std::to_string(k));
+      for (int k = 0; k < 3; ++k)
+        p[k] = number("mesh vertex " + std::to_string(v) + " coordinate " + std::to_string(k));
       mesh.vertices.push_back(p);
     }
     why_ = "the mesh's last vertex index";
     for (std::size_t t = 0; t < triangles; ++t) {
       std::array<int, 3> triangle{};
       for (int k = 0; k < 3; ++k) {
-        triangle[k] = static_cast<int>(count("mesh triangle " + std::to_string(t) + " index " + std::to_string(k),
-                                             vertices - 1));
+        triangle[k] =
+            static_cast<int>(count("mesh triangle " + std::to_string(t) + " index " + std::to_string(k), vertices - 1));
       }
       mesh.triangles.push_back(triangle);
     }

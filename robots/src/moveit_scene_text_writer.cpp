@@ -37,10 +37,18 @@ void writeMesh(std::ostringstream& out, const TriangleMesh& mesh) {
 void writeShape(std::ostringstream& out, const SceneShape& s) {
   const Geometry& g = s.geometry;
   switch (g.type) {
-    case GeometryType::Box: out << "box\n" << numbers({g.boxSize.x(), g.boxSize.y(), g.boxSize.z()}) << "\n"; return;
-    case GeometryType::Sphere: out << "sphere\n" << numbers({g.radius}) << "\n"; return;
-    case GeometryType::Cylinder: out << "cylinder\n" << numbers({g.radius, g.length}) << "\n"; return;
-    case GeometryType::Mesh: writeMesh(out, s.mesh ? *s.mesh : loadMesh(g.meshPath, g.meshScale)); return;
+    case GeometryType::Box:
+      out << "box\n" << numbers({g.boxSize.x(), g.boxSize.y(), g.boxSize.z()}) << "\n";
+      return;
+    case GeometryType::Sphere:
+      out << "sphere\n" << numbers({g.radius}) << "\n";
+      return;
+    case GeometryType::Cylinder:
+      out << "cylinder\n" << numbers({g.radius, g.length}) << "\n";
+      return;
+    case GeometryType::Mesh:
+      writeMesh(out, s.mesh ? *s.mesh : loadMesh(g.meshPath, g.meshScale));
+      return;
   }
 }
 

@@ -41,10 +41,14 @@ void writePose(std::ostringstream& out, const std::string& indent, const Eigen::
 /// "type: box\n dimensions: [...]" of a primitive.
 std::string primitive(const Geometry& g) {
   switch (g.type) {
-    case GeometryType::Box: return "type: box, dimensions: " + list({g.boxSize.x(), g.boxSize.y(), g.boxSize.z()});
-    case GeometryType::Sphere: return "type: sphere, dimensions: " + list({g.radius});
-    case GeometryType::Cylinder: return "type: cylinder, dimensions: " + list({g.length, g.radius});
-    case GeometryType::Mesh: break;
+    case GeometryType::Box:
+      return "type: box, dimensions: " + list({g.boxSize.x(), g.boxSize.y(), g.boxSize.z()});
+    case GeometryType::Sphere:
+      return "type: sphere, dimensions: " + list({g.radius});
+    case GeometryType::Cylinder:
+      return "type: cylinder, dimensions: " + list({g.length, g.radius});
+    case GeometryType::Mesh:
+      break;
   }
   return "";
 }
@@ -71,7 +75,8 @@ void writeObject(std::ostringstream& out, const std::string& first, const std::s
   std::vector<const SceneShape*> primitives, meshes;
   for (const SceneShape& s : o.shapes) (s.geometry.type == GeometryType::Mesh ? meshes : primitives).push_back(&s);
   const std::string entry = indent + "  ";
-  out << first << "header:\n" << indent << "  frame_id: " << quoted(o.frameId) << "\n"
+  out << first << "header:\n"
+      << indent << "  frame_id: " << quoted(o.frameId) << "\n"
       << indent << "id: " << quoted(o.id) << "\n";
   if (!primitives.empty()) {
     out << indent << "primitives:\n";
@@ -127,11 +132,11 @@ void writeAllowed(std::ostringstream& out, const AllowedCollisions& allowed) {
     enabled[index[a]][index[b]] = true;
     enabled[index[b]][index[a]] = true;
   }
-  out << "allowed_collision_matrix:\n  entry_names: " << nameList(names) << "\n  entry_values:"
-      << (names.empty() ? " []" : "") << "\n";
+  out << "allowed_collision_matrix:\n  entry_names: " << nameList(names)
+      << "\n  entry_values:" << (names.empty() ? " []" : "") << "\n";
   for (const std::vector<bool>& row : enabled) out << "    - enabled: " << boolList(row) << "\n";
-  out << "  default_entry_names: " << nameList(allowed.always) << "\n  default_entry_values: "
-      << boolList(std::vector<bool>(allowed.always.size(), true)) << "\n";
+  out << "  default_entry_names: " << nameList(allowed.always)
+      << "\n  default_entry_values: " << boolList(std::vector<bool>(allowed.always.size(), true)) << "\n";
 }
 
 }  // namespace

@@ -16,9 +16,7 @@ namespace {
 /// files, and a huge file under a root must not be read whole.
 constexpr std::size_t kPackageXmlBytes = 64 * 1024;
 
-bool startsWith(const std::string& s, const std::string& prefix) {
-  return s.compare(0, prefix.size(), prefix) == 0;
-}
+bool startsWith(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
 
 std::vector<std::string> splitPathList(const char* value) {
   std::vector<std::string> out;
@@ -86,8 +84,8 @@ void rejectOutside(const std::string& uri, const fs::path& packageFolder, UriRes
 
 /// Tries `rest` in the package folder `folder`: records the candidate, sets out.path when the file
 /// is there and inside the folder, rejects it when it is outside. Returns true when done.
-bool tryCandidate(const std::string& uri, const fs::path& folder, const std::string& rest,
-                  const std::string& note, UriResolution& out) {
+bool tryCandidate(const std::string& uri, const fs::path& folder, const std::string& rest, const std::string& note,
+                  UriResolution& out) {
   const fs::path candidate = folder / rest;
   if (!lexicallyInside(candidate, folder)) {
     rejectOutside(uri, folder, out);
@@ -118,8 +116,7 @@ std::vector<fs::path> renamedPackageFolders(const fs::path& root, const std::str
   return matches;
 }
 
-void resolvePackage(const std::string& uri, const std::vector<std::string>& roots,
-                    UriResolution& out) {
+void resolvePackage(const std::string& uri, const std::vector<std::string>& roots, UriResolution& out) {
   const std::string body = uri.substr(std::string("package://").size());
   const auto slash = body.find('/');
   if (slash == std::string::npos || slash == 0 || slash + 1 >= body.size()) {
@@ -133,8 +130,9 @@ void resolvePackage(const std::string& uri, const std::vector<std::string>& root
     return;
   }
   if (roots.empty()) {
-    out.problem = "no package roots to search (set LoadOptions::packageRoots, or ROS_PACKAGE_PATH with "
-                  "LoadOptions::useRosPackagePath)";
+    out.problem =
+        "no package roots to search (set LoadOptions::packageRoots, or ROS_PACKAGE_PATH with "
+        "LoadOptions::useRosPackagePath)";
     return;
   }
   for (const std::string& rootString : roots) {
@@ -154,8 +152,7 @@ void resolvePackage(const std::string& uri, const std::vector<std::string>& root
 
 }  // namespace
 
-std::vector<std::string> packageRoots(const std::vector<std::string>& callerRoots,
-                                      bool useEnvironment) {
+std::vector<std::string> packageRoots(const std::vector<std::string>& callerRoots, bool useEnvironment) {
   std::vector<std::string> roots;
   auto add = [&roots](const std::string& r) {
     if (!r.empty() && std::find(roots.begin(), roots.end(), r) == roots.end()) roots.push_back(r);

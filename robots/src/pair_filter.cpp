@@ -14,13 +14,11 @@
 namespace deepcheck::robots {
 
 int PairFilterResult::count(DisableReason reason) const {
-  return static_cast<int>(std::count_if(disabled.begin(), disabled.end(),
-                                        [&](const DisabledPair& p) { return p.reason == reason; }));
+  return static_cast<int>(
+      std::count_if(disabled.begin(), disabled.end(), [&](const DisabledPair& p) { return p.reason == reason; }));
 }
 
-int PairFilterResult::numEnabled() const {
-  return numPairs() - static_cast<int>(disabled.size());
-}
+int PairFilterResult::numEnabled() const { return numPairs() - static_cast<int>(disabled.size()); }
 
 namespace {
 
@@ -73,9 +71,8 @@ void checkPieces(const RobotModel& model, const std::vector<std::vector<Collisio
   for (int l = 0; l < model.numLinks(); ++l) {
     for (const CollisionPiece& p : pieces[l]) {
       if (!p.core) {
-        throw std::invalid_argument(robotContext(model) + ": link " +
-                                    quoted(model.link(l).name) + " has a piece without a core (" +
-                                    p.origin + ")");
+        throw std::invalid_argument(robotContext(model) + ": link " + quoted(model.link(l).name) +
+                                    " has a piece without a core (" + p.origin + ")");
       }
     }
   }
@@ -105,8 +102,8 @@ Eigen::VectorXd pairFilterDefaultConfiguration(const RobotModel& model) {
   return q;
 }
 
-std::vector<std::pair<int, int>> adjacentLinkPairs(
-    const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces) {
+std::vector<std::pair<int, int>> adjacentLinkPairs(const RobotModel& model,
+                                                   const std::vector<std::vector<CollisionPiece>>& pieces) {
   checkPieces(model, pieces);
   const int n = model.numLinks();
   // Undirected link graph through the joints.
@@ -148,14 +145,13 @@ bool piecesOverlap(const std::vector<CollisionPiece>& a, const Eigen::Isometry3d
   return posedOverlap(pa, pb);
 }
 
-std::vector<std::pair<int, int>> collidingLinkPairs(
-    const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces,
-    const std::vector<Eigen::Isometry3d>& X_WL) {
+std::vector<std::pair<int, int>> collidingLinkPairs(const RobotModel& model,
+                                                    const std::vector<std::vector<CollisionPiece>>& pieces,
+                                                    const std::vector<Eigen::Isometry3d>& X_WL) {
   checkPieces(model, pieces);
   if (static_cast<int>(X_WL.size()) != model.numLinks()) {
     throw std::invalid_argument(robotContext(model) + ": " + std::to_string(X_WL.size()) +
-                                " link poses given, the robot has " +
-                                std::to_string(model.numLinks()) + " links");
+                                " link poses given, the robot has " + std::to_string(model.numLinks()) + " links");
   }
   std::vector<std::vector<PosedPiece>> posed(model.numLinks());
   for (int l = 0; l < model.numLinks(); ++l) posePieces(pieces[l], X_WL[l], posed[l]);
@@ -171,18 +167,16 @@ namespace {
 /// Checks the options of computeDisabledPairs; returns the default configuration to use.
 Eigen::VectorXd checkedDefaultConfiguration(const RobotModel& model, const PairFilterOptions& options) {
   if (options.samples < 0) {
-    throw std::invalid_argument(robotContext(model) + ": pair filter sample count " +
-                                std::to_string(options.samples) + " is negative");
+    throw std::invalid_argument(robotContext(model) + ": pair filter sample count " + std::to_string(options.samples) +
+                                " is negative");
   }
   if (!(options.alwaysFraction > 0.0 && options.alwaysFraction <= 1.0)) {
     std::ostringstream msg;
-    msg << robotContext(model) << ": pair filter alwaysFraction " << options.alwaysFraction
-        << " is not in (0, 1]";
+    msg << robotContext(model) << ": pair filter alwaysFraction " << options.alwaysFraction << " is not in (0, 1]";
     throw std::invalid_argument(msg.str());
   }
-  const Eigen::VectorXd q0 = options.defaultConfiguration.size() == 0
-                                 ? pairFilterDefaultConfiguration(model)
-                                 : options.defaultConfiguration;
+  const Eigen::VectorXd q0 =
+      options.defaultConfiguration.size() == 0 ? pairFilterDefaultConfiguration(model) : options.defaultConfiguration;
   if (options.checkDefault) {
     try {
       checkConfiguration(model, q0);
@@ -204,10 +198,9 @@ std::vector<LinkPairReport> adjacentMarked(const RobotModel& model,
     pairs.push_back(r);
   }
   for (const auto& [i, j] : adjacentLinkPairs(model, pieces)) {
-    auto it = std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(i, j),
-                               [](const LinkPairReport& r, const std::pair<int, int>& key) {
-                                 return std::make_pair(r.link1, r.link2) < key;
-                               });
+    auto it = std::lower_bound(
+        pairs.begin(), pairs.end(), std::make_pair(i, j),
+        [](const LinkPairReport& r, const std::pair<int, int>& key) { return std::make_pair(r.link1, r.link2) < key; });
     it->reason = DisableReason::Adjacent;  // every adjacent pair is a pair of links with geometry
   }
   return pairs;
@@ -261,8 +254,7 @@ void sampleCollisions(const RobotModel& model, const PairFilterOptions& options,
 
 }  // namespace
 
-PairFilterResult computeDisabledPairs(const RobotModel& model,
-                                      const std::vector<std::vector<CollisionPiece>>& pieces,
+PairFilterResult computeDisabledPairs(const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces,
                                       const PairFilterOptions& options) {
   checkPieces(model, pieces);
   const Eigen::VectorXd q0 = checkedDefaultConfiguration(model, options);
@@ -283,22 +275,19 @@ PairFilterResult computeDisabledPairs(const RobotModel& model,
 
   for (const LinkPairReport& r : result.pairs) {
     if (r.reason) {
-      result.disabled.push_back(
-          DisabledPair{model.link(r.link1).name, model.link(r.link2).name, *r.reason});
+      result.disabled.push_back(DisabledPair{model.link(r.link1).name, model.link(r.link2).name, *r.reason});
     }
   }
   return result;
 }
 
-void checkDisabledPairs(const RobotModel& model, const std::vector<DisabledPair>& disabled,
-                        const std::string& source) {
+void checkDisabledPairs(const RobotModel& model, const std::vector<DisabledPair>& disabled, const std::string& source) {
   for (const DisabledPair& p : disabled) {
-    const std::string entry = "<disable_collisions link1=" + quoted(p.link1) +
-                              " link2=" + quoted(p.link2) + ">";
+    const std::string entry = "<disable_collisions link1=" + quoted(p.link1) + " link2=" + quoted(p.link2) + ">";
     for (const std::string* name : {&p.link1, &p.link2}) {
       if (model.linkIndex(*name) < 0) {
-        throw std::invalid_argument(source + ": " + entry + ": link " + quoted(*name) +
-                                    " is not a link of " + robotContext(model));
+        throw std::invalid_argument(source + ": " + entry + ": link " + quoted(*name) + " is not a link of " +
+                                    robotContext(model));
       }
     }
     if (p.link1 == p.link2) {
@@ -307,9 +296,9 @@ void checkDisabledPairs(const RobotModel& model, const std::vector<DisabledPair>
   }
 }
 
-std::vector<std::pair<int, int>> enabledLinkPairs(
-    const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces,
-    const std::vector<DisabledPair>& disabled) {
+std::vector<std::pair<int, int>> enabledLinkPairs(const RobotModel& model,
+                                                  const std::vector<std::vector<CollisionPiece>>& pieces,
+                                                  const std::vector<DisabledPair>& disabled) {
   checkPieces(model, pieces);
   checkDisabledPairs(model, disabled, "disabled pairs");
   std::set<std::pair<int, int>> off;

@@ -15,9 +15,7 @@ namespace {
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
-std::string srdfContext(const std::string& source) {
-  return "SRDF " + quoted(source.empty() ? "<string>" : source);
-}
+std::string srdfContext(const std::string& source) { return "SRDF " + quoted(source.empty() ? "<string>" : source); }
 
 /// The value of `attr`; throws naming `where` and `element` when it is absent or empty.
 std::string requiredAttribute(const TiXmlElement* e, const char* attr, const std::string& where,
@@ -33,12 +31,10 @@ std::string requiredAttribute(const TiXmlElement* e, const char* attr, const std
 SrdfGroup parseGroup(const TiXmlElement* g, const std::string& context) {
   SrdfGroup group;
   group.line = g->Row();
-  group.name = requiredAttribute(g, "name", context + ", line " + std::to_string(g->Row()),
-                                 "<group>");
+  group.name = requiredAttribute(g, "name", context + ", line " + std::to_string(g->Row()), "<group>");
   for (const TiXmlElement* e = g->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
     const std::string tag = e->Value();
-    const std::string where =
-        context + ", line " + std::to_string(e->Row()) + ", group " + quoted(group.name);
+    const std::string where = context + ", line " + std::to_string(e->Row()) + ", group " + quoted(group.name);
     if (tag == "joint") {
       group.joints.push_back(requiredAttribute(e, "name", where, "<joint>"));
     } else if (tag == "link") {
@@ -66,23 +62,19 @@ std::vector<SrdfGroup> parseSrdfGroups(const std::string& xml, const std::string
   const TiXmlElement& robot = parseSrdfRoot(doc, xml, context);
   std::vector<SrdfGroup> groups;
   std::unordered_map<std::string, int> lineOf;
-  for (const TiXmlElement* g = robot.FirstChildElement("group"); g != nullptr;
-       g = g->NextSiblingElement("group")) {
+  for (const TiXmlElement* g = robot.FirstChildElement("group"); g != nullptr; g = g->NextSiblingElement("group")) {
     SrdfGroup group = parseGroup(g, context);
     const auto [earlier, isNew] = lineOf.emplace(group.name, group.line);
     if (!isNew) {
-      throw std::invalid_argument(context + ", line " + std::to_string(group.line) + ": group " +
-                                  quoted(group.name) + " is defined twice (first at line " +
-                                  std::to_string(earlier->second) + ")");
+      throw std::invalid_argument(context + ", line " + std::to_string(group.line) + ": group " + quoted(group.name) +
+                                  " is defined twice (first at line " + std::to_string(earlier->second) + ")");
     }
     groups.push_back(std::move(group));
   }
   return groups;
 }
 
-std::vector<SrdfGroup> readSrdfGroups(const std::string& path) {
-  return parseSrdfGroups(readSrdfText(path), path);
-}
+std::vector<SrdfGroup> readSrdfGroups(const std::string& path) { return parseSrdfGroups(readSrdfText(path), path); }
 
 namespace {
 
@@ -90,8 +82,7 @@ namespace {
 /// file may nest subgroups deeper than the call stack could), detecting cycles.
 class GroupResolver {
  public:
-  GroupResolver(const RobotModel& model, const std::vector<SrdfGroup>& groups,
-                const std::string& srdfSource)
+  GroupResolver(const RobotModel& model, const std::vector<SrdfGroup>& groups, const std::string& srdfSource)
       : model_(model),
         groups_(groups),
         context_(srdfContext(srdfSource)),
@@ -122,8 +113,7 @@ class GroupResolver {
       const std::string& name = group.subgroups[next++];
       const int s = find(name);
       if (s < 0) {
-        throw std::invalid_argument(where(group) + ": subgroup " + quoted(name) +
-                                    " is not a group of the file");
+        throw std::invalid_argument(where(group) + ": subgroup " + quoted(name) + " is not a group of the file");
       }
       if (state_[s] == State::InProgress) throwCycle(group, s);
       if (state_[s] == State::Unvisited) enter(s);
@@ -141,10 +131,9 @@ class GroupResolver {
       joints += (joints.empty() ? "" : ", ") + joint.name;
     }
     if (result.empty()) {
-      throw std::invalid_argument(
-          where(groups_[g]) + ": the group moves no variable of " + robot() +
-          (joints.empty() ? std::string(": it has no joint")
-                          : ": its joints " + joints + " are fixed or mimic joints"));
+      throw std::invalid_argument(where(groups_[g]) + ": the group moves no variable of " + robot() +
+                                  (joints.empty() ? std::string(": it has no joint")
+                                                  : ": its joints " + joints + " are fixed or mimic joints"));
     }
     std::sort(result.begin(), result.end());
     return result;
@@ -173,15 +162,12 @@ class GroupResolver {
   std::string where(const SrdfGroup& group) const {
     return context_ + ", line " + std::to_string(group.line) + ", group " + quoted(group.name);
   }
-  std::string robot() const {
-    return "robot " + quoted(model_.name()) + " (" + model_.source() + ")";
-  }
+  std::string robot() const { return "robot " + quoted(model_.name()) + " (" + model_.source() + ")"; }
 
   void addJoint(const SrdfGroup& group, const std::string& name) {
     const int j = model_.jointIndex(name);
     if (j < 0) {
-      throw std::invalid_argument(where(group) + ": joint " + quoted(name) + " is not in " +
-                                  robot());
+      throw std::invalid_argument(where(group) + ": joint " + quoted(name) + " is not in " + robot());
     }
     inGroup_[j] = true;
   }
@@ -189,8 +175,7 @@ class GroupResolver {
   int linkIndex(const SrdfGroup& group, const std::string& name) const {
     const int l = model_.linkIndex(name);
     if (l < 0) {
-      throw std::invalid_argument(where(group) + ": link " + quoted(name) + " is not in " +
-                                  robot());
+      throw std::invalid_argument(where(group) + ": link " + quoted(name) + " is not in " + robot());
     }
     return l;
   }
@@ -204,9 +189,8 @@ class GroupResolver {
       joints.push_back(model_.link(l).parentJoint);
     }
     if (l != b) {
-      throw std::invalid_argument(where(group) + ": <chain base_link=" + quoted(base) +
-                                  " tip_link=" + quoted(tip) + ">: " + quoted(base) +
-                                  " is not an ancestor of " + quoted(tip) + " in " + robot());
+      throw std::invalid_argument(where(group) + ": <chain base_link=" + quoted(base) + " tip_link=" + quoted(tip) +
+                                  ">: " + quoted(base) + " is not an ancestor of " + quoted(tip) + " in " + robot());
     }
     for (int j : joints) inGroup_[j] = true;
   }
@@ -216,8 +200,7 @@ class GroupResolver {
     std::size_t k = 0;
     while (path_[k].group != s) ++k;
     for (; k < path_.size(); ++k) cycle += groups_[path_[k].group].name + " -> ";
-    throw std::invalid_argument(where(group) + ": subgroups form a cycle: " + cycle +
-                                groups_[s].name);
+    throw std::invalid_argument(where(group) + ": subgroups form a cycle: " + cycle + groups_[s].name);
   }
 
   const RobotModel& model_;
@@ -225,14 +208,14 @@ class GroupResolver {
   std::string context_;
   std::vector<State> state_;
   std::unordered_map<std::string, int> index_;  ///< group name -> first group of that name
-  std::vector<Visit> path_;  ///< the groups being added, outermost first
+  std::vector<Visit> path_;                     ///< the groups being added, outermost first
   std::vector<bool> inGroup_;
 };
 
 }  // namespace
 
-std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfGroup>& groups,
-                                const std::string& name, const std::string& srdfSource) {
+std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfGroup>& groups, const std::string& name,
+                                const std::string& srdfSource) {
   GroupResolver resolver(model, groups, srdfSource);
   const int g = resolver.find(name);
   if (g < 0) {
@@ -240,9 +223,9 @@ std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfG
     for (const SrdfGroup& group : groups) {
       defined += (defined.empty() ? "" : ", ") + quoted(group.name);
     }
-    throw std::invalid_argument(srdfContext(srdfSource) + ": no group " + quoted(name) +
-                                (defined.empty() ? " (the file defines no group)"
-                                                 : " (the file defines " + defined + ")"));
+    throw std::invalid_argument(
+        srdfContext(srdfSource) + ": no group " + quoted(name) +
+        (defined.empty() ? " (the file defines no group)" : " (the file defines " + defined + ")"));
   }
   resolver.add(g);
   return resolver.variables(g);
@@ -261,8 +244,8 @@ std::vector<SrdfGroup> readSrdfGroups(const std::vector<std::string>& paths) {
   std::vector<std::string> sourceOf;  // the file of each group of `merged`
   for (const std::string& path : paths) {
     for (SrdfGroup& group : readSrdfGroups(path)) {
-      const auto same = std::find_if(merged.begin(), merged.end(),
-                                     [&](const SrdfGroup& g) { return g.name == group.name; });
+      const auto same =
+          std::find_if(merged.begin(), merged.end(), [&](const SrdfGroup& g) { return g.name == group.name; });
       if (same == merged.end()) {
         merged.push_back(std::move(group));
         sourceOf.push_back(path);
@@ -271,8 +254,8 @@ std::vector<SrdfGroup> readSrdfGroups(const std::vector<std::string>& paths) {
       if (sameGroup(*same, group)) continue;
       const std::string& first = sourceOf[static_cast<std::size_t>(same - merged.begin())];
       throw std::invalid_argument(srdfContext(path) + ", line " + std::to_string(group.line) + ": group " +
-                                  quoted(group.name) + " is defined differently in " + srdfContext(first) +
-                                  ", line " + std::to_string(same->line));
+                                  quoted(group.name) + " is defined differently in " + srdfContext(first) + ", line " +
+                                  std::to_string(same->line));
     }
   }
   return merged;

@@ -28,20 +28,28 @@ namespace fs = std::filesystem;
 
 const char* toString(JointType type) {
   switch (type) {
-    case JointType::Fixed: return "fixed";
-    case JointType::Revolute: return "revolute";
-    case JointType::Continuous: return "continuous";
-    case JointType::Prismatic: return "prismatic";
+    case JointType::Fixed:
+      return "fixed";
+    case JointType::Revolute:
+      return "revolute";
+    case JointType::Continuous:
+      return "continuous";
+    case JointType::Prismatic:
+      return "prismatic";
   }
   return "?";
 }
 
 const char* toString(GeometryType type) {
   switch (type) {
-    case GeometryType::Box: return "box";
-    case GeometryType::Sphere: return "sphere";
-    case GeometryType::Cylinder: return "cylinder";
-    case GeometryType::Mesh: return "mesh";
+    case GeometryType::Box:
+      return "box";
+    case GeometryType::Sphere:
+      return "sphere";
+    case GeometryType::Cylinder:
+      return "cylinder";
+    case GeometryType::Mesh:
+      return "mesh";
   }
   return "?";
 }
@@ -91,8 +99,7 @@ class Prepass {
 
   /// Returns the cleaned XML text for urdfdom; fills jointOrder (joint name -> position in file)
   /// and visualLinks (the links with a <visual>, which the cleaned text no longer shows).
-  std::string run(const std::string& xml, std::map<std::string, int>& jointOrder,
-                  std::set<std::string>& visualLinks) {
+  std::string run(const std::string& xml, std::map<std::string, int>& jointOrder, std::set<std::string>& visualLinks) {
     TiXmlDocument doc;
     parseXml(doc, xml, context_);
     TiXmlElement* robot = doc.RootElement();
@@ -127,7 +134,8 @@ class Prepass {
       for (const TiXmlElement* e = robot.FirstChildElement(tag); e != nullptr; e = e->NextSiblingElement(tag)) ++n;
       if (n > maxLinks_) {
         throw std::invalid_argument(context_ + ": " + std::to_string(n) + " <" + tag + "> elements, more than " +
-                                    "LoadOptions::maxLinks = " + std::to_string(maxLinks_) + " (raise it to load the file)");
+                                    "LoadOptions::maxLinks = " + std::to_string(maxLinks_) +
+                                    " (raise it to load the file)");
       }
     }
   }
@@ -150,8 +158,7 @@ class Prepass {
       if (!(std::abs(value) <= geometry::range::kMaxCoordinate)) {
         std::ostringstream msg;
         msg << where << " has a " << (std::isfinite(value) ? "value out of range" : "non-finite value")
-            << " (component " << n << "; magnitudes up to " << geometry::range::kMaxCoordinate
-            << " are supported)";
+            << " (component " << n << "; magnitudes up to " << geometry::range::kMaxCoordinate << " are supported)";
         throw std::invalid_argument(msg.str());
       }
       ++n;
@@ -159,8 +166,7 @@ class Prepass {
     }
     if ((count > 0 && n != count) || n == 0) {
       std::ostringstream msg;
-      msg << where << " must have " << (count > 0 ? std::to_string(count) : "one or more")
-          << " numbers, has " << n;
+      msg << where << " must have " << (count > 0 ? std::to_string(count) : "one or more") << " numbers, has " << n;
       throw std::invalid_argument(msg.str());
     }
   }
@@ -296,9 +302,8 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
 /// Turns urdfdom's model into a RobotModel (see the header for the numbering).
 class UrdfBuilder {
  public:
-  UrdfBuilder(RobotModel& model, const urdf::ModelInterface& urdf,
-              const std::map<std::string, int>& jointOrder, const std::string& context,
-              const std::string& baseDirectory, const LoadOptions& options)
+  UrdfBuilder(RobotModel& model, const urdf::ModelInterface& urdf, const std::map<std::string, int>& jointOrder,
+              const std::string& context, const std::string& baseDirectory, const LoadOptions& options)
       : model_(model),
         urdf_(urdf),
         jointOrder_(jointOrder),
@@ -368,8 +373,7 @@ class UrdfBuilder {
   void addCollisions(const urdf::Link& link, int index) {
     int c = 0;
     for (const urdf::CollisionSharedPtr& collision : link.collision_array) {
-      const std::string where =
-          context_ + ", link " + inQuotes(link.name) + ", collision " + std::to_string(c);
+      const std::string where = context_ + ", link " + inQuotes(link.name) + ", collision " + std::to_string(c);
       ++c;
       if (!collision || !collision->geometry) {
         throw std::invalid_argument(where + ": no geometry");
@@ -395,8 +399,7 @@ class UrdfBuilder {
           g.type = GeometryType::Sphere;
           g.radius = static_cast<const urdf::Sphere&>(geometry).radius;
           if (!(g.radius > 0.0)) {
-            throw std::invalid_argument(where + ": sphere radius " + formatNumber(g.radius) +
-                                        " must be positive");
+            throw std::invalid_argument(where + ": sphere radius " + formatNumber(g.radius) + " must be positive");
           }
           break;
         }
@@ -406,9 +409,8 @@ class UrdfBuilder {
           g.radius = cylinder.radius;
           g.length = cylinder.length;
           if (!(g.radius > 0.0) || !(g.length > 0.0)) {
-            throw std::invalid_argument(where + ": cylinder radius " + formatNumber(g.radius) +
-                                        " and length " + formatNumber(g.length) +
-                                        " must be positive");
+            throw std::invalid_argument(where + ": cylinder radius " + formatNumber(g.radius) + " and length " +
+                                        formatNumber(g.length) + " must be positive");
           }
           break;
         }
@@ -437,10 +439,22 @@ class UrdfBuilder {
     joint.parentLink = parentLink;
     joint.X_PJ = toIsometry(j.parent_to_joint_origin_transform);
     switch (j.type) {
-      case urdf::Joint::FIXED: joint.type = JointType::Fixed; joint.urdfType = "fixed"; break;
-      case urdf::Joint::REVOLUTE: joint.type = JointType::Revolute; joint.urdfType = "revolute"; break;
-      case urdf::Joint::CONTINUOUS: joint.type = JointType::Continuous; joint.urdfType = "continuous"; break;
-      case urdf::Joint::PRISMATIC: joint.type = JointType::Prismatic; joint.urdfType = "prismatic"; break;
+      case urdf::Joint::FIXED:
+        joint.type = JointType::Fixed;
+        joint.urdfType = "fixed";
+        break;
+      case urdf::Joint::REVOLUTE:
+        joint.type = JointType::Revolute;
+        joint.urdfType = "revolute";
+        break;
+      case urdf::Joint::CONTINUOUS:
+        joint.type = JointType::Continuous;
+        joint.urdfType = "continuous";
+        break;
+      case urdf::Joint::PRISMATIC:
+        joint.type = JointType::Prismatic;
+        joint.urdfType = "prismatic";
+        break;
       case urdf::Joint::FLOATING:
       case urdf::Joint::PLANAR: {
         joint.urdfType = j.type == urdf::Joint::FLOATING ? "floating" : "planar";
@@ -452,7 +466,8 @@ class UrdfBuilder {
         joint.type = JointType::Fixed;
         break;
       }
-      default: throw std::invalid_argument(where + " has an unknown type");
+      default:
+        throw std::invalid_argument(where + " has an unknown type");
     }
     if (joint.moves()) {
       const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
@@ -491,12 +506,12 @@ class UrdfBuilder {
       Joint& joint = model_.joints_[index];
       const int other = model_.jointIndex(target);
       if (other < 0) {
-        throw std::invalid_argument(context_ + ", joint " + inQuotes(joint.name) +
-                                    " mimics unknown joint " + inQuotes(target));
+        throw std::invalid_argument(context_ + ", joint " + inQuotes(joint.name) + " mimics unknown joint " +
+                                    inQuotes(target));
       }
       if (!model_.joints_[other].moves()) {
-        throw std::invalid_argument(context_ + ", joint " + inQuotes(joint.name) +
-                                    " mimics joint " + inQuotes(target) + ", which is fixed");
+        throw std::invalid_argument(context_ + ", joint " + inQuotes(joint.name) + " mimics joint " + inQuotes(target) +
+                                    ", which is fixed");
       }
       joint.mimicJoint = other;
     }
@@ -556,7 +571,7 @@ class UrdfBuilder {
   const LoadOptions& options_;
   std::vector<std::string> roots_;
   std::vector<std::pair<int, std::string>> mimics_;  // (joint, the joint it names)
-  std::vector<std::pair<int, int>> resolvedSource_;   // (mimic joint, joint at the chain's end)
+  std::vector<std::pair<int, int>> resolvedSource_;  // (mimic joint, joint at the chain's end)
 };
 
 RobotModel RobotModel::fromUrdfFile(const std::string& path, const LoadOptions& options) {
@@ -585,8 +600,8 @@ RobotModel RobotModel::fromUrdfString(const std::string& xml, const std::string&
   std::string errors;
   const urdf::ModelInterfaceSharedPtr urdf = parseWithUrdfdom(cleaned, errors);
   if (!urdf) {
-    throw std::invalid_argument(context + ": urdfdom rejected it: " +
-                                (errors.empty() ? std::string("(no message)") : errors));
+    throw std::invalid_argument(context +
+                                ": urdfdom rejected it: " + (errors.empty() ? std::string("(no message)") : errors));
   }
   UrdfBuilder(model, *urdf, jointOrder, context, baseDirectory, options).build();
   for (Link& link : model.links_) link.hasVisual = visualLinks.count(link.name) > 0;
@@ -629,8 +644,7 @@ void RobotModel::setBasePose(const Eigen::Isometry3d& X_WR) {
   const double error = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
   if (!X_WR.matrix().allFinite() || !(error <= tol::kOrthonormality) || R.determinant() < 0.0) {
     std::ostringstream msg;
-    msg << "robot " << inQuotes(name_) << ": base pose is not a finite rigid transform:\n"
-        << X_WR.matrix();
+    msg << "robot " << inQuotes(name_) << ": base pose is not a finite rigid transform:\n" << X_WR.matrix();
     throw std::invalid_argument(msg.str());
   }
   X_WR_ = X_WR;

@@ -36,13 +36,11 @@ class DepthCheck : public YAML::EventHandler {
   void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
   void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
   void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
-                       YAML::EmitterStyle::value) override {
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
     enter(mark);
   }
   void OnSequenceEnd() override { --depth_; }
-  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
-                  YAML::EmitterStyle::value) override {
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
     enter(mark);
   }
   void OnMapEnd() override { --depth_; }
@@ -123,7 +121,8 @@ double readNumber(const Context& ctx, const YAML::Node& node, const std::string&
   if (!std::isfinite(value)) ctx.fail(node, what + " must be finite, is '" + node.Scalar() + "'");
   if (std::abs(value) > geometry::range::kMaxCoordinate) {
     std::ostringstream msg;
-    msg << what << " must have magnitude at most " << geometry::range::kMaxCoordinate << ", is '" << node.Scalar() << "'";
+    msg << what << " must have magnitude at most " << geometry::range::kMaxCoordinate << ", is '" << node.Scalar()
+        << "'";
     ctx.fail(node, msg.str());
   }
   return value;
@@ -146,8 +145,8 @@ std::vector<double> readComponents(const Context& ctx, const YAML::Node& node, c
                                    const std::vector<const char*>& names) {
   std::vector<double> out;
   if ((node.IsMap() || node.IsSequence()) && node.size() != names.size()) {
-    ctx.fail(node, what + " must have " + std::to_string(names.size()) + " numbers, has " +
-                       std::to_string(node.size()));
+    ctx.fail(node,
+             what + " must have " + std::to_string(names.size()) + " numbers, has " + std::to_string(node.size()));
   }
   if (node.IsMap()) {
     for (const auto& entry : node) {
@@ -176,8 +175,8 @@ Eigen::Quaterniond readQuaternion(const Context& ctx, const YAML::Node& node, co
   const double norm = q.norm();
   if (!(std::abs(norm - 1.0) <= tol::kSceneQuaternionNorm)) {
     std::ostringstream msg;
-    msg << what << " [x y z w] = [" << v[0] << ", " << v[1] << ", " << v[2] << ", " << v[3]
-        << "] has norm " << norm << ", not 1 (within " << tol::kSceneQuaternionNorm << ")";
+    msg << what << " [x y z w] = [" << v[0] << ", " << v[1] << ", " << v[2] << ", " << v[3] << "] has norm " << norm
+        << ", not 1 (within " << tol::kSceneQuaternionNorm << ")";
     ctx.fail(node, msg.str());
   }
   q.normalize();
@@ -191,10 +190,8 @@ Eigen::Isometry3d readRigid(const Context& ctx, const YAML::Node& node, const st
                             const char* translationKey, const char* rotationKey) {
   checkKeys(ctx, node, what.c_str(), {translationKey, rotationKey});
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.translation() =
-      readVector3(ctx, required(ctx, node, translationKey), what + "." + translationKey);
-  X.linear() = readQuaternion(ctx, required(ctx, node, rotationKey), what + "." + rotationKey)
-                   .toRotationMatrix();
+  X.translation() = readVector3(ctx, required(ctx, node, translationKey), what + "." + translationKey);
+  X.linear() = readQuaternion(ctx, required(ctx, node, rotationKey), what + "." + rotationKey).toRotationMatrix();
   return X;
 }
 

@@ -12,13 +12,20 @@ namespace deepcheck::robots {
 
 const char* toString(DisableReason reason) {
   switch (reason) {
-    case DisableReason::Adjacent: return "Adjacent";
-    case DisableReason::Default: return "Default";
-    case DisableReason::Always: return "Always";
-    case DisableReason::Never: return "Never";
-    case DisableReason::User: return "User";
-    case DisableReason::Unspecified: return "";
-    case DisableReason::Other: return "Other";
+    case DisableReason::Adjacent:
+      return "Adjacent";
+    case DisableReason::Default:
+      return "Default";
+    case DisableReason::Always:
+      return "Always";
+    case DisableReason::Never:
+      return "Never";
+    case DisableReason::User:
+      return "User";
+    case DisableReason::Unspecified:
+      return "";
+    case DisableReason::Other:
+      return "Other";
   }
   return "";
 }
@@ -47,12 +54,23 @@ std::string xmlEscape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -60,8 +78,7 @@ std::string xmlEscape(const std::string& s) {
 
 }  // namespace
 
-std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml,
-                                                 const std::string& sourceName) {
+std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml, const std::string& sourceName) {
   const std::string context = "SRDF " + quoted(sourceName.empty() ? "<string>" : sourceName);
   TiXmlDocument doc;
   const TiXmlElement& robot = parseSrdfRoot(doc, xml, context);
@@ -99,8 +116,10 @@ std::vector<SrdfVirtualJoint> parseSrdfVirtualJoints(const std::string& xml, con
     const std::string where = context + ", line " + std::to_string(e->Row());
     SrdfVirtualJoint j;
     j.line = e->Row();
-    for (auto [attr, field] : {std::pair<const char*, std::string*>{"name", &j.name}, {"type", &j.type},
-                               {"parent_frame", &j.parentFrame}, {"child_link", &j.childLink}}) {
+    for (auto [attr, field] : {std::pair<const char*, std::string*>{"name", &j.name},
+                               {"type", &j.type},
+                               {"parent_frame", &j.parentFrame},
+                               {"child_link", &j.childLink}}) {
       const char* value = e->Attribute(attr);
       if (value == nullptr || *value == '\0') {
         throw std::invalid_argument(where + ": <virtual_joint> without " + attr);
@@ -120,8 +139,7 @@ std::vector<SrdfVirtualJoint> readSrdfVirtualJoints(const std::string& path) {
   return parseSrdfVirtualJoints(readSrdfText(path), path);
 }
 
-std::string srdfText(const std::string& robotName, const std::vector<DisabledPair>& pairs,
-                     const std::string& comment) {
+std::string srdfText(const std::string& robotName, const std::vector<DisabledPair>& pairs, const std::string& comment) {
   SrdfContents contents;
   contents.pairs = pairs;
   return srdfText(robotName, contents, comment);
@@ -162,13 +180,11 @@ std::string srdfText(const std::string& robotName, const SrdfContents& contents,
   out << "<robot name=\"" << xmlEscape(robotName) << "\">\n";
   for (const SrdfGroup& g : contents.groups) writeGroup(out, g);
   for (const SrdfVirtualJoint& j : contents.virtualJoints) {
-    out << "  <virtual_joint name=\"" << xmlEscape(j.name) << "\" type=\"" << xmlEscape(j.type)
-        << "\" parent_frame=\"" << xmlEscape(j.parentFrame) << "\" child_link=\"" << xmlEscape(j.childLink)
-        << "\"/>\n";
+    out << "  <virtual_joint name=\"" << xmlEscape(j.name) << "\" type=\"" << xmlEscape(j.type) << "\" parent_frame=\""
+        << xmlEscape(j.parentFrame) << "\" child_link=\"" << xmlEscape(j.childLink) << "\"/>\n";
   }
   for (const DisabledPair& p : pairs) {
-    out << "  <disable_collisions link1=\"" << xmlEscape(p.link1) << "\" link2=\""
-        << xmlEscape(p.link2) << "\"";
+    out << "  <disable_collisions link1=\"" << xmlEscape(p.link1) << "\" link2=\"" << xmlEscape(p.link2) << "\"";
     if (p.reason != DisableReason::Unspecified) {
       out << " reason=\"" << xmlEscape(reasonText(p)) << "\"";
     }
@@ -178,8 +194,8 @@ std::string srdfText(const std::string& robotName, const SrdfContents& contents,
   return out.str();
 }
 
-void writeSrdf(const std::string& path, const std::string& robotName,
-               const std::vector<DisabledPair>& pairs, const std::string& comment) {
+void writeSrdf(const std::string& path, const std::string& robotName, const std::vector<DisabledPair>& pairs,
+               const std::string& comment) {
   SrdfContents contents;
   contents.pairs = pairs;
   writeSrdf(path, robotName, contents, comment);

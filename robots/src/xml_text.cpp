@@ -51,8 +51,8 @@ void checkText(const std::string& xml, const std::string& context) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(xml[i]));
       std::ostringstream msg;
-      msg << context << ": line " << line << ", byte " << i << " (" << hex << "): "
-          << (xml[i] == '\0' ? "a NUL byte" : "not UTF-8") << "; URDF and SRDF files must be UTF-8 text";
+      msg << context << ": line " << line << ", byte " << i << " (" << hex
+          << "): " << (xml[i] == '\0' ? "a NUL byte" : "not UTF-8") << "; URDF and SRDF files must be UTF-8 text";
       throw std::invalid_argument(msg.str());
     }
     if (xml[i] == '\n') ++line;
@@ -111,8 +111,9 @@ void checkXmlDepth(std::string_view xml, const std::string& context) {
       const std::string_view markup = xml.substr(at, end - at);
       if (markup[1] == '?' ? markup.size() < 4 || markup[markup.size() - 2] != '?'
                            : markup.find('[') != std::string_view::npos) {
-        fail(at, "a processing instruction or declaration holding '>' or an internal DTD subset, "
-                 "which is not supported");
+        fail(at,
+             "a processing instruction or declaration holding '>' or an internal DTD subset, "
+             "which is not supported");
       }
     } else if (startsAt(at, "</")) {
       depth = std::max(0, depth - 1);
@@ -137,8 +138,8 @@ void parseXml(TiXmlDocument& doc, const std::string& xml, const std::string& con
   doc.Parse(xml.c_str(), nullptr, TIXML_ENCODING_UTF8);
   if (doc.Error()) {
     std::ostringstream msg;
-    msg << context << ": malformed XML at line " << doc.ErrorRow() << ", column " << doc.ErrorCol()
-        << ": " << doc.ErrorDesc();
+    msg << context << ": malformed XML at line " << doc.ErrorRow() << ", column " << doc.ErrorCol() << ": "
+        << doc.ErrorDesc();
     throw std::invalid_argument(msg.str());
   }
 }

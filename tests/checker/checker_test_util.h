@@ -50,7 +50,9 @@ inline robots::RobotModel sliderRobot(double edge) {
   const std::string xml =
       "<robot name='slider'>"
       "<link name='base'/>"
-      "<link name='cube'><collision><geometry><box size='" + e + " " + e + " " + e + "'/></geometry></collision></link>"
+      "<link name='cube'><collision><geometry><box size='" +
+      e + " " + e + " " + e +
+      "'/></geometry></collision></link>"
       "<joint name='slide' type='prismatic'><parent link='base'/><child link='cube'/>"
       "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
       "</robot>";
@@ -118,8 +120,8 @@ inline int compareIsFree(const World& with, const World& without, const std::vec
   for (const Eigen::VectorXd& q : qs) {
     const bool fast = with.isFree(q, a);
     const bool reference = without.isFree(q, b);
-    BOOST_CHECK_MESSAGE(fast == reference, "q = " << q.transpose() << ": isFree " << fast << " with " << feature
-                                                  << ", " << reference << " without");
+    BOOST_CHECK_MESSAGE(fast == reference, "q = " << q.transpose() << ": isFree " << fast << " with " << feature << ", "
+                                                  << reference << " without");
     colliding += !reference;
   }
   if (withStats != nullptr) *withStats = a.stats();

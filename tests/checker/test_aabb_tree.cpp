@@ -95,14 +95,17 @@ BOOST_AUTO_TEST_CASE(near_queries_match_brute_force) {
     for (int i = 0; i < 300; ++i) {
       if (boxes[i].signedDistance(c) - r < bound) expected.insert(i);
     }
-    tree.visitNear(c, r, [&] { return bound; }, [&](int i, double lowerBound) {
-      BOOST_TEST(lowerBound == boxes[i].signedDistance(c) - r);
-      got.insert(i);
-    });
+    tree.visitNear(
+        c, r, [&] { return bound; },
+        [&](int i, double lowerBound) {
+          BOOST_TEST(lowerBound == boxes[i].signedDistance(c) - r);
+          got.insert(i);
+        });
     BOOST_TEST((got == expected));
     // A shrinking bound (nearest-box search): finds the nearest box, or the one c is deepest in.
     double best = std::numeric_limits<double>::infinity();
-    tree.visitNear(c, 0.0, [&] { return best; }, [&](int i, double) { best = std::min(best, boxes[i].signedDistance(c)); });
+    tree.visitNear(
+        c, 0.0, [&] { return best; }, [&](int i, double) { best = std::min(best, boxes[i].signedDistance(c)); });
     double nearest = std::numeric_limits<double>::infinity();
     for (const Aabb& b : boxes) nearest = std::min(nearest, b.signedDistance(c));
     BOOST_TEST(best == nearest);

@@ -63,8 +63,8 @@ BOOST_AUTO_TEST_CASE(queries_equal_brute_force_over_pairs_not_allowed) {
   reference.attach("tool", rod);
   world.attach("tool", rod);
   const std::vector<std::pair<std::string, std::string>> allowed = {
-      {"link2", "obstacle/crate"}, {"tool", "obstacle/post"}, {"base", "link3"}, {"obstacle/ball", "*"},
-      {"attached/rod", "obstacle/crate"}, {"link1", "attached/rod"}};
+      {"link2", "obstacle/crate"}, {"tool", "obstacle/post"},          {"base", "link3"},
+      {"obstacle/ball", "*"},      {"attached/rod", "obstacle/crate"}, {"link1", "attached/rod"}};
   world.allowCollision("crate", "link2");
   world.allowCollision("tool", "obstacle/post");
   world.disablePair("base", "link3");
@@ -95,7 +95,8 @@ BOOST_AUTO_TEST_CASE(queries_equal_brute_force_over_pairs_not_allowed) {
       BOOST_TEST(got.contacts[i].nameB == expected[i].nameB);
       BOOST_TEST(std::abs(got.contacts[i].distance - expected[i].distance) <= kSameDistance);
     }
-    BOOST_TEST(std::abs(world.signedDistance(q, context).closest.distance - expected.front().distance) <= kSameDistance);
+    BOOST_TEST(std::abs(world.signedDistance(q, context).closest.distance - expected.front().distance) <=
+               kSameDistance);
     const bool expectFree = expected.front().distance > 0.0;
     BOOST_TEST(world.isFree(q) == expectFree, "q = " << q.transpose());
     (expectFree ? free : colliding) += 1;
@@ -122,8 +123,8 @@ BOOST_AUTO_TEST_CASE(allowed_pairs_are_listed_and_answered) {
   BOOST_TEST(listed.size() == 3u);
   BOOST_TEST((std::find(listed.begin(), listed.end(), std::make_pair(std::string("link1"), std::string("link3"))) !=
               listed.end()));
-  BOOST_TEST((std::find(listed.begin(), listed.end(), std::make_pair(std::string("ball"), std::string("*"))) !=
-              listed.end()));
+  BOOST_TEST(
+      (std::find(listed.begin(), listed.end(), std::make_pair(std::string("ball"), std::string("*"))) != listed.end()));
   BOOST_TEST(world.collisionAllowed("link3", "link1"));  // the SRDF's pair, in the same table
   BOOST_TEST(world.collisionAllowed("obstacle/crate", "tool"));
   BOOST_TEST(world.collisionAllowed("link2", "obstacle/ball"));
@@ -150,7 +151,8 @@ BOOST_AUTO_TEST_CASE(a_robot_link_name_names_the_link_only) {
 
 BOOST_AUTO_TEST_CASE(unknown_names_are_errors_with_near_matches) {
   World world = armWorld();
-  test::checkThrowsWith([&] { world.allowCollision("link1", "crat"); }, "no robot link, attached object, scene link or obstacle is named 'crat'");
+  test::checkThrowsWith([&] { world.allowCollision("link1", "crat"); },
+                        "no robot link, attached object, scene link or obstacle is named 'crat'");
   test::checkThrowsWith([&] { world.allowCollision("link1", "crat"); }, "near matches: 'crate'");
   test::checkThrowsWith([&] { world.allowCollision("lnk2", "crate"); }, "'link2'");
   test::checkThrowsWith([&] { world.allowCollisionsWith("toool"); }, "near matches: 'tool'");
@@ -202,7 +204,8 @@ BOOST_AUTO_TEST_CASE(fixed_pair_reported_once_and_allowed) {
   BOOST_TEST(std::abs(fixed[0].distance + 0.002) <= kSameDistance);
   const std::string text = log.str();
   BOOST_TEST(text.find("base and obstacle/table are -0.002 m apart in every configuration (no joint moves base)") !=
-             std::string::npos, text);
+                 std::string::npos,
+             text);
   BOOST_TEST(text.find("--allow-collision base:obstacle/table") != std::string::npos, text);
   BOOST_TEST(std::count(text.begin(), text.end(), '\n') == 1, text);  // once
 
@@ -300,8 +303,8 @@ BOOST_AUTO_TEST_CASE(ur5_bolted_to_a_flush_table) {
   for (auto* v : {&clearance, &worldBefore, &worldAfter}) std::sort(v->begin(), v->end());
   const std::size_t mid = qs.size() / 2;
   BOOST_TEST_MESSAGE("UR5 on the table, 200 random configurations: base_link - table the closest pair in "
-                     << baseClosest << ", none free, before allowing it; after: " << free
-                     << " free, clearance median " << clearance[mid] << " m, max " << clearance.back()
+                     << baseClosest << ", none free, before allowing it; after: " << free << " free, clearance median "
+                     << clearance[mid] << " m, max " << clearance.back()
                      << " m; robot-world clearance median/max before " << worldBefore[mid] << "/" << worldBefore.back()
                      << " m, after " << worldAfter[mid] << "/" << worldAfter.back() << " m");
   BOOST_TEST(baseClosest > 0);

@@ -164,9 +164,9 @@ BOOST_AUTO_TEST_CASE(agrees_with_the_body_depth_on_the_posed_pieces) {
     const int scene = k % 2;
     const double x0 = scene == 0 ? 0.0 : 0.6;
     const double z0 = scene == 0 ? 0.02 : 0.1;
-    const Eigen::VectorXd q = gantryQ(x0 + 0.1 * (2 * unit(rng) - 1), 0.1 * (2 * unit(rng) - 1),
-                                      z0 + 0.06 * (2 * unit(rng) - 1), 3.0 * (2 * unit(rng) - 1),
-                                      0.5 * (2 * unit(rng) - 1));
+    const Eigen::VectorXd q =
+        gantryQ(x0 + 0.1 * (2 * unit(rng) - 1), 0.1 * (2 * unit(rng) - 1), z0 + 0.06 * (2 * unit(rng) - 1),
+                3.0 * (2 * unit(rng) - 1), 0.5 * (2 * unit(rng) - 1));
     const BodyRef other = sceneLink(world, scene, scene == 0 ? "slab" : "u");
     const World::BodyContact got = world.bodySignedDistance(q, robotLink(world, "tool"), other);
     const std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(world.robot(), q);
@@ -193,8 +193,12 @@ BOOST_AUTO_TEST_CASE(agrees_with_the_body_depth_on_the_posed_pieces) {
 BOOST_AUTO_TEST_CASE(link_against_a_link_of_several_pieces) {
   const std::string xml =
       "<robot name='two'><link name='base'/>"
-      "<link name='peg'>" + boxCollision({0.06, 0.1, 0.1}, {0, 0, 0}) + "</link>"
-      "<link name='slab'>" + kSlab + "</link>"
+      "<link name='peg'>" +
+      boxCollision({0.06, 0.1, 0.1}, {0, 0, 0}) +
+      "</link>"
+      "<link name='slab'>" +
+      kSlab +
+      "</link>"
       "<joint name='up' type='prismatic'><parent link='base'/><child link='peg'/><axis xyz='0 0 1'/>"
       "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint>"
       "<joint name='side' type='prismatic'><parent link='base'/><child link='slab'/><axis xyz='1 0 0'/>"
@@ -241,7 +245,7 @@ BOOST_AUTO_TEST_CASE(attached_object_against_a_body) {
   BOOST_TEST(r.pairDepth == 0.017, boost::test_tools::tolerance(1e-9));
   // The tool itself is clear of the slab (its bottom 0.02 above it).
   BOOST_TEST(world.bodySignedDistance(gantryQ(0.002, 0, 0.07), robotLink(world, "tool"), sceneLink(world, 0, "slab"))
-                 .contact.distance == 0.02,
+                     .contact.distance == 0.02,
              boost::test_tools::tolerance(1e-9));
   plate.scene = 1;
   checkThrowsWith([&] { world.bodySignedDistance(gantryQ(0, 0, 0.3), plate, sceneLink(world, 0, "slab")); },

@@ -37,7 +37,8 @@ std::vector<Answer> answers(const World& world, const std::vector<Eigen::VectorX
   for (const Eigen::VectorXd& q : qs) {
     Answer a;
     a.free = explicitContext ? world.isFree(q, context) : world.isFree(q);
-    const DistanceResult r = explicitContext ? world.signedDistance(q, context, options) : world.signedDistance(q, options);
+    const DistanceResult r =
+        explicitContext ? world.signedDistance(q, context, options) : world.signedDistance(q, options);
     a.distance = r.closest.distance;
     a.nameA = r.closest.nameA;
     a.nameB = r.closest.nameB;
@@ -121,7 +122,8 @@ BOOST_AUTO_TEST_CASE(changes_while_queries_run) {
   // One thread moves an obstacle back and forth between two poses while others query. Every
   // answer must be one of the two worlds' answers (a query runs on one snapshot, never a mix).
   World world = makeWorld();
-  const int moving = world.addObstacle(Obstacle::box("door", Eigen::Vector3d(0.05, 1.6, 1.2), translation(0.3, 0, 0.6)));
+  const int moving =
+      world.addObstacle(Obstacle::box("door", Eigen::Vector3d(0.05, 1.6, 1.2), translation(0.3, 0, 0.6)));
   const Eigen::Isometry3d open = translation(3.0, 0, 0.6);
   const Eigen::Isometry3d closed = translation(0.3, 0, 0.6);
   std::mt19937 rng(23);

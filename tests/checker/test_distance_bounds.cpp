@@ -50,10 +50,13 @@ std::shared_ptr<const geometry::ConvexPolytope> randomCore(std::mt19937& rng, in
   std::uniform_real_distribution<double> u(0.3, 1.0);
   *radius = 0.0;
   switch (kind) {
-    case 0: return std::make_shared<geometry::ConvexPolytope>(geometry::ConvexPolytope::box(2.0 * size * Eigen::Vector3d(u(rng), u(rng), u(rng))));
+    case 0:
+      return std::make_shared<geometry::ConvexPolytope>(
+          geometry::ConvexPolytope::box(2.0 * size * Eigen::Vector3d(u(rng), u(rng), u(rng))));
     case 1:
       *radius = size;
-      return std::make_shared<geometry::ConvexPolytope>(geometry::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}));
+      return std::make_shared<geometry::ConvexPolytope>(
+          geometry::ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}));
     case 2:
       return std::make_shared<geometry::ConvexPolytope>(
           geometry::ConvexPolytope::fromPoints(geometry::testing::prismPoints(size * u(rng), 2 * size * u(rng), 16)));
@@ -98,7 +101,9 @@ std::pair<detail::WorldPiece, detail::WorldPiece> randomPair(std::mt19937& rng, 
   const detail::WorldPiece a = randomPiece(rng, 0.05 + 0.5 * u(rng), origin);
   // Separated: B's centre beyond both bounding spheres; deep: inside A's inner ball.
   const double inner = a.core->insideRadius() + a.radius;
-  const double offset = regime == kSeparated ? a.sphereRadius + 1.0 + u(rng) : regime == kDeep ? 0.9 * u(rng) * inner : 0.5;
+  const double offset = regime == kSeparated ? a.sphereRadius + 1.0 + u(rng)
+                        : regime == kDeep    ? 0.9 * u(rng) * inner
+                                             : 0.5;
   detail::WorldPiece b = randomPiece(rng, 0.05 + 0.5 * u(rng), a.center_W + offset * randomUnit(rng));
   if (regime == kTouching || regime == kShallow) {
     // Move B along the normal until it touches A, then (shallow) a little into it.
@@ -133,17 +138,22 @@ BOOST_AUTO_TEST_CASE(every_bound_is_a_bound) {
     const double sphereBox = b.box.signedDistance(a.center_W) - a.sphereRadius;
     const double boxSphere = a.box.signedDistance(b.center_W) - b.sphereRadius;
     const double spheres = (a.center_W - b.center_W).norm() - a.sphereRadius - b.sphereRadius;
-    BOOST_TEST(sphereBox <= sd + slack, "trial " << trial << " regime " << regime << ": sphere-box " << sphereBox << " > sd " << sd);
-    BOOST_TEST(boxSphere <= sd + slack, "trial " << trial << " regime " << regime << ": box-sphere " << boxSphere << " > sd " << sd);
-    BOOST_TEST(spheres <= sd + slack, "trial " << trial << " regime " << regime << ": spheres " << spheres << " > sd " << sd);
+    BOOST_TEST(sphereBox <= sd + slack,
+               "trial " << trial << " regime " << regime << ": sphere-box " << sphereBox << " > sd " << sd);
+    BOOST_TEST(boxSphere <= sd + slack,
+               "trial " << trial << " regime " << regime << ": box-sphere " << boxSphere << " > sd " << sd);
+    BOOST_TEST(spheres <= sd + slack,
+               "trial " << trial << " regime " << regime << ": spheres " << spheres << " > sd " << sd);
     const Eigen::Vector3d u = randomUnit(rng);
     for (const Eigen::Vector3d& dir : {u, Eigen::Vector3d((b.center_W - a.center_W).normalized())}) {
       if (!dir.allFinite()) continue;
       const double support = detail::supportLowerBound(*a.core, a.X_WP, a.radius, *b.core, b.X_WP, b.radius, dir);
-      BOOST_TEST(support <= sd + slack, "trial " << trial << " regime " << regime << ": support " << support << " > sd " << sd);
+      BOOST_TEST(support <= sd + slack,
+                 "trial " << trial << " regime " << regime << ": support " << support << " > sd " << sd);
     }
     const double upper = (a.center_W - b.center_W).norm() - a.radius - b.radius;
-    BOOST_TEST(upper >= sd - slack, "trial " << trial << " regime " << regime << ": centres " << upper << " < sd " << sd);
+    BOOST_TEST(upper >= sd - slack,
+               "trial " << trial << " regime " << regime << ": centres " << upper << " < sd " << sd);
   }
   for (int r = 0; r < kRegimes; ++r) BOOST_TEST(counted[r] == 1000);
 }
@@ -173,10 +183,13 @@ BOOST_AUTO_TEST_CASE(tree_visits_the_deepest_piece) {
     const double slack = kBoundRoundoff * 10.0;
     bool reachedMinimum = false;
     AabbTree tree(boxes);
-    tree.visitNear(query.center_W, query.sphereRadius, [&] { return minimum + slack; }, [&](int item, double lowerBound) {
-      BOOST_TEST(lowerBound <= sd[item] + slack, "trial " << trial << " piece " << item << ": " << lowerBound << " > " << sd[item]);
-      reachedMinimum = reachedMinimum || sd[item] == minimum;
-    });
+    tree.visitNear(
+        query.center_W, query.sphereRadius, [&] { return minimum + slack; },
+        [&](int item, double lowerBound) {
+          BOOST_TEST(lowerBound <= sd[item] + slack,
+                     "trial " << trial << " piece " << item << ": " << lowerBound << " > " << sd[item]);
+          reachedMinimum = reachedMinimum || sd[item] == minimum;
+        });
     BOOST_TEST(reachedMinimum, "trial " << trial << ": the piece at the minimum " << minimum << " was pruned");
   }
 }
@@ -201,10 +214,10 @@ BruteForce bruteForce(const World& world, const Eigen::VectorXd& q) {
   std::vector<std::vector<robots::CollisionPiece>> links(model.numLinks());
   for (int l = 0; l < model.numLinks(); ++l) links[l] = world.linkPieces(l);
   BruteForce out;
-  auto measure = [&](int link, const robots::CollisionPiece& p, const BodyRef& body,
-                     const robots::CollisionPiece& o, const Eigen::Isometry3d& X_WO) {
+  auto measure = [&](int link, const robots::CollisionPiece& p, const BodyRef& body, const robots::CollisionPiece& o,
+                     const Eigen::Isometry3d& X_WO) {
     const double sd = geometry::signedDistance(geometry::ConvexShape{p.core.get(), p.radius}, X_WL[link] * p.X_LP,
-                                           geometry::ConvexShape{o.core.get(), o.radius}, X_WO)
+                                               geometry::ConvexShape{o.core.get(), o.radius}, X_WO)
                           .distance;
     out.minimum = std::min(out.minimum, sd);
     auto [it, added] = out.bodies.emplace(bodyPair(link, body), sd);
@@ -234,13 +247,19 @@ void addRandomObstacles(World& world, std::mt19937& rng) {
   const int n = 1 + static_cast<int>(4 * u(rng));
   for (int k = 0; k < n; ++k) {
     const double size = 0.02 * std::pow(75.0, u(rng));  // 2 cm to 1.5 m, log-uniform
-    const Eigen::Isometry3d X = makePose(randomRotation(rng),
-                                         Eigen::Vector3d(1.2 * u(rng) - 0.6, 1.2 * u(rng) - 0.6, 1.2 * u(rng)));
+    const Eigen::Isometry3d X =
+        makePose(randomRotation(rng), Eigen::Vector3d(1.2 * u(rng) - 0.6, 1.2 * u(rng) - 0.6, 1.2 * u(rng)));
     const std::string name = "o" + std::to_string(k);
     switch (static_cast<int>(4 * u(rng))) {
-      case 0: world.addObstacle(Obstacle::box(name, size * Eigen::Vector3d(u(rng) + 0.3, u(rng) + 0.3, u(rng) + 0.3), X)); break;
-      case 1: world.addObstacle(Obstacle::sphere(name, 0.5 * size, X)); break;
-      case 2: world.addObstacle(Obstacle::cylinder(name, 0.5 * size, size * (u(rng) + 0.3), X)); break;
+      case 0:
+        world.addObstacle(Obstacle::box(name, size * Eigen::Vector3d(u(rng) + 0.3, u(rng) + 0.3, u(rng) + 0.3), X));
+        break;
+      case 1:
+        world.addObstacle(Obstacle::sphere(name, 0.5 * size, X));
+        break;
+      case 2:
+        world.addObstacle(Obstacle::cylinder(name, 0.5 * size, size * (u(rng) + 0.3), X));
+        break;
       default: {
         robots::TriangleMesh mesh = tetrahedronMesh();
         for (Eigen::Vector3d& v : mesh.vertices) v *= size / 0.3;
@@ -284,10 +303,11 @@ WorldTrials compareWithBruteForce(const WorldOptions& options, int scenes, int p
       t.penetrating += b.minimum < 0;
       t.swallowed += b.minimum < -0.1;
       const double tol = kWorldAgreement * std::max(1.0, std::abs(b.minimum));
-      BOOST_TEST_REQUIRE(r.found, "scene " << scene << " q " << q.transpose() << ": no pair, brute force " << b.minimum);
+      BOOST_TEST_REQUIRE(r.found,
+                         "scene " << scene << " q " << q.transpose() << ": no pair, brute force " << b.minimum);
       BOOST_TEST_REQUIRE(std::abs(r.closest.distance - b.minimum) <= tol,
-                         "scene " << scene << " q " << q.transpose() << ": " << r.closest.distance
-                                  << " (" << r.closest.nameA << ", " << r.closest.nameB << "), brute force " << b.minimum);
+                         "scene " << scene << " q " << q.transpose() << ": " << r.closest.distance << " ("
+                                  << r.closest.nameA << ", " << r.closest.nameB << "), brute force " << b.minimum);
       BOOST_TEST_REQUIRE(world.isFree(q, context) == (b.minimum > 0), "scene " << scene << " q " << q.transpose());
       if (!contacts) continue;
       std::size_t expected = 0;
@@ -295,7 +315,8 @@ WorldTrials compareWithBruteForce(const WorldOptions& options, int scenes, int p
       BOOST_TEST_REQUIRE(r.contacts.size() == expected, "scene " << scene << " q " << q.transpose());
       for (const Contact& c : r.contacts) {
         const double sd = b.bodies.at(bodyPair(c.linkA, c.bodyB));
-        BOOST_TEST_REQUIRE(std::abs(c.distance - sd) <= tol, c.nameA << " - " << c.nameB << ": " << c.distance << ", brute force " << sd);
+        BOOST_TEST_REQUIRE(std::abs(c.distance - sd) <= tol,
+                           c.nameA << " - " << c.nameB << ": " << c.distance << ", brute force " << sd);
       }
     }
   }

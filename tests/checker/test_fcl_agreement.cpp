@@ -69,8 +69,8 @@ Agreement compare(const World& world, int samples, unsigned seed, bool distances
       const DistanceResult r = world.signedDistance(q, context);
       BOOST_TEST(r.closest.distance <= reference.distance + kFclAccuracy,
                  "q " << q.transpose() << ": sd " << r.closest.distance << " (" << r.closest.nameA << " / "
-                      << r.closest.nameB << ") above FCL's " << reference.distance << " (" << reference.nameA
-                      << " / " << reference.nameB << ")");
+                      << r.closest.nameB << ") above FCL's " << reference.distance << " (" << reference.nameA << " / "
+                      << reference.nameB << ")");
       BOOST_TEST(r.closest.distance >= reference.distance - excess - kFclAccuracy,
                  "q " << q.transpose() << ": sd " << r.closest.distance << " below FCL's " << reference.distance
                       << " by more than the excess " << excess);
@@ -91,7 +91,7 @@ BOOST_AUTO_TEST_CASE(arm_with_primitives_and_a_mesh) {
   const Agreement a = compare(world, 3000, 31, true);
   BOOST_TEST(a.missed == 0);
   BOOST_TEST(a.falseAlarmsBeyondExcess == 0);
-  BOOST_TEST(a.fclColliding > 300);               // both outcomes are well represented
+  BOOST_TEST(a.fclColliding > 300);  // both outcomes are well represented
   BOOST_TEST(a.fclColliding < a.samples - 300);
   BOOST_TEST(a.distanceChecks == kMaxDistanceChecks);
 }

@@ -111,7 +111,7 @@ BOOST_AUTO_TEST_CASE(adjacent_pairs_are_checked_when_asked) {
   World world(armRobot(), options);
   const std::set<LinkPair> seen = narrowPhasePairs(world, 200, 8);
   BOOST_TEST(seen.count(ordered("base", "link1")) == 1u);  // they touch at the joint: always near
-  BOOST_TEST(world.summaryCounts().selfPairs == 9);  // the rigid link3-tool pair stays disabled
+  BOOST_TEST(world.summaryCounts().selfPairs == 9);        // the rigid link3-tool pair stays disabled
   // Touching at the joint: never free.
   BOOST_TEST(!world.isFree(Eigen::VectorXd::Zero(3)));
 }
@@ -139,7 +139,8 @@ BOOST_AUTO_TEST_CASE(unreachable_scene_pieces_are_dropped) {
   // The slider's cube (edge 0.2) reaches |x| <= 2 + sqrt(3) * 0.1 from the origin.
   const std::string sceneXml =
       "<robot name='hall'><link name='root'/>"
-      "<link name='near'><collision><origin xyz='1.5 0 0'/><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+      "<link name='near'><collision><origin xyz='1.5 0 0'/><geometry><box size='0.2 0.2 "
+      "0.2'/></geometry></collision></link>"
       "<link name='far'><collision><origin xyz='0 4 0'/><geometry><box size='0.2 0.2 0.2'/></geometry></collision>"
       "<collision><origin xyz='0 -2.4 0'/><geometry><sphere radius='0.1'/></geometry></collision></link>"
       "<joint name='a' type='fixed'><parent link='root'/><child link='near'/></joint>"

@@ -28,9 +28,7 @@ using checker::test::testWorldOptions;
 
 namespace {
 
-Eigen::VectorXd slide(double x) {
-  return Eigen::VectorXd::Constant(1, x);
-}
+Eigen::VectorXd slide(double x) { return Eigen::VectorXd::Constant(1, x); }
 
 /// The slider (a 1 m cube on a prismatic x joint) and a 1 m box obstacle centred at x = 3.
 World sliderWorld() {
@@ -68,7 +66,7 @@ BOOST_AUTO_TEST_CASE(frames_carry_the_poses_and_the_closest_pair_of_each_configu
   options.maxStep = 0.0;
   const ViewScene scene = viewOfWorld(world, {slide(0.0), slide(1.5)}, options);
   BOOST_TEST_REQUIRE(scene.frames.size() == 2u);
-  BOOST_TEST(scene.numTracks == 1);  // the cube; base has no geometry
+  BOOST_TEST(scene.numTracks == 1);               // the cube; base has no geometry
   BOOST_TEST_REQUIRE(scene.bodies.size() == 2u);  // the cube and the obstacle
   BOOST_TEST(scene.bodies[1].name == "obstacle/wall");
   BOOST_TEST(scene.bodies[1].track == -1);

@@ -32,8 +32,7 @@ dc::ClearanceDemand randomDemand(const dc::World& world, double base, double top
 
 /// What isClear must answer, from the contact list of every body pair: every pair farther apart
 /// than its demand. `ambiguous` is set when some pair is within 1e-7 m of its demand.
-bool clearByContacts(const dc::World& world, const Eigen::VectorXd& q, const dc::ClearanceDemand& d,
-                     bool& ambiguous) {
+bool clearByContacts(const dc::World& world, const Eigen::VectorXd& q, const dc::ClearanceDemand& d, bool& ambiguous) {
   dc::DistanceOptions options;
   options.contactMargin = 2.0;
   bool clear = true;
@@ -178,7 +177,7 @@ BOOST_AUTO_TEST_CASE(link_extents_hold_attached_objects_and_the_version_moves) {
   const int tool = world->robot().linkIndex("link3");
   const std::vector<double> before = world->linkExtents();
   BOOST_TEST(before[static_cast<std::size_t>(world->robot().linkIndex("elbow"))] < 0.0);  // no geometry
-  BOOST_TEST(before[static_cast<std::size_t>(tool)] > 0.25);  // the cylinder's far end
+  BOOST_TEST(before[static_cast<std::size_t>(tool)] > 0.25);                              // the cylinder's far end
   const std::uint64_t version = world->version();
   world->attach("link3", dc::Obstacle::sphere("probe", 0.05, translation(0.0, 0.0, 0.9)));
   BOOST_TEST(world->version() != version);

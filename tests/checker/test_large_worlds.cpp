@@ -30,18 +30,27 @@ namespace {
 /// cube on a prismatic joint (travel +-0.5 m) between them when `slider`.
 robots::RobotModel twoArms(double apart, bool slider) {
   auto arm = [&](const std::string& n, double x) {
-    return "<link name='" + n + "_base'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
-           "<joint name='" + n + "_fix' type='fixed'><parent link='root'/><child link='" + n + "_base'/><origin xyz='" +
-           robots::formatNumber(x) + " 0 0'/></joint>"
-           "<link name='" + n + "_arm'><collision><origin xyz='0 0 0.25'/><geometry><box size='0.05 0.05 0.4'/></geometry></collision></link>"
-           "<joint name='" + n + "_j' type='revolute'><parent link='" + n + "_base'/><child link='" + n + "_arm'/>"
+    return "<link name='" + n +
+           "_base'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
+           "<joint name='" +
+           n + "_fix' type='fixed'><parent link='root'/><child link='" + n + "_base'/><origin xyz='" +
+           robots::formatNumber(x) +
+           " 0 0'/></joint>"
+           "<link name='" +
+           n +
+           "_arm'><collision><origin xyz='0 0 0.25'/><geometry><box size='0.05 0.05 "
+           "0.4'/></geometry></collision></link>"
+           "<joint name='" +
+           n + "_j' type='revolute'><parent link='" + n + "_base'/><child link='" + n +
+           "_arm'/>"
            "<origin xyz='0 0 0.05'/><axis xyz='0 1 0'/><limit lower='-3' upper='3' effort='1' velocity='1'/></joint>";
   };
   std::string xml = "<robot name='two_arms'><link name='root'/>" + arm("left", -apart / 2) + arm("right", apart / 2);
   if (slider) {
-    xml += "<link name='cube'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
-           "<joint name='slide' type='prismatic'><parent link='root'/><child link='cube'/><origin xyz='0 2 0'/>"
-           "<axis xyz='1 0 0'/><limit lower='-0.5' upper='0.5' effort='1' velocity='1'/></joint>";
+    xml +=
+        "<link name='cube'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
+        "<joint name='slide' type='prismatic'><parent link='root'/><child link='cube'/><origin xyz='0 2 0'/>"
+        "<axis xyz='1 0 0'/><limit lower='-0.5' upper='0.5' effort='1' velocity='1'/></joint>";
   }
   return robots::RobotModel::fromUrdfString(xml + "</robot>", ".", {}, "two_arms.urdf");
 }
@@ -88,7 +97,8 @@ BOOST_AUTO_TEST_CASE(link_pair_index_equals_the_pair_lists) {
     for (int a = 0; a < model.numLinks(); ++a) {
       for (int b = a + 1; b < model.numLinks(); ++b) {
         if (!hasGeometry[a] || !hasGeometry[b]) continue;
-        BOOST_TEST(index.adjacent(a, b) == (adjacent.count({a, b}) > 0), "trial " << trial << " links " << a << ", " << b);
+        BOOST_TEST(index.adjacent(a, b) == (adjacent.count({a, b}) > 0),
+                   "trial " << trial << " links " << a << ", " << b);
         BOOST_TEST(index.adjacent(b, a) == index.adjacent(a, b));
         BOOST_TEST(index.rigid(a, b) == (rigid.count({a, b}) > 0), "trial " << trial << " links " << a << ", " << b);
         both += adjacent.count({a, b}) > 0 && rigid.count({a, b}) > 0;
@@ -193,7 +203,8 @@ BOOST_AUTO_TEST_CASE(pairs_within_reach_equal_brute_force) {
       for (int j = i + 1; j < n; ++j) {
         const ReachSphere& a = spheres[links[i]];
         const ReachSphere& b = spheres[links[j]];
-        if (a.withinLimitsOnly || b.withinLimitsOnly || (a.center_W - b.center_W).norm() - a.radius - b.radius <= margin) {
+        if (a.withinLimitsOnly || b.withinLimitsOnly ||
+            (a.center_W - b.center_W).norm() - a.radius - b.radius <= margin) {
           expected.emplace_back(i, j);
         }
       }

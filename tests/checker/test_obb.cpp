@@ -41,7 +41,8 @@ BOOST_AUTO_TEST_CASE(box_contains_its_piece) {
     // An elongated random point cloud, rotated and offset.
     std::vector<Eigen::Vector3d> points;
     const Eigen::Matrix3d R = randomRotation(rng);
-    for (int i = 0; i < 30; ++i) points.push_back(R * Eigen::Vector3d(3 * u(rng), u(rng), 0.2 * u(rng)) + Eigen::Vector3d(5, -2, 1));
+    for (int i = 0; i < 30; ++i)
+      points.push_back(R * Eigen::Vector3d(3 * u(rng), u(rng), 0.2 * u(rng)) + Eigen::Vector3d(5, -2, 1));
     const geometry::ConvexPolytope core = geometry::ConvexPolytope::fromPoints(points);
     const double radius = k % 2 ? 0.1 : 0.0;
     const Obb b = Obb::ofPiece(core, radius);
@@ -69,7 +70,8 @@ BOOST_AUTO_TEST_CASE(separated_boxes_never_overlap) {
     b.center = Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
     const geometry::ConvexPolytope pa = cornersOf(a);
     const geometry::ConvexPolytope pb = cornersOf(b);
-    const bool overlap = geometry::overlaps({&pa, 0.0}, Eigen::Isometry3d::Identity(), {&pb, 0.0}, Eigen::Isometry3d::Identity());
+    const bool overlap =
+        geometry::overlaps({&pa, 0.0}, Eigen::Isometry3d::Identity(), {&pb, 0.0}, Eigen::Isometry3d::Identity());
     const bool sep = separated(a, b);
     BOOST_TEST(!(overlap && sep), "overlapping boxes reported separated (case " << k << ")");
     separatedCount += sep;

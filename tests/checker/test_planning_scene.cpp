@@ -74,8 +74,8 @@ BOOST_AUTO_TEST_CASE(unknown_frame_leaves_the_world_unchanged) {
 BOOST_AUTO_TEST_CASE(bookshelf_small_with_the_panda) {
   if (!haveShared("the bookshelf scene with the Panda")) return;
   World world = pandaWorld();
-  const robots::PlanningScene scene = robots::loadPlanningScene(
-      sharedDir() + "/scenes/motion_bench_maker/configs/scenes/bookshelf/scene_small.yaml");
+  const robots::PlanningScene scene =
+      robots::loadPlanningScene(sharedDir() + "/scenes/motion_bench_maker/configs/scenes/bookshelf/scene_small.yaml");
   PlanningSceneOptions options;
   options.frameAliases = {{"base_link", "panda_link0"}};
   const std::vector<int> ids = world.addPlanningScene(scene, options);

@@ -118,9 +118,9 @@ BOOST_AUTO_TEST_CASE(mesh_obstacle_in_memory) {
 
 BOOST_AUTO_TEST_CASE(contact_list_within_margin) {
   World world(sliderRobot(0.2), testWorldOptions());
-  world.addObstacle(Obstacle::box("near", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0.5, 0, 0)));   // sd 0.3
-  world.addObstacle(Obstacle::box("mid", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0, 0.65, 0)));   // sd 0.45
-  world.addObstacle(Obstacle::box("far", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0, -1.5, 0)));   // sd 1.3
+  world.addObstacle(Obstacle::box("near", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0.5, 0, 0)));  // sd 0.3
+  world.addObstacle(Obstacle::box("mid", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0, 0.65, 0)));  // sd 0.45
+  world.addObstacle(Obstacle::box("far", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0, -1.5, 0)));  // sd 1.3
   DistanceOptions options;
   options.contactMargin = 0.5;
   const DistanceResult r = world.signedDistance(at(0.0), options);
@@ -171,8 +171,8 @@ BOOST_AUTO_TEST_CASE(summary_counts_and_text) {
   BOOST_TEST(s.obstacles == 1);
   BOOST_TEST(s.obstaclePieces == 1);
   const std::string text = world.summary();
-  for (const char* word : {"robot 'arm'", "6 links", "5 with geometry", "5 pieces", "self pairs", "kept", "dropped",
-                           "obstacles: 1"}) {
+  for (const char* word :
+       {"robot 'arm'", "6 links", "5 with geometry", "5 pieces", "self pairs", "kept", "dropped", "obstacles: 1"}) {
     BOOST_TEST(text.find(word) != std::string::npos, "summary lacks '" << word << "':\n" << text);
   }
 }
@@ -184,8 +184,9 @@ BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
   q[1] = std::nan("");
   checkThrowsWith([&] { world.isFree(q); }, "j2");
   checkThrowsWith([&] { world.signedDistance(q); }, "j2");
-  checkThrowsWith([&] { world.addObstacle(Obstacle::box("flat", Eigen::Vector3d(1, 0, 1), Eigen::Isometry3d::Identity())); },
-                  "flat");
+  checkThrowsWith(
+      [&] { world.addObstacle(Obstacle::box("flat", Eigen::Vector3d(1, 0, 1), Eigen::Isometry3d::Identity())); },
+      "flat");
   checkThrowsWith([&] { world.addObstacle(Obstacle::sphere("neg", -1.0, Eigen::Isometry3d::Identity())); }, "neg");
   checkThrowsWith([&] { world.addObstacle(Obstacle::sphere("", 1.0, Eigen::Isometry3d::Identity())); }, "name");
   Eigen::Isometry3d skew = Eigen::Isometry3d::Identity();
@@ -198,8 +199,9 @@ BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
   const int kept = world.addObstacle(Obstacle::sphere("kept", 0.1, translation(0, 1, 0)));
   checkThrowsWith([&] { world.setObstaclePose(kept, skew); }, "kept");
   BOOST_TEST(world.obstacle(kept).X_WO.isApprox(translation(0, 1, 0)));  // unchanged
-  checkThrowsWith([&] { world.addObstacle(Obstacle::meshFile("missing", "no/such/file.stl", Eigen::Isometry3d::Identity())); },
-                  "missing");
+  checkThrowsWith(
+      [&] { world.addObstacle(Obstacle::meshFile("missing", "no/such/file.stl", Eigen::Isometry3d::Identity())); },
+      "missing");
   checkThrowsWith([&] { world.disablePair("link1", "no_such_link"); }, "no_such_link");
   WorldOptions badOptions = testWorldOptions();
   badOptions.disabledPairs = {{"base", "nope", robots::DisableReason::User}};

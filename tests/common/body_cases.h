@@ -25,20 +25,19 @@ inline std::string boxCollision(const Eigen::Vector3d& size, const Eigen::Vector
 /// collision elements are `toolCollisions` (URDF). With the angles at 0 the tool frame is at
 /// (x, y, z) with the world's axes.
 inline robots::RobotModel gantryRobot(const std::string& toolCollisions) {
-  auto joint = [](const std::string& name, const std::string& type, const std::string& parent,
-                  const std::string& child, const std::string& axis, double limit) {
+  auto joint = [](const std::string& name, const std::string& type, const std::string& parent, const std::string& child,
+                  const std::string& axis, double limit) {
     const std::string l = robots::formatNumber(limit);
     return "<joint name='" + name + "' type='" + type + "'><parent link='" + parent + "'/><child link='" + child +
-           "'/><axis xyz='" + axis + "'/><limit lower='-" + l + "' upper='" + l +
-           "' effort='1' velocity='1'/></joint>";
+           "'/><axis xyz='" + axis + "'/><limit lower='-" + l + "' upper='" + l + "' effort='1' velocity='1'/></joint>";
   };
-  const std::string xml = "<robot name='gantry'><link name='base'/><link name='lx'/><link name='ly'/>"
-                          "<link name='lz'/><link name='lr'/><link name='tool'>" + toolCollisions + "</link>" +
-                          joint("x", "prismatic", "base", "lx", "1 0 0", 1) +
-                          joint("y", "prismatic", "lx", "ly", "0 1 0", 1) +
-                          joint("z", "prismatic", "ly", "lz", "0 0 1", 1) +
-                          joint("rz", "revolute", "lz", "lr", "0 0 1", 3.1) +
-                          joint("ry", "revolute", "lr", "tool", "0 1 0", 3.1) + "</robot>";
+  const std::string xml =
+      "<robot name='gantry'><link name='base'/><link name='lx'/><link name='ly'/>"
+      "<link name='lz'/><link name='lr'/><link name='tool'>" +
+      toolCollisions + "</link>" + joint("x", "prismatic", "base", "lx", "1 0 0", 1) +
+      joint("y", "prismatic", "lx", "ly", "0 1 0", 1) + joint("z", "prismatic", "ly", "lz", "0 0 1", 1) +
+      joint("rz", "revolute", "lz", "lr", "0 0 1", 3.1) + joint("ry", "revolute", "lr", "tool", "0 1 0", 3.1) +
+      "</robot>";
   return robots::RobotModel::fromUrdfString(xml, ".", {}, "gantry.urdf");
 }
 

@@ -19,8 +19,7 @@ inline void checkThrows(const std::function<void()>& f, std::initializer_list<st
     const std::string message = e.what();
     BOOST_TEST_MESSAGE("message: " << message);
     for (const std::string& part : parts) {
-      BOOST_CHECK_MESSAGE(message.find(part) != std::string::npos,
-                          "message lacks '" << part << "': " << message);
+      BOOST_CHECK_MESSAGE(message.find(part) != std::string::npos, "message lacks '" << part << "': " << message);
     }
     return;
   } catch (const std::exception& e) {

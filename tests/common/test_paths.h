@@ -26,7 +26,8 @@ inline std::string sharedDir() {
 /// True when ../shared is present; otherwise logs why the calling test is skipped.
 inline bool haveShared(const char* what) {
   if (!sharedDir().empty()) return true;
-  BOOST_TEST_MESSAGE("skipped " << what << ": the shared data folder (../shared beside the source tree, with "
+  BOOST_TEST_MESSAGE("skipped " << what
+                                << ": the shared data folder (../shared beside the source tree, with "
                                    "robots/ and scenes/) is absent");
   return false;
 }

@@ -31,7 +31,7 @@ using Eigen::Vector3d;
 /// shapes used here have no cells touching along an edge only, so the mesh is closed and
 /// manifold. Sizes and offsets are not exact in binary on purpose.
 inline TriangleMesh voxelMesh(const std::vector<std::array<int, 3>>& cells, double h, const Vector3d& origin,
-                       const std::string& name) {
+                              const std::string& name) {
   std::set<std::array<int, 3>> filled(cells.begin(), cells.end());
   TriangleMesh mesh;
   mesh.source = name;
@@ -71,14 +71,14 @@ inline TriangleMesh voxelMesh(const std::vector<std::array<int, 3>>& cells, doub
 
 /// An L: a 3x1 foot and a 1x2 stem on it (cells of 1/3), one cell thick.
 inline TriangleMesh lShape() {
-  return voxelMesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 2, 0}}, 1.0 / 3.0,
-                   Vector3d(0.1, -0.2, 0.3), "L shape");
+  return voxelMesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 2, 0}}, 1.0 / 3.0, Vector3d(0.1, -0.2, 0.3),
+                   "L shape");
 }
 
 /// A U: a 3x1 base with two 1x2 arms.
 inline TriangleMesh uShape() {
-  return voxelMesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 2, 0}, {2, 1, 0}, {2, 2, 0}},
-                   0.37, Vector3d(-0.41, 0.05, 0.0), "U shape");
+  return voxelMesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 2, 0}, {2, 1, 0}, {2, 2, 0}}, 0.37,
+                   Vector3d(-0.41, 0.05, 0.0), "U shape");
 }
 
 /// A square ring (the torus of this grid): 3x3 cells around a missing centre.

@@ -150,8 +150,8 @@ BOOST_AUTO_TEST_CASE(duplicated_faces_are_dropped_and_the_volume_ratio_stays_rig
   const TriangleMesh mesh = lShape();
   const ConvexDecomposition reference = decomposeConvex(mesh);
   BOOST_REQUIRE_GE(reference.report.volumeRatio, 1.0 - 1e-9);
-  TriangleMesh repeated = mesh;   // every face twice
-  TriangleMesh twoSided = mesh;   // every face also wound the other way
+  TriangleMesh repeated = mesh;  // every face twice
+  TriangleMesh twoSided = mesh;  // every face also wound the other way
   for (const auto& t : mesh.triangles) {
     repeated.triangles.push_back(t);
     twoSided.triangles.push_back({t[0], t[2], t[1]});
@@ -213,8 +213,7 @@ BOOST_AUTO_TEST_CASE(bad_input_is_rejected_with_a_message) {
   p.maxVerticesPerPiece = 3;
   checkThrows([&] { decomposeConvex(mesh, p); }, {"maxVerticesPerPiece", "3"});
   // The cached entry point validates the parameters before looking at the cache.
-  checkThrows([&] { decomposeConvexCached(mesh, p, DecompositionCache::disabled()); },
-              {"maxVerticesPerPiece"});
+  checkThrows([&] { decomposeConvexCached(mesh, p, DecompositionCache::disabled()); }, {"maxVerticesPerPiece"});
 }
 
 BOOST_AUTO_TEST_SUITE_END()

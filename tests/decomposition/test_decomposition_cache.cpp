@@ -70,10 +70,10 @@ BOOST_AUTO_TEST_CASE(corrupt_or_truncated_cache_files_are_recomputed) {
   }
   BOOST_REQUIRE_GT(bytes.size(), 64u);
   const std::vector<std::string> damaged = {
-      bytes.substr(0, bytes.size() / 2),                          // truncated
+      bytes.substr(0, bytes.size() / 2),                           // truncated
       std::string(bytes).replace(bytes.size() / 2, 1, 1, '\x7f'),  // one byte flipped
-      "not a cache file at all",                                  // garbage
-      "",                                                         // empty
+      "not a cache file at all",                                   // garbage
+      "",                                                          // empty
   };
   for (const std::string& content : damaged) {
     {
@@ -144,8 +144,7 @@ BOOST_AUTO_TEST_CASE(an_unreadable_cache_file_is_decomposed_again) {
   }
   const ConvexDecomposition again = decomposeConvexCached(mesh, {}, cache);
   BOOST_CHECK(again.report.cache == CacheStatus::Replaced);
-  BOOST_CHECK_MESSAGE(again.report.cacheMessage.find("cannot be read") != std::string::npos,
-                      again.report.cacheMessage);
+  BOOST_CHECK_MESSAGE(again.report.cacheMessage.find("cannot be read") != std::string::npos, again.report.cacheMessage);
 }
 
 BOOST_AUTO_TEST_CASE(parameters_and_content_change_the_key) {

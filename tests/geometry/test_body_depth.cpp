@@ -78,15 +78,13 @@ struct RefDifference {
 };
 
 struct Reference {
-  double distance = 0.0;  ///< signed
+  double distance = 0.0;              ///< signed
   Vector3d point = Vector3d::Zero();  ///< overlapping: the nearest point of the complement
   double tol = 0.0;
   double L = 0.0;
 };
 
-Isometry3d pieceWorld(const Body& b, const Isometry3d& X_W, std::size_t i) {
-  return X_W * b.pieces[i].X_BP;
-}
+Isometry3d pieceWorld(const Body& b, const Isometry3d& X_W, std::size_t i) { return X_W * b.pieces[i].X_BP; }
 
 /// Length scale as the library takes it: the farthest piece vertex from A's origin.
 double bodiesScale(const Body& A, const Isometry3d& X_WA, const Body& B, const Isometry3d& X_WB) {
@@ -121,8 +119,7 @@ double rayLeaves(const std::vector<RefDifference>& diffs, const Vector3d& u, dou
   return t;
 }
 
-Reference referenceBodyDistance(const Body& A, const Isometry3d& X_WA, const Body& B,
-                                const Isometry3d& X_WB) {
+Reference referenceBodyDistance(const Body& A, const Isometry3d& X_WA, const Body& B, const Isometry3d& X_WB) {
   Reference ref;
   ref.L = bodiesScale(A, X_WA, B, X_WB);
   ref.tol = tol::kBodyMemberRelative * ref.L;
@@ -201,14 +198,13 @@ Reference referenceBodyDistance(const Body& A, const Isometry3d& X_WA, const Bod
 }
 
 /// Smallest pairwise signed distance of the bodies with B moved by t.
-double minPairDistance(const Body& A, const Isometry3d& X_WA, const Body& B, Isometry3d X_WB,
-                       const Vector3d& t) {
+double minPairDistance(const Body& A, const Isometry3d& X_WA, const Body& B, Isometry3d X_WB, const Vector3d& t) {
   X_WB.translation() += t;
   double d = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < A.pieces.size(); ++i) {
     for (std::size_t j = 0; j < B.pieces.size(); ++j) {
-      d = std::min(d, exactSignedDistance(*A.pieces[i].shape.core, pieceWorld(A, X_WA, i),
-                                          *B.pieces[j].shape.core, pieceWorld(B, X_WB, j))
+      d = std::min(d, exactSignedDistance(*A.pieces[i].shape.core, pieceWorld(A, X_WA, i), *B.pieces[j].shape.core,
+                                          pieceWorld(B, X_WB, j))
                           .distance);
     }
   }
@@ -216,8 +212,8 @@ double minPairDistance(const Body& A, const Isometry3d& X_WA, const Body& B, Iso
 }
 
 /// Checks the result against the reference and the contract; returns the reference.
-Reference checkAgainstReference(const TestBody& A, const Isometry3d& X_WA, const TestBody& B,
-                                const Isometry3d& X_WB, const std::string& what) {
+Reference checkAgainstReference(const TestBody& A, const Isometry3d& X_WA, const TestBody& B, const Isometry3d& X_WB,
+                                const std::string& what) {
   BOOST_TEST_CONTEXT(what) {
     const BodySignedDistanceResult r = bodySignedDistance(A.body, X_WA, B.body, X_WB);
     const Reference ref = referenceBodyDistance(A.body, X_WA, B.body, X_WB);
@@ -381,7 +377,8 @@ BOOST_AUTO_TEST_CASE(identical_bodies_at_one_pose) {
 BOOST_AUTO_TEST_CASE(a_piece_inside_the_union_changes_nothing) {
   const SlabCase s;
   TestBody slab = s.slab;
-  slab.add(ConvexPolytope::box(Vector3d(0.2, 0.3, 0.1)), makePose(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Vector3d::UnitZ())), Vector3d(0.05, 0.1, 0.0)));
+  slab.add(ConvexPolytope::box(Vector3d(0.2, 0.3, 0.1)),
+           makePose(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Vector3d::UnitZ())), Vector3d(0.05, 0.1, 0.0)));
   const BodySignedDistanceResult with = bodySignedDistance(s.box.body, s.X_WA, slab.body, Isometry3d::Identity());
   BOOST_TEST(std::abs(with.distance + 0.2) <= 1e-12);
   checkAgainstReference(s.box, s.X_WA, slab, Isometry3d::Identity(), "inside");
@@ -463,7 +460,8 @@ BOOST_AUTO_TEST_CASE(flat_pieces) {
   // Two coplanar squares: their difference is flat and never overlaps.
   TestBody P;
   P.add(ConvexPolytope::fromPoints(square), Isometry3d::Identity());
-  const BodySignedDistanceResult r = bodySignedDistance(P.body, Isometry3d::Identity(), P.body, translation(Vector3d(0.1, 0, 0)));
+  const BodySignedDistanceResult r =
+      bodySignedDistance(P.body, Isometry3d::Identity(), P.body, translation(Vector3d(0.1, 0, 0)));
   BOOST_TEST(std::abs(r.distance) <= 1e-12);
 }
 
@@ -497,8 +495,8 @@ BOOST_AUTO_TEST_CASE(the_face_cap_returns_a_separating_bracketed_answer) {
   BOOST_TEST(-r.distance >= 0.2 - 1e-12);
   BOOST_TEST(r.depthLower <= 0.2 + 1e-12);
   BOOST_TEST(r.depthUpper >= 0.2 - 1e-12);
-  BOOST_TEST(minPairDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity(),
-                             -r.distance * r.normal) >= -1e-12);
+  BOOST_TEST(minPairDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity(), -r.distance * r.normal) >=
+             -1e-12);
 }
 
 BOOST_AUTO_TEST_CASE(the_build_cap_returns_a_separating_bracketed_answer) {
@@ -513,8 +511,8 @@ BOOST_AUTO_TEST_CASE(the_build_cap_returns_a_separating_bracketed_answer) {
   BOOST_TEST(-r.distance >= 0.2 - 1e-12);
   BOOST_TEST(r.depthLower <= 0.2 + 1e-12);
   BOOST_TEST(r.depthUpper >= 0.2 - 1e-12);
-  BOOST_TEST(minPairDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity(),
-                             -r.distance * r.normal) >= -1e-12);
+  BOOST_TEST(minPairDistance(s.box.body, s.X_WA, s.slab.body, Isometry3d::Identity(), -r.distance * r.normal) >=
+             -1e-12);
   BOOST_TEST((r.pointB - r.pointA - r.distance * r.normal).norm() <= 1e-12);
 }
 

@@ -39,8 +39,7 @@ constexpr double kBracketSlackRelative = 1e-14;
 
 /// Pair length scale of the certificate (tolerances.h): larger bounding radius plus the centre
 /// distance.
-double certifyScale(const ConvexPolytope& A, const Isometry3d& X_WA, const ConvexPolytope& B,
-                    const Isometry3d& X_WB) {
+double certifyScale(const ConvexPolytope& A, const Isometry3d& X_WA, const ConvexPolytope& B, const Isometry3d& X_WB) {
   const Vector3d cA = X_WA * A.center(), cB = X_WB * B.center();
   return std::max(A.lengthScale(), B.lengthScale()) + (cB - cA).norm();
 }
@@ -74,8 +73,7 @@ Pair randomPair(std::mt19937& rng, int nA, int nB, const Vector3d& base) {
   const Vector3d sA(1.0, 0.2 + 0.8 * U(rng), 0.1 + 0.9 * U(rng));
   const Vector3d sB(0.3 + 0.7 * U(rng), 0.2 + 0.8 * U(rng), 0.1 + 0.5 * U(rng));
   Pair p{ConvexPolytope::fromPoints(ellipsoidPoints(rng, nA, sA)),
-         ConvexPolytope::fromPoints(ellipsoidPoints(rng, nB, sB)),
-         makePose(randomRotation(rng), base),
+         ConvexPolytope::fromPoints(ellipsoidPoints(rng, nB, sB)), makePose(randomRotation(rng), base),
          makePose(randomRotation(rng), base + 0.8 * U(rng) * randomUnit(rng))};
   return p;
 }
@@ -115,8 +113,8 @@ std::vector<Isometry3d> randomMotion(std::mt19937& rng, const Pair& p, int steps
 /// they must agree to 1e-12 and in `certified`; calls onOverlap(step, X_WB, warm, cold) at the
 /// overlapping steps.
 template <class OnOverlap>
-void compareWarmAndCold(const Pair& p, const std::vector<Isometry3d>& poses, const PenetrationOptions& options, int trial,
-                        OnOverlap&& onOverlap) {
+void compareWarmAndCold(const Pair& p, const std::vector<Isometry3d>& poses, const PenetrationOptions& options,
+                        int trial, OnOverlap&& onOverlap) {
   PairCache cache;
   for (int k = 0; k < static_cast<int>(poses.size()); ++k) {
     const SignedDistanceResult warm = signedDistance(p.A, p.X_WA, p.B, poses[k], &cache, options);
@@ -256,8 +254,11 @@ BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
 /// Two random overlapping 100-vertex pairs from `seed`: `p`, queried once into `cache`
 /// (`first`), and `other`.
 struct PrimedPair {
-  explicit PrimedPair(unsigned seed) : rng(seed), p(randomPair(rng, 100, 100, Vector3d::Zero())),
-        other(randomPair(rng, 100, 100, Vector3d::Zero())), first(signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache)) {}
+  explicit PrimedPair(unsigned seed)
+      : rng(seed),
+        p(randomPair(rng, 100, 100, Vector3d::Zero())),
+        other(randomPair(rng, 100, 100, Vector3d::Zero())),
+        first(signedDistance(p.A, p.X_WA, p.B, p.X_WB, &cache)) {}
   std::mt19937 rng;
   Pair p;
   Pair other;
@@ -281,8 +282,8 @@ BOOST_AUTO_TEST_CASE(warm_start_goes_cold_when_it_cannot_certify) {
   BOOST_TEST(again.certified);
   BOOST_TEST(again.distance == first.distance);
   // B turned half around: every face moves by about the shapes' size.
-  const Isometry3d turned = makePose(Quaterniond(Eigen::AngleAxisd(M_PI, Vector3d::UnitX())) * Quaterniond(p.X_WB.linear()),
-                                     p.X_WB.translation());
+  const Isometry3d turned = makePose(
+      Quaterniond(Eigen::AngleAxisd(M_PI, Vector3d::UnitX())) * Quaterniond(p.X_WB.linear()), p.X_WB.translation());
   const SignedDistanceResult jump = signedDistance(p.A, p.X_WA, p.B, turned, &cache);
   const SignedDistanceResult cold = signedDistance(p.A, p.X_WA, p.B, turned);
   BOOST_TEST(jump.expansions > 0);
@@ -528,8 +529,10 @@ BOOST_AUTO_TEST_CASE(start_from_generic_directions) {
   for (int i = 0; i < 120; ++i) {
     const int n = 4 + static_cast<int>(U(rng) * 40);
     const Vector3d semiA(1.0, 0.05 + U(rng), 0.05 + U(rng)), semiB(0.1 + U(rng), 0.05 + U(rng), 0.02 + 0.5 * U(rng));
-    const ConvexPolytope A = i % 3 == 0 ? ConvexPolytope::box(semiA) : ConvexPolytope::fromPoints(ellipsoidPoints(rng, n, semiA));
-    const ConvexPolytope B = i % 3 == 1 ? ConvexPolytope::box(semiB) : ConvexPolytope::fromPoints(ellipsoidPoints(rng, n, semiB));
+    const ConvexPolytope A =
+        i % 3 == 0 ? ConvexPolytope::box(semiA) : ConvexPolytope::fromPoints(ellipsoidPoints(rng, n, semiA));
+    const ConvexPolytope B =
+        i % 3 == 1 ? ConvexPolytope::box(semiB) : ConvexPolytope::fromPoints(ellipsoidPoints(rng, n, semiB));
     const Isometry3d X_WA = makePose(randomRotation(rng), Vector3d::Zero());
     const Isometry3d X_WB = makePose(randomRotation(rng), 0.3 * U(rng) * randomUnit(rng));
     const PairFrame frame = PairFrame::make(A, X_WA, B, X_WB);
@@ -579,7 +582,8 @@ BOOST_AUTO_TEST_CASE(parallel_faces_named_without_a_walk) {
   };
   const std::vector<Case> cases = {
       {Isometry3d::Identity(), makePose(Quaterniond::Identity(), Vector3d(0.2, -0.3, 2.0)), "stacked"},
-      {Isometry3d::Identity(), makePose(Quaterniond::Identity(), Vector3d(0.2, -0.3, 2.1 - 1e-3)), "stacked, 1e-3 deep"},
+      {Isometry3d::Identity(), makePose(Quaterniond::Identity(), Vector3d(0.2, -0.3, 2.1 - 1e-3)),
+       "stacked, 1e-3 deep"},
       {Isometry3d::Identity(), makePose(quarter, Vector3d(-0.1, 0.4, 1.95)), "stacked, a quarter turn"},
       {makePose(R, far), makePose(R, far + R * Vector3d(0.2, -0.3, 2.0)), "both turned, far"},
       {Isometry3d::Identity(), makePose(Quaterniond::Identity(), Vector3d(0.85, 0.2, 0.9)), "side by side"},
@@ -638,8 +642,8 @@ BOOST_AUTO_TEST_CASE(cap_on_a_round_pair) {
   BOOST_TEST(r.depthLower <= depth + slack);
   BOOST_TEST(depth <= r.depthUpper + slack);
   BOOST_TEST(r.depthUpper == -r.distance);
-  const ExactResult moved = exactSignedDistance(sphere, X_WA, sphere,
-                                                makePose(Quaterniond(X_WB.linear()), X_WB.translation() + r.depthUpper * r.normal));
+  const ExactResult moved = exactSignedDistance(
+      sphere, X_WA, sphere, makePose(Quaterniond(X_WB.linear()), X_WB.translation() + r.depthUpper * r.normal));
   BOOST_TEST(std::abs(moved.distance) <= 1e-9);
 }
 
@@ -648,8 +652,10 @@ BOOST_AUTO_TEST_CASE(deep_walk_stays_selectable) {
   std::mt19937 rng(16);
   for (int i = 0; i < 30; ++i) {
     const Pair p = randomPair(rng, 60, 60, Vector3d::Zero());
-    const SignedDistanceResult c = signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::CertifiedExpansion));
-    const SignedDistanceResult w = signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::GaussMapWalk));
+    const SignedDistanceResult c =
+        signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::CertifiedExpansion));
+    const SignedDistanceResult w =
+        signedDistance(p.A, p.X_WA, p.B, p.X_WB, nullptr, methodOptions(PenetrationMethod::GaussMapWalk));
     if (c.distance >= 0) continue;
     BOOST_TEST(!w.certified);
     BOOST_TEST(w.depthLower == 0.0);

@@ -30,12 +30,12 @@ BOOST_AUTO_TEST_SUITE(closest_point)
 
 BOOST_AUTO_TEST_CASE(every_region_of_a_right_triangle) {
   const Vector3d a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
-  requireNear(closestPointOnTriangle(Vector3d(-1, -1, 2), a, b, c), a);          // vertex a
-  requireNear(closestPointOnTriangle(Vector3d(2, -1, -3), a, b, c), b);          // vertex b
-  requireNear(closestPointOnTriangle(Vector3d(-1, 2, 1), a, b, c), c);           // vertex c
-  requireNear(closestPointOnTriangle(Vector3d(0.25, -1, 1), a, b, c), Vector3d(0.25, 0, 0));  // ab
-  requireNear(closestPointOnTriangle(Vector3d(-1, 0.75, 0), a, b, c), Vector3d(0, 0.75, 0));  // ac
-  requireNear(closestPointOnTriangle(Vector3d(1, 1, 5), a, b, c), Vector3d(0.5, 0.5, 0));     // bc
+  requireNear(closestPointOnTriangle(Vector3d(-1, -1, 2), a, b, c), a);                         // vertex a
+  requireNear(closestPointOnTriangle(Vector3d(2, -1, -3), a, b, c), b);                         // vertex b
+  requireNear(closestPointOnTriangle(Vector3d(-1, 2, 1), a, b, c), c);                          // vertex c
+  requireNear(closestPointOnTriangle(Vector3d(0.25, -1, 1), a, b, c), Vector3d(0.25, 0, 0));    // ab
+  requireNear(closestPointOnTriangle(Vector3d(-1, 0.75, 0), a, b, c), Vector3d(0, 0.75, 0));    // ac
+  requireNear(closestPointOnTriangle(Vector3d(1, 1, 5), a, b, c), Vector3d(0.5, 0.5, 0));       // bc
   requireNear(closestPointOnTriangle(Vector3d(0.2, 0.3, -4), a, b, c), Vector3d(0.2, 0.3, 0));  // face
 }
 

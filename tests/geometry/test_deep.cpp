@@ -49,12 +49,14 @@ std::string checkAnswer(const ConvexPolytope& A, const Isometry3d& X_WA, const C
   // World coordinates carry about 1e-16 of their magnitude: far from the origin, tiny shapes'
   // witnesses cannot be closer to consistent than that.
   const double worldUlp = 1e-15 * std::max(r.pointA.norm(), r.pointB.norm());
-  if (witnessGap > 1e-9 * L + worldUlp) why << "witnesses inconsistent by " << witnessGap / L << " L (sd " << r.distance / L << " L); ";
+  if (witnessGap > 1e-9 * L + worldUlp)
+    why << "witnesses inconsistent by " << witnessGap / L << " L (sd " << r.distance / L << " L); ";
   if (r.distance < 0) {
     // Translating B by depth * n makes the shapes touch; by 0.99 * depth * n they still overlap.
     const double depth = -r.distance;
     const ExactResult moved = exactSignedDistance(A, X_WA, B, translated(X_WB, depth * r.normal));
-    if (std::abs(moved.distance) > 1e-9 * L) why << "after translating by depth*n, exact sd = " << moved.distance << "; ";
+    if (std::abs(moved.distance) > 1e-9 * L)
+      why << "after translating by depth*n, exact sd = " << moved.distance << "; ";
     if (depth > 1e-6 * L) {
       const ExactResult partly = exactSignedDistance(A, X_WA, B, translated(X_WB, 0.99 * depth * r.normal));
       if (partly.distance >= 0) why << "after 0.99*depth*n no overlap; ";
@@ -133,7 +135,8 @@ BOOST_AUTO_TEST_CASE(agrees_with_exact_reference_on_10000_pairs) {
       // GJK distance against the exact distance.
       const double derr = std::abs(r.distance - exact.distance) / std::max(exact.distance, 1e-3 * L);
       if (derr > (p.far ? 1e-9 : 1e-10)) ++distanceMisses;
-      BOOST_TEST(derr <= (p.far ? 1e-9 : 1e-10), "pair " << i << ": distance " << r.distance << " exact " << exact.distance);
+      BOOST_TEST(derr <= (p.far ? 1e-9 : 1e-10),
+                 "pair " << i << ": distance " << r.distance << " exact " << exact.distance);
     }
   }
   // Both outcomes are in the sample, mostly overlapping.
@@ -184,8 +187,9 @@ BOOST_AUTO_TEST_CASE(swapping_shapes_gives_same_depth_and_opposite_normal) {
     const SignedDistanceResult ab = signedDistance(A, p.X_WA, B, p.X_WB);
     const SignedDistanceResult ba = signedDistance(B, p.X_WB, A, p.X_WA);
     const double L = depthScale(A, B);
-    BOOST_TEST(std::abs(ab.distance - ba.distance) <= (p.far ? 1e-10 : 1e-12) * std::max(std::abs(ab.distance), 1e-3 * L),
-               "pair " << i << ": " << ab.distance << " vs " << ba.distance);
+    BOOST_TEST(
+        std::abs(ab.distance - ba.distance) <= (p.far ? 1e-10 : 1e-12) * std::max(std::abs(ab.distance), 1e-3 * L),
+        "pair " << i << ": " << ab.distance << " vs " << ba.distance);
     // The swapped answer, read back for (A, B), must be a valid answer too (normals may differ
     // only where two facets tie in depth).
     SignedDistanceResult back = ba;
@@ -249,18 +253,21 @@ SignedDistanceResult expectExact(const ConvexPolytope& A, const Isometry3d& X_WA
   const SignedDistanceResult r = signedDistance(A, X_WA, B, X_WB);
   const SignedDistanceResult s = signedDistance(B, X_WB, A, X_WA);
   BOOST_TEST(depthError(r.distance, exact.distance, L) <= tolRel, "sd " << r.distance << " exact " << exact.distance);
-  BOOST_TEST(depthError(s.distance, exact.distance, L) <= tolRel, "swapped sd " << s.distance << " exact " << exact.distance);
+  BOOST_TEST(depthError(s.distance, exact.distance, L) <= tolRel,
+             "swapped sd " << s.distance << " exact " << exact.distance);
   BOOST_TEST(r.certified);
   BOOST_TEST(s.certified);
   // Warm: a second query of the same pair through a cache that saw the first.
   PairCache cache;
   signedDistance(A, X_WA, B, X_WB, &cache);
   const SignedDistanceResult warm = signedDistance(A, X_WA, B, X_WB, &cache);
-  BOOST_TEST(depthError(warm.distance, exact.distance, L) <= tolRel, "warm sd " << warm.distance << " exact " << exact.distance);
+  BOOST_TEST(depthError(warm.distance, exact.distance, L) <= tolRel,
+             "warm sd " << warm.distance << " exact " << exact.distance);
   PenetrationOptions deepWalk;
   deepWalk.method = PenetrationMethod::GaussMapWalk;
   const SignedDistanceResult walk = signedDistance(A, X_WA, B, X_WB, nullptr, deepWalk);
-  BOOST_TEST(depthError(walk.distance, exact.distance, L) <= tolRel, "DEEP walk sd " << walk.distance << " exact " << exact.distance);
+  BOOST_TEST(depthError(walk.distance, exact.distance, L) <= tolRel,
+             "DEEP walk sd " << walk.distance << " exact " << exact.distance);
   const std::string why = checkAnswer(A, X_WA, B, X_WB, r);
   BOOST_TEST(why.empty(), why);
   return r;
@@ -397,19 +404,21 @@ BOOST_AUTO_TEST_CASE(parallel_edges) {
 BOOST_AUTO_TEST_CASE(fcl_issue_493_boxes_epa_failure) {
   // FCL #493: two 0.5 m cubes, same rotation; libccd's EPA threw "origin is outside the polytope".
   Eigen::Matrix3d R;
-  R << 0.96193976625564348026, 0.15401279915737359216, 0.22572537250328919556,
-      -0.19134171618254486313, 0.96936494951283913579, 0.15401279915737359216,
-      -0.19509032201612822033, -0.19134171618254486313, 0.96193976625564348026;
+  R << 0.96193976625564348026, 0.15401279915737359216, 0.22572537250328919556, -0.19134171618254486313,
+      0.96936494951283913579, 0.15401279915737359216, -0.19509032201612822033, -0.19134171618254486313,
+      0.96193976625564348026;
   const ConvexPolytope box = boxOf(0.25, 0.25, 0.25);
-  expectExact(box, poseRt(R, Vector3d(2.0770063995786869349, 0.48468247475641951239, 1.1543291419087275962)),
-              box, poseRt(R, Vector3d(2, 0, 1.25)));
+  expectExact(box, poseRt(R, Vector3d(2.0770063995786869349, 0.48468247475641951239, 1.1543291419087275962)), box,
+              poseRt(R, Vector3d(2, 0, 1.25)));
 }
 
 BOOST_AUTO_TEST_CASE(fcl_issue_399_thin_boxes) {
   // FCL #399: a thin box against a flat one; libccd's EPA was called on a separated pair.
   Eigen::Matrix3d R1, R2;
-  R1 << -0.099432387353076273628, 0.99504432079443971837, 0, -0.99504432079443971837, -0.099432387353076273628, 0, 0, 0, 1;
-  R2 << 0.99506598442099225554, 0.099215354901756730444, 0, -0.099215354901756730444, 0.99506598442099225554, 0, 0, 0, 1;
+  R1 << -0.099432387353076273628, 0.99504432079443971837, 0, -0.99504432079443971837, -0.099432387353076273628, 0, 0, 0,
+      1;
+  R2 << 0.99506598442099225554, 0.099215354901756730444, 0, -0.099215354901756730444, 0.99506598442099225554, 0, 0, 0,
+      1;
   const ConvexPolytope A = boxOf(0.23768037557601928711 / 2, 0.15702305734157562256 / 2, 0.125);
   const ConvexPolytope B = boxOf(0.010000000000000000208 / 2, 0.78165709972381591797 / 2, 0.125);
   expectExact(A, poseRt(R1, Vector3d(0.29526406526565551758, -0.013230856508016586304, 0)), B,
@@ -492,8 +501,8 @@ BOOST_AUTO_TEST_CASE(points_and_segments_with_radii) {
   const ConvexShape capsule{&segment, 0.2};
   const ConvexShape solid{&box, 0.0};
   // Sphere centre inside the box, 0.1 below the top face: depth 0.1 + 0.3.
-  SignedDistanceResult r = signedDistance(solid, Isometry3d::Identity(), sphere,
-                                          makePose(Quaterniond::Identity(), Vector3d(0.2, 0.1, 0.9)));
+  SignedDistanceResult r =
+      signedDistance(solid, Isometry3d::Identity(), sphere, makePose(Quaterniond::Identity(), Vector3d(0.2, 0.1, 0.9)));
   BOOST_TEST(std::abs(r.distance + 0.4) <= 1e-15);
   BOOST_TEST(std::abs(r.normal.z() - 1) <= 1e-15);
   // Capsule lying across the box's top face, axis along x, 0.1 above it: distance -0.1.

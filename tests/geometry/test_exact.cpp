@@ -25,8 +25,7 @@ namespace {
 // forming differences and fitting facet planes is ~1e-16 * L, far below this.
 constexpr double kAccuracy = tol::kInsideRelative;
 
-Eigen::Isometry3d pose(const Eigen::Vector3d& t,
-                       const Eigen::Quaterniond& q = Eigen::Quaterniond::Identity()) {
+Eigen::Isometry3d pose(const Eigen::Vector3d& t, const Eigen::Quaterniond& q = Eigen::Quaterniond::Identity()) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear() = q.normalized().toRotationMatrix();
   X.translation() = t;
@@ -50,8 +49,7 @@ ConvexPolytope randomHull(std::mt19937& rng, int n, const Eigen::Vector3d& scale
 }
 
 ConvexPolytope square(double h) {
-  return ConvexPolytope::fromPoints(
-      {{-h, -h, 0.0}, {h, -h, 0.0}, {h, h, 0.0}, {-h, h, 0.0}}, "square");
+  return ConvexPolytope::fromPoints({{-h, -h, 0.0}, {h, -h, 0.0}, {h, h, 0.0}, {-h, h, 0.0}}, "square");
 }
 
 double pairScale(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexPolytope& B,
@@ -69,8 +67,8 @@ double gap(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexP
 }
 
 /// Box-box signed distance of axis-aligned boxes (half extents hA, hB, centres 0 and t).
-void boxBoxAnalytic(const Eigen::Vector3d& hA, const Eigen::Vector3d& hB, const Eigen::Vector3d& t,
-                    double& sd, Eigen::Vector3d& n) {
+void boxBoxAnalytic(const Eigen::Vector3d& hA, const Eigen::Vector3d& hB, const Eigen::Vector3d& t, double& sd,
+                    Eigen::Vector3d& n) {
   const Eigen::Vector3d overlap = hA + hB - t.cwiseAbs();
   if ((overlap.array() > 0.0).all()) {
     int k = 0;
@@ -142,24 +140,22 @@ BOOST_AUTO_TEST_CASE(rotated_boxes_match_analytic) {
     Eigen::Vector3d n;
     boxBoxAnalytic(hA, hB, t, sd, n);
     // The same relative configuration under a random rigid transform of the whole scene.
-    const Eigen::Isometry3d X = pose(3.0 * Eigen::Vector3d(off(rng), off(rng), off(rng)),
-                                     randomRotation(rng));
+    const Eigen::Isometry3d X = pose(3.0 * Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
     const ExactResult r = exactSignedDistance(A, X, B, X * pose(t));
     const double L = hA.norm() + hB.norm() + t.norm() + X.translation().norm();
     BOOST_TEST(std::abs(r.distance - sd) <= kAccuracy * L);
-    BOOST_TEST((r.normal - X.linear() * n).norm() <=
-               kAccuracy * L / std::max(std::abs(sd), kAccuracy));
+    BOOST_TEST((r.normal - X.linear() * n).norm() <= kAccuracy * L / std::max(std::abs(sd), kAccuracy));
   }
 }
 
 BOOST_AUTO_TEST_CASE(touching_boxes_have_zero_distance) {
   const Eigen::Vector3d h(0.3, 1.0 / 3.0, 0.4);
   const ConvexPolytope A = ConvexPolytope::box(2.0 * h);
-  const Eigen::Isometry3d X = pose(Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Quaterniond(
-                                       Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized())));
+  const Eigen::Isometry3d X = pose(Eigen::Vector3d(0.1, 0.2, 0.3),
+                                   Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized())));
   // Face to face, edge to edge, corner to corner.
-  for (const Eigen::Vector3d& t : {Eigen::Vector3d(0.6, 0.1, 0.0), Eigen::Vector3d(0.6, 2.0 / 3.0, 0.0),
-                                   Eigen::Vector3d(0.6, 2.0 / 3.0, 0.8)}) {
+  for (const Eigen::Vector3d& t :
+       {Eigen::Vector3d(0.6, 0.1, 0.0), Eigen::Vector3d(0.6, 2.0 / 3.0, 0.0), Eigen::Vector3d(0.6, 2.0 / 3.0, 0.8)}) {
     const ExactResult r = exactSignedDistance(A, X, A, X * pose(t));
     BOOST_TEST(std::abs(r.distance) <= kAccuracy * 2.0);
     BOOST_TEST(r.normal.dot(X.linear() * t) > 0.0);
@@ -189,8 +185,8 @@ BOOST_AUTO_TEST_CASE(sphere_against_box) {
   const ConvexPolytope point = ConvexPolytope::fromPoints({Eigen::Vector3d::Zero()}, "sphere");
   const double r = 0.2;
   // Centre inside the box, nearest face +y: core depth 0.4 - 0.3 = 0.1.
-  ExactResult e = exactSignedDistance(box, pose(Eigen::Vector3d::Zero()), point,
-                                      pose(Eigen::Vector3d(0.1, 0.3, 0.05)), 0.0, r);
+  ExactResult e =
+      exactSignedDistance(box, pose(Eigen::Vector3d::Zero()), point, pose(Eigen::Vector3d(0.1, 0.3, 0.05)), 0.0, r);
   BOOST_TEST(std::abs(e.distance - (-0.1 - r)) <= kAccuracy);
   BOOST_TEST((e.normal - Eigen::Vector3d::UnitY()).norm() <= kAccuracy);
   // Centre outside, nearest the edge (+x, +z).
@@ -203,13 +199,12 @@ BOOST_AUTO_TEST_CASE(sphere_against_box) {
 BOOST_AUTO_TEST_CASE(tetrahedra_are_optimal) {
   std::mt19937 rng(12345);
   std::uniform_real_distribution<double> off(-0.8, 0.8);
-  const ConvexPolytope T = ConvexPolytope::fromPoints(
-      {{1.0, 1.0, 1.0}, {1.0, -1.0, -1.0}, {-1.0, 1.0, -1.0}, {-1.0, -1.0, 1.0}}, "tetra");
+  const ConvexPolytope T =
+      ConvexPolytope::fromPoints({{1.0, 1.0, 1.0}, {1.0, -1.0, -1.0}, {-1.0, 1.0, -1.0}, {-1.0, -1.0, 1.0}}, "tetra");
   int overlapping = 0;
   for (int k = 0; k < 50; ++k) {
     const Eigen::Isometry3d X_WA = pose(Eigen::Vector3d::Zero(), randomRotation(rng));
-    const Eigen::Isometry3d X_WB =
-        pose(2.0 * Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
+    const Eigen::Isometry3d X_WB = pose(2.0 * Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
     overlapping += exactSignedDistance(T, X_WA, T, X_WB).distance < 0.0 ? 1 : 0;
     checkOptimal(T, X_WA, T, X_WB, rng);
   }
@@ -230,9 +225,8 @@ BOOST_AUTO_TEST_CASE(random_hulls_are_optimal) {
 
 BOOST_AUTO_TEST_CASE(coplanar_polygons) {
   const ConvexPolytope S = square(0.5);
-  const Eigen::Isometry3d X =
-      pose(Eigen::Vector3d(0.3, -0.1, 0.2),
-           Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -1, 2).normalized())));
+  const Eigen::Isometry3d X = pose(Eigen::Vector3d(0.3, -0.1, 0.2),
+                                   Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -1, 2).normalized())));
   const Eigen::Vector3d z_W = X.linear() * Eigen::Vector3d::UnitZ();
   // Overlapping in their common plane: depth 0, normal along the plane normal.
   ExactResult r = exactSignedDistance(S, X, S, X * pose(Eigen::Vector3d(0.3, 0.2, 0.0)));
@@ -256,38 +250,32 @@ BOOST_AUTO_TEST_CASE(polygon_penetrating_box) {
   const ConvexPolytope box = ConvexPolytope::box(Eigen::Vector3d(2.0, 2.0, 1.0));
   const ConvexPolytope S = square(0.25);
   // A small square standing upright (normal along x), its lower edge 0.2 into the box's top face.
-  const Eigen::Isometry3d X_WS =
-      pose(Eigen::Vector3d(0.1, 0.0, 0.5 + 0.25 - 0.2),
-           Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitY())));
+  const Eigen::Isometry3d X_WS = pose(Eigen::Vector3d(0.1, 0.0, 0.5 + 0.25 - 0.2),
+                                      Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitY())));
   const ExactResult r = exactSignedDistance(box, pose(Eigen::Vector3d::Zero()), S, X_WS);
   BOOST_TEST(std::abs(r.distance + 0.2) <= kAccuracy);
   BOOST_TEST((r.normal - Eigen::Vector3d::UnitZ()).norm() <= kAccuracy);
 }
 
 BOOST_AUTO_TEST_CASE(segments_and_capsules) {
-  const ConvexPolytope seg =
-      ConvexPolytope::fromPoints({{-0.5, 0.0, 0.0}, {0.5, 0.0, 0.0}}, "segment");
+  const ConvexPolytope seg = ConvexPolytope::fromPoints({{-0.5, 0.0, 0.0}, {0.5, 0.0, 0.0}}, "segment");
   // Crossing segments at right angles, 0.3 apart: M is a flat rectangle off the origin.
   const Eigen::Isometry3d X_WB =
-      pose(Eigen::Vector3d(0.1, 0.0, 0.3),
-           Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitZ())));
+      pose(Eigen::Vector3d(0.1, 0.0, 0.3), Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitZ())));
   ExactResult r = exactSignedDistance(seg, pose(Eigen::Vector3d::Zero()), seg, X_WB, 0.1, 0.15);
   BOOST_TEST(std::abs(r.distance - (0.3 - 0.25)) <= kAccuracy);
   BOOST_TEST((r.normal - Eigen::Vector3d::UnitZ()).norm() <= kAccuracy);
   // Collinear overlapping segments: M is a segment through the origin, depth 0 (plus radii).
-  r = exactSignedDistance(seg, pose(Eigen::Vector3d::Zero()), seg,
-                          pose(Eigen::Vector3d(0.4, 0.0, 0.0)), 0.1, 0.15);
+  r = exactSignedDistance(seg, pose(Eigen::Vector3d::Zero()), seg, pose(Eigen::Vector3d(0.4, 0.0, 0.0)), 0.1, 0.15);
   BOOST_TEST(std::abs(r.distance + 0.25) <= kAccuracy);
   BOOST_TEST(std::abs(r.normal.x()) <= kAccuracy);
   BOOST_TEST(std::abs(r.normal.norm() - 1.0) <= kAccuracy);
   // Parallel segments side by side: M is a segment off the origin.
-  r = exactSignedDistance(seg, pose(Eigen::Vector3d::Zero()), seg,
-                          pose(Eigen::Vector3d(0.2, 0.0, -0.6)), 0.1, 0.15);
+  r = exactSignedDistance(seg, pose(Eigen::Vector3d::Zero()), seg, pose(Eigen::Vector3d(0.2, 0.0, -0.6)), 0.1, 0.15);
   BOOST_TEST(std::abs(r.distance - (0.6 - 0.25)) <= kAccuracy);
   BOOST_TEST((r.normal + Eigen::Vector3d::UnitZ()).norm() <= kAccuracy);
   // Collinear and apart: the gap along the line.
-  r = exactSignedDistance(seg, pose(Eigen::Vector3d::Zero()), seg,
-                          pose(Eigen::Vector3d(-1.5, 0.0, 0.0)));
+  r = exactSignedDistance(seg, pose(Eigen::Vector3d::Zero()), seg, pose(Eigen::Vector3d(-1.5, 0.0, 0.0)));
   BOOST_TEST(std::abs(r.distance - 0.5) <= kAccuracy);
   BOOST_TEST((r.normal + Eigen::Vector3d::UnitX()).norm() <= kAccuracy);
 }
@@ -300,8 +288,7 @@ BOOST_AUTO_TEST_CASE(far_from_origin_matches_near_origin) {
     const ConvexPolytope A = randomHull(rng, 20, Eigen::Vector3d(0.5, 0.4, 0.3));
     const ConvexPolytope B = ConvexPolytope::box(Eigen::Vector3d(0.6, 0.4, 2.0 / 3.0));
     const Eigen::Isometry3d X_WA = pose(Eigen::Vector3d::Zero(), randomRotation(rng));
-    const Eigen::Isometry3d X_WB =
-        pose(Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
+    const Eigen::Isometry3d X_WB = pose(Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
     const ExactResult near = exactSignedDistance(A, X_WA, B, X_WB);
     const Eigen::Isometry3d shift = pose(far);
     const ExactResult away = exactSignedDistance(A, shift * X_WA, B, shift * X_WB);
@@ -317,10 +304,8 @@ BOOST_AUTO_TEST_CASE(swap_gives_same_distance_opposite_normal) {
   for (int k = 0; k < 30; ++k) {
     const ConvexPolytope A = randomHull(rng, 20, Eigen::Vector3d(1.0, 0.6, 0.4));
     const ConvexPolytope B = randomHull(rng, 15, Eigen::Vector3d(0.5, 0.5, 0.8));
-    const Eigen::Isometry3d X_WA =
-        pose(Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
-    const Eigen::Isometry3d X_WB =
-        pose(Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
+    const Eigen::Isometry3d X_WA = pose(Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
+    const Eigen::Isometry3d X_WB = pose(Eigen::Vector3d(off(rng), off(rng), off(rng)), randomRotation(rng));
     const ExactResult ab = exactSignedDistance(A, X_WA, B, X_WB, 0.05, 0.1);
     const ExactResult ba = exactSignedDistance(B, X_WB, A, X_WA, 0.1, 0.05);
     const double L = pairScale(A, X_WA, B, X_WB);
@@ -335,8 +320,7 @@ BOOST_AUTO_TEST_CASE(minkowski_hull_of_boxes_is_a_box) {
   const ConvexPolytope A = ConvexPolytope::box(2.0 * hA);
   const ConvexPolytope B = ConvexPolytope::box(2.0 * hB);
   const Eigen::Vector3d t(0.1, -0.2, 0.05);
-  const PairFrame frame =
-      PairFrame::make(A, pose(Eigen::Vector3d::Zero()), B, pose(t));
+  const PairFrame frame = PairFrame::make(A, pose(Eigen::Vector3d::Zero()), B, pose(t));
   const MinkowskiHull M = minkowskiDifferenceHull(A, B, frame);
   BOOST_TEST(M.dimension == 3);
   BOOST_TEST(M.vertices.size() == 8u);
@@ -350,8 +334,7 @@ BOOST_AUTO_TEST_CASE(minkowski_hull_of_boxes_is_a_box) {
     const double expected = h[k] + (f.normal[k] > 0.0 ? t[k] : -t[k]);
     BOOST_TEST(std::abs(f.offset - expected) <= kAccuracy);
     // Counter-clockwise seen from outside.
-    const Eigen::Vector3d turn =
-        (f.vertices[1] - f.vertices[0]).cross(f.vertices[2] - f.vertices[1]);
+    const Eigen::Vector3d turn = (f.vertices[1] - f.vertices[0]).cross(f.vertices[2] - f.vertices[1]);
     BOOST_TEST(turn.dot(f.normal) > 0.0);
   }
   const ExactResult r = exactSignedDistance(A, pose(Eigen::Vector3d::Zero()), B, pose(t));

@@ -147,7 +147,8 @@ BOOST_AUTO_TEST_CASE(overlaps_unchecked_equals_overlaps) {
   int overlapping = 0;
   int apart = 0;
   for (int trial = 0; trial < 3000; ++trial) {
-    const ConvexPolytope A = ConvexPolytope::fromPoints(t::ellipsoidPoints(rng, 20 + trial % 150, Vector3d(0.3, 0.2, 0.1)));
+    const ConvexPolytope A =
+        ConvexPolytope::fromPoints(t::ellipsoidPoints(rng, 20 + trial % 150, Vector3d(0.3, 0.2, 0.1)));
     const ConvexPolytope B = trial % 4 == 0
                                  ? ConvexPolytope::box(Vector3d(0.4, 0.6, 0.1))
                                  : ConvexPolytope::fromPoints(t::ellipsoidPoints(rng, 30, Vector3d(0.1, 0.4, 0.2)));
@@ -183,11 +184,12 @@ BOOST_AUTO_TEST_CASE(shared_scratch_gives_the_local_scratch_answers) {
   // in turn along a motion (warm), must give bit for bit what queries with local scratch give.
   std::mt19937 rng(71);
   std::vector<ConvexPolytope> cores;
-  for (int n : {8, 40, 300}) cores.push_back(ConvexPolytope::fromPoints(t::ellipsoidPoints(rng, n, Vector3d(1.0, 0.6, 0.3))));
+  for (int n : {8, 40, 300})
+    cores.push_back(ConvexPolytope::fromPoints(t::ellipsoidPoints(rng, n, Vector3d(1.0, 0.6, 0.3))));
   cores.push_back(ConvexPolytope::fromPoints({Vector3d(-0.5, 0, 0), Vector3d(0.5, 0.1, 0)}));  // segment
   cores.push_back(ConvexPolytope::fromPoints({Vector3d(0.2, 0.1, -0.3)}));                     // point
   cores.push_back(ConvexPolytope::fromPoints(
-      {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(1, 1, 0), Vector3d(0, 1, 0)}));             // polygon
+      {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(1, 1, 0), Vector3d(0, 1, 0)}));  // polygon
   deepcheck::geometry::PenetrationScratch scratch;
   for (auto method : {deepcheck::geometry::PenetrationMethod::CertifiedExpansion,
                       deepcheck::geometry::PenetrationMethod::GaussMapWalk}) {

@@ -48,10 +48,9 @@ double pointSegment(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
   return (a + s * e - p).norm();
 }
 
-double segmentSegment(const Vector3d& p0, const Vector3d& p1, const Vector3d& q0,
-                      const Vector3d& q1) {
-  double best = std::min({pointSegment(p0, q0, q1), pointSegment(p1, q0, q1),
-                          pointSegment(q0, p0, p1), pointSegment(q1, p0, p1)});
+double segmentSegment(const Vector3d& p0, const Vector3d& p1, const Vector3d& q0, const Vector3d& q1) {
+  double best = std::min(
+      {pointSegment(p0, q0, q1), pointSegment(p1, q0, q1), pointSegment(q0, p0, p1), pointSegment(q1, p0, p1)});
   // Interior-interior minimum: the closest points of the two lines, from cross products (relative
   // error eps / sin(angle); the textbook a e - b^2 loses twice as many digits). Whatever round-off
   // does to (s, t), two points on the segments never underestimate the minimum; when the lines are
@@ -192,8 +191,8 @@ double pairScale(const ConvexPolytope& A, const ConvexPolytope& B, const PairFra
 
 /// Places B (rotation R) so that a slab of width `gap` normal to `n` separates it from A, with a
 /// random sideways offset: the distance is then at least `gap`.
-PairFrame separatedFrame(std::mt19937& rng, const ConvexPolytope& A, const ConvexPolytope& B,
-                         const Eigen::Matrix3d& R, const Vector3d& n, double gap) {
+PairFrame separatedFrame(std::mt19937& rng, const ConvexPolytope& A, const ConvexPolytope& B, const Eigen::Matrix3d& R,
+                         const Vector3d& n, double gap) {
   PairFrame frame;
   frame.R = R;
   double hA = -std::numeric_limits<double>::infinity();
@@ -218,8 +217,7 @@ PairFrame swapped(const PairFrame& frame) {
 /// Checks of a Separated result: witness points are the convex combinations the simplex says,
 /// pointB - pointA = distance * normal, and the planes through them normal to `normal` support
 /// A and B (optimality conditions of the distance).
-void checkWitnesses(const GjkResult& r, const ConvexPolytope& A, const ConvexPolytope& B,
-                    const PairFrame& frame) {
+void checkWitnesses(const GjkResult& r, const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
   const double L = pairScale(A, B, frame);
   const double tolW = kWitnessRelative * L;
   BOOST_TEST(std::abs(r.normal.norm() - 1.0) < 1e-14);
@@ -247,8 +245,7 @@ void checkWitnesses(const GjkResult& r, const ConvexPolytope& A, const ConvexPol
 
 /// An Overlapping or Touching result carries a common point: the simplex weights combine A's and
 /// B's vertices to (nearly) the same point.
-void checkCommonPoint(const GjkResult& r, const ConvexPolytope& A, const ConvexPolytope& B,
-                      const PairFrame& frame) {
+void checkCommonPoint(const GjkResult& r, const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame) {
   BOOST_TEST(r.distance == 0.0);
   BOOST_TEST((r.pointB - r.pointA).norm() <= 1e-12 * pairScale(A, B, frame));
 }
@@ -269,19 +266,17 @@ ConvexPolytope randomCore(std::mt19937& rng, PolytopeKind kind, double scale) {
       return ConvexPolytope::fromPoints({scale * Vector3d(u(rng), u(rng), u(rng))}, "point");
     case PolytopeKind::Segment:
       return ConvexPolytope::fromPoints(
-          {scale * Vector3d(u(rng), u(rng), u(rng)), scale * Vector3d(u(rng), u(rng), u(rng))},
-          "segment");
+          {scale * Vector3d(u(rng), u(rng), u(rng)), scale * Vector3d(u(rng), u(rng), u(rng))}, "segment");
     case PolytopeKind::Polygon:
       return polygonFrom(rng, 3 + std::uniform_int_distribution<int>(0, 10)(rng), scale);
     case PolytopeKind::Polyhedron:
       break;
   }
-  return randomHull(rng, 4 + std::uniform_int_distribution<int>(0, 30)(rng), scale,
-                    Vector3d::Zero());
+  return randomHull(rng, 4 + std::uniform_int_distribution<int>(0, 30)(rng), scale, Vector3d::Zero());
 }
 
-const std::array<PolytopeKind, 4> kAllKinds = {PolytopeKind::Point, PolytopeKind::Segment,
-                                               PolytopeKind::Polygon, PolytopeKind::Polyhedron};
+const std::array<PolytopeKind, 4> kAllKinds = {PolytopeKind::Point, PolytopeKind::Segment, PolytopeKind::Polygon,
+                                               PolytopeKind::Polyhedron};
 
 /// A point strictly inside face f of A (frame P) and a vertex j of B supporting -normal(f).
 Vector3d pointInFace(std::mt19937& rng, const ConvexPolytope& A, int f) {
@@ -298,8 +293,7 @@ Vector3d pointInFace(std::mt19937& rng, const ConvexPolytope& A, int f) {
 }
 
 /// Frame placing B's vertex supporting -n (in P) at the point q.
-PairFrame vertexAt(const ConvexPolytope& B, const Eigen::Matrix3d& R, const Vector3d& n,
-                   const Vector3d& q) {
+PairFrame vertexAt(const ConvexPolytope& B, const Eigen::Matrix3d& R, const Vector3d& n, const Vector3d& q) {
   PairFrame frame;
   frame.R = R;
   const int j = B.supportBruteForce(R.transpose() * (-n));
@@ -343,11 +337,10 @@ BOOST_AUTO_TEST_CASE(random_hulls_match_brute_force) {
     const PairFrame frame = separatedFrame(rng, A, B, randomRotation(rng), randomUnit(rng), gap);
 
     const GjkResult r = gjkDistance(A, B, frame);
-    BOOST_TEST_CONTEXT("trial " << trial << " nA " << A.numVertices() << " nB " << B.numVertices()
-                                << " gap " << gap << " size " << size) {
+    BOOST_TEST_CONTEXT("trial " << trial << " nA " << A.numVertices() << " nB " << B.numVertices() << " gap " << gap
+                                << " size " << size) {
       BOOST_REQUIRE(statusName(r.status) == "Separated");
-      const double ref = bruteForceDistance(featuresOf(A, verticesA(A)),
-                                            featuresOf(B, verticesB(B, frame)));
+      const double ref = bruteForceDistance(featuresOf(A, verticesA(A)), featuresOf(B, verticesB(B, frame)));
       BOOST_TEST(ref >= gap * (1.0 - 1e-9));
       const double err = std::abs(r.distance - ref) / ref;
       BOOST_TEST(err <= kDistanceRelative, "distance " << r.distance << " reference " << ref);
@@ -373,13 +366,12 @@ BOOST_AUTO_TEST_CASE(all_core_kinds_match_brute_force) {
         const ConvexPolytope B = randomCore(rng, kindB, scale);
         BOOST_REQUIRE(A.kind() == kindA);
         BOOST_REQUIRE(B.kind() == kindB);
-        const PairFrame frame = separatedFrame(rng, A, B, randomRotation(rng), randomUnit(rng),
-                                               scale * logUniform(rng, 1e-2, 2.0));
+        const PairFrame frame =
+            separatedFrame(rng, A, B, randomRotation(rng), randomUnit(rng), scale * logUniform(rng, 1e-2, 2.0));
         const GjkResult r = gjkDistance(A, B, frame);
         BOOST_TEST_CONTEXT(toString(kindA) << " vs " << toString(kindB) << " trial " << trial) {
           BOOST_REQUIRE(statusName(r.status) == "Separated");
-          const double ref = bruteForceDistance(featuresOf(A, verticesA(A)),
-                                                featuresOf(B, verticesB(B, frame)));
+          const double ref = bruteForceDistance(featuresOf(A, verticesA(A)), featuresOf(B, verticesB(B, frame)));
           BOOST_TEST(std::abs(r.distance - ref) <= kDistanceRelative * ref,
                      "distance " << r.distance << " reference " << ref);
           checkWitnesses(r, A, B, frame);
@@ -459,8 +451,7 @@ BOOST_AUTO_TEST_CASE(degenerate_configurations) {
     frame.t = inPlane * (2.0 * A.boundingRadius() + 0.25);
     const GjkResult r = gjkDistance(A, B, frame);
     BOOST_REQUIRE(statusName(r.status) == "Separated");
-    const double ref = bruteForceDistance(featuresOf(A, verticesA(A)),
-                                          featuresOf(B, verticesB(B, frame)));
+    const double ref = bruteForceDistance(featuresOf(A, verticesA(A)), featuresOf(B, verticesB(B, frame)));
     BOOST_TEST(std::abs(r.distance - ref) <= kDistanceRelative * ref);
     checkWitnesses(r, A, B, frame);
   }
@@ -519,8 +510,8 @@ BOOST_AUTO_TEST_CASE(overlapping_pairs) {
   for (int trial = 0; trial < 100; ++trial) {
     const double scale = logUniform(rng, 1e-3, 1e3);
     const ConvexPolytope A = randomHull(rng, 4 + trial, scale, Vector3d::Zero());
-    const ConvexPolytope B = randomHull(rng, 4 + (trial * 7) % 100, scale * logUniform(rng, 0.1, 10.0),
-                                        Vector3d::Zero());
+    const ConvexPolytope B =
+        randomHull(rng, 4 + (trial * 7) % 100, scale * logUniform(rng, 0.1, 10.0), Vector3d::Zero());
     const Vector3d n = randomUnit(rng);
     const Vector3d boundary = PairFrame::vertexA(A, A.supportBruteForce(n));
     const PairFrame frame = vertexAt(B, randomRotation(rng), n, u(rng) * boundary);
@@ -646,8 +637,8 @@ BOOST_AUTO_TEST_CASE(flat_overlaps_are_touching) {
         {&segA, &segB}, {&square, &point}, {&square, &square}};
     for (const auto& [A, B] : cases) {
       const GjkResult r = gjkDistance(*A, *B, frame);
-      BOOST_TEST(statusName(r.status) == "Touching", "trial " << trial << ": " << toString(A->kind())
-                                                           << " vs " << toString(B->kind()));
+      BOOST_TEST(statusName(r.status) == "Touching",
+                 "trial " << trial << ": " << toString(A->kind()) << " vs " << toString(B->kind()));
       checkCommonPoint(r, *A, *B, frame);
       BOOST_TEST(gjkOverlap(*A, *B, frame));
     }

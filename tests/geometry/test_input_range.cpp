@@ -99,8 +99,11 @@ BOOST_AUTO_TEST_CASE(coordinate_limit_is_inclusive) {
   const double beyond = std::nextafter(max, std::numeric_limits<double>::infinity());
   const ConvexPolytope ok = ConvexPolytope::fromPoints({{0, 0, 0}, {0, -max, 0}, {max, 0, 0}});
   BOOST_TEST(ok.numVertices() == 3);
-  checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, 0}, {0, -beyond, 0}}, "shape 'a'"); },
-                "shape 'a': point 1 coordinate y = -1.0000000000000003e+50 is out of range (|value| > 1e+50)");
+  checkRejected(
+      [&] {
+        ConvexPolytope::fromPoints({{0, 0, 0}, {0, -beyond, 0}}, "shape 'a'");
+      },
+      "shape 'a': point 1 coordinate y = -1.0000000000000003e+50 is out of range (|value| > 1e+50)");
   checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, 0}, {0, 0, 1e300}}); }, "coordinate z = 1e+300");
   checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, std::nan("")}}); }, "coordinate z = nan is non-finite");
 }
@@ -112,11 +115,17 @@ BOOST_AUTO_TEST_CASE(extent_limit_is_inclusive_and_a_single_point_is_accepted) {
   const ConvexPolytope point = ConvexPolytope::fromPoints({{1e-300, 0, 0}, {1e-300, 0, 0}});
   BOOST_TEST(point.numVertices() == 1);
   const double below = std::nextafter(min, 0.0);
-  checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, 0}, {0, 0, below}}, "shape 't'"); },
-                "shape 't': the points span only 9.999999999999999e-51 (largest coordinate spread), below the "
-                "smallest supported extent 1e-50");
-  checkRejected([&] { ConvexPolytope::fromPoints({{0, 0, 0}, {1e-300, 0, 0}, {0, 1e-300, 0}, {0, 0, 1e-300}}); },
-                "span only 1e-300");
+  checkRejected(
+      [&] {
+        ConvexPolytope::fromPoints({{0, 0, 0}, {0, 0, below}}, "shape 't'");
+      },
+      "shape 't': the points span only 9.999999999999999e-51 (largest coordinate spread), below the "
+      "smallest supported extent 1e-50");
+  checkRejected(
+      [&] {
+        ConvexPolytope::fromPoints({{0, 0, 0}, {1e-300, 0, 0}, {0, 1e-300, 0}, {0, 0, 1e-300}});
+      },
+      "span only 1e-300");
 }
 
 BOOST_AUTO_TEST_CASE(pose_translation_limit_is_inclusive) {
@@ -126,10 +135,16 @@ BOOST_AUTO_TEST_CASE(pose_translation_limit_is_inclusive) {
   const SignedDistanceResult r = signedDistance(A, at({0, 0, -max}), A, at({0, 0, max}));
   BOOST_TEST(std::isfinite(r.distance));
   BOOST_TEST(r.distance == 2 * max, boost::test_tools::tolerance(1e-12));
-  checkRejected([&] { signedDistance(A, at({0, 0, 0}), A, at({beyond, 0, 0})); },
-                "X_WB: pose translation x = 1.0000000000000003e+50 is out of range");
-  checkRejected([&] { exactSignedDistance(A, at({0, -beyond, 0}), A, at({0, 0, 0})); },
-                "X_WA: pose translation y = -1.0000000000000003e+50 is out of range");
+  checkRejected(
+      [&] {
+        signedDistance(A, at({0, 0, 0}), A, at({beyond, 0, 0}));
+      },
+      "X_WB: pose translation x = 1.0000000000000003e+50 is out of range");
+  checkRejected(
+      [&] {
+        exactSignedDistance(A, at({0, -beyond, 0}), A, at({0, 0, 0}));
+      },
+      "X_WA: pose translation y = -1.0000000000000003e+50 is out of range");
 }
 
 BOOST_AUTO_TEST_CASE(tiny_to_huge_shapes_are_answered_correctly) {

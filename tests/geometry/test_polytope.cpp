@@ -67,8 +67,7 @@ std::vector<Vector3d> boxSurfacePoints(const Vector3d& e, int perFace, std::mt19
   return pts;
 }
 
-std::vector<Vector3d> transformed(const std::vector<Vector3d>& pts, const Eigen::Matrix3d& R,
-                                  const Vector3d& t) {
+std::vector<Vector3d> transformed(const std::vector<Vector3d>& pts, const Eigen::Matrix3d& R, const Vector3d& t) {
   std::vector<Vector3d> out;
   for (const Vector3d& p : pts) out.push_back(R * p + t);
   return out;
@@ -77,8 +76,7 @@ std::vector<Vector3d> transformed(const std::vector<Vector3d>& pts, const Eigen:
 /// The checks every hull must pass; `label` names the input in failure messages.
 void checkHull(const ConvexPolytope& poly, const std::vector<Vector3d>& input, std::mt19937& rng,
                const std::string& label) {
-  BOOST_TEST_CONTEXT(label << " (" << toString(poly.kind()) << ", " << poly.numVertices()
-                           << " vertices)") {
+  BOOST_TEST_CONTEXT(label << " (" << toString(poly.kind()) << ", " << poly.numVertices() << " vertices)") {
     BOOST_TEST(detail::validate(poly) == "");
     BOOST_TEST(poly.lengthScale() > 0.0);
 
@@ -90,8 +88,7 @@ void checkHull(const ConvexPolytope& poly, const std::vector<Vector3d>& input, s
     BOOST_TEST(foreign == 0);
 
     const Vector3d& c = poly.center();
-    const double tol =
-        poly.hullTolerance() + 4.0 * std::numeric_limits<double>::epsilon() * poly.lengthScale();
+    const double tol = poly.hullTolerance() + 4.0 * std::numeric_limits<double>::epsilon() * poly.lengthScale();
 
     // Every input point inside every face plane (solids).
     if (poly.kind() == PolytopeKind::Polyhedron) {
@@ -176,24 +173,21 @@ BOOST_AUTO_TEST_CASE(kind_names) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_messages) {
-  BOOST_CHECK_EXCEPTION(ConvexPolytope::fromPoints({}, "link3"), std::invalid_argument,
-                        [](const std::exception& e) {
-                          return messageHas(e, {"link3", "no points"});
-                        });
+  BOOST_CHECK_EXCEPTION(ConvexPolytope::fromPoints({}, "link3"), std::invalid_argument, [](const std::exception& e) {
+    return messageHas(e, {"link3", "no points"});
+  });
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<Vector3d> pts(5, Vector3d(1.0 / 3.0, 0.5, 0.25));
   pts[3].y() = nan;
-  BOOST_CHECK_EXCEPTION(ConvexPolytope::fromPoints(pts, "gripper"), std::invalid_argument,
-                        [](const std::exception& e) {
-                          return messageHas(e, {"gripper", "point 3", "y", "nan"});
-                        });
+  BOOST_CHECK_EXCEPTION(ConvexPolytope::fromPoints(pts, "gripper"), std::invalid_argument, [](const std::exception& e) {
+    return messageHas(e, {"gripper", "point 3", "y", "nan"});
+  });
   pts[3].y() = 0.5;
   pts[4].z() = -inf;
-  BOOST_CHECK_EXCEPTION(ConvexPolytope::fromPoints(pts), std::invalid_argument,
-                        [](const std::exception& e) {
-                          return messageHas(e, {"points", "point 4", "z", "-inf"});
-                        });
+  BOOST_CHECK_EXCEPTION(ConvexPolytope::fromPoints(pts), std::invalid_argument, [](const std::exception& e) {
+    return messageHas(e, {"points", "point 4", "z", "-inf"});
+  });
   BOOST_CHECK_EXCEPTION(ConvexPolytope::box(Vector3d(1.0, -0.5, 1.0)), std::invalid_argument,
                         [](const std::exception& e) {
                           return messageHas(e, {"box", "y", "-0.5"});
@@ -250,8 +244,7 @@ BOOST_AUTO_TEST_CASE(segment_kind) {
       // The two extreme input points along the line.
       auto along = [&](const Vector3d& p) { return dir.dot(p - base); };
       const auto [lo, hi] = std::minmax_element(
-          pts.begin(), pts.end(),
-          [&](const Vector3d& a, const Vector3d& b) { return along(a) < along(b); });
+          pts.begin(), pts.end(), [&](const Vector3d& a, const Vector3d& b) { return along(a) < along(b); });
       const bool ordered = poly.vertex(0) == *lo && poly.vertex(1) == *hi;
       const bool swapped = poly.vertex(0) == *hi && poly.vertex(1) == *lo;
       BOOST_TEST((ordered || swapped));
@@ -422,8 +415,7 @@ BOOST_AUTO_TEST_CASE(box_surface_samples_merge_into_six_faces) {
   const Vector3d e(0.5, 1.0 / 3.0, 0.2);
   const std::vector<Vector3d> surface = boxSurfacePoints(e, 300, rng);
   for (int rotated = 0; rotated < 2; ++rotated) {
-    const Eigen::Matrix3d R =
-        rotated ? shapes::randomRotation(rng).toRotationMatrix() : Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d R = rotated ? shapes::randomRotation(rng).toRotationMatrix() : Eigen::Matrix3d::Identity();
     const std::vector<Vector3d> pts = transformed(surface, R, Vector3d(0.1, -0.7, 1.0 / 3.0));
     const ConvexPolytope poly = ConvexPolytope::fromPoints(pts);
     BOOST_TEST_CONTEXT("rotated " << rotated) {
@@ -535,8 +527,7 @@ BOOST_AUTO_TEST_CASE(duplicates_and_near_duplicates) {
   std::vector<Vector3d> corners;
   const ConvexPolytope reference = ConvexPolytope::box(Vector3d(2, 4, 6));
   for (const Vector3d& c : reference.vertices()) {
-    for (int k = 0; k < 4; ++k)
-      corners.push_back(c + Vector3d(jitter(rng), jitter(rng), jitter(rng)));
+    for (int k = 0; k < 4; ++k) corners.push_back(c + Vector3d(jitter(rng), jitter(rng), jitter(rng)));
   }
   const ConvexPolytope box = ConvexPolytope::fromPoints(corners);
   BOOST_TEST(box.numVertices() == 8);
@@ -560,10 +551,8 @@ BOOST_AUTO_TEST_CASE(scales_and_offsets) {
     double scale;
     double offset;
   };
-  for (const Case& c :
-       {Case{1e-3, 0.0}, Case{1e3, 0.0}, Case{1.0, 1e4}, Case{1e-3, 1e4}, Case{1e3, 1e4}}) {
-    const Vector3d t =
-        c.offset * Vector3d(1.0, -1.0, 1.0) + Vector3d(1.0 / 3.0, 0.2, 0.1) * c.scale;
+  for (const Case& c : {Case{1e-3, 0.0}, Case{1e3, 0.0}, Case{1.0, 1e4}, Case{1e-3, 1e4}, Case{1e3, 1e4}}) {
+    const Vector3d t = c.offset * Vector3d(1.0, -1.0, 1.0) + Vector3d(1.0 / 3.0, 0.2, 0.1) * c.scale;
     const Eigen::Matrix3d R = shapes::randomRotation(rng).toRotationMatrix();
     std::vector<Vector3d> pts;
     for (int i = 0; i < 300; ++i) pts.push_back(t + c.scale * inBall(rng));
@@ -586,8 +575,7 @@ BOOST_AUTO_TEST_CASE(large_inputs) {
   for (int i = 0; i < 10000; ++i) ball.push_back(inBall(rng));
   checkHull(ConvexPolytope::fromPoints(ball), ball, rng, "ball 10000");
   std::vector<Vector3d> sphere;
-  for (int i = 0; i < 10000; ++i)
-    sphere.push_back(Vector3d(2.0, 1.0, 0.5).cwiseProduct(shapes::randomUnit(rng)));
+  for (int i = 0; i < 10000; ++i) sphere.push_back(Vector3d(2.0, 1.0, 0.5).cwiseProduct(shapes::randomUnit(rng)));
   const ConvexPolytope ellipsoid = ConvexPolytope::fromPoints(sphere);
   BOOST_TEST(ellipsoid.numVertices() == 10000);
   // The principal axes of an axis-aligned ellipsoid's samples are close to x, y, z.
@@ -678,22 +666,19 @@ BOOST_AUTO_TEST_CASE(pair_frame_rejects_bad_poses) {
   Eigen::Isometry3d good = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d bad = Eigen::Isometry3d::Identity();
   bad.translation().y() = std::numeric_limits<double>::quiet_NaN();
-  BOOST_CHECK_EXCEPTION(PairFrame::make(A, bad, A, good), std::invalid_argument,
-                        [](const std::exception& e) {
-                          return messageHas(e, {"X_WA", "nan"});
-                        });
+  BOOST_CHECK_EXCEPTION(PairFrame::make(A, bad, A, good), std::invalid_argument, [](const std::exception& e) {
+    return messageHas(e, {"X_WA", "nan"});
+  });
   bad = Eigen::Isometry3d::Identity();
   bad.linear()(0, 1) = std::numeric_limits<double>::infinity();
-  BOOST_CHECK_EXCEPTION(PairFrame::make(A, good, A, bad), std::invalid_argument,
-                        [](const std::exception& e) {
-                          return messageHas(e, {"X_WB", "inf"});
-                        });
+  BOOST_CHECK_EXCEPTION(PairFrame::make(A, good, A, bad), std::invalid_argument, [](const std::exception& e) {
+    return messageHas(e, {"X_WB", "inf"});
+  });
   bad = Eigen::Isometry3d::Identity();
   bad.linear() *= 1.001;
-  BOOST_CHECK_EXCEPTION(PairFrame::make(A, good, A, bad), std::invalid_argument,
-                        [](const std::exception& e) {
-                          return messageHas(e, {"X_WB", "orthonormal", "0.002"});
-                        });
+  BOOST_CHECK_EXCEPTION(PairFrame::make(A, good, A, bad), std::invalid_argument, [](const std::exception& e) {
+    return messageHas(e, {"X_WB", "orthonormal", "0.002"});
+  });
   bad = Eigen::Isometry3d::Identity();
   bad.linear()(2, 2) = -1.0;
   BOOST_CHECK_EXCEPTION(deepcheck::geometry::checkPose(bad, "link pose"), std::invalid_argument,
@@ -709,7 +694,9 @@ BOOST_AUTO_TEST_CASE(pair_frame_rejects_bad_poses) {
   BOOST_CHECK_NO_THROW(deepcheck::geometry::checkPose(near, "near"));
   near.linear() = Eigen::Matrix3d::Identity() * (1.0 + 6e-7);
   BOOST_CHECK_EXCEPTION(deepcheck::geometry::checkPose(near, "near"), std::invalid_argument,
-                        [](const std::exception& e) { return messageHas(e, {"near", "orthonormal"}); });
+                        [](const std::exception& e) {
+                          return messageHas(e, {"near", "orthonormal"});
+                        });
   Eigen::Isometry3d far = Eigen::Isometry3d::Identity();
   far.translation().x() = 1e51;
   BOOST_CHECK_THROW(deepcheck::geometry::checkPose(far, "far"), std::invalid_argument);

@@ -24,8 +24,8 @@
 
 using deepcheck::geometry::QhullError;
 using deepcheck::geometry::QhullHull;
-using deepcheck::geometry::QhullOptions;
 using deepcheck::geometry::qhullHull;
+using deepcheck::geometry::QhullOptions;
 using Eigen::Vector3d;
 namespace shapes = deepcheck::geometry::testing;
 
@@ -127,8 +127,8 @@ BOOST_AUTO_TEST_CASE(flat_collinear_coincident_and_too_few_points_throw) {
   }
   const std::vector<Vector3d> same(10, Vector3d(0.25, -3.0, 7.0));
   const std::vector<Vector3d> three = {Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY()};
-  for (const auto& [points, name] : {std::pair{flat, "flat set"}, std::pair{line, "collinear set"},
-                                     std::pair{same, "one point ten times"}}) {
+  for (const auto& [points, name] :
+       {std::pair{flat, "flat set"}, std::pair{line, "collinear set"}, std::pair{same, "one point ten times"}}) {
     const std::string message = qhullErrorOf(points, name);
     BOOST_TEST(message.rfind(name, 0) == 0u, message);
     BOOST_TEST(message.find("Qhull failed") != std::string::npos, message);
@@ -141,10 +141,9 @@ BOOST_AUTO_TEST_CASE(flat_collinear_coincident_and_too_few_points_throw) {
 BOOST_AUTO_TEST_CASE(bad_coordinates_throw_invalid_argument_naming_the_point) {
   std::vector<Vector3d> points = boxCorners(1.0, Vector3d::Zero());
   points[5].y() = std::numeric_limits<double>::quiet_NaN();
-  BOOST_CHECK_EXCEPTION(qhullHull(points, QhullOptions{}, "box"), std::invalid_argument,
-                        [](const std::invalid_argument& e) {
-                          return std::string(e.what()).rfind("box: point 5 coordinate y", 0) == 0;
-                        });
+  BOOST_CHECK_EXCEPTION(
+      qhullHull(points, QhullOptions{}, "box"), std::invalid_argument,
+      [](const std::invalid_argument& e) { return std::string(e.what()).rfind("box: point 5 coordinate y", 0) == 0; });
   points[5].y() = 1e101;
   BOOST_CHECK_THROW(qhullHull(points, QhullOptions{}, "box"), std::invalid_argument);
 }

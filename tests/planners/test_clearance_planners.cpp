@@ -49,9 +49,9 @@ void planWithClearance(const std::string& planner) {
   goal << 2.5, -1.0, 1.0, 0.5, 0.5, 0;
   dp::setStartAndGoal(*ss, start, goal);
   const ob::SpaceInformationPtr& si = ss->getSpaceInformation();
-  ss->setOptimizationObjective(dp::makeLengthClearanceObjective(si, dp::validityCheckerOf(*ss),
-                                                                dp::tol::kDefaultSafeDistance,
-                                                                dp::tol::kDefaultHingeWeight, dp::linkSpeedBoundOf(*ss)));
+  ss->setOptimizationObjective(
+      dp::makeLengthClearanceObjective(si, dp::validityCheckerOf(*ss), dp::tol::kDefaultSafeDistance,
+                                       dp::tol::kDefaultHingeWeight, dp::linkSpeedBoundOf(*ss)));
   const ob::PlannerPtr p = dp::makePlanner(planner, si);
   dp::prepareForCostlyObjective(*p);
   ss->setPlanner(p);
@@ -120,8 +120,9 @@ BOOST_AUTO_TEST_CASE(the_clearance_objective_samples_the_informed_set_of_path_le
   ob::ScopedState<> x(si);
   for (int i = 0; i < 100; ++i) {
     BOOST_TEST_REQUIRE(sampler->sampleUniform(x.get(), ob::Cost(c)));
-    const double through = si->distance(ss->getProblemDefinition()->getStartState(0), x.get()) +
-                           si->distance(x.get(), ss->getProblemDefinition()->getGoal()->as<ob::GoalState>()->getState());
+    const double through =
+        si->distance(ss->getProblemDefinition()->getStartState(0), x.get()) +
+        si->distance(x.get(), ss->getProblemDefinition()->getGoal()->as<ob::GoalState>()->getState());
     BOOST_TEST(through <= c * (1.0 + 1e-9));
   }
 }

@@ -103,7 +103,7 @@ BOOST_AUTO_TEST_CASE(a_continuous_joint_is_an_so2_component_in_variable_order) {
 BOOST_AUTO_TEST_CASE(a_start_of_4_rad_is_the_angle_4_minus_2_pi) {
   auto ss = dp::makeSimpleSetup(wheelWorld(false));
   const auto checker = dp::validityCheckerOf(*ss);
-  BOOST_TEST(checker->isValid(config(4.0, 0.0)));  // not refused as above pi
+  BOOST_TEST(checker->isValid(config(4.0, 0.0)));   // not refused as above pi
   BOOST_TEST(!checker->isValid(config(0.0, 1.5)));  // the revolute joint keeps its limits
   dp::setStartAndGoal(*ss, config(4.0, 0.0), config(-7.0, 0.0));
   const Eigen::VectorXd start = checker->mapping().configuration(ss->getProblemDefinition()->getStartState(0));
@@ -206,9 +206,10 @@ BOOST_AUTO_TEST_CASE(problem_files_read_a_continuous_joint_as_the_same_angle) {
   const auto robot = wheel();
   const auto readBack = [&](double spin, std::vector<std::string>* notes) {
     char yaml[200];
-    std::snprintf(yaml, sizeof yaml, "robot_state:\n  joint_state:\n    name: [spin, tilt]\n    position: [%.17g, 0.5]\n",
-                  spin);
-    return deepcheck::problems::configurationOf(robot, deepcheck::problems::parseRobotConfig(yaml, "wheel.yaml"), notes);
+    std::snprintf(yaml, sizeof yaml,
+                  "robot_state:\n  joint_state:\n    name: [spin, tilt]\n    position: [%.17g, 0.5]\n", spin);
+    return deepcheck::problems::configurationOf(robot, deepcheck::problems::parseRobotConfig(yaml, "wheel.yaml"),
+                                                notes);
   };
   std::vector<std::string> notes;
   const Eigen::VectorXd q = readBack(4.0, &notes);

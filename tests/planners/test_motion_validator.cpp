@@ -82,7 +82,8 @@ BOOST_AUTO_TEST_CASE(link_speed_bound_contains_every_vertex_motion) {
         for (const auto& piece : pieces[static_cast<std::size_t>(link)]) {
           for (const Eigen::Vector3d& v : piece.core->vertices()) {
             const Eigen::Vector3d p_L = piece.X_LP * v;
-            const double moved = (X[static_cast<std::size_t>(link)] * p_L - X0[static_cast<std::size_t>(link)] * p_L).norm();
+            const double moved =
+                (X[static_cast<std::size_t>(link)] * p_L - X0[static_cast<std::size_t>(link)] * p_L).norm();
             BOOST_TEST_REQUIRE(moved <= D + 1e-12);
             if (D > 0.0) tightest = std::max(tightest, moved / D);
           }
@@ -169,7 +170,7 @@ struct Comparison {
   std::uint64_t clearanceChecks = 0;   ///< isValid queries of the clearance validator (discrete pass)
   std::uint64_t clearanceQueries = 0;  ///< distance queries of its certification
   std::uint64_t discreteChecks = 0;
-  int certificationRejections = 0;     ///< collisions only the certification found
+  int certificationRejections = 0;  ///< collisions only the certification found
   int lastValidMismatches = 0;
 };
 
@@ -244,7 +245,7 @@ BOOST_AUTO_TEST_CASE(certified_steps_never_accept_a_colliding_motion) {
     BOOST_TEST(r.clearanceWrong <= r.discreteWrong);
     BOOST_TEST(r.clearanceMissesFree == 0);  // it only rejects motions with a colliding state
     BOOST_TEST(r.certificationRejections + r.clearanceWrong == r.discreteWrong);  // catches discrete's misses
-    BOOST_TEST(r.truthValid > 10);           // both outcomes in the sample
+    BOOST_TEST(r.truthValid > 10);                                                // both outcomes in the sample
     BOOST_TEST(r.truthValid < r.motions - 10);
     BOOST_TEST(r.lastValidMismatches <= 2);
   }

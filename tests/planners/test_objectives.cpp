@@ -207,8 +207,7 @@ BOOST_AUTO_TEST_CASE(length_clearance_objective_is_length_plus_weighted_hinge) {
   const double length = si->distance(a.get(), b.get());
   const double h = hinge.motionCost(a.get(), b.get()).value();
   BOOST_TEST(h > 0.0);
-  BOOST_TEST(combined->motionCost(a.get(), b.get()).value() == length + weight * h,
-             boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(combined->motionCost(a.get(), b.get()).value() == length + weight * h, boost::test_tools::tolerance(1e-9));
   BOOST_TEST(combined->stateCost(b.get()).value() == weight * hinge.stateCost(b.get()).value(),
              boost::test_tools::tolerance(1e-9));
   // The path length's heuristic, admissible since the hinge is >= 0.
@@ -222,7 +221,8 @@ BOOST_AUTO_TEST_CASE(maximize_min_clearance_objective_reads_our_clearance, *boos
   const auto objective = dp::makeMaxMinClearanceObjective(ss->getSpaceInformation());
   ob::ScopedState<> state(ss->getStateSpace());
   dp::copyToState(dp::test::suggestedStart(), state.get());
-  BOOST_TEST(objective->stateCost(state.get()).value() == dp::validityCheckerOf(*ss)->clearance(dp::test::suggestedStart()));
+  BOOST_TEST(objective->stateCost(state.get()).value() ==
+             dp::validityCheckerOf(*ss)->clearance(dp::test::suggestedStart()));
   // RRT* maximizing the minimum clearance returns a path whose cost is its smallest clearance.
   dp::setStartAndGoal(*ss, dp::test::suggestedStart(), dp::test::suggestedGoal("table"));
   ss->setOptimizationObjective(objective);
@@ -266,10 +266,10 @@ BOOST_AUTO_TEST_CASE(clearance_objective_keeps_rrt_star_paths_farther_from_obsta
     dp::copyToState(start, a.get());
     dp::copyToState(goal, b.get());
     pdef->setStartAndGoalStates(a, b);
-    pdef->setOptimizationObjective(
-        clearance ? dp::makeLengthClearanceObjective(si, checker, dp::tol::kDefaultSafeDistance,
-                                                     dp::tol::kDefaultHingeWeight, bound)
-                  : std::make_shared<ob::PathLengthOptimizationObjective>(si));
+    pdef->setOptimizationObjective(clearance
+                                       ? dp::makeLengthClearanceObjective(si, checker, dp::tol::kDefaultSafeDistance,
+                                                                          dp::tol::kDefaultHingeWeight, bound)
+                                       : std::make_shared<ob::PathLengthOptimizationObjective>(si));
     auto planner = std::make_shared<SeededRRTstar>(si, seed);
     // The same neighbours for both objectives, and OMPL's default range (0.2 of the extent, which
     // prepareForCostlyObjective keeps when set): 1,500 iterations of the shorter range it picks
@@ -351,8 +351,8 @@ BOOST_AUTO_TEST_CASE(motions_through_invalid_states_cost_infinity) {
 
 BOOST_AUTO_TEST_CASE(simplification_never_makes_the_objective_cost_worse) {
   // The planar arm passes the pole with its elbow folded far (2.2 rad) from it: a valid path,
-  // nearly all of it farther than d_safe from the pole. Shortening it brings the fold nearer the pole; with the clearance objective
-  // the simplified path must cost no more than the planned one, while with path length alone it
+  // nearly all of it farther than d_safe from the pole. Shortening it brings the fold nearer the pole; with the
+  // clearance objective the simplified path must cost no more than the planned one, while with path length alone it
   // gets shorter.
   const auto world = planarArmAndPole();
   const auto plannedPath = [&](const ompl::geometric::SimpleSetup& ss) {
@@ -382,7 +382,8 @@ BOOST_AUTO_TEST_CASE(simplification_never_makes_the_objective_cost_worse) {
     ss->setup();
     const auto path = plannedPath(*ss);
     const dp::PathCheck plannedCheck = dp::checkPathWithPlanner(*path);
-    BOOST_TEST_REQUIRE(plannedCheck.valid, "waypoint " << plannedCheck.firstInvalidWaypoint << ", motion " << plannedCheck.firstInvalidMotion);
+    BOOST_TEST_REQUIRE(plannedCheck.valid, "waypoint " << plannedCheck.firstInvalidWaypoint << ", motion "
+                                                       << plannedCheck.firstInvalidMotion);
     const double plannedCost = path->cost(objective).value();
     const double plannedLength = path->length();
     const double plannedClearance = minSceneClearance(*path, *checker);
@@ -393,9 +394,9 @@ BOOST_AUTO_TEST_CASE(simplification_never_makes_the_objective_cost_worse) {
       const og::PathGeometric& simplified = ss->getSolutionPath();
       BOOST_TEST(dp::checkPathWithPlanner(simplified).valid);
       const double cost = simplified.cost(objective).value();
-      BOOST_TEST(cost <= plannedCost, (clearance ? "clearance" : "length") << " objective: cost " << cost
-                                                                           << " after simplification, " << plannedCost
-                                                                           << " as planned");
+      BOOST_TEST(cost <= plannedCost, (clearance ? "clearance" : "length")
+                                          << " objective: cost " << cost << " after simplification, " << plannedCost
+                                          << " as planned");
       if (clearance) {
         // The symptom the cost check prevents: shortcuts pulling the fold onto the pole (OMPL's
         // simplifyMax here leaves about 1 mm, or clips it between its discrete checks). Inside

@@ -99,10 +99,12 @@ BOOST_AUTO_TEST_CASE(files_are_read) {
   BOOST_CHECK_EQUAL(v[1].line, 5);
   const QuerySet q = parseQueries(
       "start_queries:\n  - objects: [t]\n    tag: Under\n    offset:\n      position: [-0.5, 0, -0.3]\n"
-      "      orientation: [0, 0, 0, 1]\n      position_tol: [0.01, 0.02, 0.03]\n      orientation_tol: [0.01, 0.01, 0.01]\n"
+      "      orientation: [0, 0, 0, 1]\n      position_tol: [0.01, 0.02, 0.03]\n      orientation_tol: [0.01, 0.01, "
+      "0.01]\n"
       "    attached: \"False\"\n"
       "goal_queries:\n  - objects: [a, b]\n    tag: Front\n    offset:\n      position: [-0.2, 0, 0.05]\n"
-      "      orientation: [0, 0.707, 0, 0.707]\n      position_tol: [0.01, 0.01, 0.01]\n      orientation_tol: [0.01, 0.01, 0.01]\n",
+      "      orientation: [0, 0.707, 0, 0.707]\n      position_tol: [0.01, 0.01, 0.01]\n      orientation_tol: [0.01, "
+      "0.01, 0.01]\n",
       "q.yaml");
   BOOST_REQUIRE_EQUAL(q.start.size(), 1u);
   BOOST_REQUIRE_EQUAL(q.goal.size(), 2u);
@@ -117,12 +119,22 @@ BOOST_AUTO_TEST_CASE(files_are_read) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_files_name_file_line_and_value) {
-  checkThrows([] { parseSceneVariations("- names: [a]\n  position: [0, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n", "v.yaml"); },
-              "variation file 'v.yaml', line 2: position must be a list of 3 numbers");
-  checkThrows([] { parseSceneVariations("- names: [a]\n  position: [0, 0, 0]\n  orientation: [0, 0, 0]\n  type: beta\n", "v.yaml"); },
-              "line 4: unknown variation type 'beta'");
-  checkThrows([] { parseSceneVariations("- names: [a]\n  position: [0, .nan, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n", "v.yaml"); },
-              "must be finite, not '.nan'");
+  checkThrows(
+      [] {
+        parseSceneVariations("- names: [a]\n  position: [0, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n", "v.yaml");
+      },
+      "variation file 'v.yaml', line 2: position must be a list of 3 numbers");
+  checkThrows(
+      [] {
+        parseSceneVariations("- names: [a]\n  position: [0, 0, 0]\n  orientation: [0, 0, 0]\n  type: beta\n", "v.yaml");
+      },
+      "line 4: unknown variation type 'beta'");
+  checkThrows(
+      [] {
+        parseSceneVariations("- names: [a]\n  position: [0, .nan, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n",
+                             "v.yaml");
+      },
+      "must be finite, not '.nan'");
   checkThrows([] { parseQueries("goal_queries:\n  - objects: [a]\n    tag: F\n", "q.yaml"); },
               "query file 'q.yaml', line 2: missing 'offset'");
   checkThrows([] { parseQueries("goal_querys: []\n", "q.yaml"); }, "unknown key 'goal_querys'");
@@ -150,14 +162,22 @@ BOOST_AUTO_TEST_CASE(variation_moves_world_and_objects) {
       "      primitive_poses: [{position: [1, 0, 0], orientation: [0, 0, 0, 1]}]\n",
       ".", {}, "s.yaml");
   std::mt19937_64 rng(1);
-  const auto v = parseSceneVariations("- names: [World]\n  position: [0, 0, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n"
-                                      "- names: [a]\n  position: [0, 0.5, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n", "v.yaml");
+  const auto v = parseSceneVariations(
+      "- names: [World]\n  position: [0, 0, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n"
+      "- names: [a]\n  position: [0, 0.5, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n",
+      "v.yaml");
   const robots::PlanningScene varied = varyScene(s, v, rng, "v.yaml");
   const Eigen::Vector3d p = varied.objects[0].shapes[0].X_FS.translation();
   BOOST_CHECK_EQUAL(p.x(), 1.0);
   BOOST_CHECK(std::abs(p.y()) <= 0.5 && p.y() != 0.0);
-  checkThrows([&] { varyScene(s, parseSceneVariations("- names: [b]\n  position: [0, 0, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n", "v.yaml"), rng, "v.yaml"); },
-              "variation file 'v.yaml', line 1: object 'b' is not in the planning scene 's.yaml'");
+  checkThrows(
+      [&] {
+        varyScene(s,
+                  parseSceneVariations(
+                      "- names: [b]\n  position: [0, 0, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n", "v.yaml"),
+                  rng, "v.yaml");
+      },
+      "variation file 'v.yaml', line 1: object 'b' is not in the planning scene 's.yaml'");
 }
 
 BOOST_AUTO_TEST_CASE(bookshelf_problems_are_valid_and_reproducible) {
@@ -179,8 +199,7 @@ BOOST_AUTO_TEST_CASE(bookshelf_problems_are_valid_and_reproducible) {
     // frame's axes) and orientation tolerance (0.01 rad).
     const ObjectQuery& q = setup.queries.goal.front();
     const Eigen::Isometry3d& ee = setup.options.eeOffset;
-    const Eigen::Isometry3d X_WT =
-        queryPose(p.scene, q, panda, setup.options.start, setup.options.frameAliases, ee);
+    const Eigen::Isometry3d X_WT = queryPose(p.scene, q, panda, setup.options.start, setup.options.frameAliases, ee);
     const Eigen::Isometry3d X_WL = robots::forwardKinematics(panda, p.goal)[static_cast<std::size_t>(tip)];
     const Eigen::Vector3d inBox = (X_WT * ee).inverse() * (X_WL * ee).translation();
     BOOST_CHECK_LE(inBox.cwiseAbs().maxCoeff(), 0.005);

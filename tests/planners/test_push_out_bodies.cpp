@@ -70,8 +70,8 @@ BOOST_AUTO_TEST_CASE(slab_is_left_in_one_step_with_the_body_depth) {
   BOOST_TEST(body.q[2] > 0.05);                       // the tool's bottom above the slab's top
   BOOST_TEST(std::abs(body.q[0] - start[0]) < 1e-3);  // not pushed sideways
   const dp::PushOutResult pairwise = pushOut(world, start, false);
-  BOOST_TEST((!pairwise.success() || pairwise.iterations > 1), "pairwise: " << pairwise.status << " in "
-                                                                           << pairwise.iterations << " iterations");
+  BOOST_TEST((!pairwise.success() || pairwise.iterations > 1),
+             "pairwise: " << pairwise.status << " in " << pairwise.iterations << " iterations");
   BOOST_TEST(pairwise.initialDistance == -0.035, boost::test_tools::tolerance(1e-9));
 }
 
@@ -85,8 +85,8 @@ BOOST_AUTO_TEST_CASE(peg_is_lifted_out_of_the_u_in_one_step_with_the_body_depth)
   BOOST_TEST(body.iterations == 1);
   BOOST_TEST(body.q[2] > 0.15);  // the peg's bottom above the walls
   const dp::PushOutResult pairwise = pushOut(world, start, false);
-  BOOST_TEST((!pairwise.success() || pairwise.iterations > 1), "pairwise: " << pairwise.status << " in "
-                                                                           << pairwise.iterations << " iterations");
+  BOOST_TEST((!pairwise.success() || pairwise.iterations > 1),
+             "pairwise: " << pairwise.status << " in " << pairwise.iterations << " iterations");
 }
 
 // Random slightly colliding starts of the bundled arm (links and scene objects of many pieces),

@@ -106,7 +106,9 @@ BOOST_AUTO_TEST_CASE(layouts_that_are_not_understood_are_rejected_naming_the_spa
   BOOST_TEST(error.find("'elbow'") != std::string::npos, error);
   // A user mapping of the wrong size.
   const auto custom = dp::StateMapping::realVector(3, "three values");
-  error = errorOf([&] { dp::StateValidityChecker(std::make_shared<ob::SpaceInformation>(dp::makeStateSpace(world->robot())), world, custom); });
+  error = errorOf([&] {
+    dp::StateValidityChecker(std::make_shared<ob::SpaceInformation>(dp::makeStateSpace(world->robot())), world, custom);
+  });
   BOOST_TEST(error.find("three values") != std::string::npos, error);
 }
 
@@ -131,8 +133,8 @@ BOOST_AUTO_TEST_CASE(a_compound_of_so2_spaces_is_read_as_the_joint_values) {
   Eigen::VectorXd turned = q;
   turned[0] = 3.5;
   checker->mapping().toState(turned, state.get());
-  BOOST_TEST(state->as<ob::CompoundState>()->as<ob::SO2StateSpace::StateType>(0)->value ==
-             3.5 - 2.0 * M_PI, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(state->as<ob::CompoundState>()->as<ob::SO2StateSpace::StateType>(0)->value == 3.5 - 2.0 * M_PI,
+             boost::test_tools::tolerance(1e-12));
   // The valid-state overload pushes out into the same layout.
   setComponents(state.get(), dp::test::suggestedStart());
   BOOST_TEST(checker->isValid(state.get()));

@@ -12,9 +12,9 @@
 
 namespace deepcheck::robots::test {
 
+using deepcheck::test::checkThrows;
 using deepcheck::test::haveShared;
 using deepcheck::test::sharedDir;
-using deepcheck::test::checkThrows;
 using deepcheck::test::TempDir;
 
 /// The Panda of the shared data folder (call only when haveShared()).

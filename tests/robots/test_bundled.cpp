@@ -80,10 +80,9 @@ double piecesDistance(const std::vector<CollisionPiece>& a, const Eigen::Isometr
   double best = std::numeric_limits<double>::infinity();
   for (const CollisionPiece& pa : a) {
     for (const CollisionPiece& pb : b) {
-      const auto r = deepcheck::geometry::signedDistance(deepcheck::geometry::ConvexShape{pa.core.get(), pa.radius},
-                                                     X_WA * pa.X_LP,
-                                                     deepcheck::geometry::ConvexShape{pb.core.get(), pb.radius},
-                                                     X_WB * pb.X_LP);
+      const auto r = deepcheck::geometry::signedDistance(
+          deepcheck::geometry::ConvexShape{pa.core.get(), pa.radius}, X_WA * pa.X_LP,
+          deepcheck::geometry::ConvexShape{pb.core.get(), pb.radius}, X_WB * pb.X_LP);
       best = std::min(best, r.distance);
     }
   }
@@ -128,8 +127,7 @@ BOOST_AUTO_TEST_CASE(arm_loads_with_its_package) {
   BOOST_TEST(arm.name() == "deepcheck_arm");
   BOOST_TEST(arm.numLinks() == 12);
   BOOST_REQUIRE_EQUAL(arm.numVariables(), 7);
-  const std::vector<std::string> names = {"joint1", "joint2", "joint3", "joint4",
-                                          "joint5", "joint6", "joint7"};
+  const std::vector<std::string> names = {"joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "joint7"};
   BOOST_TEST(arm.variableNames() == names, boost::test_tools::per_element());
   // KUKA LBR iiwa 7 R800 limits: +-170, +-120, +-170, +-120, +-170, +-120, +-175 degrees.
   const double limits[7] = {170, 120, 170, 120, 170, 120, 175};
@@ -148,8 +146,8 @@ BOOST_AUTO_TEST_CASE(arm_loads_with_its_package) {
 
 BOOST_AUTO_TEST_CASE(arm_has_the_iiwa_link_lengths) {
   const RobotModel arm = loadData(kArmUrdf);
-  const int shoulder = arm.linkIndex("link2"), elbow = arm.linkIndex("link4"),
-            wrist = arm.linkIndex("link6"), flange = arm.linkIndex("flange");
+  const int shoulder = arm.linkIndex("link2"), elbow = arm.linkIndex("link4"), wrist = arm.linkIndex("link6"),
+            flange = arm.linkIndex("flange");
   // Straight up at zero: the flange at 0.34 + 0.4 + 0.4 + 0.126.
   const auto X0 = forwardKinematics(arm, Eigen::VectorXd::Zero(7));
   BOOST_TEST((X0[flange].translation() - Eigen::Vector3d(0, 0, 1.266)).norm() < kLengthTolerance);
@@ -161,12 +159,9 @@ BOOST_AUTO_TEST_CASE(arm_has_the_iiwa_link_lengths) {
     }
     const auto X = forwardKinematics(arm, q);
     BOOST_TEST(std::abs(X[shoulder].translation().norm() - 0.34) < kLengthTolerance);
-    BOOST_TEST(std::abs((X[elbow].translation() - X[shoulder].translation()).norm() - 0.40) <
-               kLengthTolerance);
-    BOOST_TEST(std::abs((X[wrist].translation() - X[elbow].translation()).norm() - 0.40) <
-               kLengthTolerance);
-    BOOST_TEST(std::abs((X[flange].translation() - X[wrist].translation()).norm() - 0.126) <
-               kLengthTolerance);
+    BOOST_TEST(std::abs((X[elbow].translation() - X[shoulder].translation()).norm() - 0.40) < kLengthTolerance);
+    BOOST_TEST(std::abs((X[wrist].translation() - X[elbow].translation()).norm() - 0.40) < kLengthTolerance);
+    BOOST_TEST(std::abs((X[flange].translation() - X[wrist].translation()).norm() - 0.126) < kLengthTolerance);
   }
 }
 
@@ -199,8 +194,8 @@ BOOST_AUTO_TEST_CASE(srdf_is_what_the_filter_computes) {
     std::ifstream in(kArmSrdf);
     std::stringstream text;
     text << in.rdbuf();
-    BOOST_TEST(text.str().find(std::to_string(kSrdfSamples) + " random samples, seed " +
-                               std::to_string(kSrdfSeed)) != std::string::npos);
+    BOOST_TEST(text.str().find(std::to_string(kSrdfSamples) + " random samples, seed " + std::to_string(kSrdfSeed)) !=
+               std::string::npos);
   }
   PairFilterOptions o;
   o.samples = kRegenerateSamples;
@@ -212,8 +207,7 @@ BOOST_AUTO_TEST_CASE(srdf_is_what_the_filter_computes) {
   for (const DisabledPair& p : committed) {
     const auto k = pairKey(p.link1, p.link2);
     const auto it = now.find(k);
-    BOOST_REQUIRE_MESSAGE(it != now.end(), k.first << " - " << k.second << " ("
-                                                   << toString(p.reason)
+    BOOST_REQUIRE_MESSAGE(it != now.end(), k.first << " - " << k.second << " (" << toString(p.reason)
                                                    << ") is not disabled by the filter now");
     if (p.reason == DisableReason::Never) {
       ++never;
@@ -291,8 +285,7 @@ BOOST_AUTO_TEST_CASE(start_and_goal_are_collision_free) {
       const std::string label = problem.scene + (which == &problem.start ? " start" : " goal");
       const Eigen::VectorXd q = vec(*which);
       BOOST_REQUIRE_EQUAL(q.size(), 7);
-      BOOST_TEST(((q.array() >= arm.lowerLimits().array()).all() &&
-                  (q.array() <= arm.upperLimits().array()).all()),
+      BOOST_TEST(((q.array() >= arm.lowerLimits().array()).all() && (q.array() <= arm.upperLimits().array()).all()),
                  label << " is outside the joint limits");
       const auto X = forwardKinematics(arm, q);
       for (const auto& [i, j] : selfPairs) {
@@ -315,19 +308,18 @@ BOOST_AUTO_TEST_CASE(start_and_goal_are_collision_free) {
       } else if (problem.scene == "shelf") {
         // Inside the middle-row compartment on the +y side: x 0.60 .. 0.93, y 0.01 .. 0.43,
         // z 0.42 .. 0.80.
-        BOOST_TEST((tool.x() > 0.62 && tool.x() < 0.93 && tool.y() > 0.01 && tool.y() < 0.43 &&
-                    tool.z() > 0.42 && tool.z() < 0.80),
+        BOOST_TEST((tool.x() > 0.62 && tool.x() < 0.93 && tool.y() > 0.01 && tool.y() < 0.43 && tool.z() > 0.42 &&
+                    tool.z() < 0.80),
                    label << ": tool at " << tool.transpose());
       } else if (problem.scene == "narrow_passage") {
         // Through the window: beyond the wall (x > 0.54), within the window's y and z.
-        BOOST_TEST((tool.x() > 0.54 && std::abs(tool.y()) < 0.16 && tool.z() > 0.5 &&
-                    tool.z() < 0.8),
+        BOOST_TEST((tool.x() > 0.54 && std::abs(tool.y()) < 0.16 && tool.z() > 0.5 && tool.z() < 0.8),
                    label << ": tool at " << tool.transpose());
       } else {
         // Above the table top, between the objects.
-        BOOST_TEST((tool.x() > 0.45 && tool.x() < 1.05 && std::abs(tool.y()) < 0.45 &&
-                    tool.z() > 0.40 && tool.z() < 0.60),
-                   label << ": tool at " << tool.transpose());
+        BOOST_TEST(
+            (tool.x() > 0.45 && tool.x() < 1.05 && std::abs(tool.y()) < 0.45 && tool.z() > 0.40 && tool.z() < 0.60),
+            label << ": tool at " << tool.transpose());
       }
     }
   }

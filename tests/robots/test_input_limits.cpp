@@ -54,7 +54,8 @@ const char* const kTetrahedronObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2
 /// A planning scene of `objects` objects that all alias the first one's list of `primitives`
 /// boxes (objects * primitives shapes from a file of objects + 2 * primitives lines).
 std::string aliasedScene(int objects, int primitives) {
-  std::string out = "world:\n  collision_objects:\n    - id: o0\n      header: {frame_id: base}\n      primitives: &p\n";
+  std::string out =
+      "world:\n  collision_objects:\n    - id: o0\n      header: {frame_id: base}\n      primitives: &p\n";
   for (int i = 0; i < primitives; ++i) out += "        - {type: box, dimensions: [1, 1, 1]}\n";
   out += "      primitive_poses: &q\n";
   for (int i = 0; i < primitives; ++i) out += "        - {position: [0, 0, 0], orientation: [0, 0, 0, 1]}\n";
@@ -86,8 +87,8 @@ BOOST_AUTO_TEST_CASE(nesting_at_the_limit_is_accepted) {
 BOOST_AUTO_TEST_CASE(nesting_scan_skips_comments_cdata_and_attribute_values) {
   std::string hidden;
   for (int i = 0; i < 1000; ++i) hidden += "<a>";
-  const std::string xml = "<?xml version=\"1.0\"?>\n<!-- " + hidden + " -->\n<robot name=\"r\" note=\"" +
-                          hidden + "\"><![CDATA[" + hidden + "]]><link name=\"base\"/></robot>";
+  const std::string xml = "<?xml version=\"1.0\"?>\n<!-- " + hidden + " -->\n<robot name=\"r\" note=\"" + hidden +
+                          "\"><![CDATA[" + hidden + "]]><link name=\"base\"/></robot>";
   BOOST_TEST(RobotModel::fromUrdfString(xml, "").numLinks() == 1);
 }
 
@@ -103,9 +104,12 @@ BOOST_AUTO_TEST_CASE(deep_xml_meshes_are_rejected_before_assimp) {
   TempDir dir;
   std::string nodes;
   for (int i = 0; i < 20000; ++i) nodes += "<node id=\"n" + std::to_string(i) + "\">";
-  const std::string dae = dir.write("deep.dae", "<?xml version=\"1.0\"?>\n<COLLADA><library_visual_scenes>\n"
-                                                "<visual_scene id=\"s\">" + nodes + "</visual_scene>"
-                                                "</library_visual_scenes></COLLADA>");
+  const std::string dae = dir.write("deep.dae",
+                                    "<?xml version=\"1.0\"?>\n<COLLADA><library_visual_scenes>\n"
+                                    "<visual_scene id=\"s\">" +
+                                        nodes +
+                                        "</visual_scene>"
+                                        "</library_visual_scenes></COLLADA>");
   checkThrows([&] { loadMesh(dae); }, {"mesh file '" + dae + "'", "line 3", "nested 257 levels deep"});
   // Any file that starts with '<' is scanned, whatever its extension.
   const std::string x3d = dir.write("deep.mesh", "\n  " + nested("Group", 1000));
@@ -184,11 +188,14 @@ BOOST_AUTO_TEST_CASE(huge_collision_origins_are_rejected_at_load) {
 BOOST_AUTO_TEST_CASE(huge_mesh_scale_is_named) {
   TempDir dir;
   const std::string mesh = dir.write("t.obj", kTetrahedronObj);
-  checkThrows([&] { loadMesh(mesh, Eigen::Vector3d(1e300, 1, 1)); }, {"mesh file '" + mesh + "'", "scale (1e+300 1 1)"});
+  checkThrows([&] { loadMesh(mesh, Eigen::Vector3d(1e300, 1, 1)); },
+              {"mesh file '" + mesh + "'", "scale (1e+300 1 1)"});
   // Within range, but it places a vertex beyond it: the message names the vertex and the scale.
-  const std::string wide = dir.write("wide.obj", "v 0 0 0\nv 1e6 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const std::string wide =
+      dir.write("wide.obj", "v 0 0 0\nv 1e6 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
   checkThrows([&] { loadMesh(wide, Eigen::Vector3d(1e45, 1, 1)); }, {"vertex", "(1e+51 0 0)", "scale (1e+45 1 1)"});
-  const std::string scaled = "<collision><geometry><mesh filename=\"t.obj\" scale=\"1e300 1 1\"/></geometry></collision>";
+  const std::string scaled =
+      "<collision><geometry><mesh filename=\"t.obj\" scale=\"1e300 1 1\"/></geometry></collision>";
   checkThrows([&] { RobotModel::fromUrdfString(urdf("", scaled), dir.path().string(), {}, "big.urdf"); },
               {"URDF 'big.urdf'", "link 'base'", "scale=\"1e300 1 1\"", "out of range"});
 }

@@ -62,7 +62,8 @@ void checkReachablePoses(const RobotModel& model, const std::string& link, int t
     }
     ++converged;
     BOOST_TEST(check.position <= options.positionTolerance, "trial " << trial << ": " << check.position << " m");
-    BOOST_TEST(check.orientation <= options.orientationTolerance, "trial " << trial << ": " << check.orientation << " rad");
+    BOOST_TEST(check.orientation <= options.orientationTolerance,
+               "trial " << trial << ": " << check.orientation << " rad");
   }
   BOOST_TEST(converged >= required, converged << " of " << trials << " reached, " << required << " required");
 }
@@ -154,7 +155,8 @@ BOOST_AUTO_TEST_CASE(position_box_applies_to_its_frame_on_the_link) {
   BOOST_TEST_REQUIRE(r.converged());
   BOOST_TEST(std::abs(r.q[0] - 0.5) / std::sqrt(3.0) <= 0.01);
   BOOST_TEST(std::abs(r.q[0] - 0.5) > 1e-3);  // stopped at the box, not at the target
-  const Eigen::Vector3d d = (X_WT * box.boxPose).inverse() * (forwardKinematics(slider, r.q)[tip] * box.boxPose.translation());
+  const Eigen::Vector3d d =
+      (X_WT * box.boxPose).inverse() * (forwardKinematics(slider, r.q)[tip] * box.boxPose.translation());
   BOOST_TEST(r.error.normalized == d.cwiseAbs().cwiseQuotient(0.5 * box.positionBox).maxCoeff());
 }
 
@@ -202,8 +204,8 @@ BOOST_AUTO_TEST_CASE(acceptance_test_filters_solutions) {
   IkOptions options;
   options.maxRestarts = 10;
   // Only solutions with joint 1 positive: accepted ones satisfy it.
-  const IkResult some = solveInverseKinematics(arm, "flange", X_WT, options,
-                                               [](const Eigen::VectorXd& q) { return q[0] > 0.0; });
+  const IkResult some =
+      solveInverseKinematics(arm, "flange", X_WT, options, [](const Eigen::VectorXd& q) { return q[0] > 0.0; });
   BOOST_TEST_REQUIRE(some.converged());
   BOOST_TEST(some.q[0] > 0.0);
   // Rejecting everything: never converged, every reached pose counted as rejected.
@@ -241,12 +243,14 @@ BOOST_AUTO_TEST_CASE(bad_input_is_named) {
   checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"orientationTolerance (rad)", "-0.001"});
   options = {};
   options.positionBox = Eigen::Vector3d(0.05, 0.0, 0.05);
-  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"positionBox (m)", "(0.05, 0, 0.05)", "all zero"});
+  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); },
+              {"positionBox (m)", "(0.05, 0, 0.05)", "all zero"});
   options.positionBox = Eigen::Vector3d(0.05, std::nan(""), 0.05);
   checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"positionBox (m)", "nan"});
   options.positionBox = Eigen::Vector3d::Constant(0.05);
   options.boxPose = sheared;
-  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"boxPose", "not a finite rigid transform"});
+  checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); },
+              {"boxPose", "not a finite rigid transform"});
   options = {};
   options.maxIterations = 0;
   checkThrows([&] { solveInverseKinematics(arm, "flange", X_WT, options); }, {"maxIterations"});

@@ -14,12 +14,15 @@ namespace {
 
 /// A continuous joint 'a', a continuous mimic of it with `multiplier`, and a revolute 'r'.
 RobotModel mimicRobot(const std::string& multiplier) {
-  const std::string xml = "<robot name='m'><link name='base'/><link name='l1'/><link name='l2'/><link name='l3'/>"
-                          "<joint name='a' type='continuous'><parent link='base'/><child link='l1'/><axis xyz='0 0 1'/></joint>"
-                          "<joint name='b' type='continuous'><parent link='l1'/><child link='l2'/><axis xyz='0 0 1'/>"
-                          "<mimic joint='a' multiplier='" + multiplier + "'/></joint>"
-                          "<joint name='r' type='revolute'><parent link='l2'/><child link='l3'/><axis xyz='0 0 1'/>"
-                          "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint></robot>";
+  const std::string xml =
+      "<robot name='m'><link name='base'/><link name='l1'/><link name='l2'/><link name='l3'/>"
+      "<joint name='a' type='continuous'><parent link='base'/><child link='l1'/><axis xyz='0 0 1'/></joint>"
+      "<joint name='b' type='continuous'><parent link='l1'/><child link='l2'/><axis xyz='0 0 1'/>"
+      "<mimic joint='a' multiplier='" +
+      multiplier +
+      "'/></joint>"
+      "<joint name='r' type='revolute'><parent link='l2'/><child link='l3'/><axis xyz='0 0 1'/>"
+      "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint></robot>";
   return RobotModel::fromUrdfString(xml, ".", {}, "m.urdf");
 }
 

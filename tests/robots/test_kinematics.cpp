@@ -41,10 +41,12 @@ Eigen::Isometry3d transZ(double d) { return Eigen::Isometry3d(Eigen::Translation
 /// Frames 1..8 (8 = flange) of the Panda from Franka's published modified (Craig) DH table:
 /// T_{i-1,i} = RotX(alpha) TransX(a) RotZ(theta_i) TransZ(d).
 std::vector<Eigen::Isometry3d> pandaDh(const Eigen::VectorXd& q) {
-  struct Row { double a, d, alpha; };
-  const Row rows[8] = {{0, 0.333, 0},          {0, 0, -M_PI / 2},         {0, 0.316, M_PI / 2},
-                       {0.0825, 0, M_PI / 2},  {-0.0825, 0.384, -M_PI / 2}, {0, 0, M_PI / 2},
-                       {0.088, 0, M_PI / 2},   {0, 0.107, 0}};
+  struct Row {
+    double a, d, alpha;
+  };
+  const Row rows[8] = {
+      {0, 0.333, 0},    {0, 0, -M_PI / 2},    {0, 0.316, M_PI / 2}, {0.0825, 0, M_PI / 2}, {-0.0825, 0.384, -M_PI / 2},
+      {0, 0, M_PI / 2}, {0.088, 0, M_PI / 2}, {0, 0.107, 0}};
   std::vector<Eigen::Isometry3d> frames;
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   for (int i = 0; i < 8; ++i) {
@@ -67,8 +69,7 @@ Eigen::Isometry3d ur5Dh(const Eigen::VectorXd& q) {
 }
 
 /// Compares the point and spatial Jacobians with central differences of forwardKinematics.
-void checkJacobians(const RobotModel& m, const Eigen::VectorXd& q, int link,
-                    const Eigen::Vector3d& p_LQ) {
+void checkJacobians(const RobotModel& m, const Eigen::VectorXd& q, int link, const Eigen::Vector3d& p_LQ) {
   const double h = 1e-6;
   const auto X_WL = forwardKinematics(m, q);
   const Eigen::Matrix3Xd J = pointJacobian(m, X_WL, link, p_LQ);
@@ -87,12 +88,10 @@ void checkJacobians(const RobotModel& m, const Eigen::VectorXd& q, int link,
     const Eigen::Vector3d w = dR.axis() * dR.angle() / (2 * h);
     BOOST_CHECK_MESSAGE((J.col(v) - dp).norm() < 1e-7,
                         "link " << m.link(link).name << " variable " << m.variableNames()[v]
-                                << ": J = " << J.col(v).transpose() << ", differences "
-                                << dp.transpose());
+                                << ": J = " << J.col(v).transpose() << ", differences " << dp.transpose());
     BOOST_CHECK_MESSAGE((S.col(v).head<3>() - w).norm() < 1e-7,
-                        "link " << m.link(link).name << " variable " << m.variableNames()[v]
-                                << ": angular J = " << S.col(v).head<3>().transpose()
-                                << ", differences " << w.transpose());
+                        "link " << m.link(link).name << " variable " << m.variableNames()[v] << ": angular J = "
+                                << S.col(v).head<3>().transpose() << ", differences " << w.transpose());
   }
 }
 
@@ -229,7 +228,6 @@ BOOST_AUTO_TEST_CASE(matches_plain_product_real_robots) {
   checkAgainstReference(panda, rng, 500);
 }
 
-
 BOOST_AUTO_TEST_CASE(panda_home_pose_matches_franka_dh) {
   if (!haveShared("panda_home_pose_matches_franka_dh")) return;
   const RobotModel m = loadPanda();
@@ -323,7 +321,8 @@ BOOST_AUTO_TEST_CASE(jacobians_match_finite_differences) {
   const Eigen::VectorXd q = deepcheck::test::randomConfiguration(panda, rng);
   const int hand = panda.linkIndex("panda_hand");
   const Eigen::Vector3d p(0.01, 0.02, 0.1);
-  BOOST_TEST((pointJacobian(panda, q, hand, p) - pointJacobian(panda, forwardKinematics(panda, q), hand, p)).norm() == 0.0);
+  BOOST_TEST((pointJacobian(panda, q, hand, p) - pointJacobian(panda, forwardKinematics(panda, q), hand, p)).norm() ==
+             0.0);
   // The right finger follows the left finger's variable through the mimic joint: opposite axes.
   const Eigen::Matrix3Xd Jl = pointJacobian(panda, q, panda.linkIndex("panda_leftfinger"), p);
   const Eigen::Matrix3Xd Jr = pointJacobian(panda, q, panda.linkIndex("panda_rightfinger"), p);
@@ -355,13 +354,14 @@ BOOST_AUTO_TEST_CASE(forward_kinematics_reuses_output) {
 
 BOOST_AUTO_TEST_CASE(error_bad_configuration) {
   const RobotModel m = RobotModel::fromUrdfString(kMimicUrdf, "", {}, "mimic.urdf");
-  checkThrows([&] { forwardKinematics(m, Eigen::VectorXd::Zero(3)); },
-              {"mimic", "3 values", "1 variables", "j1"});
+  checkThrows([&] { forwardKinematics(m, Eigen::VectorXd::Zero(3)); }, {"mimic", "3 values", "1 variables", "j1"});
+  checkThrows([&] { forwardKinematics(m, Eigen::VectorXd::Constant(1, std::numeric_limits<double>::quiet_NaN())); },
+              {"q[0]", "j1", "nan"});
   checkThrows(
-      [&] { forwardKinematics(m, Eigen::VectorXd::Constant(1, std::numeric_limits<double>::quiet_NaN())); },
-      {"q[0]", "j1", "nan"});
-  checkThrows(
-      [&] { pointJacobian(m, Eigen::VectorXd::Constant(1, std::numeric_limits<double>::infinity()), 1, Eigen::Vector3d::Zero()); },
+      [&] {
+        pointJacobian(m, Eigen::VectorXd::Constant(1, std::numeric_limits<double>::infinity()), 1,
+                      Eigen::Vector3d::Zero());
+      },
       {"q[0]", "inf"});
   const auto X_WL = forwardKinematics(m, Eigen::VectorXd::Zero(1));
   checkThrows([&] { pointJacobian(m, X_WL, 7, Eigen::Vector3d::Zero()); }, {"link index 7"});

@@ -130,18 +130,30 @@ BOOST_AUTO_TEST_CASE(mimic_chain_follows_the_remaining_variable) {
 BOOST_AUTO_TEST_CASE(bad_requests_are_named) {
   const RobotModel arm = loadBundledArm();
   const std::string name = arm.variableNames()[1];
-  checkThrows([&] { arm.withLockedVariables({{"no_such_joint", 0.0}}); },
-              {"cannot lock 'no_such_joint'", "no joint of the robot", arm.name()});
-  checkThrows([&] { arm.withLockedVariables({{name, arm.upperLimits()[1] + 0.5}}); },
-              {"cannot lock '" + name + "'", "outside its limits"});
-  checkThrows([&] { arm.withLockedVariables({{name, std::numeric_limits<double>::quiet_NaN()}}); },
-              {"cannot lock '" + name + "' at nan"});
+  checkThrows(
+      [&] {
+        arm.withLockedVariables({{"no_such_joint", 0.0}});
+      },
+      {"cannot lock 'no_such_joint'", "no joint of the robot", arm.name()});
+  checkThrows(
+      [&] {
+        arm.withLockedVariables({{name, arm.upperLimits()[1] + 0.5}});
+      },
+      {"cannot lock '" + name + "'", "outside its limits"});
+  checkThrows(
+      [&] {
+        arm.withLockedVariables({{name, std::numeric_limits<double>::quiet_NaN()}});
+      },
+      {"cannot lock '" + name + "' at nan"});
   const RobotModel once = arm.withLockedVariables({{name, 0.0}});
   checkThrows([&] { once.withLockedVariables({{name, 0.0}}); }, {"already locked at 0"});
   if (!haveShared("bad_requests_are_named (Panda)")) return;
   const RobotModel panda = loadPanda();
-  checkThrows([&] { panda.withLockedVariables({{"panda_finger_joint2", 0.01}}); },
-              {"mimic joint", "lock 'panda_finger_joint1'"});
+  checkThrows(
+      [&] {
+        panda.withLockedVariables({{"panda_finger_joint2", 0.01}});
+      },
+      {"mimic joint", "lock 'panda_finger_joint1'"});
   checkThrows([&] { panda.withLockedVariables({{"panda_joint8", 0.0}}); }, {"fixed joint"});
 }
 
@@ -161,8 +173,11 @@ BOOST_AUTO_TEST_CASE(lock_all_but_a_kept_set) {
     const std::string& name = arm.variableNames()[static_cast<std::size_t>(v)];
     BOOST_TEST(kept.joint(kept.jointIndex(name)).lockedValue == q0[v]);
   }
-  checkThrows([&] { lockAllBut(arm, {0, 1}, {{held, value}}, "group 'test'"); },
-              {"cannot lock '" + held + "'", "a variable of group 'test'"});
+  checkThrows(
+      [&] {
+        lockAllBut(arm, {0, 1}, {{held, value}}, "group 'test'");
+      },
+      {"cannot lock '" + held + "'", "a variable of group 'test'"});
   checkThrows([&] { lockAllBut(arm, {0, 99}, {}, "group 'test'"); }, {"group 'test' has variable index 99"});
 }
 

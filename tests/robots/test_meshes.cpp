@@ -35,8 +35,7 @@ using Triangle = std::array<Eigen::Vector3d, 3>;
 /// The 12 triangles of the cube [0, 1]^3, counter-clockwise seen from outside.
 std::vector<Triangle> unitCube() {
   const auto P = [](int i) { return Eigen::Vector3d(i & 1, (i >> 1) & 1, (i >> 2) & 1); };
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   std::vector<Triangle> out;
   for (const auto& q : quads) {
     out.push_back({P(q[0]), P(q[1]), P(q[2])});
@@ -143,8 +142,7 @@ BOOST_AUTO_TEST_CASE(stl_ascii_and_binary) {
   // A collinear (zero-area) triangle and one with a repeated corner: both dropped.
   triangles.push_back({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.5, 0.5, 0.5), Eigen::Vector3d(1, 1, 1)});
   triangles.push_back({Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)});
-  for (const std::string& path : {dir.write("a.stl", asciiStl(triangles)),
-                                  dir.write("b.stl", binaryStl(triangles))}) {
+  for (const std::string& path : {dir.write("a.stl", asciiStl(triangles)), dir.write("b.stl", binaryStl(triangles))}) {
     BOOST_TEST_CONTEXT(path) {
       const TriangleMesh m = loadMesh(path);
       BOOST_TEST(m.source == path);
@@ -302,7 +300,10 @@ BOOST_AUTO_TEST_CASE(mesh_pieces_and_decomposer_hook) {
 
 BOOST_AUTO_TEST_CASE(shared_pieces_cover_meshes) {
   if (!haveShared("shared_pieces_cover_meshes")) return;
-  struct Case { std::string urdf, root; int elements; };
+  struct Case {
+    std::string urdf, root;
+    int elements;
+  };
   const std::string scenes = "/scenes/motion_bench_maker/configs/scenes/";
   const std::vector<Case> cases{
       {"/robots/panda/moveit_resources_panda_description/urdf/panda.urdf", "/robots/panda", 11},
@@ -328,15 +329,13 @@ BOOST_AUTO_TEST_CASE(shared_pieces_cover_meshes) {
           if (g.type != GeometryType::Mesh) continue;
           // The default decomposer's hull contains every vertex of the mesh.
           const TriangleMesh mesh = loadMesh(g.meshPath, g.meshScale);
-          BOOST_CHECK_MESSAGE(maxOutside(*p.core, mesh.vertices) <= 1e-9 * mesh.boundingBoxDiagonal(),
-                              p.origin);
+          BOOST_CHECK_MESSAGE(maxOutside(*p.core, mesh.vertices) <= 1e-9 * mesh.boundingBoxDiagonal(), p.origin);
         }
       }
       BOOST_TEST(total == c.elements);
       if (m.name() == "panda") {
         // Both fingers use finger.stl: one hull.
-        BOOST_TEST(pieces[m.linkIndex("panda_leftfinger")][0].core ==
-                   pieces[m.linkIndex("panda_rightfinger")][0].core);
+        BOOST_TEST(pieces[m.linkIndex("panda_leftfinger")][0].core == pieces[m.linkIndex("panda_rightfinger")][0].core);
       }
     }
   }
@@ -364,8 +363,8 @@ BOOST_AUTO_TEST_CASE(error_empty_mesh) {
   checkThrows([&] { loadMesh(none); }, {none});
   const std::string points = dir.write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
   checkThrows([&] { loadMesh(points); }, {points, "no triangles"});
-  const std::string flat = dir.write(
-      "flat.stl", asciiStl({{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(2, 2, 2)}}));
+  const std::string flat =
+      dir.write("flat.stl", asciiStl({{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(2, 2, 2)}}));
   checkThrows([&] { loadMesh(flat); }, {flat, "degenerate"});
   const std::string zero = dir.write("zero.stl", "");
   checkThrows([&] { loadMesh(zero); }, {zero, "assimp"});

@@ -25,9 +25,7 @@ const std::string kTestData = std::string(DEEPCHECK_SOURCE_DIR) + "/tests/data";
 const std::string kAllShapes = kTestData + "/moveit_scenes/all_shapes.yaml";
 constexpr double kExact = 1e-12;  // values copied from the file, up to round-off
 
-std::string mbmScenes() {
-  return test::sharedDir() + "/scenes/motion_bench_maker/configs/scenes";
-}
+std::string mbmScenes() { return test::sharedDir() + "/scenes/motion_bench_maker/configs/scenes"; }
 
 SceneLoadOptions testOptions() {
   SceneLoadOptions o;
@@ -78,7 +76,8 @@ PlanningScene parse(const std::string& yaml) {
 /// One object in base_link with the given primitives/meshes block (indented 6 spaces).
 std::string oneObject(const std::string& body) {
   return "world:\n  collision_objects:\n    - header:\n        frame_id: base_link\n"
-         "      id: thing\n" + body;
+         "      id: thing\n" +
+         body;
 }
 
 const std::string kIdentity = "orientation: [0, 0, 0, 1]";
@@ -148,8 +147,8 @@ BOOST_AUTO_TEST_CASE(kitchen_names_meshes_the_data_set_lacks) {
   o.packageRoots = {test::sharedDir() + "/scenes"};
   o.useRosPackagePath = false;
   checkThrows([&] { loadPlanningScene(mbmScenes() + "/kitchen/kitchen.yaml", o); },
-              {"kitchen.yaml', line 7", "object 'diswasher'", "objs/dishwasher.obj", "searched:",
-               "motion_bench_maker/configs/scenes/kitchen/objs/dishwasher.obj"});
+              {"kitchen.yaml', line 7", "object 'diswasher'", "objs/dishwasher.obj",
+               "searched:", "motion_bench_maker/configs/scenes/kitchen/objs/dishwasher.obj"});
 }
 
 BOOST_AUTO_TEST_CASE(panda_places_motion_bench_maker_objects_through_an_alias) {
@@ -158,8 +157,8 @@ BOOST_AUTO_TEST_CASE(panda_places_motion_bench_maker_objects_through_an_alias) {
   const PlanningScene shelf = loadPlanningScene(mbmScenes() + "/bookshelf/scene_small.yaml");
   const Eigen::VectorXd q = panda.defaultConfiguration();
   checkThrows([&] { shapeWorldPoses(shelf, panda, q); },
-              {"scene_small.yaml', line 3, object 'Can1'", "unknown frame 'base_link'",
-               "panda_link0, panda_link1", "--frame-alias base_link=panda_link0"});
+              {"scene_small.yaml', line 3, object 'Can1'", "unknown frame 'base_link'", "panda_link0, panda_link1",
+               "--frame-alias base_link=panda_link0"});
   Eigen::Isometry3d X_WR = Eigen::Isometry3d::Identity();
   X_WR.translation() = Eigen::Vector3d(0.1, -0.2, 0.3);
   X_WR.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -179,8 +178,8 @@ BOOST_AUTO_TEST_CASE(hand_written_scene_has_every_shape) {
   checkVector(crate.geometry.boxSize, {0.4, 0.3, 0.2});
   checkVector(crate.X_FS.translation(), {0.5, -0.2, 0.1});
   // [0, 0, 0.7071, 0.7071] is normalised: a quarter turn about z, exactly.
-  BOOST_CHECK(crate.X_FS.linear().isApprox(
-      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix(), kExact));
+  BOOST_CHECK(
+      crate.X_FS.linear().isApprox(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix(), kExact));
 
   const SceneShape& ball = object(scene, "ball").shapes.at(0);
   BOOST_CHECK(ball.geometry.type == GeometryType::Sphere);
@@ -203,8 +202,7 @@ BOOST_AUTO_TEST_CASE(hand_written_scene_has_every_shape) {
 
   const SceneObject& wedge = object(scene, "wedge");
   BOOST_REQUIRE_EQUAL(wedge.shapes.size(), 2u);
-  const std::string tetrahedron =
-      fs::weakly_canonical(kTestData + "/moveit_scenes/meshes/tetrahedron.obj").string();
+  const std::string tetrahedron = fs::weakly_canonical(kTestData + "/moveit_scenes/meshes/tetrahedron.obj").string();
   for (const SceneShape& s : wedge.shapes) {
     BOOST_CHECK_EQUAL(s.geometry.meshPath, tetrahedron);  // relative and package:// resolve alike
   }
@@ -259,8 +257,11 @@ BOOST_AUTO_TEST_CASE(frame_aliases_parse_and_check_their_target) {
   const RobotModel arm = RobotModel::fromUrdfFile(
       deepcheck::test::bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf", armOptions);
   const PlanningScene scene = loadPlanningScene(kAllShapes, testOptions());
-  checkThrows([&] { shapeWorldPoses(scene, arm, arm.defaultConfiguration(), {{"base_link", "nowhere"}}); },
-              {"object 'crate'", "aliased to 'nowhere'", "no link of robot"});
+  checkThrows(
+      [&] {
+        shapeWorldPoses(scene, arm, arm.defaultConfiguration(), {{"base_link", "nowhere"}});
+      },
+      {"object 'crate'", "aliased to 'nowhere'", "no link of robot"});
   // The bundled arm's root is called base_link: the file's frames are its links as written.
   const auto poses = shapeWorldPoses(scene, arm, arm.defaultConfiguration());
   BOOST_REQUIRE_EQUAL(poses.size(), 4u);
@@ -268,37 +269,63 @@ BOOST_AUTO_TEST_CASE(frame_aliases_parse_and_check_their_target) {
   const PlanningScene table = parse(
       "world:\n  collision_objects:\n    - header: {frame_id: table_top}\n      id: cup\n"
       "      primitives: [{type: sphere, dimensions: [0.1]}]\n"
-      "      primitive_poses: [{position: [0, 0, 0], " + kIdentity + "}]\n");
-  checkThrows([&] { shapeWorldPoses(table, arm, arm.defaultConfiguration()); },
-              {"bad.yaml', line 3, object 'cup'", "unknown frame 'table_top'",
-               "--frame-alias table_top=" + arm.link(0).name});
+      "      primitive_poses: [{position: [0, 0, 0], " +
+      kIdentity + "}]\n");
+  checkThrows(
+      [&] { shapeWorldPoses(table, arm, arm.defaultConfiguration()); },
+      {"bad.yaml', line 3, object 'cup'", "unknown frame 'table_top'", "--frame-alias table_top=" + arm.link(0).name});
 }
 
 BOOST_AUTO_TEST_CASE(bad_files_name_file_line_and_object) {
   const std::string box = "      primitives:\n        - type: box\n          dimensions: [1, 1, 1]\n";
   const std::string pose = "      primitive_poses:\n        - position: [0, 0, 0]\n          " + kIdentity + "\n";
-  checkThrows([&] { parse(oneObject(box)); },
-              {"bad.yaml', line 7, object 'thing'", "missing 'primitive_poses'"});
+  checkThrows([&] { parse(oneObject(box)); }, {"bad.yaml', line 7, object 'thing'", "missing 'primitive_poses'"});
   checkThrows([&] { parse(oneObject(box + "      primitive_poses:\n        - position: [0, 0, 0]\n")); },
               {"line 10, object 'thing'", "missing 'orientation'"});
   checkThrows([&] { parse(oneObject("      primitives:\n        - type: torus\n          dimensions: [1]\n" + pose)); },
               {"line 7, object 'thing'", "unknown primitive type 'torus'"});
-  checkThrows([&] { parse(oneObject("      primitives:\n        - type: cylinder\n          dimensions: [1]\n" + pose)); },
-              {"line 8, object 'thing'", "a cylinder needs 2 dimensions [height, radius], has 1"});
-  checkThrows([&] { parse(oneObject("      primitives:\n        - type: sphere\n          dimensions: [-0.1]\n" + pose)); },
-              {"line 8, object 'thing'", "sphere radius must be positive, is -0.1"});
-  checkThrows([&] { parse(oneObject("      primitives:\n        - type: box\n          dimensions: [1, .nan, 1]\n" + pose)); },
-              {"line 8, object 'thing'", "dimensions[1] must be finite, is '.nan'"});
-  checkThrows([&] { parse(oneObject(box + "      primitive_poses:\n        - position: [0, .inf, 0]\n          " + kIdentity + "\n")); },
-              {"line 10, object 'thing'", "primitive_poses[0].position[1] must be finite"});
-  checkThrows([&] { parse(oneObject(box + "      primitive_poses:\n        - position: [0, 0, 0]\n          orientation: [0, 0, 1, 1]\n")); },
-              {"line 11, object 'thing'", "has norm 1.41421", "not 1 (within 0.01)"});
-  checkThrows([&] { parse(oneObject(box + "      primitive_poses:\n        - position: [0, 0]\n          " + kIdentity + "\n")); },
-              {"line 10", "position must have 3 numbers, has 2"});
-  checkThrows([&] { parse(oneObject("      meshes:\n        - resource: meshes/missing.stl\n      mesh_poses:\n        - position: [0, 0, 0]\n          " + kIdentity + "\n")); },
-              {"line 7, object 'thing', mesh 0", "cannot find mesh 'meshes/missing.stl'", "missing.stl"});
-  checkThrows([&] { parse(oneObject("      meshes:\n        - resource: package://nopkg/a.stl\n      mesh_poses:\n        - position: [0, 0, 0]\n          " + kIdentity + "\n")); },
-              {"object 'thing', mesh 0", "package 'nopkg'"});
+  checkThrows(
+      [&] { parse(oneObject("      primitives:\n        - type: cylinder\n          dimensions: [1]\n" + pose)); },
+      {"line 8, object 'thing'", "a cylinder needs 2 dimensions [height, radius], has 1"});
+  checkThrows(
+      [&] { parse(oneObject("      primitives:\n        - type: sphere\n          dimensions: [-0.1]\n" + pose)); },
+      {"line 8, object 'thing'", "sphere radius must be positive, is -0.1"});
+  checkThrows(
+      [&] { parse(oneObject("      primitives:\n        - type: box\n          dimensions: [1, .nan, 1]\n" + pose)); },
+      {"line 8, object 'thing'", "dimensions[1] must be finite, is '.nan'"});
+  checkThrows(
+      [&] {
+        parse(
+            oneObject(box + "      primitive_poses:\n        - position: [0, .inf, 0]\n          " + kIdentity + "\n"));
+      },
+      {"line 10, object 'thing'", "primitive_poses[0].position[1] must be finite"});
+  checkThrows(
+      [&] {
+        parse(oneObject(
+            box + "      primitive_poses:\n        - position: [0, 0, 0]\n          orientation: [0, 0, 1, 1]\n"));
+      },
+      {"line 11, object 'thing'", "has norm 1.41421", "not 1 (within 0.01)"});
+  checkThrows(
+      [&] {
+        parse(oneObject(box + "      primitive_poses:\n        - position: [0, 0]\n          " + kIdentity + "\n"));
+      },
+      {"line 10", "position must have 3 numbers, has 2"});
+  checkThrows(
+      [&] {
+        parse(
+            oneObject("      meshes:\n        - resource: meshes/missing.stl\n      mesh_poses:\n        - position: "
+                      "[0, 0, 0]\n          " +
+                      kIdentity + "\n"));
+      },
+      {"line 7, object 'thing', mesh 0", "cannot find mesh 'meshes/missing.stl'", "missing.stl"});
+  checkThrows(
+      [&] {
+        parse(
+            oneObject("      meshes:\n        - resource: package://nopkg/a.stl\n      mesh_poses:\n        - "
+                      "position: [0, 0, 0]\n          " +
+                      kIdentity + "\n"));
+      },
+      {"object 'thing', mesh 0", "package 'nopkg'"});
 }
 
 BOOST_AUTO_TEST_CASE(bad_structure_is_reported) {
@@ -308,21 +335,28 @@ BOOST_AUTO_TEST_CASE(bad_structure_is_reported) {
   checkThrows([] { parse(oneObject("      primitive:\n        - type: box\n")); },
               {"line 6, object 'thing'", "unknown key 'primitive' in a collision object"});
   checkThrows([] { parse(oneObject("")); }, {"line 3, object 'thing'", "no primitives and no meshes"});
-  checkThrows([] { parse("world:\n  collision_objects:\n    - id: a\n"); },
-              {"line 3, object 'a'", "missing 'header'"});
+  checkThrows([] { parse("world:\n  collision_objects:\n    - id: a\n"); }, {"line 3, object 'a'", "missing 'header'"});
   checkThrows([] { parse("world:\n  collision_objects:\n    - header: {frame_id: x}\n"); },
               {"line 3, object 0", "missing 'id'"});
-  const std::string sphere = "      primitives: [{type: sphere, dimensions: [1]}]\n"
-                             "      primitive_poses: [{position: [0, 0, 0], " + kIdentity + "}]\n";
+  const std::string sphere =
+      "      primitives: [{type: sphere, dimensions: [1]}]\n"
+      "      primitive_poses: [{position: [0, 0, 0], " +
+      kIdentity + "}]\n";
   checkThrows([&] { parse(oneObject(sphere) + "    - header: {frame_id: a}\n      id: thing\n" + sphere); },
               {"line 8, object 'thing'", "used twice (first at line 3)"});
   checkThrows([&] { parse(oneObject(sphere + "      operation: remove\n")); },
               {"object 'thing'", "operation 'remove' is not supported"});
   checkThrows([&] { parse(oneObject(sphere + "      planes: [{coef: [0, 0, 1, 0]}]\n")); },
               {"object 'thing'", "'planes' is not supported"});
-  checkThrows([] { parse("world:\n  octomap: {octomap: {id: x, data: [3]}}\n"); }, {"octomap with data is not supported"});
-  checkThrows([] { parse("fixed_frame_transforms:\n  - child_frame_id: a\n    transform: {translation: [1, 0, 0], rotation: [0, 0, 0, 1]}\nworld: {}\n"); },
-              {"line 2", "fixed_frame_transforms[0] is not the identity"});
+  checkThrows([] { parse("world:\n  octomap: {octomap: {id: x, data: [3]}}\n"); },
+              {"octomap with data is not supported"});
+  checkThrows(
+      [] {
+        parse(
+            "fixed_frame_transforms:\n  - child_frame_id: a\n    transform: {translation: [1, 0, 0], rotation: [0, 0, "
+            "0, 1]}\nworld: {}\n");
+      },
+      {"line 2", "fixed_frame_transforms[0] is not the identity"});
   checkThrows([] { loadPlanningScene("/nonexistent/scene.yaml"); },
               {"planning scene '/nonexistent/scene.yaml'", "cannot read"});
   BOOST_CHECK(parse("world:\n  collision_objects: []\n").objects.empty());
@@ -339,7 +373,8 @@ BOOST_AUTO_TEST_CASE(scene_urdf_becomes_objects_posed_at_its_joints) {
   <joint name="door_joint" type="revolute"><origin xyz="0.3 0.5 1"/><parent link="body"/><child link="door"/>
     <axis xyz="0 0 1"/><limit lower="-3" upper="0" effort="1" velocity="1"/></joint>
   <joint name="marker_joint" type="fixed"><parent link="root"/><child link="marker"/></joint>
-</robot>)", "", {}, "cupboard.urdf");
+</robot>)",
+                                                      "", {}, "cupboard.urdf");
   Eigen::VectorXd q(1);
   q << -M_PI / 2;
   const PlanningScene s = planningSceneFromUrdf(scene, q, "world");
@@ -355,7 +390,7 @@ BOOST_AUTO_TEST_CASE(scene_urdf_becomes_objects_posed_at_its_joints) {
   const Eigen::Vector3d centre = s.objects[1].shapes[0].X_FS.translation();
   BOOST_TEST((centre - Eigen::Vector3d(0.05, 0.5, 1.0)).norm() < 1e-12, centre.transpose());
   BOOST_TEST(s.objects[1].shapes[0].X_FS.isApprox(forwardKinematics(scene, q)[scene.linkIndex("door")] *
-                                                   scene.link(scene.linkIndex("door")).collisions[0].X_LG));
+                                                  scene.link(scene.linkIndex("door")).collisions[0].X_LG));
   checkThrows([&] { planningSceneFromUrdf(scene, Eigen::VectorXd::Zero(2), "world"); }, {"2 values"});
 }
 

@@ -153,11 +153,14 @@ BOOST_AUTO_TEST_CASE(bad_matrices_name_file_line_and_what) {
               {"dump.yaml', line 4", "entry_values has 1 entries, entry_names has 3"});
   checkThrows([] { parseMatrix("  entry_names: [a, b]\n"); },
               {"dump.yaml', line 2", "entry_values has 0 entries, entry_names has 2"});
-  checkThrows([] { parseMatrix("  entry_names: [a, b]\n  entry_values:\n  - enabled: [false, true]\n"
-                               "  - enabled: [true]\n"); },
-              {"line 5", "entry_values[1].enabled has 1 entries, entry_names has 2"});
-  checkThrows([] { parseMatrix("  entry_names: [a, b, a]\n"); },
-              {"line 2", "entry_names[2] 'a' is listed twice"});
+  checkThrows(
+      [] {
+        parseMatrix(
+            "  entry_names: [a, b]\n  entry_values:\n  - enabled: [false, true]\n"
+            "  - enabled: [true]\n");
+      },
+      {"line 5", "entry_values[1].enabled has 1 entries, entry_names has 2"});
+  checkThrows([] { parseMatrix("  entry_names: [a, b, a]\n"); }, {"line 2", "entry_names[2] 'a' is listed twice"});
   checkThrows([] { parseMatrix("  entry_names: [a]\n  entry_values:\n  - enabled: [maybe]\n"); },
               {"line 4", "entry_values[0].enabled[0] must be true or false, is 'maybe'"});
   checkThrows([] { parseMatrix("  default_entry_names: [a, b]\n  default_entry_values: [true]\n"); },
@@ -171,25 +174,32 @@ BOOST_AUTO_TEST_CASE(bad_inline_meshes_name_file_line_and_object) {
                  body + "\n    mesh_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]\n");
   };
   const std::string vertices = "vertices: [[0, 0, 0], [1, 0, 0], {x: 0, y: 1, z: 0}]";
-  BOOST_CHECK_EQUAL(mesh(vertices + "\n      triangles: [[0, 1, 2]]").objects.at(0).shapes.at(0).mesh->triangles.size(), 1u);
+  BOOST_CHECK_EQUAL(mesh(vertices + "\n      triangles: [[0, 1, 2]]").objects.at(0).shapes.at(0).mesh->triangles.size(),
+                    1u);
   checkThrows([&] { mesh(vertices); }, {"dump.yaml', line 6, object 'm'", "missing 'triangles'"});
   checkThrows([&] { mesh(vertices + "\n      triangles: []"); }, {"line 7", "'triangles' must be a list, not empty"});
   checkThrows([&] { mesh(vertices + "\n      triangles: [{vertex_indices: [0, 1, 3]}]"); },
               {"line 7, object 'm'", "triangles[0][2] is 3, not one of the 3 vertices"});
-  checkThrows([&] { mesh(vertices + "\n      triangles: [[0, 1]]"); }, {"line 7", "triangles[0] must have three vertex indices"});
+  checkThrows([&] { mesh(vertices + "\n      triangles: [[0, 1]]"); },
+              {"line 7", "triangles[0] must have three vertex indices"});
   checkThrows([&] { mesh(vertices + "\n      triangles: [[0, 1, -2]]"); }, {"line 7", "is -2, not one of"});
   checkThrows([&] { mesh(vertices + "\n      triangles: [[0, 1, 2]]\n      scale: [1, 1, 1]"); },
               {"line 8", "unknown key 'scale' in an inline mesh"});
-  checkThrows([&] { mesh("vertices: [[0, 0, .nan]]\n      triangles: [[0, 0, 0]]"); }, {"vertices[0][2] must be finite"});
+  checkThrows([&] { mesh("vertices: [[0, 0, .nan]]\n      triangles: [[0, 0, 0]]"); },
+              {"vertices[0][2] must be finite"});
   SceneLoadOptions small;
   small.maxInlineMeshElements = 3;
-  checkThrows([&] {
-        parsePlanningScene("world:\n  collision_objects:\n  - header: {frame_id: base_link}\n    id: m\n    meshes:\n    - " +
-                               vertices + "\n      triangles: [[0, 1, 2]]\n    mesh_poses: [{position: [0, 0, 0], "
-                               "orientation: [0, 0, 0, 1]}]\n",
-                           kScenes, small, "big.yaml");
+  checkThrows(
+      [&] {
+        parsePlanningScene(
+            "world:\n  collision_objects:\n  - header: {frame_id: base_link}\n    id: m\n    meshes:\n    - " +
+                vertices +
+                "\n      triangles: [[0, 1, 2]]\n    mesh_poses: [{position: [0, 0, 0], "
+                "orientation: [0, 0, 0, 1]}]\n",
+            kScenes, small, "big.yaml");
       },
-      {"big.yaml', line 7", "'triangles' has 1 entries, more than the 0 left of SceneLoadOptions::maxInlineMeshElements"});
+      {"big.yaml', line 7",
+       "'triangles' has 1 entries, more than the 0 left of SceneLoadOptions::maxInlineMeshElements"});
 }
 
 BOOST_AUTO_TEST_CASE(bad_attached_objects_name_file_line_and_object) {
@@ -209,8 +219,7 @@ BOOST_AUTO_TEST_CASE(bad_attached_objects_name_file_line_and_object) {
   checkThrows(
       [&] {
         parse("robot_state:\n  attached_collision_objects:\n  - link_name: hand\n    " + object +
-              "world:\n  collision_objects:\n  - header: {frame_id: base_link}\n    id: tool\n    " +
-              sphere("    "));
+              "world:\n  collision_objects:\n  - header: {frame_id: base_link}\n    id: tool\n    " + sphere("    "));
       },
       {"line 11, object 'tool'", "the id is used twice (first at line 5)"});
   checkThrows([] { parse("robot_state: {joint_state: {}, attached: []}\nworld: {}\n"); },

@@ -25,15 +25,14 @@ PlanningScene parse(const std::string& text) { return parseSceneText(text, {}, "
 
 /// A scene of the newer format with one object "thing" whose shape block (after the count) is
 /// `shape`, pose and colour included.
-std::string oneShape(const std::string& shape) {
-  return "s\n* thing\n0 0 0\n0 0 0 1\n1\n" + shape + "0\n.\n";
-}
+std::string oneShape(const std::string& shape) { return "s\n* thing\n0 0 0\n0 0 0 1\n1\n" + shape + "0\n.\n"; }
 
 const std::string kPoseAndColour = "0 0 0\n0 0 0 1\n0 0 0 0\n";
 
 void checkClose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double tolerance) {
-  BOOST_CHECK_MESSAGE((a.matrix() - b.matrix()).cwiseAbs().maxCoeff() <= tolerance,
-                      "poses differ:\n" << a.matrix() << "\nand\n" << b.matrix());
+  BOOST_CHECK_MESSAGE((a.matrix() - b.matrix()).cwiseAbs().maxCoeff() <= tolerance, "poses differ:\n"
+                                                                                        << a.matrix() << "\nand\n"
+                                                                                        << b.matrix());
 }
 
 /// Same ids, frames, shapes (sizes, in-memory meshes exactly) and poses (within kRoundTrip).
@@ -138,7 +137,8 @@ BOOST_AUTO_TEST_CASE(older_format_has_shapes_in_the_model_frame) {
 
 BOOST_AUTO_TEST_CASE(model_frame_is_the_robot_root) {
   RobotModel arm = test::loadBundledArm();
-  Eigen::Isometry3d X_WR = pose({0.1, -0.2, 0.3}, Eigen::Quaterniond(Eigen::AngleAxisd(1.0 / 3.0, Eigen::Vector3d::UnitZ())));
+  Eigen::Isometry3d X_WR =
+      pose({0.1, -0.2, 0.3}, Eigen::Quaterniond(Eigen::AngleAxisd(1.0 / 3.0, Eigen::Vector3d::UnitZ())));
   arm.setBasePose(X_WR);
   const PlanningScene scene = loadPlanningScene(kScenes + "/bench.scene");
   const auto poses = shapeWorldPoses(scene, arm, arm.defaultConfiguration());

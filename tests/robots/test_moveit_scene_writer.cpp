@@ -73,7 +73,8 @@ BOOST_AUTO_TEST_CASE(cones_are_written_as_their_pyramid) {
   BOOST_REQUIRE(pyramid.mesh);
   BOOST_CHECK(pyramid.mesh->vertices == cone.objects[0].shapes[0].mesh->vertices);
   BOOST_CHECK(pyramid.mesh->triangles == cone.objects[0].shapes[0].mesh->triangles);
-  BOOST_CHECK_SMALL((pyramid.X_FS.matrix() - cone.objects[0].shapes[0].X_FS.matrix()).cwiseAbs().maxCoeff(), kRoundTrip);
+  BOOST_CHECK_SMALL((pyramid.X_FS.matrix() - cone.objects[0].shapes[0].X_FS.matrix()).cwiseAbs().maxCoeff(),
+                    kRoundTrip);
 }
 
 BOOST_AUTO_TEST_CASE(motion_bench_maker_scenes_round_trip) {

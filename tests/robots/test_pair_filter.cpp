@@ -68,8 +68,7 @@ const char* kToyUrdf = R"(<?xml version="1.0"?>
 
 RobotModel loadToy() { return RobotModel::fromUrdfString(kToyUrdf, "", {}, "toy.urdf"); }
 
-std::map<std::pair<std::string, std::string>, DisableReason> byKey(
-    const std::vector<DisabledPair>& pairs) {
+std::map<std::pair<std::string, std::string>, DisableReason> byKey(const std::vector<DisabledPair>& pairs) {
   std::map<std::pair<std::string, std::string>, DisableReason> m;
   for (const DisabledPair& p : pairs) m[pairKey(p.link1, p.link2)] = p.reason;
   return m;
@@ -91,9 +90,8 @@ std::string join(const PairSet& s) {
 
 /// Pairs of links that collide in at least one of `count` configurations drawn uniformly in the
 /// joint limits with std::mt19937(seed) (independent of the filter's generator).
-PairSet collidingInFreshSample(const RobotModel& model,
-                               const std::vector<std::vector<CollisionPiece>>& pieces, int count,
-                               unsigned seed) {
+PairSet collidingInFreshSample(const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces,
+                               int count, unsigned seed) {
   std::mt19937 rng(seed);
   std::vector<std::uniform_real_distribution<double>> dist;
   for (int v = 0; v < model.numVariables(); ++v) {
@@ -127,16 +125,14 @@ void checkAgainstShipped(const RobotModel& model, const std::string& srdfPath) {
   for (const auto& k : keys(theirs, DisableReason::Adjacent)) {
     const auto o = ourReasons.find(k);
     BOOST_CHECK_MESSAGE(o != ourReasons.end() && o->second == DisableReason::Adjacent,
-                        k.first << " - " << k.second << " is Adjacent in " << srdfPath
-                                << " but not for us");
+                        k.first << " - " << k.second << " is Adjacent in " << srdfPath << " but not for us");
   }
 
   // 'Never' holds up in a fresh sample drawn with another generator and seed.
   const PairSet fresh = collidingInFreshSample(model, pieces, kFreshSamples, kFreshSeed);
   const PairSet never = keys(ours.disabled, DisableReason::Never);
   PairSet wrong;
-  std::set_intersection(never.begin(), never.end(), fresh.begin(), fresh.end(),
-                        std::inserter(wrong, wrong.end()));
+  std::set_intersection(never.begin(), never.end(), fresh.begin(), fresh.end(), std::inserter(wrong, wrong.end()));
   BOOST_CHECK_MESSAGE(wrong.empty(), "pairs we call Never collide in the fresh sample:" << join(wrong));
   // The fresh sample is meaningful: it does find collisions among the pairs we keep checking.
   PairSet enabledColliding;
@@ -242,23 +238,24 @@ BOOST_AUTO_TEST_CASE(any_reason_text) {
 BOOST_AUTO_TEST_CASE(bad_srdf) {
   checkThrows([] { parseSrdfDisabledPairs("<robot><disable_collisions", "broken.srdf"); },
               {"broken.srdf", "malformed XML", "line"});
-  checkThrows([] { parseSrdfDisabledPairs("<?xml version=\"1.0\"?><model/>", "m.srdf"); },
-              {"m.srdf", "root element"});
+  checkThrows([] { parseSrdfDisabledPairs("<?xml version=\"1.0\"?><model/>", "m.srdf"); }, {"m.srdf", "root element"});
   checkThrows(
-      [] {
-        parseSrdfDisabledPairs("<robot name=\"r\">\n<disable_collisions link1=\"a\"/>\n</robot>",
-                               "half.srdf");
-      },
+      [] { parseSrdfDisabledPairs("<robot name=\"r\">\n<disable_collisions link1=\"a\"/>\n</robot>", "half.srdf"); },
       {"half.srdf", "line 2", "link2"});
   checkThrows([] { readSrdfDisabledPairs("/nonexistent/dir/robot.srdf"); },
               {"/nonexistent/dir/robot.srdf", "cannot open"});
   const RobotModel toy = loadToy();
-  checkThrows([&] { checkDisabledPairs(toy, {{"arm", "elbow", DisableReason::Never}}, "t.srdf"); },
-              {"t.srdf", "'elbow'", "'toy'"});
-  checkThrows([&] { checkDisabledPairs(toy, {{"arm", "arm", DisableReason::Never}}, "t.srdf"); },
-              {"t.srdf", "'arm'", "same link"});
-  checkThrows([&] { enabledLinkPairs(toy, collisionPieces(toy), {{"arm", "nope", DisableReason::User}}); },
-              {"'nope'"});
+  checkThrows(
+      [&] {
+        checkDisabledPairs(toy, {{"arm", "elbow", DisableReason::Never}}, "t.srdf");
+      },
+      {"t.srdf", "'elbow'", "'toy'"});
+  checkThrows(
+      [&] {
+        checkDisabledPairs(toy, {{"arm", "arm", DisableReason::Never}}, "t.srdf");
+      },
+      {"t.srdf", "'arm'", "same link"});
+  checkThrows([&] { enabledLinkPairs(toy, collisionPieces(toy), {{"arm", "nope", DisableReason::User}}); }, {"'nope'"});
 }
 
 BOOST_AUTO_TEST_CASE(bad_options) {
@@ -287,9 +284,8 @@ BOOST_AUTO_TEST_CASE(adjacency_through_links_without_geometry) {
     BOOST_TEST(i < j);
     adjacent.insert(pairKey(toy.link(i).name, toy.link(j).name));
   }
-  const PairSet expected = {pairKey("base", "arm"), pairKey("base", "post"),
-                            pairKey("post", "far"), pairKey("arm", "tip"),
-                            pairKey("tip", "ghost")};
+  const PairSet expected = {pairKey("base", "arm"), pairKey("base", "post"), pairKey("post", "far"),
+                            pairKey("arm", "tip"), pairKey("tip", "ghost")};
   BOOST_TEST((adjacent == expected), "adjacent:" << join(adjacent));
 
   // A link without geometry with several children: all of them and its parent are adjacent.
@@ -313,9 +309,8 @@ BOOST_AUTO_TEST_CASE(adjacency_through_links_without_geometry) {
   for (const auto& [i, j] : adjacentLinkPairs(model, collisionPieces(model))) {
     got.insert(pairKey(model.link(i).name, model.link(j).name));
   }
-  const PairSet want = {pairKey("p", "c1"), pairKey("p", "c2"),   pairKey("p", "c3"),
-                        pairKey("c1", "c2"), pairKey("c1", "c3"), pairKey("c2", "c3"),
-                        pairKey("c3", "g")};
+  const PairSet want = {pairKey("p", "c1"),  pairKey("p", "c2"),  pairKey("p", "c3"), pairKey("c1", "c2"),
+                        pairKey("c1", "c3"), pairKey("c2", "c3"), pairKey("c3", "g")};
   BOOST_TEST((got == want), "adjacent:" << join(got));
 }
 
@@ -344,8 +339,7 @@ BOOST_AUTO_TEST_CASE(reasons_on_a_known_robot) {
   for (const auto& [k, reason] : expected) {
     const auto it = got.find(k);
     BOOST_CHECK_MESSAGE(it != got.end() && it->second == reason,
-                        k.first << " - " << k.second << ": expected " << toString(reason)
-                                << ", got "
+                        k.first << " - " << k.second << ": expected " << toString(reason) << ", got "
                                 << (it == got.end() ? "checked" : toString(it->second)));
   }
   BOOST_TEST(r.numEnabled() == 0);
@@ -371,8 +365,7 @@ BOOST_AUTO_TEST_CASE(reasons_on_a_known_robot) {
   }
   const auto enabled = enabledLinkPairs(toy, pieces, s.disabled);
   BOOST_REQUIRE_EQUAL(enabled.size(), 1u);
-  BOOST_TEST((pairKey(toy.link(enabled[0].first).name, toy.link(enabled[0].second).name) ==
-              pairKey("arm", "post")));
+  BOOST_TEST((pairKey(toy.link(enabled[0].first).name, toy.link(enabled[0].second).name) == pairKey("arm", "post")));
 
   // No samples: nothing is Never or Always.
   o.samples = 0;
@@ -418,20 +411,18 @@ BOOST_AUTO_TEST_CASE(panda_against_moveit_srdf) {
   LoadOptions o;
   o.packageRoots = {sharedDir() + "/robots/panda"};
   o.useRosPackagePath = false;
-  const RobotModel panda = RobotModel::fromUrdfFile(
-      sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf", o);
-  checkAgainstShipped(
-      panda, sharedDir() + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf");
+  const RobotModel panda =
+      RobotModel::fromUrdfFile(sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf", o);
+  checkAgainstShipped(panda, sharedDir() + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf");
   // The Panda's adjacency is exactly MoveIt's, panda_link8 (no geometry) included.
   const auto pieces = collisionPieces(panda);
   PairSet ours;
   for (const auto& [i, j] : adjacentLinkPairs(panda, pieces)) {
     ours.insert(pairKey(panda.link(i).name, panda.link(j).name));
   }
-  const PairSet theirs = keys(
-      readSrdfDisabledPairs(sharedDir() +
-                            "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf"),
-      DisableReason::Adjacent);
+  const PairSet theirs =
+      keys(readSrdfDisabledPairs(sharedDir() + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf"),
+           DisableReason::Adjacent);
   BOOST_TEST((ours == theirs), "ours:" << join(ours) << "\ntheirs:" << join(theirs));
   BOOST_TEST(ours.count(pairKey("panda_link7", "panda_hand")) == 1u);
 }
@@ -443,8 +434,7 @@ BOOST_AUTO_TEST_CASE(ur5_against_example_robot_data_srdf) {
   o.useRosPackagePath = false;
   const RobotModel ur5 = RobotModel::fromUrdfFile(
       sharedDir() + "/robots/ur5/example-robot-data/robots/ur_description/urdf/ur5_robot.urdf", o);
-  checkAgainstShipped(ur5,
-                      sharedDir() + "/robots/ur5/example-robot-data/robots/ur_description/srdf/ur5.srdf");
+  checkAgainstShipped(ur5, sharedDir() + "/robots/ur5/example-robot-data/robots/ur_description/srdf/ur5.srdf");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

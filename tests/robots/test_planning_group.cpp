@@ -100,8 +100,8 @@ std::vector<int> variablesOf(const RobotModel& model, std::initializer_list<cons
   return v;
 }
 
-void checkGroup(const RobotModel& model, const std::vector<SrdfGroup>& groups,
-                const std::string& name, std::initializer_list<const char*> joints) {
+void checkGroup(const RobotModel& model, const std::vector<SrdfGroup>& groups, const std::string& name,
+                std::initializer_list<const char*> joints) {
   BOOST_TEST_CONTEXT("group " << name) {
     const std::vector<int> got = groupVariables(model, groups, name, "rail.srdf");
     const std::vector<int> expected = variablesOf(model, joints);
@@ -110,9 +110,7 @@ void checkGroup(const RobotModel& model, const std::vector<SrdfGroup>& groups,
 }
 
 /// SRDF text holding `groups` (the <group> elements) on its line 2 and after.
-std::string srdfWith(const std::string& groups) {
-  return "<robot name=\"rail\">\n" + groups + "\n</robot>\n";
-}
+std::string srdfWith(const std::string& groups) { return "<robot name=\"rail\">\n" + groups + "\n</robot>\n"; }
 
 /// groupVariables of group `name` of `srdf` (read as "bad.srdf") on the rail robot.
 std::vector<int> railGroup(const std::string& srdf, const std::string& name) {
@@ -133,8 +131,7 @@ BOOST_AUTO_TEST_CASE(parse_keeps_every_element_in_file_order) {
   BOOST_TEST(groups[0].chains[0].second == "tool");
   BOOST_TEST(groups[1].name == "gripper");
   BOOST_TEST(groups[1].line == 6);
-  BOOST_TEST(groups[1].links == (std::vector<std::string>{"finger_a", "finger_b"}),
-             boost::test_tools::per_element());
+  BOOST_TEST(groups[1].links == (std::vector<std::string>{"finger_a", "finger_b"}), boost::test_tools::per_element());
   BOOST_TEST(groups[1].joints.empty());  // <passive_joint> is not a group joint
   BOOST_TEST(groups[3].joints == std::vector<std::string>{"pan"}, boost::test_tools::per_element());
   BOOST_TEST(groups[3].links == std::vector<std::string>{"world"}, boost::test_tools::per_element());
@@ -144,8 +141,8 @@ BOOST_AUTO_TEST_CASE(parse_keeps_every_element_in_file_order) {
              boost::test_tools::per_element());
   BOOST_TEST(groups[5].joints == std::vector<std::string>{"rail"}, boost::test_tools::per_element());
   BOOST_TEST(groups[7].name == "empty");
-  BOOST_TEST((groups[7].joints.empty() && groups[7].links.empty() && groups[7].chains.empty() &&
-              groups[7].subgroups.empty()));
+  BOOST_TEST(
+      (groups[7].joints.empty() && groups[7].links.empty() && groups[7].chains.empty() && groups[7].subgroups.empty()));
 }
 
 BOOST_AUTO_TEST_CASE(resolves_joints_links_chains_and_subgroups) {
@@ -172,8 +169,7 @@ BOOST_AUTO_TEST_CASE(reads_a_file) {
   BOOST_REQUIRE_EQUAL(groups.size(), 9u);
   BOOST_TEST(groupVariables(loadRail(), groups, "arm", path) == variablesOf(loadRail(), {"j1", "j2"}),
              boost::test_tools::per_element());
-  checkThrows([&] { readSrdfGroups((dir.path() / "missing.srdf").string()); },
-              {"missing.srdf", "cannot open"});
+  checkThrows([&] { readSrdfGroups((dir.path() / "missing.srdf").string()); }, {"missing.srdf", "cannot open"});
 }
 
 BOOST_AUTO_TEST_CASE(reads_several_files) {
@@ -181,7 +177,7 @@ BOOST_AUTO_TEST_CASE(reads_several_files) {
   TempDir dir;
   const std::string a = dir.write("a.srdf", srdfWith("<group name=\"arm\"><joint name=\"j1\"/></group>"));
   const std::string b = dir.write("b.srdf", srdfWith("<group name=\"cam\"><joint name=\"pan\"/></group>\n"
-                                                      "<group name=\"arm\"><joint name=\"j1\"/></group>"));
+                                                     "<group name=\"arm\"><joint name=\"j1\"/></group>"));
   const std::vector<SrdfGroup> groups = readSrdfGroups(std::vector<std::string>{a, b});
   BOOST_REQUIRE_EQUAL(groups.size(), 2u);
   BOOST_TEST(groups[0].name == "arm");
@@ -190,16 +186,18 @@ BOOST_AUTO_TEST_CASE(reads_several_files) {
   BOOST_TEST(model.numVariables() == 1);
   // Defined differently: both files, both lines and the group are named.
   const std::string c = dir.write("c.srdf", srdfWith("\n<group name=\"arm\"><joint name=\"j2\"/></group>"));
-  checkThrows([&] { readSrdfGroups(std::vector<std::string>{a, c}); },
-              {"c.srdf', line 3", "a.srdf', line 2", "'arm'", "differently"});
+  checkThrows(
+      [&] {
+        readSrdfGroups(std::vector<std::string>{a, c});
+      },
+      {"c.srdf', line 3", "a.srdf', line 2", "'arm'", "differently"});
   BOOST_TEST(srdfSourceName({a, c}) == a + ", " + c);
 }
 
 BOOST_AUTO_TEST_CASE(panda_groups_of_its_moveit_config) {
   if (!haveShared("panda_groups_of_its_moveit_config")) return;
   const RobotModel panda = loadPanda();
-  const std::string srdf =
-      sharedDir() + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf";
+  const std::string srdf = sharedDir() + "/robots/panda/moveit_resources_panda_moveit_config/config/panda.srdf";
   const std::vector<SrdfGroup> groups = readSrdfGroups(srdf);
   BOOST_REQUIRE_EQUAL(groups.size(), 3u);
 
@@ -214,8 +212,7 @@ BOOST_AUTO_TEST_CASE(panda_groups_of_its_moveit_config) {
 
   std::vector<int> all(panda.numVariables());
   for (int v = 0; v < panda.numVariables(); ++v) all[v] = v;
-  BOOST_TEST(groupVariables(panda, groups, "panda_arm_hand", srdf) == all,
-             boost::test_tools::per_element());
+  BOOST_TEST(groupVariables(panda, groups, "panda_arm_hand", srdf) == all, boost::test_tools::per_element());
 }
 
 BOOST_AUTO_TEST_CASE(malformed_groups_are_rejected_when_read) {
@@ -224,17 +221,22 @@ BOOST_AUTO_TEST_CASE(malformed_groups_are_rejected_when_read) {
   checkThrows([] { parseSrdfGroups("<robt/>", "bad.srdf"); }, {"bad.srdf", "root element"});
   checkThrows([] { parseSrdfGroups(srdfWith("<group>\n<joint name=\"j1\"/>\n</group>"), "bad.srdf"); },
               {"SRDF 'bad.srdf'", "line 2", "<group> without name"});
-  checkThrows([] { parseSrdfGroups(srdfWith("<group name=\"g\">\n<chain base_link=\"cart\"/>\n</group>"), "bad.srdf"); },
-              {"SRDF 'bad.srdf'", "line 3", "group 'g'", "<chain> without tip_link"});
+  checkThrows(
+      [] { parseSrdfGroups(srdfWith("<group name=\"g\">\n<chain base_link=\"cart\"/>\n</group>"), "bad.srdf"); },
+      {"SRDF 'bad.srdf'", "line 3", "group 'g'", "<chain> without tip_link"});
   checkThrows([] { parseSrdfGroups(srdfWith("<group name=\"g\">\n<chain tip_link=\"l2\"/>\n</group>"), "bad.srdf"); },
               {"bad.srdf", "line 3", "group 'g'", "<chain> without base_link"});
   checkThrows([] { parseSrdfGroups(srdfWith("<group name=\"g\">\n<joint nam=\"j1\"/>\n</group>"), "bad.srdf"); },
               {"bad.srdf", "line 3", "group 'g'", "<joint> without name"});
   checkThrows([] { parseSrdfGroups(srdfWith("<group name=\"g\">\n<joints name=\"j1\"/>\n</group>"), "bad.srdf"); },
               {"bad.srdf", "line 3", "group 'g'", "<joints>"});
-  checkThrows([] { parseSrdfGroups(srdfWith("<group name=\"g\"><joint name=\"j1\"/></group>\n"
-                                            "<group name=\"g\"><joint name=\"j2\"/></group>"), "bad.srdf"); },
-              {"bad.srdf", "line 3", "group 'g'", "defined twice", "line 2"});
+  checkThrows(
+      [] {
+        parseSrdfGroups(srdfWith("<group name=\"g\"><joint name=\"j1\"/></group>\n"
+                                 "<group name=\"g\"><joint name=\"j2\"/></group>"),
+                        "bad.srdf");
+      },
+      {"bad.srdf", "line 3", "group 'g'", "defined twice", "line 2"});
 }
 
 BOOST_AUTO_TEST_CASE(unresolvable_groups_are_rejected) {
@@ -245,13 +247,15 @@ BOOST_AUTO_TEST_CASE(unresolvable_groups_are_rejected) {
               {"bad.srdf", "line 2", "group 'g'", "joint 'j9'", "robot 'rail' (rail.urdf)"});
   checkThrows([] { railGroup(srdfWith("<group name=\"g\">\n<link name=\"l9\"/></group>"), "g"); },
               {"bad.srdf", "line 2", "group 'g'", "link 'l9'"});
-  checkThrows([] { railGroup(srdfWith("<group name=\"g\">\n<chain base_link=\"cart\" tip_link=\"l9\"/></group>"), "g"); },
-              {"bad.srdf", "line 2", "group 'g'", "link 'l9'"});
+  checkThrows(
+      [] { railGroup(srdfWith("<group name=\"g\">\n<chain base_link=\"cart\" tip_link=\"l9\"/></group>"), "g"); },
+      {"bad.srdf", "line 2", "group 'g'", "link 'l9'"});
   // Reversed, and across branches: base_link is not an ancestor of tip_link.
   checkThrows([] { railGroup(srdfWith("<group name=\"g\">\n<chain base_link=\"l2\" tip_link=\"l1\"/></group>"), "g"); },
               {"bad.srdf", "line 2", "group 'g'", "base_link='l2' tip_link='l1'", "not an ancestor"});
-  checkThrows([] { railGroup(srdfWith("<group name=\"g\"><chain base_link=\"camera\" tip_link=\"tool\"/></group>"), "g"); },
-              {"bad.srdf", "line 2", "group 'g'", "'camera' is not an ancestor of 'tool'"});
+  checkThrows(
+      [] { railGroup(srdfWith("<group name=\"g\"><chain base_link=\"camera\" tip_link=\"tool\"/></group>"), "g"); },
+      {"bad.srdf", "line 2", "group 'g'", "'camera' is not an ancestor of 'tool'"});
   checkThrows([] { railGroup(srdfWith("<group name=\"g\">\n<group name=\"arms\"/></group>"), "g"); },
               {"bad.srdf", "line 2", "group 'g'", "subgroup 'arms'"});
 }
@@ -262,18 +266,15 @@ BOOST_AUTO_TEST_CASE(subgroup_cycles_are_rejected) {
       "<group name=\"b\"><joint name=\"j1\"/><group name=\"c\"/></group>\n"
       "<group name=\"c\"><group name=\"a\"/></group>\n"
       "<group name=\"d\"><group name=\"b\"/></group>");
-  checkThrows([&] { railGroup(cycle, "a"); },
-              {"bad.srdf", "line 4", "group 'c'", "cycle: a -> b -> c -> a"});
-  checkThrows([&] { railGroup(cycle, "d"); },
-              {"bad.srdf", "line 2", "group 'a'", "cycle: b -> c -> a -> b"});
+  checkThrows([&] { railGroup(cycle, "a"); }, {"bad.srdf", "line 4", "group 'c'", "cycle: a -> b -> c -> a"});
+  checkThrows([&] { railGroup(cycle, "d"); }, {"bad.srdf", "line 2", "group 'a'", "cycle: b -> c -> a -> b"});
   checkThrows([] { railGroup(srdfWith("<group name=\"self\"><group name=\"self\"/></group>"), "self"); },
               {"bad.srdf", "line 2", "group 'self'", "cycle: self -> self"});
 }
 
 BOOST_AUTO_TEST_CASE(groups_that_move_nothing_are_rejected) {
   checkThrows([] { railGroup(kRailSrdf, "fixed_only"); },
-              {"SRDF 'bad.srdf'", "line 28", "group 'fixed_only'", "moves no variable",
-               "tool_joint, fb"});
+              {"SRDF 'bad.srdf'", "line 28", "group 'fixed_only'", "moves no variable", "tool_joint, fb"});
   checkThrows([] { railGroup(kRailSrdf, "empty"); },
               {"bad.srdf", "line 32", "group 'empty'", "moves no variable", "no joint"});
   checkThrows([] { railGroup(kRailSrdf, "one_link_chain"); },

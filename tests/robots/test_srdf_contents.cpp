@@ -70,10 +70,17 @@ BOOST_AUTO_TEST_CASE(groups_and_virtual_joints_round_trip) {
 }
 
 BOOST_AUTO_TEST_CASE(bad_virtual_joints_name_file_and_line) {
-  checkThrows([] { parseSrdfVirtualJoints("<robot>\n<virtual_joint name='v' type='fixed' child_link='b'/>\n</robot>", "x.srdf"); },
-              {"SRDF 'x.srdf', line 2", "<virtual_joint> without parent_frame"});
-  checkThrows([] { parseSrdfVirtualJoints("<robot>\n\n<virtual_joint name='v' type='hinge' parent_frame='w' child_link='b'/></robot>", "x.srdf"); },
-              {"line 3", "'v' has type 'hinge' (known: fixed, floating, planar)"});
+  checkThrows(
+      [] {
+        parseSrdfVirtualJoints("<robot>\n<virtual_joint name='v' type='fixed' child_link='b'/>\n</robot>", "x.srdf");
+      },
+      {"SRDF 'x.srdf', line 2", "<virtual_joint> without parent_frame"});
+  checkThrows(
+      [] {
+        parseSrdfVirtualJoints(
+            "<robot>\n\n<virtual_joint name='v' type='hinge' parent_frame='w' child_link='b'/></robot>", "x.srdf");
+      },
+      {"line 3", "'v' has type 'hinge' (known: fixed, floating, planar)"});
   checkThrows([] { parseSrdfVirtualJoints("<robt/>", "x.srdf"); }, {"SRDF 'x.srdf'"});
 }
 

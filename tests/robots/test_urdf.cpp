@@ -25,9 +25,7 @@ using deepcheck::robots::test::TempDir;
 
 namespace {
 
-std::string pandaUrdf() {
-  return sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf";
-}
+std::string pandaUrdf() { return sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf"; }
 std::string ur5Urdf() {
   return sharedDir() + "/robots/ur5/example-robot-data/robots/ur_description/urdf/ur5_robot.urdf";
 }
@@ -94,20 +92,17 @@ BOOST_AUTO_TEST_SUITE(robots_urdf)
 
 BOOST_AUTO_TEST_CASE(panda_structure) {
   if (!haveShared("panda_structure")) return;
-  const RobotModel m =
-      RobotModel::fromUrdfFile(pandaUrdf(), rootsOnly({sharedDir() + "/robots/panda"}));
+  const RobotModel m = RobotModel::fromUrdfFile(pandaUrdf(), rootsOnly({sharedDir() + "/robots/panda"}));
   BOOST_TEST(m.name() == "panda");
   BOOST_TEST(m.numLinks() == 12);
   BOOST_TEST(m.numJoints() == 11);
   BOOST_TEST(m.numCollisionElements() == 11);
-  const std::vector<std::string> links{"panda_link0", "panda_link1", "panda_link2", "panda_link3",
-                                       "panda_link4", "panda_link5", "panda_link6", "panda_link7",
-                                       "panda_link8", "panda_hand",  "panda_leftfinger",
-                                       "panda_rightfinger"};
+  const std::vector<std::string> links{"panda_link0", "panda_link1", "panda_link2",      "panda_link3",
+                                       "panda_link4", "panda_link5", "panda_link6",      "panda_link7",
+                                       "panda_link8", "panda_hand",  "panda_leftfinger", "panda_rightfinger"};
   BOOST_TEST(linkNames(m) == links, boost::test_tools::per_element());
-  const std::vector<std::string> variables{"panda_joint1", "panda_joint2", "panda_joint3",
-                                           "panda_joint4", "panda_joint5", "panda_joint6",
-                                           "panda_joint7", "panda_finger_joint1"};
+  const std::vector<std::string> variables{"panda_joint1", "panda_joint2", "panda_joint3", "panda_joint4",
+                                           "panda_joint5", "panda_joint6", "panda_joint7", "panda_finger_joint1"};
   BOOST_TEST(m.variableNames() == variables, boost::test_tools::per_element());
   BOOST_TEST(m.variableIndex("panda_joint4") == 3);
   BOOST_TEST(m.variableIndex("panda_finger_joint2") == -1);  // a mimic joint
@@ -144,8 +139,7 @@ BOOST_AUTO_TEST_CASE(panda_structure) {
   BOOST_REQUIRE(right.collisions.size() == 1u);
   const Geometry& g = right.collisions[0].geometry;
   BOOST_TEST((g.type == GeometryType::Mesh));
-  BOOST_TEST(g.meshUri ==
-             "package://moveit_resources_panda_description/meshes/collision/finger.stl");
+  BOOST_TEST(g.meshUri == "package://moveit_resources_panda_description/meshes/collision/finger.stl");
   BOOST_TEST(fs::path(g.meshPath).is_absolute());
   BOOST_TEST(fs::exists(g.meshPath));
   const Eigen::Matrix3d Rz = Eigen::AngleAxisd(3.14159265359, Eigen::Vector3d::UnitZ()).matrix();
@@ -155,22 +149,19 @@ BOOST_AUTO_TEST_CASE(panda_structure) {
 
 BOOST_AUTO_TEST_CASE(ur5_structure) {
   if (!haveShared("ur5_structure")) return;
-  const RobotModel m =
-      RobotModel::fromUrdfFile(ur5Urdf(), rootsOnly({sharedDir() + "/robots/ur5"}));
+  const RobotModel m = RobotModel::fromUrdfFile(ur5Urdf(), rootsOnly({sharedDir() + "/robots/ur5"}));
   BOOST_TEST(m.numLinks() == 11);
   BOOST_TEST(m.numJoints() == 10);
   BOOST_TEST(m.numCollisionElements() == 8);
   BOOST_TEST(m.link(0).name == "world");
   // Depth first, children in file order: base_link's joints are shoulder_pan_joint (first in the
   // file) and base_link-base_fixed_joint (later), so "base" comes after the whole arm.
-  const std::vector<std::string> links{"world",        "base_link",    "shoulder_link",
-                                       "upper_arm_link", "forearm_link", "wrist_1_link",
-                                       "wrist_2_link", "wrist_3_link", "ee_link",
-                                       "tool0",        "base"};
+  const std::vector<std::string> links{"world",        "base_link",    "shoulder_link", "upper_arm_link",
+                                       "forearm_link", "wrist_1_link", "wrist_2_link",  "wrist_3_link",
+                                       "ee_link",      "tool0",        "base"};
   BOOST_TEST(linkNames(m) == links, boost::test_tools::per_element());
-  const std::vector<std::string> variables{"shoulder_pan_joint", "shoulder_lift_joint",
-                                           "elbow_joint",        "wrist_1_joint",
-                                           "wrist_2_joint",      "wrist_3_joint"};
+  const std::vector<std::string> variables{"shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint",
+                                           "wrist_1_joint",      "wrist_2_joint",       "wrist_3_joint"};
   BOOST_TEST(m.variableNames() == variables, boost::test_tools::per_element());
   for (int v = 0; v < 6; ++v) {
     const double limit = v == 2 ? 3.14159265359 : 6.28318530718;
@@ -193,8 +184,8 @@ BOOST_AUTO_TEST_CASE(scenes_structure_and_placement) {
   BOOST_TEST(kitchen.numLinks() == 6);
   BOOST_TEST(kitchen.numJoints() == 5);
   BOOST_TEST(kitchen.numCollisionElements() == 5);
-  const std::vector<std::string> kitchenLinks{"root",          "cupboard",        "dishwasher_door",
-                                              "cupboard_door_l", "cupboard_door_r", "kitchen_counter"};
+  const std::vector<std::string> kitchenLinks{
+      "root", "cupboard", "dishwasher_door", "cupboard_door_l", "cupboard_door_r", "kitchen_counter"};
   BOOST_TEST(linkNames(kitchen) == kitchenLinks, boost::test_tools::per_element());
   const std::vector<std::string> kitchenVariables{"dishwasher_door_joint", "cupboard_door_l_joint",
                                                   "cupboard_door_r_joint"};
@@ -342,8 +333,8 @@ BOOST_AUTO_TEST_CASE(links_with_visuals_are_marked) {
 }
 
 BOOST_AUTO_TEST_CASE(continuous_joint_limits) {
-  const RobotModel m = RobotModel::fromUrdfString(
-      oneJointUrdf("continuous", R"(<axis xyz="0 0 2"/>)"), "", rootsOnly({}));
+  const RobotModel m =
+      RobotModel::fromUrdfString(oneJointUrdf("continuous", R"(<axis xyz="0 0 2"/>)"), "", rootsOnly({}));
   BOOST_TEST(m.numVariables() == 1);
   BOOST_TEST(m.lowerLimits()[0] == -M_PI);
   BOOST_TEST(m.upperLimits()[0] == M_PI);
@@ -354,8 +345,7 @@ BOOST_AUTO_TEST_CASE(continuous_joint_limits) {
 BOOST_AUTO_TEST_CASE(floating_joint_fixed_on_request) {
   LoadOptions options = rootsOnly({});
   options.fixFloatingJoints = true;
-  const RobotModel m = RobotModel::fromUrdfString(
-      oneJointUrdf("floating", R"(<origin xyz="1 2 3"/>)"), "", options);
+  const RobotModel m = RobotModel::fromUrdfString(oneJointUrdf("floating", R"(<origin xyz="1 2 3"/>)"), "", options);
   BOOST_TEST(m.numVariables() == 0);
   BOOST_TEST((m.joint(0).type == JointType::Fixed));
   BOOST_TEST(m.joint(0).urdfType == "floating");
@@ -373,10 +363,8 @@ BOOST_AUTO_TEST_CASE(error_missing_urdf_file) {
 
 BOOST_AUTO_TEST_CASE(error_malformed_xml) {
   TempDir dir;
-  const std::string path =
-      dir.write("broken.urdf", "<robot name=\"x\">\n  <link name=\"a\">\n</robot>\n");
-  checkThrows([&] { RobotModel::fromUrdfFile(path, rootsOnly({})); },
-              {"broken.urdf", "malformed XML", "line"});
+  const std::string path = dir.write("broken.urdf", "<robot name=\"x\">\n  <link name=\"a\">\n</robot>\n");
+  checkThrows([&] { RobotModel::fromUrdfFile(path, rootsOnly({})); }, {"broken.urdf", "malformed XML", "line"});
 }
 
 BOOST_AUTO_TEST_CASE(error_text_that_is_not_utf8) {
@@ -394,8 +382,9 @@ BOOST_AUTO_TEST_CASE(error_text_that_is_not_utf8) {
   checkThrows([&] { deepcheck::robots::parseSrdfDisabledPairs("<robot name=\"\xed\xa0\x80\"/>", "surrogate.srdf"); },
               {"surrogate.srdf", "byte 13 (0xED): not UTF-8"});
   // Valid multi-byte names load.
-  const RobotModel ok = RobotModel::fromUrdfString("<robot name=\"r\xc3\xa9\xe2\x82\xac\"><link name=\"\xf0\x9f\xa4\x96\"/></robot>",
-                                                   "", rootsOnly({}), "utf8.urdf");
+  const RobotModel ok =
+      RobotModel::fromUrdfString("<robot name=\"r\xc3\xa9\xe2\x82\xac\"><link name=\"\xf0\x9f\xa4\x96\"/></robot>", "",
+                                 rootsOnly({}), "utf8.urdf");
   BOOST_TEST(ok.name() == "r\xc3\xa9\xe2\x82\xac");
 }
 
@@ -438,18 +427,19 @@ BOOST_AUTO_TEST_CASE(error_missing_mesh_lists_searched_places) {
   const std::string urdf = dir.write("r.urdf", R"(<robot name="r"><link name="arm_link">
     <collision><geometry><mesh filename="package://my_pkg/meshes/arm.stl"/></geometry></collision>
   </link></robot>)");
-  checkThrows([&] { RobotModel::fromUrdfFile(urdf, rootsOnly({rootA, rootB})); },
-              {urdf, "arm_link", "package://my_pkg/meshes/arm.stl",
-               (fs::path(rootA) / "my_pkg/meshes/arm.stl").string(),
-               (fs::path(rootB) / "my_pkg/meshes/arm.stl").string()});
+  checkThrows(
+      [&] {
+        RobotModel::fromUrdfFile(urdf, rootsOnly({rootA, rootB}));
+      },
+      {urdf, "arm_link", "package://my_pkg/meshes/arm.stl", (fs::path(rootA) / "my_pkg/meshes/arm.stl").string(),
+       (fs::path(rootB) / "my_pkg/meshes/arm.stl").string()});
 
   // A plain relative path names the place it was looked for.
   const std::string rel = dir.write("s.urdf", R"(<robot name="s"><link name="l">
     <collision><geometry><mesh filename="meshes/nothing.obj"/></geometry></collision>
   </link></robot>)");
   checkThrows([&] { RobotModel::fromUrdfFile(rel, rootsOnly({})); },
-              {"s.urdf", "link 'l'", "meshes/nothing.obj",
-               (dir.path() / "meshes/nothing.obj").string()});
+              {"s.urdf", "link 'l'", "meshes/nothing.obj", (dir.path() / "meshes/nothing.obj").string()});
 }
 
 BOOST_AUTO_TEST_CASE(error_unknown_package) {
@@ -460,8 +450,7 @@ BOOST_AUTO_TEST_CASE(error_unknown_package) {
     <collision><geometry><mesh filename="package://no_such_package/m.stl"/></geometry></collision>
   </link></robot>)";
   checkThrows([&] { RobotModel::fromUrdfString(xml, "", rootsOnly({root}), "u.urdf"); },
-              {"u.urdf", "link 'l'", "package 'no_such_package'",
-               (fs::path(root) / "no_such_package/m.stl").string()});
+              {"u.urdf", "link 'l'", "package 'no_such_package'", (fs::path(root) / "no_such_package/m.stl").string()});
   // No roots at all: the message names the library's option (not a command-line flag) and the
   // environment variables.
   checkThrows([&] { RobotModel::fromUrdfString(xml, "", rootsOnly({}), "u.urdf"); },
@@ -482,7 +471,9 @@ BOOST_AUTO_TEST_CASE(error_mimic_cycle) {
   checkThrows(
       [&] {
         RobotModel::fromUrdfString(
-            oneJointUrdf("revolute", R"(<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="phantom"/>)"),
+            oneJointUrdf(
+                "revolute",
+                R"(<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="phantom"/>)"),
             "", rootsOnly({}), "m.urdf");
       },
       {"m.urdf", "joint 'j'", "phantom"});
@@ -491,9 +482,8 @@ BOOST_AUTO_TEST_CASE(error_mimic_cycle) {
 BOOST_AUTO_TEST_CASE(error_nan_in_origin) {
   checkThrows(
       [&] {
-        RobotModel::fromUrdfString(
-            oneJointUrdf("fixed", R"(<origin xyz="0 nan 0" rpy="0 0 0"/>)"), "", rootsOnly({}),
-            "nan.urdf");
+        RobotModel::fromUrdfString(oneJointUrdf("fixed", R"(<origin xyz="0 nan 0" rpy="0 0 0"/>)"), "", rootsOnly({}),
+                                   "nan.urdf");
       },
       {"nan.urdf", "joint 'j'", "origin", "non-finite"});
   // In a collision origin: names the link and the collision element.
@@ -514,13 +504,11 @@ BOOST_AUTO_TEST_CASE(error_nan_in_origin) {
 }
 
 BOOST_AUTO_TEST_CASE(error_floating_joint_rejected) {
-  checkThrows(
-      [&] { RobotModel::fromUrdfString(oneJointUrdf("floating", ""), "", rootsOnly({}), "f.urdf"); },
-      {"f.urdf", "joint 'j'", "floating", "fixFloatingJoints"});
+  checkThrows([&] { RobotModel::fromUrdfString(oneJointUrdf("floating", ""), "", rootsOnly({}), "f.urdf"); },
+              {"f.urdf", "joint 'j'", "floating", "fixFloatingJoints"});
   checkThrows(
       [&] {
-        RobotModel::fromUrdfString(oneJointUrdf("planar", R"(<axis xyz="0 0 1"/>)"), "",
-                                   rootsOnly({}), "p.urdf");
+        RobotModel::fromUrdfString(oneJointUrdf("planar", R"(<axis xyz="0 0 1"/>)"), "", rootsOnly({}), "p.urdf");
       },
       {"p.urdf", "joint 'j'", "planar"});
 }
@@ -536,8 +524,8 @@ BOOST_AUTO_TEST_CASE(error_zero_axis_and_bad_limits) {
   checkThrows(
       [&] {
         RobotModel::fromUrdfString(
-            oneJointUrdf("revolute", R"(<axis xyz="0 0 1"/><limit lower="1" upper="-1" effort="1" velocity="1"/>)"),
-            "", rootsOnly({}), "order.urdf");
+            oneJointUrdf("revolute", R"(<axis xyz="0 0 1"/><limit lower="1" upper="-1" effort="1" velocity="1"/>)"), "",
+            rootsOnly({}), "order.urdf");
       },
       {"order.urdf", "joint 'j'", "lower limit"});
 }

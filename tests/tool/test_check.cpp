@@ -36,7 +36,8 @@ const char* kRobot =
 const char* kScene =
     "<robot name='room'><link name='root'/>"
     "<link name='wall'><collision><origin xyz='0.7 0 0'/><geometry><box size='0.2 2 2'/></geometry></collision></link>"
-    "<link name='floor'><collision><origin xyz='0 0 -0.45'/><geometry><box size='4 4 0.2'/></geometry></collision></link>"
+    "<link name='floor'><collision><origin xyz='0 0 -0.45'/><geometry><box size='4 4 "
+    "0.2'/></geometry></collision></link>"
     "<joint name='w' type='fixed'><parent link='root'/><child link='wall'/></joint>"
     "<joint name='f' type='fixed'><parent link='root'/><child link='floor'/></joint></robot>";
 
@@ -96,7 +97,7 @@ BOOST_AUTO_TEST_CASE(scene_pose_and_no_gradient) {
   const std::vector<std::string> out = lines(r.out);
   BOOST_TEST_REQUIRE(out.size() == 2u);
   std::vector<std::string> f = fields(out[0]);
-  BOOST_TEST_REQUIRE(f.size() == 9u);  // three triples, no gradient
+  BOOST_TEST_REQUIRE(f.size() == 9u);                 // three triples, no gradient
   BOOST_TEST(std::abs(number(f[0]) - 0.3) < kExact);  // wall: -0.3 - (-0.6)
   BOOST_TEST(f[2] == "scene/wall");
   f = fields(out[1]);
@@ -122,7 +123,8 @@ BOOST_AUTO_TEST_CASE(self_pairs_and_srdf) {
   BOOST_TEST(lines(r.out).at(0) == "inf none none inf none none inf none none");
   BOOST_TEST(r.err.find("0 link pairs checked") != std::string::npos, r.err);
   // An SRDF for another robot's links is an error naming the link.
-  const std::string srdf = s.write("bad.srdf", "<robot name='pair'><disable_collisions link1='a' link2='zzz' reason='Never'/></robot>");
+  const std::string srdf =
+      s.write("bad.srdf", "<robot name='pair'><disable_collisions link1='a' link2='zzz' reason='Never'/></robot>");
   r = runCheck(s, "--robot " + robot + " --srdf " + srdf, "0 1\n");
   BOOST_TEST(r.status == 1);
   BOOST_TEST(r.err.find("zzz") != std::string::npos, r.err);
@@ -137,14 +139,17 @@ BOOST_AUTO_TEST_CASE(several_srdf_files) {
       "<robot name='pair'><link name='base'><collision><origin xyz='0 0 -1'/><geometry><box size='0.1 0.1 0.1'/>"
       "</geometry></collision></link>"
       "<link name='a'><collision><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
-      "<link name='b'><collision><origin xyz='0 0.5 0'/><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+      "<link name='b'><collision><origin xyz='0 0.5 0'/><geometry><box size='0.2 0.2 "
+      "0.2'/></geometry></collision></link>"
       "<joint name='ja' type='prismatic'><parent link='base'/><child link='a'/><axis xyz='1 0 0'/>"
       "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
       "<joint name='jb' type='prismatic'><parent link='base'/><child link='b'/><axis xyz='1 0 0'/>"
       "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
-  const std::string groups = s.write("groups.srdf", "<robot name='pair'>\n<group name='a_only'><joint name='ja'/></group>\n</robot>");
-  const std::string pairs = s.write("pairs.srdf", "<robot name='pair'><disable_collisions link1='a' link2='b' reason='Common'/>\n"
-                                                  "<group name='a_only'><joint name='ja'/></group></robot>");
+  const std::string groups =
+      s.write("groups.srdf", "<robot name='pair'>\n<group name='a_only'><joint name='ja'/></group>\n</robot>");
+  const std::string pairs = s.write("pairs.srdf",
+                                    "<robot name='pair'><disable_collisions link1='a' link2='b' reason='Common'/>\n"
+                                    "<group name='a_only'><joint name='ja'/></group></robot>");
   Run r = runCheck(s, "--robot " + robot + " --srdf " + groups, "0 0\n");
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.err.find("1 link pairs checked") != std::string::npos, r.err);
@@ -153,10 +158,12 @@ BOOST_AUTO_TEST_CASE(several_srdf_files) {
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.err.find("0 link pairs checked") != std::string::npos, r.err);
   // A group two files define differently: an error naming both files and the group.
-  const std::string other = s.write("other.srdf", "<robot name='pair'>\n\n<group name='a_only'><joint name='jb'/></group></robot>");
+  const std::string other =
+      s.write("other.srdf", "<robot name='pair'>\n\n<group name='a_only'><joint name='jb'/></group></robot>");
   r = runCheck(s, "--robot " + robot + " --srdf " + groups + " --srdf " + other + " --group a_only", "0\n");
   BOOST_TEST(r.status == 1);
-  for (const std::string& word : {other + "', line 3", groups + "', line 2", std::string("'a_only'"), std::string("differently")}) {
+  for (const std::string& word :
+       {other + "', line 3", groups + "', line 2", std::string("'a_only'"), std::string("differently")}) {
     BOOST_TEST(r.err.find(word) != std::string::npos, word << ": " << r.err);
   }
 }
@@ -183,11 +190,12 @@ BOOST_AUTO_TEST_CASE(values_outside_the_joint_limits) {
   BOOST_TEST(r.err.find("warning") == r.err.rfind("warning"), r.err);
   BOOST_TEST(atLimits.err.find("warning") == std::string::npos, atLimits.err);
   // A continuous joint has no limits: any value is taken as it is.
-  const std::string wheel = s.write(
-      "wheel.urdf",
-      "<robot name='wheel'><link name='base'/>"
-      "<link name='rim'><collision><origin xyz='1 0 0'/><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
-      "<joint name='spin' type='continuous'><parent link='base'/><child link='rim'/><axis xyz='0 0 1'/></joint></robot>");
+  const std::string wheel = s.write("wheel.urdf",
+                                    "<robot name='wheel'><link name='base'/>"
+                                    "<link name='rim'><collision><origin xyz='1 0 0'/><geometry><box size='0.2 0.2 "
+                                    "0.2'/></geometry></collision></link>"
+                                    "<joint name='spin' type='continuous'><parent link='base'/><child "
+                                    "link='rim'/><axis xyz='0 0 1'/></joint></robot>");
   r = runCheck(s, "--robot " + wheel + " --scene " + scene, "7\n-12.5\n");
   BOOST_TEST(r.status == 0, r.err);
   BOOST_TEST(r.err.find("warning") == std::string::npos, r.err);
@@ -204,12 +212,12 @@ BOOST_AUTO_TEST_CASE(links_with_visual_but_no_collision_geometry) {
   Scratch s;
   const std::string scene = s.write("room.urdf", kScene);
   // Drawn with visuals only: free everywhere, so the links are named in one warning line.
-  const std::string drawn = s.write(
-      "drawn.urdf",
-      "<robot name='drawn'><link name='base'><visual><geometry><box size='1 1 1'/></geometry></visual></link>"
-      "<link name='arm'><visual><geometry><box size='0.2 0.2 0.2'/></geometry></visual></link>"
-      "<joint name='slide' type='prismatic'><parent link='base'/><child link='arm'/><axis xyz='1 0 0'/>"
-      "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
+  const std::string drawn =
+      s.write("drawn.urdf",
+              "<robot name='drawn'><link name='base'><visual><geometry><box size='1 1 1'/></geometry></visual></link>"
+              "<link name='arm'><visual><geometry><box size='0.2 0.2 0.2'/></geometry></visual></link>"
+              "<joint name='slide' type='prismatic'><parent link='base'/><child link='arm'/><axis xyz='1 0 0'/>"
+              "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
   Run r = runCheck(s, "--robot " + drawn + " --scene " + scene, "0.7\n");
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.err.find("deepcheck check: warning: robot 'drawn' has no collision geometry at all: links with "
@@ -217,13 +225,13 @@ BOOST_AUTO_TEST_CASE(links_with_visual_but_no_collision_geometry) {
              r.err);
   BOOST_TEST(r.err.find("warning") == r.err.rfind("warning"), r.err);
   // Some links with collision geometry: only the visual-only ones are named.
-  const std::string half = s.write(
-      "half.urdf",
-      "<robot name='half'><link name='base'><visual><geometry><box size='1 1 1'/></geometry></visual></link>"
-      "<link name='arm'><visual><geometry><box size='0.2 0.2 0.2'/></geometry></visual>"
-      "<collision><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
-      "<joint name='slide' type='prismatic'><parent link='base'/><child link='arm'/><axis xyz='1 0 0'/>"
-      "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
+  const std::string half =
+      s.write("half.urdf",
+              "<robot name='half'><link name='base'><visual><geometry><box size='1 1 1'/></geometry></visual></link>"
+              "<link name='arm'><visual><geometry><box size='0.2 0.2 0.2'/></geometry></visual>"
+              "<collision><geometry><box size='0.2 0.2 0.2'/></geometry></collision></link>"
+              "<joint name='slide' type='prismatic'><parent link='base'/><child link='arm'/><axis xyz='1 0 0'/>"
+              "<limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
   r = runCheck(s, "--robot " + half + " --scene " + scene, "0\n");
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.err.find("deepcheck check: warning: robot 'half': links with <visual> but no <collision> geometry, "
@@ -268,10 +276,12 @@ BOOST_AUTO_TEST_CASE(locked_joints_and_planning_groups) {
   Scratch s;
   const std::string robot = s.write("slider.urdf", kRobot);
   const std::string scene = s.write("room.urdf", kScene);
-  const std::string srdf = s.write("slider.srdf",
-                                   "<robot name='slider'>\n<group name='slide_only'><joint name='slide'/></group>\n"
-                                   "<group name='both'><group name='slide_only'/><joint name='lift'/></group>\n</robot>");
-  for (const std::string& how : {std::string("--lock lift=0.1"), "--srdf " + srdf + " --group slide_only --lock lift=0.1"}) {
+  const std::string srdf =
+      s.write("slider.srdf",
+              "<robot name='slider'>\n<group name='slide_only'><joint name='slide'/></group>\n"
+              "<group name='both'><group name='slide_only'/><joint name='lift'/></group>\n</robot>");
+  for (const std::string& how :
+       {std::string("--lock lift=0.1"), "--srdf " + srdf + " --group slide_only --lock lift=0.1"}) {
     const Run r = runCheck(s, "--robot " + robot + " --scene " + scene + " --gradient " + how, "0\n0.4\n");
     BOOST_TEST_REQUIRE(r.status == 0, how << ": " << r.err);
     const std::vector<std::string> out = lines(r.out);
@@ -348,8 +358,8 @@ BOOST_AUTO_TEST_CASE(damaged_decomposition_cache_entries_are_recomputed_with_a_n
   // stderr says what was wrong with the cache.
   Scratch s;
   const std::string data = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
-  const std::string args = "--robot " + quote(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --package-path " +
-                           quote(data);
+  const std::string args =
+      "--robot " + quote(data + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --package-path " + quote(data);
   const std::string input = "0 0.3 0 -1 0 0.5 0\n";
   const Run first = runCheck(s, args, input);
   BOOST_TEST_REQUIRE(first.status == 0, first.err);
@@ -412,8 +422,6 @@ BOOST_AUTO_TEST_CASE(panda_in_the_kitchen) {
   BOOST_TEST(fields(out[1])[2].rfind("scene/", 0) == 0u, out[1]);
   BOOST_TEST(r.err.find("scene 0 'kitchen'") != std::string::npos, r.err);
 }
-
-
 
 // A robot whose base (moved by no joint) is sunk 0.05 into the floor: reported once after
 // loading with the option that allows it; --allow-collision removes the pair from the answers;

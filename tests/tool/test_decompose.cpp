@@ -20,7 +20,8 @@ std::string lPrismObj() {
   const std::array<std::array<int, 2>, 6> corners = {{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}};
   std::string obj;
   for (int z = 0; z < 2; ++z) {
-    for (const auto& c : corners) obj += "v " + std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(z) + "\n";
+    for (const auto& c : corners)
+      obj += "v " + std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(z) + "\n";
   }
   // Vertex i at the bottom is i + 1 (OBJ is 1-based), at the top i + 7.
   auto face = [&obj](int a, int b, int c) {

@@ -52,8 +52,7 @@ BOOST_AUTO_TEST_CASE(bundled_arm) {
   const Run r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "2000"});
   BOOST_REQUIRE_MESSAGE(r.status == 0, "exit " << r.status << ": " << r.err);
   BOOST_TEST(r.out.find("robot 'deepcheck_arm'") != std::string::npos);
-  BOOST_TEST(r.out.find("12 links (11 with collision geometry), 11 joints, 7 variables") !=
-             std::string::npos);
+  BOOST_TEST(r.out.find("12 links (11 with collision geometry), 11 joints, 7 variables") != std::string::npos);
 
   // The 7 variables, in configuration order, with their limits.
   const std::vector<std::string> vars = section(r.out, "variables (configuration order):");
@@ -73,11 +72,10 @@ BOOST_AUTO_TEST_CASE(bundled_arm) {
   // convex: the checker decomposes it into several pieces.
   const std::vector<std::string> links = section(r.out, "links:");
   BOOST_REQUIRE_EQUAL(links.size(), 13u);
-  BOOST_TEST(std::regex_match(links[9], std::regex(R"(\s*8\s+flange\s+link7\s+flange_joint\s+0\s+0\s*)")),
-             links[9]);
+  BOOST_TEST(std::regex_match(links[9], std::regex(R"(\s*8\s+flange\s+link7\s+flange_joint\s+0\s+0\s*)")), links[9]);
   std::smatch link1;
-  BOOST_TEST_REQUIRE(std::regex_match(links[2], link1, std::regex(R"(\s*1\s+link1\s+base_link\s+joint1\s+1\s+(\d+)\s*)")),
-                     links[2]);
+  BOOST_TEST_REQUIRE(
+      std::regex_match(links[2], link1, std::regex(R"(\s*1\s+link1\s+base_link\s+joint1\s+1\s+(\d+)\s*)")), links[2]);
   BOOST_TEST(std::stoi(link1[1]) > 1);
 
   std::smatch summary;
@@ -91,8 +89,7 @@ BOOST_AUTO_TEST_CASE(bundled_arm) {
   BOOST_TEST(m[1].str() == "11");
   BOOST_TEST(m[2].str() == "55");
   BOOST_REQUIRE(std::regex_search(
-      r.out, m,
-      std::regex(R"(disabled: (\d+) \(Adjacent (\d+), Default (\d+), Always (\d+), Never (\d+)\))")));
+      r.out, m, std::regex(R"(disabled: (\d+) \(Adjacent (\d+), Default (\d+), Always (\d+), Never (\d+)\))")));
   const int disabled = std::stoi(m[1]);
   BOOST_TEST(std::stoi(m[2]) == 10);
   BOOST_TEST(std::stoi(m[2]) + std::stoi(m[3]) + std::stoi(m[4]) + std::stoi(m[5]) == disabled);
@@ -125,8 +122,7 @@ BOOST_AUTO_TEST_CASE(pieces_are_the_checkers_through_the_same_cache) {
   std::vector<fs::path> entries;
   for (const auto& e : fs::directory_iterator(cache)) entries.push_back(e.path());
   BOOST_TEST(!entries.empty());
-  const Run check = scratch.run("check --robot " + quote(kArm) + " --package-path " + quote(kData),
-                                "0 0 0 0 0 0 0\n");
+  const Run check = scratch.run("check --robot " + quote(kArm) + " --package-path " + quote(kData), "0 0 0 0 0 0 0\n");
   BOOST_REQUIRE_MESSAGE(check.status == 0, "exit " << check.status << ": " << check.err);
   BOOST_REQUIRE(std::regex_search(check.err, m, std::regex(R"(robot 'deepcheck_arm': .* (\d+) pieces)")));
   BOOST_TEST(std::stoi(m[1]) == pieces);
@@ -138,8 +134,8 @@ BOOST_AUTO_TEST_CASE(pieces_are_the_checkers_through_the_same_cache) {
 BOOST_AUTO_TEST_CASE(writes_srdf) {
   Scratch scratch;
   const std::string srdf = scratch.path("arm.srdf");
-  const Run r = runInfo(scratch, {kArm, "--package-path=" + kData, "--samples", "500", "--seed", "3",
-                             "--write-srdf", srdf});
+  const Run r =
+      runInfo(scratch, {kArm, "--package-path=" + kData, "--samples", "500", "--seed", "3", "--write-srdf", srdf});
   BOOST_REQUIRE_MESSAGE(r.status == 0, "exit " << r.status << ": " << r.err);
   const std::string text = readFile(srdf);
   BOOST_TEST(text.find("<robot name=\"deepcheck_arm\">") != std::string::npos);
@@ -170,16 +166,17 @@ BOOST_AUTO_TEST_CASE(writes_srdf) {
 
 BOOST_AUTO_TEST_CASE(write_srdf_keeps_the_groups_and_virtual_joint_of_srdf) {
   Scratch scratch;
-  const std::string given = scratch.write("given.srdf",
-                                          "<robot name='deepcheck_arm'>\n"
-                                          "  <group name='shoulder'><chain base_link='base_link' tip_link='link2'/></group>\n"
-                                          "  <group name='wrist'><joint name='joint6'/><joint name='joint7'/>"
-                                          "<group name='shoulder'/></group>\n"
-                                          "  <virtual_joint name='v' type='fixed' parent_frame='world' child_link='base_link'/>\n"
-                                          "</robot>\n");
+  const std::string given =
+      scratch.write("given.srdf",
+                    "<robot name='deepcheck_arm'>\n"
+                    "  <group name='shoulder'><chain base_link='base_link' tip_link='link2'/></group>\n"
+                    "  <group name='wrist'><joint name='joint6'/><joint name='joint7'/>"
+                    "<group name='shoulder'/></group>\n"
+                    "  <virtual_joint name='v' type='fixed' parent_frame='world' child_link='base_link'/>\n"
+                    "</robot>\n");
   const std::string written = scratch.path("written.srdf");
-  const Run r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "0", "--srdf", given, "--group",
-                                  "wrist", "--write-srdf", written});
+  const Run r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "0", "--srdf", given, "--group", "wrist",
+                                  "--write-srdf", written});
   BOOST_REQUIRE_MESSAGE(r.status == 0, r.err);
   const std::vector<robots::SrdfGroup> groups = robots::readSrdfGroups(written);
   BOOST_REQUIRE_EQUAL(groups.size(), 2u);
@@ -196,10 +193,11 @@ BOOST_AUTO_TEST_CASE(write_srdf_keeps_the_groups_and_virtual_joint_of_srdf) {
 
 BOOST_AUTO_TEST_CASE(locked_joints_and_a_planning_group) {
   Scratch scratch;
-  const std::string srdf = scratch.write("arm_group.srdf",
-                                         "<robot name='deepcheck_arm'>\n"
-                                         "  <group name='shoulder'><chain base_link='base_link' tip_link='link2'/></group>\n"
-                                         "</robot>\n");
+  const std::string srdf =
+      scratch.write("arm_group.srdf",
+                    "<robot name='deepcheck_arm'>\n"
+                    "  <group name='shoulder'><chain base_link='base_link' tip_link='link2'/></group>\n"
+                    "</robot>\n");
   // --lock: joint7 leaves the variables and is listed as held.
   Run r = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "0", "--lock", "joint7=0.5"});
   BOOST_REQUIRE_MESSAGE(r.status == 0, r.err);

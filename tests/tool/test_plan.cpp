@@ -48,9 +48,7 @@ std::unique_ptr<checker::World> armInTheShelf() {
 }
 
 /// Runs `deepcheck plan <args>` in the scratch folder (also its decomposition cache).
-Run plan(const Scratch& scratch, const std::string& args) {
-  return scratch.run("plan" + args);
-}
+Run plan(const Scratch& scratch, const std::string& args) { return scratch.run("plan" + args); }
 
 }  // namespace
 
@@ -77,7 +75,9 @@ BOOST_AUTO_TEST_CASE(plans_through_the_shelf_and_every_waypoint_is_free) {
     BOOST_TEST(world.isFree(waypoints.back()), "waypoint '" << line << "'");
   }
   BOOST_TEST_REQUIRE(waypoints.size() >= 2u);
-  BOOST_TEST((waypoints.front() - Eigen::Map<const Eigen::VectorXd>(std::vector<double>{0, -0.4, 0, -1.6, 0, 1.2, 0}.data(), 7)).norm() < 1e-12);
+  BOOST_TEST((waypoints.front() -
+              Eigen::Map<const Eigen::VectorXd>(std::vector<double>{0, -0.4, 0, -1.6, 0, 1.2, 0}.data(), 7))
+                 .norm() < 1e-12);
   // Every motion, at 0.005 rad.
   for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
     const int steps = static_cast<int>(std::ceil((waypoints[i + 1] - waypoints[i]).norm() / 0.005));
@@ -150,8 +150,9 @@ BOOST_AUTO_TEST_CASE(clamp_to_limits_clamps_the_start_and_warns_once) {
   BOOST_TEST(r.err.find("(limits [-3.05433, 3.05433] rad); --clamp-to-limits clamps it") != std::string::npos, r.err);
   r = plan(scratch, kWorld + start + kGoal + " --clamp-to-limits --seed 3 --time 10 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  BOOST_TEST(r.err.find("deepcheck plan: warning: values clamped to the joint limits of 'joint7'\n") != std::string::npos,
-             r.err);
+  BOOST_TEST(
+      r.err.find("deepcheck plan: warning: values clamped to the joint limits of 'joint7'\n") != std::string::npos,
+      r.err);
   BOOST_TEST(r.err.find("warning") == r.err.rfind("warning"), r.err);  // one line
   std::ifstream in(out);
   std::vector<double> first(7);
@@ -163,11 +164,11 @@ BOOST_AUTO_TEST_CASE(clamp_to_limits_clamps_the_start_and_warns_once) {
 BOOST_AUTO_TEST_CASE(a_continuous_joint_takes_any_angle) {
   // No limits to refuse: 7 rad is planned from as the same angle in [-pi, pi], without a warning.
   Scratch scratch;
-  const std::string robot = scratch.write(
-      "wheel.urdf",
-      "<robot name='wheel'><link name='base'/><link name='rim'><collision><origin xyz='1 0 0'/><geometry>"
-      "<box size='0.2 0.2 0.2'/></geometry></collision></link><joint name='spin' type='continuous'>"
-      "<parent link='base'/><child link='rim'/><axis xyz='0 0 1'/></joint></robot>");
+  const std::string robot =
+      scratch.write("wheel.urdf",
+                    "<robot name='wheel'><link name='base'/><link name='rim'><collision><origin xyz='1 0 0'/><geometry>"
+                    "<box size='0.2 0.2 0.2'/></geometry></collision></link><joint name='spin' type='continuous'>"
+                    "<parent link='base'/><child link='rim'/><axis xyz='0 0 1'/></joint></robot>");
   const std::string out = scratch.path("path.txt");
   const Run r = plan(scratch, " --robot " + quote(robot) + " --start 7 --goal 0 --seed 1 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
@@ -182,11 +183,11 @@ BOOST_AUTO_TEST_CASE(a_continuous_joint_is_planned_the_short_way_through_pi) {
   // From 3.0 to -3.0 rad: 2 pi - 6 = 0.283 rad through pi, not 6 rad through 0. The path file's
   // values are in (-pi, pi]; the turns between its lines, taken the short way, add up to 0.283.
   Scratch scratch;
-  const std::string robot = scratch.write(
-      "wheel.urdf",
-      "<robot name='wheel'><link name='base'/><link name='rim'><collision><origin xyz='1 0 0'/><geometry>"
-      "<box size='0.2 0.2 0.2'/></geometry></collision></link><joint name='spin' type='continuous'>"
-      "<parent link='base'/><child link='rim'/><axis xyz='0 0 1'/></joint></robot>");
+  const std::string robot =
+      scratch.write("wheel.urdf",
+                    "<robot name='wheel'><link name='base'/><link name='rim'><collision><origin xyz='1 0 0'/><geometry>"
+                    "<box size='0.2 0.2 0.2'/></geometry></collision></link><joint name='spin' type='continuous'>"
+                    "<parent link='base'/><child link='rim'/><axis xyz='0 0 1'/></joint></robot>");
   const std::string out = scratch.path("path.txt");
   const Run r = plan(scratch, " --robot " + quote(robot) + " --start 3.0 --goal -3.0 --seed 1 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
@@ -205,8 +206,8 @@ BOOST_AUTO_TEST_CASE(a_continuous_joint_is_planned_the_short_way_through_pi) {
   // Informed planners with path length: OMPL's own informed sampler takes no SO2 component, the
   // project's objective falls back to one that does.
   for (const std::string planner : {"BIT*", "InformedRRT*"}) {
-    const Run informed = plan(scratch, " --robot " + quote(robot) + " --start 3.0 --goal -3.0 --seed 1 --planner " + quote(planner) +
-                                           " --objective length --time 0.5 --out " + quote(out));
+    const Run informed = plan(scratch, " --robot " + quote(robot) + " --start 3.0 --goal -3.0 --seed 1 --planner " +
+                                           quote(planner) + " --objective length --time 0.5 --out " + quote(out));
     BOOST_TEST(informed.status == 0, planner + ": " + informed.err);
   }
 }
@@ -219,8 +220,8 @@ BOOST_AUTO_TEST_CASE(a_robot_drawn_with_visuals_only_is_named_in_a_warning) {
       "<robot name='drawn'><link name='base'/><link name='arm'><visual><geometry><box size='0.2 0.2 0.2'/></geometry>"
       "</visual></link><joint name='slide' type='prismatic'><parent link='base'/><child link='arm'/>"
       "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint></robot>");
-  const Run r = plan(scratch, " --robot " + quote(robot) + " --start 0 --goal 1 --seed 1 --out " +
-                                  quote(scratch.path("path.txt")));
+  const Run r = plan(
+      scratch, " --robot " + quote(robot) + " --start 0 --goal 1 --seed 1 --out " + quote(scratch.path("path.txt")));
   BOOST_TEST(r.status == 0, r.err);
   BOOST_TEST(r.err.find("deepcheck plan: warning: robot 'drawn' has no collision geometry at all: links with "
                         "<visual> but no <collision> geometry, not checked: 'arm'\n") != std::string::npos,

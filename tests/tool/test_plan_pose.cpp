@@ -62,8 +62,8 @@ std::string armArgs(const std::string& scene) {
 std::string poseWords(const std::string& link, const Eigen::Isometry3d& X) {
   const Eigen::Quaterniond r(X.rotation());
   const Eigen::Vector3d p = X.translation();
-  return " " + link + " " + formatNumber(p.x()) + " " + formatNumber(p.y()) + " " + formatNumber(p.z()) + " " + formatNumber(r.x()) + " " + formatNumber(r.y()) +
-         " " + formatNumber(r.z()) + " " + formatNumber(r.w());
+  return " " + link + " " + formatNumber(p.x()) + " " + formatNumber(p.y()) + " " + formatNumber(p.z()) + " " +
+         formatNumber(r.x()) + " " + formatNumber(r.y()) + " " + formatNumber(r.z()) + " " + formatNumber(r.w());
 }
 
 /// " LINK x y z qx qy qz qw" of the link's pose at q.
@@ -91,8 +91,9 @@ void planToPose(const Scratch& s, const std::string& args, const checker::World&
                 const Eigen::VectorXd& qGoal) {
   BOOST_TEST_REQUIRE(world.isFree(qGoal), "the goal configuration must be free");
   const std::string out = s.path("path.txt");
-  const Run r = s.run("plan" + args + " --goal-pose" + poseWords(world.robot(), link, qGoal) +
-                      " --seed 2 --time 5 --out " + quote(out), "", "ROS_PACKAGE_PATH=");
+  const Run r = s.run(
+      "plan" + args + " --goal-pose" + poseWords(world.robot(), link, qGoal) + " --seed 2 --time 5 --out " + quote(out),
+      "", "ROS_PACKAGE_PATH=");
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(r.err.find("goal pose of " + link + ": reached within") != std::string::npos, r.err);
   BOOST_TEST(r.err.find("certified") != std::string::npos, r.err);
@@ -122,13 +123,14 @@ BOOST_AUTO_TEST_CASE(the_bundled_arm_reaches_a_pose_among_planning_scene_objects
 BOOST_AUTO_TEST_CASE(the_panda_reaches_a_pose_in_the_bookshelf) {
   if (!test::haveShared("plan --goal-pose in the MotionBenchMaker bookshelf")) return;
   Scratch s;
-  const checker::World world = libraryWorld(pandaUrdf(), pandaSrdf(), pandaDir(), bookshelfScene(), {{"base_link", "panda_link0"}});
+  const checker::World world =
+      libraryWorld(pandaUrdf(), pandaSrdf(), pandaDir(), bookshelfScene(), {{"base_link", "panda_link0"}});
   Eigen::VectorXd goal(8);
   goal << -2.2643608956862633, -1.7277648984445335, -0.61333232404950022, -1.887547154810622, 2.6237618279716743,
       1.1520985734847371, -1.8950207790478606, 0.02;
   planToPose(s,
-             " --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " + quote(pandaDir()) +
-                 " --scene " + quote(bookshelfScene()) + " --frame-alias base_link=panda_link0" +
+             " --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " +
+                 quote(pandaDir()) + " --scene " + quote(bookshelfScene()) + " --frame-alias base_link=panda_link0" +
                  " --start 0 -0.785 0 -2.356 0 1.571 0.785 0.04",
              world, "panda_hand", goal);
 }
@@ -150,7 +152,8 @@ BOOST_AUTO_TEST_CASE(a_position_box_is_met_along_the_goal_axes) {
                         "", "ROS_PACKAGE_PATH=");
   BOOST_TEST_REQUIRE(run.status == 0, run.err);
   const std::vector<Eigen::VectorXd> path = readPath(out, world.robot().numVariables());
-  const Eigen::Isometry3d reached = robots::forwardKinematics(world.robot(), path.back())[static_cast<std::size_t>(flange)];
+  const Eigen::Isometry3d reached =
+      robots::forwardKinematics(world.robot(), path.back())[static_cast<std::size_t>(flange)];
   const Eigen::Vector3d d = X_WT.inverse() * reached.translation();
   BOOST_TEST(std::abs(d.x()) <= 0.1);
   BOOST_TEST(std::abs(d.y()) <= 0.001);
@@ -171,7 +174,8 @@ BOOST_AUTO_TEST_CASE(bad_pose_goals_are_reported) {
   fails(" --goal-pose flange 0.5 0 0.5 0 0 0 0", 2, "the quaternion qx qy qz qw = 0 0 0 0 is zero");
   fails(" --goal-pose flange 0.5 0 0.5 0 0", 2, "--goal-pose needs a link and 7 numbers");
   fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-tol 0", 2, "--position-tol must be > 0 m");
-  fails(" --goal 0 0 0 0 0 0 0.1 --orientation-tol 0.1", 2, "--position-tol, --position-box and --orientation-tol need --goal-pose");
+  fails(" --goal 0 0 0 0 0 0 0.1 --orientation-tol 0.1", 2,
+        "--position-tol, --position-box and --orientation-tol need --goal-pose");
   fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0.1", 2, "--position-box needs 3 edge lengths");
   fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0 0.1", 2, "edge lengths must be > 0 m, got 0");
   fails(" --goal-pose flange 0.5 0 0.5 0 0 0 1 --position-box 0.1 0.1 0.1 --position-tol 0.1", 2,
@@ -185,7 +189,8 @@ BOOST_AUTO_TEST_CASE(bad_pose_goals_are_reported) {
   fails(" --goal-pose flange 5 0 0.5 0 0 0 1e200", 1,
         "no inverse kinematics solution for link 'flange' reaches the goal pose: the best attempt is ");
   // 5 m away with a 10 cm box: the report names the box.
-  fails(" --goal-pose flange 5 0 0.5 0 0 0 1 --position-box 0.1 0.1 0.1", 1, "(tolerances box 0.1 0.1 0.1 m, 0.001 rad)");
+  fails(" --goal-pose flange 5 0 0.5 0 0 0 1 --position-box 0.1 0.1 0.1", 1,
+        "(tolerances box 0.1 0.1 0.1 m, 0.001 rad)");
   // Inside the crate: reachable, but only in collision.
   fails(" --goal-pose flange 0 -0.6 0.3 1 0 0 0", 1,
         "no collision-free inverse kinematics solution for link 'flange' at the goal pose: the ");

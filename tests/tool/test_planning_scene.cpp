@@ -63,9 +63,10 @@ BOOST_AUTO_TEST_CASE(check_in_a_motion_bench_maker_scene_answers_as_the_library)
     input += "\n";
   }
   Scratch s;
-  const Run r = s.run("check --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " +
-                          quote(pandaDir()) + " --scene " + quote(bookshelfScene()) + " --frame-alias base_link=panda_link0",
-                      input, "ROS_PACKAGE_PATH=");
+  const Run r =
+      s.run("check --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " +
+                quote(pandaDir()) + " --scene " + quote(bookshelfScene()) + " --frame-alias base_link=panda_link0",
+            input, "ROS_PACKAGE_PATH=");
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   BOOST_TEST(contains(r.err, "obstacles: 7"), r.err);
   const std::vector<std::string> out = lines(r.out);
@@ -96,16 +97,16 @@ BOOST_AUTO_TEST_CASE(an_unknown_frame_suggests_a_frame_alias) {
   BOOST_TEST(contains(bad.err, "unknown frame 'world'"), bad.err);
   BOOST_TEST(contains(bad.err, "--frame-alias world=base_link"), bad.err);
   // With the alias the crate is 0.6 m along x of the arm's base: a straight-up arm is clear of it.
-  const Run good = s.run("check" + robot + " --scene " + quote(scene) + " --frame-alias world=base_link",
-                         "0 0 0 0 0 0 0\n");
+  const Run good =
+      s.run("check" + robot + " --scene " + quote(scene) + " --frame-alias world=base_link", "0 0 0 0 0 0 0\n");
   BOOST_TEST_REQUIRE(good.status == 0, good.err);
   const std::vector<std::string> f = fields(lines(good.out).at(0));
   BOOST_TEST_REQUIRE(f.size() == 9u);
   BOOST_TEST(f[5] == "obstacle/crate");
   BOOST_TEST(number(f[3]) > 0.0);
   // An alias whose target is no link is named.
-  const Run noLink = s.run("check" + robot + " --scene " + quote(scene) + " --frame-alias world=plinth",
-                           "0 0 0 0 0 0 0\n");
+  const Run noLink =
+      s.run("check" + robot + " --scene " + quote(scene) + " --frame-alias world=plinth", "0 0 0 0 0 0 0\n");
   BOOST_TEST(noLink.status == 1);
   BOOST_TEST(contains(noLink.err, "'plinth'"), noLink.err);
 }
@@ -123,8 +124,8 @@ BOOST_AUTO_TEST_CASE(bad_scene_arguments_are_reported) {
   const Run aliasAlone = s.run("check" + robot + " --frame-alias world=base_link");
   BOOST_TEST(aliasAlone.status == 2);
   BOOST_TEST(contains(aliasAlone.err, "--frame-alias needs a planning-scene --scene"), aliasAlone.err);
-  const Run twice = s.run("check" + robot + " --scene " + quote(scene) +
-                          " --frame-alias world=base_link --frame-alias world=link1");
+  const Run twice =
+      s.run("check" + robot + " --scene " + quote(scene) + " --frame-alias world=base_link --frame-alias world=link1");
   BOOST_TEST(twice.status == 2);
   BOOST_TEST(contains(twice.err, "frame 'world' mapped twice"), twice.err);
   const Run malformed = s.run("view" + robot + " --scene " + quote(scene) + " --frame-alias world --out x.html");
@@ -134,23 +135,24 @@ BOOST_AUTO_TEST_CASE(bad_scene_arguments_are_reported) {
 
 BOOST_AUTO_TEST_CASE(info_describes_a_planning_scene_as_read) {
   Scratch s;
-  const std::string scene = s.write("shapes.yaml",
-                                    "world:\n"
-                                    "  collision_objects:\n"
-                                    "    - header: {frame_id: base_link}\n"
-                                    "      id: things\n"
-                                    "      primitives:\n"
-                                    "        - {type: box, dimensions: [0.1, 0.2, 0.3]}\n"
-                                    "        - {type: sphere, dimensions: [0.05]}\n"
-                                    "        - {type: cylinder, dimensions: [0.4, 0.02]}\n"
-                                    "      primitive_poses:\n"
-                                    "        - {position: [1, 2, 3], orientation: [0, 0, 0, 1]}\n"
-                                    "        - {position: [0, 0, 0.5], orientation: [0, 0, 1, 0]}\n"
-                                    "        - {position: [0, 0, 0], orientation: [0, 0, 0, 1]}\n"
-                                    "      meshes: [{resource: package://deepcheck_arm/meshes/base.stl, scale: [2, 2, 2]}]\n"
-                                    "      mesh_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]\n");
-  const Run r = s.run("info " + quote(scene) + " --package-path " + quote(test::bundledDataDir()), "",
-                      "ROS_PACKAGE_PATH=");
+  const std::string scene =
+      s.write("shapes.yaml",
+              "world:\n"
+              "  collision_objects:\n"
+              "    - header: {frame_id: base_link}\n"
+              "      id: things\n"
+              "      primitives:\n"
+              "        - {type: box, dimensions: [0.1, 0.2, 0.3]}\n"
+              "        - {type: sphere, dimensions: [0.05]}\n"
+              "        - {type: cylinder, dimensions: [0.4, 0.02]}\n"
+              "      primitive_poses:\n"
+              "        - {position: [1, 2, 3], orientation: [0, 0, 0, 1]}\n"
+              "        - {position: [0, 0, 0.5], orientation: [0, 0, 1, 0]}\n"
+              "        - {position: [0, 0, 0], orientation: [0, 0, 0, 1]}\n"
+              "      meshes: [{resource: package://deepcheck_arm/meshes/base.stl, scale: [2, 2, 2]}]\n"
+              "      mesh_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]\n");
+  const Run r =
+      s.run("info " + quote(scene) + " --package-path " + quote(test::bundledDataDir()), "", "ROS_PACKAGE_PATH=");
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   const std::vector<std::string> out = lines(r.out);
   BOOST_TEST_REQUIRE(out.size() == 12u, r.out);

@@ -30,8 +30,8 @@ using tool_test::pandaUrdf;
 
 std::string bookshelfArgs(const std::string& out, int count, int seed) {
   const std::string m = test::sharedDir() + "/scenes/motion_bench_maker/configs";
-  return "problems --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " + quote(pandaDir()) +
-         " --scene " + quote(m + "/scenes/bookshelf/scene_small.yaml") + " --variation " +
+  return "problems --robot " + quote(pandaUrdf()) + " --srdf " + quote(pandaSrdf()) + " --package-path " +
+         quote(pandaDir()) + " --scene " + quote(m + "/scenes/bookshelf/scene_small.yaml") + " --variation " +
          quote(m + "/scenes/bookshelf/variation_small.yaml") + " --queries " +
          quote(m + "/scenes/bookshelf/all_queries_small.yaml") + " --robot-config " + quote(m + "/robots/panda.yaml") +
          " --frame-alias base_link=panda_link0 --count " + std::to_string(count) + " --seed " + std::to_string(seed) +
@@ -96,7 +96,8 @@ BOOST_AUTO_TEST_CASE(a_planning_group_plans_the_arm_with_the_fingers_held) {
   const auto problem = readProblem(scratch.path("g/problem_0000.txt"));
   const std::vector<std::string> variables = problem.at("variables");
   BOOST_TEST_REQUIRE(variables.size() == 7u);
-  for (int j = 0; j < 7; ++j) BOOST_TEST(variables[static_cast<std::size_t>(j)] == "panda_joint" + std::to_string(j + 1));
+  for (int j = 0; j < 7; ++j)
+    BOOST_TEST(variables[static_cast<std::size_t>(j)] == "panda_joint" + std::to_string(j + 1));
   // The start is the robot file's default state of the arm; its finger opening (0.065, beyond
   // this Panda's 0.04) is clamped, and the fingers are held there.
   const Eigen::VectorXd start = values(problem.at("start"));
@@ -105,8 +106,9 @@ BOOST_AUTO_TEST_CASE(a_planning_group_plans_the_arm_with_the_fingers_held) {
   BOOST_TEST(r.err.find("'panda_finger_joint1' = 0.065 is held at 0.04") != std::string::npos, r.err);
   BOOST_TEST(values(problem.at("goal")).size() == 7);
   // --group needs the SRDF; a group variable cannot be locked.
-  const Run noSrdf = scratch.run("problems --robot r.urdf --group panda_arm --scene s.yaml --variation v.yaml "
-                                 "--queries q.yaml --robot-config c.yaml --out d");
+  const Run noSrdf = scratch.run(
+      "problems --robot r.urdf --group panda_arm --scene s.yaml --variation v.yaml "
+      "--queries q.yaml --robot-config c.yaml --out d");
   BOOST_TEST(noSrdf.status == 2);
   BOOST_TEST(noSrdf.err.find("--group panda_arm needs --srdf") != std::string::npos, noSrdf.err);
   const Run locked = scratch.run(bookshelfArgs(scratch.path("h"), 1, 3) + " --group panda_arm --lock panda_joint1=0");
@@ -122,8 +124,9 @@ BOOST_AUTO_TEST_CASE(missing_and_bad_options_are_reported) {
   const Run alias = scratch.run("problems --frame-alias base_link");
   BOOST_TEST(alias.status == 2);
   BOOST_TEST(alias.err.find("--frame-alias") != std::string::npos, alias.err);
-  const Run mesh = scratch.run("problems --robot r.urdf --scene s.obj --variation v.yaml --queries q.yaml "
-                               "--robot-config c.yaml --out dir");
+  const Run mesh = scratch.run(
+      "problems --robot r.urdf --scene s.obj --variation v.yaml --queries q.yaml "
+      "--robot-config c.yaml --out dir");
   BOOST_TEST(mesh.status == 2);
   BOOST_TEST(mesh.err.find("s.obj") != std::string::npos, mesh.err);
 }
@@ -143,7 +146,8 @@ BOOST_AUTO_TEST_CASE(scene_urdf_joints_are_drawn_per_problem) {
   Scratch scratch;
   const std::string m = test::sharedDir() + "/scenes/motion_bench_maker/configs";
   scratch.write("scene.urdf", kTableAndFlapUrdf);
-  scratch.write("variation.yaml", "- names: [World]\n  position: [0, 0, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n");
+  scratch.write("variation.yaml",
+                "- names: [World]\n  position: [0, 0, 0]\n  orientation: [0, 0, 0]\n  type: uniform\n");
   scratch.write("queries.yaml",
                 "goal_queries:\n  - objects: [table]\n    tag: Above\n    offset:\n      position: [0, 0, 0.25]\n"
                 "      orientation: [0, 0, 0, 1]\n      position_tol: [0.02, 0.02, 0.02]\n"

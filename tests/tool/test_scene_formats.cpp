@@ -97,18 +97,20 @@ BOOST_AUTO_TEST_CASE(the_virtual_joint_frame_needs_no_alias) {
   BOOST_TEST(contains(without.err, "unknown frame 'odom_combined'"), without.err);
   const Run with = s.run(robot + " --srdf " + quote(srdf) + " --scene " + quote(scene), kArmStretched);
   BOOST_TEST_REQUIRE(with.status == 0, with.err);
-  const Run aliased = s.run(robot + " --scene " + quote(scene) + " --frame-alias odom_combined=base_link", kArmStretched);
+  const Run aliased =
+      s.run(robot + " --scene " + quote(scene) + " --frame-alias odom_combined=base_link", kArmStretched);
   BOOST_TEST_REQUIRE(aliased.status == 0, aliased.err);
   BOOST_TEST(with.out == aliased.out);
   // The user's alias wins over the virtual joint's.
-  const Run own = s.run(robot + " --srdf " + quote(srdf) + " --scene " + quote(scene) +
-                            " --frame-alias odom_combined=plinth",
-                        kArmStretched);
+  const Run own =
+      s.run(robot + " --srdf " + quote(srdf) + " --scene " + quote(scene) + " --frame-alias odom_combined=plinth",
+            kArmStretched);
   BOOST_TEST(own.status == 1);
   BOOST_TEST(contains(own.err, "'plinth'"), own.err);
   // A malformed virtual joint is named with its line.
-  const std::string bad = s.write("bad.srdf", "<robot name='a'>\n<virtual_joint name='v' type='wobbly' "
-                                              "parent_frame='w' child_link='base_link'/>\n</robot>\n");
+  const std::string bad = s.write("bad.srdf",
+                                  "<robot name='a'>\n<virtual_joint name='v' type='wobbly' "
+                                  "parent_frame='w' child_link='base_link'/>\n</robot>\n");
   const Run badRun = s.run(robot + " --srdf " + quote(bad) + " --scene " + quote(scene), kArmStretched);
   BOOST_TEST(badRun.status == 1);
   BOOST_TEST(contains(badRun.err, "line 2: <virtual_joint> 'v' has type 'wobbly'"), badRun.err);

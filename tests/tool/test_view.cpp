@@ -142,11 +142,12 @@ BOOST_AUTO_TEST_CASE(configuration_page_has_one_frame) {
 
 BOOST_AUTO_TEST_CASE(planning_scene_objects_are_shown_as_obstacles) {
   Scratch scratch;
-  const std::string scene = scratch.write("crate.yaml",
-                                          "world:\n  collision_objects:\n    - header: {frame_id: world}\n"
-                                          "      id: crate\n"
-                                          "      primitives: [{type: box, dimensions: [0.2, 0.2, 0.2]}]\n"
-                                          "      primitive_poses: [{position: [0.6, 0, 0.1], orientation: [0, 0, 0, 1]}]\n");
+  const std::string scene =
+      scratch.write("crate.yaml",
+                    "world:\n  collision_objects:\n    - header: {frame_id: world}\n"
+                    "      id: crate\n"
+                    "      primitives: [{type: box, dimensions: [0.2, 0.2, 0.2]}]\n"
+                    "      primitive_poses: [{position: [0.6, 0, 0.1], orientation: [0, 0, 0, 1]}]\n");
   const std::string out = scratch.path("view.html");
   const Run r = scratch.run("view --robot " + quote(kUrdf) + " --package-path " + quote(kData) + " --scene " +
                             quote(scene) + " --frame-alias world=base_link --out " + quote(out));
@@ -158,7 +159,8 @@ BOOST_AUTO_TEST_CASE(planning_scene_objects_are_shown_as_obstacles) {
 BOOST_AUTO_TEST_CASE(decompose_page_shows_the_mesh_pieces_and_report) {
   Scratch scratch;
   const std::string out = scratch.path("view.html");
-  const Run r = scratch.run("view --decompose " + quote(kData + "/deepcheck_arm/meshes/hand.stl") + " --out " + quote(out));
+  const Run r =
+      scratch.run("view --decompose " + quote(kData + "/deepcheck_arm/meshes/hand.stl") + " --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   const std::string page = tool_test::readFile(out);
   checkSelfContained(page);
@@ -204,14 +206,16 @@ BOOST_AUTO_TEST_CASE(bad_inputs_are_named_and_no_page_is_written) {
     BOOST_TEST(!std::filesystem::exists(out), args);
   };
   const std::string shortPath = scratch.write("short.txt", kStart + "\n0 1 2 3 4 5\n");
-  fails(kWorld + " --path " + quote(shortPath), 1, "short.txt: line 2: 6 values, robot 'deepcheck_arm' has 7 variables");
+  fails(kWorld + " --path " + quote(shortPath), 1,
+        "short.txt: line 2: 6 values, robot 'deepcheck_arm' has 7 variables");
   const std::string nanPath = scratch.write("nan.txt", kStart + "\n\n0 0 nan 0 0 0 0\n");
   fails(kWorld + " --path " + quote(nanPath), 1, "nan.txt: line 3: 'nan' is not a finite number");
   fails(kWorld + " --config 0 0 nan 0 0 0 0", 2, "--config needs a finite number, got 'nan'");
   fails(kWorld + " --config 0 0 0", 1, "--config has 3 values, robot 'deepcheck_arm' has 7 variables");
   fails(kWorld + " --hide link9", 1, "robot 'deepcheck_arm' has no link 'link9'");
   const std::string srdf = scratch.write(
-      "bad.srdf", "<robot name=\"deepcheck_arm\"><disable_collisions link1=\"link1\" link2=\"gripper\" reason=\"Never\"/></robot>");
+      "bad.srdf",
+      "<robot name=\"deepcheck_arm\"><disable_collisions link1=\"link1\" link2=\"gripper\" reason=\"Never\"/></robot>");
   fails(" --robot " + quote(kUrdf) + " --package-path " + quote(kData) + " --srdf " + quote(srdf), 1, "gripper");
   fails(kWorld + " --path " + quote(scratch.path("missing.txt")), 1, "cannot read the path file");
   fails(kWorld + " --config " + kStart + " --path " + quote(shortPath), 2, "--config and --path exclude each other");

@@ -60,8 +60,8 @@ struct Scratch {
 
   Scratch() {
     static int counter = 0;
-    dir = fs::temp_directory_path() /
-          ("deepcheck_tool_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    dir =
+        fs::temp_directory_path() / ("deepcheck_tool_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
     fs::create_directories(dir);
   }
   ~Scratch() {
@@ -86,8 +86,8 @@ struct Scratch {
   Run run(const std::string& args, const std::string& input = "", const std::string& environment = "") const {
     const std::string in = write("stdin.txt", input);
     const std::string err = path("stderr.txt");
-    const std::string cmd = "XDG_CACHE_HOME=" + quote(path("cache")) + " " + environment + " " +
-                            quote(DEEPCHECK_TOOL) + " " + args + " < " + quote(in) + " 2> " + quote(err);
+    const std::string cmd = "XDG_CACHE_HOME=" + quote(path("cache")) + " " + environment + " " + quote(DEEPCHECK_TOOL) +
+                            " " + args + " < " + quote(in) + " 2> " + quote(err);
     Run r;
     if (FILE* pipe = ::popen(cmd.c_str(), "r")) {
       char buf[4096];

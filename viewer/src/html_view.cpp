@@ -122,7 +122,8 @@ std::string shapeJson(const ViewShape& s, const std::string& what) {
   for (const auto& t : s.mesh->triangles) {
     for (const int i : t) {
       if (i < 0 || i >= static_cast<int>(s.mesh->vertices.size())) {
-        throw std::invalid_argument("writeHtmlView: " + what + " has a triangle with vertex index " + std::to_string(i));
+        throw std::invalid_argument("writeHtmlView: " + what + " has a triangle with vertex index " +
+                                    std::to_string(i));
       }
       triangles.push_back(static_cast<std::uint32_t>(i));
     }
@@ -147,7 +148,8 @@ std::string piecesJson(const std::vector<robots::CollisionPiece>& pieces, const 
       requireFinite(x, "a piece vertex of " + what);
       for (int i = 0; i < 3; ++i) vertices.push_back(static_cast<float>(x[i]));
       for (const int w : core.neighbors(v)) {
-        if (v < w) edges.insert(edges.end(), {first + static_cast<std::uint32_t>(v), first + static_cast<std::uint32_t>(w)});
+        if (v < w)
+          edges.insert(edges.end(), {first + static_cast<std::uint32_t>(v), first + static_cast<std::uint32_t>(w)});
       }
       if (p.radius > 0.0 && core.numVertices() <= 2) {
         spheres.insert(spheres.end(), {static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2]),
@@ -156,7 +158,8 @@ std::string piecesJson(const std::vector<robots::CollisionPiece>& pieces, const 
     }
   }
   return "{\"count\":" + std::to_string(pieces.size()) + ",\"vertices\":" + base64Of(vertices) +
-         ",\"edges\":" + base64Of(edges) + ",\"firsts\":" + base64Of(firsts) + ",\"spheres\":" + base64Of(spheres) + "}";
+         ",\"edges\":" + base64Of(edges) + ",\"firsts\":" + base64Of(firsts) + ",\"spheres\":" + base64Of(spheres) +
+         "}";
 }
 
 void writeBodies(const ViewScene& scene, std::ostream& out) {
@@ -165,11 +168,12 @@ void writeBodies(const ViewScene& scene, std::ostream& out) {
     const ViewBody& body = scene.bodies[b];
     const std::string what = "body '" + body.name + "'";
     if (body.track < -1 || body.track >= scene.numTracks) {
-      throw std::invalid_argument("writeHtmlView: " + what + " follows track " + std::to_string(body.track) +
-                                  " of " + std::to_string(scene.numTracks));
+      throw std::invalid_argument("writeHtmlView: " + what + " follows track " + std::to_string(body.track) + " of " +
+                                  std::to_string(scene.numTracks));
     }
     out << (b ? "," : "") << "{\"name\":" << quoted(body.name) << ",\"layer\":" << quoted(body.layer)
-        << ",\"visible\":" << (body.visible ? "true" : "false") << ",\"track\":" << body.track << ",\"pose\":" << poseJson(body.X_WB, what + " pose") << ",\"shapes\":[";
+        << ",\"visible\":" << (body.visible ? "true" : "false") << ",\"track\":" << body.track
+        << ",\"pose\":" << poseJson(body.X_WB, what + " pose") << ",\"shapes\":[";
     for (std::size_t s = 0; s < body.shapes.size(); ++s) {
       out << (s ? "," : "") << shapeJson(body.shapes[s], what + " shape " + std::to_string(s));
     }
@@ -235,8 +239,8 @@ void writeFrames(const ViewScene& scene, std::ostream& out) {
   }
   out << "\"frames\":{\"count\":" << n << ",\"tracks\":" << scene.numTracks << ",\"poses\":" << base64Of(poses)
       << ",\"waypoint\":\"" << waypoints << "\",\"value\":" << base64Of(values) << ",\"labels\":" << labels
-      << "],\"contact\":{" << contacts.json() << ",\"names\":" << names << "]},\"bodyContact\":{"
-      << bodyContacts.json() << "}}";
+      << "],\"contact\":{" << contacts.json() << ",\"names\":" << names << "]},\"bodyContact\":{" << bodyContacts.json()
+      << "}}";
 }
 
 /// The template with every "@DEEPCHECK_<NAME>@" replaced by its text, scanned once (inserted text
@@ -272,10 +276,10 @@ void writeHtmlView(const ViewScene& scene, std::ostream& out) {
   data << "}";
   const std::string json = data.str();
   const std::string page = expand(assets::kPage, {{"@DEEPCHECK_DATA@", json.c_str()},
-                                                         {"@DEEPCHECK_VIEWER_JS@", assets::kViewerJs},
-                                                         {"@DEEPCHECK_ORBIT_CONTROLS_JS@", assets::kOrbitControlsJs},
-                                                         {"@DEEPCHECK_THREE_JS@", assets::kThreeJs},
-                                                         {"@DEEPCHECK_VIEWER_CSS@", assets::kViewerCss}});
+                                                  {"@DEEPCHECK_VIEWER_JS@", assets::kViewerJs},
+                                                  {"@DEEPCHECK_ORBIT_CONTROLS_JS@", assets::kOrbitControlsJs},
+                                                  {"@DEEPCHECK_THREE_JS@", assets::kThreeJs},
+                                                  {"@DEEPCHECK_VIEWER_CSS@", assets::kViewerCss}});
   out << page;
 }
 

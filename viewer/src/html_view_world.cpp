@@ -65,7 +65,8 @@ std::vector<robots::CollisionPiece> piecesOf(const std::vector<World::WorldPiece
   return out;
 }
 
-void addScenes(const World& world, const std::vector<World::WorldPieceRef>& worldPieces, std::vector<ViewBody>& bodies) {
+void addScenes(const World& world, const std::vector<World::WorldPieceRef>& worldPieces,
+               std::vector<ViewBody>& bodies) {
   for (int s = 0; s < world.numScenes(); ++s) {
     const robots::RobotModel& scene = world.scene(s);
     const std::vector<Eigen::Isometry3d> X_WL = robots::forwardKinematics(scene, world.sceneConfiguration(s));

@@ -2,8 +2,8 @@
 // deepcheck::planners in one include: the OMPL plug-in (state validity checker with clearance,
 // certified and clearance motion validators and their link speed bound, push-out repair and valid state sampler,
 // clearance objectives, path tools, planner factory and the one-call setup).
-// The FCL reference checker (deepcheck/fcl_reference/fcl_validity_checker.h, target deepcheck::fcl_reference) is not included: it
-// belongs to the reference target.
+// The FCL reference checker (deepcheck/fcl_reference/fcl_validity_checker.h, target deepcheck::fcl_reference) is not
+// included: it belongs to the reference target.
 
 #include "deepcheck/planners/certified_motion_validator.h"
 #include "deepcheck/planners/motion_bound.h"

@@ -186,18 +186,15 @@ Mesh extrusion(const std::vector<std::pair<double, double>>& poly, double depth)
 /// A U-shaped fork in the y-z plane: outer half-width `outer`, inner half-width `inner`, from z0
 /// to z1, its bottom bar from z0 to zBar; extruded over x in [-halfDepth, halfDepth].
 Mesh fork(double outer, double inner, double z0, double zBar, double z1, double halfDepth) {
-  const std::vector<std::pair<double, double>> u = {
-      {-outer, z0}, {outer, z0}, {outer, z1},    {inner, z1},
-      {inner, zBar}, {-inner, zBar}, {-inner, z1}, {-outer, z1}};
+  const std::vector<std::pair<double, double>> u = {{-outer, z0},  {outer, z0},    {outer, z1},  {inner, z1},
+                                                    {inner, zBar}, {-inner, zBar}, {-inner, z1}, {-outer, z1}};
   return transformed(extrusion(u, 2 * halfDepth), yzPlane());
 }
 
 /// A roll link: a stepped housing (collar, then body) and a fork for the next pitch joint,
 /// whose axis (y) is at height `jointZ`.
-Mesh rollLink(double collarR, double bodyR, double forkOuter, double forkInner, double forkDepth,
-              double jointZ) {
-  Mesh m = lathe({{0, 0.005}, {collarR, 0.005}, {collarR, 0.030}, {bodyR, 0.030}, {bodyR, 0.100},
-                  {0, 0.100}});
+Mesh rollLink(double collarR, double bodyR, double forkOuter, double forkInner, double forkDepth, double jointZ) {
+  Mesh m = lathe({{0, 0.005}, {collarR, 0.005}, {collarR, 0.030}, {bodyR, 0.030}, {bodyR, 0.100}, {0, 0.100}});
   m.append(fork(forkOuter, forkInner, 0.100, 0.115, jointZ + 0.060, forkDepth));
   return m;
 }
@@ -206,11 +203,14 @@ Mesh rollLink(double collarR, double bodyR, double forkOuter, double forkInner, 
 /// standing on it (from z = hubR, where it touches the hub along a line) up to the next roll
 /// joint at height `nextZ`, with a collar at its top when collarR > tubeR.
 Mesh pitchLink(double hubR, double hubHalf, double tubeR, double collarR, double nextZ) {
-  Mesh m = transformed(lathe({{0, -hubHalf}, {hubR, -hubHalf}, {hubR, hubHalf}, {0, hubHalf}}),
-                       zToY(0, 0, 0));
+  Mesh m = transformed(lathe({{0, -hubHalf}, {hubR, -hubHalf}, {hubR, hubHalf}, {0, hubHalf}}), zToY(0, 0, 0));
   if (collarR > tubeR) {
-    m.append(lathe({{0, hubR}, {tubeR, hubR}, {tubeR, nextZ - 0.040}, {collarR, nextZ - 0.040},
-                    {collarR, nextZ - 0.005}, {0, nextZ - 0.005}}));
+    m.append(lathe({{0, hubR},
+                    {tubeR, hubR},
+                    {tubeR, nextZ - 0.040},
+                    {collarR, nextZ - 0.040},
+                    {collarR, nextZ - 0.005},
+                    {0, nextZ - 0.005}}));
   } else {
     m.append(lathe({{0, hubR}, {tubeR, hubR}, {tubeR, nextZ - 0.005}, {0, nextZ - 0.005}}));
   }
@@ -219,8 +219,7 @@ Mesh pitchLink(double hubR, double hubHalf, double tubeR, double collarR, double
 
 void putLe32(std::FILE* f, std::uint32_t v) {
   const unsigned char b[4] = {static_cast<unsigned char>(v), static_cast<unsigned char>(v >> 8),
-                              static_cast<unsigned char>(v >> 16),
-                              static_cast<unsigned char>(v >> 24)};
+                              static_cast<unsigned char>(v >> 16), static_cast<unsigned char>(v >> 24)};
   std::fwrite(b, 1, 4, f);
 }
 void putFloat(std::FILE* f, double v) {
@@ -245,8 +244,7 @@ void checkClosedOutward(const std::string& name, const Mesh& m) {
   for (const auto& [edge, count] : edges) {
     const auto opposite = edges.find({edge.second, edge.first});
     if (count != 1 || opposite == edges.end() || opposite->second != 1) {
-      std::fprintf(stderr, "generate_arm: %s is not closed at edge (%d, %d)\n", name.c_str(),
-                   edge.first, edge.second);
+      std::fprintf(stderr, "generate_arm: %s is not closed at edge (%d, %d)\n", name.c_str(), edge.first, edge.second);
       std::exit(1);
     }
   }
@@ -265,8 +263,7 @@ void writeStl(const std::string& path, const std::string& name, const Mesh& m) {
     std::exit(1);
   }
   char header[80] = {};
-  std::snprintf(header, sizeof header, "deepcheck_arm %s (robots/data/generate/generate_arm.cpp)",
-                name.c_str());
+  std::snprintf(header, sizeof header, "deepcheck_arm %s (robots/data/generate/generate_arm.cpp)", name.c_str());
   std::fwrite(header, 1, sizeof header, f);
   putLe32(f, static_cast<std::uint32_t>(m.triangles.size()));
   for (const auto& t : m.triangles) {
@@ -297,12 +294,11 @@ int main(int argc, char** argv) {
 
   // Base: a foot flange and a neck up to joint 1 (z = 0.15), and an L-shaped cable bracket at
   // the back (-x), 1 mm clear of the neck.
-  Mesh base = lathe({{0, 0.0}, {0.120, 0.0}, {0.120, 0.025}, {0.080, 0.025}, {0.080, 0.145},
-                     {0, 0.145}});
-  base.append(transformed(extrusion({{-0.150, 0.025}, {-0.081, 0.025}, {-0.081, 0.040},
-                                     {-0.135, 0.040}, {-0.135, 0.100}, {-0.150, 0.100}},
-                                    0.060),
-                          xzPlane()));
+  Mesh base = lathe({{0, 0.0}, {0.120, 0.0}, {0.120, 0.025}, {0.080, 0.025}, {0.080, 0.145}, {0, 0.145}});
+  base.append(transformed(
+      extrusion({{-0.150, 0.025}, {-0.081, 0.025}, {-0.081, 0.040}, {-0.135, 0.040}, {-0.135, 0.100}, {-0.150, 0.100}},
+                0.060),
+      xzPlane()));
   write("base", base);
 
   // Joint offsets (URDF): j2 0.19 above j1, j3 0.21 above j2, j4 0.19, j5 0.21, j6 0.19, j7 0.081.
@@ -313,15 +309,19 @@ int main(int argc, char** argv) {
   write("link5", rollLink(0.065, 0.060, 0.085, 0.060, 0.050, 0.19));
   write("link6", pitchLink(0.050, 0.055, 0.050, 0.050, 0.081));
   // Link 7: a stepped drive housing up to the flange (0.045 above joint 7).
-  write("link7", lathe({{0, 0.005}, {0.050, 0.005}, {0.050, 0.020}, {0.040, 0.020},
-                        {0.040, 0.045}, {0, 0.045}}));
+  write("link7", lathe({{0, 0.005}, {0.050, 0.005}, {0.050, 0.020}, {0.040, 0.020}, {0.040, 0.045}, {0, 0.045}}));
 
   // Palm, in the hand frame (= flange frame): a mounting disc and a T-shaped body, 7 cm tall,
   // 18 cm wide along y, 7 cm deep along x.
   Mesh hand = lathe({{0, 0.0}, {0.040, 0.0}, {0.040, 0.012}, {0, 0.012}});
-  hand.append(transformed(extrusion({{-0.030, 0.012}, {0.030, 0.012}, {0.030, 0.030},
-                                     {0.090, 0.030}, {0.090, 0.070}, {-0.090, 0.070},
-                                     {-0.090, 0.030}, {-0.030, 0.030}},
+  hand.append(transformed(extrusion({{-0.030, 0.012},
+                                     {0.030, 0.012},
+                                     {0.030, 0.030},
+                                     {0.090, 0.030},
+                                     {0.090, 0.070},
+                                     {-0.090, 0.070},
+                                     {-0.090, 0.030},
+                                     {-0.030, 0.030}},
                                     0.070),
                           yzPlane()));
   write("hand", hand);
@@ -329,9 +329,9 @@ int main(int argc, char** argv) {
   // Finger (the left one; the right one is the same mesh turned half a turn about z): an L in
   // the y-z plane, a sliding block 3 cm long and an upright 6.5 cm tall on its inner (y = 0)
   // side, 2 cm thick along x.
-  write("finger", transformed(extrusion({{0.0, 0.0}, {0.030, 0.0}, {0.030, 0.012}, {0.012, 0.012},
-                                         {0.012, 0.065}, {0.0, 0.065}},
-                                        0.020),
-                              yzPlane()));
+  write("finger",
+        transformed(
+            extrusion({{0.0, 0.0}, {0.030, 0.0}, {0.030, 0.012}, {0.012, 0.012}, {0.012, 0.065}, {0.0, 0.065}}, 0.020),
+            yzPlane()));
   return 0;
 }

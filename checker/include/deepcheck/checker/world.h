@@ -131,8 +131,7 @@ struct Obstacle {
 
   static Obstacle box(const std::string& name, const Eigen::Vector3d& size, const Eigen::Isometry3d& X_WO);
   static Obstacle sphere(const std::string& name, double radius, const Eigen::Isometry3d& X_WO);
-  static Obstacle cylinder(const std::string& name, double radius, double length,
-                           const Eigen::Isometry3d& X_WO);
+  static Obstacle cylinder(const std::string& name, double radius, double length, const Eigen::Isometry3d& X_WO);
   static Obstacle meshFile(const std::string& name, const std::string& path, const Eigen::Isometry3d& X_WO,
                            const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
   static Obstacle fromMesh(const std::string& name, robots::TriangleMesh mesh, const Eigen::Isometry3d& X_WO);
@@ -273,8 +272,7 @@ struct SceneSpec {
   SceneSpec() = default;
   SceneSpec(std::string path) : urdf(std::move(path)) {}  // NOLINT: implicit on purpose
   SceneSpec(const char* path) : urdf(path) {}             // NOLINT
-  SceneSpec(std::string path, const Eigen::Isometry3d& pose)
-      : urdf(std::move(path)), overridePose(true), X_WS(pose) {}
+  SceneSpec(std::string path, const Eigen::Isometry3d& pose) : urdf(std::move(path)), overridePose(true), X_WS(pose) {}
 };
 
 /// How World::attach places an object on a link.
@@ -428,8 +426,7 @@ class World {
   /// gradient and the contact list.
   DistanceResult signedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context,
                                 const DistanceOptions& options = {}) const;
-  DistanceResult signedDistance(const Eigen::Ref<const Eigen::VectorXd>& q,
-                                const DistanceOptions& options = {}) const;
+  DistanceResult signedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, const DistanceOptions& options = {}) const;
 
   // --- body-level signed distance (deepcheck/checker/body_distance.h) ----------------------
 
@@ -438,8 +435,7 @@ class World {
   struct BodyContact;
   /// The signed distance of two whole bodies, each the union of its convex pieces, at q: a is a
   /// robot link or an attached object, b any body (body_distance.h has the contract).
-  BodyContact bodySignedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, const BodyRef& a,
-                                 const BodyRef& b) const;
+  BodyContact bodySignedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, const BodyRef& a, const BodyRef& b) const;
   BodyContact bodySignedDistance(const Eigen::Ref<const Eigen::VectorXd>& q, const BodyRef& a, const BodyRef& b,
                                  const BodyDistanceOptions& options) const;
 
@@ -479,15 +475,15 @@ class World {
   std::string bodyName(const BodyRef& body) const;
 
   struct Summary {
-    int robotLinks = 0;           ///< all links
+    int robotLinks = 0;  ///< all links
     int robotLinksWithGeometry = 0;
     int robotPieces = 0;
-    int selfPairs = 0;            ///< link pairs checked
+    int selfPairs = 0;  ///< link pairs checked
     int selfPiecePairs = 0;
-    int disabledAdjacent = 0;     ///< link pairs with geometry disabled as adjacent
-    int disabledRigid = 0;        ///< ... as rigidly attached (and not adjacent)
-    int disabledByUser = 0;       ///< ... by WorldOptions::disabledPairs or disablePair()
-    int unreachablePairs = 0;     ///< ... not checked: they can never come within reachMargin
+    int disabledAdjacent = 0;  ///< link pairs with geometry disabled as adjacent
+    int disabledRigid = 0;     ///< ... as rigidly attached (and not adjacent)
+    int disabledByUser = 0;    ///< ... by WorldOptions::disabledPairs or disablePair()
+    int unreachablePairs = 0;  ///< ... not checked: they can never come within reachMargin
     int scenes = 0;
     int sceneLinksWithGeometry = 0;
     int scenePiecesKept = 0;

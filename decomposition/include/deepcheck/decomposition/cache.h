@@ -62,13 +62,11 @@ class DecompositionCache {
 
   /// Reads the entry for `key`. Returns nullopt when caching is disabled, the file is absent, or
   /// it is unreadable; in the last case `*problem` (if given) says why. Never throws.
-  std::optional<ConvexDecomposition> load(const std::string& key,
-                                          std::string* problem = nullptr) const;
+  std::optional<ConvexDecomposition> load(const std::string& key, std::string* problem = nullptr) const;
 
   /// Writes the entry atomically. Returns false (with `*problem` saying why) when it could not be
   /// written; never throws.
-  bool store(const std::string& key, const ConvexDecomposition& result,
-             std::string* problem = nullptr) const;
+  bool store(const std::string& key, const ConvexDecomposition& result, std::string* problem = nullptr) const;
 
  private:
   std::string directory_;
@@ -80,8 +78,7 @@ class DecompositionCache {
 /// report.decomposeMilliseconds the original time); a miss decomposes and stores. Prints the
 /// report's warning, if any, on stderr. Same exceptions as decomposeConvex (the input is
 /// validated on hits too).
-ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh,
-                                          const DecompositionParams& params,
+ConvexDecomposition decomposeConvexCached(const TriangleMesh& mesh, const DecompositionParams& params,
                                           const DecompositionCache& cache);
 
 }  // namespace deepcheck::decomposition

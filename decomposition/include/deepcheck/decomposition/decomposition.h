@@ -132,35 +132,35 @@ const char* toString(CacheStatus status);
 
 /// Quality report of one decomposition. Lengths are in mesh units.
 struct DecompositionReport {
-  std::string source;          ///< the mesh's source (file name), "" when generated
-  int numTriangles = 0;        ///< triangles used (after welding and dropping degenerate ones)
-  int numVertices = 0;         ///< distinct vertices used
-  int numComponents = 0;       ///< connected components of the mesh
+  std::string source;     ///< the mesh's source (file name), "" when generated
+  int numTriangles = 0;   ///< triangles used (after welding and dropping degenerate ones)
+  int numVertices = 0;    ///< distinct vertices used
+  int numComponents = 0;  ///< connected components of the mesh
   int numPieces = 0;
-  int maxPieceVertices = 0;    ///< the most vertices of a piece
-  double diagonal = 0.0;       ///< bounding-box diagonal of the mesh
-  double targetConcavity = 0.0;  ///< absolute target, params.targetConcavity(diagonal)
-  double concavity = 0.0;        ///< achieved: max over pieces (sampled, see the header comment)
-  double concavityRelative = 0.0;  ///< concavity / diagonal
-  bool targetMet = false;        ///< concavity <= targetConcavity
-  double hullConcavity = 0.0;    ///< concavity of the mesh's own hull (before vertex reduction)
-  bool alreadyConvex = false;    ///< the mesh's own hull met the target: one piece, no cuts (its
-                                 ///< concavity includes what the vertex reduction added)
-  int holesFilled = 0;           ///< simple holes (boundary loops) closed before decomposing
-  int duplicatesRemoved = 0;     ///< triangles dropped as repeats of an earlier one (the same
-                                 ///< three vertices, either winding: repeated or two-sided faces)
-  int voidsRemoved = 0;          ///< sealed inner cavities (inward-facing closed components inside
-                                 ///< others) ignored: they cannot be reached, covering them is free
-  bool meshClosed = false;       ///< every edge is shared by an even number (>= 2) of triangles,
-                                 ///< once the holes are filled
-  double meshVolume = 0.0;       ///< by the divergence theorem, once the holes are filled (voids
-                                 ///< count negative); NaN when not closed
-  double piecesVolume = 0.0;     ///< sum of the piece hull volumes (overlaps counted twice)
-  double volumeRatio = 0.0;      ///< piecesVolume / meshVolume; NaN when not closed
+  int maxPieceVertices = 0;            ///< the most vertices of a piece
+  double diagonal = 0.0;               ///< bounding-box diagonal of the mesh
+  double targetConcavity = 0.0;        ///< absolute target, params.targetConcavity(diagonal)
+  double concavity = 0.0;              ///< achieved: max over pieces (sampled, see the header comment)
+  double concavityRelative = 0.0;      ///< concavity / diagonal
+  bool targetMet = false;              ///< concavity <= targetConcavity
+  double hullConcavity = 0.0;          ///< concavity of the mesh's own hull (before vertex reduction)
+  bool alreadyConvex = false;          ///< the mesh's own hull met the target: one piece, no cuts (its
+                                       ///< concavity includes what the vertex reduction added)
+  int holesFilled = 0;                 ///< simple holes (boundary loops) closed before decomposing
+  int duplicatesRemoved = 0;           ///< triangles dropped as repeats of an earlier one (the same
+                                       ///< three vertices, either winding: repeated or two-sided faces)
+  int voidsRemoved = 0;                ///< sealed inner cavities (inward-facing closed components inside
+                                       ///< others) ignored: they cannot be reached, covering them is free
+  bool meshClosed = false;             ///< every edge is shared by an even number (>= 2) of triangles,
+                                       ///< once the holes are filled
+  double meshVolume = 0.0;             ///< by the divergence theorem, once the holes are filled (voids
+                                       ///< count negative); NaN when not closed
+  double piecesVolume = 0.0;           ///< sum of the piece hull volumes (overlaps counted twice)
+  double volumeRatio = 0.0;            ///< piecesVolume / meshVolume; NaN when not closed
   double decomposeMilliseconds = 0.0;  ///< wall time of the decomposition (as stored, on a hit)
-  double milliseconds = 0.0;     ///< wall time of this call (a cache read on a hit)
+  double milliseconds = 0.0;           ///< wall time of this call (a cache read on a hit)
   CacheStatus cache = CacheStatus::NotUsed;
-  std::string cacheMessage;      ///< why a cache file was replaced or could not be written
+  std::string cacheMessage;  ///< why a cache file was replaced or could not be written
   /// One line naming the mesh, how far its worst piece ends outside it and the target, when a
   /// piece misses the target; "" otherwise (targetWarning). decomposeConvexCached prints it on
   /// stderr; callers of decomposeConvex print it themselves.

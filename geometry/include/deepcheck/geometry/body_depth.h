@@ -79,19 +79,19 @@ struct Body {
 };
 
 enum class BodyDepthStatus {
-  Separated,      ///< no pair of pieces overlaps: the smallest pairwise distance
-  Certified,      ///< overlapping; the search finished: the depth is the nearest point of the
-                  ///< complement of the union (within tol::kBodyMemberRelative * L)
-  FaceLimit,      ///< overlapping; BodyDepthOptions::maxFaces faces were searched before the
-                  ///< search finished: the answer is a verified separating translation (depth
-                  ///< upper bound), [depthLower, depthUpper] brackets the depth
+  Separated,         ///< no pair of pieces overlaps: the smallest pairwise distance
+  Certified,         ///< overlapping; the search finished: the depth is the nearest point of the
+                     ///< complement of the union (within tol::kBodyMemberRelative * L)
+  FaceLimit,         ///< overlapping; BodyDepthOptions::maxFaces faces were searched before the
+                     ///< search finished: the answer is a verified separating translation (depth
+                     ///< upper bound), [depthLower, depthUpper] brackets the depth
   PairNotCertified,  ///< overlapping; the answer is the deepest pair's, not covered by another
                      ///< pair, but that pair's own query hit a cap: a verified separating
                      ///< translation whose depth is an upper bound, bracketed as above
-  BuildLimit,  ///< overlapping; the differences the search needs would cost more than
-               ///< BodyDepthOptions::maxBuildCost to build: the answer is the nearest verified
-               ///< separating translation found before (a march's end, else the bounding boxes'
-               ///< separation along an axis), an upper bound, bracketed as above
+  BuildLimit,        ///< overlapping; the differences the search needs would cost more than
+                     ///< BodyDepthOptions::maxBuildCost to build: the answer is the nearest verified
+                     ///< separating translation found before (a march's end, else the bounding boxes'
+                     ///< separation along an axis), an upper bound, bracketed as above
 };
 
 const char* toString(BodyDepthStatus s);
@@ -137,8 +137,7 @@ struct BodySignedDistanceResult {
 /// Signed distance between body A at X_WA and body B at X_WB (each piece at X_W * X_BP).
 /// Throws std::invalid_argument for an empty body, a piece without core, a piece with a radius
 /// other than 0, or a non-finite / non-orthonormal pose (the message names body and piece).
-BodySignedDistanceResult bodySignedDistance(const Body& A, const Eigen::Isometry3d& X_WA,
-                                            const Body& B, const Eigen::Isometry3d& X_WB,
-                                            const BodyDepthOptions& options = {});
+BodySignedDistanceResult bodySignedDistance(const Body& A, const Eigen::Isometry3d& X_WA, const Body& B,
+                                            const Eigen::Isometry3d& X_WB, const BodyDepthOptions& options = {});
 
 }  // namespace deepcheck::geometry

@@ -11,7 +11,7 @@ namespace deepcheck::geometry {
 /// coincident) corners give the closest point of the three edges. Voronoi regions of the
 /// triangle's features (vertices, edges, interior) are tested in that order with dot products of
 /// edge vectors, so no division happens until the region is known.
-Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       const Eigen::Vector3d& c);
 
 }  // namespace deepcheck::geometry

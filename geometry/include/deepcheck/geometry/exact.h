@@ -11,10 +11,10 @@
 namespace deepcheck::geometry {
 
 struct ExactResult {
-  double distance = 0.0;  ///< signed: > 0 apart, < 0 penetration depth (negated)
+  double distance = 0.0;                              ///< signed: > 0 apart, < 0 penetration depth (negated)
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, from A towards B, world frame
-  int minkowskiVertices = 0;  ///< vertices of the hull of differences
-  int minkowskiFacets = 0;    ///< facets of that hull (after merging coplanar ones)
+  int minkowskiVertices = 0;                          ///< vertices of the hull of differences
+  int minkowskiFacets = 0;                            ///< facets of that hull (after merging coplanar ones)
 };
 
 /// One facet of the Minkowski difference hull, in frame P.
@@ -43,8 +43,7 @@ struct MinkowskiHull {
 
 /// Builds M = B - A in the pair frame (Qhull of all nA * nB vertex differences). Throws
 /// QhullError (a std::runtime_error, qhull_hull.h) when Qhull fails.
-MinkowskiHull minkowskiDifferenceHull(const ConvexPolytope& A, const ConvexPolytope& B,
-                                      const PairFrame& frame);
+MinkowskiHull minkowskiDifferenceHull(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame);
 
 /// Exact signed distance between polytopes A and B (cores) with radii rA, rB >= 0.
 /// Computed in the pair frame; the normal is returned in the world frame.
@@ -53,8 +52,7 @@ MinkowskiHull minkowskiDifferenceHull(const ConvexPolytope& A, const ConvexPolyt
 /// difference of B minus A when it has a component along it); a segment or point M containing the
 /// origin gives 0 with a normal perpendicular to it (arbitrary for a point).
 /// Throws std::invalid_argument for negative or non-finite radii or bad poses.
-ExactResult exactSignedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
-                                const ConvexPolytope& B, const Eigen::Isometry3d& X_WB,
-                                double radiusA = 0.0, double radiusB = 0.0);
+ExactResult exactSignedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexPolytope& B,
+                                const Eigen::Isometry3d& X_WB, double radiusA = 0.0, double radiusB = 0.0);
 
 }  // namespace deepcheck::geometry

@@ -27,12 +27,12 @@
 namespace deepcheck::geometry {
 
 enum class GjkStatus {
-  Separated,        ///< distance > 0, converged to kGjkRelative
-  Overlapping,      ///< the origin is certified inside M (see above): distance 0, normal zero
-  Touching,         ///< distance below kContactRelative * L: treated as contact; distance is 0,
-                    ///< pointB - pointA is the residual (below tolerance) and normal its
-                    ///< direction when it is non-zero (else zero)
-  MaxIterations,    ///< iteration cap hit; distance is an upper bound
+  Separated,      ///< distance > 0, converged to kGjkRelative
+  Overlapping,    ///< the origin is certified inside M (see above): distance 0, normal zero
+  Touching,       ///< distance below kContactRelative * L: treated as contact; distance is 0,
+                  ///< pointB - pointA is the residual (below tolerance) and normal its
+                  ///< direction when it is non-zero (else zero)
+  MaxIterations,  ///< iteration cap hit; distance is an upper bound
 };
 
 const char* toString(GjkStatus s);
@@ -87,8 +87,7 @@ bool enclosesOrigin(const ConvexPolytope& A, const ConvexPolytope& B, const Pair
 /// Fast boolean: true when A and B overlap or touch within kContactRelative * L. Stops as soon as
 /// a separating axis or an enclosing simplex is found. Returns true (the safe answer) in the
 /// rare case the iteration cap is hit undecided.
-bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                GjkCache* cache = nullptr);
+bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, GjkCache* cache = nullptr);
 
 /// Fast boolean: true when the distance between A and B is at most `within` (> 0), or cannot be
 /// shown larger (touching within kContactRelative * L, or the iteration cap). Stops as soon as

@@ -20,13 +20,13 @@ struct PairFrame {
   /// Builds the frame for A at X_WA and B at X_WB. Throws std::invalid_argument for a pose with
   /// NaN/infinite entries, a translation beyond range::kMaxCoordinate (input_range.h) or a
   /// rotation that is not orthonormal (message names which pose).
-  static PairFrame make(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
-                        const ConvexPolytope& B, const Eigen::Isometry3d& X_WB);
+  static PairFrame make(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexPolytope& B,
+                        const Eigen::Isometry3d& X_WB);
   /// make() without the pose checks, for callers whose poses are rigid by construction (the
   /// checker's, from forward kinematics and validated world poses). The same frame as make() on
   /// valid poses; anything on invalid ones.
-  static PairFrame makeUnchecked(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
-                                 const ConvexPolytope& B, const Eigen::Isometry3d& X_WB);
+  static PairFrame makeUnchecked(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexPolytope& B,
+                                 const Eigen::Isometry3d& X_WB);
 
   /// Pose of P in the world, to map results back: x_W = X_WP * x_P.
   Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
@@ -34,9 +34,7 @@ struct PairFrame {
   /// A's vertex v in P.
   static const Eigen::Vector3d& vertexA(const ConvexPolytope& A, int v) { return A.localVertex(v); }
   /// B's vertex v in P.
-  Eigen::Vector3d vertexB(const ConvexPolytope& B, int v) const {
-    return R * B.localVertex(v) + t;
-  }
+  Eigen::Vector3d vertexB(const ConvexPolytope& B, int v) const { return R * B.localVertex(v) + t; }
   /// A direction of P expressed in B's frame.
   Eigen::Vector3d toB(const Eigen::Vector3d& dir_P) const { return R.transpose() * dir_P; }
   /// A direction of B's frame expressed in P.

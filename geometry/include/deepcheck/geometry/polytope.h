@@ -62,8 +62,7 @@ class ConvexPolytope {
   /// range::kMaxCoordinate, or the points span less than range::kMinExtent without coinciding
   /// (input_range.h); the message names the offending point index and value. `name` is used in
   /// messages only.
-  static ConvexPolytope fromPoints(const std::vector<Eigen::Vector3d>& points,
-                                   const std::string& name = "points");
+  static ConvexPolytope fromPoints(const std::vector<Eigen::Vector3d>& points, const std::string& name = "points");
 
   /// An axis-aligned box centred at the origin. `size`: its full edge lengths along x, y and z
   /// (all > 0), metres, as a URDF <box size>, a MoveIt box primitive and Obstacle::box take them.
@@ -146,9 +145,9 @@ class ConvexPolytope {
   std::vector<Eigen::Vector3d> local_;  // vertices_[v] - center_, contiguous for support()
   std::vector<Eigen::Vector3d> faceNormals_;
   std::vector<double> faceOffsets_;
-  std::vector<int> faceStart_;    // face f's vertices are faceVerts_[faceStart_[f] .. faceStart_[f+1])
+  std::vector<int> faceStart_;  // face f's vertices are faceVerts_[faceStart_[f] .. faceStart_[f+1])
   std::vector<int> faceVerts_;
-  std::vector<int> adjStart_;     // vertex v's neighbours/ring are at [adjStart_[v] .. adjStart_[v+1])
+  std::vector<int> adjStart_;  // vertex v's neighbours/ring are at [adjStart_[v] .. adjStart_[v+1])
   std::vector<int> adjVerts_;
   std::vector<int> adjFaces_;
   Eigen::Vector3d center_ = Eigen::Vector3d::Zero();

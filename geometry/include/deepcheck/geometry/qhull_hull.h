@@ -59,7 +59,6 @@ constexpr double kQhullMaxCoordinate = 1e100;
 /// The convex hull of `points`. Throws std::invalid_argument for a non-finite coordinate or one
 /// beyond kQhullMaxCoordinate, QhullError when no solid hull exists (see the header comment).
 /// Duplicated points are allowed (one of them becomes the vertex). `name` is used in messages only.
-QhullHull qhullHull(const std::vector<Eigen::Vector3d>& points, const QhullOptions& options,
-                    const std::string& name);
+QhullHull qhullHull(const std::vector<Eigen::Vector3d>& points, const QhullOptions& options, const std::string& name);
 
 }  // namespace deepcheck::geometry

@@ -37,11 +37,11 @@ struct ConvexShape {
 };
 
 enum class SignedDistanceStatus {
-  Separated,       ///< distance > 0 from GJK, converged
-  Penetrating,     ///< distance <= 0, the depth converged (certified, or the walk ended at a
-                   ///< facet containing its foot point)
-  NotConverged,    ///< an iteration cap was hit; the answer is still a valid separating
-                   ///< translation (an upper bound on the depth) or a distance upper bound
+  Separated,     ///< distance > 0 from GJK, converged
+  Penetrating,   ///< distance <= 0, the depth converged (certified, or the walk ended at a
+                 ///< facet containing its foot point)
+  NotConverged,  ///< an iteration cap was hit; the answer is still a valid separating
+                 ///< translation (an upper bound on the depth) or a distance upper bound
 };
 
 const char* toString(SignedDistanceStatus s);
@@ -55,11 +55,11 @@ struct Feature {
 
 /// What the Gauss-map walk did in a query (all zero when no walk ran).
 struct WalkStats {
-  int starts = 0;           ///< walks started
-  int hubs = 0;             ///< hub pairs evaluated (local Gauss map intersections)
-  int steps = 0;            ///< facet-to-facet moves over all walks
-  int localMinima = 0;      ///< walks that ended at a facet deeper than the final answer
-  bool warm = false;        ///< the warm start was used
+  int starts = 0;       ///< walks started
+  int hubs = 0;         ///< hub pairs evaluated (local Gauss map intersections)
+  int steps = 0;        ///< facet-to-facet moves over all walks
+  int localMinima = 0;  ///< walks that ended at a facet deeper than the final answer
+  bool warm = false;    ///< the warm start was used
 };
 
 struct SignedDistanceResult {
@@ -148,18 +148,18 @@ struct PairCache {
 
 /// Signed distance between two posed shapes. Throws std::invalid_argument for a null core, a
 /// negative or non-finite radius, or a non-finite / non-orthonormal pose.
-SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3d& X_WA,
-                                    const ConvexShape& B, const Eigen::Isometry3d& X_WB,
-                                    PairCache* cache = nullptr, const PenetrationOptions& options = {});
+SignedDistanceResult signedDistance(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
+                                    const Eigen::Isometry3d& X_WB, PairCache* cache = nullptr,
+                                    const PenetrationOptions& options = {});
 
 /// Same, for polytopes without radius.
-SignedDistanceResult signedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA,
-                                    const ConvexPolytope& B, const Eigen::Isometry3d& X_WB,
-                                    PairCache* cache = nullptr, const PenetrationOptions& options = {});
+SignedDistanceResult signedDistance(const ConvexPolytope& A, const Eigen::Isometry3d& X_WA, const ConvexPolytope& B,
+                                    const Eigen::Isometry3d& X_WB, PairCache* cache = nullptr,
+                                    const PenetrationOptions& options = {});
 
 /// Boolean overlap of two posed shapes (GJK only, early exit). Touching counts as overlap.
-bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
-              const Eigen::Isometry3d& X_WB, PairCache* cache = nullptr);
+bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B, const Eigen::Isometry3d& X_WB,
+              PairCache* cache = nullptr);
 
 /// overlaps() without its argument checks (null core, radius, finite and orthonormal poses), for
 /// callers that validated their shapes once and compute their poses as rigid motions themselves

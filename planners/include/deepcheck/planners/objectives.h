@@ -105,16 +105,18 @@ class ClearanceHingeObjective : public ompl::base::OptimizationObjective {
 /// one makes optimizing planners cheaper near obstacles: each motion cost evaluates the states
 /// within d_safe + B of an obstacle). Throws std::invalid_argument for a
 /// negative or non-finite weight.
-ompl::base::OptimizationObjectivePtr makeLengthClearanceObjective(
-    const ompl::base::SpaceInformationPtr& si, std::shared_ptr<const StateValidityChecker> checker,
-    double safeDistance = tol::kDefaultSafeDistance, double weight = tol::kDefaultHingeWeight,
-    std::shared_ptr<const LinkSpeedBound> bound = nullptr, double resolution = 0.0);
+ompl::base::OptimizationObjectivePtr makeLengthClearanceObjective(const ompl::base::SpaceInformationPtr& si,
+                                                                  std::shared_ptr<const StateValidityChecker> checker,
+                                                                  double safeDistance = tol::kDefaultSafeDistance,
+                                                                  double weight = tol::kDefaultHingeWeight,
+                                                                  std::shared_ptr<const LinkSpeedBound> bound = nullptr,
+                                                                  double resolution = 0.0);
 
 /// OMPL's PathLengthOptimizationObjective, except that the informed planners (BIT*,
 /// InformedRRT*) sample a state space with SO2 components (continuous joints, state_space.h)
-/// uniformly, without information (uniform_informed_sampler.h), instead of throwing "PathLengthDirectInfSampler only supports RealVector, SE2 and
-/// SE3 statespaces". Identical on a RealVectorStateSpace. Throws std::invalid_argument for a null
-/// space information.
+/// uniformly, without information (uniform_informed_sampler.h), instead of throwing "PathLengthDirectInfSampler only
+/// supports RealVector, SE2 and SE3 statespaces". Identical on a RealVectorStateSpace. Throws std::invalid_argument for
+/// a null space information.
 ompl::base::OptimizationObjectivePtr makePathLengthObjective(const ompl::base::SpaceInformationPtr& si);
 
 /// OMPL's MaximizeMinClearanceObjective on `si` (whose checker must compute clearance).

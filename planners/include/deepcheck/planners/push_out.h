@@ -109,21 +109,19 @@ const char* toString(PushOutStatus status);
 
 struct PushOutResult {
   PushOutStatus status = PushOutStatus::NotConverged;
-  Eigen::VectorXd q;             ///< the result (valid when success())
-  int iterations = 0;            ///< push-out iterations / jiggle attempts used
+  Eigen::VectorXd q;   ///< the result (valid when success())
+  int iterations = 0;  ///< push-out iterations / jiggle attempts used
   /// sd of the input (metres), measured no farther than t + c + tol::kPushOutLookahead (that value
   /// when nothing is nearer); NaN when the push-out did not start (the input valid, or valid once
   /// clamped into the limits) and for the jiggle.
   double initialDistance = 0.0;
   /// sd of q (metres); NaN when the push-out did not start, and for a jiggle that did not repair.
   double finalDistance = 0.0;
-  double jointMotion = 0.0;      ///< |q - input|, joint-space Euclidean norm
+  double jointMotion = 0.0;  ///< |q - input|, joint-space Euclidean norm
   /// Why it failed, when no configuration can succeed: a pair that no joint moves within the
   /// validity threshold (checker::World::fixedPairs), named with how to allow it. Else empty.
   std::string reason;
-  bool success() const {
-    return status == PushOutStatus::AlreadyValid || status == PushOutStatus::Repaired;
-  }
+  bool success() const { return status == PushOutStatus::AlreadyValid || status == PushOutStatus::Repaired; }
 };
 
 class PushOut;
@@ -169,8 +167,7 @@ struct JiggleOptions {
 /// The random-jiggle baseline (see the header comment). `rng` is the caller's, for pinned seeds.
 /// Throws std::invalid_argument for bad options or a bad q.
 PushOutResult jiggle(const checker::World& world, const ValidityOptions& validity,
-                     const Eigen::Ref<const Eigen::VectorXd>& q, const JiggleOptions& options,
-                     std::mt19937_64& rng);
+                     const Eigen::Ref<const Eigen::VectorXd>& q, const JiggleOptions& options, std::mt19937_64& rng);
 
 /// Largest displacement of a link frame origin between configurations a and b (metres): the
 /// workspace motion of a repair, for reports.

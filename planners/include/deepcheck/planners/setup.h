@@ -124,10 +124,10 @@ ompl::base::SpaceInformationPtr certifyingSpaceInformation(const ompl::geometric
 
 /// The result of certifyPath.
 struct PathCertificate {
-  PathCheck initial;        ///< the path as given, through the certifying validator
-  bool repaired = false;    ///< repairPath ran (the initial check failed)
-  PathRepair repair;        ///< when repaired
-  bool valid = false;       ///< every waypoint and motion (now) passes the certifying validator
+  PathCheck initial;      ///< the path as given, through the certifying validator
+  bool repaired = false;  ///< repairPath ran (the initial check failed)
+  PathRepair repair;      ///< when repaired
+  bool valid = false;     ///< every waypoint and motion (now) passes the certifying validator
   /// With a penetration tolerance only (the ClearanceMotionValidator certifies): the steps of the
   /// final path's motions it took without a certificate (its fallback within about 0.5 mm of
   /// contact, motion_validator.h). Always 0 with the certified validator.

@@ -42,8 +42,7 @@ bool isConfigurationValid(const checker::World& world, const Eigen::Ref<const Ei
 /// min(sd(q), cap): the signed distance when it is below `cap`, else `cap`. Cheaper than the
 /// exact distance when `cap` is small (pairs whose bounding volumes are farther than cap are not
 /// measured). cap = +infinity gives the exact minimum signed distance.
-double signedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q,
-                          double cap);
+double signedDistanceUpTo(const checker::World& world, const Eigen::Ref<const Eigen::VectorXd>& q, double cap);
 
 /// The signed distance split by what the robot is near: `world` the minimum over robot-scene and
 /// robot-obstacle pairs, `self` over robot self pairs, each capped like signedDistanceUpTo.

@@ -7,8 +7,8 @@
 //                  a wrapping variable, robots/joint_angles.h, has none: 4.0 rad is the angle
 //                  4.0 - 2 pi, not a value above pi)
 //                  AND valid by validity.h (sd > safetyMargin - penetrationTolerance; with both
-//                  0, World::isFree's early exit). Thread safe and const: OMPL's parallel planners may call it from many
-//                  threads (each uses its own warm-start context of the World).
+//                  0, World::isFree's early exit). Thread safe and const: OMPL's parallel planners may call it from
+//                  many threads (each uses its own warm-start context of the World).
 // clearance(state) the signed distance sd(q) of the world, metres: positive the distance to the
 //                  nearest obstacle (scene, obstacle or another link of the robot), NEGATIVE
 //                  THE PENETRATION DEPTH when in collision, as OMPL documents. The raw distance:
@@ -93,8 +93,7 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
   double clearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q, double cap) const;
   /// The same split into robot-world and self pairs (validity.h), each capped at `cap`; with
   /// `selfPairs` false the self pairs are not measured (`self` is +infinity).
-  SplitDistance splitClearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q, double cap,
-                                   bool selfPairs = true) const;
+  SplitDistance splitClearanceUpTo(const Eigen::Ref<const Eigen::VectorXd>& q, double cap, bool selfPairs = true) const;
 
   const checker::World& world() const { return *world_; }
   const std::shared_ptr<const checker::World>& worldPtr() const { return world_; }

@@ -61,17 +61,17 @@ class World;
 namespace deepcheck::problems {
 
 struct SceneVariation {
-  std::vector<std::string> names;  ///< objects, or {"World"}
+  std::vector<std::string> names;                         ///< objects, or {"World"}
   Eigen::Vector3d position = Eigen::Vector3d::Zero();     ///< metres (see the file comment)
   Eigen::Vector3d orientation = Eigen::Vector3d::Zero();  ///< roll, pitch, yaw half-widths, rad
-  bool normal = false;  ///< position drawn from normal distributions (else uniform)
+  bool normal = false;                                    ///< position drawn from normal distributions (else uniform)
   int line = 0;
 };
 
 struct ObjectQuery {
   std::string object;
   std::string tag;
-  Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();  ///< X_OT, the end effector in O
+  Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();        ///< X_OT, the end effector in O
   Eigen::Vector3d positionTolerance = Eigen::Vector3d::Zero();     ///< box edge lengths, metres
   Eigen::Vector3d orientationTolerance = Eigen::Vector3d::Zero();  ///< radians per axis
   int line = 0;
@@ -124,9 +124,9 @@ robots::PlanningScene varyScene(const robots::PlanningScene& nominal, const std:
                                 std::mt19937_64& rng, const std::string& variationSource = "");
 
 /// X_WT of the tip for `query` in `scene` (the object's pose through its frame's link at q).
-Eigen::Isometry3d queryPose(const robots::PlanningScene& scene, const ObjectQuery& query, const robots::RobotModel& robot,
-                            const Eigen::Ref<const Eigen::VectorXd>& q, const robots::FrameAliases& aliases,
-                            const Eigen::Isometry3d& eeOffset);
+Eigen::Isometry3d queryPose(const robots::PlanningScene& scene, const ObjectQuery& query,
+                            const robots::RobotModel& robot, const Eigen::Ref<const Eigen::VectorXd>& q,
+                            const robots::FrameAliases& aliases, const Eigen::Isometry3d& eeOffset);
 
 /// IK tolerances meeting a query's tolerance box (see the file comment): `base` with the box's
 /// edge lengths as the position box, applied to the query frame (X_LB = eeOffset, the query frame
@@ -138,7 +138,7 @@ robots::IkOptions queryIkOptions(const ObjectQuery& query, const robots::IkOptio
 using SceneDraw = std::function<robots::PlanningScene(std::mt19937_64& rng)>;
 
 struct ProblemOptions {
-  std::string tipLink;  ///< the end effector's link (required)
+  std::string tipLink;                                         ///< the end effector's link (required)
   Eigen::Isometry3d eeOffset = Eigen::Isometry3d::Identity();  ///< query frame in the tip frame
   robots::FrameAliases frameAliases;
   Eigen::VectorXd start;  ///< start when the queries have none (required then)
@@ -154,8 +154,8 @@ struct ProblemOptions {
 struct Problem {
   robots::PlanningScene scene;  ///< the varied scene
   Eigen::VectorXd start, goal;
-  std::string startQuery;       ///< "" when the start is ProblemOptions::start
-  std::string goalQuery;        ///< "Can3_Front"
+  std::string startQuery;                                      ///< "" when the start is ProblemOptions::start
+  std::string goalQuery;                                       ///< "Can3_Front"
   Eigen::Isometry3d goalPose = Eigen::Isometry3d::Identity();  ///< X_WT of the tip
   robots::PoseError goalError;  ///< of `goal` against goalPose, with the query's tolerances
   int attempts = 0;             ///< scenes drawn for this problem
@@ -171,7 +171,7 @@ using ProblemProgress = std::function<void(int index, const Problem& problem)>;
 std::vector<Problem> generateProblems(checker::World& world, const planners::StateValidityChecker& checker,
                                       const robots::PlanningScene& nominal,
                                       const std::vector<SceneVariation>& variations, const QuerySet& queries,
-                                      const ProblemOptions& options, int count,
-                                      const ProblemProgress& progress = {}, const std::string& variationSource = "");
+                                      const ProblemOptions& options, int count, const ProblemProgress& progress = {},
+                                      const std::string& variationSource = "");
 
 }  // namespace deepcheck::problems

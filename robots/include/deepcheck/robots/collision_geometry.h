@@ -76,8 +76,7 @@ struct DecomposerOptions {
 /// decomposition made (DecompositionReport::concavity, mesh units), NaN once a mesh is made into
 /// its hull, which is not measured. Throws std::invalid_argument for parameters out of range
 /// (DecompositionParams::validate) when `decompose` is on.
-MeshDecomposer meshDecomposer(const DecomposerOptions& options,
-                              std::shared_ptr<double> largestConcavity = nullptr);
+MeshDecomposer meshDecomposer(const DecomposerOptions& options, std::shared_ptr<double> largestConcavity = nullptr);
 
 struct CollisionGeometryOptions {
   /// Largest distance the prism of a cylinder may stick out of it, metres (> 0).
@@ -112,7 +111,7 @@ std::vector<CollisionPiece> linkCollisionPieces(const RobotModel& model, int lin
 /// Pieces of every link: result[link]. Each mesh (path and scale) is loaded and decomposed once.
 /// Errors (unreadable meshes, decomposer failures) are std::invalid_argument naming the URDF,
 /// link and collision element.
-std::vector<std::vector<CollisionPiece>> collisionPieces(
-    const RobotModel& model, const CollisionGeometryOptions& options = {});
+std::vector<std::vector<CollisionPiece>> collisionPieces(const RobotModel& model,
+                                                         const CollisionGeometryOptions& options = {});
 
 }  // namespace deepcheck::robots

@@ -35,7 +35,8 @@
 // Errors: std::invalid_argument naming the value: an unknown link (the message lists the links), a
 // non-finite or non-rigid target pose, a tolerance, iteration count or damping that is not
 // positive and finite, a position box with a negative, non-finite or (among positive ones) zero
-// edge length or a boxPose that is not a finite rigid transform, an initial configuration of the wrong size or with a non-finite value.
+// edge length or a boxPose that is not a finite rigid transform, an initial configuration of the wrong size or with a
+// non-finite value.
 
 #include "deepcheck/robots/robot_model.h"
 #include "deepcheck/robots/tolerances.h"
@@ -59,11 +60,11 @@ struct IkOptions {
   Eigen::Vector3d positionBox = Eigen::Vector3d::Zero();
   /// X_LB: where on the link the box applies, and the box's axes (see the file comment).
   Eigen::Isometry3d boxPose = Eigen::Isometry3d::Identity();
-  int maxIterations = tol::kIkMaxIterations;                   ///< per attempt
-  int maxRestarts = tol::kIkMaxRestarts;                       ///< attempts after the first
-  double damping = tol::kIkDamping;                            ///< initial lambda
-  double maxJointStep = tol::kIkMaxJointStep;                  ///< rad (m for prismatic)
-  std::uint64_t seed = 0;                                      ///< of the restarts
+  int maxIterations = tol::kIkMaxIterations;   ///< per attempt
+  int maxRestarts = tol::kIkMaxRestarts;       ///< attempts after the first
+  double damping = tol::kIkDamping;            ///< initial lambda
+  double maxJointStep = tol::kIkMaxJointStep;  ///< rad (m for prismatic)
+  std::uint64_t seed = 0;                      ///< of the restarts
   /// Start of the first attempt (numVariables() values; clamped into the limits); empty: random.
   Eigen::VectorXd initial;
 };
@@ -88,11 +89,11 @@ const char* toString(IkStatus status);
 
 struct IkResult {
   IkStatus status = IkStatus::NotConverged;
-  Eigen::VectorXd q;        ///< the solution, or the best configuration found (see status)
-  PoseError error;          ///< of q
-  int attempts = 0;         ///< started (1 + restarts used)
-  int iterations = 0;       ///< over all attempts
-  int rejected = 0;         ///< solutions the acceptance test rejected
+  Eigen::VectorXd q;   ///< the solution, or the best configuration found (see status)
+  PoseError error;     ///< of q
+  int attempts = 0;    ///< started (1 + restarts used)
+  int iterations = 0;  ///< over all attempts
+  int rejected = 0;    ///< solutions the acceptance test rejected
   bool converged() const { return status == IkStatus::Converged; }
 };
 

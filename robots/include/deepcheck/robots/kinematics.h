@@ -33,18 +33,17 @@ void checkConfiguration(const RobotModel& model, const Eigen::Ref<const Eigen::V
 /// Poses X_WL of all links (index by link). Allocation-free once X_WL has numLinks() entries.
 void forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q,
                        std::vector<Eigen::Isometry3d>& X_WL);
-std::vector<Eigen::Isometry3d> forwardKinematics(const RobotModel& model,
-                                                 const Eigen::Ref<const Eigen::VectorXd>& q);
+std::vector<Eigen::Isometry3d> forwardKinematics(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q);
 
 /// 3 x nq translational Jacobian of point Q (p_LQ in link L), expressed in W, from the poses of
 /// forwardKinematics() for the same q. Allocation-free once J_WQ has the right size.
 void pointJacobian(const RobotModel& model, const std::vector<Eigen::Isometry3d>& X_WL, int link,
                    const Eigen::Vector3d& p_LQ, Eigen::Matrix3Xd& J_WQ);
-Eigen::Matrix3Xd pointJacobian(const RobotModel& model, const std::vector<Eigen::Isometry3d>& X_WL,
-                               int link, const Eigen::Vector3d& p_LQ);
+Eigen::Matrix3Xd pointJacobian(const RobotModel& model, const std::vector<Eigen::Isometry3d>& X_WL, int link,
+                               const Eigen::Vector3d& p_LQ);
 /// Same, computing the poses for q first.
-Eigen::Matrix3Xd pointJacobian(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                               int link, const Eigen::Vector3d& p_LQ);
+Eigen::Matrix3Xd pointJacobian(const RobotModel& model, const Eigen::Ref<const Eigen::VectorXd>& q, int link,
+                               const Eigen::Vector3d& p_LQ);
 
 /// 6 x nq spatial Jacobian [angular; translational of Q], expressed in W.
 void spatialJacobian(const RobotModel& model, const std::vector<Eigen::Isometry3d>& X_WL, int link,

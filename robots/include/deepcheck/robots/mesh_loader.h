@@ -53,8 +53,7 @@ struct MeshLoadOptions {
 /// geometry::range::kMaxCoordinate, when a vertex is not finite or, placed and scaled, lies beyond
 /// geometry::range::kMaxCoordinate (the message names the scale), or when no non-degenerate
 /// triangle is left.
-TriangleMesh loadMesh(const std::string& path,
-                      const Eigen::Vector3d& scale = Eigen::Vector3d::Ones(),
+TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale = Eigen::Vector3d::Ones(),
                       const MeshLoadOptions& options = {});
 
 /// Drops degenerate triangles and unused vertices of `mesh` in place (step 4 above); returns the

@@ -115,10 +115,10 @@ struct SceneShape {
 
 struct SceneObject {
   std::string id;
-  std::string frameId;  ///< header.frame_id as written
+  std::string frameId;                                     ///< header.frame_id as written
   Eigen::Isometry3d X_FO = Eigen::Isometry3d::Identity();  ///< the object pose (identity if none)
-  std::vector<SceneShape> shapes;  ///< primitives first, then meshes, in file order
-  int line = 0;                    ///< 1-based line where the object starts
+  std::vector<SceneShape> shapes;                          ///< primitives first, then meshes, in file order
+  int line = 0;                                            ///< 1-based line where the object starts
 };
 
 /// Collisions a scene allows (MoveIt's allowed_collision_matrix): names are robot links or
@@ -142,9 +142,9 @@ struct AttachedObject {
 };
 
 struct PlanningScene {
-  std::string source;  ///< the file (or the name given to parsePlanningScene)
-  std::string name;    ///< the scene's name (YAML `name`, a .scene file's first line); may be empty
-  std::vector<SceneObject> objects;  ///< in file order
+  std::string source;                    ///< the file (or the name given to parsePlanningScene)
+  std::string name;                      ///< the scene's name (YAML `name`, a .scene file's first line); may be empty
+  std::vector<SceneObject> objects;      ///< in file order
   std::vector<AttachedObject> attached;  ///< in file order
   AllowedCollisions allowed;
   /// Index of the object called `id`, -1 when there is none.
@@ -173,8 +173,7 @@ PlanningScene loadPlanningScene(const std::string& path, const SceneLoadOptions&
 /// Reads planning-scene YAML text; relative mesh paths are relative to `baseDirectory`.
 /// `sourceName` names the text in messages ("<string>" when empty).
 PlanningScene parsePlanningScene(const std::string& yaml, const std::string& baseDirectory,
-                                 const SceneLoadOptions& options = {},
-                                 const std::string& sourceName = "");
+                                 const SceneLoadOptions& options = {}, const std::string& sourceName = "");
 
 // MoveIt's .scene text format: what MoveIt's "Export" / "Import" of a scene (PlanningScene::
 // saveGeometryToStream, loadGeometryFromStream) and geometric_shapes' saveAsText and
@@ -265,8 +264,8 @@ FrameAliases withVirtualJointAliases(FrameAliases aliases, const std::vector<Srd
 /// configuration q (forward kinematics, with the robot's base pose). Throws
 /// std::invalid_argument for a frame that is no link, naming the file, object and frame, listing
 /// the robot's links and suggesting an alias; or for an alias whose target is no link.
-std::vector<std::vector<Eigen::Isometry3d>> shapeWorldPoses(
-    const PlanningScene& scene, const RobotModel& robot, const Eigen::Ref<const Eigen::VectorXd>& q,
-    const FrameAliases& aliases = {});
+std::vector<std::vector<Eigen::Isometry3d>> shapeWorldPoses(const PlanningScene& scene, const RobotModel& robot,
+                                                            const Eigen::Ref<const Eigen::VectorXd>& q,
+                                                            const FrameAliases& aliases = {});
 
 }  // namespace deepcheck::robots

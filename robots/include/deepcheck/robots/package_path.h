@@ -37,8 +37,7 @@ struct UriResolution {
 /// The package roots to search for package:// URIs: `callerRoots` (in order), then the entries of
 /// ROS_PACKAGE_PATH and the share/ folders of AMENT_PREFIX_PATH when `useEnvironment`. Empty
 /// entries are skipped; duplicates are kept once.
-std::vector<std::string> packageRoots(const std::vector<std::string>& callerRoots,
-                                      bool useEnvironment = true);
+std::vector<std::string> packageRoots(const std::vector<std::string>& callerRoots, bool useEnvironment = true);
 
 /// Resolves `uri` (see the header comment). `roots` are the package roots (as returned by
 /// packageRoots()); `baseDirectory` is the URDF file's folder, used for relative paths (may be

@@ -115,15 +115,15 @@ struct PairFilterResult {
 
 /// Pairs of links with geometry that are adjacent (see the header comment), as (i, j) link
 /// indices with i < j, sorted. `pieces` is collisionPieces(model) (result[link]).
-std::vector<std::pair<int, int>> adjacentLinkPairs(
-    const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces);
+std::vector<std::pair<int, int>> adjacentLinkPairs(const RobotModel& model,
+                                                   const std::vector<std::vector<CollisionPiece>>& pieces);
 
 /// Tests every pair of links with geometry at the link poses X_WL (forwardKinematics()) and
 /// returns the colliding ones as (i, j) link indices, i < j, sorted. Adjacent pairs are included
 /// (they usually collide). For tests and tools.
-std::vector<std::pair<int, int>> collidingLinkPairs(
-    const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces,
-    const std::vector<Eigen::Isometry3d>& X_WL);
+std::vector<std::pair<int, int>> collidingLinkPairs(const RobotModel& model,
+                                                    const std::vector<std::vector<CollisionPiece>>& pieces,
+                                                    const std::vector<Eigen::Isometry3d>& X_WL);
 
 /// True when some piece of `a` (posed at X_WA * X_LP) overlaps some piece of `b`.
 bool piecesOverlap(const std::vector<CollisionPiece>& a, const Eigen::Isometry3d& X_WA,
@@ -133,20 +133,18 @@ bool piecesOverlap(const std::vector<CollisionPiece>& a, const Eigen::Isometry3d
 /// per-link pieces with one entry per link. Throws std::invalid_argument naming the robot and the
 /// value for a bad option (negative samples, alwaysFraction outside (0, 1], a given default
 /// configuration of the wrong size or not finite) or pieces of the wrong size.
-PairFilterResult computeDisabledPairs(const RobotModel& model,
-                                      const std::vector<std::vector<CollisionPiece>>& pieces,
+PairFilterResult computeDisabledPairs(const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces,
                                       const PairFilterOptions& options = {});
 
 /// Link pairs (i, j), i < j, both with geometry, that are NOT disabled by `disabled`: the pairs
 /// a self-collision check must test. Throws std::invalid_argument when a disabled pair names a
 /// link the model does not have.
-std::vector<std::pair<int, int>> enabledLinkPairs(
-    const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces,
-    const std::vector<DisabledPair>& disabled);
+std::vector<std::pair<int, int>> enabledLinkPairs(const RobotModel& model,
+                                                  const std::vector<std::vector<CollisionPiece>>& pieces,
+                                                  const std::vector<DisabledPair>& disabled);
 
 /// Throws std::invalid_argument, naming `source` (e.g. the SRDF file), the pair and the link, when
 /// a pair names a link `model` does not have or the same link twice.
-void checkDisabledPairs(const RobotModel& model, const std::vector<DisabledPair>& disabled,
-                        const std::string& source);
+void checkDisabledPairs(const RobotModel& model, const std::vector<DisabledPair>& disabled, const std::string& source);
 
 }  // namespace deepcheck::robots

@@ -59,8 +59,8 @@ std::string srdfSourceName(const std::vector<std::string>& paths);
 
 /// The variables (indices into the model's configuration q, ascending, no duplicates) that the
 /// group `name` of `groups` moves. `srdfSource` names the SRDF in messages.
-std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfGroup>& groups,
-                                const std::string& name, const std::string& srdfSource);
+std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfGroup>& groups, const std::string& name,
+                                const std::string& srdfSource);
 
 /// The model a planner of group `group` of the SRDF at `srdfPath` sees: lockAllBut(model,
 /// groupVariables(...), locked, ...) (robot_model.h), every variable outside the group held at its

@@ -87,17 +87,17 @@ const char* toString(GeometryType type);
 /// One URDF collision geometry, in its own frame G.
 struct Geometry {
   GeometryType type = GeometryType::Box;
-  Eigen::Vector3d boxSize = Eigen::Vector3d::Zero();  ///< Box: full edge lengths along x, y, z of G
-  double radius = 0.0;                                ///< Sphere and Cylinder
-  double length = 0.0;  ///< Cylinder: along z of G, centred on G's origin
-  std::string meshUri;  ///< Mesh: the filename as written in the URDF
-  std::string meshPath;  ///< Mesh: the resolved absolute path
+  Eigen::Vector3d boxSize = Eigen::Vector3d::Zero();    ///< Box: full edge lengths along x, y, z of G
+  double radius = 0.0;                                  ///< Sphere and Cylinder
+  double length = 0.0;                                  ///< Cylinder: along z of G, centred on G's origin
+  std::string meshUri;                                  ///< Mesh: the filename as written in the URDF
+  std::string meshPath;                                 ///< Mesh: the resolved absolute path
   Eigen::Vector3d meshScale = Eigen::Vector3d::Ones();  ///< Mesh: URDF scale
 };
 
 /// One <collision> element of a link.
 struct CollisionElement {
-  std::string name;  ///< the URDF name attribute ("" when absent)
+  std::string name;                                        ///< the URDF name attribute ("" when absent)
   Eigen::Isometry3d X_LG = Eigen::Isometry3d::Identity();  ///< pose of G in the link frame
   Geometry geometry;
 };
@@ -120,8 +120,8 @@ struct Joint {
   int parentLink = -1;
   int childLink = -1;
   Eigen::Isometry3d X_PJ = Eigen::Isometry3d::Identity();  ///< joint frame in the parent link
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  ///< unit, in J (= in C); moving joints only
-  double lower = 0.0;          ///< position limits, rad or m (continuous: -pi, pi; fixed: 0, 0)
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();         ///< unit, in J (= in C); moving joints only
+  double lower = 0.0;  ///< position limits, rad or m (continuous: -pi, pi; fixed: 0, 0)
   double upper = 0.0;
   double velocityLimit = 0.0;  ///< rad/s or m/s (0 when the URDF gives none)
   /// value = multiplier * q[variable] + offset; variable is -1 for fixed joints.
@@ -158,10 +158,9 @@ class RobotModel {
   /// Loads URDF text; relative mesh paths are relative to `baseDirectory`. `sourceName` names
   /// the text in messages ("<string>" when empty).
   static RobotModel fromUrdfString(const std::string& xml, const std::string& baseDirectory,
-                                   const LoadOptions& options = {},
-                                   const std::string& sourceName = "");
+                                   const LoadOptions& options = {}, const std::string& sourceName = "");
 
-  const std::string& name() const { return name_; }     ///< the <robot name>
+  const std::string& name() const { return name_; }      ///< the <robot name>
   const std::string& source() const { return source_; }  ///< file path or sourceName
 
   int numLinks() const { return static_cast<int>(links_.size()); }

@@ -5,9 +5,9 @@
 // and <virtual_joint name="J" type="fixed|floating|planar" parent_frame="F" child_link="L"/> for
 // the joint that places the robot's root link L in the frame F (MoveIt's model frame, e.g. world
 // or odom_combined); planning groups are read by planning_group.h. Other SRDF elements (group
-// states, end effectors, passive joints) are ignored when reading and not written. A missing reason attribute is DisableReason::Unspecified (example-robot-data's
-// ur5.srdf has none); reason "User" (MoveIt's hand-made pairs) is DisableReason::User; any other
-// text (MoveIt accepts any, e.g. "Common") is DisableReason::Other with the text kept in
+// states, end effectors, passive joints) are ignored when reading and not written. A missing reason attribute is
+// DisableReason::Unspecified (example-robot-data's ur5.srdf has none); reason "User" (MoveIt's hand-made pairs) is
+// DisableReason::User; any other text (MoveIt accepts any, e.g. "Common") is DisableReason::Other with the text kept in
 // DisabledPair::reasonText, so that it is shown and written back as found.
 //
 // Errors: bad input throws std::invalid_argument whose message names the file (or the text's
@@ -64,8 +64,7 @@ std::pair<std::string, std::string> pairKey(const std::string& a, const std::str
 /// The <disable_collisions> entries of SRDF text, in file order. `sourceName` names the text in
 /// messages. Throws std::invalid_argument (naming the source and the line) for malformed XML, a
 /// root element other than <robot>, or a missing or empty link1/link2.
-std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml,
-                                                 const std::string& sourceName = "");
+std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml, const std::string& sourceName = "");
 /// Same, from a file (a missing or unreadable file is an error naming it).
 std::vector<DisabledPair> readSrdfDisabledPairs(const std::string& path);
 
@@ -113,8 +112,8 @@ std::string srdfText(const std::string& robotName, const std::vector<DisabledPai
 /// reads them back to the same SrdfGroup), then the <virtual_joint> elements, then the pairs.
 std::string srdfText(const std::string& robotName, const SrdfContents& contents, const std::string& comment = "");
 /// Writes srdfText() to `path`; throws std::invalid_argument naming the file when it cannot.
-void writeSrdf(const std::string& path, const std::string& robotName,
-               const std::vector<DisabledPair>& pairs, const std::string& comment = "");
+void writeSrdf(const std::string& path, const std::string& robotName, const std::vector<DisabledPair>& pairs,
+               const std::string& comment = "");
 /// Same, with groups and virtual joints.
 void writeSrdf(const std::string& path, const std::string& robotName, const SrdfContents& contents,
                const std::string& comment = "");

@@ -45,7 +45,7 @@ namespace deepcheck::viewer {
 struct ViewShape {
   /// Box (boxSize), Sphere (radius), Cylinder (radius, length along z) or Mesh (`mesh` below).
   robots::Geometry geometry;
-  std::shared_ptr<const robots::TriangleMesh> mesh;  ///< Mesh: vertices in G, metres
+  std::shared_ptr<const robots::TriangleMesh> mesh;        ///< Mesh: vertices in G, metres
   Eigen::Isometry3d X_BG = Eigen::Isometry3d::Identity();  ///< pose of G in the body frame B
 };
 
@@ -123,8 +123,8 @@ ViewScene viewOfWorld(const checker::World& world, const std::vector<Eigen::Vect
                       const WorldViewOptions& options = WorldViewOptions());
 
 /// writeHtmlView(viewOfWorld(world, configurations, options), file).
-void writeHtmlView(const checker::World& world, const std::vector<Eigen::VectorXd>& configurations, const std::string& file,
-                   const WorldViewOptions& options = WorldViewOptions());
+void writeHtmlView(const checker::World& world, const std::vector<Eigen::VectorXd>& configurations,
+                   const std::string& file, const WorldViewOptions& options = WorldViewOptions());
 
 /// The bodies of a URDF model's links at the poses X_WL: shapes from their collision elements
 /// (meshes loaded once per file and scale) and the given pieces (`pieces[link]`, link frame).

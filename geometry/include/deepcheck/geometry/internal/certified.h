@@ -81,9 +81,8 @@ struct CertifiedResult {
 /// the depth is enumerated directly by walkPenetration) in the pair frame. Meaningful when GJK
 /// found them overlapping or touching: `gjk` is that result (its simplex seeds the surface).
 /// `surface` is the caller's scratch space, overwritten; no allocation.
-CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B,
-                                     const PairFrame& frame, const GjkResult& gjk,
-                                     ExpansionSurface& surface,
+CertifiedResult certifiedPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                                     const GjkResult& gjk, ExpansionSurface& surface,
                                      const CertifiedOptions& options = {});
 
 /// certifiedPenetration without GJK, for polyhedra the caller knows overlap: the surface starts
@@ -113,8 +112,8 @@ void saveWarmStart(const ConvexPolytope& A, const ConvexPolytope& B, const PairF
 
 /// The warm query: Certified when the cached surface certifies the depth without expanding,
 /// else NotConverged (the caller runs certifiedPenetration).
-CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B,
-                              const PairFrame& frame, CertifiedWarmStart& warm);
+CertifiedResult certifiedWarm(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
+                              CertifiedWarmStart& warm);
 
 /// The warm query's second stage, when certifiedWarm() did not certify: the cached surface at
 /// the current pose is loaded into `surface` (overwritten) and expanded best-first
@@ -131,8 +130,8 @@ CertifiedResult expandWarm(const ConvexPolytope& A, const ConvexPolytope& B, con
 /// do not name one facet (they span several coplanar features, or the features found do not
 /// support the normal); the caller then names it otherwise (DEEP's facet at the direction,
 /// facetInDirection in gauss_map_walk.h, or DEEP's walk from it).
-bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                    const CertifiedResult& c, WalkResult& out);
+bool certifiedFacet(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, const CertifiedResult& c,
+                    WalkResult& out);
 
 /// The facet of M that a surface face's corners (index pairs faceA[k], faceB[k]; unit normal
 /// `normal`) name, looked up as certifiedFacet() looks it up: state Named with its type, features

@@ -39,7 +39,7 @@ struct CertifiedWarmStart {
   int b[kMaxVertices];
   int face[kMaxFaces][3];
   int adj[kMaxFaces][3];              ///< neighbours, as ExpansionSurface::Face::adj
-  double offset[kMaxFaces];          ///< min over the face's corners of normal.p at the reference (all > 0)
+  double offset[kMaxFaces];           ///< min over the face's corners of normal.p at the reference (all > 0)
   Eigen::Vector3d normal[kMaxFaces];  ///< unit face normals at the reference pose, frame P
   Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity();  ///< the reference pair frame
   Eigen::Vector3d t0 = Eigen::Vector3d::Zero();

@@ -1,7 +1,7 @@
 #pragma once
-// Internal to deepcheck::geometry. The expanding surface of the certified penetration depth: a closed triangulated surface whose
-// vertices are points b - a of the Minkowski difference M = B - A, stored as vertex-index pairs
-// (a of A, b of B) with the point itself in the pair frame P.
+// Internal to deepcheck::geometry. The expanding surface of the certified penetration depth: a closed triangulated
+// surface whose vertices are points b - a of the Minkowski difference M = B - A, stored as vertex-index pairs (a of A,
+// b of B) with the point itself in the pair frame P.
 //
 // Started from a tetrahedron or from a checked convex surface (startConvex), the surface is the
 // convex hull of its vertices (the expanding polytope of van den Bergen 2001). While it encloses
@@ -14,7 +14,8 @@
 // over the horizon.
 //
 // Fixed capacity, no allocation: the caller owns one surface (inside a PenetrationScratch,
-// signed_distance.h) and reuses it for every query (one per thread). Beyond capacity, expand() refuses and the caller reports the bracket it has.
+// signed_distance.h) and reuses it for every query (one per thread). Beyond capacity, expand() refuses and the caller
+// reports the bracket it has.
 
 #include <Eigen/Core>
 
@@ -135,8 +136,8 @@ class ExpansionSurface {
   HorizonEdge horizon_[kMaxHorizon];
   Face cone_[kMaxHorizon];
   int made_[kMaxHorizon];
-  int seen_[kMaxFaces];          // faces that see the new point (marked dead while expanding)
-  int pending_[2 * kMaxFaces + 3];  // depth-first search stack of (face, edge) codes
+  int seen_[kMaxFaces];                // faces that see the new point (marked dead while expanding)
+  int pending_[2 * kMaxFaces + 3];     // depth-first search stack of (face, edge) codes
   bool onHorizon_[kMaxVertices] = {};  // horizonChains()' per-vertex flags, false between calls
   int numVertices_ = 0;
   int numSlots_ = 0;

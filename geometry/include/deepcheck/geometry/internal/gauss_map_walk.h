@@ -58,10 +58,10 @@ struct WalkResult {
   Eigen::Vector3d pointA = Eigen::Vector3d::Zero();   ///< witness on A, frame P
   Eigen::Vector3d pointB = Eigen::Vector3d::Zero();   ///< witness on B, frame P (pointA - pointB = depth * normal)
   enum class FacetType { VF, FV, EE } type = FacetType::VF;
-  int featureA = 0;   ///< VF: vertex of A; FV: face of A; EE: first vertex of A's edge
-  int featureA2 = -1; ///< EE: second vertex of A's edge
-  int featureB = 0;   ///< VF: face of B; FV: vertex of B; EE: first vertex of B's edge
-  int featureB2 = -1; ///< EE: second vertex of B's edge
+  int featureA = 0;    ///< VF: vertex of A; FV: face of A; EE: first vertex of A's edge
+  int featureA2 = -1;  ///< EE: second vertex of A's edge
+  int featureB = 0;    ///< VF: face of B; FV: vertex of B; EE: first vertex of B's edge
+  int featureB2 = -1;  ///< EE: second vertex of B's edge
   WalkStats stats;
 };
 
@@ -70,9 +70,8 @@ struct WalkResult {
 /// a facet reached, possibly negative. `cache` may be null; its basins start the walks when
 /// `warmStart` is set and it is valid. `scratch` is the caller's scratch space (walk_scratch.h),
 /// overwritten; null: a local one is used (allocating what the query uses).
-WalkResult walkPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame,
-                           WalkCache* cache, const WalkOptions& options, bool warmStart,
-                           WalkScratch* scratch = nullptr);
+WalkResult walkPenetration(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, WalkCache* cache,
+                           const WalkOptions& options, bool warmStart, WalkScratch* scratch = nullptr);
 
 /// The facet of M at the vertex of M extreme in direction u (found by climbing from the hint
 /// vertices), without walking: the nearest facet around that vertex, Converged with its witness

@@ -11,11 +11,11 @@ namespace deepcheck::geometry::detail {
 struct WalkCache {
   static constexpr int kBasins = 4;
   bool valid = false;
-  int count = 0;                 ///< basins stored (the first is the last answer)
-  int hubA[kBasins] = {};        ///< vertex of A of each basin's hub pair
-  int hubB[kBasins] = {};        ///< vertex of B of each basin's hub pair
-  Eigen::Vector3d u[kBasins];    ///< outward facet normal of M at each basin, frame P
-  int warmQueries = 0;           ///< warm queries since the last cold one
+  int count = 0;               ///< basins stored (the first is the last answer)
+  int hubA[kBasins] = {};      ///< vertex of A of each basin's hub pair
+  int hubB[kBasins] = {};      ///< vertex of B of each basin's hub pair
+  Eigen::Vector3d u[kBasins];  ///< outward facet normal of M at each basin, frame P
+  int warmQueries = 0;         ///< warm queries since the last cold one
 };
 
 }  // namespace deepcheck::geometry::detail
