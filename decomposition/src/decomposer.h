@@ -3,7 +3,54 @@
 // drives them; decomposition.h gives the overview and the guarantees).
 //
 // Approximate convex decomposition: recursive plane cuts scored by concavity, then merging and
-// vertex reduction (decomposition.h gives the overview and the guarantees).
+// vertex reduction (decomposition.h gives the contract and the guarantees).
+//
+// Steps:
+//   1. Weld identical vertices, drop degenerate triangles, fill simple holes (a missing quad of a
+//      wall is common in CAD exports), orient components outward, drop sealed inner voids.
+//   2. If the hull of the whole mesh meets the target, it is the one piece ("already convex"),
+//      reduced to maxVerticesPerPiece; no decomposition. Should the reduction add more than the
+//      target allows, the report's warning says so: a convex mesh is never split.
+//   3. Otherwise, repeatedly take the part of largest concavity and cut it by the candidate plane
+//      that minimizes the larger concavity of the two sides; candidates are axis-aligned and
+//      principal-axis planes at several offsets and through the features around the worst
+//      concavity, and slabs between two walls. Plateaus (no single cut helps) are handled by a
+//      one-cut lookahead, then by cutting along a wall. A cut triangle is clipped to both sides.
+//      Each side is split again into its connected components.
+//   4. When the budget's number of parts exist, merge neighbouring pieces whose merged hull meets
+//      the target (cheapest first), which frees budget for more cuts; repeat. Finally, if there
+//      are still more pieces than the budget, merge the cheapest pairs until there are not. The
+//      final, denser concavity estimate sends pieces above the target back to be cut.
+//      The budget grows in stages: steps 3-4 run first within min(maxPieces, 32) pieces; only if
+//      the target is still missed do they go on from that result (pieces above the target
+//      reopened, forced merges undone) with twice the budget, up to maxPieces. So a mesh that
+//      meets the target within 32 pieces gets the same pieces whatever maxPieces is.
+//   5. Each hull is reduced to at most maxVerticesPerPiece vertices while keeping it CONTAINING
+//      the original hull (see below); the target applies to the reduced pieces, in steps 2-4.
+//
+// Decisions aim at kDecisionFraction (0.9) of the target, so that the final estimate, which
+// samples more, stays within it. The target may still be missed when maxPieces is too small for
+// the mesh: report.targetMet says so.
+//
+// Coverage: every point of every triangle lies in the hull of the part it was assigned to (a cut
+// triangle's pieces go to both sides); for a closed mesh the solid is covered too, because each
+// part's hull also takes the corners of its cell that lie inside the solid (where the solid's
+// cut faces end) and parts are never split more finely than the solid is connected. Merging
+// only enlarges hulls, and so does the vertex reduction. So the union of the pieces contains the
+// mesh (sealed inner voids count as solid), up to the round-off of the hull computation (~1e-12
+// of the mesh size).
+//
+// Vertex reduction (maxVerticesPerPiece) keeps CONTAINMENT: a progressive hull (Sander et al.,
+// "Silhouette clipping", SIGGRAPH 2000) collapses hull edges (u, v) into a new vertex placed on or
+// outside the plane of every face around u and v, so each step's hull contains the previous one;
+// the collapse whose new vertex is nearest to the original hull goes first (the new vertex
+// minimizes the added volume). Each collapse is verified (u and v inside the new hull). Should it
+// fail to reach the budget, the fallback is an intersection of supporting half-spaces (at most
+// 2k - 4 vertices for k planes). The bound: every point of a reduced piece is within `excess` of
+// the unreduced hull, `excess` being the largest distance from a reduced vertex to that hull, so
+// concavity(reduced) <= concavity(hull) + excess. A hull is reduced only once it meets the target,
+// and the concavity that must meet the target is the reduced piece's: a part whose reduced hull
+// misses it is cut further (into sides with fewer hull vertices), and so are merges.
 //
 // Parts. A part is the piece of the mesh surface inside a convex cell (the intersection of the
 // half-spaces of the cuts that led to it): the mesh triangles clipped to the cell (convex

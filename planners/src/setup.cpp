@@ -228,9 +228,8 @@ namespace {
 
 /// One pass of OMPL's path shortening: vertex reduction, shortcuts, vertex reduction again, two
 /// rounds of B-spline smoothing. Every change goes through the motion validator. simplifyMax
-/// repeats such passes until nothing improves: on MotionBenchMaker's Panda problems with certified
-/// motions its paths are 4 % shorter at the median and it takes 4x the time (12 ms against 3 ms
-/// with the plan, bench/README.md).
+/// repeats such passes until nothing improves: slightly shorter paths for several times the time,
+/// so the single pass is the default.
 void shortenPath(ompl::geometric::PathSimplifier& simplifier, ompl::geometric::PathGeometric& path) {
   simplifier.reduceVertices(path);
   simplifier.shortcutPath(path);

@@ -40,8 +40,7 @@ inline void rotateAboutCoordinateAxis(Eigen::Matrix3d& R, int k, double c, doubl
 }
 
 /// Two doubles in one SSE2 register (GCC's and Clang's vector extensions): the sines of two
-/// joints cost about as much as one, with the same bits as one at a time (checker_bench's
-/// kinematics row, the Panda: 0.22 -> 0.18 µs).
+/// joints cost about as much as one, with the same bits as one at a time.
 using Pair = double __attribute__((vector_size(16)));
 using PairBits = std::int64_t __attribute__((vector_size(16)));
 using PairInt = std::int32_t __attribute__((vector_size(8)));

@@ -1,5 +1,5 @@
 // World::bodySignedDistance (body_distance.h): a link against a body of several pieces measured
-// as one union, on the hard cases of issue 38 built as worlds (a box pressed into a slab of two
+// as one union, on the hard cases built as worlds (a box pressed into a slab of two
 // touching boxes, a peg in a U of three boxes), against geometry::bodySignedDistance on the same posed
 // pieces, link against link, the rounded-piece rule and the errors.
 

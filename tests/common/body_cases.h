@@ -1,5 +1,5 @@
 #pragma once
-// The hard cases of body penetration depth (issue 38) as robots and scenes, shared by the checker
+// The hard cases of body penetration depth as robots and scenes, shared by the checker
 // and planners suites: a gantry carrying a box tool, a slab of two touching boxes and a U of three
 // boxes, each one scene link (one body of several pieces).
 
