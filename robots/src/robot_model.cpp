@@ -6,8 +6,6 @@
 
 #include "urdf_prepass.h"
 
-#include <deepcheck/geometry/input_range.h>
-
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 

@@ -4,9 +4,12 @@
 
 #include "xml_text.h"
 
+#include "deepcheck/geometry/input_range.h"
+
 #include <tinyxml.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 #include <utility>

@@ -13,7 +13,7 @@
 #include "deepcheck/fcl_reference/fcl_broad_phase.h"
 #include "deepcheck/robots/kinematics.h"
 
-#include "deep/shapes.h"
+#include "geometry/shapes.h"
 
 #include <boost/test/unit_test.hpp>
 
