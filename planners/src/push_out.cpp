@@ -120,7 +120,10 @@ class PushOutSearch {
     options.contactMargin = watch_;
     options.maxDistance = std::max(watch_, 0.0) + tol::kDistanceCapMargin;
     checker::DistanceResult d = world_.signedDistance(q, options);
-    if (options_.bodyDepth) useBodyDepth(q, d);
+    if (options_.bodyDepth && bodyQueries_ < tol::kPushOutMaxBodyQueries) {
+      ++bodyQueries_;
+      useBodyDepth(q, d);
+    }
     return d;
   }
   /// The minimum distance at q as the search judges it: the pairwise one up to the watched
@@ -128,6 +131,11 @@ class PushOutSearch {
   double distanceAt(const Eigen::VectorXd& q) const {
     return options_.bodyDepth ? minimum(query(q)) : signedDistanceUpTo(world_, q, watch_);
   }
+  /// True once a body-depth search has made tol::kPushOutMaxBodyQueries body queries: it then
+  /// stops (and the pairwise search takes over, PushOut::retryPairwise).
+  bool bodyQueriesSpent() const { return options_.bodyDepth && bodyQueries_ >= tol::kPushOutMaxBodyQueries; }
+  /// How far contacts are watched (metres): the minimum distance when nothing is nearer.
+  double watched() const { return watch_; }
   /// The minimum distance of a query (the watched distance when nothing is nearer).
   double minimum(const checker::DistanceResult& d) const { return d.found ? d.closest.distance : watch_; }
 
@@ -161,6 +169,8 @@ class PushOutSearch {
       if (c.distance < d.closest.distance) d.closest = c;
     }
   }
+
+  mutable int bodyQueries_ = 0;  ///< queries measured with the body depth so far
 
   /// Linearizations made at other iterates (the bundle), newest last.
   struct Cut {
@@ -241,7 +251,7 @@ bool PushOutSearch::iterate(checker::DistanceResult d, PushOutResult* result) {
   int stalled = 0;   // iterations without kPushOutStallImprovement
   double bestMinimum = minimum(d);
   bool valid = false;
-  for (int iteration = 0; iteration < options_.maxIterations && !valid; ++iteration) {
+  for (int iteration = 0; iteration < options_.maxIterations && !valid && !bodyQueriesSpent(); ++iteration) {
     result->iterations = iteration + 1;
     const std::vector<Row> rows = rowsAt(d, result->q);
     const Eigen::VectorXd dq =
@@ -368,6 +378,20 @@ std::string blockingFixedPair(const checker::World& world, double threshold) {
 
 }  // namespace
 
+bool PushOut::retryPairwise(const Eigen::VectorXd& start, PushOutResult& result) const {
+  PushOutOptions pairwise = options_;
+  pairwise.bodyDepth = false;
+  PushOutSearch search(*world_, validity_, pairwise, start.size());
+  PushOutResult retry = result;
+  retry.q = start;
+  retry.iterations = 0;
+  const bool valid = search.iterate(search.query(start), &retry);
+  const int spent = result.iterations + retry.iterations;
+  if (valid) result.q = retry.q;
+  result.iterations = spent;
+  return valid;
+}
+
 PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& given) const {
   const robots::RobotModel& model = world_->robot();
   robots::checkConfiguration(model, given);
@@ -391,14 +415,20 @@ PushOutResult PushOut::run(const Eigen::Ref<const Eigen::VectorXd>& given) const
   PushOutSearch search(*world_, validity_, options_, q0.size());
   checker::DistanceResult d = search.query(result.q);
   result.initialDistance = search.minimum(d);
-  if (result.initialDistance < -options_.maxDepth) {
+  // The gate is the deepest pair's depth whichever depth the search steps by, so that the body
+  // depth (never shallower) turns no start away that the pairwise search would take.
+  const double gateDistance =
+      options_.bodyDepth ? signedDistanceUpTo(*world_, result.q, search.watched()) : result.initialDistance;
+  if (gateDistance < -options_.maxDepth) {
     result.reason = blockingFixedPair(*world_, validity_.threshold());
     result.status = PushOutStatus::TooDeep;
     result.q = q0;
     result.finalDistance = result.initialDistance;
     return result;
   }
-  const bool valid = search.iterate(std::move(d), &result);
+  const Eigen::VectorXd start = result.q;
+  bool valid = search.iterate(std::move(d), &result);
+  if (!valid && options_.bodyDepth) valid = retryPairwise(start, result);
   result.status = valid ? PushOutStatus::Repaired : PushOutStatus::NotConverged;
   if (!valid) result.reason = blockingFixedPair(*world_, validity_.threshold());
   result.jointMotion = (result.q - q0).norm();

@@ -43,11 +43,14 @@
 // PushOutOptions::bodyDepth each overlapping contact whose A is a robot link (not an attached
 // object) takes the body's distance, gradient and witnesses from checker::World::bodySignedDistance
 // (the union's penetration depth; the pairwise answer where a piece is rounded), and so does the
-// minimum distance that steps and probes are judged by. It converges better on the hard cases and
-// never worse on random starts of the bundled arm (docs/checker.md, "Body-level signed
+// minimum distance that steps and probes are judged by. It converges in fewer iterations on the
+// hard cases and on random starts of the bundled arm (docs/checker.md, "Body-level signed
 // distance"). Its cost is bounded: a body query that would have to build more Minkowski
-// differences than geometry::BodyDepthOptions::maxBuildCost pays for (deeply overlapping links of many
-// pieces) answers BuildLimit, and that contact keeps its pairwise answer.
+// differences than geometry::BodyDepthOptions::maxBuildCost pays for (deeply overlapping links of
+// many pieces) answers BuildLimit, and that contact keeps its pairwise answer. Where the body
+// search does not converge (on random starts of the bundled arm centimetres deep it fails a few
+// more than the pairwise one), the pairwise search runs from the same start; maxDepth is judged
+// by the deepest pair's depth either way.
 // Departures from a textbook projection: the target is c above the threshold rather than on it,
 // so that the last linearized step does not land exactly on the boundary. The minimum joint-space
 // motion is not guaranteed (the problem is non-convex); the step is the locally smallest one.
@@ -145,6 +148,10 @@ class PushOut {
   const PushOutOptions& options() const { return options_; }
 
  private:
+  /// After a body-depth search that did not converge: the pairwise search from the same start.
+  /// On success result.q is its answer; result.iterations counts both searches.
+  bool retryPairwise(const Eigen::VectorXd& start, PushOutResult& result) const;
+
   std::shared_ptr<const checker::World> world_;
   ValidityOptions validity_;
   PushOutOptions options_;

@@ -88,6 +88,11 @@ constexpr double kPushOutMaxDepth = 0.05;
 /// contacts of the bundled arm; a contact past it keeps its pairwise answer.
 constexpr double kPushOutBodyBuildCost = 2000.0;
 
+/// Body queries one push-out search makes at most (each capped by kPushOutBodyBuildCost): past
+/// them the body-depth search stops and the pairwise one runs from the start, so one push-out's
+/// body work is bounded too. A search that converges makes a few dozen at most.
+constexpr int kPushOutMaxBodyQueries = 100;
+
 /// Path repair (path_tools.h) pushes states out to at least this clearance above the threshold
 /// (metres), so that the chords between repaired neighbours clear the edges they wrap around.
 constexpr double kRepairClearance = 0.005;
