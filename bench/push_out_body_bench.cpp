@@ -23,6 +23,7 @@
 // repaired).
 
 #include "../tests/common/body_cases.h"
+#include "csv_out.h"
 #include "repair_starts.h"
 
 #include "deepcheck/planners/push_out.h"
@@ -153,12 +154,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  std::FILE* csv = std::fopen(csvPath.c_str(), "w");
-  if (!csv) {
-    std::fprintf(stderr, "push_out_body_bench: cannot write %s\n", csvPath.c_str());
-    return 1;
-  }
-  std::fprintf(csv, "family,option,starts,repaired,one_step,mean_iterations,motion,median_ms,p99_ms,max_ms\n");
+  std::FILE* csv = deepcheck::bench::openCsv(
+      "push_out_body_bench", csvPath,
+      "family,option,starts,repaired,one_step,mean_iterations,motion,median_ms,p99_ms,max_ms");
   std::printf("push_out_body_bench: push-out with the pairwise depth against the body depth\n");
   std::printf("%-18s %-10s %6s %8s %8s %10s %12s %9s %9s %9s\n", "family", "depth", "starts", "repaired", "one step",
               "mean iter.", "motion (all)", "med. ms", "p99 ms", "max ms");

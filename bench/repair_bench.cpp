@@ -10,6 +10,7 @@
 // figures; the same rows go to a CSV. Usage: repair_bench [--csv FILE] (about half a minute; the
 // CSV defaults to bench/results/repair_bench.csv, run from the source tree).
 
+#include "csv_out.h"
 #include "repair_starts.h"
 
 #include "deepcheck/planners/push_out.h"
@@ -91,14 +92,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: repair_bench [--csv FILE]\n");
     return 2;
   }
-  std::FILE* csv = std::fopen(csvPath.c_str(), "w");
-  if (!csv) {
-    std::fprintf(stderr, "repair_bench: cannot write %s\n", csvPath.c_str());
-    return 1;
-  }
-  std::fprintf(csv,
-               "scene,starts,push_out_repaired,jiggle_repaired,both,push_out_motion_rad,jiggle_motion_rad,"
-               "push_out_link_m,jiggle_link_m\n");
+  std::FILE* csv = deepcheck::bench::openCsv("repair_bench", csvPath,
+                                             "scene,starts,push_out_repaired,jiggle_repaired,both,push_out_motion_rad,"
+                                             "jiggle_motion_rad,push_out_link_m,jiggle_link_m");
   std::printf("repair_bench: %d starts per scene penetrating up to %.0f cm; means over the starts both repaired\n",
               kTrialsPerScene, 100 * kMaxDepth);
   std::printf("%-16s %6s %10s %10s %6s %15s %15s %13s %13s\n", "scene", "starts", "push-out", "jiggle", "both",

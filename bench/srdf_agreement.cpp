@@ -11,6 +11,8 @@
 // few seconds; skips without ../shared; the CSV defaults to bench/results/srdf_agreement.csv, run
 // from the source tree).
 
+#include "csv_out.h"
+
 #include "deepcheck/robots/collision_geometry.h"
 #include "deepcheck/robots/pair_filter.h"
 #include "deepcheck/robots/robot_model.h"
@@ -95,12 +97,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: srdf_agreement [--csv FILE]\n");
     return 2;
   }
-  std::FILE* csv = std::fopen(csvPath.c_str(), "w");
-  if (!csv) {
-    std::fprintf(stderr, "srdf_agreement: cannot write %s\n", csvPath.c_str());
-    return 1;
-  }
-  std::fprintf(csv, "robot,pairs_with_geometry,we_disable,srdf_disables,both,only_us,only_srdf\n");
+  std::FILE* csv = deepcheck::bench::openCsv(
+      "srdf_agreement", csvPath, "robot,pairs_with_geometry,we_disable,srdf_disables,both,only_us,only_srdf");
   const std::string shared = DEEPCHECK_SHARED_DIR;
   const std::vector<Robot> robots = {
       {"Panda", "robots/panda", "moveit_resources_panda_description/urdf/panda.urdf",
