@@ -83,15 +83,18 @@ constexpr int kPushOutMaxIterations = 50;
 constexpr double kPushOutMaxDepth = 0.05;
 
 /// Cap on the estimated cost of one body query of the push-out (PushOutOptions::bodyBuildCost,
-/// geometry::BodyDepthOptions::maxBuildCost: microseconds of a current x86-64 core, estimated from the
-/// pieces' sizes). It covers the body queries of small decompositions (a few hundred) and of most
-/// contacts of the bundled arm; a contact past it keeps its pairwise answer.
-constexpr double kPushOutBodyBuildCost = 2000.0;
+/// geometry::BodyDepthOptions::maxBuildCost: microseconds of a current x86-64 core, estimated from
+/// the pieces' sizes). A tool pressed into a few boxes costs tens; two links of the bundled arm,
+/// pieces of up to 64 vertices, often more, and such a contact keeps its pairwise answer. Larger
+/// caps repaired no more starts in push_out_body_bench and made a deep start's push-out several
+/// times slower (much more under the sanitizers).
+constexpr double kPushOutBodyBuildCost = 300.0;
 
 /// Body queries one push-out search makes at most (each capped by kPushOutBodyBuildCost): past
 /// them the body-depth search stops and the pairwise one runs from the start, so one push-out's
-/// body work is bounded too. A search that converges makes a few dozen at most.
-constexpr int kPushOutMaxBodyQueries = 100;
+/// body work is bounded too. The hard cases converge in one or two; 20 bounds a deep start of the
+/// bundled arm to tens of milliseconds and repairs as many starts as 100 (push_out_body_bench).
+constexpr int kPushOutMaxBodyQueries = 20;
 
 /// Path repair (path_tools.h) pushes states out to at least this clearance above the threshold
 /// (metres), so that the chords between repaired neighbours clear the edges they wrap around.
