@@ -120,10 +120,7 @@ class PushOutSearch {
     options.contactMargin = watch_;
     options.maxDistance = std::max(watch_, 0.0) + tol::kDistanceCapMargin;
     checker::DistanceResult d = world_.signedDistance(q, options);
-    if (options_.bodyDepth && bodyQueries_ < tol::kPushOutMaxBodyQueries) {
-      ++bodyQueries_;
-      useBodyDepth(q, d);
-    }
+    if (options_.bodyDepth && bodyQueries_ < tol::kPushOutMaxBodyQueries) useBodyDepth(q, d);
     return d;
   }
   /// The minimum distance at q as the search judges it: the pairwise one up to the watched
@@ -157,6 +154,7 @@ class PushOutSearch {
       checker::BodyRef a;
       a.kind = checker::BodyRef::Kind::RobotLink;
       a.index = c.linkA;
+      ++bodyQueries_;
       checker::World::BodyContact answer = world_.bodySignedDistance(q, a, c.bodyB, options);
       if (answer.depthStatus == geometry::BodyDepthStatus::BuildLimit) continue;  // too costly: pairwise
       checker::Contact& body = answer.contact;
@@ -170,7 +168,7 @@ class PushOutSearch {
     }
   }
 
-  mutable int bodyQueries_ = 0;  ///< queries measured with the body depth so far
+  mutable int bodyQueries_ = 0;  ///< body queries made so far (one per overlapping contact measured)
 
   /// Linearizations made at other iterates (the bundle), newest last.
   struct Cut {
