@@ -90,12 +90,23 @@ checker::MotionCertificate CertifiedMotionValidator::prefix(const Motion& m, dou
   return checker_->world().certifyMotion(m.q1, fraction * m.dq, demand);
 }
 
+bool CertifiedMotionValidator::accepted(const Motion& m) const {
+  CertifiedMotionMemo& memo = checker_->certifiedMotions();
+  // The version before the certification: a change of the world during it leaves an entry no
+  // later lookup matches, never one that answers for a world it was not certified in.
+  const std::uint64_t version = checker_->world().version();
+  if (memo.contains(m.q1, m.q2, version)) return true;
+  // s2 first: OMPL's contract (its joint limits too), and the cheapest rejection.
+  if (!checker_->isValid(m.q2) || !certify(m, 1.0).certified()) return false;
+  memo.insert(m.q1, m.q2, version);
+  return true;
+}
+
 bool CertifiedMotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const {
   thread_local Motion m;
   motions_.fetch_add(1, std::memory_order_relaxed);
   prepare(s1, s2, m);
-  // s2 first: OMPL's contract (its joint limits too), and the cheapest rejection.
-  if (!checker_->isValid(m.q2) || !certify(m, 1.0).certified()) {
+  if (!accepted(m)) {
     ++invalid_;
     return false;
   }
@@ -108,7 +119,7 @@ bool CertifiedMotionValidator::checkMotion(const ompl::base::State* s1, const om
   thread_local Motion m;
   motions_.fetch_add(1, std::memory_order_relaxed);
   prepare(s1, s2, m);
-  if (checker_->isValid(m.q2) && certify(m, 1.0).certified()) {
+  if (accepted(m)) {
     ++valid_;
     return true;
   }

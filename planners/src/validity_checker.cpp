@@ -60,6 +60,7 @@ StateValidityChecker::StateValidityChecker(ompl::base::SpaceInformation* si,
   }
   specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::APPROXIMATE;
   specs_.hasValidDirectionComputation = true;
+  certifiedMotions_ = std::make_unique<CertifiedMotionMemo>(n_);
 }
 
 StateValidityChecker::StateValidityChecker(const ompl::base::SpaceInformationPtr& si,

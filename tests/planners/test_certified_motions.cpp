@@ -294,6 +294,64 @@ BOOST_AUTO_TEST_CASE(an_object_attached_later_is_covered) {
   BOOST_TEST(m.certified(a, b) == denselyFree(*world, a, b - a));
 }
 
+// The memo of certified motions: a motion asked again in the same world is answered from it
+// without a certification; an obstacle added across it makes it refused; the same motion
+// reversed, or moved by one ulp, is certified anew.
+BOOST_AUTO_TEST_CASE(the_memo_answers_only_the_same_motion_in_the_same_world) {
+  auto world = dp::loadWorld(dp::test::armUrdf(), {}, dp::test::bundledOptions());
+  Motions m(world);
+  const Eigen::VectorXd a = dp::test::suggestedStart();
+  Eigen::VectorXd b = a;
+  b[0] += 1.2;
+  BOOST_TEST_REQUIRE(m.certified(a, b));
+  const auto tested = m.validator.stats().configurations;
+  const auto hits = m.checker->certifiedMotions().hits();
+  BOOST_TEST(m.certified(a, b));
+  BOOST_TEST(m.validator.stats().configurations == tested);
+  BOOST_TEST(m.checker->certifiedMotions().hits() == hits + 1);
+  BOOST_TEST(m.certified(b, a));
+  Eigen::VectorXd nudged = b;
+  nudged[0] = std::nextafter(b[0], 10.0);
+  BOOST_TEST(m.certified(a, nudged));
+  BOOST_TEST(m.checker->certifiedMotions().hits() == hits + 1);
+  // A post where the flange passes half-way.
+  const auto X = deepcheck::robots::forwardKinematics(world->robot(), a + 0.5 * (b - a));
+  Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
+  X_WP.translation() = X[static_cast<std::size_t>(world->robot().linkIndex("flange"))].translation();
+  world->setFixedPairReports(false);
+  const int post = world->addObstacle(Obstacle::cylinder("post", 0.01, 2.0, X_WP));
+  BOOST_TEST_REQUIRE(!denselyFree(*world, a, b - a));
+  BOOST_TEST_REQUIRE(world->isFree(a));
+  BOOST_TEST_REQUIRE(world->isFree(b));
+  BOOST_TEST(!m.certified(a, b));
+  world->removeObstacle(post);
+  BOOST_TEST(m.certified(a, b));
+}
+
+// A path from solve and simplifySolutionChecked is certified again by certifyPath from the memo:
+// no configuration is tested.
+BOOST_AUTO_TEST_CASE(certify_path_after_simplification_tests_nothing_new) {
+  auto world = dp::test::bundledWorld("");
+  auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
+  const Eigen::VectorXd start = dp::test::suggestedStart();
+  Eigen::VectorXd goal = start;
+  goal[0] += 2.0;
+  goal[1] -= 0.4;
+  dp::setStartAndGoal(*ss, start, goal);
+  BOOST_TEST_REQUIRE(static_cast<bool>(ss->solve(5.0)));
+  BOOST_TEST_REQUIRE(dp::simplifySolutionChecked(*ss));
+  auto validator =
+      std::dynamic_pointer_cast<dp::CertifiedMotionValidator>(ss->getSpaceInformation()->getMotionValidator());
+  BOOST_TEST_REQUIRE(validator != nullptr);
+  const auto checker = dp::validityCheckerOf(*ss);
+  const auto hits = checker->certifiedMotions().hits();
+  ompl::geometric::PathGeometric path = ss->getSolutionPath();
+  const dp::PathCertificate certificate = dp::certifyPath(*ss, path);
+  BOOST_TEST(certificate.valid);
+  BOOST_TEST(!certificate.repaired);
+  BOOST_TEST(checker->certifiedMotions().hits() - hits == path.getStateCount() - 1);
+}
+
 // The bounds handed to World::certifyMotion: the self matrix holds each checked pair's own
 // bound and the others' sum of link bounds.
 BOOST_AUTO_TEST_CASE(displacements_hold_every_pair_bound) {

@@ -26,6 +26,9 @@
 // bisection on its length (to the same resolution) and reports its end (OMPL's convention:
 // lastValid.second is its fraction of the motion; that configuration is proven valid).
 //
+// An accepted motion is remembered in the checker's memo (certified_motion_memo.h) and answered
+// from it when asked again in the same world.
+//
 // The bound is made from the world's pieces (LinkSpeedBound::forWorld) and made again when the
 // world changes in a way that moves them (an object attached or detached: World::version and
 // World::linkExtents), so attached objects are always covered.
@@ -83,6 +86,9 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   /// Certifies the first `fraction` of the motion, counting.
   checker::MotionCertificate certify(const Motion& m, double fraction) const;
   checker::MotionCertificate prefix(const Motion& m, double fraction) const;
+  /// The whole motion is valid: in the checker's memo of certified motions, or s2 valid and the
+  /// motion certified now (then remembered).
+  bool accepted(const Motion& m) const;
 
   std::shared_ptr<const StateValidityChecker> checker_;
   mutable std::mutex boundMutex_;

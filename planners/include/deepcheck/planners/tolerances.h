@@ -135,6 +135,12 @@ constexpr double kDefaultHingeWeight = 100.0;
 /// (docs/planners.md, "Optimizing planners and the clearance objective").
 constexpr double kCostlyObjectiveRangeFraction = 0.04;
 
+/// Slots of a validity checker's memo of certified motions (certified_motion_memo.h): a slot
+/// holds one motion (two configurations). A planned path's motions, its simplification's and
+/// their checks again stay within a few hundred; 4096 keeps a long path's without eviction
+/// (4096 x 2 x 7 doubles, 460 KB, for a 7-joint arm).
+constexpr int kCertifiedMotionMemoSlots = 4096;
+
 /// Attempts of simplifySolutionChecked (setup.h) before it keeps the path as planned.
 constexpr int kSimplifyAttempts = 3;
 

@@ -42,6 +42,7 @@
 // this object.
 
 #include "deepcheck/checker/world.h"
+#include "deepcheck/planners/certified_motion_memo.h"
 #include "deepcheck/planners/push_out.h"
 #include "deepcheck/planners/state_space.h"
 #include "deepcheck/planners/validity.h"
@@ -103,6 +104,10 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
   /// How states of the space are configurations (state_space.h).
   const StateMapping& mapping() const { return mapping_; }
 
+  /// The motions certified motion validators on this checker have accepted
+  /// (certified_motion_memo.h), shared by all of them.
+  CertifiedMotionMemo& certifiedMotions() const { return *certifiedMotions_; }
+
   std::uint64_t validityQueries() const { return validityQueries_.load(std::memory_order_relaxed); }
   std::uint64_t distanceQueries() const { return distanceQueries_.load(std::memory_order_relaxed); }
   void resetCounters();
@@ -119,6 +124,7 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
   int n_ = 0;
   /// The joint limits isValid checks: the URDF's, none (+-infinity) for wrapping variables.
   Eigen::VectorXd lower_, upper_;
+  std::unique_ptr<CertifiedMotionMemo> certifiedMotions_;
   mutable std::atomic<std::uint64_t> validityQueries_{0};
   mutable std::atomic<std::uint64_t> distanceQueries_{0};
 };
