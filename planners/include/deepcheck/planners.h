@@ -5,6 +5,7 @@
 // The FCL reference checker (deepcheck/fcl_reference/fcl_validity_checker.h, target deepcheck::fcl_reference) is not
 // included: it belongs to the reference target.
 
+#include "deepcheck/planners/certified_motion_memo.h"
 #include "deepcheck/planners/certified_motion_validator.h"
 #include "deepcheck/planners/motion_bound.h"
 #include "deepcheck/planners/motion_validator.h"
