@@ -14,7 +14,9 @@
 //
 // Sub-motions over which some point moves more than tol::kCertifyBelowMove skip the clearance
 // test (such a clearance is rare in a robot's workspace, and the test would only fail): there
-// q(tm) is tested for collision alone. A sub-motion over which every point moves less than
+// q(tm) is tested for collision alone. These are the levels above the first whose sub-motions
+// move less; their middles are tested first, kRakeWidth configurations per call (the rake), and
+// the clearance tests start at that first level with every pair. A sub-motion over which every point moves less than
 // tol::kCertifiedResolution that is still neither certified nor colliding leaves the motion
 // Unproven, as do more than tol::kCertifiedMaxTests tests.
 
@@ -42,9 +44,16 @@ struct SubMotion {
   int count = 0;
 };
 
+/// Sub-motion indices are 64-bit: no level past this one.
+constexpr int kMaxLevel = 62;
+
+/// Configurations tested for collision in one call of a RakeCheck.
+constexpr int kRakeWidth = 8;
+
 /// The scratch of one thread's motion checks, reused from motion to motion.
 struct MotionScratch {
   Eigen::VectorXd q, dq;
+  Eigen::MatrixXd rake;                   ///< configurations tested together (columns)
   std::vector<SubMotion> level, next;     ///< the sub-motions of this level and of the next
   std::vector<PairKey> pairs, nextPairs;  ///< their pair lists
   std::vector<PairKey> near;              ///< the pairs one sub-motion found within their margins
@@ -110,24 +119,35 @@ double largestMove(const ClearanceDemand& motion) {
 
 enum class Outcome { Certified, Split, Collides, Unproven };
 
-/// Examines one sub-motion (middle q(tm), half length h) at the context's current pose; on
-/// Split, w.near holds the pairs its halves must test (or `all` is set: every pair).
-Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, double h, double move, const SubMotion& sub,
-                MotionScratch& w, bool& all) {
-  const RobotData& robot = *s.robot;
-  const bool certify = h * move <= tol::kCertifyBelowMove;
-  if (certify) {
-    if (w.chainsOf != &robot) buildChains(robot, w);
-    posedSpeeds(c, robot, motion, h, w);
+/// Tests up to kRakeWidth configurations (columns of qs) for collision at the motion's base
+/// clearance: `clear` false when one collides. Returns false when the world changed since `held`
+/// (set when null) was taken.
+using RakeCheck = bool (*)(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                           const ClearanceDemand& motion, bool& clear, std::shared_ptr<const Snapshot>& held);
+
+/// RakeCheck one configuration after the other (the base clearance as a margin, isClear's test).
+bool rakeOneByOne(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                  const ClearanceDemand& motion, bool& clear, std::shared_ptr<const Snapshot>& held) {
+  clear = true;
+  for (Eigen::Index i = 0; i < qs.cols() && clear; ++i) {
+    const Snapshot& s = prepare(state, c, qs.col(i));
+    if (!held) held = c.snap;
+    if (c.snap != held) return false;
+    clear = clearOfAll(c, s, Margins(motion, *s.robot, 0.0));
   }
-  Margins margins(motion, robot, certify ? h : 0.0, certify ? PosedMotion{&w.dq, &w.speed} : PosedMotion{});
-  all = false;
+  return true;
+}
+
+/// Examines one sub-motion (middle q(tm), half length h) for clearance at the context's current
+/// pose; on Split, w.near holds the pairs its halves must test.
+Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, double h, double move, const SubMotion& sub,
+                MotionScratch& w) {
+  const RobotData& robot = *s.robot;
+  if (w.chainsOf != &robot) buildChains(robot, w);
+  posedSpeeds(c, robot, motion, h, w);
+  Margins margins(motion, robot, h, PosedMotion{&w.dq, &w.speed});
   Clearance found = Clearance::Clear;
-  if (sub.first < 0 && !certify) {
-    // Too long a sub-motion for a clearance test: q(tm) for collision only.
-    found = clearOfAll(c, s, margins) ? Clearance::Clear : Clearance::Collides;
-    all = true;
-  } else if (sub.first < 0) {
+  if (sub.first < 0) {
     found = collectNear(c, s, margins, w.near);
   } else {
     // The pairs the parent found near; the others are clear over the whole parent.
@@ -143,38 +163,82 @@ Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, doubl
     found = w.near.empty() ? Clearance::Clear : Clearance::Near;
   }
   if (found == Clearance::Collides) return Outcome::Collides;
-  if (found == Clearance::Clear && !all) return Outcome::Certified;
+  if (found == Clearance::Clear) return Outcome::Certified;
   if (h * move < tol::kCertifiedResolution) return Outcome::Unproven;
   return Outcome::Split;
 }
 
 /// Queues the halves of sub-motion j for the next level, with the pairs `examine` left.
-void split(const SubMotion& sub, bool all, MotionScratch& w) {
+void split(const SubMotion& sub, MotionScratch& w) {
   SubMotion half;
-  if (!all) {
-    half.first = static_cast<int>(w.nextPairs.size());
-    half.count = static_cast<int>(w.near.size());
-    w.nextPairs.insert(w.nextPairs.end(), w.near.begin(), w.near.end());
-  }
+  half.first = static_cast<int>(w.nextPairs.size());
+  half.count = static_cast<int>(w.near.size());
+  w.nextPairs.insert(w.nextPairs.end(), w.near.begin(), w.near.end());
   half.index = 2 * sub.index;
   w.next.push_back(half);
   half.index = 2 * sub.index + 1;
   w.next.push_back(half);
 }
 
+/// The first level whose sub-motions are tested for clearance: above it every sub-motion moves
+/// some point more than tol::kCertifyBelowMove and is only tested for collision at its middle
+/// (then split), whatever that test finds.
+int firstClearanceLevel(double move) {
+  int k = 0;
+  while (k < kMaxLevel && std::ldexp(0.5, -k) * move > tol::kCertifyBelowMove) ++k;
+  return k;
+}
+
+/// Tests every configuration the levels above `level` test (their middles, level by level and in
+/// increasing t within a level) for collision at the base clearance, kRakeWidth at a time;
+/// Collides at the first group with a colliding one, Unproven past tol::kCertifiedMaxTests, else
+/// Certified (nothing found). False when the world changed under it.
+bool rakeAbove(int level, const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q1,
+               const ClearanceDemand& motion, const RakeCheck& rake, MotionScratch& w, MotionCertificate& out,
+               std::shared_ptr<const Snapshot>& held) {
+  const std::int64_t total = (std::int64_t{1} << level) - 1;
+  if (total > tol::kCertifiedMaxTests) {
+    out.verdict = MotionCertificate::Verdict::Unproven;
+    return true;
+  }
+  w.rake.resize(q1.size(), kRakeWidth);
+  int lanes = 0;
+  for (int k = 0; k < level; ++k) {
+    const double h = std::ldexp(0.5, -k);
+    for (std::int64_t i = 0; i < (std::int64_t{1} << k); ++i) {
+      w.rake.col(lanes++) = q1 + (2.0 * h * (static_cast<double>(i) + 0.5)) * w.dq;
+      const bool last = k == level - 1 && i + 1 == (std::int64_t{1} << k);
+      if (lanes < kRakeWidth && !last) continue;
+      out.configurations += lanes;
+      bool clear = true;
+      if (!rake(state, c, w.rake.leftCols(lanes), motion, clear, held)) return false;
+      lanes = 0;
+      if (!clear) {
+        out.verdict = MotionCertificate::Verdict::Collides;
+        return true;
+      }
+    }
+  }
+  return true;
+}
+
 /// One certification; false when the world changed under it (its pair lists are then void).
 bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q1,
-                 const ClearanceDemand& motion, MotionScratch& w, MotionCertificate& out) {
+                 const ClearanceDemand& motion, const RakeCheck& rake, MotionScratch& w, MotionCertificate& out) {
   const double move = largestMove(motion);
   out = MotionCertificate{};
   out.verdict = MotionCertificate::Verdict::Certified;
-  w.level.assign(1, SubMotion{});
-  w.pairs.clear();
   std::shared_ptr<const Snapshot> held;
-  for (int k = 0; !w.level.empty(); ++k) {
-    // Sub-motion indices are 64-bit: levels past 62 (a robot moving kilometres, halved to
-    // kCertifiedResolution) are left Unproven.
-    if (k > 62) {
+  // Levels past kMaxLevel (a robot moving kilometres, halved to kCertifiedResolution) are left
+  // Unproven: sub-motion indices are 64-bit.
+  const int first = firstClearanceLevel(move);
+  if (!rakeAbove(first, state, c, q1, motion, rake, w, out, held)) return false;
+  if (out.verdict != MotionCertificate::Verdict::Certified) return true;
+  w.level.clear();
+  for (std::int64_t i = 0; i < (std::int64_t{1} << first); ++i) w.level.push_back(SubMotion{i, -1, 0});
+  w.pairs.clear();
+  for (int k = first; !w.level.empty(); ++k) {
+    if (k > kMaxLevel) {
       out.verdict = MotionCertificate::Verdict::Unproven;
       return true;
     }
@@ -187,14 +251,13 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
       const Snapshot& s = prepare(state, c, w.q);
       if (!held) held = c.snap;
       if (c.snap != held) return false;
-      bool all = false;
-      const Outcome o = examine(c, s, motion, h, move, sub, w, all);
+      const Outcome o = examine(c, s, motion, h, move, sub, w);
       if (o == Outcome::Collides || o == Outcome::Unproven || out.configurations > tol::kCertifiedMaxTests) {
         out.verdict =
             o == Outcome::Collides ? MotionCertificate::Verdict::Collides : MotionCertificate::Verdict::Unproven;
         return true;
       }
-      if (o == Outcome::Split) split(sub, all, w);
+      if (o == Outcome::Split) split(sub, w);
     }
     std::swap(w.level, w.next);
     std::swap(w.pairs, w.nextPairs);
@@ -213,7 +276,7 @@ MotionCertificate World::certifyMotion(const Eigen::Ref<const Eigen::VectorXd>& 
   w.dq = dq;
   MotionCertificate out;
   // A change of the world during the check (another thread adding an obstacle) starts it again.
-  while (!certifyOnce(*state_, c, q1, motion, w, out)) {
+  while (!certifyOnce(*state_, c, q1, motion, rakeOneByOne, w, out)) {
   }
   return out;
 }
