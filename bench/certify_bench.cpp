@@ -98,7 +98,8 @@ int main(int argc, char** argv) {
   options.srdf = ur5 + "/example-robot-data/robots/ur_description/srdf/ur5.srdf";
   const auto world = dp::loadWorld(urdf, {}, options);
   const bool reports = world->setFixedPairReports(false);
-  world->addPlanningScene(deepcheck::robots::loadPlanningScene(DEEPCHECK_SOURCE_DIR "/robots/data/scenes/ur5_table.yaml"));
+  world->addPlanningScene(
+      deepcheck::robots::loadPlanningScene(DEEPCHECK_SOURCE_DIR "/robots/data/scenes/ur5_table.yaml"));
   world->setFixedPairReports(reports);
 
   std::mt19937_64 rng(seed);
@@ -138,10 +139,11 @@ int main(int argc, char** argv) {
               t.plan.size(), t.notCertified);
   std::printf("| step | median (ms) | p90 (ms) |\n|---|--:|--:|\n");
   std::FILE* csv = deepcheck::bench::openCsv("certify_bench", csvPath, "step,median_ms,p90_ms,runs");
-  const std::pair<const char*, const std::vector<double>*> rows[] = {{"plan", &t.plan},
-                                                                      {"simplify", &t.simplify},
-                                                                      {"certifyPath, returned path", &t.returned},
-                                                                      {"certifyPath, path from elsewhere", &t.elsewhere}};
+  const std::pair<const char*, const std::vector<double>*> rows[] = {
+      {"plan", &t.plan},
+      {"simplify", &t.simplify},
+      {"certifyPath, returned path", &t.returned},
+      {"certifyPath, path from elsewhere", &t.elsewhere}};
   for (const auto& [name, v] : rows) {
     std::printf("| %s | %.3g | %.3g |\n", name, quantile(*v, 0.5), quantile(*v, 0.9));
     std::fprintf(csv, "%s,%.6g,%.6g,%zu\n", name, quantile(*v, 0.5), quantile(*v, 0.9), v->size());
