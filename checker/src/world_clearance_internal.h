@@ -19,11 +19,51 @@
 namespace deepcheck::checker::detail {
 
 /// How far each geometry of the robot may move over a sub-motion of a straight motion q + s dq,
-/// |s| <= h, around the posed configuration, per unit of h (metres): World::certifyMotion's
-/// bound from the pose (world_motion.cpp), tighter than the configuration-free one.
-struct PosedMotion {
-  const Eigen::VectorXd* dq = nullptr;
-  const std::vector<double>* speed = nullptr;  ///< per LinkGeometry
+/// |s| <= h, around the posed configuration, per unit of h (metres): World::certifyMotion's bound
+/// from the pose (world_motion.cpp), tighter than the configuration-free one. Computed for a link
+/// geometry when a test first asks for it at the pose: most of a sub-motion's link geometries are
+/// decided by the configuration-free bound alone.
+class PosedSpeeds {
+ public:
+  /// A new pose (the context's) of `robot`, for the sub-motion of half length h of `motion`;
+  /// chains[g]: the moving joints between link geometry g and the root.
+  void reset(const Impl& c, const RobotData& robot, const ClearanceDemand& motion, double h, const Eigen::VectorXd& dq,
+             const std::vector<std::vector<int>>& chains) {
+    c_ = &c;
+    robot_ = &robot;
+    motion_ = &motion;
+    h_ = h;
+    dq_ = &dq;
+    chains_ = &chains;
+    known_.assign(robot.links.size(), 0);
+    value_.resize(robot.links.size());
+    axisKnown_.assign(static_cast<std::size_t>(robot.model.numJoints()), 0);
+    axis_.resize(static_cast<std::size_t>(robot.model.numJoints()));
+  }
+  /// S_g for link geometry g (world_motion.cpp).
+  double of(int g) {
+    if (!known_[static_cast<std::size_t>(g)]) {
+      value_[static_cast<std::size_t>(g)] = compute(g);
+      known_[static_cast<std::size_t>(g)] = 1;
+    }
+    return value_[static_cast<std::size_t>(g)];
+  }
+  const Eigen::VectorXd& dq() const { return *dq_; }
+
+ private:
+  double compute(int g);
+  /// Joint k's axis in the world at the pose.
+  const Eigen::Vector3d& axis(int k);
+
+  const Impl* c_ = nullptr;
+  const RobotData* robot_ = nullptr;
+  const ClearanceDemand* motion_ = nullptr;
+  double h_ = 0.0;
+  const Eigen::VectorXd* dq_ = nullptr;
+  const std::vector<std::vector<int>>* chains_ = nullptr;
+  std::vector<char> known_, axisKnown_;
+  std::vector<double> value_;
+  std::vector<Eigen::Vector3d> axis_;
 };
 
 /// The clearance each pair must keep in this query (metres): 0 everywhere for isFree, the
@@ -32,10 +72,10 @@ struct PosedMotion {
 class Margins {
  public:
   Margins() = default;
-  /// With a posed motion, the pairs are checked for the sub-motion q + s dq, |s| <= scale,
-  /// around the configuration: each margin is the smaller of the demand's and the posed bound's,
-  /// and a self pair's grid may certify its pair (gridCertifies).
-  Margins(const ClearanceDemand& d, const RobotData& robot, double scale, PosedMotion posed = {})
+  /// With posed speeds, the pairs are checked for the sub-motion q + s dq, |s| <= scale, around
+  /// the configuration: each margin is the smaller of the demand's and the posed bound's, and a
+  /// self pair's grid may certify its pair (gridCertifies).
+  Margins(const ClearanceDemand& d, const RobotData& robot, double scale, PosedSpeeds* posed = nullptr)
       : d_(&d), links_(&robot.links), scale_(scale), posed_(posed) {
     const int numLinks = robot.model.numLinks();
     if (d.link.size() != numLinks || d.self.rows() != numLinks || d.self.cols() != numLinks) {
@@ -48,17 +88,25 @@ class Margins {
   }
   /// Robot link geometry g against a world body.
   double world(int g) const {
-    if (d_ == nullptr) return 0.0;
-    double move = scale_ * d_->link[(*links_)[g].link];
-    if (posed_.speed != nullptr) move = std::min(move, scale_ * (*posed_.speed)[g]);
-    return checked(d_->base + move);
+    const double upper = worldUpper(g);
+    if (posed_ == nullptr || scale_ == 0.0) return upper;
+    return std::min(upper, checked(d_->base + scale_ * posed_->of(g)));
   }
   /// Robot link geometries a and b.
   double self(int a, int b) const {
+    const double upper = selfUpper(a, b);
+    if (posed_ == nullptr || scale_ == 0.0) return upper;
+    return std::min(upper, checked(d_->base + scale_ * (posed_->of(a) + posed_->of(b))));
+  }
+  /// At least world(g), without the posed bound (cheaper; the same without posed speeds).
+  double worldUpper(int g) const {
     if (d_ == nullptr) return 0.0;
-    double move = scale_ * d_->self((*links_)[a].link, (*links_)[b].link);
-    if (posed_.speed != nullptr) move = std::min(move, scale_ * ((*posed_.speed)[a] + (*posed_.speed)[b]));
-    return checked(d_->base + move);
+    return checked(d_->base + scale_ * d_->link[(*links_)[g].link]);
+  }
+  /// At least self(a, b), likewise.
+  double selfUpper(int a, int b) const {
+    if (d_ == nullptr) return 0.0;
+    return checked(d_->base + scale_ * d_->self((*links_)[a].link, (*links_)[b].link));
   }
   double scale() const { return scale_; }
   /// The clearance at scale 0 (0 for isFree).
@@ -69,7 +117,7 @@ class Margins {
   /// at q), which is all a motion asks of a pair when the base clearance is 0.
   bool gridCertifies(const SelfPairGrid& grid, const Eigen::VectorXd& q, double margin) const {
     if (margin == 0.0) return grid.certifiedFree(q);
-    return posed_.dq != nullptr && d_->base == 0.0 && grid.certifiedFreeAlong(q, *posed_.dq, scale_);
+    return posed_ != nullptr && d_->base == 0.0 && grid.certifiedFreeAlong(q, posed_->dq(), scale_);
   }
 
  private:
@@ -83,7 +131,7 @@ class Margins {
   const ClearanceDemand* d_ = nullptr;
   const std::vector<LinkGeometry>* links_ = nullptr;
   double scale_ = 0.0;
-  PosedMotion posed_;
+  PosedSpeeds* posed_ = nullptr;
 };
 
 /// `shape` grown by `margin`: the pair overlaps grown exactly when it is within margin.

@@ -106,12 +106,17 @@ bool linkPairsNear(Impl& c, const Snapshot& s, PairKey::Kind kind, int g, const 
   const RobotData& robot = *s.robot;
   const LinkGeometry& lg = robot.links[g];
   const Eigen::Vector3d& center = c.linkCenter[g];
-  const double m = margins.world(g);
-  const double radius = lg.radius + m;
+  // The broad phase with the cheaper upper margin; the margin itself once a candidate needs it.
+  double radius = lg.radius + margins.worldUpper(g);
+  double m = -1.0;
   return forEachOverlapping(set, c.state->options.broadPhase, Aabb::ofSphere(center, radius), [&](int wp) {
     const WorldPiece& w = set.pieces[wp];
     ++c.stats.linkCandidates;
     if (worldPairAllowed(s, kind, g, w.body)) return false;
+    if (m < 0.0) {
+      m = margins.world(g);
+      radius = lg.radius + m;
+    }
     if (fartherThan(w.box.squaredDistance(center), radius)) return false;
     for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
       posePiece(c, robot, i);
@@ -130,11 +135,11 @@ bool selfPairsNear(Impl& c, const RobotData& robot, const SelfPair& sp, const Ma
   const LinkGeometry& la = robot.links[sp.a];
   const LinkGeometry& lb = robot.links[sp.b];
   ++c.stats.linkCandidates;
-  const double m = margins.self(sp.a, sp.b);
-  if (sp.grid != nullptr && margins.gridCertifies(*sp.grid, c.lastQ, m)) {
+  if (sp.grid != nullptr && margins.gridCertifies(*sp.grid, c.lastQ, margins.selfUpper(sp.a, sp.b))) {
     ++c.stats.certifiedSelf;
     return false;
   }
+  const double m = margins.self(sp.a, sp.b);
   if (fartherThan((c.linkCenter[sp.a] - c.linkCenter[sp.b]).squaredNorm(), la.radius + lb.radius + m)) return false;
   return forEachSelfPiecePair(c, robot, sp, [&](int i, int j, int cache) {
     return selfBoundsMeet(c, robot, i, j, c.selfAxes[cache], m) && f(PairKey{PairKey::Kind::Self, i, j, cache}, m);

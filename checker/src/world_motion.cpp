@@ -59,7 +59,7 @@ struct MotionScratch {
   std::vector<PairKey> near;              ///< the pairs one sub-motion found within their margins
   const RobotData* chainsOf = nullptr;    ///< the robot data `chains` was made for
   std::vector<std::vector<int>> chains;   ///< per link geometry, its moving joints up to the root
-  std::vector<double> speed;              ///< per link geometry, its posed bound (PosedMotion)
+  PosedSpeeds speeds;                     ///< the posed bound at the current sub-motion
 };
 
 /// The moving joints between each link geometry and the root.
@@ -74,34 +74,49 @@ void buildChains(const RobotData& robot, MotionScratch& w) {
   w.chainsOf = &robot;
 }
 
-/// For each link geometry g, S_g with h S_g bounding how far its points move over the sub-motion
+}  // namespace
+
+namespace detail {
+
+/// For link geometry g, S_g with h S_g bounding how far its points move over the sub-motion
 /// q + s dq, |s| <= h, around the posed q. A revolute joint k moves a point p at
 /// |dq_k m_k| dist(p, axis_k) per unit of s; at the pose dist(p, axis_k) <= |(c_g - o_k) x a_k| +
 /// r_g (c_g, r_g: g's bounding sphere), and over the sub-motion it changes only by the motion of
 /// the joints below k, at most h D_g (the configuration-free bound of the whole motion). A
 /// prismatic joint moves every point below it at |dq_k m_k|.
-void posedSpeeds(const Impl& c, const RobotData& robot, const ClearanceDemand& motion, double h, MotionScratch& w) {
-  w.speed.resize(robot.links.size());
-  for (std::size_t g = 0; g < robot.links.size(); ++g) {
-    const LinkGeometry& lg = robot.links[g];
-    const Eigen::Vector3d& center = c.linkCenter[g];
-    const double drift = lg.radius + h * motion.link[lg.link];
-    double sum = 0.0;
-    for (const int k : w.chains[g]) {
-      const robots::Joint& joint = robot.model.joint(k);
-      const double rate = std::abs(w.dq[joint.variable] * joint.multiplier);
-      if (rate == 0.0) continue;
-      if (joint.type == robots::JointType::Prismatic) {
-        sum += rate;
-        continue;
-      }
-      const Eigen::Isometry3d& X_WJ = c.X_WL[joint.childLink];
-      const Eigen::Vector3d axis = X_WJ.linear() * joint.axis;
-      sum += rate * ((center - X_WJ.translation()).cross(axis).norm() + drift);
+double PosedSpeeds::compute(int g) {
+  const RobotData& robot = *robot_;
+  const LinkGeometry& lg = robot.links[static_cast<std::size_t>(g)];
+  const Eigen::Vector3d& center = c_->linkCenter[static_cast<std::size_t>(g)];
+  const double drift = lg.radius + h_ * motion_->link[lg.link];
+  double sum = 0.0;
+  for (const int k : (*chains_)[static_cast<std::size_t>(g)]) {
+    const robots::Joint& joint = robot.model.joint(k);
+    const double rate = std::abs((*dq_)[joint.variable] * joint.multiplier);
+    if (rate == 0.0) continue;
+    if (joint.type == robots::JointType::Prismatic) {
+      sum += rate;
+      continue;
     }
-    w.speed[g] = sum;
+    const Eigen::Vector3d& origin = c_->X_WL[joint.childLink].translation();
+    sum += rate * ((center - origin).cross(axis(k)).norm() + drift);
   }
+  return sum;
 }
+
+const Eigen::Vector3d& PosedSpeeds::axis(int k) {
+  const auto j = static_cast<std::size_t>(k);
+  if (!axisKnown_[j]) {
+    const robots::Joint& joint = robot_->model.joint(k);
+    axis_[j] = c_->X_WL[joint.childLink].linear() * joint.axis;
+    axisKnown_[j] = 1;
+  }
+  return axis_[j];
+}
+
+}  // namespace detail
+
+namespace {
 
 void checkSizes(int n, const Eigen::Ref<const Eigen::VectorXd>& q1, const Eigen::Ref<const Eigen::VectorXd>& dq) {
   if (q1.size() != n || dq.size() != n) {
@@ -144,8 +159,8 @@ Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, doubl
                 MotionScratch& w) {
   const RobotData& robot = *s.robot;
   if (w.chainsOf != &robot) buildChains(robot, w);
-  posedSpeeds(c, robot, motion, h, w);
-  Margins margins(motion, robot, h, PosedMotion{&w.dq, &w.speed});
+  w.speeds.reset(c, robot, motion, h, w.dq, w.chains);
+  Margins margins(motion, robot, h, &w.speeds);
   Clearance found = Clearance::Clear;
   if (sub.first < 0) {
     found = collectNear(c, s, margins, w.near);
