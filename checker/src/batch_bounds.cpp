@@ -1,0 +1,279 @@
+// The bound stage of World::isFreeBatch (batch_bounds.h): link spheres, then piece spheres,
+// against the world pieces the broad phase finds near the union of the lanes' link spheres, then
+// the self pairs; a lane stays certified while every test finds it apart.
+
+#include "batch_bounds.h"
+
+#include "world_queries_internal.h"
+
+#include <immintrin.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace deepcheck::checker::detail {
+namespace {
+
+/// A world piece's box in floats, and its largest |coordinate| (its part of the test scale).
+struct FloatBox {
+  float lo[3], hi[3];
+  float mag;
+};
+
+FloatBox floatBox(const Aabb& box) {
+  FloatBox b;
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = static_cast<float>(box.lo[k]);
+    b.hi[k] = static_cast<float>(box.hi[k]);
+  }
+  b.mag = static_cast<float>(std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff()));
+  return b;
+}
+
+/// A point in every lane with its scale (a world piece's sphere centre).
+LaneFloats broadcast(const Eigen::Vector3d& p, double radius) {
+  LaneFloats f;
+  const float scale = static_cast<float>(p.cwiseAbs().maxCoeff() + radius);
+  for (int l = 0; l < kLanes; ++l) {
+    f.x[l] = static_cast<float>(p.x());
+    f.y[l] = static_cast<float>(p.y());
+    f.z[l] = static_cast<float>(p.z());
+    f.scale[l] = scale;
+  }
+  return f;
+}
+
+// --- the two tests, baseline and AVX2 -------------------------------------------------------
+// Each is: far when d2 > rho^2, rho = radius + k (scale terms), d2 the squared distance, every
+// operation rounded to float in the same order in both versions (max(a, b) is a > b ? a : b, as
+// _mm256_max_ps).
+
+inline float outside(float lo, float hi, float x) {
+  const float a = lo - x;
+  const float b = x - hi;
+  const float m = a > b ? a : b;
+  return m > 0.0f ? m : 0.0f;
+}
+
+/// Lanes whose sphere (p, r) lies beyond the box.
+inline std::uint32_t boxFarBaseline(const LaneFloats& p, float r, const FloatBox& b, float k) {
+  std::uint32_t far = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    const float ex = outside(b.lo[0], b.hi[0], p.x[l]);
+    const float ey = outside(b.lo[1], b.hi[1], p.y[l]);
+    const float ez = outside(b.lo[2], b.hi[2], p.z[l]);
+    const float d2 = (ex * ex + ey * ey) + ez * ez;
+    const float rho = r + k * (p.scale[l] + b.mag);
+    far |= static_cast<std::uint32_t>(d2 > rho * rho) << l;
+  }
+  return far;
+}
+
+/// Lanes whose spheres (p, .) and (q, .) with radii summing to r are apart.
+inline std::uint32_t pointFarBaseline(const LaneFloats& p, const LaneFloats& q, float r, float k) {
+  std::uint32_t far = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    const float dx = p.x[l] - q.x[l];
+    const float dy = p.y[l] - q.y[l];
+    const float dz = p.z[l] - q.z[l];
+    const float d2 = (dx * dx + dy * dy) + dz * dz;
+    const float rho = r + k * (p.scale[l] + q.scale[l]);
+    far |= static_cast<std::uint32_t>(d2 > rho * rho) << l;
+  }
+  return far;
+}
+
+// The AVX2 versions: target functions, inlined into certifyAvx2, which is flattened (every call
+// in it inlined, so the baseline templates in between take its target too).
+#define DC_AVX2 __attribute__((target("avx2"))) inline
+
+DC_AVX2 __m256 outsideAvx2(float lo, float hi, __m256 x) {
+  const __m256 m = _mm256_max_ps(_mm256_sub_ps(_mm256_set1_ps(lo), x), _mm256_sub_ps(x, _mm256_set1_ps(hi)));
+  return _mm256_max_ps(m, _mm256_setzero_ps());
+}
+
+DC_AVX2 std::uint32_t farMask(__m256 d2, __m256 rho) {
+  return static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(d2, _mm256_mul_ps(rho, rho), _CMP_GT_OQ)));
+}
+
+DC_AVX2 __m256 squaredNorm(__m256 x, __m256 y, __m256 z) {
+  return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x, x), _mm256_mul_ps(y, y)), _mm256_mul_ps(z, z));
+}
+
+DC_AVX2 std::uint32_t boxFarAvx2(const LaneFloats& p, float r, const FloatBox& b, float k) {
+  const __m256 ex = outsideAvx2(b.lo[0], b.hi[0], _mm256_load_ps(p.x));
+  const __m256 ey = outsideAvx2(b.lo[1], b.hi[1], _mm256_load_ps(p.y));
+  const __m256 ez = outsideAvx2(b.lo[2], b.hi[2], _mm256_load_ps(p.z));
+  const __m256 scale = _mm256_add_ps(_mm256_load_ps(p.scale), _mm256_set1_ps(b.mag));
+  const __m256 rho = _mm256_add_ps(_mm256_set1_ps(r), _mm256_mul_ps(_mm256_set1_ps(k), scale));
+  return farMask(squaredNorm(ex, ey, ez), rho);
+}
+
+DC_AVX2 std::uint32_t pointFarAvx2(const LaneFloats& p, const LaneFloats& q, float r, float k) {
+  const __m256 dx = _mm256_sub_ps(_mm256_load_ps(p.x), _mm256_load_ps(q.x));
+  const __m256 dy = _mm256_sub_ps(_mm256_load_ps(p.y), _mm256_load_ps(q.y));
+  const __m256 dz = _mm256_sub_ps(_mm256_load_ps(p.z), _mm256_load_ps(q.z));
+  const __m256 scale = _mm256_add_ps(_mm256_load_ps(p.scale), _mm256_load_ps(q.scale));
+  const __m256 rho = _mm256_add_ps(_mm256_set1_ps(r), _mm256_mul_ps(_mm256_set1_ps(k), scale));
+  return farMask(squaredNorm(dx, dy, dz), rho);
+}
+
+template <bool kAvx2>
+inline std::uint32_t boxFar(const LaneFloats& p, double r, const FloatBox& b) {
+  const float k = static_cast<float>(tol::kBatchBoundRelative);
+  if constexpr (kAvx2) {
+    return boxFarAvx2(p, static_cast<float>(r), b, k);
+  } else {
+    return boxFarBaseline(p, static_cast<float>(r), b, k);
+  }
+}
+
+template <bool kAvx2>
+inline std::uint32_t pointFar(const LaneFloats& p, const LaneFloats& q, double r) {
+  const float k = static_cast<float>(tol::kBatchBoundRelative);
+  if constexpr (kAvx2) {
+    return pointFarAvx2(p, q, static_cast<float>(r), k);
+  } else {
+    return pointFarBaseline(p, q, static_cast<float>(r), k);
+  }
+}
+
+// --- the traversal --------------------------------------------------------------------------
+
+/// Float copies of the posed centres with their scales (|c| max norm + radius + chain length).
+void toFloats(const LanePoint& c, double radius, const LaneDoubles& chain, LaneFloats& f) {
+  for (int l = 0; l < kLanes; ++l) {
+    f.x[l] = static_cast<float>(c.x[l]);
+    f.y[l] = static_cast<float>(c.y[l]);
+    f.z[l] = static_cast<float>(c.z[l]);
+    const double m = std::max(std::abs(c.x[l]), std::max(std::abs(c.y[l]), std::abs(c.z[l])));
+    f.scale[l] = static_cast<float>(m + radius + chain[l]);
+  }
+}
+
+void allToFloats(const RobotData& robot, BatchScratch& sc) {
+  const BatchPoses& poses = sc.poses;
+  sc.linkF.resize(robot.links.size());
+  sc.pieceF.resize(robot.pieces.size());
+  for (std::size_t g = 0; g < robot.links.size(); ++g) {
+    toFloats(poses.linkCenter[g], robot.links[g].radius, poses.chainLength, sc.linkF[g]);
+  }
+  for (std::size_t i = 0; i < robot.pieces.size(); ++i) {
+    toFloats(poses.pieceCenter[i], robot.pieces[i].sphereRadius, poses.chainLength, sc.pieceF[i]);
+  }
+}
+
+/// The box around the spheres (c, radius) of the lanes in `open`, each grown by
+/// tol::kBatchBoundRelative of its scale (in doubles): a world box the broad phase does not find
+/// near it lies beyond every one of those spheres by that much.
+Aabb unionBox(const LanePoint& c, double radius, const LaneDoubles& chain, std::uint32_t open) {
+  Aabb box;
+  for (int l = 0; l < kLanes; ++l) {
+    if (!(open >> l & 1u)) continue;
+    const Eigen::Vector3d p(c.x[l], c.y[l], c.z[l]);
+    const double r = radius + tol::kBatchBoundRelative * (p.cwiseAbs().maxCoeff() + radius + chain[l]);
+    box.lo = box.lo.cwiseMin((p.array() - r).matrix());
+    box.hi = box.hi.cwiseMax((p.array() + r).matrix());
+  }
+  return box;
+}
+
+/// Lanes where some piece of link geometry g is near world piece w (neither its sphere beyond
+/// w's box nor beyond w's sphere).
+template <bool kAvx2>
+inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece& w, const FloatBox& b,
+                                const BatchScratch& sc) {
+  const LinkGeometry& lg = robot.links[g];
+  const LaneFloats wc = broadcast(w.center_W, w.sphereRadius);
+  std::uint32_t near = 0;
+  for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
+    const double r = robot.pieces[i].sphereRadius;
+    near |= ~(boxFar<kAvx2>(sc.pieceF[i], r, b) | pointFar<kAvx2>(sc.pieceF[i], wc, r + w.sphereRadius));
+  }
+  return near;
+}
+
+/// Lanes of `open` where link geometry g may meet a world piece of kind `kind`.
+template <bool kAvx2>
+inline std::uint32_t worldBlocked(const Snapshot& s, PairKey::Kind kind, int g, BroadPhase broadPhase, BatchScratch& sc,
+                                  std::uint32_t open) {
+  const PieceSet& set = worldPieces(s, kind);
+  if (set.pieces.empty()) return 0;
+  const RobotData& robot = *s.robot;
+  const double radius = robot.links[g].radius;
+  std::uint32_t blocked = 0;
+  const Aabb query = unionBox(sc.poses.linkCenter[g], radius, sc.poses.chainLength, open);
+  sc.candidates.clear();
+  forEachOverlapping(set, broadPhase, query, [&](int wp) {
+    if (!worldPairAllowed(s, kind, g, set.pieces[wp].body)) sc.candidates.push_back(wp);
+    return false;
+  });
+  for (int wp : sc.candidates) {
+    const WorldPiece& w = set.pieces[wp];
+    const FloatBox b = floatBox(w.box);
+    std::uint32_t near = ~boxFar<kAvx2>(sc.linkF[g], radius, b) & open & ~blocked;
+    if (near != 0) near &= piecesNear<kAvx2>(robot, g, w, b, sc);
+    blocked |= near;
+    if ((open & ~blocked) == 0) break;
+  }
+  return blocked;
+}
+
+/// Lanes of `open` where self pair sp may meet: link spheres not apart and no grid certificate.
+template <bool kAvx2>
+inline std::uint32_t selfBlocked(const RobotData& robot, const SelfPair& sp,
+                                 const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchScratch& sc, std::uint32_t open) {
+  const double r = robot.links[sp.a].radius + robot.links[sp.b].radius;
+  std::uint32_t near = ~pointFar<kAvx2>(sc.linkF[sp.a], sc.linkF[sp.b], r) & open;
+  if (near == 0 || sp.grid == nullptr) return near;
+  for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
+    if (!(near >> l & 1u)) continue;
+    sc.q = qs.col(l);
+    if (sp.grid->certifiedFree(sc.q)) near &= ~(1u << l);
+  }
+  return near;
+}
+
+template <bool kAvx2>
+inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                             BatchScratch& sc) {
+  const std::uint32_t lanes = (1u << qs.cols()) - 1u;
+  std::uint32_t blocked = 0;
+  for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
+    if (!sc.poses.finite[l]) blocked |= 1u << l;
+  }
+  if (blocked == lanes) return 0;
+  const RobotData& robot = *s.robot;
+  allToFloats(robot, sc);
+  for (int g = static_cast<int>(robot.links.size()) - 1; g >= 0; --g) {
+    for (PairKey::Kind kind : {PairKey::Kind::Scene, PairKey::Kind::Obstacle}) {
+      blocked |= worldBlocked<kAvx2>(s, kind, g, broadPhase, sc, lanes & ~blocked);
+      if (blocked == lanes) return 0;
+    }
+  }
+  for (const SelfPair& sp : s.selfPairs) {
+    blocked |= selfBlocked<kAvx2>(robot, sp, qs, sc, lanes & ~blocked);
+    if (blocked == lanes) return 0;
+  }
+  return lanes & ~blocked;
+}
+
+__attribute__((target("avx2"), flatten)) std::uint32_t certifyAvx2(const Snapshot& s, BroadPhase broadPhase,
+                                                                   const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                                                                   BatchScratch& sc) {
+  return certify<true>(s, broadPhase, qs, sc);
+}
+
+std::uint32_t certifyBaseline(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                              BatchScratch& sc) {
+  return certify<false>(s, broadPhase, qs, sc);
+}
+
+}  // namespace
+
+std::uint32_t batchCertifiedLanes(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                                  bool avx2, BatchScratch& scratch) {
+  return avx2 ? certifyAvx2(s, broadPhase, qs, scratch) : certifyBaseline(s, broadPhase, qs, scratch);
+}
+
+}  // namespace deepcheck::checker::detail
