@@ -31,16 +31,11 @@ FloatBox floatBox(const Aabb& box) {
 }
 
 /// A point in every lane with its scale (a world piece's sphere centre).
-LaneFloats broadcast(const Eigen::Vector3d& p, double radius) {
-  LaneFloats f;
-  const float scale = static_cast<float>(p.cwiseAbs().maxCoeff() + radius);
-  for (int l = 0; l < kLanes; ++l) {
-    f.x[l] = static_cast<float>(p.x());
-    f.y[l] = static_cast<float>(p.y());
-    f.z[l] = static_cast<float>(p.z());
-    f.scale[l] = scale;
-  }
-  return f;
+void broadcast(const Eigen::Vector3d& p, double radius, LaneFloats& f) {
+  f.x = LaneFloatV{} + static_cast<float>(p.x());
+  f.y = LaneFloatV{} + static_cast<float>(p.y());
+  f.z = LaneFloatV{} + static_cast<float>(p.z());
+  f.scale = LaneFloatV{} + static_cast<float>(p.cwiseAbs().maxCoeff() + radius);
 }
 
 // --- the two tests, baseline and AVX2 -------------------------------------------------------
@@ -101,19 +96,19 @@ DC_AVX2 __m256 squaredNorm(__m256 x, __m256 y, __m256 z) {
 }
 
 DC_AVX2 std::uint32_t boxFarAvx2(const LaneFloats& p, float r, const FloatBox& b, float k) {
-  const __m256 ex = outsideAvx2(b.lo[0], b.hi[0], _mm256_load_ps(p.x));
-  const __m256 ey = outsideAvx2(b.lo[1], b.hi[1], _mm256_load_ps(p.y));
-  const __m256 ez = outsideAvx2(b.lo[2], b.hi[2], _mm256_load_ps(p.z));
-  const __m256 scale = _mm256_add_ps(_mm256_load_ps(p.scale), _mm256_set1_ps(b.mag));
+  const __m256 ex = outsideAvx2(b.lo[0], b.hi[0], p.x);
+  const __m256 ey = outsideAvx2(b.lo[1], b.hi[1], p.y);
+  const __m256 ez = outsideAvx2(b.lo[2], b.hi[2], p.z);
+  const __m256 scale = _mm256_add_ps(p.scale, _mm256_set1_ps(b.mag));
   const __m256 rho = _mm256_add_ps(_mm256_set1_ps(r), _mm256_mul_ps(_mm256_set1_ps(k), scale));
   return farMask(squaredNorm(ex, ey, ez), rho);
 }
 
 DC_AVX2 std::uint32_t pointFarAvx2(const LaneFloats& p, const LaneFloats& q, float r, float k) {
-  const __m256 dx = _mm256_sub_ps(_mm256_load_ps(p.x), _mm256_load_ps(q.x));
-  const __m256 dy = _mm256_sub_ps(_mm256_load_ps(p.y), _mm256_load_ps(q.y));
-  const __m256 dz = _mm256_sub_ps(_mm256_load_ps(p.z), _mm256_load_ps(q.z));
-  const __m256 scale = _mm256_add_ps(_mm256_load_ps(p.scale), _mm256_load_ps(q.scale));
+  const __m256 dx = _mm256_sub_ps(p.x, q.x);
+  const __m256 dy = _mm256_sub_ps(p.y, q.y);
+  const __m256 dz = _mm256_sub_ps(p.z, q.z);
+  const __m256 scale = _mm256_add_ps(p.scale, q.scale);
   const __m256 rho = _mm256_add_ps(_mm256_set1_ps(r), _mm256_mul_ps(_mm256_set1_ps(k), scale));
   return farMask(squaredNorm(dx, dy, dz), rho);
 }
@@ -141,26 +136,133 @@ inline std::uint32_t pointFar(const LaneFloats& p, const LaneFloats& q, double r
 // --- the traversal --------------------------------------------------------------------------
 
 /// Float copies of the posed centres with their scales (|c| max norm + radius + chain length).
-void toFloats(const LanePoint& c, double radius, const LaneDoubles& chain, LaneFloats& f) {
-  for (int l = 0; l < kLanes; ++l) {
-    f.x[l] = static_cast<float>(c.x[l]);
-    f.y[l] = static_cast<float>(c.y[l]);
-    f.z[l] = static_cast<float>(c.z[l]);
-    const double m = std::max(std::abs(c.x[l]), std::max(std::abs(c.y[l]), std::abs(c.z[l])));
-    f.scale[l] = static_cast<float>(m + radius + chain[l]);
-  }
+/// The eight lanes of d as floats.
+inline void toFloat(const LaneDoubles& d, LaneFloatV& out) {
+  using Quarter = float __attribute__((vector_size(4 * sizeof(float))));
+  const Quarter lo = __builtin_convertvector(d.h[0], Quarter);
+  const Quarter hi = __builtin_convertvector(d.h[1], Quarter);
+  out = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 
-void allToFloats(const RobotData& robot, BatchScratch& sc) {
+void toFloats(const LanePoint& c, double radius, const LaneDoubles& chain, LaneFloats& f) {
+  toFloat(c.x, f.x);
+  toFloat(c.y, f.y);
+  toFloat(c.z, f.z);
+  toFloat(laneMax(laneMax(laneAbs(c.x), laneAbs(c.y)), laneAbs(c.z)) + radius + chain, f.scale);
+}
+
+/// The link geometries' centres in floats; a new stamp for the pieces'.
+void linksToFloats(const RobotData& robot, BatchScratch& sc) {
   const BatchPoses& poses = sc.poses;
   sc.linkF.resize(robot.links.size());
-  sc.pieceF.resize(robot.pieces.size());
   for (std::size_t g = 0; g < robot.links.size(); ++g) {
     toFloats(poses.linkCenter[g], robot.links[g].radius, poses.chainLength, sc.linkF[g]);
   }
-  for (std::size_t i = 0; i < robot.pieces.size(); ++i) {
-    toFloats(poses.pieceCenter[i], robot.pieces[i].sphereRadius, poses.chainLength, sc.pieceF[i]);
+  if (sc.pieceStamp.size() != robot.pieces.size() || ++sc.stamp == 0) {
+    sc.pieceStamp.assign(robot.pieces.size(), 0);
+    sc.boxStamp.assign(robot.pieces.size(), 0);
+    sc.pieceF.resize(robot.pieces.size());
+    sc.pieceBox.resize(robot.pieces.size());
+    sc.stamp = 1;
   }
+}
+
+/// Robot piece i's centre in floats (posed once per batch).
+inline const LaneFloats& pieceFloats(const RobotData& robot, int i, BatchScratch& sc) {
+  if (sc.pieceStamp[i] != sc.stamp) {
+    const RobotPiece& p = robot.pieces[i];
+    LanePoint c;
+    posePoint(sc.poses.links[p.link], p.center_L, c);
+    toFloats(c, p.sphereRadius, sc.poses.chainLength, sc.pieceF[i]);
+    sc.pieceStamp[i] = sc.stamp;
+  }
+  return sc.pieceF[i];
+}
+
+/// Robot piece i's oriented box in the world, every lane (posed once per batch).
+inline const LaneBox& pieceBox(const RobotData& robot, int i, BatchScratch& sc) {
+  LaneBox& b = sc.pieceBox[i];
+  if (sc.boxStamp[i] == sc.stamp) return b;
+  const RobotPiece& p = robot.pieces[i];
+  const LanePose& X = sc.poses.links[p.link];
+  LanePoint c;
+  posePoint(X, p.obb_L.center, c);
+  b.c[0] = c.x;
+  b.c[1] = c.y;
+  b.c[2] = c.z;
+  LaneDoubles extents{};
+  for (int k = 0; k < 3; ++k) {
+    b.e[k] = LaneDoubles{};
+    for (int j = 0; j < 3; ++j) {
+      LaneDoubles& axis = b.R[3 * k + j];
+      axis = X.R[3 * k] * p.obb_L.R(0, j) + X.R[3 * k + 1] * p.obb_L.R(1, j) + X.R[3 * k + 2] * p.obb_L.R(2, j);
+      b.e[k] += laneAbs(axis) * p.obb_L.half[j];
+    }
+    extents += b.e[k];
+  }
+  b.scale = laneMax(laneMax(laneAbs(c.x), laneAbs(c.y)), laneAbs(c.z)) + extents + sc.poses.chainLength;
+  sc.boxStamp[i] = sc.stamp;
+  return b;
+}
+
+/// Lanes whose oriented box b lies beyond the world box along a world axis, by
+/// tol::kBatchBoundRelative of the scale (doubles: both builds compute the same bits).
+inline std::uint32_t obbApart(const LaneBox& b, const Aabb& box, double boxMag) {
+  const LaneDoubles margin = (b.scale + boxMag) * tol::kBatchBoundRelative;
+  LaneMask apart{};
+  for (int k = 0; k < 3; ++k) {
+    apart = apart | ((b.c[k] - b.e[k]) - box.hi[k] > margin) | (box.lo[k] - (b.c[k] + b.e[k]) > margin);
+  }
+  return apart.bits();
+}
+
+/// Lanes where robot pieces i and j (boxes a and b) are apart along one of their boxes' face
+/// normals (the separating-axis test without the edge products), by tol::kBatchBoundRelative of
+/// their scales (doubles).
+inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBox& a, const RobotPiece& pb, const LaneBox& b) {
+  const LaneDoubles margin = (a.scale + b.scale) * tol::kBatchBoundRelative;
+  const LaneDoubles t[3] = {b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]};
+  LaneDoubles C[9];  // |a_i . b_j|
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      C[3 * i + j] = laneAbs(a.R[i] * b.R[j] + a.R[3 + i] * b.R[3 + j] + a.R[6 + i] * b.R[6 + j]);
+    }
+  }
+  const Eigen::Vector3d& ha = pa.obb_L.half;
+  const Eigen::Vector3d& hb = pb.obb_L.half;
+  LaneMask apart{};
+  for (int i = 0; i < 3; ++i) {  // a's axes
+    const LaneDoubles d = laneAbs(t[0] * a.R[i] + t[1] * a.R[3 + i] + t[2] * a.R[6 + i]);
+    const LaneDoubles reach = ha[i] + C[3 * i] * hb[0] + C[3 * i + 1] * hb[1] + C[3 * i + 2] * hb[2];
+    apart = apart | (d - reach > margin);
+  }
+  for (int j = 0; j < 3; ++j) {  // b's axes
+    const LaneDoubles d = laneAbs(t[0] * b.R[j] + t[1] * b.R[3 + j] + t[2] * b.R[6 + j]);
+    const LaneDoubles reach = hb[j] + C[j] * ha[0] + C[3 + j] * ha[1] + C[6 + j] * ha[2];
+    apart = apart | (d - reach > margin);
+  }
+  return apart.bits();
+}
+
+/// Lanes of `open` where some piece pair of self pair sp is near: piece spheres not apart and
+/// oriented boxes not apart along a face normal.
+template <bool kAvx2>
+inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, BatchScratch& sc, std::uint32_t open) {
+  const LinkGeometry& la = robot.links[sp.a];
+  const LinkGeometry& lb = robot.links[sp.b];
+  std::uint32_t near = 0;
+  for (int i = la.firstPiece; i < la.firstPiece + la.numPieces; ++i) {
+    for (int j = lb.firstPiece; j < lb.firstPiece + lb.numPieces; ++j) {
+      const double r = robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius;
+      std::uint32_t pairNear = ~pointFar<kAvx2>(pieceFloats(robot, i, sc), pieceFloats(robot, j, sc), r) & open;
+      if (pairNear != 0) {
+        pairNear &= ~obbsApart(robot.pieces[i], pieceBox(robot, i, sc), robot.pieces[j], pieceBox(robot, j, sc));
+      }
+      near |= pairNear;
+      if (near == open) return near;
+    }
+  }
+  return near;
 }
 
 /// The box around the spheres (c, radius) of the lanes in `open`, each grown by
@@ -178,17 +280,22 @@ Aabb unionBox(const LanePoint& c, double radius, const LaneDoubles& chain, std::
   return box;
 }
 
-/// Lanes where some piece of link geometry g is near world piece w (neither its sphere beyond
-/// w's box nor beyond w's sphere).
+/// Lanes of `open` where some piece of link geometry g is near world piece w: its sphere
+/// neither beyond w's box nor beyond w's sphere, and its oriented box not beyond w's box.
 template <bool kAvx2>
-inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece& w, const FloatBox& b,
-                                const BatchScratch& sc) {
+inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece& w, const FloatBox& b, BatchScratch& sc,
+                                std::uint32_t open) {
   const LinkGeometry& lg = robot.links[g];
-  const LaneFloats wc = broadcast(w.center_W, w.sphereRadius);
+  LaneFloats wc;
+  broadcast(w.center_W, w.sphereRadius, wc);
   std::uint32_t near = 0;
   for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
     const double r = robot.pieces[i].sphereRadius;
-    near |= ~(boxFar<kAvx2>(sc.pieceF[i], r, b) | pointFar<kAvx2>(sc.pieceF[i], wc, r + w.sphereRadius));
+    const LaneFloats& p = pieceFloats(robot, i, sc);
+    std::uint32_t pieceNear = ~(boxFar<kAvx2>(p, r, b) | pointFar<kAvx2>(p, wc, r + w.sphereRadius)) & open;
+    if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox(robot, i, sc), w.box, b.mag);
+    near |= pieceNear;
+    if (near == open) break;
   }
   return near;
 }
@@ -212,7 +319,7 @@ inline std::uint32_t worldBlocked(const Snapshot& s, PairKey::Kind kind, int g, 
     const WorldPiece& w = set.pieces[wp];
     const FloatBox b = floatBox(w.box);
     std::uint32_t near = ~boxFar<kAvx2>(sc.linkF[g], radius, b) & open & ~blocked;
-    if (near != 0) near &= piecesNear<kAvx2>(robot, g, w, b, sc);
+    if (near != 0) near = piecesNear<kAvx2>(robot, g, w, b, sc, near);
     blocked |= near;
     if ((open & ~blocked) == 0) break;
   }
@@ -225,13 +332,14 @@ inline std::uint32_t selfBlocked(const RobotData& robot, const SelfPair& sp,
                                  const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchScratch& sc, std::uint32_t open) {
   const double r = robot.links[sp.a].radius + robot.links[sp.b].radius;
   std::uint32_t near = ~pointFar<kAvx2>(sc.linkF[sp.a], sc.linkF[sp.b], r) & open;
-  if (near == 0 || sp.grid == nullptr) return near;
-  for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
-    if (!(near >> l & 1u)) continue;
-    sc.q = qs.col(l);
-    if (sp.grid->certifiedFree(sc.q)) near &= ~(1u << l);
+  if (near != 0 && sp.grid != nullptr) {
+    for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
+      if (!(near >> l & 1u)) continue;
+      sc.q = qs.col(l);
+      if (sp.grid->certifiedFree(sc.q)) near &= ~(1u << l);
+    }
   }
-  return near;
+  return near == 0 ? 0 : selfPiecesNear<kAvx2>(robot, sp, sc, near);
 }
 
 template <bool kAvx2>
@@ -244,7 +352,7 @@ inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eig
   }
   if (blocked == lanes) return 0;
   const RobotData& robot = *s.robot;
-  allToFloats(robot, sc);
+  linksToFloats(robot, sc);
   for (int g = static_cast<int>(robot.links.size()) - 1; g >= 0; --g) {
     for (PairKey::Kind kind : {PairKey::Kind::Scene, PairKey::Kind::Obstacle}) {
       blocked |= worldBlocked<kAvx2>(s, kind, g, broadPhase, sc, lanes & ~blocked);

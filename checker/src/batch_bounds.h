@@ -1,18 +1,24 @@
 #pragma once
 // The bound stage of World::isFreeBatch: which of up to kLanes configurations (posed by
-// batch_kinematics.h) are certified free by bounding spheres alone, in floats across the lanes.
+// batch_kinematics.h) are certified free by bounding volumes alone, across the lanes at once.
 //
-// A lane is certified free when, for every robot link geometry, every world piece whose box the
-// broad phase finds near the union of the lanes' link spheres either is allowed to touch it, or
-// lies beyond the link's sphere, or beyond each of its pieces' spheres (against the box or the
-// world piece's sphere); and every self pair is certified by its grid at the lane's q or has
-// link spheres apart. "Beyond" means by tol::kBatchBoundRelative of the test's scale: then the
-// scalar isFree's double bounding tests reject that pair too (tolerances.h), and isFree is true.
-// Anything else is left to isFree. The lanes whose poses are not finite are never certified.
+// A lane is certified free when
+//   - for every robot link geometry, every world piece whose box the broad phase finds near the
+//     union of the lanes' link spheres is allowed to touch it, or lies beyond the link's sphere,
+//     or beyond each of its pieces (the piece's sphere beyond the world piece's box or sphere, or
+//     the piece's oriented box beyond the world box along a world axis);
+//   - every self pair is certified by its grid at the lane's q (as isFree does), or has link
+//     spheres apart, or each of its piece pairs has spheres apart or oriented boxes apart along a
+//     face normal of one of them.
+// "Beyond" and "apart" mean by tol::kBatchBoundRelative of the test's scale: more than the
+// tests' rounding, so the pieces really are that far apart (each bound contains its piece), far
+// beyond what isFree's narrow phase could report as touching; isFree then answers free.
+// Anything else is left to isFree. Lanes whose poses are not finite are never certified.
 //
-// The tests are compiled twice: with AVX2 intrinsics (eight float lanes in one register) and as
-// plain loops for the baseline instruction set. Both evaluate the same float operations in the
-// same order without fused multiply-adds, so they certify the same lanes bit for bit.
+// The sphere tests run in floats, eight lanes in one AVX2 register (intrinsics) or as plain
+// loops in the baseline build: the same float operations in the same order, no fused
+// multiply-adds, so both certify the same lanes bit for bit. The oriented-box tests run in
+// doubles (LaneDoubles, compiled in each build).
 
 #include "batch_kinematics.h"
 
@@ -21,22 +27,33 @@
 
 namespace deepcheck::checker::detail {
 
+/// A float per lane (one AVX2 register); lane l is v[l]. Aligned explicitly, as LaneDoubles.
+using LaneFloatV = float __attribute__((vector_size(kLanes * sizeof(float)), aligned(32)));
+
 /// Float copies of a point per lane and its test scale (|centre| max norm + radius + chain
 /// length, tol::kBatchBoundRelative).
 struct LaneFloats {
-  alignas(32) float x[kLanes];
-  alignas(32) float y[kLanes];
-  alignas(32) float z[kLanes];
-  alignas(32) float scale[kLanes];
+  LaneFloatV x, y, z, scale;
+};
+
+/// A robot piece's oriented box in the world per lane: its centre, its axes (R[3 k + j]: world
+/// component k of box axis j), its half extents along the world axes, and its test scale
+/// (|centre| max norm + those extents + chain length).
+struct LaneBox {
+  LaneDoubles c[3], R[9], e[3], scale;
 };
 
 /// A context's scratch for isFreeBatch.
 struct BatchScratch {
   BatchPoses poses;
   std::vector<LaneFloats> linkF;   ///< per LinkGeometry
-  std::vector<LaneFloats> pieceF;  ///< per RobotPiece
-  Eigen::VectorXd q;               ///< one lane's configuration (self-pair grids)
-  std::vector<int> candidates;     ///< world pieces from the broad phase
+  std::vector<LaneFloats> pieceF;  ///< per RobotPiece, valid when pieceStamp == stamp
+  std::vector<std::uint32_t> pieceStamp;
+  std::vector<LaneBox> pieceBox;  ///< per RobotPiece, valid when boxStamp == stamp
+  std::vector<std::uint32_t> boxStamp;
+  std::uint32_t stamp = 0;
+  Eigen::VectorXd q;            ///< one lane's configuration (self-pair grids)
+  std::vector<int> candidates;  ///< world pieces from the broad phase
 };
 
 /// Bit l set: lane l (l < qs.cols()) is certified free. Reads scratch.poses, computed for qs by

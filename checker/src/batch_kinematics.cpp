@@ -24,6 +24,11 @@ using robots::JointType;
 /// library's functions (a NaN stays a NaN).
 constexpr double kSinCosRange = 1048576.0;
 
+/// Lanes whose integer k (LaneDoubles' bits) plus `add` has bit `bit` set.
+DC_INLINE LaneMask bitSet(const LaneHalfBits (&k)[2], std::int64_t add, std::int64_t bit) {
+  return {{((k[0] + add) & bit) != 0, ((k[1] + add) & bit) != 0}};
+}
+
 DC_INLINE void sinCosLanes(const LaneDoubles& x, LaneDoubles& sine, LaneDoubles& cosine) {
   constexpr double kTwoOverPi = 0.63661977236758134308;
   constexpr double kHalfPiHigh = 1.5707963267948965579989817342720925807952880859375;
@@ -34,31 +39,34 @@ DC_INLINE void sinCosLanes(const LaneDoubles& x, LaneDoubles& sine, LaneDoubles&
                    f15 = f13 / 210, f17 = f15 / 272;
   constexpr double f2 = 0.5, f4 = f2 / 12, f6 = f4 / 30, f8 = f6 / 56, f10 = f8 / 90, f12 = f10 / 132, f14 = f12 / 182,
                    f16 = f14 / 240, f18 = f16 / 306;
-  bool allInRange = true;
+  // k = x 2/pi rounded to an integer by adding 1.5 2^52 (|x 2/pi| < 2^51: the sum's last
+  // mantissa bits are k in two's complement); no conversion instructions, which AVX2 lacks for
+  // 64-bit integers.
+  constexpr double kRound = 6755399441055744.0;
+  const LaneMask in = laneAbs(x) < kSinCosRange;  // false for NaN
+  const LaneDoubles xr = select(in, x, LaneDoubles{});
+  const LaneDoubles shifted = xr * kTwoOverPi + kRound;
+  const LaneHalfBits k[2] = {reinterpret_cast<LaneHalfBits>(shifted.h[0]),
+                             reinterpret_cast<LaneHalfBits>(shifted.h[1])};
+  const LaneDoubles kd = shifted - kRound;
+  const LaneDoubles r = ((xr - kd * kHalfPi1) - kd * kHalfPi2) - kd * kHalfPi3;
+  const LaneDoubles r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
+  const LaneDoubles ps = ((-f3 + f5 * r2) + r4 * (-f7 + f9 * r2)) + r8 * ((-f11 + f13 * r2) + r4 * (-f15 + f17 * r2));
+  const LaneDoubles pc =
+      ((f2 - f4 * r2) + r4 * (f6 - f8 * r2)) + r8 * ((f10 - f12 * r2) + r4 * (f14 - f16 * r2) + r8 * f18);
+  const LaneDoubles s = r + (r * r2) * ps;
+  const LaneDoubles c = 1.0 - r2 * pc;
+  // The quadrant k mod 4: odd k swaps sine and cosine; sine is negated for k = 2, 3 and cosine
+  // for k = 1, 2.
+  const LaneMask odd = bitSet(k, 0, 1);
+  const LaneDoubles s1 = select(odd, c, s);
+  const LaneDoubles c1 = select(odd, s, c);
+  sine = select(bitSet(k, 0, 2), -s1, s1);
+  cosine = select(bitSet(k, 1, 2), -c1, c1);
   for (int l = 0; l < kLanes; ++l) {
-    const bool in = std::abs(x[l]) < kSinCosRange;
-    allInRange &= in;
-    const double xl = in ? x[l] : 0.0;
-    const int k = static_cast<int>(xl * kTwoOverPi + (xl >= 0.0 ? 0.5 : -0.5));
-    const double kd = k;
-    const double r = ((xl - kd * kHalfPi1) - kd * kHalfPi2) - kd * kHalfPi3;
-    const double r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
-    const double ps = ((-f3 + f5 * r2) + r4 * (-f7 + f9 * r2)) + r8 * ((-f11 + f13 * r2) + r4 * (-f15 + f17 * r2));
-    const double pc =
-        ((f2 - f4 * r2) + r4 * (f6 - f8 * r2)) + r8 * ((f10 - f12 * r2) + r4 * (f14 - f16 * r2) + r8 * f18);
-    const double s = r + (r * r2) * ps;
-    const double c = 1.0 - r2 * pc;
-    const bool odd = (k & 1) != 0;
-    const double s1 = odd ? c : s;
-    const double c1 = odd ? s : c;
-    sine[l] = (k & 2) != 0 ? -s1 : s1;
-    cosine[l] = ((k + 1) & 2) != 0 ? -c1 : c1;
-  }
-  if (allInRange) return;
-  for (int l = 0; l < kLanes; ++l) {
-    if (!(std::abs(x[l]) < kSinCosRange)) {
-      sine[l] = std::sin(x[l]);
-      cosine[l] = std::cos(x[l]);
+    if (!in[l]) {
+      sine.set(l, std::sin(x[l]));
+      cosine.set(l, std::cos(x[l]));
     }
   }
 }
@@ -68,15 +76,9 @@ DC_INLINE void jointFrame(const LanePose& P, const Joint& joint, LanePose& J) {
   const Eigen::Matrix3d& A = joint.X_PJ.linear();
   const Eigen::Vector3d& b = joint.X_PJ.translation();
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) {
-      const double a0 = A(0, c), a1 = A(1, c), a2 = A(2, c);
-      for (int l = 0; l < kLanes; ++l) {
-        J.R[3 * r + c][l] = P.R[3 * r][l] * a0 + P.R[3 * r + 1][l] * a1 + P.R[3 * r + 2][l] * a2;
-      }
-    }
-    for (int l = 0; l < kLanes; ++l) {
-      J.t[r][l] = P.t[r][l] + P.R[3 * r][l] * b[0] + P.R[3 * r + 1][l] * b[1] + P.R[3 * r + 2][l] * b[2];
-    }
+    const LaneDoubles p0 = P.R[3 * r], p1 = P.R[3 * r + 1], p2 = P.R[3 * r + 2];
+    for (int c = 0; c < 3; ++c) J.R[3 * r + c] = p0 * A(0, c) + p1 * A(1, c) + p2 * A(2, c);
+    J.t[r] = P.t[r] + p0 * b[0] + p1 * b[1] + p2 * b[2];
   }
 }
 
@@ -85,35 +87,31 @@ DC_INLINE void jointFrame(const LanePose& P, const Joint& joint, LanePose& J) {
 DC_INLINE void rotateCoordinate(LanePose& X, int k, const LaneDoubles& c, const LaneDoubles& s) {
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   for (int r = 0; r < 3; ++r) {
-    LaneDoubles& ri = X.R[3 * r + i];
-    LaneDoubles& rj = X.R[3 * r + j];
-    for (int l = 0; l < kLanes; ++l) {
-      const double a = ri[l], b = rj[l];
-      ri[l] = c[l] * a + s[l] * b;
-      rj[l] = c[l] * b - s[l] * a;
-    }
+    const LaneDoubles a = X.R[3 * r + i], b = X.R[3 * r + j];
+    X.R[3 * r + i] = c * a + s * b;
+    X.R[3 * r + j] = c * b - s * a;
   }
 }
 
-/// R * Rot(axis, angle) for any unit axis (Rodrigues: c I + s [a]x + (1 - c) a a^T).
+/// R * Rot(axis, angle) for any unit axis a (Rodrigues: c I + s [a]x + (1 - c) a a^T).
 DC_INLINE void rotateAxis(LanePose& X, const Eigen::Vector3d& a, const LaneDoubles& c, const LaneDoubles& s) {
-  for (int r = 0; r < 3; ++r) {
-    LaneDoubles row[3] = {X.R[3 * r], X.R[3 * r + 1], X.R[3 * r + 2]};
+  // Rot(m, col): c on the diagonal, plus (1 - c) a_m a_col, plus s [a]x(m, col), which is
+  // -a_{m+2} one column right of the diagonal and a_{m+1} two columns right (cyclic).
+  LaneDoubles rot[9];
+  const LaneDoubles oneMinusC = 1.0 - c;
+  for (int m = 0; m < 3; ++m) {
     for (int col = 0; col < 3; ++col) {
-      for (int l = 0; l < kLanes; ++l) {
-        double sum = 0.0;
-        for (int m = 0; m < 3; ++m) {
-          // Rot(m, col): c on the diagonal, plus (1 - c) a_m a_col, plus s [a]x(m, col), which is
-          // -a_{m+2} one column right of the diagonal and a_{m+1} two columns right (cyclic).
-          double rot = (1.0 - c[l]) * a[m] * a[col] + (m == col ? c[l] : 0.0);
-          const int cross = (col - m + 3) % 3;
-          if (cross == 1) rot -= s[l] * a[(m + 2) % 3];
-          if (cross == 2) rot += s[l] * a[(m + 1) % 3];
-          sum += row[m][l] * rot;
-        }
-        X.R[3 * r + col][l] = sum;
-      }
+      LaneDoubles v = oneMinusC * (a[m] * a[col]);
+      if (m == col) v = v + c;
+      const int cross = (col - m + 3) % 3;
+      if (cross == 1) v = v - s * a[(m + 2) % 3];
+      if (cross == 2) v = v + s * a[(m + 1) % 3];
+      rot[3 * m + col] = v;
     }
+  }
+  for (int r = 0; r < 3; ++r) {
+    const LaneDoubles x0 = X.R[3 * r], x1 = X.R[3 * r + 1], x2 = X.R[3 * r + 2];
+    for (int col = 0; col < 3; ++col) X.R[3 * r + col] = x0 * rot[col] + x1 * rot[3 + col] + x2 * rot[6 + col];
   }
 }
 
@@ -128,106 +126,74 @@ int coordinateAxis(const Eigen::Vector3d& axis, double& sign) {
   return -1;
 }
 
-/// The joint's value in every lane (multiplier * q[variable] + offset).
-DC_INLINE void jointValues(const Joint& joint, const double* q, LaneDoubles& value) {
-  for (int l = 0; l < kLanes; ++l) value[l] = joint.multiplier * q[l] + joint.offset;
-}
-
-/// The child link's pose of `joint` from X_WJ (in C), every lane; adds a prismatic joint's travel
-/// to `chain`.
+/// The child link's pose of `joint` from X_WJ (in C) for the joint values `value`, every lane;
+/// adds a prismatic joint's travel to `chain`.
 DC_INLINE void jointMotion(const Joint& joint, const LaneDoubles& value, LanePose& C, LaneDoubles& chain) {
   if (joint.type == JointType::Prismatic) {
     const Eigen::Vector3d& a = joint.axis;
-    for (int r = 0; r < 3; ++r) {
-      for (int l = 0; l < kLanes; ++l) {
-        C.t[r][l] += value[l] * (C.R[3 * r][l] * a[0] + C.R[3 * r + 1][l] * a[1] + C.R[3 * r + 2][l] * a[2]);
-      }
-    }
-    for (int l = 0; l < kLanes; ++l) chain[l] += std::abs(value[l]);
+    for (int r = 0; r < 3; ++r) C.t[r] += value * (C.R[3 * r] * a[0] + C.R[3 * r + 1] * a[1] + C.R[3 * r + 2] * a[2]);
+    chain += laneAbs(value);
     return;
   }
-  if (joint.type == JointType::Fixed) return;
   double sign = 1.0;
   const int k = coordinateAxis(joint.axis, sign);
   LaneDoubles s, c;
   sinCosLanes(value, s, c);
   if (k >= 0) {
-    for (int l = 0; l < kLanes; ++l) s[l] *= sign;
-    rotateCoordinate(C, k, c, s);
+    rotateCoordinate(C, k, c, s * sign);
   } else {
     rotateAxis(C, joint.axis, c, s);
   }
 }
 
-/// The world centre of p_L in link `link`'s frame, every lane.
-DC_INLINE void posePoint(const LanePose& X, const Eigen::Vector3d& p, LanePoint& out) {
-  LaneDoubles* o[3] = {&out.x, &out.y, &out.z};
-  for (int r = 0; r < 3; ++r) {
-    for (int l = 0; l < kLanes; ++l) {
-      (*o[r])[l] = X.t[r][l] + X.R[3 * r][l] * p[0] + X.R[3 * r + 1][l] * p[1] + X.R[3 * r + 2][l] * p[2];
-    }
-  }
-}
-
-/// The root's pose in every lane, and the base translation as the start of every chain.
+/// The root's pose in every lane, and the base translation and joint offsets as every chain's
+/// fixed length.
 void startChains(const robots::RobotModel& model, BatchPoses& out) {
   const Eigen::Isometry3d& X_WR = model.basePose();
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) out.links[0].R[3 * r + c].fill(X_WR.linear()(r, c));
-    out.links[0].t[r].fill(X_WR.translation()[r]);
+    for (int c = 0; c < 3; ++c) out.links[0].R[3 * r + c] = LaneDoubles::all(X_WR.linear()(r, c));
+    out.links[0].t[r] = LaneDoubles::all(X_WR.translation()[r]);
   }
   double length = X_WR.translation().norm();
   for (const Joint& joint : model.joints()) length += joint.X_PJ.translation().norm();
-  out.chainLength.fill(length);
+  out.chainLength = LaneDoubles::all(length);
 }
 
-/// Lane l: q finite and every link translation finite.
-void markFinite(const Eigen::Ref<const Eigen::MatrixXd>& qs, int lanesGiven, BatchPoses& out) {
-  for (int l = 0; l < kLanes; ++l) {
-    const int col = l < lanesGiven ? l : lanesGiven - 1;
-    bool finite = qs.col(col).allFinite();
-    for (const LanePose& X : out.links) {
-      finite &= std::isfinite(X.t[0][l]) && std::isfinite(X.t[1][l]) && std::isfinite(X.t[2][l]);
-    }
-    out.finite[l] = finite;
-  }
+/// Lane l: q finite and every link translation finite (0 * x is 0 for finite x, NaN otherwise).
+void markFinite(BatchPoses& out) {
+  LaneDoubles zero{};
+  for (const LaneDoubles& q : out.laneQ) zero += q * 0.0;
+  for (const LanePose& X : out.links) zero += (X.t[0] + X.t[1] + X.t[2]) * 0.0;
+  for (int l = 0; l < kLanes; ++l) out.finite[l] = zero[l] == 0.0;
 }
 
-DC_INLINE void poseAll(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
-  const robots::RobotModel& model = robot.model;
+/// The lanes' values of every variable, columns from qs.cols() on repeating the last one.
+void laneValues(const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
   const int n = static_cast<int>(qs.cols());
-  // The lanes' values of every variable, columns past n repeating the last one.
-  const int vars = model.numVariables();
-  std::vector<double>& q = out.laneQ;
-  q.resize(static_cast<std::size_t>(vars) * kLanes);
-  for (int v = 0; v < vars; ++v) {
-    for (int l = 0; l < kLanes; ++l) q[static_cast<std::size_t>(v) * kLanes + l] = qs(v, l < n ? l : n - 1);
+  out.laneQ.resize(qs.rows());
+  for (Eigen::Index v = 0; v < qs.rows(); ++v) {
+    for (int l = 0; l < kLanes; ++l) out.laneQ[v].set(l, qs(v, l < n ? l : n - 1));
   }
+}
+
+DC_INLINE void poseAll(const RobotData& robot, BatchPoses& out) {
+  const robots::RobotModel& model = robot.model;
   startChains(model, out);
-  LaneDoubles value{};
   for (const Joint& joint : model.joints()) {
     LanePose& C = out.links[joint.childLink];
     jointFrame(out.links[joint.parentLink], joint, C);
     if (joint.type == JointType::Fixed) continue;
-    jointValues(joint, &q[static_cast<std::size_t>(joint.variable) * kLanes], value);
+    const LaneDoubles value = out.laneQ[joint.variable] * joint.multiplier + joint.offset;
     jointMotion(joint, value, C, out.chainLength);
   }
   for (std::size_t g = 0; g < robot.links.size(); ++g) {
     posePoint(out.links[robot.links[g].link], robot.links[g].center_L, out.linkCenter[g]);
   }
-  for (std::size_t i = 0; i < robot.pieces.size(); ++i) {
-    posePoint(out.links[robot.pieces[i].link], robot.pieces[i].center_L, out.pieceCenter[i]);
-  }
 }
 
-__attribute__((target("avx2"))) void poseAllAvx2(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs,
-                                                 BatchPoses& out) {
-  poseAll(robot, qs, out);
-}
+__attribute__((target("avx2"))) void poseAllAvx2(const RobotData& robot, BatchPoses& out) { poseAll(robot, out); }
 
-void poseAllBaseline(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
-  poseAll(robot, qs, out);
-}
+void poseAllBaseline(const RobotData& robot, BatchPoses& out) { poseAll(robot, out); }
 
 }  // namespace
 
@@ -240,13 +206,13 @@ void batchForwardKinematics(const RobotData& robot, const Eigen::Ref<const Eigen
                             BatchPoses& out) {
   out.links.resize(robot.model.numLinks());
   out.linkCenter.resize(robot.links.size());
-  out.pieceCenter.resize(robot.pieces.size());
+  laneValues(qs, out);
   if (avx2) {
-    poseAllAvx2(robot, qs, out);
+    poseAllAvx2(robot, out);
   } else {
-    poseAllBaseline(robot, qs, out);
+    poseAllBaseline(robot, out);
   }
-  markFinite(qs, static_cast<int>(qs.cols()), out);
+  markFinite(out);
 }
 
 }  // namespace deepcheck::checker::detail

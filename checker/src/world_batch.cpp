@@ -1,12 +1,12 @@
 // World::isFreeBatch: up to kLanes configurations posed at once (batch_kinematics.h), the ones
 // the bound stage certifies free (batch_bounds.h) answered free, every other answered by isFree.
 //
-// Why the answers are isFree's: a certified configuration has every link (or each of its
-// pieces) farther from every world piece's box or sphere, and every self pair's link spheres
-// farther apart (or the pair certified by its grid at that q), than isFree's own double bounding
-// tests could fail to see, by tol::kBatchBoundRelative of the test's scale; so isFree would send
-// no pair to the narrow phase but its last overlapping pair, which its bounding tests reject too
-// (or its grid certifies apart), and answer free. Any other configuration is isFree's own answer.
+// Why the answers are isFree's: in a certified configuration every checked pair (robot piece
+// and world piece, or self piece pair) is farther apart, by bounding volumes that contain the
+// pieces, than tol::kBatchBoundRelative of the coordinates' scale (batch_bounds.h); isFree's
+// bounding tests reject such a pair or its narrow phase finds it apart (it reports touching only
+// within geometry::tol::kContactRelative, 1e-12, of the pair's length scale), so isFree answers
+// free. Any other configuration gets isFree's own answer.
 
 #include "world_queries_internal.h"
 

@@ -406,10 +406,10 @@ class World {
 
   /// isFree of each column of qs (the robot's variables x n, 1 <= n <= 8) into free[0 .. n):
   /// always free[i] == isFree(qs.col(i)). Forward kinematics of all columns at once, then a bound
-  /// stage across them in floats (AVX2 when the processor has it): a configuration whose link
-  /// and piece bounding spheres are apart from everything, by a margin that covers the floats'
-  /// rounding (tol::kBatchBoundRelative), is free; every other is answered by isFree
-  /// (world_batch.cpp). Throws std::invalid_argument naming the sizes for a qs of the wrong
+  /// stage across them (AVX2 when the processor has it): a configuration whose bounding volumes
+  /// (link and piece spheres, piece oriented boxes) are apart from everything they are checked
+  /// against, by a margin that covers the rounding (tol::kBatchBoundRelative), is free; every
+  /// other is answered by isFree (world_batch.cpp). Throws std::invalid_argument naming the sizes for a qs of the wrong
   /// shape, and as isFree for a configuration isFree throws for (the columns before it are
   /// answered then).
   void isFreeBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* free, Context& context) const;
