@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 namespace deepcheck::checker::detail {
 namespace {
@@ -63,6 +64,7 @@ DC_INLINE void sinCosLanes(const LaneDoubles& x, LaneDoubles& sine, LaneDoubles&
   const LaneDoubles c1 = select(odd, s, c);
   sine = select(bitSet(k, 0, 2), -s1, s1);
   cosine = select(bitSet(k, 1, 2), -c1, c1);
+  if (in.bits() == (1u << kLanes) - 1u) return;
   for (int l = 0; l < kLanes; ++l) {
     if (!in[l]) {
       sine.set(l, std::sin(x[l]));
@@ -148,7 +150,7 @@ DC_INLINE void jointMotion(const Joint& joint, const LaneDoubles& value, LanePos
 
 /// The root's pose in every lane, and the base translation and joint offsets as every chain's
 /// fixed length.
-void startChains(const robots::RobotModel& model, BatchPoses& out) {
+DC_INLINE void startChains(const robots::RobotModel& model, BatchPoses& out) {
   const Eigen::Isometry3d& X_WR = model.basePose();
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) out.links[0].R[3 * r + c] = LaneDoubles::all(X_WR.linear()(r, c));
@@ -160,7 +162,7 @@ void startChains(const robots::RobotModel& model, BatchPoses& out) {
 }
 
 /// Lane l: q finite and every link translation finite (0 * x is 0 for finite x, NaN otherwise).
-void markFinite(BatchPoses& out) {
+DC_INLINE void markFinite(BatchPoses& out) {
   LaneDoubles zero{};
   for (const LaneDoubles& q : out.laneQ) zero += q * 0.0;
   for (const LanePose& X : out.links) zero += (X.t[0] + X.t[1] + X.t[2]) * 0.0;
@@ -168,16 +170,19 @@ void markFinite(BatchPoses& out) {
 }
 
 /// The lanes' values of every variable, columns from qs.cols() on repeating the last one.
-void laneValues(const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
+DC_INLINE void laneValues(const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
   const int n = static_cast<int>(qs.cols());
-  out.laneQ.resize(qs.rows());
   for (Eigen::Index v = 0; v < qs.rows(); ++v) {
-    for (int l = 0; l < kLanes; ++l) out.laneQ[v].set(l, qs(v, l < n ? l : n - 1));
+    double values[kLanes];  // filled as doubles, then copied whole (a lane written into a
+                            // vector one at a time goes through memory eight times)
+    for (int l = 0; l < kLanes; ++l) values[l] = qs(v, l < n ? l : n - 1);
+    std::memcpy(&out.laneQ[v], values, sizeof values);
   }
 }
 
-DC_INLINE void poseAll(const RobotData& robot, BatchPoses& out) {
+DC_INLINE void poseAll(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
   const robots::RobotModel& model = robot.model;
+  laneValues(qs, out);
   startChains(model, out);
   for (const Joint& joint : model.joints()) {
     LanePose& C = out.links[joint.childLink];
@@ -189,11 +194,17 @@ DC_INLINE void poseAll(const RobotData& robot, BatchPoses& out) {
   for (std::size_t g = 0; g < robot.links.size(); ++g) {
     posePoint(out.links[robot.links[g].link], robot.links[g].center_L, out.linkCenter[g]);
   }
+  markFinite(out);
 }
 
-__attribute__((target("avx2"))) void poseAllAvx2(const RobotData& robot, BatchPoses& out) { poseAll(robot, out); }
+__attribute__((target("avx2"))) void poseAllAvx2(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                                                 BatchPoses& out) {
+  poseAll(robot, qs, out);
+}
 
-void poseAllBaseline(const RobotData& robot, BatchPoses& out) { poseAll(robot, out); }
+void poseAllBaseline(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
+  poseAll(robot, qs, out);
+}
 
 }  // namespace
 
@@ -206,13 +217,12 @@ void batchForwardKinematics(const RobotData& robot, const Eigen::Ref<const Eigen
                             BatchPoses& out) {
   out.links.resize(robot.model.numLinks());
   out.linkCenter.resize(robot.links.size());
-  laneValues(qs, out);
+  out.laneQ.resize(qs.rows());
   if (avx2) {
-    poseAllAvx2(robot, out);
+    poseAllAvx2(robot, qs, out);
   } else {
-    poseAllBaseline(robot, out);
+    poseAllBaseline(robot, qs, out);
   }
-  markFinite(out);
 }
 
 }  // namespace deepcheck::checker::detail
