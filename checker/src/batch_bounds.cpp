@@ -1,6 +1,8 @@
-// The bound stage of World::isFreeBatch (batch_bounds.h): link spheres, then piece spheres,
-// against the world pieces the broad phase finds near the union of the lanes' link spheres, then
-// the self pairs; a lane stays certified while every test finds it apart.
+// The bound stage of World::isFreeBatch (batch_bounds.h): link spheres, then piece spheres and
+// oriented boxes, against the world pieces the broad phase finds near the union of the lanes'
+// link spheres, then the self pairs likewise; a lane stays certified while every test finds it
+// apart. certifyAvx2 is flattened (every call in it inlined), so the helpers shared with the
+// baseline build are compiled for AVX2 there.
 
 #include "batch_bounds.h"
 
@@ -78,8 +80,7 @@ inline std::uint32_t pointFarBaseline(const LaneFloats& p, const LaneFloats& q, 
   return far;
 }
 
-// The AVX2 versions: target functions, inlined into certifyAvx2, which is flattened (every call
-// in it inlined, so the baseline templates in between take its target too).
+// The AVX2 versions, inlined into certifyAvx2.
 #define DC_AVX2 __attribute__((target("avx2"))) inline
 
 DC_AVX2 __m256 outsideAvx2(float lo, float hi, __m256 x) {

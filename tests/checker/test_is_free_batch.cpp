@@ -103,8 +103,9 @@ robots::RobotModel bundledShelf() {
   return robots::RobotModel::fromUrdfFile(bundledDataDir() + "/scenes/shelf.urdf", bundledLoadOptions());
 }
 
-World armWorld() {
+World armWorld(BroadPhase broadPhase = BroadPhase::AabbTree) {
   WorldOptions options = testWorldOptions();
+  options.broadPhase = broadPhase;
   options.disabledPairs = robots::readSrdfDisabledPairs(bundledDataDir() + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
   return World(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
                                                 bundledLoadOptions()),
@@ -232,6 +233,15 @@ BOOST_AUTO_TEST_CASE(arm_obstacles_and_attached_object_batches_answer_as_is_free
   compareBothBuilds(world, qs);
   world.setObstaclePose(world.obstacleIds().front(), translation(-0.3, 0.3, 0.5));
   const Tally t = compareBothBuilds(world, qs);
+  BOOST_TEST(t.colliding > 100);
+  BOOST_TEST(t.certified > 100u);
+}
+
+BOOST_AUTO_TEST_CASE(without_a_broad_phase_batches_answer_as_is_free) {
+  World world = armWorld(BroadPhase::None);
+  world.addScene(bundledShelf());
+  addCrateBallPost(world);
+  const Tally t = compareBothBuilds(world, configurations(world.robot(), 800, 80, 40, 58));
   BOOST_TEST(t.colliding > 100);
   BOOST_TEST(t.certified > 100u);
 }
