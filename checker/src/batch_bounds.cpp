@@ -139,10 +139,13 @@ inline std::uint32_t pointFar(const LaneFloats& p, const LaneFloats& q, double r
 /// Float copies of the posed centres with their scales (|c| max norm + radius + chain length).
 /// The eight lanes of d as floats.
 inline void toFloat(const LaneDoubles& d, LaneFloatV& out) {
-  using Quarter = float __attribute__((vector_size(4 * sizeof(float))));
-  const Quarter lo = __builtin_convertvector(d.h[0], Quarter);
-  const Quarter hi = __builtin_convertvector(d.h[1], Quarter);
-  out = __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+  using Part = float __attribute__((vector_size(kPartLanes * sizeof(float))));
+  if constexpr (kParts == 2) {
+    out = __builtin_shufflevector(__builtin_convertvector(d.h[0], Part), __builtin_convertvector(d.h[1], Part), 0, 1, 2,
+                                  3, 4, 5, 6, 7);
+  } else {
+    for (int l = 0; l < kLanes; ++l) out[l] = static_cast<float>(d[l]);
+  }
 }
 
 void toFloats(const LanePoint& c, double radius, const LaneDoubles& chain, LaneFloats& f) {

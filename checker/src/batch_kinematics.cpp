@@ -26,8 +26,8 @@ using robots::JointType;
 constexpr double kSinCosRange = 1048576.0;
 
 /// Lanes whose integer k (LaneDoubles' bits) plus `add` has bit `bit` set.
-DC_INLINE LaneMask bitSet(const LaneHalfBits (&k)[2], std::int64_t add, std::int64_t bit) {
-  return {{((k[0] + add) & bit) != 0, ((k[1] + add) & bit) != 0}};
+DC_INLINE LaneMask bitSet(const LanePartBits (&k)[kParts], std::int64_t add, std::int64_t bit) {
+  DC_PARTWISE(LaneMask, ((k[i] + add) & bit) != 0);
 }
 
 DC_INLINE void sinCosLanes(const LaneDoubles& x, LaneDoubles& sine, LaneDoubles& cosine) {
@@ -47,8 +47,8 @@ DC_INLINE void sinCosLanes(const LaneDoubles& x, LaneDoubles& sine, LaneDoubles&
   const LaneMask in = laneAbs(x) < kSinCosRange;  // false for NaN
   const LaneDoubles xr = select(in, x, LaneDoubles{});
   const LaneDoubles shifted = xr * kTwoOverPi + kRound;
-  const LaneHalfBits k[2] = {reinterpret_cast<LaneHalfBits>(shifted.h[0]),
-                             reinterpret_cast<LaneHalfBits>(shifted.h[1])};
+  LanePartBits k[kParts];
+  for (int i = 0; i < kParts; ++i) k[i] = reinterpret_cast<LanePartBits>(shifted.h[i]);
   const LaneDoubles kd = shifted - kRound;
   const LaneDoubles r = ((xr - kd * kHalfPi1) - kd * kHalfPi2) - kd * kHalfPi3;
   const LaneDoubles r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;

@@ -22,19 +22,24 @@ namespace deepcheck::checker::detail {
 /// Configurations per batch: one AVX2 register of floats.
 constexpr int kLanes = 8;
 
-/// Lanes as two halves of four doubles, GCC vectors of the size of an AVX2 register (a vector of
+/// Lanes as parts of kPartLanes doubles each, GCC vectors of the size of a register (a vector of
 /// eight doubles is lowered badly without AVX-512: scalars spread through memory). Aligned
-/// explicitly: without AVX enabled GCC gives the type only 16-byte alignment, and the AVX2
-/// build's aligned loads would then fault.
-using LaneHalf = double __attribute__((vector_size(4 * sizeof(double)), aligned(32)));
-using LaneHalfBits = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t)), aligned(32)));
+/// explicitly: without AVX enabled GCC gives a 32-byte vector type only 16-byte alignment, and
+/// the AVX2 build's aligned loads would then fault. Four, an AVX2 register: the baseline build
+/// then lowers each part through memory (its kinematics take about 8 times as long as AVX2's);
+/// with two, AVX2's take 1.5 times as long and the baseline's 1.7 times (the Panda).
+constexpr int kPartLanes = 4;
+constexpr int kParts = kLanes / kPartLanes;
+using LanePart = double __attribute__((vector_size(kPartLanes * sizeof(double)), aligned(kPartLanes * sizeof(double))));
+using LanePartBits =
+    std::int64_t __attribute__((vector_size(kPartLanes * sizeof(std::int64_t)), aligned(kPartLanes * sizeof(double))));
 
 #define DC_LANES inline __attribute__((always_inline))
 
 /// A comparison's result per lane (all bits set: true).
 struct LaneMask {
-  LaneHalfBits h[2];
-  DC_LANES bool operator[](int l) const { return h[l >> 2][l & 3] != 0; }
+  LanePartBits h[kParts];
+  DC_LANES bool operator[](int l) const { return h[l / kPartLanes][l % kPartLanes] != 0; }
   /// Bit l set for lane l true.
   DC_LANES std::uint32_t bits() const {
     std::uint32_t b = 0;
@@ -43,39 +48,48 @@ struct LaneMask {
   }
 };
 
-DC_LANES LaneMask operator|(const LaneMask& a, const LaneMask& b) { return {{a.h[0] | b.h[0], a.h[1] | b.h[1]}}; }
-
 /// A double per lane; lane l is v[l]. Its operations act on every lane; all are inlined, so each
 /// build (AVX2, baseline) compiles them for its instruction set.
 struct LaneDoubles {
-  LaneHalf h[2];
-  DC_LANES double operator[](int l) const { return h[l >> 2][l & 3]; }
-  DC_LANES void set(int l, double v) { h[l >> 2][l & 3] = v; }
-  DC_LANES static LaneDoubles all(double v) { return {{LaneHalf{} + v, LaneHalf{} + v}}; }
+  LanePart h[kParts];
+  DC_LANES double operator[](int l) const { return h[l / kPartLanes][l % kPartLanes]; }
+  DC_LANES void set(int l, double v) { h[l / kPartLanes][l % kPartLanes] = v; }
+  DC_LANES static LaneDoubles all(double v) {
+    LaneDoubles r;
+    for (int i = 0; i < kParts; ++i) r.h[i] = LanePart{} + v;
+    return r;
+  }
 };
 
+/// The body of a lane-wise operation: `expr` of part i for every part.
+#define DC_PARTWISE(Type, expr)                     \
+  Type r;                                           \
+  for (int i = 0; i < kParts; ++i) r.h[i] = (expr); \
+  return r
+
+DC_LANES LaneMask operator|(const LaneMask& a, const LaneMask& b) { DC_PARTWISE(LaneMask, a.h[i] | b.h[i]); }
 DC_LANES LaneDoubles operator+(const LaneDoubles& a, const LaneDoubles& b) {
-  return {{a.h[0] + b.h[0], a.h[1] + b.h[1]}};
+  DC_PARTWISE(LaneDoubles, a.h[i] + b.h[i]);
 }
 DC_LANES LaneDoubles operator-(const LaneDoubles& a, const LaneDoubles& b) {
-  return {{a.h[0] - b.h[0], a.h[1] - b.h[1]}};
+  DC_PARTWISE(LaneDoubles, a.h[i] - b.h[i]);
 }
 DC_LANES LaneDoubles operator*(const LaneDoubles& a, const LaneDoubles& b) {
-  return {{a.h[0] * b.h[0], a.h[1] * b.h[1]}};
+  DC_PARTWISE(LaneDoubles, a.h[i] * b.h[i]);
 }
-DC_LANES LaneDoubles operator-(const LaneDoubles& a) { return {{-a.h[0], -a.h[1]}}; }
-DC_LANES LaneDoubles operator+(const LaneDoubles& a, double s) { return {{a.h[0] + s, a.h[1] + s}}; }
-DC_LANES LaneDoubles operator-(const LaneDoubles& a, double s) { return {{a.h[0] - s, a.h[1] - s}}; }
-DC_LANES LaneDoubles operator*(const LaneDoubles& a, double s) { return {{a.h[0] * s, a.h[1] * s}}; }
-DC_LANES LaneDoubles operator+(double s, const LaneDoubles& a) { return {{s + a.h[0], s + a.h[1]}}; }
-DC_LANES LaneDoubles operator-(double s, const LaneDoubles& a) { return {{s - a.h[0], s - a.h[1]}}; }
-DC_LANES LaneDoubles operator*(double s, const LaneDoubles& a) { return {{s * a.h[0], s * a.h[1]}}; }
+DC_LANES LaneDoubles operator-(const LaneDoubles& a) { DC_PARTWISE(LaneDoubles, -a.h[i]); }
+DC_LANES LaneDoubles operator+(const LaneDoubles& a, double s) { DC_PARTWISE(LaneDoubles, a.h[i] + s); }
+DC_LANES LaneDoubles operator-(const LaneDoubles& a, double s) { DC_PARTWISE(LaneDoubles, a.h[i] - s); }
+DC_LANES LaneDoubles operator*(const LaneDoubles& a, double s) { DC_PARTWISE(LaneDoubles, a.h[i] * s); }
+DC_LANES LaneDoubles operator+(double s, const LaneDoubles& a) { DC_PARTWISE(LaneDoubles, s + a.h[i]); }
+DC_LANES LaneDoubles operator-(double s, const LaneDoubles& a) { DC_PARTWISE(LaneDoubles, s - a.h[i]); }
+DC_LANES LaneDoubles operator*(double s, const LaneDoubles& a) { DC_PARTWISE(LaneDoubles, s * a.h[i]); }
 DC_LANES LaneDoubles& operator+=(LaneDoubles& a, const LaneDoubles& b) { return a = a + b; }
-DC_LANES LaneMask operator<(const LaneDoubles& a, double s) { return {{a.h[0] < s, a.h[1] < s}}; }
-DC_LANES LaneMask operator>(const LaneDoubles& a, const LaneDoubles& b) { return {{a.h[0] > b.h[0], a.h[1] > b.h[1]}}; }
+DC_LANES LaneMask operator<(const LaneDoubles& a, double s) { DC_PARTWISE(LaneMask, a.h[i] < s); }
+DC_LANES LaneMask operator>(const LaneDoubles& a, const LaneDoubles& b) { DC_PARTWISE(LaneMask, a.h[i] > b.h[i]); }
 /// m ? a : b, lane by lane.
 DC_LANES LaneDoubles select(const LaneMask& m, const LaneDoubles& a, const LaneDoubles& b) {
-  return {{m.h[0] ? a.h[0] : b.h[0], m.h[1] ? a.h[1] : b.h[1]}};
+  DC_PARTWISE(LaneDoubles, m.h[i] ? a.h[i] : b.h[i]);
 }
 DC_LANES LaneDoubles laneAbs(const LaneDoubles& a) { return select(a < 0.0, -a, a); }
 DC_LANES LaneDoubles laneMax(const LaneDoubles& a, const LaneDoubles& b) { return select(a > b, a, b); }
