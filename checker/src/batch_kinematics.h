@@ -26,8 +26,9 @@ constexpr int kLanes = 8;
 /// eight doubles is lowered badly without AVX-512: scalars spread through memory). Aligned
 /// explicitly: without AVX enabled GCC gives a 32-byte vector type only 16-byte alignment, and
 /// the AVX2 build's aligned loads would then fault. Four, an AVX2 register: the baseline build
-/// then lowers each part through memory (its kinematics take about 8 times as long as AVX2's);
-/// with two, AVX2's take 1.5 times as long and the baseline's 1.7 times (the Panda).
+/// then lowers each part through memory (its kinematics take about 7 times as long as AVX2's on
+/// the bundled arm); with two, AVX2's would take 1.5 times as long and the baseline's 1.7 times
+/// AVX2's with four.
 constexpr int kPartLanes = 4;
 constexpr int kParts = kLanes / kPartLanes;
 using LanePart = double __attribute__((vector_size(kPartLanes * sizeof(double)), aligned(kPartLanes * sizeof(double))));
