@@ -220,30 +220,43 @@ inline std::uint32_t obbApart(const LaneBox& b, const Aabb& box, double boxMag) 
   return apart.bits();
 }
 
-/// Lanes where robot pieces i and j (boxes a and b) are apart along one of their boxes' face
-/// normals (the separating-axis test without the edge products), by tol::kBatchBoundRelative of
-/// their scales (doubles).
+/// Lanes where robot pieces i and j (boxes a and b) are apart along one of the 15 axes of the
+/// separating-axis test (obb.h), by tol::kBatchBoundRelative of their scales (doubles). An
+/// edge-product axis is not normalized: its gap is shrunk by its length (at most 1), so the
+/// margin asks for more there, and nearly parallel edges never separate.
 inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBox& a, const RobotPiece& pb, const LaneBox& b) {
   const LaneDoubles margin = (a.scale + b.scale) * tol::kBatchBoundRelative;
   const LaneDoubles t[3] = {b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]};
-  LaneDoubles C[9];  // |a_i . b_j|
+  LaneDoubles C[9], absC[9];  // a_i . b_j
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      C[3 * i + j] = laneAbs(a.R[i] * b.R[j] + a.R[3 + i] * b.R[3 + j] + a.R[6 + i] * b.R[6 + j]);
+      C[3 * i + j] = a.R[i] * b.R[j] + a.R[3 + i] * b.R[3 + j] + a.R[6 + i] * b.R[6 + j];
+      absC[3 * i + j] = laneAbs(C[3 * i + j]);
     }
   }
   const Eigen::Vector3d& ha = pa.obb_L.half;
   const Eigen::Vector3d& hb = pb.obb_L.half;
+  LaneDoubles ta[3];  // t along a's axes
   LaneMask apart{};
-  for (int i = 0; i < 3; ++i) {  // a's axes
-    const LaneDoubles d = laneAbs(t[0] * a.R[i] + t[1] * a.R[3 + i] + t[2] * a.R[6 + i]);
-    const LaneDoubles reach = ha[i] + C[3 * i] * hb[0] + C[3 * i + 1] * hb[1] + C[3 * i + 2] * hb[2];
+  for (int i = 0; i < 3; ++i) {  // a's face normals
+    ta[i] = t[0] * a.R[i] + t[1] * a.R[3 + i] + t[2] * a.R[6 + i];
+    const LaneDoubles reach = ha[i] + absC[3 * i] * hb[0] + absC[3 * i + 1] * hb[1] + absC[3 * i + 2] * hb[2];
+    apart = apart | (laneAbs(ta[i]) - reach > margin);
+  }
+  for (int j = 0; j < 3; ++j) {  // b's face normals
+    const LaneDoubles d = laneAbs(t[0] * b.R[j] + t[1] * b.R[3 + j] + t[2] * b.R[6 + j]);
+    const LaneDoubles reach = hb[j] + absC[j] * ha[0] + absC[3 + j] * ha[1] + absC[6 + j] * ha[2];
     apart = apart | (d - reach > margin);
   }
-  for (int j = 0; j < 3; ++j) {  // b's axes
-    const LaneDoubles d = laneAbs(t[0] * b.R[j] + t[1] * b.R[3 + j] + t[2] * b.R[6 + j]);
-    const LaneDoubles reach = hb[j] + C[j] * ha[0] + C[3 + j] * ha[1] + C[6 + j] * ha[2];
-    apart = apart | (d - reach > margin);
+  for (int i = 0; i < 3; ++i) {  // a_i x b_j
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const LaneDoubles d = laneAbs(ta[i2] * C[3 * i1 + j] - ta[i1] * C[3 * i2 + j]);
+      const LaneDoubles reach =
+          ha[i1] * absC[3 * i2 + j] + ha[i2] * absC[3 * i1 + j] + hb[j1] * absC[3 * i + j2] + hb[j2] * absC[3 * i + j1];
+      apart = apart | (d - reach > margin);
+    }
   }
   return apart.bits();
 }

@@ -8,8 +8,8 @@
 //     or beyond each of its pieces (the piece's sphere beyond the world piece's box or sphere, or
 //     the piece's oriented box beyond the world box along a world axis);
 //   - every self pair is certified by its grid at the lane's q (as isFree does), or has link
-//     spheres apart, or each of its piece pairs has spheres apart or oriented boxes apart along a
-//     face normal of one of them.
+//     spheres apart, or each of its piece pairs has spheres apart or oriented boxes apart (the
+//     separating-axis test's 15 axes).
 // "Beyond" and "apart" mean by tol::kBatchBoundRelative of the test's scale: more than the
 // tests' rounding, so the pieces really are that far apart (each bound contains its piece), far
 // beyond what isFree's narrow phase could report as touching; isFree then answers free.
