@@ -16,6 +16,10 @@
 namespace deepcheck::checker::detail {
 namespace {
 
+/// The double lanes of each build.
+template <bool kAvx2>
+using LanesOf = std::conditional_t<kAvx2, Avx2Lanes, BaselineLanes>;
+
 /// A world piece's box in floats, and its largest |coordinate| (its part of the test scale).
 struct FloatBox {
   float lo[3], hi[3];
@@ -138,9 +142,10 @@ inline std::uint32_t pointFar(const LaneFloats& p, const LaneFloats& q, double r
 
 /// Float copies of the posed centres with their scales (|c| max norm + radius + chain length).
 /// The eight lanes of d as floats.
-inline void toFloat(const LaneDoubles& d, LaneFloatV& out) {
-  using Part = float __attribute__((vector_size(kPartLanes * sizeof(float))));
-  if constexpr (kParts == 2) {
+template <class L>
+inline void toFloat(const L& d, LaneFloatV& out) {
+  using Part = float __attribute__((vector_size(4 * sizeof(float))));
+  if constexpr (L::kWidth == 4) {
     out = __builtin_shufflevector(__builtin_convertvector(d.h[0], Part), __builtin_convertvector(d.h[1], Part), 0, 1, 2,
                                   3, 4, 5, 6, 7);
   } else {
@@ -148,7 +153,8 @@ inline void toFloat(const LaneDoubles& d, LaneFloatV& out) {
   }
 }
 
-void toFloats(const LanePoint& c, double radius, const LaneDoubles& chain, LaneFloats& f) {
+template <class L>
+void toFloats(const LanePointT<L>& c, double radius, const L& chain, LaneFloats& f) {
   toFloat(c.x, f.x);
   toFloat(c.y, f.y);
   toFloat(c.z, f.z);
@@ -156,8 +162,9 @@ void toFloats(const LanePoint& c, double radius, const LaneDoubles& chain, LaneF
 }
 
 /// The link geometries' centres in floats; a new stamp for the pieces'.
+template <class L>
 void linksToFloats(const RobotData& robot, BatchScratch& sc) {
-  const BatchPoses& poses = sc.poses;
+  const BatchPosesT<L>& poses = sc.poses<L>();
   sc.linkF.resize(robot.links.size());
   for (std::size_t g = 0; g < robot.links.size(); ++g) {
     toFloats(poses.linkCenter[g], robot.links[g].radius, poses.chainLength, sc.linkF[g]);
@@ -166,54 +173,59 @@ void linksToFloats(const RobotData& robot, BatchScratch& sc) {
     sc.pieceStamp.assign(robot.pieces.size(), 0);
     sc.boxStamp.assign(robot.pieces.size(), 0);
     sc.pieceF.resize(robot.pieces.size());
-    sc.pieceBox.resize(robot.pieces.size());
+    sc.boxes<L>().resize(robot.pieces.size());
     sc.stamp = 1;
   }
 }
 
 /// Robot piece i's centre in floats (posed once per batch).
+template <class L>
 inline const LaneFloats& pieceFloats(const RobotData& robot, int i, BatchScratch& sc) {
   if (sc.pieceStamp[i] != sc.stamp) {
     const RobotPiece& p = robot.pieces[i];
-    LanePoint c;
-    posePoint(sc.poses.links[p.link], p.center_L, c);
-    toFloats(c, p.sphereRadius, sc.poses.chainLength, sc.pieceF[i]);
+    const BatchPosesT<L>& poses = sc.poses<L>();
+    LanePointT<L> c;
+    posePoint(poses.links[p.link], p.center_L, c);
+    toFloats(c, p.sphereRadius, poses.chainLength, sc.pieceF[i]);
     sc.pieceStamp[i] = sc.stamp;
   }
   return sc.pieceF[i];
 }
 
 /// Robot piece i's oriented box in the world, every lane (posed once per batch).
-inline const LaneBox& pieceBox(const RobotData& robot, int i, BatchScratch& sc) {
-  LaneBox& b = sc.pieceBox[i];
+template <class L>
+inline const LaneBoxT<L>& pieceBox(const RobotData& robot, int i, BatchScratch& sc) {
+  LaneBoxT<L>& b = sc.boxes<L>()[i];
   if (sc.boxStamp[i] == sc.stamp) return b;
   const RobotPiece& p = robot.pieces[i];
-  const LanePose& X = sc.poses.links[p.link];
-  LanePoint c;
+  const BatchPosesT<L>& poses = sc.poses<L>();
+  const LanePoseT<L>& X = poses.links[p.link];
+  LanePointT<L> c;
   posePoint(X, p.obb_L.center, c);
   b.c[0] = c.x;
   b.c[1] = c.y;
   b.c[2] = c.z;
-  LaneDoubles extents{};
+  L extents{};
   for (int k = 0; k < 3; ++k) {
-    b.e[k] = LaneDoubles{};
+    b.e[k] = L{};
     for (int j = 0; j < 3; ++j) {
-      LaneDoubles& axis = b.R[3 * k + j];
+      L& axis = b.R[3 * k + j];
       axis = X.R[3 * k] * p.obb_L.R(0, j) + X.R[3 * k + 1] * p.obb_L.R(1, j) + X.R[3 * k + 2] * p.obb_L.R(2, j);
       b.e[k] += laneAbs(axis) * p.obb_L.half[j];
     }
     extents += b.e[k];
   }
-  b.scale = laneMax(laneMax(laneAbs(c.x), laneAbs(c.y)), laneAbs(c.z)) + extents + sc.poses.chainLength;
+  b.scale = laneMax(laneMax(laneAbs(c.x), laneAbs(c.y)), laneAbs(c.z)) + extents + poses.chainLength;
   sc.boxStamp[i] = sc.stamp;
   return b;
 }
 
 /// Lanes whose oriented box b lies beyond the world box along a world axis, by
 /// tol::kBatchBoundRelative of the scale (doubles: both builds compute the same bits).
-inline std::uint32_t obbApart(const LaneBox& b, const Aabb& box, double boxMag) {
-  const LaneDoubles margin = (b.scale + boxMag) * tol::kBatchBoundRelative;
-  LaneMask apart{};
+template <class L>
+inline std::uint32_t obbApart(const LaneBoxT<L>& b, const Aabb& box, double boxMag) {
+  const L margin = (b.scale + boxMag) * tol::kBatchBoundRelative;
+  typename L::Mask apart{};
   for (int k = 0; k < 3; ++k) {
     apart = apart | ((b.c[k] - b.e[k]) - box.hi[k] > margin) | (box.lo[k] - (b.c[k] + b.e[k]) > margin);
   }
@@ -224,10 +236,11 @@ inline std::uint32_t obbApart(const LaneBox& b, const Aabb& box, double boxMag) 
 /// separating-axis test (obb.h), by tol::kBatchBoundRelative of their scales (doubles). An
 /// edge-product axis is not normalized: its gap is shrunk by its length (at most 1), so the
 /// margin asks for more there, and nearly parallel edges never separate.
-inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBox& a, const RobotPiece& pb, const LaneBox& b) {
-  const LaneDoubles margin = (a.scale + b.scale) * tol::kBatchBoundRelative;
-  const LaneDoubles t[3] = {b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]};
-  LaneDoubles C[9], absC[9];  // a_i . b_j
+template <class L>
+inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBoxT<L>& a, const RobotPiece& pb, const LaneBoxT<L>& b) {
+  const L margin = (a.scale + b.scale) * tol::kBatchBoundRelative;
+  const L t[3] = {b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]};
+  L C[9], absC[9];  // a_i . b_j
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       C[3 * i + j] = a.R[i] * b.R[j] + a.R[3 + i] * b.R[3 + j] + a.R[6 + i] * b.R[6 + j];
@@ -236,24 +249,24 @@ inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBox& a, const Rob
   }
   const Eigen::Vector3d& ha = pa.obb_L.half;
   const Eigen::Vector3d& hb = pb.obb_L.half;
-  LaneDoubles ta[3];  // t along a's axes
-  LaneMask apart{};
+  L ta[3];  // t along a's axes
+  typename L::Mask apart{};
   for (int i = 0; i < 3; ++i) {  // a's face normals
     ta[i] = t[0] * a.R[i] + t[1] * a.R[3 + i] + t[2] * a.R[6 + i];
-    const LaneDoubles reach = ha[i] + absC[3 * i] * hb[0] + absC[3 * i + 1] * hb[1] + absC[3 * i + 2] * hb[2];
+    const L reach = ha[i] + absC[3 * i] * hb[0] + absC[3 * i + 1] * hb[1] + absC[3 * i + 2] * hb[2];
     apart = apart | (laneAbs(ta[i]) - reach > margin);
   }
   for (int j = 0; j < 3; ++j) {  // b's face normals
-    const LaneDoubles d = laneAbs(t[0] * b.R[j] + t[1] * b.R[3 + j] + t[2] * b.R[6 + j]);
-    const LaneDoubles reach = hb[j] + absC[j] * ha[0] + absC[3 + j] * ha[1] + absC[6 + j] * ha[2];
+    const L d = laneAbs(t[0] * b.R[j] + t[1] * b.R[3 + j] + t[2] * b.R[6 + j]);
+    const L reach = hb[j] + absC[j] * ha[0] + absC[3 + j] * ha[1] + absC[6 + j] * ha[2];
     apart = apart | (d - reach > margin);
   }
   for (int i = 0; i < 3; ++i) {  // a_i x b_j
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const LaneDoubles d = laneAbs(ta[i2] * C[3 * i1 + j] - ta[i1] * C[3 * i2 + j]);
-      const LaneDoubles reach =
+      const L d = laneAbs(ta[i2] * C[3 * i1 + j] - ta[i1] * C[3 * i2 + j]);
+      const L reach =
           ha[i1] * absC[3 * i2 + j] + ha[i2] * absC[3 * i1 + j] + hb[j1] * absC[3 * i + j2] + hb[j2] * absC[3 * i + j1];
       apart = apart | (d - reach > margin);
     }
@@ -271,9 +284,12 @@ inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, 
   for (int i = la.firstPiece; i < la.firstPiece + la.numPieces; ++i) {
     for (int j = lb.firstPiece; j < lb.firstPiece + lb.numPieces; ++j) {
       const double r = robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius;
-      std::uint32_t pairNear = ~pointFar<kAvx2>(pieceFloats(robot, i, sc), pieceFloats(robot, j, sc), r) & open;
+      std::uint32_t pairNear =
+          ~pointFar<kAvx2>(pieceFloats<LanesOf<kAvx2>>(robot, i, sc), pieceFloats<LanesOf<kAvx2>>(robot, j, sc), r) &
+          open;
       if (pairNear != 0) {
-        pairNear &= ~obbsApart(robot.pieces[i], pieceBox(robot, i, sc), robot.pieces[j], pieceBox(robot, j, sc));
+        pairNear &= ~obbsApart(robot.pieces[i], pieceBox<LanesOf<kAvx2>>(robot, i, sc), robot.pieces[j],
+                               pieceBox<LanesOf<kAvx2>>(robot, j, sc));
       }
       near |= pairNear;
       if (near == open) return near;
@@ -285,7 +301,8 @@ inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, 
 /// The box around the spheres (c, radius) of the lanes in `open`, each grown by
 /// tol::kBatchBoundRelative of its scale (in doubles): a world box the broad phase does not find
 /// near it lies beyond every one of those spheres by that much.
-Aabb unionBox(const LanePoint& c, double radius, const LaneDoubles& chain, std::uint32_t open) {
+template <class L>
+Aabb unionBox(const LanePointT<L>& c, double radius, const L& chain, std::uint32_t open) {
   Aabb box;
   for (int l = 0; l < kLanes; ++l) {
     if (!(open >> l & 1u)) continue;
@@ -308,9 +325,9 @@ inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece&
   std::uint32_t near = 0;
   for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
     const double r = robot.pieces[i].sphereRadius;
-    const LaneFloats& p = pieceFloats(robot, i, sc);
+    const LaneFloats& p = pieceFloats<LanesOf<kAvx2>>(robot, i, sc);
     std::uint32_t pieceNear = ~(boxFar<kAvx2>(p, r, b) | pointFar<kAvx2>(p, wc, r + w.sphereRadius)) & open;
-    if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox(robot, i, sc), w.box, b.mag);
+    if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.box, b.mag);
     near |= pieceNear;
     if (near == open) break;
   }
@@ -326,7 +343,8 @@ inline std::uint32_t worldBlocked(const Snapshot& s, PairKey::Kind kind, int g, 
   const RobotData& robot = *s.robot;
   const double radius = robot.links[g].radius;
   std::uint32_t blocked = 0;
-  const Aabb query = unionBox(sc.poses.linkCenter[g], radius, sc.poses.chainLength, open);
+  const BatchPosesT<LanesOf<kAvx2>>& poses = sc.poses<LanesOf<kAvx2>>();
+  const Aabb query = unionBox(poses.linkCenter[g], radius, poses.chainLength, open);
   sc.candidates.clear();
   forEachOverlapping(set, broadPhase, query, [&](int wp) {
     if (!worldPairAllowed(s, kind, g, set.pieces[wp].body)) sc.candidates.push_back(wp);
@@ -365,11 +383,11 @@ inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eig
   const std::uint32_t lanes = (1u << qs.cols()) - 1u;
   std::uint32_t blocked = 0;
   for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
-    if (!sc.poses.finite[l]) blocked |= 1u << l;
+    if (!sc.poses<LanesOf<kAvx2>>().finite[l]) blocked |= 1u << l;
   }
   if (blocked == lanes) return 0;
   const RobotData& robot = *s.robot;
-  linksToFloats(robot, sc);
+  linksToFloats<LanesOf<kAvx2>>(robot, sc);
   for (int g = static_cast<int>(robot.links.size()) - 1; g >= 0; --g) {
     for (PairKey::Kind kind : {PairKey::Kind::Scene, PairKey::Kind::Obstacle}) {
       blocked |= worldBlocked<kAvx2>(s, kind, g, broadPhase, sc, lanes & ~blocked);

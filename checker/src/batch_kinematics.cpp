@@ -25,12 +25,16 @@ using robots::JointType;
 /// library's functions (a NaN stays a NaN).
 constexpr double kSinCosRange = 1048576.0;
 
-/// Lanes whose integer k (LaneDoubles' bits) plus `add` has bit `bit` set.
-DC_INLINE LaneMask bitSet(const LanePartBits (&k)[kParts], std::int64_t add, std::int64_t bit) {
-  DC_PARTWISE(LaneMask, ((k[i] + add) & bit) != 0);
+/// Lanes whose integer k (the doubles' bits) plus `add` has bit `bit` set.
+template <class L>
+DC_INLINE typename L::Mask bitSet(const typename LaneParts<L::kWidth>::Bits (&k)[L::kParts], std::int64_t add,
+                                  std::int64_t bit) {
+  using Mask = typename L::Mask;
+  DC_PARTWISE(Mask, ((k[i] + add) & bit) != 0);
 }
 
-DC_INLINE void sinCosLanes(const LaneDoubles& x, LaneDoubles& sine, LaneDoubles& cosine) {
+template <class L>
+DC_INLINE void sinCosLanes(const L& x, L& sine, L& cosine) {
   constexpr double kTwoOverPi = 0.63661977236758134308;
   constexpr double kHalfPiHigh = 1.5707963267948965579989817342720925807952880859375;
   constexpr double kHalfPi1 = 1.57079632673412561416625976562500;
@@ -44,26 +48,26 @@ DC_INLINE void sinCosLanes(const LaneDoubles& x, LaneDoubles& sine, LaneDoubles&
   // mantissa bits are k in two's complement); no conversion instructions, which AVX2 lacks for
   // 64-bit integers.
   constexpr double kRound = 6755399441055744.0;
-  const LaneMask in = laneAbs(x) < kSinCosRange;  // false for NaN
-  const LaneDoubles xr = select(in, x, LaneDoubles{});
-  const LaneDoubles shifted = xr * kTwoOverPi + kRound;
-  LanePartBits k[kParts];
-  for (int i = 0; i < kParts; ++i) k[i] = reinterpret_cast<LanePartBits>(shifted.h[i]);
-  const LaneDoubles kd = shifted - kRound;
-  const LaneDoubles r = ((xr - kd * kHalfPi1) - kd * kHalfPi2) - kd * kHalfPi3;
-  const LaneDoubles r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
-  const LaneDoubles ps = ((-f3 + f5 * r2) + r4 * (-f7 + f9 * r2)) + r8 * ((-f11 + f13 * r2) + r4 * (-f15 + f17 * r2));
-  const LaneDoubles pc =
-      ((f2 - f4 * r2) + r4 * (f6 - f8 * r2)) + r8 * ((f10 - f12 * r2) + r4 * (f14 - f16 * r2) + r8 * f18);
-  const LaneDoubles s = r + (r * r2) * ps;
-  const LaneDoubles c = 1.0 - r2 * pc;
+  const typename L::Mask in = laneAbs(x) < kSinCosRange;  // false for NaN
+  const L xr = select(in, x, L{});
+  const L shifted = xr * kTwoOverPi + kRound;
+  using Bits = typename LaneParts<L::kWidth>::Bits;
+  Bits k[L::kParts];
+  for (int i = 0; i < L::kParts; ++i) k[i] = reinterpret_cast<Bits>(shifted.h[i]);
+  const L kd = shifted - kRound;
+  const L r = ((xr - kd * kHalfPi1) - kd * kHalfPi2) - kd * kHalfPi3;
+  const L r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
+  const L ps = ((-f3 + f5 * r2) + r4 * (-f7 + f9 * r2)) + r8 * ((-f11 + f13 * r2) + r4 * (-f15 + f17 * r2));
+  const L pc = ((f2 - f4 * r2) + r4 * (f6 - f8 * r2)) + r8 * ((f10 - f12 * r2) + r4 * (f14 - f16 * r2) + r8 * f18);
+  const L s = r + (r * r2) * ps;
+  const L c = 1.0 - r2 * pc;
   // The quadrant k mod 4: odd k swaps sine and cosine; sine is negated for k = 2, 3 and cosine
   // for k = 1, 2.
-  const LaneMask odd = bitSet(k, 0, 1);
-  const LaneDoubles s1 = select(odd, c, s);
-  const LaneDoubles c1 = select(odd, s, c);
-  sine = select(bitSet(k, 0, 2), -s1, s1);
-  cosine = select(bitSet(k, 1, 2), -c1, c1);
+  const typename L::Mask odd = bitSet<L>(k, 0, 1);
+  const L s1 = select(odd, c, s);
+  const L c1 = select(odd, s, c);
+  sine = select(bitSet<L>(k, 0, 2), -s1, s1);
+  cosine = select(bitSet<L>(k, 1, 2), -c1, c1);
   if (in.bits() == (1u << kLanes) - 1u) return;
   for (int l = 0; l < kLanes; ++l) {
     if (!in[l]) {
@@ -74,11 +78,12 @@ DC_INLINE void sinCosLanes(const LaneDoubles& x, LaneDoubles& sine, LaneDoubles&
 }
 
 /// X_WJ = X_WP * X_PJ for every lane.
-DC_INLINE void jointFrame(const LanePose& P, const Joint& joint, LanePose& J) {
+template <class L>
+DC_INLINE void jointFrame(const LanePoseT<L>& P, const Joint& joint, LanePoseT<L>& J) {
   const Eigen::Matrix3d& A = joint.X_PJ.linear();
   const Eigen::Vector3d& b = joint.X_PJ.translation();
   for (int r = 0; r < 3; ++r) {
-    const LaneDoubles p0 = P.R[3 * r], p1 = P.R[3 * r + 1], p2 = P.R[3 * r + 2];
+    const L p0 = P.R[3 * r], p1 = P.R[3 * r + 1], p2 = P.R[3 * r + 2];
     for (int c = 0; c < 3; ++c) J.R[3 * r + c] = p0 * A(0, c) + p1 * A(1, c) + p2 * A(2, c);
     J.t[r] = P.t[r] + p0 * b[0] + p1 * b[1] + p2 * b[2];
   }
@@ -86,24 +91,26 @@ DC_INLINE void jointFrame(const LanePose& P, const Joint& joint, LanePose& J) {
 
 /// R * Rot(k, angle) for the coordinate axis k (sign folded into the sine): column k stays,
 /// columns i = k + 1 and j = k + 2 (cyclic) turn in their plane.
-DC_INLINE void rotateCoordinate(LanePose& X, int k, const LaneDoubles& c, const LaneDoubles& s) {
+template <class L>
+DC_INLINE void rotateCoordinate(LanePoseT<L>& X, int k, const L& c, const L& s) {
   const int i = (k + 1) % 3, j = (k + 2) % 3;
   for (int r = 0; r < 3; ++r) {
-    const LaneDoubles a = X.R[3 * r + i], b = X.R[3 * r + j];
+    const L a = X.R[3 * r + i], b = X.R[3 * r + j];
     X.R[3 * r + i] = c * a + s * b;
     X.R[3 * r + j] = c * b - s * a;
   }
 }
 
 /// R * Rot(axis, angle) for any unit axis a (Rodrigues: c I + s [a]x + (1 - c) a a^T).
-DC_INLINE void rotateAxis(LanePose& X, const Eigen::Vector3d& a, const LaneDoubles& c, const LaneDoubles& s) {
+template <class L>
+DC_INLINE void rotateAxis(LanePoseT<L>& X, const Eigen::Vector3d& a, const L& c, const L& s) {
   // Rot(m, col): c on the diagonal, plus (1 - c) a_m a_col, plus s [a]x(m, col), which is
   // -a_{m+2} one column right of the diagonal and a_{m+1} two columns right (cyclic).
-  LaneDoubles rot[9];
-  const LaneDoubles oneMinusC = 1.0 - c;
+  L rot[9];
+  const L oneMinusC = 1.0 - c;
   for (int m = 0; m < 3; ++m) {
     for (int col = 0; col < 3; ++col) {
-      LaneDoubles v = oneMinusC * (a[m] * a[col]);
+      L v = oneMinusC * (a[m] * a[col]);
       if (m == col) v = v + c;
       const int cross = (col - m + 3) % 3;
       if (cross == 1) v = v - s * a[(m + 2) % 3];
@@ -112,7 +119,7 @@ DC_INLINE void rotateAxis(LanePose& X, const Eigen::Vector3d& a, const LaneDoubl
     }
   }
   for (int r = 0; r < 3; ++r) {
-    const LaneDoubles x0 = X.R[3 * r], x1 = X.R[3 * r + 1], x2 = X.R[3 * r + 2];
+    const L x0 = X.R[3 * r], x1 = X.R[3 * r + 1], x2 = X.R[3 * r + 2];
     for (int col = 0; col < 3; ++col) X.R[3 * r + col] = x0 * rot[col] + x1 * rot[3 + col] + x2 * rot[6 + col];
   }
 }
@@ -130,7 +137,8 @@ int coordinateAxis(const Eigen::Vector3d& axis, double& sign) {
 
 /// The child link's pose of `joint` from X_WJ (in C) for the joint values `value`, every lane;
 /// adds a prismatic joint's travel to `chain`.
-DC_INLINE void jointMotion(const Joint& joint, const LaneDoubles& value, LanePose& C, LaneDoubles& chain) {
+template <class L>
+DC_INLINE void jointMotion(const Joint& joint, const L& value, LanePoseT<L>& C, L& chain) {
   if (joint.type == JointType::Prismatic) {
     const Eigen::Vector3d& a = joint.axis;
     for (int r = 0; r < 3; ++r) C.t[r] += value * (C.R[3 * r] * a[0] + C.R[3 * r + 1] * a[1] + C.R[3 * r + 2] * a[2]);
@@ -139,7 +147,7 @@ DC_INLINE void jointMotion(const Joint& joint, const LaneDoubles& value, LanePos
   }
   double sign = 1.0;
   const int k = coordinateAxis(joint.axis, sign);
-  LaneDoubles s, c;
+  L s, c;
   sinCosLanes(value, s, c);
   if (k >= 0) {
     rotateCoordinate(C, k, c, s * sign);
@@ -150,27 +158,30 @@ DC_INLINE void jointMotion(const Joint& joint, const LaneDoubles& value, LanePos
 
 /// The root's pose in every lane, and the base translation and joint offsets as every chain's
 /// fixed length.
-DC_INLINE void startChains(const robots::RobotModel& model, BatchPoses& out) {
+template <class L>
+DC_INLINE void startChains(const robots::RobotModel& model, BatchPosesT<L>& out) {
   const Eigen::Isometry3d& X_WR = model.basePose();
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) out.links[0].R[3 * r + c] = LaneDoubles::all(X_WR.linear()(r, c));
-    out.links[0].t[r] = LaneDoubles::all(X_WR.translation()[r]);
+    for (int c = 0; c < 3; ++c) out.links[0].R[3 * r + c] = L::all(X_WR.linear()(r, c));
+    out.links[0].t[r] = L::all(X_WR.translation()[r]);
   }
   double length = X_WR.translation().norm();
   for (const Joint& joint : model.joints()) length += joint.X_PJ.translation().norm();
-  out.chainLength = LaneDoubles::all(length);
+  out.chainLength = L::all(length);
 }
 
 /// Lane l: q finite and every link translation finite (0 * x is 0 for finite x, NaN otherwise).
-DC_INLINE void markFinite(BatchPoses& out) {
-  LaneDoubles zero{};
-  for (const LaneDoubles& q : out.laneQ) zero += q * 0.0;
-  for (const LanePose& X : out.links) zero += (X.t[0] + X.t[1] + X.t[2]) * 0.0;
+template <class L>
+DC_INLINE void markFinite(BatchPosesT<L>& out) {
+  L zero{};
+  for (const L& q : out.laneQ) zero += q * 0.0;
+  for (const LanePoseT<L>& X : out.links) zero += (X.t[0] + X.t[1] + X.t[2]) * 0.0;
   for (int l = 0; l < kLanes; ++l) out.finite[l] = zero[l] == 0.0;
 }
 
 /// The lanes' values of every variable, columns from qs.cols() on repeating the last one.
-DC_INLINE void laneValues(const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
+template <class L>
+DC_INLINE void laneValues(const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPosesT<L>& out) {
   const int n = static_cast<int>(qs.cols());
   for (Eigen::Index v = 0; v < qs.rows(); ++v) {
     double values[kLanes];  // filled as doubles, then copied whole (a lane written into a
@@ -180,15 +191,16 @@ DC_INLINE void laneValues(const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPose
   }
 }
 
-DC_INLINE void poseAll(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
+template <class L>
+DC_INLINE void poseAll(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPosesT<L>& out) {
   const robots::RobotModel& model = robot.model;
   laneValues(qs, out);
   startChains(model, out);
   for (const Joint& joint : model.joints()) {
-    LanePose& C = out.links[joint.childLink];
+    LanePoseT<L>& C = out.links[joint.childLink];
     jointFrame(out.links[joint.parentLink], joint, C);
     if (joint.type == JointType::Fixed) continue;
-    const LaneDoubles value = out.laneQ[joint.variable] * joint.multiplier + joint.offset;
+    const L value = out.laneQ[joint.variable] * joint.multiplier + joint.offset;
     jointMotion(joint, value, C, out.chainLength);
   }
   for (std::size_t g = 0; g < robot.links.size(); ++g) {
@@ -198,12 +210,20 @@ DC_INLINE void poseAll(const RobotData& robot, const Eigen::Ref<const Eigen::Mat
 }
 
 __attribute__((target("avx2"))) void poseAllAvx2(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs,
-                                                 BatchPoses& out) {
+                                                 BatchPosesT<Avx2Lanes>& out) {
   poseAll(robot, qs, out);
 }
 
-void poseAllBaseline(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPoses& out) {
+void poseAllBaseline(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                     BatchPosesT<BaselineLanes>& out) {
   poseAll(robot, qs, out);
+}
+
+template <class L>
+void resize(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchPosesT<L>& out) {
+  out.links.resize(robot.model.numLinks());
+  out.linkCenter.resize(robot.links.size());
+  out.laneQ.resize(qs.rows());
 }
 
 }  // namespace
@@ -213,16 +233,16 @@ bool batchAvx2Available() {
   return available;
 }
 
-void batchForwardKinematics(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs, bool avx2,
-                            BatchPoses& out) {
-  out.links.resize(robot.model.numLinks());
-  out.linkCenter.resize(robot.links.size());
-  out.laneQ.resize(qs.rows());
-  if (avx2) {
-    poseAllAvx2(robot, qs, out);
-  } else {
-    poseAllBaseline(robot, qs, out);
-  }
+void batchForwardKinematics(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                            BatchPosesT<Avx2Lanes>& out) {
+  resize(robot, qs, out);
+  poseAllAvx2(robot, qs, out);
+}
+
+void batchForwardKinematics(const RobotData& robot, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                            BatchPosesT<BaselineLanes>& out) {
+  resize(robot, qs, out);
+  poseAllBaseline(robot, qs, out);
 }
 
 }  // namespace deepcheck::checker::detail

@@ -40,7 +40,11 @@ void World::isFreeBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* free,
   Impl& c = *context.impl_;
   const Snapshot& s = prepareBatch(*state_, c, qs);
   const bool avx2 = batchAvx2Available() && !state_->batchBaseline.load(std::memory_order_relaxed);
-  batchForwardKinematics(*s.robot, qs, avx2, c.batch->poses);
+  if (avx2) {
+    batchForwardKinematics(*s.robot, qs, c.batch->avx2Poses);
+  } else {
+    batchForwardKinematics(*s.robot, qs, c.batch->baselinePoses);
+  }
   const std::uint32_t certified = batchCertifiedLanes(s, state_->options.broadPhase, qs, avx2, *c.batch);
   const auto count = std::bitset<kLanes>(certified).count();
   c.stats.queries += count;
