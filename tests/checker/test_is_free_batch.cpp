@@ -249,6 +249,21 @@ BOOST_AUTO_TEST_CASE(arm_obstacles_and_attached_object_batches_answer_as_is_free
   BOOST_TEST(t.certified > 100u);
 }
 
+BOOST_AUTO_TEST_CASE(every_joint_kind_batches_answer_as_is_free) {
+  // Skew revolute and prismatic axes, a mimic joint, a fixed joint and a rotated base, among
+  // obstacles: the batch's own kinematics feed the bound stage.
+  robots::RobotModel model = everyJointRobot();
+  Eigen::Isometry3d base = translation(0.1, -0.1, 0.0);
+  base.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(0, 0, 1)).toRotationMatrix();
+  model.setBasePose(base);
+  World world(model, testWorldOptions());
+  world.addObstacle(Obstacle::box("wall", Eigen::Vector3d(0.1, 1.0, 1.0), translation(0.6, 0.0, 0.3)));
+  world.addObstacle(Obstacle::sphere("ball", 0.15, translation(-0.3, 0.4, 0.3)));
+  const Tally t = compareBothBuilds(world, configurations(world.robot(), 2000, 150, 60, 59));
+  BOOST_TEST(t.colliding > 100);
+  BOOST_TEST(t.certified > 100u);
+}
+
 BOOST_AUTO_TEST_CASE(without_a_broad_phase_batches_answer_as_is_free) {
   World world = armWorld(BroadPhase::None);
   world.addScene(bundledShelf());
