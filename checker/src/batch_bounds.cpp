@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace deepcheck::checker::detail {
 namespace {
@@ -303,13 +304,24 @@ inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, 
 /// near it lies beyond every one of those spheres by that much.
 template <class L>
 Aabb unionBox(const LanePointT<L>& c, double radius, const L& chain, std::uint32_t open) {
+  const L r =
+      radius + (laneMax(laneMax(laneAbs(c.x), laneAbs(c.y)), laneAbs(c.z)) + radius + chain) * tol::kBatchBoundRelative;
+  const L* centre[3] = {&c.x, &c.y, &c.z};
   Aabb box;
-  for (int l = 0; l < kLanes; ++l) {
-    if (!(open >> l & 1u)) continue;
-    const Eigen::Vector3d p(c.x[l], c.y[l], c.z[l]);
-    const double r = radius + tol::kBatchBoundRelative * (p.cwiseAbs().maxCoeff() + radius + chain[l]);
-    box.lo = box.lo.cwiseMin((p.array() - r).matrix());
-    box.hi = box.hi.cwiseMax((p.array() + r).matrix());
+  for (int k = 0; k < 3; ++k) {
+    const L loLanes = *centre[k] - r;
+    const L hiLanes = *centre[k] + r;
+    double lo[kLanes], hi[kLanes];  // read as doubles (lanes taken out one by one go through memory)
+    std::memcpy(lo, &loLanes, sizeof lo);
+    std::memcpy(hi, &hiLanes, sizeof hi);
+    double low = box.lo[k], high = box.hi[k];
+    for (int l = 0; l < kLanes; ++l) {
+      const bool in = (open >> l & 1u) != 0;
+      low = std::min(low, in ? lo[l] : low);
+      high = std::max(high, in ? hi[l] : high);
+    }
+    box.lo[k] = low;
+    box.hi[k] = high;
   }
   return box;
 }
