@@ -16,7 +16,12 @@
 // Timing: per-query steady_clock times; each set is timed in 3 rounds and the round with the
 // lowest median is kept (the machine is shared; other processes only add time).
 // Output: a table on stdout and bench/results/checker_bench.csv.
-// Usage: checker_bench [--quick] [--isfree] [--repeat N] [--world W]
+// --batch: isFreeBatch (8 configurations per call; its AVX2 build where the processor has it, and
+// its baseline build) against 8 isFree calls on the same states, per state: on the random set in
+// batches of 8, and on 8 states spread along straight motions between two random free
+// configurations (a planner's motion check); a table on stdout and
+// bench/results/checker_bench_batch.csv.
+// Usage: checker_bench [--quick] [--isfree | --batch] [--repeat N] [--world W]
 //   --quick     1,000 random configurations and 30 motions instead of 10,000 and 300;
 //   --isfree    only the empty call, forward kinematics and isFree (ours and FCL's); the CSV is
 //               not written;
@@ -25,6 +30,9 @@
 //   --world W   only the world named W (panda-shelf, panda-kitchen, arm-shelf).
 
 #include "format.h"
+
+#include "batch_kinematics.h"
+#include "world_internal.h"
 
 #include "deepcheck/fcl_reference/fcl_backend.h"
 #include "deepcheck/fcl_reference/fcl_broad_phase.h"
@@ -176,6 +184,7 @@ struct RunOptions {
   int samples = 10000;
   int motions = 300;
   bool isFreeOnly = false;
+  bool batch = false;
   int repeat = 0;
   std::string world;  ///< only this world when not empty
 };
@@ -344,6 +353,158 @@ void agreement(BenchWorld& b) {
   rows.push_back({b.spec.name, "agreement", "random", "deepcheck vs fcl-mesh", 0, 0, 0, b.random.size(), note});
 }
 
+// --- --batch --------------------------------------------------------------------------------
+
+struct BatchRow {
+  std::string world, set, method;
+  double median = 0, p90 = 0, mean = 0;  ///< ns per state (a batch's time / 8)
+  std::size_t batches = 0;
+  double certifiedPercent = 0;  ///< isFreeBatch: states its bound stage certified free
+  double freePercent = 0;
+};
+
+std::vector<BatchRow> batchRows;
+
+/// `motions` straight motions between two random free configurations, 8 states spread along
+/// each ((k + 0.5) / 8 of the way, k = 0..7), one matrix per motion.
+std::vector<Eigen::MatrixXd> motionBatches(const checker::World& world, int motions, std::mt19937& rng) {
+  const robots::RobotModel& m = world.robot();
+  auto freeConfiguration = [&] {
+    for (;;) {
+      Eigen::VectorXd q = randomConfiguration(m, rng);
+      if (world.isFree(q)) return q;
+    }
+  };
+  std::vector<Eigen::MatrixXd> out;
+  for (int k = 0; k < motions; ++k) {
+    const Eigen::VectorXd a = freeConfiguration();
+    const Eigen::VectorXd b = freeConfiguration();
+    Eigen::MatrixXd qs(m.numVariables(), 8);
+    for (int s = 0; s < 8; ++s) qs.col(s) = a + (s + 0.5) / 8.0 * (b - a);
+    out.push_back(std::move(qs));
+  }
+  return out;
+}
+
+/// The random set in matrices of 8 columns.
+std::vector<Eigen::MatrixXd> randomBatches(const std::vector<Eigen::VectorXd>& qs) {
+  std::vector<Eigen::MatrixXd> out;
+  for (std::size_t first = 0; first + 8 <= qs.size(); first += 8) {
+    Eigen::MatrixXd m(qs[first].size(), 8);
+    for (int l = 0; l < 8; ++l) m.col(l) = qs[first + l];
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+/// Nanoseconds per state of `check` (one batch of 8 per call, writing 8 answers), best of kRounds
+/// rounds by median; the answers of the last round in `answers`.
+template <class F>
+std::vector<double> timeBatches(const std::vector<Eigen::MatrixXd>& batches, std::vector<char>& answers, F&& check) {
+  std::vector<double> best;
+  answers.assign(batches.size() * 8, 0);
+  for (int round = 0; round < kRounds; ++round) {
+    std::vector<double> ns;
+    ns.reserve(batches.size());
+    for (std::size_t i = 0; i < batches.size(); ++i) {
+      bool free[8];
+      const auto t0 = Clock::now();
+      check(batches[i], free);
+      ns.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / 8.0);
+      for (int l = 0; l < 8; ++l) answers[i * 8 + l] = free[l];
+    }
+    if (best.empty() || percentile(ns, 0.5) < percentile(best, 0.5)) best = std::move(ns);
+  }
+  return best;
+}
+
+void addBatchRow(const BenchWorld& b, const std::string& set, const std::string& method, const std::vector<double>& ns,
+                 const std::vector<char>& answers, double certifiedPercent) {
+  const double freePercent = 100.0 * std::count(answers.begin(), answers.end(), 1) / answers.size();
+  batchRows.push_back({b.spec.name, set, method, percentile(ns, 0.5), percentile(ns, 0.9), bench::mean(ns), ns.size(),
+                       certifiedPercent, freePercent});
+  const BatchRow& r = batchRows.back();
+  std::printf("  %-8s %-26s per state: median %7.1f ns  p90 %7.1f ns  mean %7.1f ns  free %5.1f %%", set.c_str(),
+              method.c_str(), r.median, r.p90, r.mean, r.freePercent);
+  if (certifiedPercent >= 0) std::printf("  certified by the bound stage %5.1f %%", certifiedPercent);
+  std::printf("\n");
+}
+
+/// Forward kinematics alone: 8 robots::forwardKinematics calls against the batch's (its floor).
+void timeBatchKinematics(const BenchWorld& b, const std::vector<Eigen::MatrixXd>& batches) {
+  std::vector<char> unused;
+  std::vector<Eigen::Isometry3d> X_WL;
+  addBatchRow(b, "random", "8 x forwardKinematics",
+              timeBatches(batches, unused,
+                          [&](const Eigen::MatrixXd& qs, bool* free) {
+                            for (int l = 0; l < 8; ++l) robots::forwardKinematics(b.world.robot(), qs.col(l), X_WL);
+                            std::fill(free, free + 8, false);
+                          }),
+              unused, -1);
+  const checker::detail::RobotData& robot = *b.world.internalState()->robot;
+  if (checker::detail::batchAvx2Available()) {
+    checker::detail::BatchPosesT<checker::detail::Avx2Lanes> poses;
+    addBatchRow(b, "random", "batch kinematics (AVX2)",
+                timeBatches(batches, unused,
+                            [&](const Eigen::MatrixXd& qs, bool* free) {
+                              checker::detail::batchForwardKinematics(robot, qs, poses);
+                              std::fill(free, free + 8, false);
+                            }),
+                unused, -1);
+  }
+  checker::detail::BatchPosesT<checker::detail::BaselineLanes> poses;
+  addBatchRow(b, "random", "batch kinematics (baseline)",
+              timeBatches(batches, unused,
+                          [&](const Eigen::MatrixXd& qs, bool* free) {
+                            checker::detail::batchForwardKinematics(robot, qs, poses);
+                            std::fill(free, free + 8, false);
+                          }),
+              unused, -1);
+}
+
+/// isFreeBatch (AVX2 and baseline builds) against 8 isFree calls, on the random set and on
+/// `motions` motions of 8 states; every answer compared.
+void timeBatch(BenchWorld& b, int motions, std::mt19937& rng) {
+  const std::vector<std::pair<std::string, std::vector<Eigen::MatrixXd>>> sets = {
+      {"random", randomBatches(b.random)}, {"motion8", motionBatches(b.world, motions, rng)}};
+  std::atomic<bool>& baseline = b.world.internalState()->batchBaseline;
+  timeBatchKinematics(b, sets.front().second);
+  for (const auto& [setName, batches] : sets) {
+    std::vector<char> reference, answers;
+    auto scalarContext = b.world.makeContext();
+    const std::vector<double> scalar = timeBatches(batches, reference, [&](const Eigen::MatrixXd& qs, bool* free) {
+      for (int l = 0; l < 8; ++l) free[l] = b.world.isFree(qs.col(l), scalarContext);
+    });
+    addBatchRow(b, setName, "8 x isFree", scalar, reference, -1);
+    for (bool useBaseline : {false, true}) {
+      if (!useBaseline && !checker::detail::batchAvx2Available()) continue;
+      baseline = useBaseline;
+      auto context = b.world.makeContext();
+      const std::vector<double> ns = timeBatches(
+          batches, answers, [&](const Eigen::MatrixXd& qs, bool* free) { b.world.isFreeBatch(qs, free, context); });
+      const checker::QueryStats& st = context.stats();
+      const double certified = 100.0 * st.batchCertified / (kRounds * batches.size() * 8.0);
+      addBatchRow(b, setName, useBaseline ? "isFreeBatch (baseline)" : "isFreeBatch (AVX2)", ns, answers, certified);
+      if (answers != reference) std::printf("  ERROR: isFreeBatch and isFree disagree\n");
+    }
+    baseline = false;
+  }
+}
+
+void writeBatchCsv() {
+  const std::string dir = DEEPCHECK_BENCH_RESULTS_DIR;
+  std::filesystem::create_directories(dir);
+  std::ofstream csv(dir + "/checker_bench_batch.csv");
+  csv << "world,set,method,median_ns_per_state,p90_ns_per_state,mean_ns_per_state,batches,certified_percent,"
+         "free_percent\n";
+  for (const BatchRow& r : batchRows) {
+    csv << r.world << ',' << r.set << ',' << r.method << ',' << r.median << ',' << r.p90 << ',' << r.mean << ','
+        << r.batches << ',' << (r.certifiedPercent >= 0 ? std::to_string(r.certifiedPercent) : "") << ','
+        << r.freePercent << '\n';
+  }
+  std::printf("wrote %s/checker_bench_batch.csv\n", dir.c_str());
+}
+
 void runWorld(const WorldSpec& spec, const RunOptions& run) {
   const robots::LoadOptions load = loadOptions(spec);
   robots::RobotModel robot = robots::RobotModel::fromUrdfFile(spec.robot, load);
@@ -361,6 +522,10 @@ void runWorld(const WorldSpec& spec, const RunOptions& run) {
   for (int i = 0; i < run.samples; ++i) b.random.push_back(randomConfiguration(b.world.robot(), rng));
   b.motion = shortMotions(b.world.robot(), run.motions, rng);
 
+  if (run.batch) {
+    timeBatch(b, run.samples / 8, rng);
+    return;
+  }
   timeIsFree(b);
   if (run.isFreeOnly) {
     isFreeWork(b, run.repeat);
@@ -385,12 +550,14 @@ int main(int argc, char** argv) {
       run.motions = 30;
     } else if (arg == "--isfree") {
       run.isFreeOnly = true;
+    } else if (arg == "--batch") {
+      run.batch = true;
     } else if (arg == "--repeat" && i + 1 < argc) {
       run.repeat = std::stoi(argv[++i]);
     } else if (arg == "--world" && i + 1 < argc) {
       run.world = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: checker_bench [--quick] [--isfree] [--repeat N] [--world NAME]\n");
+      std::fprintf(stderr, "usage: checker_bench [--quick] [--isfree | --batch] [--repeat N] [--world NAME]\n");
       return 2;
     }
   }
@@ -422,6 +589,10 @@ int main(int argc, char** argv) {
     if (run.world.empty() || run.world == w.name) runWorld(w, run);
   }
   if (run.isFreeOnly) return 0;
+  if (run.batch) {
+    writeBatchCsv();
+    return 0;
+  }
 
   const std::string dir = DEEPCHECK_BENCH_RESULTS_DIR;
   std::filesystem::create_directories(dir);

@@ -165,6 +165,10 @@ World::Context& threadContext(const World& world, const std::shared_ptr<WorldSta
 
 bool World::isFree(const Eigen::Ref<const Eigen::VectorXd>& q) const { return isFree(q, threadContext(*this, state_)); }
 
+void World::isFreeBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* free) const {
+  isFreeBatch(qs, free, threadContext(*this, state_));
+}
+
 bool World::isClear(const Eigen::Ref<const Eigen::VectorXd>& q, const ClearanceDemand& demand) const {
   return isClear(q, threadContext(*this, state_), demand);
 }

@@ -209,6 +209,9 @@ struct WorldState {
   /// When set, called before every narrow-phase call of every query (an observer of which pairs
   /// get there; set it while no query runs).
   std::function<void(const NarrowPhaseEvent&)> onNarrowPhase;
+  /// isFreeBatch runs its baseline lane loops even where AVX2 is available (set by tests, to
+  /// compare the two; the answers are the same).
+  std::atomic<bool> batchBaseline{false};
 
   std::shared_ptr<const Snapshot> snapshot() const {
     std::lock_guard<std::mutex> lock(mutex);

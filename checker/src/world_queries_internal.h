@@ -15,6 +15,7 @@
 
 #include "deepcheck/checker/world.h"
 
+#include "batch_bounds.h"
 #include "world_internal.h"
 
 #include <algorithm>
@@ -85,6 +86,7 @@ struct World::Context::Impl {
   std::vector<detail::Candidate> candidates;
   Eigen::Matrix3Xd J_A, J_B;
   QueryStats stats;
+  std::unique_ptr<detail::BatchScratch> batch;  // isFreeBatch's, made by its first call
 };
 
 namespace detail {

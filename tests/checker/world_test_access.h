@@ -55,4 +55,8 @@ inline void disableCentroidTest(World& world) {
   detail::publish(st, snap);
 }
 
+/// isFreeBatch's bound stage and batch kinematics in their baseline build (true) or in AVX2
+/// where the processor has it (false, the default).
+inline void forceBatchBaseline(const World& world, bool on) { world.internalState()->batchBaseline = on; }
+
 }  // namespace deepcheck::checker::test

@@ -221,6 +221,8 @@ struct QueryStats {
                                       ///< (geometry::enclosesOrigin)
   std::uint64_t fullDepth = 0;        ///< signedDistance: overlapping pairs whose one-walk depth
                                       ///< could beat the best, measured again with all restarts
+  std::uint64_t batchCertified = 0;   ///< isFreeBatch: configurations its bound stage certified
+                                      ///< free (counted in queries, no isFree call)
 };
 
 /// How a World is built.
@@ -401,6 +403,17 @@ class World {
   /// True when no allowed pair overlaps (touching counts as overlap). Stops at the first overlap.
   bool isFree(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context) const;
   bool isFree(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+
+  /// isFree of each column of qs (the robot's variables x n, 1 <= n <= 8) into free[0 .. n):
+  /// always free[i] == isFree(qs.col(i)). Forward kinematics of all columns at once, then a bound
+  /// stage across them (AVX2 when the processor has it): a configuration whose bounding volumes
+  /// (link and piece spheres, piece oriented boxes) are apart from everything they are checked
+  /// against, by a margin that covers the rounding (tol::kBatchBoundRelative), is free; every
+  /// other is answered by isFree (world_batch.cpp). Throws std::invalid_argument naming the sizes for a qs of the wrong
+  /// shape, and as isFree for a configuration isFree throws for (the columns before it are
+  /// answered then).
+  void isFreeBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* free, Context& context) const;
+  void isFreeBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* free) const;
 
   /// True when every checked pair is farther apart than `demand` asks (strictly): isFree with each
   /// robot piece grown by its pair's demand, at the same cost. All demands 0 is isFree. Throws

@@ -1,0 +1,434 @@
+// The bound stage of World::isFreeBatch (batch_bounds.h): link spheres, then piece spheres and
+// oriented boxes, against the world pieces the broad phase finds near the union of the lanes'
+// link spheres, then the self pairs likewise; a lane stays certified while every test finds it
+// apart. certifyAvx2 is flattened (every call in it inlined), so the helpers shared with the
+// baseline build are compiled for AVX2 there.
+
+#include "batch_bounds.h"
+
+#include "world_queries_internal.h"
+
+#include <immintrin.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace deepcheck::checker::detail {
+namespace {
+
+/// The double lanes of each build.
+template <bool kAvx2>
+using LanesOf = std::conditional_t<kAvx2, Avx2Lanes, BaselineLanes>;
+
+/// A world piece's box in floats, and its largest |coordinate| (its part of the test scale).
+struct FloatBox {
+  float lo[3], hi[3];
+  float mag;
+};
+
+FloatBox floatBox(const Aabb& box) {
+  FloatBox b;
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = static_cast<float>(box.lo[k]);
+    b.hi[k] = static_cast<float>(box.hi[k]);
+  }
+  b.mag = static_cast<float>(std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff()));
+  return b;
+}
+
+/// A point in every lane with its scale (a world piece's sphere centre).
+void broadcast(const Eigen::Vector3d& p, double radius, LaneFloats& f) {
+  f.x = LaneFloatV{} + static_cast<float>(p.x());
+  f.y = LaneFloatV{} + static_cast<float>(p.y());
+  f.z = LaneFloatV{} + static_cast<float>(p.z());
+  f.scale = LaneFloatV{} + static_cast<float>(p.cwiseAbs().maxCoeff() + radius);
+}
+
+// --- the two tests, baseline and AVX2 -------------------------------------------------------
+// Each is: far when d2 > rho^2, rho = radius + k (scale terms), d2 the squared distance, every
+// operation rounded to float in the same order in both versions (max(a, b) is a > b ? a : b, as
+// _mm256_max_ps).
+
+inline float outside(float lo, float hi, float x) {
+  const float a = lo - x;
+  const float b = x - hi;
+  const float m = a > b ? a : b;
+  return m > 0.0f ? m : 0.0f;
+}
+
+/// Lanes whose sphere (p, r) lies beyond the box.
+inline std::uint32_t boxFarBaseline(const LaneFloats& p, float r, const FloatBox& b, float k) {
+  std::uint32_t far = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    const float ex = outside(b.lo[0], b.hi[0], p.x[l]);
+    const float ey = outside(b.lo[1], b.hi[1], p.y[l]);
+    const float ez = outside(b.lo[2], b.hi[2], p.z[l]);
+    const float d2 = (ex * ex + ey * ey) + ez * ez;
+    const float rho = r + k * (p.scale[l] + b.mag);
+    far |= static_cast<std::uint32_t>(d2 > rho * rho) << l;
+  }
+  return far;
+}
+
+/// Lanes whose spheres (p, .) and (q, .) with radii summing to r are apart.
+inline std::uint32_t pointFarBaseline(const LaneFloats& p, const LaneFloats& q, float r, float k) {
+  std::uint32_t far = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    const float dx = p.x[l] - q.x[l];
+    const float dy = p.y[l] - q.y[l];
+    const float dz = p.z[l] - q.z[l];
+    const float d2 = (dx * dx + dy * dy) + dz * dz;
+    const float rho = r + k * (p.scale[l] + q.scale[l]);
+    far |= static_cast<std::uint32_t>(d2 > rho * rho) << l;
+  }
+  return far;
+}
+
+// The AVX2 versions, inlined into certifyAvx2.
+#define DC_AVX2 __attribute__((target("avx2"))) inline
+
+DC_AVX2 __m256 outsideAvx2(float lo, float hi, __m256 x) {
+  const __m256 m = _mm256_max_ps(_mm256_sub_ps(_mm256_set1_ps(lo), x), _mm256_sub_ps(x, _mm256_set1_ps(hi)));
+  return _mm256_max_ps(m, _mm256_setzero_ps());
+}
+
+DC_AVX2 std::uint32_t farMask(__m256 d2, __m256 rho) {
+  return static_cast<std::uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(d2, _mm256_mul_ps(rho, rho), _CMP_GT_OQ)));
+}
+
+DC_AVX2 __m256 squaredNorm(__m256 x, __m256 y, __m256 z) {
+  return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x, x), _mm256_mul_ps(y, y)), _mm256_mul_ps(z, z));
+}
+
+DC_AVX2 std::uint32_t boxFarAvx2(const LaneFloats& p, float r, const FloatBox& b, float k) {
+  const __m256 ex = outsideAvx2(b.lo[0], b.hi[0], p.x);
+  const __m256 ey = outsideAvx2(b.lo[1], b.hi[1], p.y);
+  const __m256 ez = outsideAvx2(b.lo[2], b.hi[2], p.z);
+  const __m256 scale = _mm256_add_ps(p.scale, _mm256_set1_ps(b.mag));
+  const __m256 rho = _mm256_add_ps(_mm256_set1_ps(r), _mm256_mul_ps(_mm256_set1_ps(k), scale));
+  return farMask(squaredNorm(ex, ey, ez), rho);
+}
+
+DC_AVX2 std::uint32_t pointFarAvx2(const LaneFloats& p, const LaneFloats& q, float r, float k) {
+  const __m256 dx = _mm256_sub_ps(p.x, q.x);
+  const __m256 dy = _mm256_sub_ps(p.y, q.y);
+  const __m256 dz = _mm256_sub_ps(p.z, q.z);
+  const __m256 scale = _mm256_add_ps(p.scale, q.scale);
+  const __m256 rho = _mm256_add_ps(_mm256_set1_ps(r), _mm256_mul_ps(_mm256_set1_ps(k), scale));
+  return farMask(squaredNorm(dx, dy, dz), rho);
+}
+
+template <bool kAvx2>
+inline std::uint32_t boxFar(const LaneFloats& p, double r, const FloatBox& b) {
+  const float k = static_cast<float>(tol::kBatchBoundRelative);
+  if constexpr (kAvx2) {
+    return boxFarAvx2(p, static_cast<float>(r), b, k);
+  } else {
+    return boxFarBaseline(p, static_cast<float>(r), b, k);
+  }
+}
+
+template <bool kAvx2>
+inline std::uint32_t pointFar(const LaneFloats& p, const LaneFloats& q, double r) {
+  const float k = static_cast<float>(tol::kBatchBoundRelative);
+  if constexpr (kAvx2) {
+    return pointFarAvx2(p, q, static_cast<float>(r), k);
+  } else {
+    return pointFarBaseline(p, q, static_cast<float>(r), k);
+  }
+}
+
+// --- the traversal --------------------------------------------------------------------------
+
+/// Float copies of the posed centres with their scales (|c| max norm + radius + chain length).
+/// The eight lanes of d as floats.
+template <class L>
+inline void toFloat(const L& d, LaneFloatV& out) {
+  using Part = float __attribute__((vector_size(4 * sizeof(float))));
+  if constexpr (L::kWidth == 4) {
+    out = __builtin_shufflevector(__builtin_convertvector(d.h[0], Part), __builtin_convertvector(d.h[1], Part), 0, 1, 2,
+                                  3, 4, 5, 6, 7);
+  } else {
+    for (int l = 0; l < kLanes; ++l) out[l] = static_cast<float>(d[l]);
+  }
+}
+
+template <class L>
+void toFloats(const LanePointT<L>& c, double radius, const L& chain, LaneFloats& f) {
+  toFloat(c.x, f.x);
+  toFloat(c.y, f.y);
+  toFloat(c.z, f.z);
+  toFloat(laneMax(laneMax(laneAbs(c.x), laneAbs(c.y)), laneAbs(c.z)) + radius + chain, f.scale);
+}
+
+/// The link geometries' centres in floats; a new stamp for the pieces'.
+template <class L>
+void linksToFloats(const RobotData& robot, BatchScratch& sc) {
+  const BatchPosesT<L>& poses = sc.poses<L>();
+  sc.linkF.resize(robot.links.size());
+  for (std::size_t g = 0; g < robot.links.size(); ++g) {
+    toFloats(poses.linkCenter[g], robot.links[g].radius, poses.chainLength, sc.linkF[g]);
+  }
+  if (sc.pieceStamp.size() != robot.pieces.size() || ++sc.stamp == 0) {
+    sc.pieceStamp.assign(robot.pieces.size(), 0);
+    sc.boxStamp.assign(robot.pieces.size(), 0);
+    sc.pieceF.resize(robot.pieces.size());
+    sc.boxes<L>().resize(robot.pieces.size());
+    sc.stamp = 1;
+  }
+}
+
+/// Robot piece i's centre in floats (posed once per batch).
+template <class L>
+inline const LaneFloats& pieceFloats(const RobotData& robot, int i, BatchScratch& sc) {
+  if (sc.pieceStamp[i] != sc.stamp) {
+    const RobotPiece& p = robot.pieces[i];
+    const BatchPosesT<L>& poses = sc.poses<L>();
+    LanePointT<L> c;
+    posePoint(poses.links[p.link], p.center_L, c);
+    toFloats(c, p.sphereRadius, poses.chainLength, sc.pieceF[i]);
+    sc.pieceStamp[i] = sc.stamp;
+  }
+  return sc.pieceF[i];
+}
+
+/// Robot piece i's oriented box in the world, every lane (posed once per batch).
+template <class L>
+inline const LaneBoxT<L>& pieceBox(const RobotData& robot, int i, BatchScratch& sc) {
+  LaneBoxT<L>& b = sc.boxes<L>()[i];
+  if (sc.boxStamp[i] == sc.stamp) return b;
+  const RobotPiece& p = robot.pieces[i];
+  const BatchPosesT<L>& poses = sc.poses<L>();
+  const LanePoseT<L>& X = poses.links[p.link];
+  LanePointT<L> c;
+  posePoint(X, p.obb_L.center, c);
+  b.c[0] = c.x;
+  b.c[1] = c.y;
+  b.c[2] = c.z;
+  L extents{};
+  for (int k = 0; k < 3; ++k) {
+    b.e[k] = L{};
+    for (int j = 0; j < 3; ++j) {
+      L& axis = b.R[3 * k + j];
+      axis = X.R[3 * k] * p.obb_L.R(0, j) + X.R[3 * k + 1] * p.obb_L.R(1, j) + X.R[3 * k + 2] * p.obb_L.R(2, j);
+      b.e[k] += laneAbs(axis) * p.obb_L.half[j];
+    }
+    extents += b.e[k];
+  }
+  b.scale = laneMax(laneMax(laneAbs(c.x), laneAbs(c.y)), laneAbs(c.z)) + extents + poses.chainLength;
+  sc.boxStamp[i] = sc.stamp;
+  return b;
+}
+
+/// Lanes whose oriented box b lies beyond the world box along a world axis, by
+/// tol::kBatchBoundRelative of the scale (doubles: both builds compute the same bits).
+template <class L>
+inline std::uint32_t obbApart(const LaneBoxT<L>& b, const Aabb& box, double boxMag) {
+  const L margin = (b.scale + boxMag) * tol::kBatchBoundRelative;
+  typename L::Mask apart{};
+  for (int k = 0; k < 3; ++k) {
+    apart = apart | ((b.c[k] - b.e[k]) - box.hi[k] > margin) | (box.lo[k] - (b.c[k] + b.e[k]) > margin);
+  }
+  return apart.bits();
+}
+
+/// Lanes where robot pieces i and j (boxes a and b) are apart along one of the 15 axes of the
+/// separating-axis test (obb.h), by tol::kBatchBoundRelative of their scales (doubles). An
+/// edge-product axis is not normalized: its gap is shrunk by its length (at most 1), so the
+/// margin asks for more there, and nearly parallel edges never separate.
+template <class L>
+inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBoxT<L>& a, const RobotPiece& pb, const LaneBoxT<L>& b) {
+  const L margin = (a.scale + b.scale) * tol::kBatchBoundRelative;
+  const L t[3] = {b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]};
+  L C[9], absC[9];  // a_i . b_j
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      C[3 * i + j] = a.R[i] * b.R[j] + a.R[3 + i] * b.R[3 + j] + a.R[6 + i] * b.R[6 + j];
+      absC[3 * i + j] = laneAbs(C[3 * i + j]);
+    }
+  }
+  const Eigen::Vector3d& ha = pa.obb_L.half;
+  const Eigen::Vector3d& hb = pb.obb_L.half;
+  L ta[3];  // t along a's axes
+  typename L::Mask apart{};
+  for (int i = 0; i < 3; ++i) {  // a's face normals
+    ta[i] = t[0] * a.R[i] + t[1] * a.R[3 + i] + t[2] * a.R[6 + i];
+    const L reach = ha[i] + absC[3 * i] * hb[0] + absC[3 * i + 1] * hb[1] + absC[3 * i + 2] * hb[2];
+    apart = apart | (laneAbs(ta[i]) - reach > margin);
+  }
+  for (int j = 0; j < 3; ++j) {  // b's face normals
+    const L d = laneAbs(t[0] * b.R[j] + t[1] * b.R[3 + j] + t[2] * b.R[6 + j]);
+    const L reach = hb[j] + absC[j] * ha[0] + absC[3 + j] * ha[1] + absC[6 + j] * ha[2];
+    apart = apart | (d - reach > margin);
+  }
+  for (int i = 0; i < 3; ++i) {  // a_i x b_j
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const L d = laneAbs(ta[i2] * C[3 * i1 + j] - ta[i1] * C[3 * i2 + j]);
+      const L reach =
+          ha[i1] * absC[3 * i2 + j] + ha[i2] * absC[3 * i1 + j] + hb[j1] * absC[3 * i + j2] + hb[j2] * absC[3 * i + j1];
+      apart = apart | (d - reach > margin);
+    }
+  }
+  return apart.bits();
+}
+
+/// Lanes of `open` where some piece pair of self pair sp is near: piece spheres not apart and
+/// oriented boxes not apart along a face normal.
+template <bool kAvx2>
+inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, BatchScratch& sc, std::uint32_t open) {
+  const LinkGeometry& la = robot.links[sp.a];
+  const LinkGeometry& lb = robot.links[sp.b];
+  std::uint32_t near = 0;
+  for (int i = la.firstPiece; i < la.firstPiece + la.numPieces; ++i) {
+    for (int j = lb.firstPiece; j < lb.firstPiece + lb.numPieces; ++j) {
+      const double r = robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius;
+      std::uint32_t pairNear =
+          ~pointFar<kAvx2>(pieceFloats<LanesOf<kAvx2>>(robot, i, sc), pieceFloats<LanesOf<kAvx2>>(robot, j, sc), r) &
+          open;
+      if (pairNear != 0) {
+        pairNear &= ~obbsApart(robot.pieces[i], pieceBox<LanesOf<kAvx2>>(robot, i, sc), robot.pieces[j],
+                               pieceBox<LanesOf<kAvx2>>(robot, j, sc));
+      }
+      near |= pairNear;
+      if (near == open) return near;
+    }
+  }
+  return near;
+}
+
+/// The box around the spheres (c, radius) of the lanes in `open`, each grown by
+/// tol::kBatchBoundRelative of its scale (in doubles): a world box the broad phase does not find
+/// near it lies beyond every one of those spheres by that much.
+template <class L>
+Aabb unionBox(const LanePointT<L>& c, double radius, const L& chain, std::uint32_t open) {
+  const L r =
+      radius + (laneMax(laneMax(laneAbs(c.x), laneAbs(c.y)), laneAbs(c.z)) + radius + chain) * tol::kBatchBoundRelative;
+  const L* centre[3] = {&c.x, &c.y, &c.z};
+  Aabb box;
+  for (int k = 0; k < 3; ++k) {
+    const L loLanes = *centre[k] - r;
+    const L hiLanes = *centre[k] + r;
+    double lo[kLanes], hi[kLanes];  // read as doubles (lanes taken out one by one go through memory)
+    std::memcpy(lo, &loLanes, sizeof lo);
+    std::memcpy(hi, &hiLanes, sizeof hi);
+    double low = box.lo[k], high = box.hi[k];
+    for (int l = 0; l < kLanes; ++l) {
+      const bool in = (open >> l & 1u) != 0;
+      low = std::min(low, in ? lo[l] : low);
+      high = std::max(high, in ? hi[l] : high);
+    }
+    box.lo[k] = low;
+    box.hi[k] = high;
+  }
+  return box;
+}
+
+/// Lanes of `open` where some piece of link geometry g is near world piece w: its sphere
+/// neither beyond w's box nor beyond w's sphere, and its oriented box not beyond w's box.
+template <bool kAvx2>
+inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece& w, const FloatBox& b, BatchScratch& sc,
+                                std::uint32_t open) {
+  const LinkGeometry& lg = robot.links[g];
+  LaneFloats wc;
+  broadcast(w.center_W, w.sphereRadius, wc);
+  std::uint32_t near = 0;
+  for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
+    const double r = robot.pieces[i].sphereRadius;
+    const LaneFloats& p = pieceFloats<LanesOf<kAvx2>>(robot, i, sc);
+    std::uint32_t pieceNear = ~(boxFar<kAvx2>(p, r, b) | pointFar<kAvx2>(p, wc, r + w.sphereRadius)) & open;
+    if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.box, b.mag);
+    near |= pieceNear;
+    if (near == open) break;
+  }
+  return near;
+}
+
+/// Lanes of `open` where link geometry g may meet a world piece of kind `kind`.
+template <bool kAvx2>
+inline std::uint32_t worldBlocked(const Snapshot& s, PairKey::Kind kind, int g, BroadPhase broadPhase, BatchScratch& sc,
+                                  std::uint32_t open) {
+  const PieceSet& set = worldPieces(s, kind);
+  if (set.pieces.empty()) return 0;
+  const RobotData& robot = *s.robot;
+  const double radius = robot.links[g].radius;
+  std::uint32_t blocked = 0;
+  const BatchPosesT<LanesOf<kAvx2>>& poses = sc.poses<LanesOf<kAvx2>>();
+  const Aabb query = unionBox(poses.linkCenter[g], radius, poses.chainLength, open);
+  sc.candidates.clear();
+  forEachOverlapping(set, broadPhase, query, [&](int wp) {
+    if (!worldPairAllowed(s, kind, g, set.pieces[wp].body)) sc.candidates.push_back(wp);
+    return false;
+  });
+  for (int wp : sc.candidates) {
+    const WorldPiece& w = set.pieces[wp];
+    const FloatBox b = floatBox(w.box);
+    std::uint32_t near = ~boxFar<kAvx2>(sc.linkF[g], radius, b) & open & ~blocked;
+    if (near != 0) near = piecesNear<kAvx2>(robot, g, w, b, sc, near);
+    blocked |= near;
+    if ((open & ~blocked) == 0) break;
+  }
+  return blocked;
+}
+
+/// Lanes of `open` where self pair sp may meet: link spheres not apart and no grid certificate.
+template <bool kAvx2>
+inline std::uint32_t selfBlocked(const RobotData& robot, const SelfPair& sp,
+                                 const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchScratch& sc, std::uint32_t open) {
+  const double r = robot.links[sp.a].radius + robot.links[sp.b].radius;
+  std::uint32_t near = ~pointFar<kAvx2>(sc.linkF[sp.a], sc.linkF[sp.b], r) & open;
+  if (near != 0 && sp.grid != nullptr) {
+    for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
+      if (!(near >> l & 1u)) continue;
+      sc.q = qs.col(l);
+      if (sp.grid->certifiedFree(sc.q)) near &= ~(1u << l);
+    }
+  }
+  return near == 0 ? 0 : selfPiecesNear<kAvx2>(robot, sp, sc, near);
+}
+
+template <bool kAvx2>
+inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                             BatchScratch& sc) {
+  const std::uint32_t lanes = (1u << qs.cols()) - 1u;
+  std::uint32_t blocked = 0;
+  for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
+    if (!sc.poses<LanesOf<kAvx2>>().finite[l]) blocked |= 1u << l;
+  }
+  if (blocked == lanes) return 0;
+  const RobotData& robot = *s.robot;
+  linksToFloats<LanesOf<kAvx2>>(robot, sc);
+  for (int g = static_cast<int>(robot.links.size()) - 1; g >= 0; --g) {
+    for (PairKey::Kind kind : {PairKey::Kind::Scene, PairKey::Kind::Obstacle}) {
+      blocked |= worldBlocked<kAvx2>(s, kind, g, broadPhase, sc, lanes & ~blocked);
+      if (blocked == lanes) return 0;
+    }
+  }
+  for (const SelfPair& sp : s.selfPairs) {
+    blocked |= selfBlocked<kAvx2>(robot, sp, qs, sc, lanes & ~blocked);
+    if (blocked == lanes) return 0;
+  }
+  return lanes & ~blocked;
+}
+
+__attribute__((target("avx2"), flatten)) std::uint32_t certifyAvx2(const Snapshot& s, BroadPhase broadPhase,
+                                                                   const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                                                                   BatchScratch& sc) {
+  return certify<true>(s, broadPhase, qs, sc);
+}
+
+std::uint32_t certifyBaseline(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                              BatchScratch& sc) {
+  return certify<false>(s, broadPhase, qs, sc);
+}
+
+}  // namespace
+
+std::uint32_t batchCertifiedLanes(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                                  bool avx2, BatchScratch& scratch) {
+  return avx2 ? certifyAvx2(s, broadPhase, qs, scratch) : certifyBaseline(s, broadPhase, qs, scratch);
+}
+
+}  // namespace deepcheck::checker::detail

@@ -1,0 +1,57 @@
+// World::isFreeBatch: up to kLanes configurations posed at once (batch_kinematics.h), the ones
+// the bound stage certifies free (batch_bounds.h) answered free, every other answered by isFree.
+//
+// Why the answers are isFree's: in a certified configuration every checked pair (robot piece
+// and world piece, or self piece pair) is farther apart, by bounding volumes that contain the
+// pieces, than tol::kBatchBoundRelative of the coordinates' scale (batch_bounds.h); isFree's
+// bounding tests reject such a pair or its narrow phase finds it apart (it reports touching only
+// within geometry::tol::kContactRelative, 1e-12, of the pair's length scale), so isFree answers
+// free. Any other configuration gets isFree's own answer.
+
+#include "world_queries_internal.h"
+
+#include <bitset>
+#include <stdexcept>
+#include <string>
+
+namespace deepcheck::checker {
+
+using namespace detail;  // NOLINT: the queries' own internals
+
+namespace {
+
+/// Checks qs's shape; brings the context up to the world's snapshot.
+const Snapshot& prepareBatch(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs) {
+  if (c.worldUid != state.uid) throw std::invalid_argument("World: the Context was made by another world");
+  if (c.generation != state.generation.load(std::memory_order_acquire)) refresh(c);
+  const int vars = c.snap->robot->model.numVariables();
+  if (qs.rows() != vars || qs.cols() < 1 || qs.cols() > kLanes) {
+    throw std::invalid_argument("isFreeBatch: qs is " + std::to_string(qs.rows()) + " x " + std::to_string(qs.cols()) +
+                                "; it must be " + std::to_string(vars) + " (the robot's variables) x 1 to " +
+                                std::to_string(kLanes) + " configurations");
+  }
+  if (c.batch == nullptr) c.batch = std::make_unique<BatchScratch>();
+  return *c.snap;
+}
+
+}  // namespace
+
+void World::isFreeBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* free, Context& context) const {
+  Impl& c = *context.impl_;
+  const Snapshot& s = prepareBatch(*state_, c, qs);
+  const bool avx2 = batchAvx2Available() && !state_->batchBaseline.load(std::memory_order_relaxed);
+  if (avx2) {
+    batchForwardKinematics(*s.robot, qs, c.batch->avx2Poses);
+  } else {
+    batchForwardKinematics(*s.robot, qs, c.batch->baselinePoses);
+  }
+  const std::uint32_t certified = batchCertifiedLanes(s, state_->options.broadPhase, qs, avx2, *c.batch);
+  const auto count = std::bitset<kLanes>(certified).count();
+  c.stats.queries += count;
+  c.stats.batchCertified += count;
+  for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
+    free[l] = (certified >> l & 1u) != 0 || isFree(qs.col(l), context);
+  }
+}
+
+}  // namespace deepcheck::checker
