@@ -174,9 +174,10 @@ void linksToFloats(const RobotData& robot, BatchScratch& sc) {
     sc.pieceStamp.assign(robot.pieces.size(), 0);
     sc.boxStamp.assign(robot.pieces.size(), 0);
     sc.pieceF.resize(robot.pieces.size());
-    sc.boxes<L>().resize(robot.pieces.size());
     sc.stamp = 1;
   }
+  // Each build has its own boxes: a context may run both (the tests' baseline switch).
+  if (sc.boxes<L>().size() != robot.pieces.size()) sc.boxes<L>().resize(robot.pieces.size());
 }
 
 /// Robot piece i's centre in floats (posed once per batch).

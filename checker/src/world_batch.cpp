@@ -36,19 +36,28 @@ const Snapshot& prepareBatch(const WorldState& state, Impl& c, const Eigen::Ref<
 
 }  // namespace
 
-void World::isFreeBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* free, Context& context) const {
-  Impl& c = *context.impl_;
-  const Snapshot& s = prepareBatch(*state_, c, qs);
-  const bool avx2 = batchAvx2Available() && !state_->batchBaseline.load(std::memory_order_relaxed);
+namespace detail {
+
+std::uint32_t batchFreeLanes(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs) {
+  const Snapshot& s = prepareBatch(state, c, qs);
+  const bool avx2 = batchAvx2Available() && !state.batchBaseline.load(std::memory_order_relaxed);
   if (avx2) {
     batchForwardKinematics(*s.robot, qs, c.batch->avx2Poses);
   } else {
     batchForwardKinematics(*s.robot, qs, c.batch->baselinePoses);
   }
-  const std::uint32_t certified = batchCertifiedLanes(s, state_->options.broadPhase, qs, avx2, *c.batch);
+  const std::uint32_t certified = batchCertifiedLanes(s, state.options.broadPhase, qs, avx2, *c.batch);
   const auto count = std::bitset<kLanes>(certified).count();
   c.stats.queries += count;
   c.stats.batchCertified += count;
+  return certified;
+}
+
+}  // namespace detail
+
+void World::isFreeBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* free, Context& context) const {
+  Impl& c = *context.impl_;
+  const std::uint32_t certified = batchFreeLanes(*state_, c, qs);
   for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
     free[l] = (certified >> l & 1u) != 0 || isFree(qs.col(l), context);
   }

@@ -99,6 +99,12 @@ void refresh(Impl& c);
 /// Refresh, check q, forward kinematics, link sphere centres; a new stamp for piece poses.
 const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q);
 
+/// isFreeBatch's bound stage (world_batch.cpp): refreshes the context to the world's snapshot,
+/// poses the configurations (columns of qs, 1 to kLanes) and returns the mask of those it
+/// certifies free (bit l: column l); the others are undecided. Counts the certified ones as
+/// queries. Throws std::invalid_argument for a qs of the wrong shape.
+std::uint32_t batchFreeLanes(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs);
+
 /// Bounding volumes of robot piece i in the world: its sphere centre and oriented box (computed
 /// once per query).
 inline void posePiece(Impl& c, const RobotData& robot, int i) {

@@ -2,6 +2,7 @@
 // link extents and version a motion bound is made from.
 
 #include "checker_test_util.h"
+#include "world_test_access.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -184,6 +185,42 @@ BOOST_AUTO_TEST_CASE(link_extents_hold_attached_objects_and_the_version_moves) {
   BOOST_TEST(world->linkExtents()[static_cast<std::size_t>(tool)] >= 0.95);
   world->detach("probe", false);
   BOOST_TEST(world->linkExtents() == before, boost::test_tools::per_element());
+}
+
+// Long motions start with the rake: the middles of the levels too long for a clearance test,
+// tested eight at a time by isFreeBatch's bound stage. Its AVX2 and baseline builds reach the
+// same verdicts after the same number of tests, and every certified motion is densely free.
+BOOST_AUTO_TEST_CASE(certify_motion_rakes_alike_in_both_batch_builds) {
+  const auto world = armWithObstacles();
+  const int n = world->robot().numLinks();
+  dc::ClearanceDemand bounds;
+  bounds.link = Eigen::VectorXd::Constant(n, 3.0);  // 15 rake configurations: two batches
+  bounds.self = Eigen::MatrixXd::Constant(n, n, 6.0);
+  std::mt19937 rng(25);
+  int certified = 0;
+  int collides = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const Eigen::VectorXd a = randomConfiguration(world->robot(), rng);
+    const Eigen::VectorXd b = a + 0.5 * (randomConfiguration(world->robot(), rng) - a);
+    if (!world->isFree(a)) continue;
+    forceBatchBaseline(*world, false);
+    const dc::MotionCertificate fast = world->certifyMotion(a, b - a, bounds);
+    forceBatchBaseline(*world, true);
+    const dc::MotionCertificate baseline = world->certifyMotion(a, b - a, bounds);
+    BOOST_TEST(static_cast<int>(fast.verdict) == static_cast<int>(baseline.verdict));
+    BOOST_TEST(fast.configurations == baseline.configurations);
+    if (fast.verdict == dc::MotionCertificate::Verdict::Certified) {
+      ++certified;
+      bool denselyFree = true;
+      for (int k = 0; k <= 2000 && denselyFree; ++k) denselyFree = world->isFree(a + (k / 2000.0) * (b - a));
+      BOOST_TEST(denselyFree);
+    } else if (fast.verdict == dc::MotionCertificate::Verdict::Collides) {
+      ++collides;
+    }
+  }
+  forceBatchBaseline(*world, false);
+  BOOST_TEST(certified > 10);
+  BOOST_TEST(collides > 10);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
