@@ -92,6 +92,23 @@ inline Eigen::Isometry3d translation(double x, double y, double z) {
   return X;
 }
 
+/// Two sliders in series along x carrying a cube, and a box obstacle at the origin: q = (1e308,
+/// 1e308) poses the cube beyond the doubles, though each value is finite.
+inline World sliderPairWorld() {
+  const std::string xml =
+      "<robot name='far'>"
+      "<link name='base'/><link name='mid'/>"
+      "<link name='cube'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
+      "<joint name='slide1' type='prismatic'><parent link='base'/><child link='mid'/>"
+      "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
+      "<joint name='slide2' type='prismatic'><parent link='mid'/><child link='cube'/>"
+      "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
+      "</robot>";
+  World world(robots::RobotModel::fromUrdfString(xml, ".", {}, "far.urdf"), testWorldOptions());
+  world.addObstacle(Obstacle::box("box", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0, 0, 0)));
+  return world;
+}
+
 /// A tetrahedron of edge 0.3 along the axes, corner at the origin, as a triangle mesh.
 inline robots::TriangleMesh tetrahedronMesh() {
   robots::TriangleMesh mesh;

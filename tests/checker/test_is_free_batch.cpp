@@ -114,22 +114,6 @@ World armWorld(BroadPhase broadPhase = BroadPhase::AabbTree) {
                options);
 }
 
-/// Two sliders in series along x carrying a cube, and a box obstacle at the origin.
-World sliderPairWorld() {
-  const std::string xml =
-      "<robot name='far'>"
-      "<link name='base'/><link name='mid'/>"
-      "<link name='cube'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
-      "<joint name='slide1' type='prismatic'><parent link='base'/><child link='mid'/>"
-      "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
-      "<joint name='slide2' type='prismatic'><parent link='mid'/><child link='cube'/>"
-      "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
-      "</robot>";
-  World world(robots::RobotModel::fromUrdfString(xml, ".", {}, "far.urdf"), testWorldOptions());
-  world.addObstacle(Obstacle::box("box", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0, 0, 0)));
-  return world;
-}
-
 /// Every joint kind: a revolute joint about a skew axis, a prismatic one along a skew axis, a
 /// continuous one about -x, a mimic of the first (multiplier 2, offset 0.3), a fixed one; the
 /// origins rotated.

@@ -128,17 +128,7 @@ BOOST_AUTO_TEST_CASE(kept_enclosing_tetrahedra_give_the_answers_of_fresh_context
 BOOST_AUTO_TEST_CASE(link_pose_beyond_the_doubles_is_reported) {
   // Two sliders in series along x: q = (1e308, 1e308) moves the cube to infinity (each value is a
   // finite double, their sum is not). isFree must not answer (free or not) from such a pose.
-  const std::string xml =
-      "<robot name='far'>"
-      "<link name='base'/><link name='mid'/>"
-      "<link name='cube'><collision><geometry><box size='0.1 0.1 0.1'/></geometry></collision></link>"
-      "<joint name='slide1' type='prismatic'><parent link='base'/><child link='mid'/>"
-      "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
-      "<joint name='slide2' type='prismatic'><parent link='mid'/><child link='cube'/>"
-      "<axis xyz='1 0 0'/><limit lower='-2' upper='2' effort='1' velocity='1'/></joint>"
-      "</robot>";
-  World world(robots::RobotModel::fromUrdfString(xml, ".", {}, "far.urdf"), testWorldOptions());
-  world.addObstacle(Obstacle::box("box", Eigen::Vector3d(0.2, 0.2, 0.2), translation(0, 0, 0)));
+  World world = sliderPairWorld();
   Eigen::VectorXd q(2);
   q << 1e308, 1e308;
   checkThrowsWith([&] { world.isFree(q); }, "not finite");
