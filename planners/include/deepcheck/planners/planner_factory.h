@@ -5,7 +5,7 @@
 // BIT*, PRM, PRM*, LazyPRM, LazyPRM*, KPIECE1, BKPIECE1, EST, BiEST, SBL, FMT, TRRT. The name a
 // planner made here gives itself (Planner::getName: "RRTstar", "kBITstar") is accepted too.
 // Every planner gets OMPL's default parameters, except the range of the planners that do not
-// optimize a cost (RRTConnect, RRT, KPIECE1, ...): defaultRange(), about 1 rad on a 7-joint arm
+// optimize a cost (RRTConnect, RRT, KPIECE1, ...): defaultRange(), 1.5 rad on the Panda
 // instead of OMPL's 0.2 of the space's extent (2.7 rad). prepareForCostlyObjective changes RRT*'s
 // neighbours and range for the clearance objective.
 

@@ -26,11 +26,14 @@ constexpr double kFallbackStepFraction = 0.25;
 constexpr double kFallbackDisplacement = 0.0005;
 
 /// makePlanner's range for planners that do not optimize (RRTConnect, RRT, ...), as a fraction of
-/// the state space's maximum extent: 0.98 rad on the Panda's arm, 1.04 rad on the bundled arm,
-/// 2.3 rad on a UR5 with joints of +-2 pi (OMPL's own default is 0.2 of the extent). Shorter
-/// motions fail less often and cost less to certify; measured on the Panda in MotionBenchMaker's
-/// scenes with certified motions (bench/README.md, "MotionBenchMaker benchmark").
-constexpr double kDefaultRangeFraction = 0.075;
+/// the state space's maximum extent: 1.5 rad on the Panda's arm, 1.6 rad on the bundled arm,
+/// 3.5 rad on a UR5 with joints of +-2 pi (OMPL's own default is 0.2 of the extent). With
+/// certified motions a long motion far from obstacles is proven by a few tests, and fewer, longer
+/// edges leave less to simplify: on the Panda in MotionBenchMaker's scenes (8 x 100 problems,
+/// RRTConnect), 0.115 against 0.075 took the median plan + simplify from 3.39 to 2.92 ms and the
+/// mean plan from 39 to 17 ms, for simplified paths 4 % longer (bench/README.md, "MotionBenchMaker
+/// benchmark").
+constexpr double kDefaultRangeFraction = 0.115;
 
 /// Distance queries that only need to know whether sd exceeds a threshold t ask for distances up
 /// to max(t, 0) + this (metres): a cap strictly above both t and 0, so that pairs whose bounding
