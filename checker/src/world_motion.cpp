@@ -47,7 +47,7 @@ struct SubMotion {
 /// Sub-motion indices are 64-bit: no level past this one.
 constexpr int kMaxLevel = 62;
 
-/// Configurations tested for collision in one call of a RakeCheck.
+/// Configurations tested for collision together by the rake (rakeGroup).
 constexpr int kRakeWidth = 8;
 
 /// Smaller groups of rake configurations are tested one by one, which stops at the first
@@ -143,17 +143,14 @@ double largestMove(const ClearanceDemand& motion) {
 
 enum class Outcome { Certified, Split, Collides, Unproven };
 
-/// Tests up to kRakeWidth configurations (columns of qs) for collision at the motion's base
-/// clearance: `clear` false when one collides. Returns false when the world changed since `held`
-/// (set when null) was taken.
-using RakeCheck = bool (*)(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs,
-                           const ClearanceDemand& motion, bool& clear, std::shared_ptr<const Snapshot>& held);
-
-/// RakeCheck one configuration after the other (the base clearance as a margin, isClear's test).
-bool rakeOneByOne(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+/// Tests the configurations (columns of qs) not set in `known` for collision at the motion's base
+/// clearance, one after the other: `clear` false at the first that collides. Returns false when
+/// the world changed since `held` (set when null) was taken.
+bool rakeOneByOne(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs, std::uint32_t known,
                   const ClearanceDemand& motion, bool& clear, std::shared_ptr<const Snapshot>& held) {
   clear = true;
   for (Eigen::Index i = 0; i < qs.cols() && clear; ++i) {
+    if ((known >> i & 1u) != 0) continue;
     const Snapshot& s = prepare(state, c, qs.col(i));
     if (!held) held = c.snap;
     if (c.snap != held) return false;
@@ -162,23 +159,18 @@ bool rakeOneByOne(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen
   return true;
 }
 
-/// RakeCheck with isFreeBatch's bound stage for groups of at least kRakeBatchMin configurations:
-/// the configurations it cannot certify free are tested one by one, in order, until one collides.
-/// The bound stage decides isFree, so only a base clearance of 0 uses it.
-bool rakeBatched(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs,
-                 const ClearanceDemand& motion, bool& clear, std::shared_ptr<const Snapshot>& held) {
-  if (motion.base != 0.0 || qs.cols() < kRakeBatchMin) return rakeOneByOne(state, c, qs, motion, clear, held);
-  const std::uint32_t free = batchFreeLanes(state, c, qs);
-  if (!held) held = c.snap;
-  if (c.snap != held) return false;
-  clear = true;
-  for (Eigen::Index i = 0; i < qs.cols() && clear; ++i) {
-    if ((free >> i & 1u) != 0) continue;
-    const Snapshot& s = prepare(state, c, qs.col(i));
+/// The rake's test of up to kRakeWidth configurations: groups of at least kRakeBatchMin first
+/// through isFreeBatch's bound stage (it decides isFree, so only at a base clearance of 0), the
+/// configurations it cannot certify free then one by one.
+bool rakeGroup(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+               const ClearanceDemand& motion, bool& clear, std::shared_ptr<const Snapshot>& held) {
+  std::uint32_t free = 0;
+  if (motion.base == 0.0 && qs.cols() >= kRakeBatchMin) {
+    free = batchFreeLanes(state, c, qs);
+    if (!held) held = c.snap;
     if (c.snap != held) return false;
-    clear = clearOfAll(c, s, Margins(motion, *s.robot, 0.0));
   }
-  return true;
+  return rakeOneByOne(state, c, qs, free, motion, clear, held);
 }
 
 /// Examines one sub-motion (middle q(tm), half length h) for clearance at the context's current
@@ -237,7 +229,7 @@ int firstClearanceLevel(double move) {
 /// Collides at the first group with a colliding configuration, Unproven past
 /// tol::kCertifiedMaxTests, else Certified (nothing found). False when the world changed under it.
 bool rakeAbove(int level, const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q1,
-               const ClearanceDemand& motion, const RakeCheck& rake, MotionScratch& w, MotionCertificate& out,
+               const ClearanceDemand& motion, MotionScratch& w, MotionCertificate& out,
                std::shared_ptr<const Snapshot>& held) {
   const std::int64_t needed = (std::int64_t{1} << level) - 1;
   if (needed > tol::kCertifiedMaxTests) {
@@ -257,7 +249,7 @@ bool rakeAbove(int level, const WorldState& state, Impl& c, const Eigen::Ref<con
     if (lanes < kRakeWidth && n + 1 < needed) continue;
     out.configurations += lanes;
     bool clear = true;
-    if (!rake(state, c, w.rake.leftCols(lanes), motion, clear, held)) return false;
+    if (!rakeGroup(state, c, w.rake.leftCols(lanes), motion, clear, held)) return false;
     lanes = 0;
     if (!clear) {
       out.verdict = MotionCertificate::Verdict::Collides;
@@ -269,7 +261,7 @@ bool rakeAbove(int level, const WorldState& state, Impl& c, const Eigen::Ref<con
 
 /// One certification; false when the world changed under it (its pair lists are then void).
 bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q1,
-                 const ClearanceDemand& motion, const RakeCheck& rake, MotionScratch& w, MotionCertificate& out) {
+                 const ClearanceDemand& motion, MotionScratch& w, MotionCertificate& out) {
   const double move = largestMove(motion);
   out = MotionCertificate{};
   out.verdict = MotionCertificate::Verdict::Certified;
@@ -277,7 +269,7 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
   // Levels past kMaxLevel (a robot moving kilometres, halved to kCertifiedResolution) are left
   // Unproven: sub-motion indices are 64-bit.
   const int first = firstClearanceLevel(move);
-  if (!rakeAbove(first, state, c, q1, motion, rake, w, out, held)) return false;
+  if (!rakeAbove(first, state, c, q1, motion, w, out, held)) return false;
   if (out.verdict != MotionCertificate::Verdict::Certified) return true;
   w.level.clear();
   for (std::int64_t i = 0; i < (std::int64_t{1} << first); ++i) w.level.push_back(SubMotion{i, -1, 0});
@@ -321,7 +313,7 @@ MotionCertificate World::certifyMotion(const Eigen::Ref<const Eigen::VectorXd>& 
   w.dq = dq;
   MotionCertificate out;
   // A change of the world during the check (another thread adding an obstacle) starts it again.
-  while (!certifyOnce(*state_, c, q1, motion, rakeBatched, w, out)) {
+  while (!certifyOnce(*state_, c, q1, motion, w, out)) {
   }
   return out;
 }
