@@ -15,6 +15,7 @@
 // Usage: certify_bench [--problems N] [--seed S] [--csv FILE]   (about half a minute)
 
 #include "csv_out.h"
+#include "format.h"
 #include "options.h"
 
 #include "deepcheck/planners/path_tools.h"
@@ -39,12 +40,6 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
-}
 
 /// A valid configuration within the joint limits (bounded to +-pi on wrapping joints).
 Eigen::VectorXd randomValid(const dp::StateValidityChecker& checker, std::mt19937_64& rng) {
@@ -145,8 +140,10 @@ int main(int argc, char** argv) {
       {"certifyPath, returned path", &t.returned},
       {"certifyPath, path from elsewhere", &t.elsewhere}};
   for (const auto& [name, v] : rows) {
-    std::printf("| %s | %.3g | %.3g |\n", name, quantile(*v, 0.5), quantile(*v, 0.9));
-    std::fprintf(csv, "%s,%.6g,%.6g,%zu\n", name, quantile(*v, 0.5), quantile(*v, 0.9), v->size());
+    std::printf("| %s | %.3g | %.3g |\n", name, deepcheck::bench::quantile(*v, 0.5),
+                deepcheck::bench::quantile(*v, 0.9));
+    std::fprintf(csv, "%s,%.6g,%.6g,%zu\n", name, deepcheck::bench::quantile(*v, 0.5),
+                 deepcheck::bench::quantile(*v, 0.9), v->size());
   }
   std::fclose(csv);
   return t.notCertified == 0 ? 0 : 1;
