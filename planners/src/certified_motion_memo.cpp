@@ -4,6 +4,7 @@
 
 #include "deepcheck/planners/tolerances.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -28,60 +29,111 @@ std::uint64_t bitsOf(double x) {
   return bits;
 }
 
+/// True when x lies within `tube` (per value) of the segment from 0 to `motion`.
+bool onSegment(const Eigen::VectorXd& x, const Eigen::Map<const Eigen::VectorXd>& motion, double tube) {
+  const double length2 = motion.squaredNorm();
+  const double s = length2 > 0.0 ? std::clamp(x.dot(motion) / length2, 0.0, 1.0) : 0.0;
+  return (x - s * motion).lpNorm<Eigen::Infinity>() <= tube;  // NaN: not on it
+}
+
 }  // namespace
 
 CertifiedMotionMemo::CertifiedMotionMemo(int dimension) : n_(dimension) {
   if (dimension < 0) {
     throw std::invalid_argument("CertifiedMotionMemo: a negative dimension (" + std::to_string(dimension) + ")");
   }
-  const auto slots = static_cast<std::size_t>(tol::kCertifiedMotionMemoSlots);
-  slots_.assign(slots, Slot{});
-  values_.assign(slots * 2 * static_cast<std::size_t>(n_), 0.0);
+  const auto entries = static_cast<std::size_t>(tol::kCertifiedMotionMemoSlots);
+  entries_.assign(entries, Entry{});
+  values_.assign(entries * 3 * static_cast<std::size_t>(n_), 0.0);
 }
 
-std::uint64_t CertifiedMotionMemo::hash(const Eigen::Ref<const Eigen::VectorXd>& from,
-                                        const Eigen::Ref<const Eigen::VectorXd>& to, std::uint64_t version) const {
+std::uint64_t CertifiedMotionMemo::hash(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version) const {
   std::uint64_t h = mix(0, version);
-  for (int i = 0; i < n_; ++i) h = mix(h, bitsOf(from[i]));
-  for (int i = 0; i < n_; ++i) h = mix(h, bitsOf(to[i]));
-  return h == 0 ? 1 : h;  // 0 marks an empty slot
+  for (int i = 0; i < n_; ++i) h = mix(h, bitsOf(point[i]));
+  return h == 0 ? 1 : h;  // 0 marks an empty entry
+}
+
+bool CertifiedMotionMemo::lookup(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version,
+                                 const Eigen::Ref<const Eigen::VectorXd>& lo,
+                                 const Eigen::Ref<const Eigen::VectorXd>& hi, Eigen::VectorXd& offset,
+                                 Eigen::VectorXd& motion) const {
+  const std::uint64_t key = hash(point, version);
+  const std::size_t bucket = bucketOf(key);
+  const auto n = static_cast<Eigen::Index>(n_);
+  std::lock_guard<std::mutex> guard(lock(bucket));
+  for (std::size_t e = bucket * kWays; e < (bucket + 1) * kWays; ++e) {
+    if (entries_[e].key != key || entries_[e].version != version) continue;
+    // The hash only chooses the bucket: the point itself must match, exactly.
+    const double* v = values(e);
+    if (!std::equal(v, v + n_, point.data())) continue;
+    const Eigen::Map<const Eigen::VectorXd> at(v + n_, n);
+    const Eigen::Map<const Eigen::VectorXd> along(v + 2 * n_, n);
+    const double tube =
+        tol::kCertifiedMotionMemoTube * (1.0 + point.lpNorm<Eigen::Infinity>() + along.lpNorm<Eigen::Infinity>());
+    if (onSegment(at + lo, along, tube) && onSegment(at + hi, along, tube)) {
+      offset = at;
+      motion = along;
+      return true;
+    }
+  }
+  return false;
+}
+
+void CertifiedMotionMemo::keep(const Eigen::Ref<const Eigen::VectorXd>& point,
+                               const Eigen::Ref<const Eigen::VectorXd>& offset,
+                               const Eigen::Ref<const Eigen::VectorXd>& motion, std::uint64_t version) {
+  const std::uint64_t key = hash(point, version);
+  const std::size_t bucket = bucketOf(key);
+  const std::size_t first = bucket * kWays;
+  std::lock_guard<std::mutex> guard(lock(bucket));
+  if (entries_[first].key == key && entries_[first].version == version) {
+    const double* v = values(first);
+    if (std::equal(v, v + n_, point.data()) && std::equal(v + n_, v + 2 * n_, offset.data()) &&
+        std::equal(v + 2 * n_, v + 3 * n_, motion.data())) {
+      return;  // already the newest
+    }
+  }
+  // The newest entry first: the older ones move down a way, the oldest is dropped.
+  for (std::size_t e = first + kWays - 1; e > first; --e) {
+    entries_[e] = entries_[e - 1];
+    std::copy(values(e - 1), values(e - 1) + 3 * n_, values(e));
+  }
+  entries_[first] = Entry{key, version};
+  double* v = values(first);
+  std::copy(point.data(), point.data() + n_, v);
+  std::copy(offset.data(), offset.data() + n_, v + n_);
+  std::copy(motion.data(), motion.data() + n_, v + 2 * n_);
 }
 
 bool CertifiedMotionMemo::contains(const Eigen::Ref<const Eigen::VectorXd>& from,
-                                   const Eigen::Ref<const Eigen::VectorXd>& to, std::uint64_t version) const {
-  if (from.size() != n_ || to.size() != n_) return false;
-  const std::uint64_t key = hash(from, to, version);
-  const std::size_t slot = key % slots_.size();
-  std::lock_guard<std::mutex> guard(lock(slot));
-  const Slot& s = slots_[slot];
-  if (s.key != key || s.version != version) return false;
-  // The hash only chooses the slot: the configurations themselves must match, exactly.
-  const double* v = values(slot);
-  for (int i = 0; i < n_; ++i) {
-    if (!(v[i] == from[i]) || !(v[n_ + i] == to[i])) return false;
+                                   const Eigen::Ref<const Eigen::VectorXd>& to,
+                                   const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version) {
+  if (from.size() != n_ || to.size() != n_ || dq.size() != n_) return false;
+  thread_local Eigen::VectorXd zero, offset, motion;
+  zero.setZero(n_);
+  if (lookup(from, version, zero, dq, offset, motion)) {
+    keep(to, offset + dq, motion, version);
+  } else if (lookup(to, version, -dq, zero, offset, motion)) {
+    keep(from, offset - dq, motion, version);
+  } else {
+    return false;
   }
   hits_.fetch_add(1, std::memory_order_relaxed);
   return true;
 }
 
 void CertifiedMotionMemo::insert(const Eigen::Ref<const Eigen::VectorXd>& from,
-                                 const Eigen::Ref<const Eigen::VectorXd>& to, std::uint64_t version) {
-  if (from.size() != n_ || to.size() != n_) return;
-  const std::uint64_t key = hash(from, to, version);
-  const std::size_t slot = key % slots_.size();
-  std::lock_guard<std::mutex> guard(lock(slot));
-  slots_[slot] = Slot{key, version};
-  double* v = values(slot);
-  for (int i = 0; i < n_; ++i) {
-    v[i] = from[i];
-    v[n_ + i] = to[i];
-  }
+                                 const Eigen::Ref<const Eigen::VectorXd>& to,
+                                 const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version) {
+  if (from.size() != n_ || to.size() != n_ || dq.size() != n_) return;
+  keep(from, Eigen::VectorXd::Zero(n_), dq, version);
+  keep(to, dq, dq, version);
 }
 
 void CertifiedMotionMemo::clear() {
-  for (std::size_t slot = 0; slot < slots_.size(); ++slot) {
-    std::lock_guard<std::mutex> guard(lock(slot));
-    slots_[slot] = Slot{};
+  for (std::size_t e = 0; e < entries_.size(); ++e) {
+    std::lock_guard<std::mutex> guard(lock(e / kWays));
+    entries_[e] = Entry{};
   }
 }
 

@@ -95,10 +95,10 @@ bool CertifiedMotionValidator::accepted(const Motion& m) const {
   // The version before the certification: a change of the world during it leaves an entry no
   // later lookup matches, never one that answers for a world it was not certified in.
   const std::uint64_t version = checker_->world().version();
-  if (memo.contains(m.q1, m.q2, version)) return true;
+  if (memo.contains(m.q1, m.q2, m.dq, version)) return true;
   // s2 first: OMPL's contract (its joint limits too), and the cheapest rejection.
   if (!checker_->isValid(m.q2) || !certify(m, 1.0).certified()) return false;
-  memo.insert(m.q1, m.q2, version);
+  memo.insert(m.q1, m.q2, m.dq, version);
   return true;
 }
 

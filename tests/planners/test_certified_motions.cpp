@@ -295,9 +295,9 @@ BOOST_AUTO_TEST_CASE(an_object_attached_later_is_covered) {
 }
 
 // The memo of certified motions: a motion asked again in the same world is answered from it
-// without a certification; an obstacle added across it makes it refused; the same motion
-// reversed, or moved by one ulp, is certified anew.
-BOOST_AUTO_TEST_CASE(the_memo_answers_only_the_same_motion_in_the_same_world) {
+// without a certification, and so is the same motion reversed; an obstacle added across it makes
+// it refused; the motion moved by a billionth of a radian is certified anew.
+BOOST_AUTO_TEST_CASE(the_memo_answers_a_motion_again_only_in_the_same_world) {
   auto world = dp::loadWorld(dp::test::armUrdf(), {}, dp::test::bundledOptions());
   Motions m(world);
   const Eigen::VectorXd a = dp::test::suggestedStart();
@@ -310,10 +310,12 @@ BOOST_AUTO_TEST_CASE(the_memo_answers_only_the_same_motion_in_the_same_world) {
   BOOST_TEST(m.validator.stats().configurations == tested);
   BOOST_TEST(m.checker->certifiedMotions().hits() == hits + 1);
   BOOST_TEST(m.certified(b, a));
+  BOOST_TEST(m.validator.stats().configurations == tested);
+  BOOST_TEST(m.checker->certifiedMotions().hits() == hits + 2);
   Eigen::VectorXd nudged = b;
-  nudged[0] = std::nextafter(b[0], 10.0);
+  nudged[1] += 1e-9;
   BOOST_TEST(m.certified(a, nudged));
-  BOOST_TEST(m.checker->certifiedMotions().hits() == hits + 1);
+  BOOST_TEST(m.checker->certifiedMotions().hits() == hits + 2);
   // A post where the flange passes half-way.
   const auto X = deepcheck::robots::forwardKinematics(world->robot(), a + 0.5 * (b - a));
   Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
@@ -329,7 +331,8 @@ BOOST_AUTO_TEST_CASE(the_memo_answers_only_the_same_motion_in_the_same_world) {
 }
 
 // A path from solve and simplifySolutionChecked is certified again by certifyPath from the memo:
-// no configuration is tested.
+// no configuration is tested; so is the same path subdivided and interpolated (pieces of its
+// certified motions).
 BOOST_AUTO_TEST_CASE(certify_path_after_simplification_tests_nothing_new) {
   auto world = dp::test::bundledWorld("");
   auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
@@ -350,6 +353,11 @@ BOOST_AUTO_TEST_CASE(certify_path_after_simplification_tests_nothing_new) {
   BOOST_TEST(certificate.valid);
   BOOST_TEST(!certificate.repaired);
   BOOST_TEST(checker->certifiedMotions().hits() - hits == path.getStateCount() - 1);
+  path.subdivide();
+  path.interpolate(3 * path.getStateCount());
+  const auto hitsBefore = checker->certifiedMotions().hits();
+  BOOST_TEST(dp::certifyPath(*ss, path).valid);
+  BOOST_TEST(checker->certifiedMotions().hits() - hitsBefore == path.getStateCount() - 1);
 }
 
 // The bounds handed to World::certifyMotion: the self matrix holds each checked pair's own

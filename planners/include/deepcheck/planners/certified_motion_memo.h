@@ -1,23 +1,35 @@
 #pragma once
-// The motions a certified motion validator has accepted, remembered so that the same motion asked
-// again is answered without a new certification.
+// The motions a certified motion validator has accepted, remembered so that the same motion, or a
+// piece of it, asked again is answered without a new certification.
 //
 // A planner's path is checked motion by motion several times: by the planner, by each
 // simplification step that keeps it, by simplifySolutionChecked's final check and by certifyPath
-// (setup.h). Every validator made on one StateValidityChecker (the planner's and the ones
-// certifyPath makes) shares the checker's memo, so a path that came out of solve and
-// simplifySolutionChecked is certified again at the cost of a few lookups.
+// (setup.h). Simplification also cuts certified motions into pieces (B-spline smoothing subdivides
+// the path; a user may interpolate it before certifyPath). Every validator made on one
+// StateValidityChecker (the planner's and the ones certifyPath makes) shares the checker's memo,
+// so a path that came out of solve and simplifySolutionChecked is certified again at the cost of
+// a few lookups.
 //
-// An entry is the exact pair of configurations (bit for bit, in the order asked: a motion's
-// displacement is the short way round for wrapping joints, which need not be symmetric at exactly
-// half a turn) and the World::version() it was certified in. Any change of the world (an obstacle
-// added, moved or removed, an object attached) changes the version, and no entry of an older one
-// answers. The checker's validity options are fixed at its construction, so they need no key.
-// Only acceptances are kept: a rejected motion is asked again rarely, and its lastValid fraction
-// would need keeping too.
+// A motion is given as its two configurations and its displacement (the short way round for
+// wrapping joints, as the certification moved), in the order asked. The memo keeps points of
+// certified motions, keyed by their exact bits and the World::version() the motion was certified
+// in: each end of a certified motion, with where it lies on that motion. A motion asked is
+// answered when one of its ends is such a point and both ends lie on the certified motion of that
+// point, to tol::kCertifiedMotionMemoTube (a few ulps: the round-off of computing a point of a
+// segment, which the certification's own configurations carry too). The motion's other end is then
+// kept as a point of the same certified motion, so the pieces of a subdivided motion are answered
+// one after the other. Positions are always relative to the certified motion itself, so answers
+// never drift from it. The same motion reversed is answered too (the same configurations); one the
+// other way round a wrapping joint is not.
 //
-// A fixed number of slots (tol::kCertifiedMotionMemoSlots), indexed by a hash of the key: a new
-// entry replaces whatever held its slot. Thread safe (one lock per group of slots).
+// Any change of the world (an obstacle added, moved or removed, an object attached) changes the
+// version, and no entry of an older one answers. The checker's validity options are fixed at its
+// construction, so they need no key. Only acceptances are kept: a rejected motion is asked again
+// rarely, and its lastValid fraction would need keeping too.
+//
+// A fixed number of entries (tol::kCertifiedMotionMemoSlots) in buckets of two, indexed by a hash
+// of the point: a new entry replaces the older of its bucket. Thread safe (one lock per group of
+// buckets).
 
 #include <Eigen/Core>
 
@@ -34,12 +46,14 @@ class CertifiedMotionMemo {
   /// For configurations of `dimension` values (>= 0; std::invalid_argument otherwise).
   explicit CertifiedMotionMemo(int dimension);
 
-  /// True when the motion from `from` to `to` was recorded as certified in world version `version`.
+  /// True when the motion from `from` to `to` (displacement `dq`) lies on a motion recorded as
+  /// certified in world version `version`.
   bool contains(const Eigen::Ref<const Eigen::VectorXd>& from, const Eigen::Ref<const Eigen::VectorXd>& to,
-                std::uint64_t version) const;
-  /// Records the motion as certified in world version `version`.
+                const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version);
+  /// Records the motion from `from` to `to` (displacement `dq`) as certified in world version
+  /// `version`.
   void insert(const Eigen::Ref<const Eigen::VectorXd>& from, const Eigen::Ref<const Eigen::VectorXd>& to,
-              std::uint64_t version);
+              const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version);
   /// Forgets every entry.
   void clear();
 
@@ -48,22 +62,34 @@ class CertifiedMotionMemo {
 
  private:
   static constexpr int kLocks = 16;
-  std::uint64_t hash(const Eigen::Ref<const Eigen::VectorXd>& from, const Eigen::Ref<const Eigen::VectorXd>& to,
-                     std::uint64_t version) const;
-  /// The slot's stored configurations (2 n values) and its lock.
-  double* values(std::size_t slot) { return values_.data() + slot * 2 * static_cast<std::size_t>(n_); }
-  const double* values(std::size_t slot) const { return values_.data() + slot * 2 * static_cast<std::size_t>(n_); }
-  std::mutex& lock(std::size_t slot) const { return locks_[slot % kLocks]; }
+  static constexpr int kWays = 2;
 
-  struct Slot {
-    std::uint64_t key = 0;      ///< the hash of the entry (0: empty)
-    std::uint64_t version = 0;  ///< the world version it was certified in
+  /// One point of a certified motion: the motion is the segment from some start c along
+  /// `motion`; the point is c + `offset` (both unwrapped, in the motion's own coordinates).
+  struct Entry {
+    std::uint64_t key = 0;      ///< the hash of the point and version (0: empty)
+    std::uint64_t version = 0;  ///< the world version the motion was certified in
   };
+  /// The entry's point, offset and motion (3 n values).
+  double* values(std::size_t entry) { return values_.data() + entry * 3 * static_cast<std::size_t>(n_); }
+  const double* values(std::size_t entry) const { return values_.data() + entry * 3 * static_cast<std::size_t>(n_); }
+  std::uint64_t hash(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version) const;
+  std::size_t bucketOf(std::uint64_t key) const { return key % (entries_.size() / kWays); }
+  std::mutex& lock(std::size_t bucket) const { return locks_[bucket % kLocks]; }
+  /// True when an entry of `point` has a certified motion that holds the segment from point + `lo`
+  /// to point + `hi`; its point's offset and its motion are then copied out.
+  bool lookup(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version,
+              const Eigen::Ref<const Eigen::VectorXd>& lo, const Eigen::Ref<const Eigen::VectorXd>& hi,
+              Eigen::VectorXd& offset, Eigen::VectorXd& motion) const;
+  /// Keeps `point` as c + offset of the motion c + s motion, s in [0, 1].
+  void keep(const Eigen::Ref<const Eigen::VectorXd>& point, const Eigen::Ref<const Eigen::VectorXd>& offset,
+            const Eigen::Ref<const Eigen::VectorXd>& motion, std::uint64_t version);
+
   int n_;
-  std::vector<Slot> slots_;
+  std::vector<Entry> entries_;  ///< buckets of kWays, the newest first
   std::vector<double> values_;
   mutable std::array<std::mutex, kLocks> locks_;
-  mutable std::atomic<std::uint64_t> hits_{0};
+  std::atomic<std::uint64_t> hits_{0};
 };
 
 }  // namespace deepcheck::planners

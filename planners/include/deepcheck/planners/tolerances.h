@@ -138,11 +138,21 @@ constexpr double kDefaultHingeWeight = 100.0;
 /// (docs/planners.md, "Optimizing planners and the clearance objective").
 constexpr double kCostlyObjectiveRangeFraction = 0.04;
 
-/// Slots of a validity checker's memo of certified motions (certified_motion_memo.h): a slot
-/// holds one motion (two configurations). A planned path's motions, its simplification's and
-/// their checks again stay within a few hundred; 4096 keeps a long path's without eviction
-/// (4096 x 2 x 7 doubles, 460 KB, for a 7-joint arm).
+/// Entries of a validity checker's memo of certified motions (certified_motion_memo.h): an entry
+/// holds one end of a certified motion (its point, its offset on the motion and the motion's
+/// displacement). A planned path's motions, its simplification's and their checks again stay
+/// within a few hundred; 4096 entries keep a long path's 2048 motions (4096 x 3 x 7 doubles,
+/// 690 KB, for a 7-joint arm). A multiple of the memo's two ways.
 constexpr int kCertifiedMotionMemoSlots = 4096;
+
+/// The memo answers a motion whose ends lie within this distance of a certified motion, per
+/// joint value and relative to 1 + the largest magnitude of the point's values and of the
+/// motion's displacement (radians or metres): about 45 ulps, the round-off of computing a point of
+/// a segment (OMPL's interpolation, path subdivision), which the configurations q1 + t dq the
+/// certification itself tests carry as well. A configuration that far off the motion moves a point
+/// of the robot by at most this times its distance from the joint axes: about the narrow phase's
+/// contact tolerance of a pair (geometry::tol::kContactRelative times its size).
+constexpr double kCertifiedMotionMemoTube = 1e-14;
 
 /// Attempts of simplifySolutionChecked (setup.h) before it keeps the path as planned.
 constexpr int kSimplifyAttempts = 3;

@@ -1,0 +1,123 @@
+// The memo of certified motions (certified_motion_memo.h) on its own: random motions and pieces
+// of them, computed as a planner computes them, and the same motions reversed are answered; what
+// lies off a motion, past its end or in another world version is never answered.
+
+#include "deepcheck/planners/certified_motion_memo.h"
+#include "deepcheck/planners/tolerances.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <random>
+
+namespace dp = deepcheck::planners;
+
+namespace {
+
+constexpr int kDimension = 6;
+constexpr double kPi = 3.14159265358979323846;
+
+/// The value wrapped into [-pi, pi), as a continuous joint's state is stored.
+double wrapped(double x) { return x - 2.0 * kPi * std::floor((x + kPi) / (2.0 * kPi)); }
+
+struct RandomMotion {
+  Eigen::VectorXd from, to, dq;
+};
+
+/// A motion of up to 3 rad per value from a random configuration; the first value wraps (its
+/// stored end is not from + dq).
+RandomMotion randomMotion(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> value(-kPi, kPi);
+  std::uniform_real_distribution<double> step(-3.0, 3.0);
+  RandomMotion m;
+  m.from.resize(kDimension);
+  m.dq.resize(kDimension);
+  for (int i = 0; i < kDimension; ++i) {
+    m.from[i] = value(rng);
+    m.dq[i] = step(rng);
+  }
+  m.to = m.from + m.dq;
+  m.to[0] = wrapped(m.to[0]);
+  return m;
+}
+
+/// A unit vector orthogonal to v.
+Eigen::VectorXd across(const Eigen::VectorXd& v, std::mt19937_64& rng) {
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd u(v.size());
+  for (Eigen::Index i = 0; i < v.size(); ++i) u[i] = normal(rng);
+  u -= (u.dot(v) / v.squaredNorm()) * v;
+  return u.normalized();
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(certified_motion_memo)
+
+BOOST_AUTO_TEST_CASE(a_recorded_motion_is_answered_in_its_version_only) {
+  std::mt19937_64 rng(3);
+  dp::CertifiedMotionMemo memo(kDimension);
+  const RandomMotion m = randomMotion(rng);
+  BOOST_TEST(!memo.contains(m.from, m.to, m.dq, 7));
+  memo.insert(m.from, m.to, m.dq, 7);
+  BOOST_TEST(memo.contains(m.from, m.to, m.dq, 7));
+  BOOST_TEST(!memo.contains(m.from, m.to, m.dq, 8));
+  BOOST_TEST(memo.contains(m.to, m.from, -m.dq, 7));  // the same configurations, reversed
+  BOOST_TEST(memo.hits() == 2u);
+  memo.clear();
+  BOOST_TEST(!memo.contains(m.from, m.to, m.dq, 7));
+}
+
+// Pieces computed as a planner computes them (from + s dq; a subdivided path's pieces one after
+// the other) are answered; pieces moved off the motion by far more than the tube, or reaching past
+// its end, are not.
+BOOST_AUTO_TEST_CASE(pieces_of_random_motions_are_answered_and_nothing_else) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  dp::CertifiedMotionMemo memo(kDimension);
+  for (int trial = 0; trial < 300; ++trial) {
+    const RandomMotion m = randomMotion(rng);
+    const auto version = static_cast<std::uint64_t>(trial);
+    memo.insert(m.from, m.to, m.dq, version);
+    // Off the motion: a millionth of a radian across it, from either end; past its end.
+    const double off = 1e-6;
+    const Eigen::VectorXd side = off * across(m.dq, rng);
+    BOOST_TEST(!memo.contains(m.from, m.to + side, m.dq + side, version));
+    BOOST_TEST(!memo.contains(m.from + side, m.to, m.dq - side, version));
+    BOOST_TEST(!memo.contains(m.from, m.from + 1.001 * m.dq, 1.001 * m.dq, version));
+    BOOST_TEST(!memo.contains(m.from - 0.001 * m.dq, m.to, 1.001 * m.dq, version));
+    // A subdivided motion, piece after piece, through points computed from its start.
+    const int pieces = 2 + static_cast<int>(unit(rng) * 6.0);
+    Eigen::VectorXd a = m.from;
+    for (int k = 1; k <= pieces; ++k) {
+      Eigen::VectorXd b = k == pieces ? m.to : Eigen::VectorXd(m.from + (static_cast<double>(k) / pieces) * m.dq);
+      Eigen::VectorXd d = b - a;
+      if (k == pieces) d[0] = m.dq[0] - (a[0] - m.from[0]);  // the last piece ends at the wrapped value
+      BOOST_TEST(memo.contains(a, b, d, version), "trial " << trial << ", piece " << k << " of " << pieces);
+      a = b;
+    }
+    // A piece inside, across from the start's side, off by a millionth: not answered.
+    const double s0 = 0.5 * unit(rng);
+    const Eigen::VectorXd inside = m.from + s0 * m.dq;
+    BOOST_TEST(memo.contains(m.from, inside, s0 * m.dq, version));
+    BOOST_TEST(!memo.contains(inside, m.to + side, m.dq - s0 * m.dq + side, version));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_point_motion_and_empty_configurations) {
+  dp::CertifiedMotionMemo memo(kDimension);
+  const Eigen::VectorXd q = Eigen::VectorXd::Constant(kDimension, 0.25);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(kDimension);
+  memo.insert(q, q, zero, 1);
+  BOOST_TEST(memo.contains(q, q, zero, 1));
+  Eigen::VectorXd r = q;
+  r[2] += 1e-9;
+  BOOST_TEST(!memo.contains(q, r, r - q, 1));
+  BOOST_TEST(!memo.contains(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3), 1));
+  BOOST_CHECK_THROW(dp::CertifiedMotionMemo(-1), std::invalid_argument);
+  dp::CertifiedMotionMemo none(0);
+  none.insert(Eigen::VectorXd(), Eigen::VectorXd(), Eigen::VectorXd(), 2);
+  BOOST_TEST(none.contains(Eigen::VectorXd(), Eigen::VectorXd(), Eigen::VectorXd(), 2));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
