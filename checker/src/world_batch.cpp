@@ -22,16 +22,15 @@ namespace {
 
 /// Checks qs's shape; brings the context up to the world's snapshot.
 const Snapshot& prepareBatch(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs) {
-  if (c.worldUid != state.uid) throw std::invalid_argument("World: the Context was made by another world");
-  if (c.generation != state.generation.load(std::memory_order_acquire)) refresh(c);
-  const int vars = c.snap->robot->model.numVariables();
+  const Snapshot& s = current(state, c);
+  const int vars = s.robot->model.numVariables();
   if (qs.rows() != vars || qs.cols() < 1 || qs.cols() > kLanes) {
     throw std::invalid_argument("isFreeBatch: qs is " + std::to_string(qs.rows()) + " x " + std::to_string(qs.cols()) +
                                 "; it must be " + std::to_string(vars) + " (the robot's variables) x 1 to " +
                                 std::to_string(kLanes) + " configurations");
   }
   if (c.batch == nullptr) c.batch = std::make_unique<BatchScratch>();
-  return *c.snap;
+  return s;
 }
 
 }  // namespace

@@ -108,12 +108,16 @@ void refresh(Impl& c) {
 }
 
 /// Refresh, check q, forward kinematics, link sphere centres; a new stamp for piece poses.
-const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q) {
+const Snapshot& current(const WorldState& state, Impl& c) {
   if (c.worldUid != state.uid) {
     throw std::invalid_argument("World: the Context was made by another world");
   }
   if (c.generation != state.generation.load(std::memory_order_acquire)) refresh(c);
-  const Snapshot& s = *c.snap;
+  return *c.snap;
+}
+
+const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  const Snapshot& s = current(state, c);
   const RobotData& robot = *s.robot;
   robots::forwardKinematics(robot.model, q, c.X_WL);  // checks q (size, finite), naming the variable
   c.coherent = c.lastQ.size() == q.size() && (q - c.lastQ).cwiseAbs().maxCoeff() <= tol::kWarmStartMaxStep;

@@ -96,6 +96,10 @@ using Impl = World::Context::Impl;
 /// Brings the context up to the world's current snapshot, keeping what warm starts it can.
 void refresh(Impl& c);
 
+/// The world's current snapshot in context c (refreshed when the world changed); throws when c
+/// was made by another world.
+const Snapshot& current(const WorldState& state, Impl& c);
+
 /// Refresh, check q, forward kinematics, link sphere centres; a new stamp for piece poses.
 const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q);
 
