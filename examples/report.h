@@ -9,6 +9,7 @@
 #include <deepcheck/planners/setup.h>
 #include <deepcheck/viewer/html_view.h>
 
+#include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 
@@ -72,7 +73,8 @@ inline std::shared_ptr<ompl::geometric::SimpleSetup> bundledArm(const std::strin
 /// written to `file`. False, with a message, when there is no exact solution or no certificate.
 inline bool planCertifyAndWrite(ompl::geometric::SimpleSetup& ss, double seconds, const std::string& file) {
   ss.setPlanner(std::make_shared<ompl::geometric::RRTConnect>(ss.getSpaceInformation()));
-  const ompl::base::PlannerStatus status = ss.solve(seconds);
+  // The limit as a condition the planner checks: no polling thread to wait for at the end.
+  const ompl::base::PlannerStatus status = ss.solve(ompl::base::timedPlannerTerminationCondition(seconds));
   if (status != ompl::base::PlannerStatus::EXACT_SOLUTION) {
     std::fprintf(stderr, "no exact solution: %s\n", status.asString().c_str());
     return false;

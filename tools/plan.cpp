@@ -46,6 +46,7 @@
 #include "deepcheck/robots/robot_model.h"
 
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -350,7 +351,9 @@ void setObjective(ompl::geometric::SimpleSetup& ss, ompl::base::Planner& planner
 
 /// Solves; InputError unless the solution is exact (an approximate path is written first).
 void solve(ompl::geometric::SimpleSetup& ss, const PlanArgs& a) {
-  const ompl::base::PlannerStatus status = ss.solve(a.seconds);
+  // A condition the planner checks itself: ss.solve(seconds) would start OMPL's polling thread,
+  // whose join adds up to a millisecond to plans that take a few (docs/planners.md).
+  const ompl::base::PlannerStatus status = ss.solve(ompl::base::timedPlannerTerminationCondition(a.seconds));
   std::fprintf(stderr, "planner %s: %s after %s\n", ss.getPlanner()->getName().c_str(), status.asString().c_str(),
                formatDuration(ss.getLastPlanComputationTime()).c_str());
   if (status == ompl::base::PlannerStatus::EXACT_SOLUTION) return;
