@@ -29,11 +29,13 @@ std::uint64_t bitsOf(double x) {
   return bits;
 }
 
-/// True when x lies within `tube` (per value) of the segment from 0 to `motion`.
-bool onSegment(const Eigen::VectorXd& x, const Eigen::Map<const Eigen::VectorXd>& motion, double tube) {
+/// True when x lies within `tube` (per value) of the segment from 0 to `motion`. A template, so
+/// that x may be an expression: no vector is made for it.
+template <class Derived>
+bool onSegment(const Eigen::MatrixBase<Derived>& x, const Eigen::Map<const Eigen::VectorXd>& motion, double tube) {
   const double length2 = motion.squaredNorm();
   const double s = length2 > 0.0 ? std::clamp(x.dot(motion) / length2, 0.0, 1.0) : 0.0;
-  return (x - s * motion).lpNorm<Eigen::Infinity>() <= tube;  // NaN: not on it
+  return (x - s * motion).template lpNorm<Eigen::Infinity>() <= tube;  // NaN: not on it
 }
 
 }  // namespace
@@ -54,8 +56,7 @@ std::uint64_t CertifiedMotionMemo::hash(const Eigen::Ref<const Eigen::VectorXd>&
 }
 
 bool CertifiedMotionMemo::lookup(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version,
-                                 const Eigen::Ref<const Eigen::VectorXd>& lo,
-                                 const Eigen::Ref<const Eigen::VectorXd>& hi, Eigen::VectorXd& offset,
+                                 const Eigen::Ref<const Eigen::VectorXd>& dq, double side, Eigen::VectorXd& offset,
                                  Eigen::VectorXd& motion) const {
   const std::uint64_t key = hash(point, version);
   const std::size_t bucket = bucketOf(key);
@@ -70,7 +71,7 @@ bool CertifiedMotionMemo::lookup(const Eigen::Ref<const Eigen::VectorXd>& point,
     const Eigen::Map<const Eigen::VectorXd> along(v + 2 * n_, n);
     const double tube =
         tol::kCertifiedMotionMemoTube * (1.0 + point.lpNorm<Eigen::Infinity>() + along.lpNorm<Eigen::Infinity>());
-    if (onSegment(at + lo, along, tube) && onSegment(at + hi, along, tube)) {
+    if (onSegment(at, along, tube) && onSegment(at + side * dq, along, tube)) {
       offset = at;
       motion = along;
       return true;
@@ -109,12 +110,13 @@ bool CertifiedMotionMemo::contains(const Eigen::Ref<const Eigen::VectorXd>& from
                                    const Eigen::Ref<const Eigen::VectorXd>& to,
                                    const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version) {
   if (from.size() != n_ || to.size() != n_ || dq.size() != n_) return false;
-  thread_local Eigen::VectorXd zero, offset, motion;
-  zero.setZero(n_);
-  if (lookup(from, version, zero, dq, offset, motion)) {
-    keep(to, offset + dq, motion, version);
-  } else if (lookup(to, version, -dq, zero, offset, motion)) {
-    keep(from, offset - dq, motion, version);
+  thread_local Eigen::VectorXd offset, motion;
+  if (lookup(from, version, dq, 1.0, offset, motion)) {
+    offset += dq;
+    keep(to, offset, motion, version);
+  } else if (lookup(to, version, dq, -1.0, offset, motion)) {
+    offset -= dq;
+    keep(from, offset, motion, version);
   } else {
     return false;
   }
@@ -126,7 +128,9 @@ void CertifiedMotionMemo::insert(const Eigen::Ref<const Eigen::VectorXd>& from,
                                  const Eigen::Ref<const Eigen::VectorXd>& to,
                                  const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version) {
   if (from.size() != n_ || to.size() != n_ || dq.size() != n_) return;
-  keep(from, Eigen::VectorXd::Zero(n_), dq, version);
+  thread_local Eigen::VectorXd zero;
+  zero.setZero(n_);
+  keep(from, zero, dq, version);
   keep(to, dq, dq, version);
 }
 

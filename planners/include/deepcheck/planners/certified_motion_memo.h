@@ -76,11 +76,12 @@ class CertifiedMotionMemo {
   std::uint64_t hash(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version) const;
   std::size_t bucketOf(std::uint64_t key) const { return key % (entries_.size() / kWays); }
   std::mutex& lock(std::size_t bucket) const { return locks_[bucket % kLocks]; }
-  /// True when an entry of `point` has a certified motion that holds the segment from point + `lo`
-  /// to point + `hi`; its point's offset and its motion are then copied out.
+  /// True when an entry of `point` has a certified motion that holds the segment from point to
+  /// point + side dq (side +1: point is the motion asked's start; -1: its end); the entry's offset
+  /// and motion are then copied out.
   bool lookup(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version,
-              const Eigen::Ref<const Eigen::VectorXd>& lo, const Eigen::Ref<const Eigen::VectorXd>& hi,
-              Eigen::VectorXd& offset, Eigen::VectorXd& motion) const;
+              const Eigen::Ref<const Eigen::VectorXd>& dq, double side, Eigen::VectorXd& offset,
+              Eigen::VectorXd& motion) const;
   /// Keeps `point` as c + offset of the motion c + s motion, s in [0, 1].
   void keep(const Eigen::Ref<const Eigen::VectorXd>& point, const Eigen::Ref<const Eigen::VectorXd>& offset,
             const Eigen::Ref<const Eigen::VectorXd>& motion, std::uint64_t version);
