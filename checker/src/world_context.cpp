@@ -107,7 +107,6 @@ void refresh(Impl& c) {
   c.generation = generation;
 }
 
-/// Refresh, check q, forward kinematics, link sphere centres; a new stamp for piece poses.
 const Snapshot& current(const WorldState& state, Impl& c) {
   if (c.worldUid != state.uid) {
     throw std::invalid_argument("World: the Context was made by another world");
@@ -116,6 +115,7 @@ const Snapshot& current(const WorldState& state, Impl& c) {
   return *c.snap;
 }
 
+/// Refresh, check q, forward kinematics, link sphere centres; a new stamp for piece poses.
 const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q) {
   const Snapshot& s = current(state, c);
   const RobotData& robot = *s.robot;
