@@ -144,10 +144,10 @@ int main(int argc, char** argv) {
       {"certifyPath, returned path", &t.returned},
       {"certifyPath, path from elsewhere", &t.elsewhere}};
   for (const auto& [name, v] : rows) {
-    std::printf("| %s | %.3g | %.3g |\n", name, deepcheck::bench::quantile(*v, 0.5),
-                deepcheck::bench::quantile(*v, 0.9));
-    std::fprintf(csv, "%s,%.6g,%.6g,%zu\n", name, deepcheck::bench::quantile(*v, 0.5),
-                 deepcheck::bench::quantile(*v, 0.9), v->size());
+    const double median = deepcheck::bench::quantile(*v, 0.5);
+    const double p90 = deepcheck::bench::quantile(*v, 0.9);
+    std::printf("| %s | %.3g | %.3g |\n", name, median, p90);
+    std::fprintf(csv, "%s,%.6g,%.6g,%zu\n", name, median, p90, v->size());
   }
   std::fclose(csv);
   return t.notCertified == 0 ? 0 : 1;

@@ -12,10 +12,10 @@
 // stick out by the geometry excess), never the other way round; such motions are counted.
 //
 // The same motions also go through the certified motion validator (certified_motion_validator.h)
-// on our checker, timed the same way, its memo of certified motions emptied before each: what proving every motion
-// costs against sampling it. Its verdicts are compared with the discrete ones: a motion the discrete check accepts and
-// the certified one rejects either collides between the sampled states or passes within tol::kCertifiedResolution of
-// contact (counted).
+// on our checker, timed the same way, its memo of certified motions emptied before each: what
+// proving every motion costs against sampling it. Its verdicts are compared with the discrete
+// ones: a motion the discrete check accepts and the certified one rejects either collides between
+// the sampled states or passes within tol::kCertifiedResolution of contact (counted).
 //
 // Output: a table on stdout (per scene: motions, share valid, states per motion and per motion
 // tested, mean and median microseconds per motion for the three, the configurations the

@@ -45,8 +45,8 @@
 #include "deepcheck/robots/joint_angles.h"
 #include "deepcheck/robots/robot_model.h"
 
-#include <ompl/base/ScopedState.h>
 #include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/base/ScopedState.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
