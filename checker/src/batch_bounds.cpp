@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace deepcheck::checker::detail {
 namespace {
@@ -222,11 +223,11 @@ inline const LaneBoxT<L>& pieceBox(const RobotData& robot, int i, BatchScratch& 
   return b;
 }
 
-/// Lanes whose oriented box b lies beyond the world box along a world axis, by
+/// Lanes whose oriented box b lies beyond the world box along a world axis, by `clear` and
 /// tol::kBatchBoundRelative of the scale (doubles: both builds compute the same bits).
 template <class L>
-inline std::uint32_t obbApart(const LaneBoxT<L>& b, const Aabb& box, double boxMag) {
-  const L margin = (b.scale + boxMag) * tol::kBatchBoundRelative;
+inline std::uint32_t obbApart(const LaneBoxT<L>& b, const Aabb& box, double boxMag, double clear) {
+  const L margin = (b.scale + boxMag) * tol::kBatchBoundRelative + clear;
   typename L::Mask apart{};
   for (int k = 0; k < 3; ++k) {
     apart = apart | ((b.c[k] - b.e[k]) - box.hi[k] > margin) | (box.lo[k] - (b.c[k] + b.e[k]) > margin);
@@ -235,12 +236,13 @@ inline std::uint32_t obbApart(const LaneBoxT<L>& b, const Aabb& box, double boxM
 }
 
 /// Lanes where robot pieces i and j (boxes a and b) are apart along one of the 15 axes of the
-/// separating-axis test (obb.h), by tol::kBatchBoundRelative of their scales (doubles). An
+/// separating-axis test (obb.h), by `clear` and tol::kBatchBoundRelative of their scales (doubles). An
 /// edge-product axis is not normalized: its gap is shrunk by its length (at most 1), so the
 /// margin asks for more there, and nearly parallel edges never separate.
 template <class L>
-inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBoxT<L>& a, const RobotPiece& pb, const LaneBoxT<L>& b) {
-  const L margin = (a.scale + b.scale) * tol::kBatchBoundRelative;
+inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBoxT<L>& a, const RobotPiece& pb, const LaneBoxT<L>& b,
+                               double clear) {
+  const L margin = (a.scale + b.scale) * tol::kBatchBoundRelative + clear;
   const L t[3] = {b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]};
   L C[9], absC[9];  // a_i . b_j
   for (int i = 0; i < 3; ++i) {
@@ -276,22 +278,23 @@ inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBoxT<L>& a, const
   return apart.bits();
 }
 
-/// Lanes of `open` where some piece pair of self pair sp is near: piece spheres not apart and
-/// oriented boxes not apart along a face normal.
+/// Lanes of `open` where some piece pair of self pair sp is within `clear`: piece spheres not
+/// apart and oriented boxes not apart along a face normal, by `clear` more.
 template <bool kAvx2>
-inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, BatchScratch& sc, std::uint32_t open) {
+inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, double clear, BatchScratch& sc,
+                                    std::uint32_t open) {
   const LinkGeometry& la = robot.links[sp.a];
   const LinkGeometry& lb = robot.links[sp.b];
   std::uint32_t near = 0;
   for (int i = la.firstPiece; i < la.firstPiece + la.numPieces; ++i) {
     for (int j = lb.firstPiece; j < lb.firstPiece + lb.numPieces; ++j) {
-      const double r = robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius;
+      const double r = robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius + clear;
       std::uint32_t pairNear =
           ~pointFar<kAvx2>(pieceFloats<LanesOf<kAvx2>>(robot, i, sc), pieceFloats<LanesOf<kAvx2>>(robot, j, sc), r) &
           open;
       if (pairNear != 0) {
         pairNear &= ~obbsApart(robot.pieces[i], pieceBox<LanesOf<kAvx2>>(robot, i, sc), robot.pieces[j],
-                               pieceBox<LanesOf<kAvx2>>(robot, j, sc));
+                               pieceBox<LanesOf<kAvx2>>(robot, j, sc), clear);
       }
       near |= pairNear;
       if (near == open) return near;
@@ -327,34 +330,35 @@ Aabb unionBox(const LanePointT<L>& c, double radius, const L& chain, std::uint32
   return box;
 }
 
-/// Lanes of `open` where some piece of link geometry g is near world piece w: its sphere
-/// neither beyond w's box nor beyond w's sphere, and its oriented box not beyond w's box.
+/// Lanes of `open` where some piece of link geometry g is within `clear` of world piece w: its
+/// sphere grown by `clear` neither beyond w's box nor beyond w's sphere, and its oriented box not
+/// beyond w's box by `clear`.
 template <bool kAvx2>
-inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece& w, const FloatBox& b, BatchScratch& sc,
-                                std::uint32_t open) {
+inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece& w, const FloatBox& b, double clear,
+                                BatchScratch& sc, std::uint32_t open) {
   const LinkGeometry& lg = robot.links[g];
   LaneFloats wc;
   broadcast(w.center_W, w.sphereRadius, wc);
   std::uint32_t near = 0;
   for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
-    const double r = robot.pieces[i].sphereRadius;
+    const double r = robot.pieces[i].sphereRadius + clear;
     const LaneFloats& p = pieceFloats<LanesOf<kAvx2>>(robot, i, sc);
     std::uint32_t pieceNear = ~(boxFar<kAvx2>(p, r, b) | pointFar<kAvx2>(p, wc, r + w.sphereRadius)) & open;
-    if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.box, b.mag);
+    if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.box, b.mag, clear);
     near |= pieceNear;
     if (near == open) break;
   }
   return near;
 }
 
-/// Lanes of `open` where link geometry g may meet a world piece of kind `kind`.
+/// Lanes of `open` where link geometry g may come within `clear` of a world piece of kind `kind`.
 template <bool kAvx2>
-inline std::uint32_t worldBlocked(const Snapshot& s, PairKey::Kind kind, int g, BroadPhase broadPhase, BatchScratch& sc,
-                                  std::uint32_t open) {
+inline std::uint32_t worldBlocked(const Snapshot& s, PairKey::Kind kind, int g, double clear, BroadPhase broadPhase,
+                                  BatchScratch& sc, std::uint32_t open) {
   const PieceSet& set = worldPieces(s, kind);
   if (set.pieces.empty()) return 0;
   const RobotData& robot = *s.robot;
-  const double radius = robot.links[g].radius;
+  const double radius = robot.links[g].radius + clear;
   std::uint32_t blocked = 0;
   const BatchPosesT<LanesOf<kAvx2>>& poses = sc.poses<LanesOf<kAvx2>>();
   const Aabb query = unionBox(poses.linkCenter[g], radius, poses.chainLength, open);
@@ -367,48 +371,82 @@ inline std::uint32_t worldBlocked(const Snapshot& s, PairKey::Kind kind, int g, 
     const WorldPiece& w = set.pieces[wp];
     const FloatBox b = floatBox(w.box);
     std::uint32_t near = ~boxFar<kAvx2>(sc.linkF[g], radius, b) & open & ~blocked;
-    if (near != 0) near = piecesNear<kAvx2>(robot, g, w, b, sc, near);
+    if (near != 0) near = piecesNear<kAvx2>(robot, g, w, b, clear, sc, near);
     blocked |= near;
     if ((open & ~blocked) == 0) break;
   }
   return blocked;
 }
 
-/// Lanes of `open` where self pair sp may meet: link spheres not apart and no grid certificate.
+/// True when self pair sp's grid certifies it for lane q, as Margins::gridCertifies does: free at
+/// q when its margin is 0, free all along the lane's sub-motion when the motion asks for no base
+/// clearance; otherwise only the pieces' distance can.
+inline bool gridCertifies(const SelfPairGrid& grid, const Eigen::VectorXd& q, double clear,
+                          const BatchMargins& margins) {
+  if (clear == 0.0) return grid.certifiedFree(q);
+  return margins.dq != nullptr && margins.demand->base == 0.0 && grid.certifiedFreeAlong(q, *margins.dq, margins.scale);
+}
+
+/// Lanes of `open` where self pair sp may come within `clear`: link spheres not apart by it and
+/// no grid certificate.
 template <bool kAvx2>
-inline std::uint32_t selfBlocked(const RobotData& robot, const SelfPair& sp,
+inline std::uint32_t selfBlocked(const RobotData& robot, const SelfPair& sp, double clear, const BatchMargins& margins,
                                  const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchScratch& sc, std::uint32_t open) {
-  const double r = robot.links[sp.a].radius + robot.links[sp.b].radius;
+  const double r = robot.links[sp.a].radius + robot.links[sp.b].radius + clear;
   std::uint32_t near = ~pointFar<kAvx2>(sc.linkF[sp.a], sc.linkF[sp.b], r) & open;
   if (near != 0 && sp.grid != nullptr) {
     for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
       if (!(near >> l & 1u)) continue;
       sc.q = qs.col(l);
-      if (sp.grid->certifiedFree(sc.q)) near &= ~(1u << l);
+      if (gridCertifies(*sp.grid, sc.q, clear, margins)) near &= ~(1u << l);
     }
   }
-  return near == 0 ? 0 : selfPiecesNear<kAvx2>(robot, sp, sc, near);
+  return near == 0 ? 0 : selfPiecesNear<kAvx2>(robot, sp, clear, sc, near);
+}
+
+/// Each link geometry's margin against the world, then each self pair's (Margins::worldUpper and
+/// selfUpper), grown by tol::kBatchBoundRelative of itself: its rounding to float is then covered,
+/// as the coordinates' is by their scales. False when one is negative or not finite (the bound
+/// stage then certifies nothing, and the queries name the demand).
+bool lanesMargins(const Snapshot& s, const BatchMargins& margins, std::vector<double>& out) {
+  const RobotData& robot = *s.robot;
+  out.assign(robot.links.size() + s.selfPairs.size(), 0.0);
+  if (margins.demand == nullptr) return true;
+  const ClearanceDemand& d = *margins.demand;
+  for (std::size_t g = 0; g < robot.links.size(); ++g) out[g] = d.base + margins.scale * d.link[robot.links[g].link];
+  for (std::size_t i = 0; i < s.selfPairs.size(); ++i) {
+    const SelfPair& sp = s.selfPairs[i];
+    out[robot.links.size() + i] = d.base + margins.scale * d.self(robot.links[sp.a].link, robot.links[sp.b].link);
+  }
+  for (double& m : out) {
+    if (!(m >= 0.0 && m < std::numeric_limits<double>::infinity())) return false;
+    m *= 1.0 + tol::kBatchBoundRelative;
+  }
+  return true;
 }
 
 template <bool kAvx2>
 inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
-                             BatchScratch& sc) {
+                             BatchScratch& sc, const BatchMargins& margins) {
   const std::uint32_t lanes = (1u << qs.cols()) - 1u;
   std::uint32_t blocked = 0;
   for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
     if (!sc.poses<LanesOf<kAvx2>>().finite[l]) blocked |= 1u << l;
   }
   if (blocked == lanes) return 0;
+  if (!lanesMargins(s, margins, sc.margins)) return 0;
   const RobotData& robot = *s.robot;
   linksToFloats<LanesOf<kAvx2>>(robot, sc);
   for (int g = static_cast<int>(robot.links.size()) - 1; g >= 0; --g) {
+    const double clear = sc.margins[static_cast<std::size_t>(g)];
     for (PairKey::Kind kind : {PairKey::Kind::Scene, PairKey::Kind::Obstacle}) {
-      blocked |= worldBlocked<kAvx2>(s, kind, g, broadPhase, sc, lanes & ~blocked);
+      blocked |= worldBlocked<kAvx2>(s, kind, g, clear, broadPhase, sc, lanes & ~blocked);
       if (blocked == lanes) return 0;
     }
   }
-  for (const SelfPair& sp : s.selfPairs) {
-    blocked |= selfBlocked<kAvx2>(robot, sp, qs, sc, lanes & ~blocked);
+  for (std::size_t i = 0; i < s.selfPairs.size(); ++i) {
+    const double clear = sc.margins[robot.links.size() + i];
+    blocked |= selfBlocked<kAvx2>(robot, s.selfPairs[i], clear, margins, qs, sc, lanes & ~blocked);
     if (blocked == lanes) return 0;
   }
   return lanes & ~blocked;
@@ -416,20 +454,20 @@ inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eig
 
 __attribute__((target("avx2"), flatten)) std::uint32_t certifyAvx2(const Snapshot& s, BroadPhase broadPhase,
                                                                    const Eigen::Ref<const Eigen::MatrixXd>& qs,
-                                                                   BatchScratch& sc) {
-  return certify<true>(s, broadPhase, qs, sc);
+                                                                   BatchScratch& sc, const BatchMargins& margins) {
+  return certify<true>(s, broadPhase, qs, sc, margins);
 }
 
 std::uint32_t certifyBaseline(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
-                              BatchScratch& sc) {
-  return certify<false>(s, broadPhase, qs, sc);
+                              BatchScratch& sc, const BatchMargins& margins) {
+  return certify<false>(s, broadPhase, qs, sc, margins);
 }
 
 }  // namespace
 
 std::uint32_t batchCertifiedLanes(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
-                                  bool avx2, BatchScratch& scratch) {
-  return avx2 ? certifyAvx2(s, broadPhase, qs, scratch) : certifyBaseline(s, broadPhase, qs, scratch);
+                                  bool avx2, BatchScratch& scratch, const BatchMargins& margins) {
+  return avx2 ? certifyAvx2(s, broadPhase, qs, scratch, margins) : certifyBaseline(s, broadPhase, qs, scratch, margins);
 }
 
 }  // namespace deepcheck::checker::detail

@@ -15,6 +15,10 @@
 // beyond what isFree's narrow phase could report as touching; isFree then answers free.
 // Anything else is left to isFree. Lanes whose poses are not finite are never certified.
 //
+// With margins (BatchMargins: a certified motion's sub-motions around the lanes), every test asks
+// for the pair's margin more: a certified lane keeps each pair farther apart than its margin, so
+// World::certifyMotion may take the whole sub-motion as certified (world_motion.cpp).
+//
 // The sphere tests run in floats, eight lanes in one AVX2 register (intrinsics) or as plain
 // loops in the baseline build: the same float operations in the same order, no fused
 // multiply-adds, so both certify the same lanes bit for bit. The oriented-box tests run in
@@ -59,6 +63,7 @@ struct BatchScratch {
   std::uint32_t stamp = 0;
   Eigen::VectorXd q;            ///< one lane's configuration (self-pair grids)
   std::vector<int> candidates;  ///< world pieces from the broad phase
+  std::vector<double> margins;  ///< per link geometry, then per self pair (BatchMargins)
 
   template <class L>
   BatchPosesT<L>& poses() {
@@ -78,10 +83,20 @@ struct BatchScratch {
   }
 };
 
-/// Bit l set: lane l (l < qs.cols()) is certified free. `avx2` chooses the AVX2 build
-/// (batchAvx2Available(); reads scratch.avx2Poses) or the baseline one (scratch.baselinePoses),
-/// each computed for qs by batchForwardKinematics; both give the same answer.
+/// What each lane must keep clear: nothing more than apart (isFree), or, for a certified motion's
+/// sub-motions q_l + s dq, |s| <= scale, around the lanes, each pair farther apart than
+/// demand.base + scale times the demand's configuration-free bound for the pair (Margins::
+/// worldUpper and selfUpper); a self pair's grid may then certify it along the sub-motion.
+struct BatchMargins {
+  const ClearanceDemand* demand = nullptr;  ///< null: no margins
+  double scale = 0.0;
+  const Eigen::VectorXd* dq = nullptr;  ///< the motion's displacement (with a demand)
+};
+
+/// Bit l set: lane l (l < qs.cols()) is certified free (with `margins`: clear by its margins). `avx2` chooses the AVX2
+/// build (batchAvx2Available(); reads scratch.avx2Poses) or the baseline one (scratch.baselinePoses), each computed for
+/// qs by batchForwardKinematics; both give the same answer.
 std::uint32_t batchCertifiedLanes(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
-                                  bool avx2, BatchScratch& scratch);
+                                  bool avx2, BatchScratch& scratch, const BatchMargins& margins = {});
 
 }  // namespace deepcheck::checker::detail

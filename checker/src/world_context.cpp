@@ -177,6 +177,11 @@ bool World::isClear(const Eigen::Ref<const Eigen::VectorXd>& q, const ClearanceD
   return isClear(q, threadContext(*this, state_), demand);
 }
 
+void World::isClearBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* clear,
+                         const ClearanceDemand& demand) const {
+  isClearBatch(qs, clear, threadContext(*this, state_), demand);
+}
+
 MotionCertificate World::certifyMotion(const Eigen::Ref<const Eigen::VectorXd>& q1,
                                        const Eigen::Ref<const Eigen::VectorXd>& dq,
                                        const ClearanceDemand& motion) const {

@@ -105,9 +105,11 @@ const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const
 
 /// isFreeBatch's bound stage (world_batch.cpp): refreshes the context to the world's snapshot,
 /// poses the configurations (columns of qs, 1 to kLanes) and returns the mask of those it
-/// certifies free (bit l: column l); the others are undecided. Counts the certified ones as
-/// queries. Throws std::invalid_argument for a qs of the wrong shape.
-std::uint32_t batchFreeLanes(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs);
+/// certifies free, or clear by `margins` (bit l: column l); the others are undecided. Counts the
+/// certified ones as queries. Throws std::invalid_argument for a qs of the wrong shape or a
+/// demand of the wrong size (with its base or scale negative or not finite).
+std::uint32_t batchFreeLanes(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs,
+                             const BatchMargins& margins = {});
 
 /// Bounding volumes of robot piece i in the world: its sphere centre and oriented box (computed
 /// once per query).

@@ -4,8 +4,10 @@
 // motions and on short motions near obstacles, for the Panda in the shelf and the kitchen, the
 // bundled arm in the shelf and among obstacles (with an attached object, without a broad phase),
 // and a robot with every kind of joint; for every batch size; two threads with their own contexts;
-// bad shapes, and poses that leave the doubles, throw as isFree does. The batch kinematics of both
-// builds agree with robots::forwardKinematics, bit for bit with each other.
+// bad shapes, and poses that leave the doubles, throw as isFree does. World::isClearBatch answers
+// isClear likewise, for demands with and without a base clearance, and throws for bad demands. The
+// batch kinematics of both builds agree with robots::forwardKinematics, bit for bit with each
+// other.
 
 #include "batch_kinematics.h"
 #include "checker_test_util.h"
@@ -57,8 +59,10 @@ struct Tally {
 };
 
 /// isFreeBatch on qs in consecutive batches of `width` (the last one shorter) against isFree,
-/// one context each; the bound stage in its baseline build when `baseline`.
-Tally compareBatches(const World& world, const std::vector<Eigen::VectorXd>& qs, int width, bool baseline) {
+/// one context each (with a demand: isClearBatch against isClear); the bound stage in its
+/// baseline build when `baseline`.
+Tally compareBatches(const World& world, const std::vector<Eigen::VectorXd>& qs, int width, bool baseline,
+                     const ClearanceDemand* demand = nullptr) {
   forceBatchBaseline(world, baseline);
   World::Context batch = world.makeContext();
   World::Context single = world.makeContext();
@@ -69,11 +73,17 @@ Tally compareBatches(const World& world, const std::vector<Eigen::VectorXd>& qs,
     Eigen::MatrixXd m(vars, n);
     for (int l = 0; l < n; ++l) m.col(l) = qs[first + l];
     bool free[8];
-    world.isFreeBatch(m, free, batch);
+    if (demand != nullptr) {
+      world.isClearBatch(m, free, batch, *demand);
+    } else {
+      world.isFreeBatch(m, free, batch);
+    }
     for (int l = 0; l < n; ++l) {
-      const bool reference = world.isFree(qs[first + l], single);
-      BOOST_CHECK_MESSAGE(free[l] == reference, "q = " << qs[first + l].transpose() << ": isFreeBatch " << free[l]
-                                                       << ", isFree " << reference << (baseline ? " (baseline)" : ""));
+      const bool reference =
+          demand != nullptr ? world.isClear(qs[first + l], single, *demand) : world.isFree(qs[first + l], single);
+      BOOST_CHECK_MESSAGE(free[l] == reference, "q = " << qs[first + l].transpose() << ": batch " << free[l]
+                                                       << ", one by one " << reference
+                                                       << (baseline ? " (baseline)" : ""));
       t.colliding += !reference;
     }
   }
@@ -83,10 +93,12 @@ Tally compareBatches(const World& world, const std::vector<Eigen::VectorXd>& qs,
   return t;
 }
 
-/// Both builds of the bound stage on qs: isFree's answers, the same configurations certified.
-Tally compareBothBuilds(const World& world, const std::vector<Eigen::VectorXd>& qs, int width = 8) {
-  const Tally avx2 = compareBatches(world, qs, width, false);
-  const Tally baseline = compareBatches(world, qs, width, true);
+/// Both builds of the bound stage on qs: isFree's (isClear's) answers, the same configurations
+/// certified.
+Tally compareBothBuilds(const World& world, const std::vector<Eigen::VectorXd>& qs, int width = 8,
+                        const ClearanceDemand* demand = nullptr) {
+  const Tally avx2 = compareBatches(world, qs, width, false, demand);
+  const Tally baseline = compareBatches(world, qs, width, true, demand);
   BOOST_TEST(avx2.certified == baseline.certified);
   BOOST_TEST(avx2.colliding == baseline.colliding);
   return avx2;
@@ -270,6 +282,63 @@ BOOST_AUTO_TEST_CASE(every_batch_size_answers_as_is_free) {
   bool free[8];
   world.isFreeBatch(all.middleCols(3, 7), free);
   for (int l = 0; l < 7; ++l) BOOST_TEST(free[l] == world.isFree(qs[3 + l]));
+}
+
+/// A demand of `base` plus `scale` times random link and self bounds (up to 1 and 2 m).
+ClearanceDemand randomDemand(const robots::RobotModel& m, double base, double scale, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  ClearanceDemand d;
+  d.base = base;
+  d.scale = scale;
+  d.link = Eigen::VectorXd::NullaryExpr(m.numLinks(), [&] { return u(rng); });
+  d.self = Eigen::MatrixXd::NullaryExpr(m.numLinks(), m.numLinks(), [&] { return 2.0 * u(rng); });
+  return d;
+}
+
+BOOST_AUTO_TEST_CASE(clear_batches_answer_as_is_clear) {
+  // The bound stage with every pair's margin (a certified motion's first level asks it so), on
+  // the bundled arm among obstacles with an attached object, and in the shelf.
+  World world = armWorld();
+  addCrateBallPost(world);
+  world.attach(world.robot().links().back().name,
+               Obstacle::box("tool", Eigen::Vector3d(0.05, 0.05, 0.25), translation(0, 0, 0.1)));
+  std::mt19937 rng(61);
+  const std::vector<Eigen::VectorXd> qs = configurations(world.robot(), 1200, 120, 40, 60);
+  std::uint64_t certified = 0;
+  int notClear = 0;
+  for (const auto& [base, scale] : std::vector<std::pair<double, double>>{{0.0, 0.0}, {0.0, 0.05}, {0.01, 0.2}}) {
+    const ClearanceDemand d = randomDemand(world.robot(), base, scale, rng);
+    BOOST_TEST_CONTEXT("base " << base << ", scale " << scale) {
+      const Tally t = compareBothBuilds(world, qs, 8, &d);
+      certified += t.certified;
+      notClear += t.colliding;
+    }
+  }
+  world.addScene(bundledShelf());
+  const ClearanceDemand d = randomDemand(world.robot(), 0.0, 0.1, rng);
+  const Tally t = compareBothBuilds(world, qs, 5, &d);
+  BOOST_TEST(t.colliding > 300);
+  BOOST_TEST(certified + t.certified > 300u);  // the bound stage answers some itself
+  BOOST_TEST(notClear > 300);
+}
+
+BOOST_AUTO_TEST_CASE(bad_demands_throw_in_a_clear_batch) {
+  World world = armWorld();
+  const int vars = world.robot().numVariables();
+  const int links = world.robot().numLinks();
+  bool clear[8];
+  std::mt19937 rng(62);
+  ClearanceDemand d = randomDemand(world.robot(), 0.0, 0.1, rng);
+  d.link = Eigen::VectorXd::Zero(links + 1);
+  checkThrowsWith([&] { world.isClearBatch(Eigen::MatrixXd::Zero(vars, 3), clear, d); },
+                  std::to_string(links + 1) + " link entries");
+  d = randomDemand(world.robot(), -0.01, 0.1, rng);
+  checkThrowsWith([&] { world.isClearBatch(Eigen::MatrixXd::Zero(vars, 3), clear, d); }, "-0.01");
+  addCrateBallPost(world);  // pairs to read the link entries for
+  d = randomDemand(world.robot(), 0.0, 0.1, rng);
+  d.link.setConstant(-1.0);
+  checkThrowsWith([&] { world.isClearBatch(Eigen::MatrixXd::Zero(vars, 3), clear, d); }, "-0.1");
+  checkThrowsWith([&] { world.isClearBatch(Eigen::MatrixXd::Zero(vars, 9), clear, d); }, "isClearBatch");
 }
 
 BOOST_AUTO_TEST_CASE(bad_shapes_throw_naming_the_sizes) {

@@ -421,6 +421,14 @@ class World {
   bool isClear(const Eigen::Ref<const Eigen::VectorXd>& q, Context& context, const ClearanceDemand& demand) const;
   bool isClear(const Eigen::Ref<const Eigen::VectorXd>& q, const ClearanceDemand& demand) const;
 
+  /// isClear of each column of qs (as isFreeBatch: 1 to 8 columns) into clear[0 .. n): always
+  /// clear[i] == isClear(qs.col(i), demand). isFreeBatch's bound stage with every bounding volume
+  /// grown by its pair's demand answers the configurations it certifies; isClear every other.
+  /// Throws like isFreeBatch and isClear.
+  void isClearBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* clear, Context& context,
+                    const ClearanceDemand& demand) const;
+  void isClearBatch(const Eigen::Ref<const Eigen::MatrixXd>& qs, bool* clear, const ClearanceDemand& demand) const;
+
   /// Certifies the straight motion q(t) = q1 + t dq, t in [0, 1] (world_motion.cpp). `motion`
   /// bounds how far each pair moves over the whole motion (link[i]: robot link i against the
   /// world; self(a, b): links a and b relatively; metres; its `scale` is not used) and `base` is
