@@ -235,13 +235,33 @@ inline std::uint32_t obbApart(const LaneBoxT<L>& b, const Aabb& box, double boxM
   return apart.bits();
 }
 
+/// A world piece's oriented box in every lane, with its scale (|centre| max norm + its extents
+/// along the world axes).
+template <class L>
+LaneBoxT<L> worldBox(const Obb& box) {
+  LaneBoxT<L> b;
+  double extents = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    b.c[k] = L::all(box.center[k]);
+    double e = 0.0;
+    for (int j = 0; j < 3; ++j) {
+      b.R[3 * k + j] = L::all(box.R(k, j));
+      e += std::abs(box.R(k, j)) * box.half[j];
+    }
+    b.e[k] = L::all(e);
+    extents += e;
+  }
+  b.scale = L::all(box.center.cwiseAbs().maxCoeff() + extents);
+  return b;
+}
+
 /// Lanes where robot pieces i and j (boxes a and b) are apart along one of the 15 axes of the
 /// separating-axis test (obb.h), by `clear` and tol::kBatchBoundRelative of their scales (doubles). An
 /// edge-product axis is not normalized: its gap is shrunk by its length (at most 1), so the
 /// margin asks for more there, and nearly parallel edges never separate.
 template <class L>
-inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBoxT<L>& a, const RobotPiece& pb, const LaneBoxT<L>& b,
-                               double clear) {
+inline std::uint32_t obbsApart(const Eigen::Vector3d& ha, const LaneBoxT<L>& a, const Eigen::Vector3d& hb,
+                               const LaneBoxT<L>& b, double clear) {
   const L margin = (a.scale + b.scale) * tol::kBatchBoundRelative + clear;
   const L t[3] = {b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]};
   L C[9], absC[9];  // a_i . b_j
@@ -251,8 +271,6 @@ inline std::uint32_t obbsApart(const RobotPiece& pa, const LaneBoxT<L>& a, const
       absC[3 * i + j] = laneAbs(C[3 * i + j]);
     }
   }
-  const Eigen::Vector3d& ha = pa.obb_L.half;
-  const Eigen::Vector3d& hb = pb.obb_L.half;
   L ta[3];  // t along a's axes
   typename L::Mask apart{};
   for (int i = 0; i < 3; ++i) {  // a's face normals
@@ -293,8 +311,8 @@ inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, 
           ~pointFar<kAvx2>(pieceFloats<LanesOf<kAvx2>>(robot, i, sc), pieceFloats<LanesOf<kAvx2>>(robot, j, sc), r) &
           open;
       if (pairNear != 0) {
-        pairNear &= ~obbsApart(robot.pieces[i], pieceBox<LanesOf<kAvx2>>(robot, i, sc), robot.pieces[j],
-                               pieceBox<LanesOf<kAvx2>>(robot, j, sc), clear);
+        pairNear &= ~obbsApart(robot.pieces[i].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, i, sc),
+                               robot.pieces[j].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, j, sc), clear);
       }
       near |= pairNear;
       if (near == open) return near;
@@ -345,6 +363,10 @@ inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece&
     const LaneFloats& p = pieceFloats<LanesOf<kAvx2>>(robot, i, sc);
     std::uint32_t pieceNear = ~(boxFar<kAvx2>(p, r, b) | pointFar<kAvx2>(p, wc, r + w.sphereRadius)) & open;
     if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.box, b.mag, clear);
+    if (pieceNear != 0) {
+      pieceNear &= ~obbsApart(robot.pieces[i].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.obb_W.half,
+                              worldBox<LanesOf<kAvx2>>(w.obb_W), clear);
+    }
     near |= pieceNear;
     if (near == open) break;
   }

@@ -6,7 +6,8 @@
 //   - for every robot link geometry, every world piece whose box the broad phase finds near the
 //     union of the lanes' link spheres is allowed to touch it, or lies beyond the link's sphere,
 //     or beyond each of its pieces (the piece's sphere beyond the world piece's box or sphere, or
-//     the piece's oriented box beyond the world box along a world axis);
+//     the piece's oriented box beyond the world box along a world axis, or apart from the world
+//     piece's oriented box along one of the separating-axis test's 15 axes);
 //   - every self pair is certified by its grid at the lane's q (as isFree does), or has link
 //     spheres apart, or each of its piece pairs has spheres apart or oriented boxes apart (the
 //     separating-axis test's 15 axes).
