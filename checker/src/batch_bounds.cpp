@@ -451,6 +451,11 @@ template <bool kAvx2>
 inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
                              BatchScratch& sc, const BatchMargins& margins) {
   const std::uint32_t lanes = (1u << qs.cols()) - 1u;
+  // Without margins a blocked lane is left to isFree, and the tests stop for it; with margins
+  // every lane is tested against every link geometry and self pair, so that a clearance test of a
+  // blocked lane knows which ones need it (nearLanes: every one, until the tests say otherwise).
+  const bool record = margins.demand != nullptr;
+  if (record) sc.nearLanes.assign(s.robot->links.size() + s.selfPairs.size(), ~0u);
   std::uint32_t blocked = 0;
   for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
     if (!sc.poses<LanesOf<kAvx2>>().finite[l]) blocked |= 1u << l;
@@ -459,17 +464,25 @@ inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eig
   if (!lanesMargins(s, margins, sc.margins)) return 0;
   const RobotData& robot = *s.robot;
   linksToFloats<LanesOf<kAvx2>>(robot, sc);
+  const std::uint32_t unposed = blocked;  // lanes whose poses are not finite: near everything
+  if (record) std::fill(sc.nearLanes.begin(), sc.nearLanes.end(), unposed);
   for (int g = static_cast<int>(robot.links.size()) - 1; g >= 0; --g) {
     const double clear = sc.margins[static_cast<std::size_t>(g)];
     for (PairKey::Kind kind : {PairKey::Kind::Scene, PairKey::Kind::Obstacle}) {
-      blocked |= worldBlocked<kAvx2>(s, kind, g, clear, broadPhase, sc, lanes & ~blocked);
-      if (blocked == lanes) return 0;
+      const std::uint32_t open = lanes & ~(record ? unposed : blocked);
+      const std::uint32_t near = worldBlocked<kAvx2>(s, kind, g, clear, broadPhase, sc, open);
+      blocked |= near;
+      if (record) sc.nearLanes[static_cast<std::size_t>(g)] |= near;
+      if (blocked == lanes && !record) return 0;
     }
   }
   for (std::size_t i = 0; i < s.selfPairs.size(); ++i) {
     const double clear = sc.margins[robot.links.size() + i];
-    blocked |= selfBlocked<kAvx2>(robot, s.selfPairs[i], clear, margins, qs, sc, lanes & ~blocked);
-    if (blocked == lanes) return 0;
+    const std::uint32_t open = lanes & ~(record ? unposed : blocked);
+    const std::uint32_t near = selfBlocked<kAvx2>(robot, s.selfPairs[i], clear, margins, qs, sc, open);
+    blocked |= near;
+    if (record) sc.nearLanes[robot.links.size() + i] |= near;
+    if (blocked == lanes && !record) return 0;
   }
   return lanes & ~blocked;
 }

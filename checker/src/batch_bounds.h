@@ -65,6 +65,9 @@ struct BatchScratch {
   Eigen::VectorXd q;            ///< one lane's configuration (self-pair grids)
   std::vector<int> candidates;  ///< world pieces from the broad phase
   std::vector<double> margins;  ///< per link geometry, then per self pair (BatchMargins)
+  /// With margins: per link geometry, then per self pair, the lanes where it may be within its
+  /// margin (every lane tested against every one; the others are clear by the bounds).
+  std::vector<std::uint32_t> nearLanes;
 
   template <class L>
   BatchPosesT<L>& poses() {

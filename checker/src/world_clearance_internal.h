@@ -147,10 +147,22 @@ enum class Clearance {
   Collides,  ///< some pair is within the base clearance (margin 0: overlaps)
 };
 
+/// The link geometries and self pairs a clearance test must examine: those the batch bound stage
+/// found possibly within their margins in one lane (BatchScratch::nearLanes); the others are
+/// clear by their bounding volumes.
+struct NearFilter {
+  const std::vector<std::uint32_t>* nearLanes = nullptr;  ///< per link geometry, then self pair
+  int lane = 0;
+  bool link(std::size_t g) const { return ((*nearLanes)[g] >> lane & 1u) != 0; }
+  bool self(std::size_t links, std::size_t i) const { return link(links + i); }
+};
+
 /// Every pair within its margin at the context's configuration, listed in `near` when none is
 /// within the base clearance (Near; Clear when none is within its margin); Collides at the first
-/// pair within the base clearance (the list is then incomplete).
-Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near);
+/// pair within the base clearance (the list is then incomplete). With a filter, only its link
+/// geometries and self pairs are examined (margins no larger than the batch's).
+Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near,
+                      const NearFilter* only = nullptr);
 
 /// Pair k (as collectNear lists it) within its margin at the context's configuration; a self pair
 /// its grid certifies over the sub-motion (Margins::gridCertifies) is not.

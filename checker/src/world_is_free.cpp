@@ -151,13 +151,16 @@ bool selfPairsNear(Impl& c, const RobotData& robot, const SelfPair& sp, const Ma
 /// space and meet the world most often, so a colliding configuration is found sooner), then the
 /// self pairs.
 template <class F>
-bool forEachPairNear(Impl& c, const Snapshot& s, const Margins& margins, F& f) {
-  for (int g = static_cast<int>(s.robot->links.size()) - 1; g >= 0; --g) {
+bool forEachPairNear(Impl& c, const Snapshot& s, const Margins& margins, F& f, const NearFilter* only = nullptr) {
+  const std::size_t links = s.robot->links.size();
+  for (int g = static_cast<int>(links) - 1; g >= 0; --g) {
+    if (only != nullptr && !only->link(static_cast<std::size_t>(g))) continue;
     if (linkPairsNear(c, s, PairKey::Kind::Scene, g, margins, f)) return true;
     if (linkPairsNear(c, s, PairKey::Kind::Obstacle, g, margins, f)) return true;
   }
-  for (const SelfPair& sp : s.selfPairs) {
-    if (selfPairsNear(c, *s.robot, sp, margins, f)) return true;
+  for (std::size_t i = 0; i < s.selfPairs.size(); ++i) {
+    if (only != nullptr && !only->self(links, i)) continue;
+    if (selfPairsNear(c, *s.robot, s.selfPairs[i], margins, f)) return true;
   }
   return false;
 }
@@ -200,7 +203,8 @@ bool clearOfAll(Impl& c, const Snapshot& s, const Margins& margins) {
   return !forEachPairNear(c, s, margins, narrow);
 }
 
-Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near) {
+Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near,
+                      const NearFilter* only) {
   checkLinkTranslations(c);
   near.clear();
   Margins base = margins;
@@ -216,7 +220,7 @@ Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::v
     near.push_back(k);
     return false;
   };
-  if (forEachPairNear(c, s, margins, test)) return Clearance::Collides;
+  if (forEachPairNear(c, s, margins, test, only)) return Clearance::Collides;
   return near.empty() ? Clearance::Clear : Clearance::Near;
 }
 

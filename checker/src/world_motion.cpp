@@ -187,16 +187,17 @@ bool rakeGroup(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::M
 }
 
 /// Examines one sub-motion (middle q(tm), half length h) for clearance at the context's current
-/// pose; on Split, w.near holds the pairs its halves must test.
+/// pose (a first-level one only what `only` names); on Split, w.near holds the pairs its halves
+/// must test.
 Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, double h, double move, const SubMotion& sub,
-                MotionScratch& w) {
+                MotionScratch& w, const NearFilter* only) {
   const RobotData& robot = *s.robot;
   if (w.chainsOf != &robot) buildChains(robot, w);
   w.speeds.reset(c, robot, motion, h, w.dq, w.chains);
   Margins margins(motion, robot, h, &w.speeds);
   Clearance found = Clearance::Clear;
   if (sub.first < 0) {
-    found = collectNear(c, s, margins, w.near);
+    found = collectNear(c, s, margins, w.near, only);
   } else {
     // The pairs the parent found near; the others are clear over the whole parent.
     Margins base = margins;
@@ -331,7 +332,10 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
       const Snapshot& s = prepare(state, c, w.q);
       if (!held) held = c.snap;
       if (c.snap != held) return false;
-      const Outcome o = examine(c, s, motion, h, move, sub, w);
+      // A first-level sub-motion examines only what the bound stage could not clear.
+      NearFilter batched;
+      if (sub.first < 0) batched = NearFilter{&c.batch->nearLanes, static_cast<int>(at % kRakeWidth)};
+      const Outcome o = examine(c, s, motion, h, move, sub, w, sub.first < 0 ? &batched : nullptr);
       if (o == Outcome::Collides || o == Outcome::Unproven || out.configurations > tol::kCertifiedMaxTests) {
         out.verdict =
             o == Outcome::Collides ? MotionCertificate::Verdict::Collides : MotionCertificate::Verdict::Unproven;
