@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 namespace deepcheck::checker::detail {
 namespace {
@@ -358,14 +359,16 @@ inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece&
   LaneFloats wc;
   broadcast(w.center_W, w.sphereRadius, wc);
   std::uint32_t near = 0;
+  std::optional<LaneBoxT<LanesOf<kAvx2>>> wb;  // w's oriented box in every lane, made once when needed
   for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
     const double r = robot.pieces[i].sphereRadius + clear;
     const LaneFloats& p = pieceFloats<LanesOf<kAvx2>>(robot, i, sc);
     std::uint32_t pieceNear = ~(boxFar<kAvx2>(p, r, b) | pointFar<kAvx2>(p, wc, r + w.sphereRadius)) & open;
     if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.box, b.mag, clear);
     if (pieceNear != 0) {
-      pieceNear &= ~obbsApart(robot.pieces[i].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.obb_W.half,
-                              worldBox<LanesOf<kAvx2>>(w.obb_W), clear);
+      if (!wb) wb = worldBox<LanesOf<kAvx2>>(w.obb_W);
+      pieceNear &=
+          ~obbsApart(robot.pieces[i].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.obb_W.half, *wb, clear);
     }
     near |= pieceNear;
     if (near == open) break;

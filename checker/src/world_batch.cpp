@@ -43,7 +43,7 @@ namespace detail {
 std::uint32_t batchFreeLanes(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs,
                              const BatchMargins& margins) {
   const Snapshot& s = prepareBatch(state, c, qs, margins.demand != nullptr ? "isClearBatch" : "isFreeBatch");
-  if (margins.demand != nullptr) Margins(*margins.demand, *s.robot, margins.scale);  // throws for a bad demand
+  if (margins.demand != nullptr) Margins::validate(*margins.demand, *s.robot, margins.scale);
   const bool avx2 = batchAvx2Available() && !state.batchBaseline.load(std::memory_order_relaxed);
   if (avx2) {
     batchForwardKinematics(*s.robot, qs, c.batch->avx2Poses);

@@ -77,6 +77,11 @@ class Margins {
   /// self pair's grid may certify its pair (gridCertifies).
   Margins(const ClearanceDemand& d, const RobotData& robot, double scale, PosedSpeeds* posed = nullptr)
       : d_(&d), links_(&robot.links), scale_(scale), posed_(posed) {
+    validate(d, robot, scale);
+  }
+  /// Throws, naming the value, unless the demand fits the robot and its base clearance and the
+  /// scale are finite and >= 0.
+  static void validate(const ClearanceDemand& d, const RobotData& robot, double scale) {
     const int numLinks = robot.model.numLinks();
     if (d.link.size() != numLinks || d.self.rows() != numLinks || d.self.cols() != numLinks) {
       throw std::invalid_argument("isClear: the demand has " + std::to_string(d.link.size()) + " link entries and a " +
@@ -153,8 +158,9 @@ enum class Clearance {
 struct NearFilter {
   const std::vector<std::uint32_t>* nearLanes = nullptr;  ///< per link geometry, then self pair
   int lane = 0;
+  std::size_t links = 0;  ///< the number of link geometries: where the self pairs start
   bool link(std::size_t g) const { return ((*nearLanes)[g] >> lane & 1u) != 0; }
-  bool self(std::size_t links, std::size_t i) const { return link(links + i); }
+  bool self(std::size_t i) const { return link(links + i); }
 };
 
 /// Every pair within its margin at the context's configuration, listed in `near` when none is

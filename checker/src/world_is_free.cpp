@@ -159,7 +159,7 @@ bool forEachPairNear(Impl& c, const Snapshot& s, const Margins& margins, F& f, c
     if (linkPairsNear(c, s, PairKey::Kind::Obstacle, g, margins, f)) return true;
   }
   for (std::size_t i = 0; i < s.selfPairs.size(); ++i) {
-    if (only != nullptr && !only->self(links, i)) continue;
+    if (only != nullptr && !only->self(i)) continue;
     if (selfPairsNear(c, *s.robot, s.selfPairs[i], margins, f)) return true;
   }
   return false;

@@ -217,6 +217,9 @@ Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, doubl
   return Outcome::Split;
 }
 
+/// Where the middle of sub-motion `index` of level k lies along the motion: 2^-k (index + 1/2).
+double middleOf(int k, std::int64_t index) { return std::ldexp(static_cast<double>(index) + 0.5, -k); }
+
 /// Queues the halves of sub-motion j for the next level, with the pairs `examine` left.
 void split(const SubMotion& sub, MotionScratch& w) {
   SubMotion half;
@@ -255,7 +258,7 @@ bool rakeAbove(int level, const WorldState& state, Impl& c, const Eigen::Ref<con
   int k = 0;
   std::int64_t i = 0;  // the n-th middle: index i of level k
   for (std::int64_t n = 0; n < needed; ++n) {
-    w.rake.col(lanes++) = q1 + (std::ldexp(1.0, -k) * (static_cast<double>(i) + 0.5)) * w.dq;
+    w.rake.col(lanes++) = q1 + middleOf(k, i) * w.dq;
     if (++i == (std::int64_t{1} << k)) {
       ++k;
       i = 0;
@@ -273,21 +276,19 @@ bool rakeAbove(int level, const WorldState& state, Impl& c, const Eigen::Ref<con
   return true;
 }
 
-/// The bound stage with the sub-motions' margins (BatchMargins) on the middles of the first level's
-/// sub-motions w.level[at, at + kRakeWidth): w.batchClear gets those it certifies clear (bit l:
-/// w.level[at + l]). False when the world changed since `held`.
+/// The bound stage with the sub-motions' margins (BatchMargins) on the middles of the sub-motions
+/// w.level[at, at + kRakeWidth) of the first level, k: w.batchClear gets those it certifies clear
+/// (bit l: w.level[at + l]). False when the world changed since `held`.
 bool batchFirstLevel(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q1,
-                     const ClearanceDemand& motion, double h, std::size_t at, MotionScratch& w,
+                     const ClearanceDemand& motion, int k, std::size_t at, MotionScratch& w,
                      std::shared_ptr<const Snapshot>& held) {
   const auto lanes = static_cast<int>(std::min<std::size_t>(kRakeWidth, w.level.size() - at));
   w.rake.resize(q1.size(), kRakeWidth);
-  for (int l = 0; l < lanes; ++l) {
-    w.rake.col(l) =
-        q1 + (2.0 * h * (static_cast<double>(w.level[at + static_cast<std::size_t>(l)].index) + 0.5)) * w.dq;
-  }
+  for (int l = 0; l < lanes; ++l)
+    w.rake.col(l) = q1 + middleOf(k, w.level[at + static_cast<std::size_t>(l)].index) * w.dq;
   BatchMargins margins;
   margins.demand = &motion;
-  margins.scale = h;
+  margins.scale = std::ldexp(0.5, -k);
   margins.dq = &w.dq;
   w.batchClear = batchFreeLanes(state, c, w.rake.leftCols(lanes), margins);
   if (!held) held = c.snap;
@@ -320,21 +321,22 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
     for (std::size_t at = 0; at < w.level.size(); ++at) {
       const SubMotion& sub = w.level[at];
       // Only the first level's sub-motions test every pair.
-      if (sub.first < 0 && at % kRakeWidth == 0 && !batchFirstLevel(state, c, q1, motion, h, at, w, held)) {
+      if (sub.first < 0 && at % kRakeWidth == 0 && !batchFirstLevel(state, c, q1, motion, k, at, w, held)) {
         return false;
       }
       if (sub.first < 0 && (w.batchClear >> (at % kRakeWidth) & 1u) != 0) {
         ++out.configurations;
         continue;
       }
-      w.q = q1 + (2.0 * h * (static_cast<double>(sub.index) + 0.5)) * w.dq;
+      w.q = q1 + middleOf(k, sub.index) * w.dq;
       ++out.configurations;
       const Snapshot& s = prepare(state, c, w.q);
       if (!held) held = c.snap;
       if (c.snap != held) return false;
       // A first-level sub-motion examines only what the bound stage could not clear.
       NearFilter batched;
-      if (sub.first < 0) batched = NearFilter{&c.batch->nearLanes, static_cast<int>(at % kRakeWidth)};
+      if (sub.first < 0)
+        batched = NearFilter{&c.batch->nearLanes, static_cast<int>(at % kRakeWidth), s.robot->links.size()};
       const Outcome o = examine(c, s, motion, h, move, sub, w, sub.first < 0 ? &batched : nullptr);
       if (o == Outcome::Collides || o == Outcome::Unproven || out.configurations > tol::kCertifiedMaxTests) {
         out.verdict =
