@@ -18,6 +18,9 @@
 
 namespace deepcheck::checker::detail {
 
+/// Per link geometry, the moving joints between it and the root, from the geometry up.
+std::vector<std::vector<int>> jointChains(const RobotData& robot);
+
 /// How far each geometry of the robot may move over a sub-motion of a straight motion q + s dq,
 /// |s| <= h, around the posed configuration, per unit of h (metres): World::certifyMotion's bound
 /// from the pose (world_motion.cpp), tighter than the configuration-free one. Computed for a link
@@ -52,6 +55,7 @@ class PosedSpeeds {
 
  private:
   double compute(int g);
+  double rigidDrift(int g, double turning) const;
   /// Joint k's axis in the world at the pose.
   const Eigen::Vector3d& axis(int k);
 
@@ -63,6 +67,7 @@ class PosedSpeeds {
   const std::vector<std::vector<int>>* chains_ = nullptr;
   std::vector<char> known_, axisKnown_;
   std::vector<double> value_;
+  std::vector<double> reach_;  ///< compute's scratch: per joint of the chain, d_k + h D_g
   std::vector<Eigen::Vector3d> axis_;
 };
 

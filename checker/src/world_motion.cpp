@@ -84,44 +84,91 @@ struct MotionScratch {
   PosedSpeeds speeds;                     ///< the posed bound at the current sub-motion
 };
 
-/// The moving joints between each link geometry and the root.
-void buildChains(const RobotData& robot, MotionScratch& w) {
-  w.chains.assign(robot.links.size(), {});
-  for (std::size_t g = 0; g < robot.links.size(); ++g) {
-    for (int l = robot.links[g].link; robot.model.link(l).parentJoint >= 0; l = robot.model.link(l).parentLink) {
-      const int j = robot.model.link(l).parentJoint;
-      if (robot.model.joint(j).moves() && robot.model.joint(j).variable >= 0) w.chains[g].push_back(j);
-    }
-  }
-  w.chainsOf = &robot;
-}
-
 }  // namespace
 
 namespace detail {
 
+std::vector<std::vector<int>> jointChains(const RobotData& robot) {
+  std::vector<std::vector<int>> chains(robot.links.size());
+  for (std::size_t g = 0; g < robot.links.size(); ++g) {
+    for (int l = robot.links[g].link; robot.model.link(l).parentJoint >= 0; l = robot.model.link(l).parentLink) {
+      const int j = robot.model.link(l).parentJoint;
+      if (robot.model.joint(j).moves() && robot.model.joint(j).variable >= 0) chains[g].push_back(j);
+    }
+  }
+  return chains;
+}
+
 /// For link geometry g, S_g with h S_g bounding how far its points move over the sub-motion
-/// q + s dq, |s| <= h, around the posed q. A revolute joint k moves a point p at
-/// |dq_k m_k| dist(p, axis_k) per unit of s; at the pose dist(p, axis_k) <= |(c_g - o_k) x a_k| +
-/// r_g (c_g, r_g: g's bounding sphere), and over the sub-motion it changes only by the motion of
-/// the joints below k, at most h D_g (the configuration-free bound of the whole motion). A
-/// prismatic joint moves every point below it at |dq_k m_k|.
+/// q + s dq, |s| <= h, around the posed q: the smaller of two bounds on a point's speed there.
+///
+/// Per joint: a revolute joint k (rate sigma_k = dq_k m_k) moves a point p at |sigma_k|
+/// dist(p, axis_k) per unit of s; at the pose dist(p, axis_k) <= d_k = |(c_g - o_k) x a_k| + r_g
+/// (c_g, r_g: g's bounding sphere), and over the sub-motion it changes only by the motion of the
+/// joints below k, at most h D_g (the configuration-free bound of the whole motion). A prismatic
+/// joint moves every point below it at |sigma_k|.
+///
+/// Rigid: at the pose the link moves as a rigid body, p at V_c + W x (p - c_g) (V_c the centre's
+/// velocity, W = sum sigma_k a_k), at most |V_c| + |W| r_g: the joints' contributions partly
+/// cancel, which the per-joint sum ignores. Over the sub-motion joint k's contribution
+/// sigma_k a_k x (p - o_k), seen from the link before it, turns with that link (by at most
+/// h Wbar_k, Wbar_k the sum of |sigma_j| above k) and changes by p's motion relative to it (at most
+/// h P_k, P_k the per-joint bound of the joints from k down): it moves by at most
+/// h |sigma_k| (Wbar_k (d_k + h D_g) + P_k) (a prismatic joint's only turns: h |sigma_k| Wbar_k).
 double PosedSpeeds::compute(int g) {
   const RobotData& robot = *robot_;
   const LinkGeometry& lg = robot.links[static_cast<std::size_t>(g)];
   const Eigen::Vector3d& center = c_->linkCenter[static_cast<std::size_t>(g)];
-  const double drift = lg.radius + h_ * motion_->link[lg.link];
+  const std::vector<int>& chain = (*chains_)[static_cast<std::size_t>(g)];
+  const double drift = h_ * motion_->link[lg.link];
+  reach_.resize(chain.size());
+  double perJoint = 0.0;
+  double turning = 0.0;  // sum of the revolute |sigma_k|
+  Eigen::Vector3d centerVelocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    const robots::Joint& joint = robot.model.joint(chain[i]);
+    const double sigma = (*dq_)[joint.variable] * joint.multiplier;
+    reach_[i] = 0.0;
+    if (sigma == 0.0) continue;
+    const Eigen::Vector3d& a = axis(chain[i]);
+    if (joint.type == robots::JointType::Prismatic) {
+      perJoint += std::abs(sigma);
+      centerVelocity += sigma * a;
+      continue;
+    }
+    const Eigen::Vector3d arm = center - c_->X_WL[joint.childLink].translation();
+    reach_[i] = arm.cross(a).norm() + lg.radius + drift;
+    perJoint += std::abs(sigma) * reach_[i];
+    centerVelocity += sigma * a.cross(arm);
+    angular += sigma * a;
+    turning += std::abs(sigma);
+  }
+  const double rigid = centerVelocity.norm() + angular.norm() * lg.radius + h_ * rigidDrift(g, turning);
+  return std::min(perJoint, rigid);
+}
+
+/// The sum over g's joints of |sigma_k| (Wbar_k (d_k + h D_g) + P_k) (compute), from reach_ (its
+/// d_k + h D_g; 0 for a prismatic joint) and `turning`, the sum of the revolute |sigma_k|. The
+/// chain runs from g up to the root: the joints above k come after it.
+double PosedSpeeds::rigidDrift(int g, double turning) const {
+  const RobotData& robot = *robot_;
+  const std::vector<int>& chain = (*chains_)[static_cast<std::size_t>(g)];
+  double from = 0.0;    // P_k: the per-joint bound of the joints from k down
+  double turned = 0.0;  // the revolute |sigma_j| from k down; Wbar_k = turning - turned
   double sum = 0.0;
-  for (const int k : (*chains_)[static_cast<std::size_t>(g)]) {
-    const robots::Joint& joint = robot.model.joint(k);
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    const robots::Joint& joint = robot.model.joint(chain[i]);
     const double rate = std::abs((*dq_)[joint.variable] * joint.multiplier);
     if (rate == 0.0) continue;
     if (joint.type == robots::JointType::Prismatic) {
-      sum += rate;
+      from += rate;
+      sum += rate * (turning - turned);
       continue;
     }
-    const Eigen::Vector3d& origin = c_->X_WL[joint.childLink].translation();
-    sum += rate * ((center - origin).cross(axis(k)).norm() + drift);
+    from += rate * reach_[i];
+    turned += rate;
+    sum += rate * ((turning - turned) * reach_[i] + from);
   }
   return sum;
 }
@@ -192,7 +239,10 @@ bool rakeGroup(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::M
 Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, double h, double move, const SubMotion& sub,
                 MotionScratch& w, const NearFilter* only) {
   const RobotData& robot = *s.robot;
-  if (w.chainsOf != &robot) buildChains(robot, w);
+  if (w.chainsOf != &robot) {
+    w.chains = jointChains(robot);
+    w.chainsOf = &robot;
+  }
   w.speeds.reset(c, robot, motion, h, w.dq, w.chains);
   Margins margins(motion, robot, h, &w.speeds);
   Clearance found = Clearance::Clear;

@@ -126,28 +126,6 @@ World armWorld(BroadPhase broadPhase = BroadPhase::AabbTree) {
                options);
 }
 
-/// Every joint kind: a revolute joint about a skew axis, a prismatic one along a skew axis, a
-/// continuous one about -x, a mimic of the first (multiplier 2, offset 0.3), a fixed one; the
-/// origins rotated.
-robots::RobotModel everyJointRobot() {
-  const std::string box = "<collision><geometry><box size='0.1 0.2 0.3'/></geometry></collision>";
-  auto link = [&](const std::string& name) { return "<link name='" + name + "'>" + box + "</link>"; };
-  auto joint = [](const std::string& name, const std::string& type, const std::string& parent, const std::string& child,
-                  const std::string& xyz, const std::string& rpy, const std::string& axis, const std::string& extra) {
-    return "<joint name='" + name + "' type='" + type + "'><parent link='" + parent + "'/><child link='" + child +
-           "'/><origin xyz='" + xyz + "' rpy='" + rpy + "'/><axis xyz='" + axis +
-           "'/><limit lower='-3' upper='3' effort='1' velocity='1'/>" + extra + "</joint>";
-  };
-  const std::string xml = "<robot name='every'><link name='base'/>" + link("a") + link("b") + link("c") + link("d") +
-                          link("e") + joint("j1", "revolute", "base", "a", "0.1 0 0.2", "0.3 -0.2 0.1", "1 2 3", "") +
-                          joint("j2", "prismatic", "a", "b", "0 0.3 0", "0 0 0.5", "0 1 1", "") +
-                          joint("j3", "continuous", "b", "c", "0.2 0 0", "0.1 0.2 0.3", "-1 0 0", "") +
-                          joint("j4", "revolute", "c", "d", "0 0 0.25", "0 0 0", "0 0.6 0.8",
-                                "<mimic joint='j1' multiplier='2' offset='0.3'/>") +
-                          joint("j5", "fixed", "d", "e", "0.05 0.05 0.05", "1 0 0", "1 0 0", "") + "</robot>";
-  return robots::RobotModel::fromUrdfString(xml, ".", {}, "every.urdf");
-}
-
 /// Every lane of `poses` against robots::forwardKinematics of its column (lanes past qs.cols()
 /// repeat the last one): link poses and link geometry centres within 1e-12.
 template <class L>

@@ -5,6 +5,7 @@
 // find the same answers the long way.
 
 #include "world_internal.h"
+#include "world_queries_internal.h"
 
 #include "deepcheck/checker/world.h"
 
@@ -22,6 +23,15 @@ using detail::NarrowPhaseEvent;
 /// function removes it. Not while queries run.
 inline void setNarrowPhaseHook(const World& world, std::function<void(const NarrowPhaseEvent&)> hook) {
   world.internalState()->onNarrowPhase = std::move(hook);
+}
+
+/// A query context of `world` as World::makeContext makes one, reached from inside (the
+/// queries' internal steps take it).
+inline std::unique_ptr<detail::Impl> contextImplOf(const World& world) {
+  auto impl = std::make_unique<detail::Impl>();
+  impl->state = world.internalState().get();
+  impl->worldUid = impl->state->uid;
+  return impl;
 }
 
 /// The world's current snapshot.
