@@ -236,11 +236,14 @@ Closest onTriangle(const Vector3d* s, int i, int j, int k) {
     best.lam = {la, lb, lc, 0.0};
     best.v = s[a] + lb * eb + lc * ec;
     best.vv = best.v.squaredNorm();
+    // At least as high as it is far from the origin, the triangle's plane is well determined and
+    // no edge comes closer than its interior point.
+    if (h * h >= best.vv) return best;
   }
-  // The edges are searched too, all three: on a sliver thinner than its distance to the origin
-  // the plane (u2) is ill-determined and the weights, signs included, are noise, while the edges
-  // are then within h^2 / (2 |v|) of the answer. On other triangles an edge never beats the
-  // interior point, and the strict comparison keeps the interior on ties.
+  // Otherwise the edges are searched, all three: on a sliver thinner than its distance to the
+  // origin the plane (u2) is ill-determined and the weights, signs included, are noise, while the
+  // edges are then within h^2 / (2 |v|) of the answer. The strict comparison keeps the interior
+  // point on ties.
   keepCloser(best, onSegment(s, a, b));
   keepCloser(best, onSegment(s, b, c));
   keepCloser(best, onSegment(s, c, a));
