@@ -95,7 +95,7 @@ std::vector<std::vector<robots::CollisionPiece>> piecesWithProgress(const robots
 
 std::shared_ptr<const RobotData> buildRobot(robots::RobotModel model, const robots::CollisionGeometryOptions& geometry,
                                             std::ostream* progress) {
-  auto robot = std::make_shared<RobotData>(RobotData{std::move(model), {}, {}, {}, nullptr});
+  auto robot = std::make_shared<RobotData>(RobotData{std::move(model), {}, {}, {}, {}, nullptr});
   const robots::RobotModel& m = robot->model;
   const std::vector<std::vector<robots::CollisionPiece>> pieces =
       piecesWithProgress(m, geometry, progress, "robot '" + m.name() + "'");
@@ -143,6 +143,12 @@ void appendLinkGeometry(RobotData& robot, int link, int attached, const std::vec
   }
   lg.radius = detail::padRadius(r, lg.center_L);
   robot.links.push_back(lg);
+  std::vector<int>& chain = robot.chains.emplace_back();
+  const robots::RobotModel& m = robot.model;
+  for (int l = link; m.link(l).parentJoint >= 0; l = m.link(l).parentLink) {
+    const int j = m.link(l).parentJoint;
+    if (m.joint(j).moves() && m.joint(j).variable >= 0) chain.push_back(j);
+  }
 }
 
 WorldPiece makeWorldPiece(const robots::CollisionPiece& p, const Eigen::Isometry3d& X_WB, int body, std::uint64_t uid) {

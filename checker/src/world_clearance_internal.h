@@ -18,9 +18,6 @@
 
 namespace deepcheck::checker::detail {
 
-/// Per link geometry, the moving joints between it and the root, from the geometry up.
-std::vector<std::vector<int>> jointChains(const RobotData& robot);
-
 /// How far each geometry of the robot may move over a sub-motion of a straight motion q + s dq,
 /// |s| <= h, around the posed configuration, per unit of h (metres): World::certifyMotion's bound
 /// from the pose (world_motion.cpp), tighter than the configuration-free one. Computed for a link
@@ -28,16 +25,14 @@ std::vector<std::vector<int>> jointChains(const RobotData& robot);
 /// decided by the configuration-free bound alone.
 class PosedSpeeds {
  public:
-  /// A new pose (the context's) of `robot`, for the sub-motion of half length h of `motion`;
-  /// chains[g]: the moving joints between link geometry g and the root.
-  void reset(const Impl& c, const RobotData& robot, const ClearanceDemand& motion, double h, const Eigen::VectorXd& dq,
-             const std::vector<std::vector<int>>& chains) {
+  /// A new pose (the context's) of `robot`, for the sub-motion of half length h of `motion` along dq.
+  void reset(const Impl& c, const RobotData& robot, const ClearanceDemand& motion, double h,
+             const Eigen::VectorXd& dq) {
     c_ = &c;
     robot_ = &robot;
     motion_ = &motion;
     h_ = h;
     dq_ = &dq;
-    chains_ = &chains;
     known_.assign(robot.links.size(), 0);
     value_.resize(robot.links.size());
     axisKnown_.assign(static_cast<std::size_t>(robot.model.numJoints()), 0);
@@ -64,7 +59,6 @@ class PosedSpeeds {
   const ClearanceDemand* motion_ = nullptr;
   double h_ = 0.0;
   const Eigen::VectorXd* dq_ = nullptr;
-  const std::vector<std::vector<int>>* chains_ = nullptr;
   std::vector<char> known_, axisKnown_;
   std::vector<double> value_;
   std::vector<double> reach_;  ///< compute's scratch: per joint of the chain, d_k + h D_g

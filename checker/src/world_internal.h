@@ -64,6 +64,7 @@ struct RobotData {
   robots::RobotModel model;
   std::vector<RobotPiece> pieces;                  // grouped by link, in link order
   std::vector<LinkGeometry> links;                 // links with pieces, in link order
+  std::vector<std::vector<int>> chains;            // per link geometry: its moving joints, up to the root
   std::vector<ReachSphere> reach;                  // per link
   std::shared_ptr<const LinkPairIndex> linkPairs;  // adjacent and rigid link pairs
 };

@@ -79,25 +79,12 @@ struct MotionScratch {
   std::vector<PairKey> pairs, nextPairs;  ///< their pair lists
   std::vector<PairKey> near;              ///< the pairs one sub-motion found within their margins
   std::uint32_t batchClear = 0;           ///< first-level sub-motions the bound stage certified
-  const RobotData* chainsOf = nullptr;    ///< the robot data `chains` was made for
-  std::vector<std::vector<int>> chains;   ///< per link geometry, its moving joints up to the root
   PosedSpeeds speeds;                     ///< the posed bound at the current sub-motion
 };
 
 }  // namespace
 
 namespace detail {
-
-std::vector<std::vector<int>> jointChains(const RobotData& robot) {
-  std::vector<std::vector<int>> chains(robot.links.size());
-  for (std::size_t g = 0; g < robot.links.size(); ++g) {
-    for (int l = robot.links[g].link; robot.model.link(l).parentJoint >= 0; l = robot.model.link(l).parentLink) {
-      const int j = robot.model.link(l).parentJoint;
-      if (robot.model.joint(j).moves() && robot.model.joint(j).variable >= 0) chains[g].push_back(j);
-    }
-  }
-  return chains;
-}
 
 /// For link geometry g, S_g with h S_g bounding how far its points move over the sub-motion
 /// q + s dq, |s| <= h, around the posed q: the smaller of two bounds on a point's speed there.
@@ -119,7 +106,7 @@ double PosedSpeeds::compute(int g) {
   const RobotData& robot = *robot_;
   const LinkGeometry& lg = robot.links[static_cast<std::size_t>(g)];
   const Eigen::Vector3d& center = c_->linkCenter[static_cast<std::size_t>(g)];
-  const std::vector<int>& chain = (*chains_)[static_cast<std::size_t>(g)];
+  const std::vector<int>& chain = robot.chains[static_cast<std::size_t>(g)];
   const double drift = h_ * motion_->link[lg.link];
   reach_.resize(chain.size());
   double perJoint = 0.0;
@@ -153,7 +140,7 @@ double PosedSpeeds::compute(int g) {
 /// chain runs from g up to the root: the joints above k come after it.
 double PosedSpeeds::rigidDrift(int g, double turning) const {
   const RobotData& robot = *robot_;
-  const std::vector<int>& chain = (*chains_)[static_cast<std::size_t>(g)];
+  const std::vector<int>& chain = robot.chains[static_cast<std::size_t>(g)];
   double from = 0.0;    // P_k: the per-joint bound of the joints from k down
   double turned = 0.0;  // the revolute |sigma_j| from k down; Wbar_k = turning - turned
   double sum = 0.0;
@@ -239,11 +226,7 @@ bool rakeGroup(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::M
 Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, double h, double move, const SubMotion& sub,
                 MotionScratch& w, const NearFilter* only) {
   const RobotData& robot = *s.robot;
-  if (w.chainsOf != &robot) {
-    w.chains = jointChains(robot);
-    w.chainsOf = &robot;
-  }
-  w.speeds.reset(c, robot, motion, h, w.dq, w.chains);
+  w.speeds.reset(c, robot, motion, h, w.dq);
   Margins margins(motion, robot, h, &w.speeds);
   Clearance found = Clearance::Clear;
   if (sub.first < 0) {

@@ -65,7 +65,6 @@ double checkPosedSpeeds(const World& world, unsigned seed, int motions) {
   const robots::RobotModel& model = world.robot();
   const detail::RobotData& robot = *robotOf(world);
   const std::unique_ptr<detail::Impl> c = contextImplOf(world);
-  const std::vector<std::vector<int>> chains = detail::jointChains(robot);
   const std::vector<double> extents = world.linkExtents();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -80,7 +79,7 @@ double checkPosedSpeeds(const World& world, unsigned seed, int motions) {
     const double tm = h + (1.0 - 2.0 * h) * unit(rng);
     detail::prepare(*c->state, *c, q1 + tm * dq);
     detail::PosedSpeeds speeds;
-    speeds.reset(*c, robot, motion, h, dq, chains);
+    speeds.reset(*c, robot, motion, h, dq);
     for (int g = 0; g < static_cast<int>(robot.links.size()); ++g) {
       const double bound = speeds.of(g) * (2.0 * h / kSamples);  // per step of s
       std::vector<Eigen::Vector3d> before = pieceVertices(model, robot, g, q1 + (tm - h) * dq);
