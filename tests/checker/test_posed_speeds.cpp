@@ -1,9 +1,10 @@
 // The posed bound World::certifyMotion grows each pair by (PosedSpeeds, world_motion.cpp): over a
 // sub-motion q(tm) + s dq, |s| <= h, no point of a link geometry's pieces moves faster than S_g
 // per unit of s. Checked on the pieces' vertices, sampled along random sub-motions (long and short,
-// near the middle of a long motion and near its ends) of the Panda, the bundled arm and a robot
-// with every kind of joint (a skew prismatic joint, a continuous one, a mimic). The configuration-
-// free bound it starts from is the chain-length bound of planners/motion_bound.h.
+// near the middle of a long motion and near its ends) of the Panda, the bundled arm (also holding
+// a long rod) and a robot with every kind of joint (a skew prismatic joint, a continuous one, a
+// mimic). The configuration-free bound it starts from is the chain-length bound of
+// planners/motion_bound.h.
 
 #include "checker_test_util.h"
 #include "world_clearance_internal.h"
@@ -109,6 +110,15 @@ BOOST_AUTO_TEST_CASE(posed_speeds_bound_the_robot_arm) {
                     testWorldOptions());
   // Not vacuous: somewhere a vertex moves at more than half the bound.
   BOOST_TEST(checkPosedSpeeds(world, 11, 100) > 0.5);
+}
+
+BOOST_AUTO_TEST_CASE(posed_speeds_bound_an_attached_object) {
+  // A long rod held off the hand: a link geometry of its own, far from the joints' axes.
+  World world(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
+                                               bundledLoadOptions()),
+              testWorldOptions());
+  world.attach("hand", Obstacle::box("rod", Eigen::Vector3d(0.04, 0.04, 0.7), translation(0.15, 0.05, 0.4)));
+  BOOST_TEST(checkPosedSpeeds(world, 14, 100) > 0.5);
 }
 
 BOOST_AUTO_TEST_CASE(posed_speeds_bound_every_kind_of_joint) {
