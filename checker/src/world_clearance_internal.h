@@ -50,7 +50,7 @@ class PosedSpeeds {
 
  private:
   double compute(int g);
-  double rigidDrift(int g, double turning) const;
+  double rigidDrift(double turning) const;
   /// Joint k's axis in the world at the pose.
   const Eigen::Vector3d& axis(int k);
 
@@ -61,7 +61,13 @@ class PosedSpeeds {
   const Eigen::VectorXd* dq_ = nullptr;
   std::vector<char> known_, axisKnown_;
   std::vector<double> value_;
-  std::vector<double> reach_;  ///< compute's scratch: per joint of the chain, d_k + h D_g
+  /// compute's scratch, per joint of the chain: |sigma_k|, d_k + h D_g (0 when prismatic).
+  struct JointTerm {
+    double rate = 0.0;
+    double reach = 0.0;
+    bool prismatic = false;
+  };
+  std::vector<JointTerm> terms_;
   std::vector<Eigen::Vector3d> axis_;
 };
 

@@ -108,7 +108,7 @@ double PosedSpeeds::compute(int g) {
   const Eigen::Vector3d& center = c_->linkCenter[static_cast<std::size_t>(g)];
   const std::vector<int>& chain = robot.chains[static_cast<std::size_t>(g)];
   const double drift = h_ * motion_->link[lg.link];
-  reach_.resize(chain.size());
+  terms_.resize(chain.size());
   double perJoint = 0.0;
   double turning = 0.0;  // sum of the revolute |sigma_k|
   Eigen::Vector3d centerVelocity = Eigen::Vector3d::Zero();
@@ -116,46 +116,43 @@ double PosedSpeeds::compute(int g) {
   for (std::size_t i = 0; i < chain.size(); ++i) {
     const robots::Joint& joint = robot.model.joint(chain[i]);
     const double sigma = (*dq_)[joint.variable] * joint.multiplier;
-    reach_[i] = 0.0;
+    const bool prismatic = joint.type == robots::JointType::Prismatic;
+    terms_[i] = JointTerm{std::abs(sigma), 0.0, prismatic};
     if (sigma == 0.0) continue;
     const Eigen::Vector3d& a = axis(chain[i]);
-    if (joint.type == robots::JointType::Prismatic) {
+    if (prismatic) {
       perJoint += std::abs(sigma);
       centerVelocity += sigma * a;
       continue;
     }
     const Eigen::Vector3d arm = center - c_->X_WL[joint.childLink].translation();
-    reach_[i] = arm.cross(a).norm() + lg.radius + drift;
-    perJoint += std::abs(sigma) * reach_[i];
+    terms_[i].reach = arm.cross(a).norm() + lg.radius + drift;
+    perJoint += std::abs(sigma) * terms_[i].reach;
     centerVelocity += sigma * a.cross(arm);
     angular += sigma * a;
     turning += std::abs(sigma);
   }
-  const double rigid = centerVelocity.norm() + angular.norm() * lg.radius + h_ * rigidDrift(g, turning);
+  const double rigid = centerVelocity.norm() + angular.norm() * lg.radius + h_ * rigidDrift(turning);
   return std::min(perJoint, rigid);
 }
 
-/// The sum over g's joints of |sigma_k| (Wbar_k (d_k + h D_g) + P_k) (compute), from reach_ (its
-/// d_k + h D_g; 0 for a prismatic joint) and `turning`, the sum of the revolute |sigma_k|. The
-/// chain runs from g up to the root: the joints above k come after it.
-double PosedSpeeds::rigidDrift(int g, double turning) const {
-  const RobotData& robot = *robot_;
-  const std::vector<int>& chain = robot.chains[static_cast<std::size_t>(g)];
+/// The sum over the joints compute() just walked of |sigma_k| (Wbar_k (d_k + h D_g) + P_k), from
+/// terms_ and `turning`, the sum of the revolute |sigma_k|. The chain runs from the geometry up to
+/// the root: the joints above k come after it.
+double PosedSpeeds::rigidDrift(double turning) const {
   double from = 0.0;    // P_k: the per-joint bound of the joints from k down
   double turned = 0.0;  // the revolute |sigma_j| from k down; Wbar_k = turning - turned
   double sum = 0.0;
-  for (std::size_t i = 0; i < chain.size(); ++i) {
-    const robots::Joint& joint = robot.model.joint(chain[i]);
-    const double rate = std::abs((*dq_)[joint.variable] * joint.multiplier);
-    if (rate == 0.0) continue;
-    if (joint.type == robots::JointType::Prismatic) {
-      from += rate;
-      sum += rate * (turning - turned);
+  for (const JointTerm& t : terms_) {
+    if (t.rate == 0.0) continue;
+    if (t.prismatic) {
+      from += t.rate;
+      sum += t.rate * (turning - turned);
       continue;
     }
-    from += rate * reach_[i];
-    turned += rate;
-    sum += rate * ((turning - turned) * reach_[i] + from);
+    from += t.rate * t.reach;
+    turned += t.rate;
+    sum += t.rate * ((turning - turned) * t.reach + from);
   }
   return sum;
 }
