@@ -1,6 +1,7 @@
 #include "deepcheck/planners/planner_factory.h"
 
 #include "deepcheck/planners/tolerances.h"
+#include "deepcheck/planners/vector_nearest.h"
 
 #include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
@@ -24,6 +25,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <typeinfo>
 #include <utility>
 
 namespace deepcheck::planners {
@@ -36,6 +38,24 @@ using Maker = std::function<ompl::base::PlannerPtr(const ompl::base::SpaceInform
 template <class P>
 Maker maker() {
   return [](const ompl::base::SpaceInformationPtr& si) { return std::make_shared<P>(si); };
+}
+
+/// OMPL's RRTConnect whose two trees find nearest neighbours with VectorNearest: made only on a
+/// RealVectorStateSpace itself (not a subclass, whose distance may differ).
+class VectorNearestRRTConnect : public og::RRTConnect {
+ public:
+  VectorNearestRRTConnect(const ompl::base::SpaceInformationPtr& si, unsigned dimension) : og::RRTConnect(si) {
+    tStart_ = std::make_shared<VectorNearest<Motion*>>(dimension);
+    tGoal_ = std::make_shared<VectorNearest<Motion*>>(dimension);
+  }
+};
+
+Maker rrtConnect() {
+  return [](const ompl::base::SpaceInformationPtr& si) -> ompl::base::PlannerPtr {
+    const ompl::base::StateSpace& space = *si->getStateSpace();
+    if (typeid(space) != typeid(ompl::base::RealVectorStateSpace)) return std::make_shared<og::RRTConnect>(si);
+    return std::make_shared<VectorNearestRRTConnect>(si, space.getDimension());
+  };
 }
 
 /// BIT* is k-nearest by default, and OMPL renames (with a warning) a k-nearest BIT* called
@@ -56,7 +76,7 @@ struct Entry {
 
 const std::vector<Entry>& table() {
   static const std::vector<Entry> entries = {
-      {"RRTConnect", false, maker<og::RRTConnect>()},
+      {"RRTConnect", false, rrtConnect()},
       {"RRT", false, maker<og::RRT>()},
       {"RRT*", true, maker<og::RRTstar>()},
       {"InformedRRT*", true, maker<og::InformedRRTstar>()},
