@@ -8,7 +8,7 @@ if (!exists("outdir")) outdir = 'results'
 
 set datafile separator ","
 methods = system("awk -F, 'NR>1 && !s[$2]++ {printf \"%s \", $2}' ".csv)
-pick(m, v) = (strcol(2) eq m) ? v : NaN
+rows(m) = sprintf("< awk -F, '$2 == \"%s\"' '%s'", m, csv)
 
 set terminal pngcairo size 900,600 font ",11" noenhanced
 set output outdir.'/nearest_bench.png'
@@ -18,4 +18,4 @@ set ylabel "ns per query"
 set logscale xy
 set grid
 set key top left
-plot for [i=1:words(methods)] csv using 1:(pick(word(methods, i), $3)) with linespoints lw 2 pt 7 title word(methods, i)
+plot for [i=1:words(methods)] rows(word(methods, i)) using 1:3 with linespoints lw 2 pt 7 title word(methods, i)

@@ -34,7 +34,7 @@ template <typename T>
 class VectorNearest : public ompl::NearestNeighbors<T> {
  public:
   /// Elements held before they move into a GNAT. On the Panda's 7 joints a scan stays faster than
-  /// GNAT's query up to the largest tree bench/nearest_bench measures (16384 uniform samples: 2.6x),
+  /// GNAT's query up to the largest tree bench/nearest_bench measures (16384 uniform samples),
   /// since in 7 dimensions GNAT prunes little; past this many a scan takes a few hundred
   /// microseconds, and GNAT's pruning of a tree's clustered nodes bounds the cost.
   static constexpr std::size_t kScanLimit = std::size_t{1} << 16;
