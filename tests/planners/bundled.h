@@ -9,6 +9,9 @@
 
 #include <Eigen/Core>
 
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <ostream>
@@ -21,6 +24,16 @@ inline std::ostream& operator<<(std::ostream& out, PushOutStatus status) { retur
 }  // namespace deepcheck::planners
 
 namespace deepcheck::planners::test {
+
+/// OMPL's uniform sampler of a RealVectorStateSpace drawing from its own pinned seed instead of
+/// OMPL's global seed sequence: two plans on the same seed draw the same samples.
+class SeededSampler : public ompl::base::RealVectorStateSampler {
+ public:
+  SeededSampler(const ompl::base::StateSpace* space, std::uint_fast32_t seed)
+      : ompl::base::RealVectorStateSampler(space) {
+    rng_.setLocalSeed(seed);
+  }
+};
 
 inline std::string dataDir() { return std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data"; }
 inline std::string armUrdf() { return dataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf"; }

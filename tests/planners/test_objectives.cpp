@@ -73,14 +73,8 @@ std::shared_ptr<const deepcheck::checker::World> planarArmAndPole() {
   return world;
 }
 
-/// OMPL's uniform sampler and RRT*, each drawing from its own pinned seed instead of OMPL's global
-/// seed sequence: two runs on the same seed differ only by their objective.
-class SeededSampler : public ob::RealVectorStateSampler {
- public:
-  SeededSampler(const ob::StateSpace* space, std::uint_fast32_t seed) : ob::RealVectorStateSampler(space) {
-    rng_.setLocalSeed(seed);
-  }
-};
+/// OMPL's RRT* drawing from its own pinned seed (with dp::test::SeededSampler, two runs on the same
+/// seed differ only by their objective).
 class SeededRRTstar : public og::RRTstar {
  public:
   SeededRRTstar(const ob::SpaceInformationPtr& si, std::uint_fast32_t seed) : og::RRTstar(si) {
@@ -255,7 +249,7 @@ BOOST_AUTO_TEST_CASE(clearance_objective_keeps_rrt_star_paths_farther_from_obsta
   const auto plan = [&](bool clearance, std::uint_fast32_t seed, double& length) {
     auto space = dp::makeStateSpace(world->robot());
     space->setStateSamplerAllocator(
-        [seed](const ob::StateSpace* s) { return std::make_shared<SeededSampler>(s, seed); });
+        [seed](const ob::StateSpace* s) { return std::make_shared<dp::test::SeededSampler>(s, seed); });
     auto si = std::make_shared<ob::SpaceInformation>(space);
     auto checker = std::make_shared<dp::StateValidityChecker>(si, world);
     si->setStateValidityChecker(checker);

@@ -196,12 +196,6 @@ BOOST_AUTO_TEST_CASE(bad_use_is_reported) {
 BOOST_AUTO_TEST_CASE(make_planner_rrt_connect_plans_the_path_gnat_plans_from_the_same_samples) {
   // Both planners draw from samplers pinned to the same seed: the paths agree state for state only
   // when every nearest neighbour agrees.
-  class SeededSampler : public ob::RealVectorStateSampler {
-   public:
-    SeededSampler(const ob::StateSpace* space, std::uint_fast32_t seed) : ob::RealVectorStateSampler(space) {
-      rng_.setLocalSeed(seed);
-    }
-  };
   const auto world = dp::test::bundledWorld("shelf");
   for (std::uint_fast32_t seed = 1; seed <= 3; ++seed) {
     std::vector<std::vector<double>> paths[2];
@@ -209,20 +203,17 @@ BOOST_AUTO_TEST_CASE(make_planner_rrt_connect_plans_the_path_gnat_plans_from_the
     for (int which = 0; which < 2; ++which) {
       auto ss = dp::makeSimpleSetup(world, dp::test::bundledOptions());
       ss->getStateSpace()->setStateSamplerAllocator(
-          [seed](const ob::StateSpace* s) { return std::make_shared<SeededSampler>(s, seed); });
+          [seed](const ob::StateSpace* s) { return std::make_shared<dp::test::SeededSampler>(s, seed); });
       dp::setStartAndGoal(*ss, dp::test::suggestedStart(), dp::test::suggestedGoal("shelf"));
       ob::PlannerPtr planner;
       if (which == 0) {
         planner = dp::makePlanner("RRTConnect", ss->getSpaceInformation());
-      } else {
-        auto gnat = std::make_shared<og::RRTConnect>(ss->getSpaceInformation());
-        planner = gnat;
-      }
-      if (which == 0) {
         BOOST_TEST((typeid(*planner) != typeid(og::RRTConnect)));  // its own nearest neighbours
         range = planner->as<og::RRTConnect>()->getRange();
       } else {
-        planner->as<og::RRTConnect>()->setRange(range);
+        auto gnat = std::make_shared<og::RRTConnect>(ss->getSpaceInformation());
+        gnat->setRange(range);
+        planner = gnat;
       }
       ss->setPlanner(planner);
       BOOST_TEST_REQUIRE(ss->solve(30.0) == ob::PlannerStatus::EXACT_SOLUTION);

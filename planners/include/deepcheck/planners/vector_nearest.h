@@ -7,8 +7,8 @@
 // virtual call of the state space) on every element it visits, and on the trees of a planner that
 // solves in a millisecond (tens to hundreds of motions) it visits nearly all of them. Here a query
 // is a loop over each dimension's array that the compiler vectorizes, then a scan for the
-// smallest. Once the tree holds kScanLimit elements (or the limit given) they move into a GNAT, which answers from then
-// on with the planner's distance function.
+// smallest. Once the tree holds kScanLimit elements (or the limit given) they move into a GNAT,
+// which answers from then on with the planner's distance function.
 //
 // T is a pointer to an object whose `state` is a RealVectorStateSpace state of `dimension` values
 // (the Motion of OMPL's tree planners). The distance function the planner sets must be that
