@@ -16,6 +16,7 @@ struct CertifiedMotionValidator::Motion {
   std::shared_ptr<const LinkSpeedBound> bound;
   Eigen::VectorXd q1, q2, dq;
   checker::ClearanceDemand demand;  ///< the bounds over the whole motion
+  bool bounded = false;             ///< demand holds this motion's bounds (bind)
 };
 
 namespace {
@@ -67,8 +68,14 @@ void CertifiedMotionValidator::prepare(const ompl::base::State* s1, const ompl::
   m.q1 = mapping.configuration(s1);
   m.q2 = mapping.configuration(s2);
   m.dq = mapping.displacement(m.q1, m.q2);
+  m.bounded = false;
+}
+
+void CertifiedMotionValidator::bind(Motion& m) const {
+  if (m.bounded) return;
   m.bound->displacements(m.dq, m.demand.link, m.demand.self);
   m.demand.base = checker_->validityOptions().threshold();
+  m.bounded = true;
 }
 
 checker::MotionCertificate CertifiedMotionValidator::certify(const Motion& m, double fraction) const {
@@ -90,14 +97,17 @@ checker::MotionCertificate CertifiedMotionValidator::prefix(const Motion& m, dou
   return checker_->world().certifyMotion(m.q1, fraction * m.dq, demand);
 }
 
-bool CertifiedMotionValidator::accepted(const Motion& m) const {
+bool CertifiedMotionValidator::accepted(Motion& m) const {
   CertifiedMotionMemo& memo = checker_->certifiedMotions();
   // The version before the certification: a change of the world during it leaves an entry no
   // later lookup matches, never one that answers for a world it was not certified in.
   const std::uint64_t version = checker_->world().version();
   if (memo.contains(m.q1, m.q2, m.dq, version)) return true;
-  // s2 first: OMPL's contract (its joint limits too), and the cheapest rejection.
-  if (!checker_->isValid(m.q2) || !certify(m, 1.0).certified()) return false;
+  // s2 first: OMPL's contract (its joint limits too), and the cheapest rejection; the bounds only
+  // when a certification needs them.
+  if (!checker_->isValid(m.q2)) return false;
+  bind(m);
+  if (!certify(m, 1.0).certified()) return false;
   memo.insert(m.q1, m.q2, m.dq, version);
   return true;
 }
@@ -124,6 +134,7 @@ bool CertifiedMotionValidator::checkMotion(const ompl::base::State* s1, const om
     return true;
   }
   // The longest certified prefix, by bisection on its length: [0, lo] is certified, [0, hi] not.
+  bind(m);
   const double maxMove = std::max(m.demand.link.maxCoeff(), m.demand.self.maxCoeff());
   double lo = 0.0;
   double hi = 1.0;

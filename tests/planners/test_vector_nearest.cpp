@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -176,6 +177,39 @@ BOOST_AUTO_TEST_CASE(removed_elements_are_never_answered_and_clear_empties_it) {
     BOOST_CHECK_THROW(nn.nearest(nodes.at(0)), ompl::Exception);
     nn.add(nodes.at(5));
     BOOST_TEST(nn.nearest(nodes.at(0)) == nodes.at(5));
+  }
+}
+
+// nearest() asked again for the same values scans only what was added since: interleaved with
+// adds, removals, other queries and a query changed in place, every answer is a full scan's.
+BOOST_AUTO_TEST_CASE(a_query_asked_again_as_elements_come_and_go_gets_a_full_scans_answer) {
+  Nodes nodes(420, 19);
+  Nearest nn(kDimension);
+  nn.setDistanceFunction(nodes.distanceFunction());
+  Node* query = nodes.at(410);
+  std::mt19937_64 rng(5);
+  std::vector<Node*> held;
+  for (std::size_t i = 0; i < 400; ++i) {
+    nn.add(nodes.at(i));
+    held.push_back(nodes.at(i));
+    if (i % 37 == 36) {  // the same node, new values
+      std::copy(nodes.values(400 + i % 9), nodes.values(400 + i % 9) + kDimension, nodes.values(410));
+    }
+    if (i % 53 == 52) {
+      const std::size_t j = std::uniform_int_distribution<std::size_t>(0, held.size() - 1)(rng);
+      BOOST_TEST(nn.remove(held[j]));
+      held.erase(held.begin() + static_cast<std::ptrdiff_t>(j));
+    }
+    if (i % 41 == 40) {
+      std::vector<Node*> k;
+      nn.nearestK(nodes.at(415), 3, k);
+      BOOST_TEST(nodes.distance(nn.nearest(nodes.at(415)), nodes.at(415)) == nodes.distance(k.front(), nodes.at(415)));
+    }
+    for (int again = 0; again < 2; ++again) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (Node* e : held) nearest = std::min(nearest, nodes.distance(e, query));
+      BOOST_TEST(nodes.distance(nn.nearest(query), query) == nearest, boost::test_tools::tolerance(1e-12));
+    }
   }
 }
 

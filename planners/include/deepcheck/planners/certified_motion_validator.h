@@ -81,14 +81,16 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
 
  private:
   struct Motion;
-  /// Reads the states, the displacement and the bounds of one motion.
+  /// Reads the states and the displacement of one motion.
   void prepare(const ompl::base::State* s1, const ompl::base::State* s2, Motion& m) const;
+  /// Computes the motion's bounds (once).
+  void bind(Motion& m) const;
   /// Certifies the first `fraction` of the motion, counting.
   checker::MotionCertificate certify(const Motion& m, double fraction) const;
   checker::MotionCertificate prefix(const Motion& m, double fraction) const;
   /// The whole motion is valid: in the checker's memo of certified motions, or s2 valid and the
   /// motion certified now (then remembered).
-  bool accepted(const Motion& m) const;
+  bool accepted(Motion& m) const;
 
   std::shared_ptr<const StateValidityChecker> checker_;
   mutable std::mutex boundMutex_;

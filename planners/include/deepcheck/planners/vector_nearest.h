@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -41,7 +42,10 @@ class VectorNearest : public ompl::NearestNeighbors<T> {
 
   /// `scanLimit`: the elements held before they move into a GNAT (at least 1).
   explicit VectorNearest(unsigned dimension, std::size_t scanLimit = kScanLimit)
-      : dimension_(dimension), scanLimit_(scanLimit), coordinates_(dimension) {
+      : dimension_(dimension),
+        scanLimit_(scanLimit),
+        coordinates_(dimension),
+        last_(dimension, std::numeric_limits<double>::quiet_NaN()) {
     if (dimension == 0) throw std::invalid_argument("VectorNearest: the dimension must be at least 1");
     if (scanLimit == 0) throw std::invalid_argument("VectorNearest: the scan limit must be at least 1");
   }
@@ -54,6 +58,7 @@ class VectorNearest : public ompl::NearestNeighbors<T> {
   bool reportsSortedResults() const override { return true; }
 
   void clear() override {
+    forgetQuery();
     tree_.reset();
     elements_.clear();
     for (std::vector<double>& c : coordinates_) c.clear();
@@ -75,19 +80,37 @@ class VectorNearest : public ompl::NearestNeighbors<T> {
     const auto it = std::find(elements_.begin(), elements_.end(), element);
     if (it == elements_.end()) return false;
     const auto i = it - elements_.begin();
+    forgetQuery();
     elements_.erase(it);
     for (std::vector<double>& c : coordinates_) c.erase(c.begin() + i);
     return true;
   }
 
+  /// The same query again (equal values) after elements were only added scans only the new ones:
+  /// RRTConnect's connect steps ask for the nearest to one state after each step it adds.
   T nearest(const T& query) const override {
     if (tree_) return tree_->nearest(query);
     if (elements_.empty()) throw ompl::Exception("VectorNearest: no elements to search");
-    squaredDistances(query);
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < squared_.size(); ++i) {
-      if (squared_[i] < squared_[best]) best = i;
+    const double* q = valuesOf(query);
+    std::size_t from = scanned_;
+    if (!std::equal(q, q + dimension_, last_.begin())) {
+      std::copy(q, q + dimension_, last_.begin());
+      from = 0;
     }
+    squaredDistances(q, from);
+    const std::size_t n = elements_.size();
+    const double* s = squared_.data();
+    std::size_t best = from == 0 ? 0 : best_;
+    double bestSquared = from == 0 ? s[0] : bestSquared_;
+    for (std::size_t i = std::max<std::size_t>(from, 1); i < n; ++i) {
+      if (s[i] < bestSquared) {
+        best = i;
+        bestSquared = s[i];
+      }
+    }
+    best_ = best;
+    bestSquared_ = bestSquared;
+    scanned_ = n;
     return elements_[best];
   }
 
@@ -95,7 +118,7 @@ class VectorNearest : public ompl::NearestNeighbors<T> {
     if (tree_) return tree_->nearestK(query, k, found);
     found.clear();
     if (elements_.empty() || k == 0) return;
-    squaredDistances(query);
+    squaredDistances(valuesOf(query), 0);
     order_.resize(elements_.size());
     std::iota(order_.begin(), order_.end(), std::size_t{0});
     const std::size_t kept = std::min(k, order_.size());
@@ -108,7 +131,7 @@ class VectorNearest : public ompl::NearestNeighbors<T> {
     if (tree_) return tree_->nearestR(query, radius, found);
     found.clear();
     if (elements_.empty()) return;
-    squaredDistances(query);
+    squaredDistances(valuesOf(query), 0);
     order_.clear();
     for (std::size_t i = 0; i < elements_.size(); ++i) {
       if (std::sqrt(squared_[i]) <= radius) order_.push_back(i);
@@ -134,22 +157,27 @@ class VectorNearest : public ompl::NearestNeighbors<T> {
     return squared_[a] < squared_[b] || (squared_[a] == squared_[b] && a < b);
   }
 
-  /// squared_[i]: the squared distance of element i from `query`.
-  void squaredDistances(const T& query) const {
-    const double* q = valuesOf(query);
+  /// squared_[i] for i >= from: the squared distance of element i from q (the entries before
+  /// are kept).
+  void squaredDistances(const double* q, std::size_t from) const {
     const std::size_t n = elements_.size();
     squared_.resize(n);
     double* s = squared_.data();
     const double* x = coordinates_[0].data();
-    for (std::size_t i = 0; i < n; ++i) s[i] = (x[i] - q[0]) * (x[i] - q[0]);
+    for (std::size_t i = from; i < n; ++i) s[i] = (x[i] - q[0]) * (x[i] - q[0]);
     for (unsigned d = 1; d < dimension_; ++d) {
       x = coordinates_[d].data();
       const double qd = q[d];
-      for (std::size_t i = 0; i < n; ++i) s[i] += (x[i] - qd) * (x[i] - qd);
+      for (std::size_t i = from; i < n; ++i) s[i] += (x[i] - qd) * (x[i] - qd);
     }
   }
-
+  /// The next nearest() scans every element.
+  void forgetQuery() const {
+    scanned_ = 0;
+    std::fill(last_.begin(), last_.end(), std::numeric_limits<double>::quiet_NaN());
+  }
   void moveToTree() {
+    forgetQuery();
     tree_ = std::make_unique<ompl::NearestNeighborsGNATNoThreadSafety<T>>();
     tree_->setDistanceFunction(this->getDistanceFunction());
     tree_->add(elements_);
@@ -164,6 +192,10 @@ class VectorNearest : public ompl::NearestNeighbors<T> {
   std::unique_ptr<ompl::NearestNeighborsGNATNoThreadSafety<T>> tree_;  ///< past kScanLimit
   mutable std::vector<double> squared_;                                ///< a query's squared distances
   mutable std::vector<std::size_t> order_;                             ///< a query's element indices, sorted
+  mutable std::vector<double> last_;                                   ///< nearest()'s last query (NaN: none)
+  mutable std::size_t scanned_ = 0;                                    ///< elements nearest() scanned for last_
+  mutable std::size_t best_ = 0;                                       ///< the nearest of them
+  mutable double bestSquared_ = 0.0;                                   ///< its squared distance
 };
 
 }  // namespace deepcheck::planners
