@@ -1,7 +1,5 @@
 #include "deepcheck/planners/setup.h"
 
-#include "path_shortening.h"
-
 #include "deepcheck/planners/certified_motion_validator.h"
 #include "deepcheck/planners/motion_validator.h"
 #include "deepcheck/planners/planner_factory.h"
@@ -227,6 +225,17 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
 }
 
 namespace {
+
+/// One pass of OMPL's path shortening: vertex reduction, shortcuts, vertex reduction again, two
+/// rounds of B-spline smoothing. Every change goes through the motion validator. simplifyMax
+/// repeats such passes until nothing improves: slightly shorter paths for several times the time,
+/// so the single pass is the default.
+void shortenPath(ompl::geometric::PathSimplifier& simplifier, ompl::geometric::PathGeometric& path) {
+  simplifier.reduceVertices(path);
+  simplifier.shortcutPath(path);
+  simplifier.reduceVertices(path);
+  simplifier.smoothBSpline(path, 2);
+}
 
 /// The objective's cost of `path` is no worse than `reference` (always true without an objective).
 bool costNotWorse(const ompl::geometric::PathGeometric& path, const ompl::base::OptimizationObjectivePtr& objective,

@@ -150,8 +150,7 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
 /// planned path's; otherwise the solution stays as planned. Up to tol::kSimplifyAttempts attempts,
 /// each from the planned path (the simplifier is randomized).
 ///   - No objective, or path length: with `seconds` 0, one pass of OMPL's shortening (vertex
-///     reduction, shortcuts, vertex reduction, two rounds of B-spline smoothing; with the
-///     certified validator the smoothing skips OMPL's redundant tests, docs/planners.md): OMPL's
+///     reduction, shortcuts, vertex reduction, two rounds of B-spline smoothing): OMPL's
 ///     simplifyMax, which repeats such passes until nothing improves, gives paths 4 % shorter for
 ///     4x the time. With `seconds` > 0, ss.simplifySolution(seconds). OMPL 1.5's PathSimplifier
 ///     can return a path that fails its own checks: when its shortcuts and B-spline smoothing

@@ -6,8 +6,6 @@
 // RealVectorStateSpace the Euclidean norm of the difference of two configurations; with continuous
 // joints (SO2 components, state_space.h) the sum of the components' distances.
 
-#include <limits>
-
 namespace deepcheck::planners::tol {
 
 /// Longest motion segment that the discrete checks (OMPL's DiscreteMotionValidator, our motion
@@ -155,10 +153,6 @@ constexpr int kCertifiedMotionMemoSlots = 4096;
 /// of the robot by at most this times its distance from the joint axes: about the narrow phase's
 /// contact tolerance of a pair (geometry::tol::kContactRelative times its size).
 constexpr double kCertifiedMotionMemoTube = 1e-14;
-
-/// B-spline smoothing moves a vertex only this far or more (the state space's distance, radians
-/// for an arm's joints): as OMPL's smoothBSpline, a change of a double's epsilon.
-constexpr double kSmoothingMinMove = std::numeric_limits<double>::epsilon();
 
 /// Attempts of simplifySolutionChecked (setup.h) before it keeps the path as planned.
 constexpr int kSimplifyAttempts = 3;
