@@ -142,6 +142,14 @@ ob::State* component(ob::State* state, const std::vector<unsigned int>& componen
 /// validator must certify the motion the planner takes, so this is not normalizeAngle's (-pi, pi].
 double shortestTurn(double x) { return std::remainder(x, 2.0 * kPi); }
 
+/// An angle as OMPL's SO2StateSpace holds it, in [-pi, pi): normalizeAngle's (-pi, pi] with pi
+/// written as -pi, the same angle (OMPL's satisfiesBounds refuses pi, and its planners skip such a
+/// start). configuration() maps it back with normalizeAngle.
+double so2Value(double x) {
+  const double angle = robots::normalizeAngle(x);
+  return angle == kPi ? -kPi : angle;
+}
+
 }  // namespace
 
 StateMapping StateMapping::custom(int numVariables, ToConfiguration toConfiguration, ToState toState,
@@ -246,7 +254,7 @@ StateMapping makeStateMapping(const ompl::base::StateSpace& space, const robots:
       [leaves](const ob::State* s, Eigen::Ref<Eigen::VectorXd> q) {
         for (const Leaf& leaf : leaves) {
           const ob::State* c = component(s, leaf.components);
-          q[leaf.variable] = leaf.angular ? c->as<ob::SO2StateSpace::StateType>()->value
+          q[leaf.variable] = leaf.angular ? robots::normalizeAngle(c->as<ob::SO2StateSpace::StateType>()->value)
                                           : c->as<ob::RealVectorStateSpace::StateType>()->values[leaf.index];
         }
       },
@@ -254,7 +262,7 @@ StateMapping makeStateMapping(const ompl::base::StateSpace& space, const robots:
         for (const Leaf& leaf : leaves) {
           ob::State* c = component(s, leaf.components);
           if (leaf.angular) {
-            c->as<ob::SO2StateSpace::StateType>()->value = robots::normalizeAngle(q[leaf.variable]);
+            c->as<ob::SO2StateSpace::StateType>()->value = so2Value(q[leaf.variable]);
           } else {
             c->as<ob::RealVectorStateSpace::StateType>()->values[leaf.index] = q[leaf.variable];
           }

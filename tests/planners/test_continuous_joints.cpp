@@ -125,6 +125,29 @@ BOOST_AUTO_TEST_CASE(start_3_goal_minus_3_plans_the_short_way_through_pi) {
   BOOST_TEST(ss->getSolutionPath().length() == kShortTurn, boost::test_tools::tolerance(1e-6));
 }
 
+BOOST_AUTO_TEST_CASE(a_start_at_pi_is_inside_ompls_interval_and_plans) {
+  // The project's angles are (-pi, pi], OMPL's SO2 values [-pi, pi): pi and -pi are one angle, which
+  // must enter OMPL as -pi (or OMPL skips the start as out of bounds) and come back as pi.
+  for (const double spin : {kPi, -kPi, 3.0 * kPi}) {
+    auto ss = dp::makeSimpleSetup(wheelWorld(false));
+    const auto checker = dp::validityCheckerOf(*ss);
+    dp::setStartAndGoal(*ss, config(spin, 0.0), config(-2.0, 0.0));
+    const ob::State* start = ss->getProblemDefinition()->getStartState(0);
+    BOOST_TEST(ss->getStateSpace()->satisfiesBounds(start), spin);
+    BOOST_TEST(checker->mapping().configuration(start)[0] == kPi, spin);
+    ss->setPlanner(std::make_shared<og::RRTConnect>(ss->getSpaceInformation()));
+    BOOST_TEST_REQUIRE(ss->solve(5.0) == ob::PlannerStatus::EXACT_SOLUTION);
+    dp::simplifySolutionChecked(*ss);
+    const og::PathGeometric& path = ss->getSolutionPath();
+    for (std::size_t i = 0; i < path.getStateCount(); ++i) {
+      BOOST_TEST(ss->getStateSpace()->satisfiesBounds(path.getState(i)), spin << " state " << i);
+      const double value = checker->mapping().configuration(path.getState(i))[0];
+      BOOST_TEST((value > -kPi && value <= kPi), spin << " state " << i << ": " << value);
+    }
+    BOOST_TEST(spinTravel(path, checker->mapping()) == kPi - 2.0, boost::test_tools::tolerance(1e-6));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(informed_planners_plan_on_so2_components_with_the_library_objectives) {
   // OMPL's PathLengthDirectInfSampler refuses a compound with SO2 components; makePathLengthObjective
   // and the clearance objective sample it by rejection.

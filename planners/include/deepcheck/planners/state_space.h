@@ -9,11 +9,13 @@
 //   - Some variables wrap (continuous joints): a CompoundStateSpace, in variable order, of an
 //     SO2StateSpace per wrapping variable (named after it) and a bounded RealVectorStateSpace per
 //     run of the other variables (its dimensions named after them). ScopedState's values and
-//     indices are then still the variables in order. An SO2 value lies in [-pi, pi]; distances,
-//     interpolation and motions take the short way round: from 3.0 to -3.0 rad is 0.283 rad
-//     through pi, not 6 rad through 0. The distance is OMPL's compound distance, the SUM of the
-//     components' distances (Euclidean within a RealVector run, |wrapped difference| per SO2);
-//     each component's valid segment is the segment fraction of its own extent (pi for SO2).
+//     indices are then still the variables in order. An SO2 value lies in OMPL's [-pi, pi): the
+//     mappings write the angle pi as -pi and read it back as pi (configurations are in (-pi, pi]);
+//     distances, interpolation and motions take the short way round: from 3.0 to -3.0 rad is
+//     0.283 rad through pi, not 6 rad through 0. The distance is OMPL's compound distance, the
+//     SUM of the components' distances (Euclidean within a RealVector run, |wrapped difference|
+//     per SO2); each component's valid segment is the segment fraction of its own extent (pi for
+//     SO2).
 //   OMPL 1.5's PathLengthDirectInfSampler accepts only RealVector, SE2 and SE3 spaces: the
 //   informed planners (BIT*, InformedRRT*) with OMPL's PathLengthOptimizationObjective cannot
 //   plan on such a compound; makePathLengthObjective (objectives.h) samples it uniformly.
