@@ -7,10 +7,12 @@
 #                          `pkg-config --cflags --libs deepcheck` gives and runs it, then builds the
 #                          consumer with CMAKE_PREFIX_PATH=WORK_DIR/prefix; the programs read the
 #                          installed share/deepcheck.
-#   MODE=shared_install    the same with shared libraries: SOURCE_DIR's libraries alone built with
-#                          BUILD_SHARED_LIBS=ON in WORK_DIR/deepcheck and installed.
-#   MODE=add_subdirectory  builds the consumer with DEEPCHECK_SOURCE_TREE=SOURCE_DIR (deepcheck's
-#                          libraries rebuilt in WORK_DIR: only those the consumer links).
+#   MODE=add_subdirectory  builds the consumer with DEEPCHECK_SOURCE_TREE=SOURCE_DIR and
+#                          BUILD_SHARED_LIBS=ON (deepcheck's libraries rebuilt in WORK_DIR, shared)
+#                          and runs it; then builds the rest of deepcheck's libraries there, installs
+#                          them (cmake --install of the deepcheck subfolder, whose install rules are
+#                          the top-level project's) and checks that shared package as find_package
+#                          does the static one. One rebuild of the libraries tests both ways.
 # All use ccache when it is installed, and pass when every program built prints a positive minimum
 # clearance.
 cmake_minimum_required(VERSION 3.21)
@@ -24,7 +26,7 @@ function(run)
 endfunction()
 
 file(REMOVE_RECURSE ${WORK_DIR})
-set(args -S ${CMAKE_CURRENT_LIST_DIR} -B ${WORK_DIR}/build -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release)
+set(args -S ${CMAKE_CURRENT_LIST_DIR} -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release)
 find_program(CCACHE ccache)
 if(CCACHE)
   list(APPEND args -DCMAKE_CXX_COMPILER_LAUNCHER=${CCACHE})
@@ -71,34 +73,33 @@ function(pkg_config_consumer prefix)
   check_clearance("${output}")
 endfunction()
 
-if(MODE STREQUAL "find_package" OR MODE STREQUAL "shared_install")
-  set(prefix ${WORK_DIR}/prefix)
-  if(MODE STREQUAL "shared_install")
-    set(lib_build ${WORK_DIR}/deepcheck)
-    set(lib_args -S ${SOURCE_DIR} -B ${lib_build} -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON
-                 -DDEEPCHECK_INSTALL=ON -DDEEPCHECK_BUILD_TESTS=OFF -DDEEPCHECK_BUILD_BENCH=OFF
-                 -DDEEPCHECK_BUILD_EXAMPLES=OFF -DDEEPCHECK_BUILD_TOOLS=OFF -DDEEPCHECK_BUILD_FCL_REFERENCE=OFF)
-    if(CCACHE)
-      list(APPEND lib_args -DCMAKE_CXX_COMPILER_LAUNCHER=${CCACHE})
-    endif()
-    run(${CMAKE_COMMAND} ${lib_args})
-    run(${CMAKE_COMMAND} --build ${lib_build})
-    run(${CMAKE_COMMAND} --install ${lib_build} --prefix ${prefix})
-  else()
-    run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
-  endif()
+# consume_installed(<prefix> <build folder>): the package installed in <prefix> checked, used
+# through pkg-config, and through find_package by the consumer built in <build folder> and run.
+function(consume_installed prefix build)
   check_installed(${prefix})
   pkg_config_consumer(${prefix})
-  list(APPEND args -DCMAKE_PREFIX_PATH=${prefix})
+  build_and_run(${build} -DCMAKE_PREFIX_PATH=${prefix})
+endfunction()
+
+# build_and_run(<build folder> <configure arguments>...): the consumer configured, built and run.
+function(build_and_run build)
+  run(${CMAKE_COMMAND} ${args} -B ${build} ${ARGN})
+  run(${CMAKE_COMMAND} --build ${build})
+  run(${build}/deepcheck_consumer)
+  message(STATUS "${output}")
+  check_clearance("${output}")
+endfunction()
+
+if(MODE STREQUAL "find_package")
+  run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
+  consume_installed(${WORK_DIR}/prefix ${WORK_DIR}/build)
 elseif(MODE STREQUAL "add_subdirectory")
-  list(APPEND args -DDEEPCHECK_SOURCE_TREE=${SOURCE_DIR})
+  set(build ${WORK_DIR}/build)
+  build_and_run(${build} -DDEEPCHECK_SOURCE_TREE=${SOURCE_DIR} -DBUILD_SHARED_LIBS=ON -DDEEPCHECK_INSTALL=ON)
+  # The consumer built only the libraries it links; the install needs them all.
+  run(${CMAKE_COMMAND} --build ${build} --target deepcheck/all)
+  run(${CMAKE_COMMAND} --install ${build}/deepcheck --prefix ${WORK_DIR}/prefix)
+  consume_installed(${WORK_DIR}/prefix ${WORK_DIR}/build_installed)
 else()
-  message(FATAL_ERROR "MODE must be find_package, shared_install or add_subdirectory, not '${MODE}'")
+  message(FATAL_ERROR "MODE must be find_package or add_subdirectory, not '${MODE}'")
 endif()
-
-run(${CMAKE_COMMAND} ${args})
-run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
-
-run(${WORK_DIR}/build/deepcheck_consumer)
-message(STATUS "${output}")
-check_clearance("${output}")
