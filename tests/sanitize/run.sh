@@ -43,7 +43,8 @@ SANITIZE_DEEP_SKIP+=':!exact/tetrahedra_are_optimal'
 # 2,000 configurations on the other broad phases run here).
 SANITIZE_CHECKER_SKIP='!distance_bounds/world_equals_brute_force_with_swallowing_obstacles'
 
-step() { printf '\n== sanitize: %s\n' "$*"; }
+# step <what>: a stage's heading, with the seconds since the stage began.
+step() { printf '\n== sanitize (%d s): %s\n' "$SECONDS" "$*"; }
 
 step "ASan+UBSan build (Clang, libFuzzer instrumentation)"
 # -fno-sanitize=float-cast-overflow: the checks of GCC's -fsanitize=undefined, which the stage ran
