@@ -43,6 +43,12 @@ SANITIZE_DEEP_SKIP+=':!exact/tetrahedra_are_optimal'
 # 2,000 configurations on the other broad phases run here).
 SANITIZE_CHECKER_SKIP='!distance_bounds/world_equals_brute_force_with_swallowing_obstacles'
 
+# test_decomposition's two largest meshes (34 cubes; a torus of 6,144 triangles), left to the normal
+# build likewise: 200 of the suite's 280 s here. The smaller meshes of the other cases run the same
+# code, but for the budget's growth past 32 pieces.
+SANITIZE_DECOMPOSITION_SKIP='!convex_decomposition/the_budget_grows_past_32_while_the_target_is_missed'
+SANITIZE_DECOMPOSITION_SKIP+=':!convex_decomposition/a_finely_tessellated_torus_is_covered_and_meets_the_target'
+
 # step <what>: a stage's heading, with the seconds since the stage began.
 step() { printf '\n== sanitize (%d s): %s\n' "$SECONDS" "$*"; }
 
@@ -80,7 +86,7 @@ step "ASan+UBSan unit tests"
 failed=0
 suite test_geometry --report_level=short "--run_test=$SANITIZE_DEEP_SKIP" &
 deep_pid=$!
-suite test_decomposition --report_level=short || failed=1
+suite test_decomposition --report_level=short "--run_test=$SANITIZE_DECOMPOSITION_SKIP" || failed=1
 suite test_robots --report_level=short || failed=1
 suite test_checker --report_level=short "--run_test=$SANITIZE_CHECKER_SKIP" || failed=1
 wait "$deep_pid" || failed=1
