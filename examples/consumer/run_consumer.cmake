@@ -96,8 +96,13 @@ if(MODE STREQUAL "find_package")
 elseif(MODE STREQUAL "add_subdirectory")
   set(build ${WORK_DIR}/build)
   build_and_run(${build} -DDEEPCHECK_SOURCE_TREE=${SOURCE_DIR} -DBUILD_SHARED_LIBS=ON -DDEEPCHECK_INSTALL=ON)
-  # The consumer built only the libraries it links; the install needs them all.
-  run(${CMAKE_COMMAND} --build ${build} --target deepcheck/all)
+  # The consumer built only the libraries it links; the install needs them all: the deepcheck
+  # folder's "all" (a target of the top folder with Ninja, its own Makefile with make).
+  if(GENERATOR MATCHES "Ninja")
+    run(${CMAKE_COMMAND} --build ${build} --target deepcheck/all)
+  else()
+    run(${CMAKE_COMMAND} --build ${build}/deepcheck)
+  endif()
   run(${CMAKE_COMMAND} --install ${build}/deepcheck --prefix ${WORK_DIR}/prefix)
   consume_installed(${WORK_DIR}/prefix ${WORK_DIR}/build_installed)
 else()
