@@ -43,7 +43,7 @@
 namespace deepcheck::tools {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kCheckUsage =
     "usage: deepcheck check --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                       [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
     "                       [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... "
@@ -62,7 +62,7 @@ constexpr const char* kUsage =
     "options:\n" DEEPCHECK_WORLD_OPTIONS_HELP
     "  --gradient          append the gradient of sd with respect to the joint values\n" DEEPCHECK_CLAMP_HELP;
 
-int run(std::vector<std::string> args) {
+int runCheck(std::vector<std::string> args) {
   const bool gradient = takeFlag(args, "--gradient");
   JointLimitPolicy limits;
   limits.clamp = takeFlag(args, "--clamp-to-limits");
@@ -122,6 +122,7 @@ int run(std::vector<std::string> args) {
 
 }  // namespace
 
-const Subcommand kCheckCommand = {"check", "signed distance of a robot in its scenes, per configuration", kUsage, run};
+const Subcommand kCheckCommand = {"check", "signed distance of a robot in its scenes, per configuration", kCheckUsage,
+                                  runCheck};
 
 }  // namespace deepcheck::tools

@@ -33,7 +33,7 @@
 namespace deepcheck::tools {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kDecomposeUsage =
     "usage: deepcheck decompose MESH [--out PIECES.obj] [--max-concavity F]\n"
     "                           [--min-concavity-abs M] [--max-pieces N] [--max-vertices N]\n"
     "                           [--max-triangles N]\n"
@@ -170,7 +170,7 @@ void printReportTable(const std::vector<robots::TriangleMesh>& meshes, const dec
   std::printf("cached load: %d of %zu meshes from the cache in %.2f ms\n", hits, meshes.size(), ms);
 }
 
-int run(std::vector<std::string> args) {
+int runDecompose(std::vector<std::string> args) {
   const DecomposeArgs a = takeDecomposeArgs(args);
   const decomposition::DecompositionCache cache =
       a.noCache ? decomposition::DecompositionCache::disabled() : decomposition::DecompositionCache(a.cacheDir);
@@ -194,6 +194,6 @@ int run(std::vector<std::string> args) {
 }  // namespace
 
 const Subcommand kDecomposeCommand = {"decompose", "convex decomposition of a mesh: OBJ pieces and a quality report",
-                                      kUsage, run};
+                                      kDecomposeUsage, runDecompose};
 
 }  // namespace deepcheck::tools

@@ -57,7 +57,7 @@
 namespace deepcheck::tools {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kInfoUsage =
     "usage: deepcheck info ROBOT.urdf [--package-path DIR]... [--samples N] [--seed S]\n"
     "                      [--write-srdf FILE] [--srdf FILE... --group NAME] [--lock JOINT=VALUE]...\n"
     "       deepcheck info SCENE.yaml|SCENE.scene [--package-path DIR]...\n"
@@ -416,6 +416,6 @@ int runInfo(std::vector<std::string> args) {
 }  // namespace
 
 const Subcommand kInfoCommand = {"info", "describe a URDF robot (links, joints, pieces, pairs) or a planning scene",
-                                 kUsage, runInfo};
+                                 kInfoUsage, runInfo};
 
 }  // namespace deepcheck::tools

@@ -45,7 +45,7 @@ namespace {
 
 using geometry::ConvexPolytope;
 
-constexpr const char* kUsage =
+constexpr const char* kPdUsage =
     "usage: deepcheck pd [--cold] [--method certified|deep-walk|exact] < cases.txt\n"
     "\n"
     "Signed distance of pairs of posed convex shapes. Input on stdin:\n"
@@ -149,6 +149,6 @@ int runPd(std::vector<std::string> args) {
 
 }  // namespace
 
-const Subcommand kPdCommand = {"pd", "signed distance / penetration depth of posed convex shapes", kUsage, runPd};
+const Subcommand kPdCommand = {"pd", "signed distance / penetration depth of posed convex shapes", kPdUsage, runPd};
 
 }  // namespace deepcheck::tools

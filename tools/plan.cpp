@@ -65,7 +65,7 @@
 namespace deepcheck::tools {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kPlanUsage =
     "usage: deepcheck plan --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
     "                      [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... --start q1 "
@@ -398,7 +398,7 @@ void finishPath(ompl::geometric::SimpleSetup& ss, const PlanArgs& a, const plann
   if (!certificate.valid) throw InputError("the path could not be certified collision free");
 }
 
-int run(std::vector<std::string> args) {
+int runPlan(std::vector<std::string> args) {
   PlanArgs a = takePlanArgs(args);
   if (a.seeded) ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(a.seed));  // before any OMPL object
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
@@ -420,6 +420,6 @@ int run(std::vector<std::string> args) {
 
 }  // namespace
 
-const Subcommand kPlanCommand = {"plan", "plan a path between two configurations with OMPL", kUsage, run};
+const Subcommand kPlanCommand = {"plan", "plan a path between two configurations with OMPL", kPlanUsage, runPlan};
 
 }  // namespace deepcheck::tools

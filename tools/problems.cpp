@@ -30,7 +30,7 @@ namespace deepcheck::tools {
 
 namespace {
 
-const char kUsage[] =
+const char kProblemsUsage[] =
     "usage: deepcheck problems --robot URDF [--srdf FILE [--group NAME]] [--lock JOINT=VALUE]...\n"
     "                          [--package-path DIR]... --scene SCENE.yaml|SCENE.urdf\n"
     "                          --variation VARIATION.yaml --queries QUERIES.yaml --robot-config ROBOT.yaml\n"
@@ -183,7 +183,7 @@ robots::PlanningScene loadNominal(const ProblemsArgs& a, const robots::RobotMode
   return robots::planningSceneFromUrdf(*model, model->defaultConfiguration(), frame);
 }
 
-int run(std::vector<std::string> args) {
+int runProblems(std::vector<std::string> args) {
   ProblemsArgs a = takeArgs(args);
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   planners::SetupOptions setup;
@@ -226,6 +226,6 @@ int run(std::vector<std::string> args) {
 }  // namespace
 
 const Subcommand kProblemsCommand = {"problems", "generate planning problems from a scene, variations and queries",
-                                     kUsage, run};
+                                     kProblemsUsage, runProblems};
 
 }  // namespace deepcheck::tools

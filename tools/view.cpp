@@ -29,7 +29,7 @@
 namespace deepcheck::tools {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kViewUsage =
     "usage: deepcheck view --robot R.urdf [--scene S.urdf [--scene-pose x y z roll pitch yaw]]...\n"
     "                      [--scene S.yaml]... [--frame-alias NAME=LINK]...\n"
     "                      [--srdf FILE]... [--group NAME] [--lock JOINT=VALUE]... [--package-path DIR]... [--config "
@@ -235,7 +235,7 @@ viewer::ViewScene decomposeView(const std::string& meshArg, const PackageRoots& 
   return scene;
 }
 
-int run(std::vector<std::string> args) {
+int runView(std::vector<std::string> args) {
   const std::string out = takeSingleOption(args, "--out");
   const std::string decompose = takeSingleOption(args, "--decompose");
   const std::string pd = takeSingleOption(args, "--pd");
@@ -258,6 +258,6 @@ int run(std::vector<std::string> args) {
 }  // namespace
 
 const Subcommand kViewCommand = {"view", "write an offline HTML page showing a robot, a path, pieces or pd cases",
-                                 kUsage, run};
+                                 kViewUsage, runView};
 
 }  // namespace deepcheck::tools

@@ -3,6 +3,7 @@
 #include "deepcheck/robots/tolerances.h"
 
 #include "collada_check.h"
+#include "in_quotes.h"
 
 #include <deepcheck/geometry/input_range.h>
 
@@ -28,9 +29,9 @@
 #include <vector>
 
 namespace deepcheck::robots {
-namespace {
 
-std::string inQuotes(const std::string& s) { return "'" + s + "'"; }
+using detail::inQuotes;
+namespace {
 
 Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
   Eigen::Matrix4d out;

@@ -21,7 +21,7 @@ std::string list(std::initializer_list<double> xs) {
 }
 
 /// A YAML double-quoted string.
-std::string quoted(const std::string& text) {
+std::string yamlQuoted(const std::string& text) {
   std::string out = "\"";
   for (char c : text) {
     if (c == '"' || c == '\\') out += '\\';
@@ -57,7 +57,7 @@ std::string primitive(const Geometry& g) {
 void writeMesh(std::ostringstream& out, const std::string& entry, const SceneShape& s) {
   if (!s.mesh) {
     const Eigen::Vector3d& k = s.geometry.meshScale;
-    out << entry << "- {resource: " << quoted(s.geometry.meshPath) << ", scale: " << list({k.x(), k.y(), k.z()})
+    out << entry << "- {resource: " << yamlQuoted(s.geometry.meshPath) << ", scale: " << list({k.x(), k.y(), k.z()})
         << "}\n";
     return;
   }
@@ -76,8 +76,8 @@ void writeObject(std::ostringstream& out, const std::string& first, const std::s
   for (const SceneShape& s : o.shapes) (s.geometry.type == GeometryType::Mesh ? meshes : primitives).push_back(&s);
   const std::string entry = indent + "  ";
   out << first << "header:\n"
-      << indent << "  frame_id: " << quoted(o.frameId) << "\n"
-      << indent << "id: " << quoted(o.id) << "\n";
+      << indent << "  frame_id: " << yamlQuoted(o.frameId) << "\n"
+      << indent << "id: " << yamlQuoted(o.id) << "\n";
   if (!primitives.empty()) {
     out << indent << "primitives:\n";
     for (const SceneShape* s : primitives) out << entry << "- {" << primitive(s->geometry) << "}\n";
@@ -95,7 +95,7 @@ void writeObject(std::ostringstream& out, const std::string& first, const std::s
 /// ["a", "b"] of names.
 std::string nameList(const std::vector<std::string>& names) {
   std::string out = "[";
-  for (const std::string& n : names) out += (out.size() > 1 ? ", " : "") + quoted(n);
+  for (const std::string& n : names) out += (out.size() > 1 ? ", " : "") + yamlQuoted(n);
   return out + "]";
 }
 
@@ -110,7 +110,7 @@ void writeAttached(std::ostringstream& out, const std::vector<AttachedObject>& a
   if (attached.empty()) return;
   out << "robot_state:\n  attached_collision_objects:\n";
   for (const AttachedObject& a : attached) {
-    out << "    - link_name: " << quoted(a.linkName) << "\n      object:\n";
+    out << "    - link_name: " << yamlQuoted(a.linkName) << "\n      object:\n";
     writeObject(out, "        ", "        ", a.object);
     out << "      touch_links: " << nameList(a.touchLinks) << "\n";
   }
@@ -143,7 +143,7 @@ void writeAllowed(std::ostringstream& out, const AllowedCollisions& allowed) {
 
 std::string writePlanningScene(const PlanningScene& scene) {
   std::ostringstream out;
-  if (!scene.name.empty()) out << "name: " << quoted(scene.name) << "\n";
+  if (!scene.name.empty()) out << "name: " << yamlQuoted(scene.name) << "\n";
   writeAttached(out, scene.attached);
   writeAllowed(out, scene.allowed);
   out << "world:\n  collision_objects:" << (scene.objects.empty() ? " []" : "") << "\n";

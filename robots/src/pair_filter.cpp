@@ -4,6 +4,7 @@
 #include "deepcheck/robots/random_configuration.h"
 
 #include "deepcheck/geometry/signed_distance.h"
+#include "in_quotes.h"
 
 #include <algorithm>
 #include <random>
@@ -13,6 +14,8 @@
 
 namespace deepcheck::robots {
 
+using detail::inQuotes;
+
 int PairFilterResult::count(DisableReason reason) const {
   return static_cast<int>(
       std::count_if(disabled.begin(), disabled.end(), [&](const DisabledPair& p) { return p.reason == reason; }));
@@ -21,8 +24,6 @@ int PairFilterResult::count(DisableReason reason) const {
 int PairFilterResult::numEnabled() const { return numPairs() - static_cast<int>(disabled.size()); }
 
 namespace {
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 /// A piece posed in the world, with its bounding sphere for a cheap rejection test.
 struct PosedPiece {
@@ -59,7 +60,7 @@ bool posedOverlap(const std::vector<PosedPiece>& a, const std::vector<PosedPiece
 }
 
 std::string robotContext(const RobotModel& model) {
-  return "robot " + quoted(model.name()) + " (" + model.source() + ")";
+  return "robot " + inQuotes(model.name()) + " (" + model.source() + ")";
 }
 
 void checkPieces(const RobotModel& model, const std::vector<std::vector<CollisionPiece>>& pieces) {
@@ -71,7 +72,7 @@ void checkPieces(const RobotModel& model, const std::vector<std::vector<Collisio
   for (int l = 0; l < model.numLinks(); ++l) {
     for (const CollisionPiece& p : pieces[l]) {
       if (!p.core) {
-        throw std::invalid_argument(robotContext(model) + ": link " + quoted(model.link(l).name) +
+        throw std::invalid_argument(robotContext(model) + ": link " + inQuotes(model.link(l).name) +
                                     " has a piece without a core (" + p.origin + ")");
       }
     }
@@ -283,10 +284,10 @@ PairFilterResult computeDisabledPairs(const RobotModel& model, const std::vector
 
 void checkDisabledPairs(const RobotModel& model, const std::vector<DisabledPair>& disabled, const std::string& source) {
   for (const DisabledPair& p : disabled) {
-    const std::string entry = "<disable_collisions link1=" + quoted(p.link1) + " link2=" + quoted(p.link2) + ">";
+    const std::string entry = "<disable_collisions link1=" + inQuotes(p.link1) + " link2=" + inQuotes(p.link2) + ">";
     for (const std::string* name : {&p.link1, &p.link2}) {
       if (model.linkIndex(*name) < 0) {
-        throw std::invalid_argument(source + ": " + entry + ": link " + quoted(*name) + " is not a link of " +
+        throw std::invalid_argument(source + ": " + entry + ": link " + inQuotes(*name) + " is not a link of " +
                                     robotContext(model));
       }
     }

@@ -1,6 +1,7 @@
 #include "deepcheck/robots/planning_group.h"
 
 #include "xml_text.h"
+#include "in_quotes.h"
 
 #include <tinyxml.h>
 
@@ -11,11 +12,11 @@
 
 namespace deepcheck::robots {
 
+using detail::inQuotes;
+
 namespace {
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-std::string srdfContext(const std::string& source) { return "SRDF " + quoted(source.empty() ? "<string>" : source); }
+std::string srdfContext(const std::string& source) { return "SRDF " + inQuotes(source.empty() ? "<string>" : source); }
 
 /// The value of `attr`; throws naming `where` and `element` when it is absent or empty.
 std::string requiredAttribute(const TiXmlElement* e, const char* attr, const std::string& where,
@@ -34,7 +35,7 @@ SrdfGroup parseGroup(const TiXmlElement* g, const std::string& context) {
   group.name = requiredAttribute(g, "name", context + ", line " + std::to_string(g->Row()), "<group>");
   for (const TiXmlElement* e = g->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
     const std::string tag = e->Value();
-    const std::string where = context + ", line " + std::to_string(e->Row()) + ", group " + quoted(group.name);
+    const std::string where = context + ", line " + std::to_string(e->Row()) + ", group " + inQuotes(group.name);
     if (tag == "joint") {
       group.joints.push_back(requiredAttribute(e, "name", where, "<joint>"));
     } else if (tag == "link") {
@@ -66,7 +67,7 @@ std::vector<SrdfGroup> parseSrdfGroups(const std::string& xml, const std::string
     SrdfGroup group = parseGroup(g, context);
     const auto [earlier, isNew] = lineOf.emplace(group.name, group.line);
     if (!isNew) {
-      throw std::invalid_argument(context + ", line " + std::to_string(group.line) + ": group " + quoted(group.name) +
+      throw std::invalid_argument(context + ", line " + std::to_string(group.line) + ": group " + inQuotes(group.name) +
                                   " is defined twice (first at line " + std::to_string(earlier->second) + ")");
     }
     groups.push_back(std::move(group));
@@ -113,7 +114,7 @@ class GroupResolver {
       const std::string& name = group.subgroups[next++];
       const int s = find(name);
       if (s < 0) {
-        throw std::invalid_argument(where(group) + ": subgroup " + quoted(name) + " is not a group of the file");
+        throw std::invalid_argument(where(group) + ": subgroup " + inQuotes(name) + " is not a group of the file");
       }
       if (state_[s] == State::InProgress) throwCycle(group, s);
       if (state_[s] == State::Unvisited) enter(s);
@@ -160,14 +161,14 @@ class GroupResolver {
   }
 
   std::string where(const SrdfGroup& group) const {
-    return context_ + ", line " + std::to_string(group.line) + ", group " + quoted(group.name);
+    return context_ + ", line " + std::to_string(group.line) + ", group " + inQuotes(group.name);
   }
-  std::string robot() const { return "robot " + quoted(model_.name()) + " (" + model_.source() + ")"; }
+  std::string robot() const { return "robot " + inQuotes(model_.name()) + " (" + model_.source() + ")"; }
 
   void addJoint(const SrdfGroup& group, const std::string& name) {
     const int j = model_.jointIndex(name);
     if (j < 0) {
-      throw std::invalid_argument(where(group) + ": joint " + quoted(name) + " is not in " + robot());
+      throw std::invalid_argument(where(group) + ": joint " + inQuotes(name) + " is not in " + robot());
     }
     inGroup_[j] = true;
   }
@@ -175,7 +176,7 @@ class GroupResolver {
   int linkIndex(const SrdfGroup& group, const std::string& name) const {
     const int l = model_.linkIndex(name);
     if (l < 0) {
-      throw std::invalid_argument(where(group) + ": link " + quoted(name) + " is not in " + robot());
+      throw std::invalid_argument(where(group) + ": link " + inQuotes(name) + " is not in " + robot());
     }
     return l;
   }
@@ -189,8 +190,9 @@ class GroupResolver {
       joints.push_back(model_.link(l).parentJoint);
     }
     if (l != b) {
-      throw std::invalid_argument(where(group) + ": <chain base_link=" + quoted(base) + " tip_link=" + quoted(tip) +
-                                  ">: " + quoted(base) + " is not an ancestor of " + quoted(tip) + " in " + robot());
+      throw std::invalid_argument(where(group) + ": <chain base_link=" + inQuotes(base) + " tip_link=" + inQuotes(tip) +
+                                  ">: " + inQuotes(base) + " is not an ancestor of " + inQuotes(tip) + " in " +
+                                  robot());
     }
     for (int j : joints) inGroup_[j] = true;
   }
@@ -221,10 +223,10 @@ std::vector<int> groupVariables(const RobotModel& model, const std::vector<SrdfG
   if (g < 0) {
     std::string defined;
     for (const SrdfGroup& group : groups) {
-      defined += (defined.empty() ? "" : ", ") + quoted(group.name);
+      defined += (defined.empty() ? "" : ", ") + inQuotes(group.name);
     }
     throw std::invalid_argument(
-        srdfContext(srdfSource) + ": no group " + quoted(name) +
+        srdfContext(srdfSource) + ": no group " + inQuotes(name) +
         (defined.empty() ? " (the file defines no group)" : " (the file defines " + defined + ")"));
   }
   resolver.add(g);
@@ -254,8 +256,8 @@ std::vector<SrdfGroup> readSrdfGroups(const std::vector<std::string>& paths) {
       if (sameGroup(*same, group)) continue;
       const std::string& first = sourceOf[static_cast<std::size_t>(same - merged.begin())];
       throw std::invalid_argument(srdfContext(path) + ", line " + std::to_string(group.line) + ": group " +
-                                  quoted(group.name) + " is defined differently in " + srdfContext(first) + ", line " +
-                                  std::to_string(same->line));
+                                  inQuotes(group.name) + " is defined differently in " + srdfContext(first) +
+                                  ", line " + std::to_string(same->line));
     }
   }
   return merged;

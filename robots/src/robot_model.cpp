@@ -5,6 +5,7 @@
 #include "deepcheck/robots/tolerances.h"
 
 #include "urdf_prepass.h"
+#include "in_quotes.h"
 
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
@@ -21,6 +22,8 @@
 #include <stdexcept>
 
 namespace deepcheck::robots {
+
+using detail::inQuotes;
 namespace fs = std::filesystem;
 
 const char* toString(JointType type) {
@@ -52,8 +55,6 @@ const char* toString(GeometryType type) {
 }
 
 namespace {
-
-std::string inQuotes(const std::string& s) { return "'" + s + "'"; }
 
 /// Collects what urdfdom reports through console_bridge while it parses, instead of printing it.
 class CaptureHandler : public console_bridge::OutputHandler {

@@ -1,6 +1,7 @@
 #include "deepcheck/robots/srdf.h"
 
 #include "xml_text.h"
+#include "in_quotes.h"
 
 #include <tinyxml.h>
 
@@ -9,6 +10,8 @@
 #include <stdexcept>
 
 namespace deepcheck::robots {
+
+using detail::inQuotes;
 
 const char* toString(DisableReason reason) {
   switch (reason) {
@@ -48,8 +51,6 @@ std::pair<std::string, std::string> pairKey(const std::string& a, const std::str
 
 namespace {
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
 std::string xmlEscape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -79,7 +80,7 @@ std::string xmlEscape(const std::string& s) {
 }  // namespace
 
 std::vector<DisabledPair> parseSrdfDisabledPairs(const std::string& xml, const std::string& sourceName) {
-  const std::string context = "SRDF " + quoted(sourceName.empty() ? "<string>" : sourceName);
+  const std::string context = "SRDF " + inQuotes(sourceName.empty() ? "<string>" : sourceName);
   TiXmlDocument doc;
   const TiXmlElement& robot = parseSrdfRoot(doc, xml, context);
   std::vector<DisabledPair> pairs;
@@ -107,7 +108,7 @@ std::vector<DisabledPair> readSrdfDisabledPairs(const std::string& path) {
 }
 
 std::vector<SrdfVirtualJoint> parseSrdfVirtualJoints(const std::string& xml, const std::string& sourceName) {
-  const std::string context = "SRDF " + quoted(sourceName.empty() ? "<string>" : sourceName);
+  const std::string context = "SRDF " + inQuotes(sourceName.empty() ? "<string>" : sourceName);
   TiXmlDocument doc;
   const TiXmlElement& robot = parseSrdfRoot(doc, xml, context);
   std::vector<SrdfVirtualJoint> joints;
@@ -127,7 +128,7 @@ std::vector<SrdfVirtualJoint> parseSrdfVirtualJoints(const std::string& xml, con
       *field = value;
     }
     if (j.type != "fixed" && j.type != "floating" && j.type != "planar") {
-      throw std::invalid_argument(where + ": <virtual_joint> " + quoted(j.name) + " has type " + quoted(j.type) +
+      throw std::invalid_argument(where + ": <virtual_joint> " + inQuotes(j.name) + " has type " + inQuotes(j.type) +
                                   " (known: fixed, floating, planar)");
     }
     joints.push_back(j);
@@ -204,10 +205,10 @@ void writeSrdf(const std::string& path, const std::string& robotName, const std:
 void writeSrdf(const std::string& path, const std::string& robotName, const SrdfContents& contents,
                const std::string& comment) {
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::invalid_argument("SRDF " + quoted(path) + ": cannot open for writing");
+  if (!out) throw std::invalid_argument("SRDF " + inQuotes(path) + ": cannot open for writing");
   out << srdfText(robotName, contents, comment);
   out.close();
-  if (!out) throw std::invalid_argument("SRDF " + quoted(path) + ": write failed");
+  if (!out) throw std::invalid_argument("SRDF " + inQuotes(path) + ": write failed");
 }
 
 }  // namespace deepcheck::robots

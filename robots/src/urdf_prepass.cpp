@@ -2,6 +2,7 @@
 
 #include "urdf_prepass.h"
 
+#include "in_quotes.h"
 #include "xml_text.h"
 
 #include "deepcheck/geometry/input_range.h"
@@ -16,8 +17,6 @@
 
 namespace deepcheck::robots::detail {
 namespace {
-
-std::string inQuotes(const std::string& s) { return "'" + s + "'"; }
 
 std::string attribute(const TiXmlElement& e, const char* name) {
   const char* value = e.Attribute(name);

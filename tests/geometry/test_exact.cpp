@@ -8,6 +8,7 @@
 
 #include "deepcheck/geometry/exact.h"
 #include "deepcheck/geometry/tolerances.h"
+#include "shapes.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -18,6 +19,8 @@
 #include <vector>
 
 using namespace deepcheck::geometry;
+using deepcheck::geometry::testing::randomRotation;
+using deepcheck::geometry::testing::randomUnit;
 
 namespace {
 
@@ -30,16 +33,6 @@ Eigen::Isometry3d pose(const Eigen::Vector3d& t, const Eigen::Quaterniond& q = E
   X.linear() = q.normalized().toRotationMatrix();
   X.translation() = t;
   return X;
-}
-
-Eigen::Quaterniond randomRotation(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized();
-}
-
-Eigen::Vector3d randomUnit(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  return Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
 }
 
 ConvexPolytope randomHull(std::mt19937& rng, int n, const Eigen::Vector3d& scale) {

@@ -8,6 +8,7 @@
 
 #include "deepcheck/geometry/gjk.h"
 #include "deepcheck/geometry/polytope.h"
+#include "shapes.h"
 
 #include <boost/test/unit_test.hpp>
 
@@ -30,6 +31,8 @@ using deepcheck::geometry::GjkResult;
 using deepcheck::geometry::GjkStatus;
 using deepcheck::geometry::PairFrame;
 using deepcheck::geometry::PolytopeKind;
+using deepcheck::geometry::testing::randomRotation;
+using deepcheck::geometry::testing::randomUnit;
 using Eigen::Vector3d;
 
 // Acceptance bands of this suite (relative to the pair length scale or to the distance).
@@ -137,21 +140,7 @@ double bruteForceDistance(const Features& A, const Features& B) {
 // ---------------------------------------------------------------------------------------------
 // Random shapes and pairs
 
-Eigen::Matrix3d randomRotation(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
-  q.normalize();
-  return q.toRotationMatrix();
-}
-
-Vector3d randomUnit(std::mt19937& rng) {
-  std::normal_distribution<double> g(0.0, 1.0);
-  Vector3d v;
-  do {
-    v = Vector3d(g(rng), g(rng), g(rng));
-  } while (v.norm() < 1e-3);
-  return v.normalized();
-}
+Eigen::Matrix3d randomRotationMatrix(std::mt19937& rng) { return randomRotation(rng).toRotationMatrix(); }
 
 double logUniform(std::mt19937& rng, double lo, double hi) {
   std::uniform_real_distribution<double> u(std::log10(lo), std::log10(hi));
@@ -163,7 +152,7 @@ double logUniform(std::mt19937& rng, double lo, double hi) {
 ConvexPolytope randomHull(std::mt19937& rng, int n, double scale, const Vector3d& centre) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const Vector3d semi = scale * Vector3d(1.0, logUniform(rng, 0.01, 1.0), logUniform(rng, 0.01, 1.0));
-  const Eigen::Matrix3d Q = randomRotation(rng);
+  const Eigen::Matrix3d Q = randomRotationMatrix(rng);
   const bool onSurface = std::uniform_int_distribution<int>(0, 2)(rng) == 0;
   std::vector<Vector3d> pts;
   for (int i = 0; i < n; ++i) {
@@ -252,7 +241,7 @@ void checkCommonPoint(const GjkResult& r, const ConvexPolytope& A, const ConvexP
 
 ConvexPolytope polygonFrom(std::mt19937& rng, int n, double scale) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Eigen::Matrix3d Q = randomRotation(rng);
+  const Eigen::Matrix3d Q = randomRotationMatrix(rng);
   std::vector<Vector3d> pts;
   for (int i = 0; i < n; ++i) pts.push_back(Q * Vector3d(scale * u(rng), scale * u(rng), 0.0));
   return ConvexPolytope::fromPoints(pts, "random polygon");
@@ -334,7 +323,7 @@ BOOST_AUTO_TEST_CASE(random_hulls_match_brute_force) {
     const bool far = u(rng) < 0.1;
     farPairs += far ? 1 : 0;
     const double gap = far ? logUniform(rng, 10.0 * size, 1e4) : size * logUniform(rng, 1e-2, 3.0);
-    const PairFrame frame = separatedFrame(rng, A, B, randomRotation(rng), randomUnit(rng), gap);
+    const PairFrame frame = separatedFrame(rng, A, B, randomRotationMatrix(rng), randomUnit(rng), gap);
 
     const GjkResult r = gjkDistance(A, B, frame);
     BOOST_TEST_CONTEXT("trial " << trial << " nA " << A.numVertices() << " nB " << B.numVertices() << " gap " << gap
@@ -367,7 +356,7 @@ BOOST_AUTO_TEST_CASE(all_core_kinds_match_brute_force) {
         BOOST_REQUIRE(A.kind() == kindA);
         BOOST_REQUIRE(B.kind() == kindB);
         const PairFrame frame =
-            separatedFrame(rng, A, B, randomRotation(rng), randomUnit(rng), scale * logUniform(rng, 1e-2, 2.0));
+            separatedFrame(rng, A, B, randomRotationMatrix(rng), randomUnit(rng), scale * logUniform(rng, 1e-2, 2.0));
         const GjkResult r = gjkDistance(A, B, frame);
         BOOST_TEST_CONTEXT(toString(kindA) << " vs " << toString(kindB) << " trial " << trial) {
           BOOST_REQUIRE(statusName(r.status) == "Separated");
@@ -388,7 +377,7 @@ BOOST_AUTO_TEST_CASE(point_point_is_exact) {
     const ConvexPolytope A = ConvexPolytope::fromPoints({Vector3d(u(rng), u(rng), u(rng))});
     const ConvexPolytope B = ConvexPolytope::fromPoints({Vector3d(u(rng), u(rng), u(rng))});
     PairFrame frame;
-    frame.R = randomRotation(rng);
+    frame.R = randomRotationMatrix(rng);
     frame.t = Vector3d(u(rng), u(rng), u(rng)) / 3.0;
     const GjkResult r = gjkDistance(A, B, frame);
     BOOST_REQUIRE(statusName(r.status) == "Separated");
@@ -427,7 +416,7 @@ BOOST_AUTO_TEST_CASE(degenerate_configurations) {
     checkWitnesses(r, box1, box2, frame);
     // Same, in a rotated pair frame: rotate both boxes by Q, i.e. A's frame is rotated: use
     // rotated copies of the boxes built from their points.
-    const Eigen::Matrix3d Q = randomRotation(rng);
+    const Eigen::Matrix3d Q = randomRotationMatrix(rng);
     std::vector<Vector3d> p1, p2;
     for (const Vector3d& x : box1.vertices()) p1.push_back(Q * x);
     for (const Vector3d& x : box2.vertices()) p2.push_back(Q * x);
@@ -466,7 +455,7 @@ BOOST_AUTO_TEST_CASE(near_contact_nearly_parallel) {
   std::mt19937 rng(97);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 300; ++trial) {
-    const Eigen::Matrix3d Q = randomRotation(rng);
+    const Eigen::Matrix3d Q = randomRotationMatrix(rng);
     const double d = logUniform(rng, 1e-9, 1e-1);
     const double angle = logUniform(rng, 1e-12, 1e-2);
     {
@@ -514,7 +503,7 @@ BOOST_AUTO_TEST_CASE(overlapping_pairs) {
         randomHull(rng, 4 + (trial * 7) % 100, scale * logUniform(rng, 0.1, 10.0), Vector3d::Zero());
     const Vector3d n = randomUnit(rng);
     const Vector3d boundary = PairFrame::vertexA(A, A.supportBruteForce(n));
-    const PairFrame frame = vertexAt(B, randomRotation(rng), n, u(rng) * boundary);
+    const PairFrame frame = vertexAt(B, randomRotationMatrix(rng), n, u(rng) * boundary);
     const GjkResult r = gjkDistance(A, B, frame);
     BOOST_TEST_CONTEXT("trial " << trial) {
       BOOST_TEST(statusName(r.status) == "Overlapping");
@@ -556,7 +545,7 @@ BOOST_AUTO_TEST_CASE(touching_contacts) {
     const double scale = logUniform(rng, 1e-2, 1e2);
     const ConvexPolytope A = randomHull(rng, 8 + trial, scale, Vector3d::Zero());
     const ConvexPolytope B = randomHull(rng, 8 + (3 * trial) % 50, scale, Vector3d::Zero());
-    const Eigen::Matrix3d R = randomRotation(rng);
+    const Eigen::Matrix3d R = randomRotationMatrix(rng);
     const int f = std::uniform_int_distribution<int>(0, A.numFaces() - 1)(rng);
     const auto verts = A.faceVertices(f);
     Vector3d q, n;
@@ -622,7 +611,7 @@ BOOST_AUTO_TEST_CASE(touching_contacts) {
 BOOST_AUTO_TEST_CASE(flat_overlaps_are_touching) {
   std::mt19937 rng(53);
   for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::Matrix3d Q = randomRotation(rng);
+    const Eigen::Matrix3d Q = randomRotationMatrix(rng);
     const Vector3d e1 = Q.col(0), e2 = Q.col(1), e3 = Q.col(2);
     const double third = 1.0 / 3.0;
     const ConvexPolytope segA = ConvexPolytope::fromPoints({-e1, e1});
@@ -661,7 +650,7 @@ BOOST_AUTO_TEST_CASE(warm_start_matches_cold) {
     const ConvexPolytope B = randomHull(rng, 150 - 15 * path, 0.7, Vector3d::Zero());
     const Vector3d start = randomUnit(rng) * 3.0;
     const Vector3d axis = randomUnit(rng);
-    const Eigen::Matrix3d R0 = randomRotation(rng);
+    const Eigen::Matrix3d R0 = randomRotationMatrix(rng);
     GjkCache cache, overlapCache;
     for (int step = 0; step <= 100; ++step) {
       const double s = step / 100.0;
@@ -698,7 +687,7 @@ BOOST_AUTO_TEST_CASE(overlap_agrees_with_distance) {
     const ConvexPolytope A = randomHull(rng, 4 + trial % 60, scale, Vector3d::Zero());
     const ConvexPolytope B = randomHull(rng, 4 + (trial * 13) % 60, scale, Vector3d::Zero());
     PairFrame frame;
-    frame.R = randomRotation(rng);
+    frame.R = randomRotationMatrix(rng);
     frame.t = randomUnit(rng) * scale * 0.8 * std::cbrt(u(rng));
     const GjkResult r = gjkDistance(A, B, frame);
     BOOST_REQUIRE(statusName(r.status) != "MaxIterations");
@@ -730,7 +719,7 @@ BOOST_AUTO_TEST_CASE(enclosing_tetrahedron_certifies_overlap_at_nearby_poses) {
                                            : randomHull(rng, 120 - 9 * path, 0.7, Vector3d::Zero());
     const Vector3d start = randomUnit(rng) * 2.5;
     const Vector3d axis = randomUnit(rng);
-    const Eigen::Matrix3d R0 = randomRotation(rng);
+    const Eigen::Matrix3d R0 = randomRotationMatrix(rng);
     GjkCache cache;
     for (int step = 0; step <= 200; ++step) {
       const double s = step / 100.0;  // through B and out the other side
@@ -761,7 +750,7 @@ BOOST_AUTO_TEST_CASE(foreign_cache_is_harmless) {
   std::mt19937 rng(83);
   const ConvexPolytope A = randomHull(rng, 20, 1.0, Vector3d::Zero());
   const ConvexPolytope B = randomHull(rng, 20, 1.0, Vector3d::Zero());
-  const PairFrame frame = separatedFrame(rng, A, B, randomRotation(rng), randomUnit(rng), 0.5);
+  const PairFrame frame = separatedFrame(rng, A, B, randomRotationMatrix(rng), randomUnit(rng), 0.5);
   const GjkResult cold = gjkDistance(A, B, frame);
   GjkCache cache;
   cache.direction = Vector3d(-1.0, 2.0, 0.5);

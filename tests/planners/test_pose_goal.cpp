@@ -27,7 +27,7 @@ using dp::test::bundledWorld;
 namespace {
 
 /// A cap on the planning run, seconds: RRTConnect finds this path in well under a second.
-constexpr double kTimeCap = 5.0;
+constexpr double kPoseGoalTimeCap = 5.0;
 
 /// The flange pose of the suggested shelf goal: the hand inside the middle-row compartment.
 Eigen::Isometry3d shelfGoalPose(const dr::RobotModel& arm) {
@@ -95,7 +95,7 @@ BOOST_AUTO_TEST_CASE(rrt_connect_plans_to_a_pose_in_the_shelf, *boost::unit_test
   auto goal = std::make_shared<dp::PoseGoal>(ss->getSpaceInformation(), "flange", X_WT, options);
   ss->setGoal(goal);
   ss->setPlanner(std::make_shared<og::RRTConnect>(ss->getSpaceInformation()));
-  const ob::PlannerStatus status = ss->solve(kTimeCap);
+  const ob::PlannerStatus status = ss->solve(kPoseGoalTimeCap);
   const bool exact = status == ob::PlannerStatus::EXACT_SOLUTION;
   BOOST_TEST_REQUIRE(exact, "status " << status.asString());
   const og::PathGeometric& path = ss->getSolutionPath();

@@ -127,8 +127,10 @@ if (( fuzz_seconds > 0 )); then
 fi
 
 step "TSan build"
-# Without precompiled headers: geometry, robots and checker's sources must compile on their own includes.
-cmake -S . -B build-tsan "${common[@]}" -DDEEPCHECK_TSAN=ON -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON >/dev/null
+# Without precompiled headers and file by file (no unity build): geometry, robots and checker's
+# sources must compile on their own includes.
+cmake -S . -B build-tsan "${common[@]}" -DDEEPCHECK_TSAN=ON -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON \
+  -DDEEPCHECK_UNITY_BUILD=OFF >/dev/null
 cmake --build build-tsan -j "$jobs" --target test_checker_concurrency
 step "TSan concurrency test"
 TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \

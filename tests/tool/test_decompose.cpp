@@ -39,8 +39,6 @@ std::string lPrismObj() {
   return obj;
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(tool_decompose)

@@ -21,7 +21,6 @@ namespace robots = deepcheck::robots;
 
 namespace {
 
-const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
 const std::string kArm = kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
 
 /// Runs `deepcheck info <args>` (each argument one word) with an empty stdin.

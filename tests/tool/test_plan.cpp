@@ -17,13 +17,13 @@
 #include <vector>
 
 using namespace deepcheck;
+using tool_test::kData;
 using tool_test::quote;
 using tool_test::Run;
 using tool_test::Scratch;
 
 namespace {
 
-const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
 /// The options naming the bundled arm and one bundled scene.
 std::string armIn(const std::string& scene) {
   return " --robot " + quote(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --srdf " +

@@ -38,7 +38,6 @@ const char* kWorldFrameScene =
     "          orientation: [0, 0, 0, 1]\n";
 
 /// True when `text` has `part`.
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 /// Distances of the same code on the same input; only the warm starts of the tool's query
 /// context may differ, in the last digits.

@@ -27,8 +27,6 @@ const std::string kScenes = std::string(DEEPCHECK_SOURCE_DIR) + "/tests/data/mov
 /// context may differ, in the last digits.
 constexpr double kSameAnswer = 1e-9;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
 const std::string kArmStretched = "0 -0.4 0 -1.6 0 1.2 0\n";
 
 /// `check` of the bundled arm at kArmStretched with the scene and the extra arguments; the scene

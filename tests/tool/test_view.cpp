@@ -17,13 +17,13 @@
 #include <vector>
 
 using namespace deepcheck;
+using tool_test::kData;
 using tool_test::quote;
 using tool_test::Run;
 using tool_test::Scratch;
 
 namespace {
 
-const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
 const std::string kUrdf = kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
 const std::string kSrdf = kData + "/deepcheck_arm/srdf/deepcheck_arm.srdf";
 const std::string kWorld = " --robot " + quote(kUrdf) + " --srdf " + quote(kSrdf) + " --scene " +

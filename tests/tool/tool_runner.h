@@ -26,6 +26,12 @@ namespace deepcheck::tool_test {
 
 namespace fs = std::filesystem;
 
+/// The bundled robots and scenes (robots/data).
+inline const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+
+/// `part` occurs in `text`.
+inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
 /// The outcome of one run of the binary.
 struct Run {
   int status = -1;  ///< exit status; -1 when the binary did not exit normally
