@@ -60,20 +60,19 @@ GeometryPtr fclGeometry(const robots::Geometry& g, const robots::TriangleMesh* i
   throw std::invalid_argument("FclWorld: " + what + ": unknown geometry type");
 }
 
-struct RobotObject {
-  std::unique_ptr<fcl::CollisionObjectd> object;
-  int link = -1;
-  Eigen::Isometry3d X_LG = Eigen::Isometry3d::Identity();
-};
-
-struct WorldObject {
-  std::unique_ptr<fcl::CollisionObjectd> object;
-  std::string name;
-};
-
 }  // namespace
 
 struct FclWorld::Impl {
+  struct RobotObject {
+    std::unique_ptr<fcl::CollisionObjectd> object;
+    int link = -1;
+    Eigen::Isometry3d X_LG = Eigen::Isometry3d::Identity();
+  };
+  struct WorldObject {
+    std::unique_ptr<fcl::CollisionObjectd> object;
+    std::string name;
+  };
+
   robots::RobotModel robot;
   std::vector<RobotObject> robotObjects;         // grouped by link
   std::vector<std::pair<int, int>> linkObjects;  // per link: [first, end) in robotObjects
@@ -142,7 +141,7 @@ FclWorld::FclWorld(const checker::World& world) : impl_(std::make_unique<Impl>(w
     const robots::Link& link = m.robot.link(l);
     m.linkObjects[l].first = static_cast<int>(m.robotObjects.size());
     for (std::size_t c = 0; c < link.collisions.size(); ++c) {
-      RobotObject r;
+      Impl::RobotObject r;
       r.link = l;
       r.X_LG = link.collisions[c].X_LG;
       r.object = std::make_unique<fcl::CollisionObjectd>(
@@ -154,7 +153,7 @@ FclWorld::FclWorld(const checker::World& world) : impl_(std::make_unique<Impl>(w
   m.selfPairs = world.allowedSelfPairs();
 
   auto addWorldObject = [&](GeometryPtr geometry, const Eigen::Isometry3d& X_WG, const std::string& name) {
-    WorldObject w;
+    Impl::WorldObject w;
     w.object = std::make_unique<fcl::CollisionObjectd>(std::move(geometry));
     w.object->setTransform(X_WG.linear(), X_WG.translation());
     w.object->computeAABB();
@@ -179,7 +178,7 @@ FclWorld::FclWorld(const checker::World& world) : impl_(std::make_unique<Impl>(w
                    "obstacle/" + o.name);
   }
   std::vector<fcl::CollisionObjectd*> raw;
-  for (WorldObject& w : m.worldObjects) raw.push_back(w.object.get());
+  for (Impl::WorldObject& w : m.worldObjects) raw.push_back(w.object.get());
   m.manager.registerObjects(raw);
   m.manager.setup();
 }
@@ -195,7 +194,7 @@ bool FclWorld::isFree(const Eigen::Ref<const Eigen::VectorXd>& q) {
   Impl& m = *impl_;
   m.pose(q);
   CollideData data;
-  for (RobotObject& r : m.robotObjects) {
+  for (Impl::RobotObject& r : m.robotObjects) {
     m.manager.collide(r.object.get(), &data, collideCallback);
     if (data.hit) return false;
   }
@@ -220,7 +219,7 @@ FclDistanceResult FclWorld::distance(const Eigen::Ref<const Eigen::VectorXd>& q)
     return out;
   }
   Impl& m = *impl_;  // posed by isFree
-  for (RobotObject& r : m.robotObjects) {
+  for (Impl::RobotObject& r : m.robotObjects) {
     DistanceData data;
     data.best = out.distance;
     m.manager.distance(r.object.get(), &data, distanceCallback);

@@ -31,6 +31,7 @@
 namespace deepcheck::robots {
 
 using detail::inQuotes;
+
 namespace {
 
 Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {

@@ -24,6 +24,7 @@
 namespace deepcheck::robots {
 
 using detail::inQuotes;
+
 namespace fs = std::filesystem;
 
 const char* toString(JointType type) {

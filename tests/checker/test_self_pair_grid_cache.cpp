@@ -4,6 +4,7 @@
 // built through a warm cache answers isFree as one without grids.
 
 #include "checker_test_util.h"
+#include "common/read_text.h"
 
 #include "self_pair_grid.h"
 #include "self_pair_grid_cache.h"
@@ -29,6 +30,7 @@
 using namespace deepcheck;
 using namespace deepcheck::checker;
 using namespace deepcheck::checker::test;
+using deepcheck::test::readText;
 using detail::SelfPairGrid;
 using detail::SelfPairGridCache;
 
@@ -41,11 +43,6 @@ std::string armUrdf() { return bundledDataDir() + "/deepcheck_arm/urdf/deepcheck
 robots::RobotModel armWithUrdfText(const std::string& text) {
   return robots::RobotModel::fromUrdfString(text, fs::path(armUrdf()).parent_path().string(), bundledLoadOptions(),
                                             "deepcheck_arm.urdf");
-}
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 void writeText(const std::string& path, const std::string& text) {

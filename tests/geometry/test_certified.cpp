@@ -251,6 +251,8 @@ BOOST_AUTO_TEST_CASE(warm_equals_cold_along_motions) {
   BOOST_TEST(withoutExpansion > overlapping / 2);
 }
 
+namespace {
+
 /// Two random overlapping 100-vertex pairs from `seed`: `p`, queried once into `cache`
 /// (`first`), and `other`.
 struct PrimedPair {
@@ -265,6 +267,8 @@ struct PrimedPair {
   PairCache cache;
   SignedDistanceResult first;
 };
+
+}  // namespace
 
 // A jump far beyond the cached surface's margin (faces that could have swept over the origin)
 // sends the query cold; a cache of another pair is not used.

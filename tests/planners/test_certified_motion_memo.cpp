@@ -15,10 +15,9 @@ namespace dp = deepcheck::planners;
 namespace {
 
 constexpr int kDimension = 6;
-constexpr double kHalfTurn = 3.14159265358979323846;
 
 /// The value wrapped into [-pi, pi), as a continuous joint's state is stored.
-double wrapped(double x) { return x - 2.0 * kHalfTurn * std::floor((x + kHalfTurn) / (2.0 * kHalfTurn)); }
+double wrapped(double x) { return x - 2.0 * M_PI * std::floor((x + M_PI) / (2.0 * M_PI)); }
 
 struct RandomMotion {
   Eigen::VectorXd from, to, dq;
@@ -27,7 +26,7 @@ struct RandomMotion {
 /// A motion of up to 3 rad per value from a random configuration; the first value wraps (its
 /// stored end is not from + dq).
 RandomMotion randomMotion(std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> value(-kHalfTurn, kHalfTurn);
+  std::uniform_real_distribution<double> value(-M_PI, M_PI);
   std::uniform_real_distribution<double> step(-3.0, 3.0);
   RandomMotion m;
   m.from.resize(kDimension);

@@ -5,6 +5,7 @@
 #include "deepcheck/robots/mesh_loader.h"
 #include "deepcheck/robots/moveit_scene.h"
 
+#include "common/read_text.h"
 #include "robots_test_util.h"
 
 #include <boost/test/unit_test.hpp>
@@ -19,7 +20,9 @@ namespace deepcheck::robots {
 namespace {
 
 namespace fs = std::filesystem;
+using deepcheck::test::readText;
 using test::checkThrows;
+using test::loadPanda;
 
 const std::string kTestData = std::string(DEEPCHECK_SOURCE_DIR) + "/tests/data";
 const std::string kAllShapes = kTestData + "/moveit_scenes/all_shapes.yaml";
@@ -52,21 +55,6 @@ int countLines(const std::string& text, const std::string& pattern) {
   int n = 0;
   for (std::string line; std::getline(in, line);) n += std::regex_search(line, re) ? 1 : 0;
   return n;
-}
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-RobotModel loadPanda() {
-  LoadOptions o;
-  o.packageRoots = {test::sharedDir() + "/robots/panda"};
-  o.useRosPackagePath = false;
-  return RobotModel::fromUrdfFile(
-      test::sharedDir() + "/robots/panda/moveit_resources_panda_description/urdf/panda.urdf", o);
 }
 
 PlanningScene parse(const std::string& yaml) {

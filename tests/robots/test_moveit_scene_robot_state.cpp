@@ -3,6 +3,7 @@
 // matrix (moveit_scene.h), and the errors on bad ones.
 #include "deepcheck/robots/moveit_scene.h"
 
+#include "common/read_text.h"
 #include "robots_test_util.h"
 
 #include <boost/test/unit_test.hpp>
@@ -16,6 +17,7 @@
 namespace deepcheck::robots {
 namespace {
 
+using deepcheck::test::readText;
 using test::checkThrows;
 
 const std::string kScenes = std::string(DEEPCHECK_SOURCE_DIR) + "/tests/data/moveit_scenes";
@@ -23,13 +25,6 @@ const std::string kDump = kScenes + "/monitored_planning_scene.yaml";
 constexpr double kExact = 1e-12;  // values copied from the file, up to round-off
 /// A pose written with 17 digits and read back: the rotation goes through a quaternion.
 constexpr double kRoundTrip = 1e-15;
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// `text` with its only occurrence of `from` replaced by `to`.
 std::string replaced(std::string text, const std::string& from, const std::string& to) {

@@ -54,7 +54,7 @@ BOOST_AUTO_TEST_CASE(l_prism_report_pieces_and_cache) {
   BOOST_TEST(contains(r.out, "already convex: no"), r.out);
   BOOST_TEST(contains(r.out, "(cache stored;"), r.out);
   BOOST_TEST(contains(r.out, "wrote " + out), r.out);
-  const std::string pieces = readFile(out);
+  const std::string pieces = readText(out);
   BOOST_TEST(contains(pieces, "o piece_0"));
   BOOST_TEST(contains(pieces, "o piece_1"), "an L needs two pieces");
 

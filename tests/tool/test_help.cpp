@@ -56,9 +56,9 @@ BOOST_AUTO_TEST_CASE(readme_and_cli_doc_list_every_subcommand) {
   const std::vector<std::string> names = helpSubcommands(r.out);
   BOOST_TEST_REQUIRE(names.size() >= 7u, r.out);
   const fs::path source(DEEPCHECK_SOURCE_DIR);
-  const std::string readmeRow = lineStarting(readFile(source / "README.md"), "| `deepcheck` program |");
+  const std::string readmeRow = lineStarting(readText(source / "README.md"), "| `deepcheck` program |");
   BOOST_TEST_REQUIRE(!readmeRow.empty());
-  const std::string cli = readFile(source / "docs/cli.md");
+  const std::string cli = readText(source / "docs/cli.md");
   for (const std::string& name : names) {
     BOOST_TEST(readmeRow.find("`" + name + "`") != std::string::npos, name << " missing from README: " << readmeRow);
     BOOST_TEST(!lineStarting(cli, "| [`" + name + "`](#deepcheck-" + name + ") |").empty(),

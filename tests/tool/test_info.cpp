@@ -136,7 +136,7 @@ BOOST_AUTO_TEST_CASE(writes_srdf) {
   const Run r =
       runInfo(scratch, {kArm, "--package-path=" + kData, "--samples", "500", "--seed", "3", "--write-srdf", srdf});
   BOOST_REQUIRE_MESSAGE(r.status == 0, "exit " << r.status << ": " << r.err);
-  const std::string text = readFile(srdf);
+  const std::string text = readText(srdf);
   BOOST_TEST(text.find("<robot name=\"deepcheck_arm\">") != std::string::npos);
   BOOST_TEST(text.find("<disable_collisions link1=\"base_link\" link2=\"link1\" reason=\"Adjacent\"/>") !=
              std::string::npos);

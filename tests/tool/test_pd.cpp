@@ -281,7 +281,7 @@ BOOST_AUTO_TEST_CASE(cold_equals_warm) {
 }
 
 BOOST_AUTO_TEST_CASE(example_file_runs) {
-  const std::string example = readFile(fs::path(DEEPCHECK_SOURCE_DIR) / "tools/examples/pd_boxes.txt");
+  const std::string example = readText(fs::path(DEEPCHECK_SOURCE_DIR) / "tools/examples/pd_boxes.txt");
   BOOST_TEST_REQUIRE(!example.empty());
   const Run r = runTool("pd", example);
   BOOST_TEST_REQUIRE(r.status == 0, "stderr: " << r.err);
@@ -443,7 +443,7 @@ BOOST_AUTO_TEST_CASE(command_line_errors) {
 }
 
 BOOST_AUTO_TEST_CASE(bodies_are_unions_of_shapes) {
-  const std::string example = readFile(fs::path(DEEPCHECK_SOURCE_DIR) / "tools/examples/pd_bodies.txt");
+  const std::string example = readText(fs::path(DEEPCHECK_SOURCE_DIR) / "tools/examples/pd_bodies.txt");
   const Run r = runTool("pd", example);
   BOOST_TEST_REQUIRE(r.status == 0, "stderr: " << r.err);
   const std::vector<Answer> answers = parseAnswers(r.out);

@@ -74,7 +74,7 @@ std::string poseWords(const robots::RobotModel& robot, const std::string& link, 
 /// The waypoints of a path file; each must have the robot's variable count.
 std::vector<Eigen::VectorXd> readPath(const std::string& file, int variables) {
   std::vector<Eigen::VectorXd> path;
-  for (const std::string& line : lines(readFile(file))) {
+  for (const std::string& line : lines(readText(file))) {
     const std::vector<std::string> f = fields(line);
     BOOST_TEST_REQUIRE(static_cast<int>(f.size()) == variables, line);
     Eigen::VectorXd q(variables);

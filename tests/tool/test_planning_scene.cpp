@@ -37,8 +37,6 @@ const char* kWorldFrameScene =
     "        - position: [0.6, 0, 0.1]\n"
     "          orientation: [0, 0, 0, 1]\n";
 
-/// True when `text` has `part`.
-
 /// Distances of the same code on the same input; only the warm starts of the tool's query
 /// context may differ, in the last digits.
 constexpr double kSameAnswer = 1e-9;

@@ -41,7 +41,7 @@ std::string bookshelfArgs(const std::string& out, int count, int seed) {
 /// The "key values..." lines of a problem file.
 std::map<std::string, std::vector<std::string>> readProblem(const std::string& path) {
   std::map<std::string, std::vector<std::string>> out;
-  for (const std::string& line : tool_test::lines(tool_test::readFile(path))) {
+  for (const std::string& line : tool_test::lines(tool_test::readText(path))) {
     if (line.empty() || line[0] == '#') continue;
     std::vector<std::string> f = tool_test::fields(line);
     const std::string key = f.front();
@@ -83,8 +83,8 @@ BOOST_AUTO_TEST_CASE(bookshelf_problems_are_collision_free_and_repeat_with_the_s
   const Run again = scratch.run(bookshelfArgs(scratch.path("b"), 2, 5));
   BOOST_TEST_REQUIRE(again.status == 0, again.err);
   for (const char* name : {"problem_0001.txt", "scene_0001.yaml"}) {
-    BOOST_CHECK(tool_test::readFile(scratch.path(std::string("a/") + name)) ==
-                tool_test::readFile(scratch.path(std::string("b/") + name)));
+    BOOST_CHECK(tool_test::readText(scratch.path(std::string("a/") + name)) ==
+                tool_test::readText(scratch.path(std::string("b/") + name)));
   }
 }
 

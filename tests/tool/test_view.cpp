@@ -102,7 +102,7 @@ BOOST_AUTO_TEST_CASE(path_page_has_a_frame_per_waypoint_with_the_worlds_signed_d
   const std::string out = scratch.path("view.html");
   const Run r = scratch.run("view" + kWorld + " --path " + quote(path) + " --step 0 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const std::string page = tool_test::readFile(out);
+  const std::string page = tool_test::readText(out);
   checkSelfContained(page);
   BOOST_TEST(intField(page, "count") >= 1);
   const std::string frames = page.substr(page.find("\"frames\":"));
@@ -123,7 +123,7 @@ BOOST_AUTO_TEST_CASE(path_is_densified_by_step_with_the_waypoints_kept) {
   const std::string out = scratch.path("view.html");
   const Run r = scratch.run("view" + kWorld + " --path " + quote(path) + " --step 0.1 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const std::string frames = tool_test::readFile(out).substr(tool_test::readFile(out).find("\"frames\":"));
+  const std::string frames = tool_test::readText(out).substr(tool_test::readText(out).find("\"frames\":"));
   // The largest joint motion is |-2.79 - 0| = 2.79 rad: ceil(27.9) = 28 steps, 29 frames.
   BOOST_TEST(intField(frames, "count") == 29);
   const std::string waypoints = field(frames, "waypoint");
@@ -135,7 +135,7 @@ BOOST_AUTO_TEST_CASE(configuration_page_has_one_frame) {
   const std::string out = scratch.path("view.html");
   const Run r = scratch.run("view" + kWorld + " --config " + kStart + " --hide link3 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const std::string page = tool_test::readFile(out);
+  const std::string page = tool_test::readText(out);
   BOOST_TEST(intField(page.substr(page.find("\"frames\":")), "count") == 1);
   BOOST_TEST(page.find("\"name\":\"link3\",\"layer\":\"robot\",\"visible\":false") != std::string::npos);
 }
@@ -152,7 +152,7 @@ BOOST_AUTO_TEST_CASE(planning_scene_objects_are_shown_as_obstacles) {
   const Run r = scratch.run("view --robot " + quote(kUrdf) + " --package-path " + quote(kData) + " --scene " +
                             quote(scene) + " --frame-alias world=base_link --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const std::string page = tool_test::readFile(out);
+  const std::string page = tool_test::readText(out);
   BOOST_TEST(page.find("\"name\":\"obstacle/crate\",\"layer\":\"obstacle\"") != std::string::npos);
 }
 
@@ -162,7 +162,7 @@ BOOST_AUTO_TEST_CASE(decompose_page_shows_the_mesh_pieces_and_report) {
   const Run r =
       scratch.run("view --decompose " + quote(kData + "/deepcheck_arm/meshes/hand.stl") + " --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const std::string page = tool_test::readFile(out);
+  const std::string page = tool_test::readText(out);
   checkSelfContained(page);
   BOOST_TEST(page.find("concavity") != std::string::npos);
   BOOST_TEST(page.find("\"type\":\"mesh\"") != std::string::npos);
@@ -183,7 +183,7 @@ BOOST_AUTO_TEST_CASE(pd_page_has_a_frame_per_query_with_the_answers_of_deepcheck
   const Run pd = scratch.run("pd", cases);
   BOOST_TEST_REQUIRE(pd.status == 0, pd.err);
   const std::vector<std::string> answers = tool_test::lines(pd.out);
-  const std::string page = tool_test::readFile(out);
+  const std::string page = tool_test::readText(out);
   const std::string frames = page.substr(page.find("\"frames\":"));
   BOOST_TEST_REQUIRE(intField(frames, "count") == 2);
   const std::vector<double> values = decodeFloat64(field(frames, "value"));

@@ -6,6 +6,9 @@
 // Every run gets the scratch folder's own decomposition cache (XDG_CACHE_HOME), so the tests never
 // write to the user's cache.
 
+#include "common/read_text.h"
+#include "common/test_paths.h"
+
 #include "deepcheck/robots/format_number.h"
 
 #include <boost/test/unit_test.hpp>
@@ -26,8 +29,10 @@ namespace deepcheck::tool_test {
 
 namespace fs = std::filesystem;
 
+using test::readText;
+
 /// The bundled robots and scenes (robots/data).
-inline const std::string kData = std::string(DEEPCHECK_SOURCE_DIR) + "/robots/data";
+inline const std::string kData = test::bundledDataDir();
 
 /// `part` occurs in `text`.
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
@@ -51,13 +56,6 @@ inline std::string quoteAll(const std::vector<std::string>& args) {
   std::string words;
   for (const std::string& a : args) words += (words.empty() ? "" : " ") + quote(a);
   return words;
-}
-
-inline std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// A folder of its own under the temporary directory, removed at the end.
@@ -102,7 +100,7 @@ struct Scratch {
       const int status = ::pclose(pipe);
       r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     }
-    r.err = readFile(err);
+    r.err = readText(err);
     return r;
   }
 };
