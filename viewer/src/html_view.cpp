@@ -47,7 +47,7 @@ std::string base64Of(const std::vector<T>& values) {
 }
 
 /// A JSON string; '<' is escaped so that no "</script>" can end the data block.
-std::string quoted(const std::string& s) {
+std::string jsonString(const std::string& s) {
   std::string out = "\"";
   for (const char c : s) {
     const auto u = static_cast<unsigned char>(c);
@@ -171,7 +171,7 @@ void writeBodies(const ViewScene& scene, std::ostream& out) {
       throw std::invalid_argument("writeHtmlView: " + what + " follows track " + std::to_string(body.track) + " of " +
                                   std::to_string(scene.numTracks));
     }
-    out << (b ? "," : "") << "{\"name\":" << quoted(body.name) << ",\"layer\":" << quoted(body.layer)
+    out << (b ? "," : "") << "{\"name\":" << jsonString(body.name) << ",\"layer\":" << jsonString(body.layer)
         << ",\"visible\":" << (body.visible ? "true" : "false") << ",\"track\":" << body.track
         << ",\"pose\":" << poseJson(body.X_WB, what + " pose") << ",\"shapes\":[";
     for (std::size_t s = 0; s < body.shapes.size(); ++s) {
@@ -231,10 +231,11 @@ void writeFrames(const ViewScene& scene, std::ostream& out) {
     }
     values.push_back(frame.value);
     waypoints += frame.waypoint ? '1' : '0';
-    labels += (f ? "," : "") + quoted(frame.label);
+    labels += (f ? "," : "") + jsonString(frame.label);
     const ViewContact& c = frame.contact;
     contacts.append(frame.hasContact, c, what + " contact");
-    names += (f ? "," : "") + quoted(frame.hasContact ? c.nameA : "") + "," + quoted(frame.hasContact ? c.nameB : "");
+    names += (f ? "," : "") + jsonString(frame.hasContact ? c.nameA : "") + "," +
+             jsonString(frame.hasContact ? c.nameB : "");
     bodyContacts.append(frame.hasBodyContact, frame.bodyContact, what + " body contact");
   }
   out << "\"frames\":{\"count\":" << n << ",\"tracks\":" << scene.numTracks << ",\"poses\":" << base64Of(poses)
@@ -268,8 +269,8 @@ std::string expand(const std::string& page, const std::vector<std::pair<std::str
 
 void writeHtmlView(const ViewScene& scene, std::ostream& out) {
   std::ostringstream data;
-  data << "{\"title\":" << quoted(scene.title) << ",\"caption\":" << quoted(scene.caption)
-       << ",\"valueName\":" << quoted(scene.valueName) << ",";
+  data << "{\"title\":" << jsonString(scene.title) << ",\"caption\":" << jsonString(scene.caption)
+       << ",\"valueName\":" << jsonString(scene.valueName) << ",";
   writeBodies(scene, data);
   data << ",";
   writeFrames(scene, data);
