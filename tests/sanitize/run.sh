@@ -12,7 +12,7 @@
 # under ASan they alone would take longer than the rest of CI.
 #
 # Environment: JOBS (parallel build jobs, default: the number of cores); FUZZ_SECONDS (per
-# harness, default 20; 0 skips the fuzzing).
+# harness, default 10; 0 skips the fuzzing).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -61,8 +61,11 @@ asan="-fsanitize=address,undefined -fno-sanitize=float-cast-overflow -fno-saniti
 if [[ -f build-asan/CMakeCache.txt ]] && ! grep -q '^CMAKE_CXX_COMPILER:[A-Z]*=.*clang++' build-asan/CMakeCache.txt; then
   rm -rf build-asan
 fi
+# The suites' own sources compile without instrumentation (DEEPCHECK_SUITE_COMPILE_OPTIONS): what
+# they test, the libraries, carries it; the suites link the sanitizers' runtime all the same.
 cmake -S . -B build-asan "${common[@]}" -DCMAKE_CXX_COMPILER=clang++ -DDEEPCHECK_BUILD_FUZZERS=ON \
-  "-DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link $asan" "-DCMAKE_EXE_LINKER_FLAGS=$asan" >/dev/null
+  "-DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link $asan" "-DCMAKE_EXE_LINKER_FLAGS=$asan" \
+  -DDEEPCHECK_SUITE_COMPILE_OPTIONS=-fno-sanitize=all >/dev/null
 if ! grep -q '^DEEPCHECK_HAVE_LIBFUZZER:INTERNAL=1' build-asan/CMakeCache.txt; then
   echo "sanitize: clang++ cannot link libFuzzer (-fsanitize=fuzzer): install clang and libclang-rt-14-dev (packages.txt)" >&2
   exit 1
@@ -74,22 +77,23 @@ export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_afte
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # suite <name> <args...>: runs one sanitized suite and prints its output, as one block, when it ends.
 suite() {
-  local out status=0
+  local out status=0 start=$SECONDS
   out=$("build-asan/tests/$1" "${@:2}" 2>&1) || status=$?
-  printf -- '-- %s (exit status %d)\n%s\n' "$1" "$status" "$out"
+  printf -- '-- %s (exit status %d, %d s)\n%s\n' "$1" "$status" "$((SECONDS - start))" "$out"
   return "$status"
 }
 
 step "ASan+UBSan unit tests"
-# test_geometry (the longest) runs beside test_decomposition, test_robots and test_checker: on two
-# cores or more the stage takes the time of the longer side; on one, the two sides share it.
+# test_checker (the longest, about 4 minutes alone) runs beside test_geometry, test_decomposition and
+# test_robots (together about as long): on two cores or more the stage takes the time of the longer
+# side; on one, the two sides share it.
 failed=0
-suite test_geometry --report_level=short "--run_test=$SANITIZE_DEEP_SKIP" &
-deep_pid=$!
+suite test_checker --report_level=short "--run_test=$SANITIZE_CHECKER_SKIP" &
+checker_pid=$!
+suite test_geometry --report_level=short "--run_test=$SANITIZE_DEEP_SKIP" || failed=1
 suite test_decomposition --report_level=short "--run_test=$SANITIZE_DECOMPOSITION_SKIP" || failed=1
 suite test_robots --report_level=short || failed=1
-suite test_checker --report_level=short "--run_test=$SANITIZE_CHECKER_SKIP" || failed=1
-wait "$deep_pid" || failed=1
+wait "$checker_pid" || failed=1
 if (( failed )); then
   echo "sanitize: a sanitized suite failed; its output is above" >&2
   exit 1
@@ -97,7 +101,7 @@ fi
 step "ASan+UBSan corpus replay"
 ctest --test-dir build-asan -R '^fuzz_replay_' --output-on-failure
 
-fuzz_seconds="${FUZZ_SECONDS:-20}"
+fuzz_seconds="${FUZZ_SECONDS:-10}"
 if (( fuzz_seconds > 0 )); then
   step "fuzzing: each harness ${fuzz_seconds} s from its committed corpus, two at a time"
   # fuzz_one <harness>: one bounded run, its summary printed when it ends; non-zero on a finding.
@@ -127,10 +131,10 @@ if (( fuzz_seconds > 0 )); then
 fi
 
 step "TSan build"
-# Without precompiled headers and file by file (no unity build): geometry, robots and checker's
-# sources must compile on their own includes.
-cmake -S . -B build-tsan "${common[@]}" -DDEEPCHECK_TSAN=ON -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON \
-  -DDEEPCHECK_UNITY_BUILD=OFF >/dev/null
+# A unity build like the others: consumer_add_subdirectory (ctest) is the build that compiles every
+# library source on its own includes.
+cmake -S . -B build-tsan "${common[@]}" -DDEEPCHECK_TSAN=ON -DDEEPCHECK_UNITY_BUILD=ON \
+  -DCMAKE_DISABLE_PRECOMPILE_HEADERS=OFF >/dev/null
 cmake --build build-tsan -j "$jobs" --target test_checker_concurrency
 step "TSan concurrency test"
 TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \
