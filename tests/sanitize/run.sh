@@ -3,10 +3,11 @@
 # build and tests:
 #   1. build-asan: Clang build with AddressSanitizer + UndefinedBehaviorSanitizer
 #      (-fno-sanitize-recover=all: the first report fails the run) and libFuzzer's coverage
-#      instrumentation (-fsanitize=fuzzer-no-link) of the geometry, decomposition, robots and checker
-#      unit tests and of the fuzz harnesses, which are libFuzzer binaries; runs the tests, replays
-#      every committed corpus input, then fuzzes each harness for FUZZ_SECONDS from its committed
-#      corpus, two at a time (fuzz/run_fuzzer.sh): any finding fails the stage.
+#      instrumentation (-fsanitize=fuzzer-no-link) of the libraries that the geometry,
+#      decomposition, robots and checker unit tests and the fuzz harnesses (libFuzzer binaries)
+#      link; runs the tests, replays every committed corpus input, then fuzzes each harness for
+#      FUZZ_SECONDS from its committed corpus, two at a time (fuzz/run_fuzzer.sh): any finding
+#      fails the stage.
 #   2. build-tsan: ThreadSanitizer build of the checker's concurrency suite alone; runs it.
 # The long randomized sweeps of test_geometry (see SANITIZE_DEEP_SKIP) run in the normal build only:
 # under ASan they alone would take longer than the rest of CI.
