@@ -9,9 +9,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <array>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 
 namespace deepcheck::robots {

@@ -123,7 +123,8 @@ BOOST_AUTO_TEST_CASE(path_is_densified_by_step_with_the_waypoints_kept) {
   const std::string out = scratch.path("view.html");
   const Run r = scratch.run("view" + kWorld + " --path " + quote(path) + " --step 0.1 --out " + quote(out));
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
-  const std::string frames = tool_test::readText(out).substr(tool_test::readText(out).find("\"frames\":"));
+  const std::string page = tool_test::readText(out);
+  const std::string frames = page.substr(page.find("\"frames\":"));
   // The largest joint motion is |-2.79 - 0| = 2.79 rad: ceil(27.9) = 28 steps, 29 frames.
   BOOST_TEST(intField(frames, "count") == 29);
   const std::string waypoints = field(frames, "waypoint");
