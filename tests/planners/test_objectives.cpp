@@ -221,7 +221,7 @@ BOOST_AUTO_TEST_CASE(maximize_min_clearance_objective_reads_our_clearance, *boos
   dp::setStartAndGoal(*ss, dp::test::suggestedStart(), dp::test::suggestedGoal("table"));
   ss->setOptimizationObjective(objective);
   ss->setPlanner(dp::makePlanner("RRT*", ss->getSpaceInformation()));
-  BOOST_TEST_REQUIRE(ss->solve(iterationLimit(300)) == ob::PlannerStatus::EXACT_SOLUTION);
+  BOOST_TEST_REQUIRE(ss->solve(iterationLimit(100)) == ob::PlannerStatus::EXACT_SOLUTION);
   const og::PathGeometric& path = ss->getSolutionPath();
   const double cost = path.cost(objective).value();
   const auto checker = dp::validityCheckerOf(*ss);

@@ -101,7 +101,7 @@ BOOST_AUTO_TEST_CASE(pieces_are_the_checkers_through_the_same_cache) {
   // info decomposes the meshes as check does, through the same cache: its piece count is the one
   // check's summary gives, more than one hull per mesh (the arm's links are not convex), and
   // check finds every decomposition in the cache info filled.
-  Scratch scratch;
+  Scratch scratch(Scratch::Cache::Empty);
   const Run info = runInfo(scratch, {kArm, "--package-path", kData, "--samples", "0"});
   BOOST_REQUIRE_MESSAGE(info.status == 0, "exit " << info.status << ": " << info.err);
   std::smatch m;
