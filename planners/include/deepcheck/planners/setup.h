@@ -150,9 +150,9 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
 /// planned path's; otherwise the solution stays as planned. Up to tol::kSimplifyAttempts attempts,
 /// each from the planned path (the simplifier is randomized).
 ///   - No objective, or path length: with `seconds` 0, one pass of OMPL's shortening (vertex
-///     reduction, shortcuts, vertex reduction, two rounds of B-spline smoothing): OMPL's
-///     simplifyMax, which repeats such passes until nothing improves, gives paths 4 % shorter for
-///     4x the time. With `seconds` > 0, ss.simplifySolution(seconds). OMPL 1.5's PathSimplifier
+///     reduction, shortcuts, vertex reduction, one round of B-spline smoothing): OMPL's
+///     simplifyMax, which repeats such passes until nothing improves, gives paths a few percent
+///     shorter for several times the time. With `seconds` > 0, ss.simplifySolution(seconds). OMPL 1.5's PathSimplifier
 ///     can return a path that fails its own checks: when its shortcuts and B-spline smoothing
 ///     leave an invalid motion that checkAndRepair cannot mend, it warns "Solution path may
 ///     slightly touch on an invalid region of the state space" and returns it (seen: a 4 rad
