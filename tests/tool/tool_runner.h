@@ -6,8 +6,8 @@
 // Every run gets the scratch folder's own decomposition cache (XDG_CACHE_HOME), so the tests never
 // write to the user's cache. A scratch folder's cache starts as a copy of one that holds the bundled
 // arm's decompositions, filled once per test process: decomposing its meshes takes about 1.4 s,
-// reading them back 0.03 s, and most tests load that arm. The tests about the cache itself start
-// with an empty one (Scratch::Cache::Empty).
+// reading them back 0.03 s, and most tests load that arm. A test that needs an empty cache asks
+// for one (Scratch::Cache::Empty).
 
 #include "common/read_text.h"
 #include "common/test_paths.h"

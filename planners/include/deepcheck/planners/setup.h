@@ -152,11 +152,11 @@ PathCertificate certifyPath(const ompl::geometric::SimpleSetup& ss, ompl::geomet
 ///   - No objective, or path length: with `seconds` 0, one pass of OMPL's shortening (vertex
 ///     reduction, shortcuts, vertex reduction, one round of B-spline smoothing): OMPL's
 ///     simplifyMax, which repeats such passes until nothing improves, gives paths a few percent
-///     shorter for several times the time. With `seconds` > 0, ss.simplifySolution(seconds). OMPL 1.5's PathSimplifier
-///     can return a path that fails its own checks: when its shortcuts and B-spline smoothing
-///     leave an invalid motion that checkAndRepair cannot mend, it warns "Solution path may
-///     slightly touch on an invalid region of the state space" and returns it (seen: a 4 rad
-///     motion through the bundled shelf).
+///     shorter for several times the time. With `seconds` > 0, ss.simplifySolution(seconds).
+///     OMPL 1.5's PathSimplifier can return a path that fails its own checks: when its shortcuts
+///     and B-spline smoothing leave an invalid motion that checkAndRepair cannot mend, it warns
+///     "Solution path may slightly touch on an invalid region of the state space" and returns it
+///     (seen: a 4 rad motion through the bundled shelf).
 ///   - Any other objective (the clearance objectives of objectives.h): OMPL's shortcutting with
 ///     the objective (PathSimplifier::shortcutPath), not simplifyMax, whose vertex reduction and
 ///     B-spline smoothing ignore the objective and pull a path planned away from the obstacles
