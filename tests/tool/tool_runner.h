@@ -61,37 +61,8 @@ inline std::string quoteAll(const std::vector<std::string>& args) {
   return words;
 }
 
-/// A new folder under the temporary directory, named for this process and `name`.
-inline fs::path scratchFolder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("deepcheck_tool_" + std::to_string(::getpid()) + "_" + name);
-  fs::create_directories(dir);
-  return dir;
-}
-
-/// The decomposition cache (an XDG_CACHE_HOME) every scratch folder's starts from: the bundled
-/// arm's meshes, decomposed by one `deepcheck info` run on first use; removed at the end of the
-/// process.
-inline const fs::path& armCache() {
-  struct Cache {
-    fs::path dir = scratchFolder("arm_cache");
-    Cache() {
-      const std::string arm = kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
-      const std::string cmd = "XDG_CACHE_HOME=" + quote(dir.string()) + " " + quote(DEEPCHECK_TOOL) + " info " +
-                              quote(arm) + " --package-path " + quote(kData) + " --samples 0 > /dev/null 2>&1";
-      const int status = std::system(cmd.c_str());
-      // An error of the test that asked first; the others still run, decomposing the arm themselves.
-      if (status != 0 || !fs::is_directory(dir / "deepcheck")) {
-        BOOST_ERROR("filling the tests' arm cache failed (status " << status << "): " << cmd);
-      }
-    }
-    ~Cache() {
-      std::error_code ec;
-      fs::remove_all(dir, ec);
-    }
-  };
-  static const Cache cache;
-  return cache.dir;
-}
+/// The decomposition cache (an XDG_CACHE_HOME) every scratch folder's starts from (below Scratch).
+inline const fs::path& armCache();
 
 /// A folder of its own under the temporary directory, removed at the end.
 struct Scratch {
@@ -102,7 +73,9 @@ struct Scratch {
 
   explicit Scratch(Cache cache = Cache::Arm) {
     static int counter = 0;
-    dir = scratchFolder(std::to_string(counter++));
+    dir =
+        fs::temp_directory_path() / ("deepcheck_tool_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(dir);
     if (cache == Cache::Arm) fs::copy(armCache(), dir / "cache", fs::copy_options::recursive);
   }
   ~Scratch() {
@@ -141,6 +114,20 @@ struct Scratch {
     return r;
   }
 };
+
+/// The bundled arm's meshes, decomposed by one `deepcheck info` run in a scratch folder of its own
+/// on first use; removed with it at the end of the process.
+inline const fs::path& armCache() {
+  static const Scratch filler(Scratch::Cache::Empty);
+  static const fs::path cache = [] {
+    const Run r = filler.run("info " + quote(kData + "/deepcheck_arm/urdf/deepcheck_arm.urdf") + " --package-path " +
+                             quote(kData) + " --samples 0");
+    // An error of the test that asked first; the others still run, decomposing the arm themselves.
+    if (r.status != 0) BOOST_ERROR("filling the tests' arm cache failed (exit " << r.status << "): " << r.err);
+    return fs::path(filler.path("cache"));
+  }();
+  return cache;
+}
 
 /// The lines of `s`, without their terminators.
 inline std::vector<std::string> lines(const std::string& s) {
