@@ -15,12 +15,19 @@ build="$1" harness="$2" work="$3"
 shift 3
 
 case "$harness" in
-  urdf|srdf|moveit_scene|problems) max_len=131072 ;;
-  mesh|decomposition_cache) max_len=262144 ;;
-  pd_input|config_lines|goal_pose|scene_text) max_len=65536 ;;
+  urdf|srdf|moveit_scene|scene_text|problems) max_len=131072 ;;
+  mesh|decomposition_cache|pd_input|config_lines) max_len=262144 ;;
+  goal_pose) max_len=65536 ;;
   ompl_state) max_len=512 ;;
   *) echo "run_fuzzer.sh: unknown harness '$harness'" >&2; exit 2 ;;
 esac
+# Every committed input fits: a run executes each whole before it mutates (CI's stage replays the
+# corpora that way), where a longer one would be cut to -max_len.
+too_long=$(find "$here/corpus/$harness" -type f -size +"$max_len"c)
+if [[ -n "$too_long" ]]; then
+  echo "run_fuzzer.sh: committed inputs longer than -max_len=$max_len bytes: $too_long" >&2
+  exit 2
+fi
 options=(-max_len="$max_len" -timeout=25 -rss_limit_mb=2560 -print_final_stats=1)
 [[ -f "$here/dict/$harness.dict" ]] && options+=(-dict="$here/dict/$harness.dict")
 

@@ -5,9 +5,9 @@
 #      (-fno-sanitize-recover=all: the first report fails the run) and libFuzzer's coverage
 #      instrumentation (-fsanitize=fuzzer-no-link) of the libraries that the geometry,
 #      decomposition, robots and checker unit tests and the fuzz harnesses (libFuzzer binaries)
-#      link; runs the tests, replays every committed corpus input, then fuzzes each harness for
-#      FUZZ_SECONDS from its committed corpus, two at a time (fuzz/run_fuzzer.sh): any finding
-#      fails the stage.
+#      link; runs the tests, then fuzzes each harness for FUZZ_SECONDS from its committed corpus
+#      (every committed input runs first), two at a time (fuzz/run_fuzzer.sh): any finding fails
+#      the stage. With FUZZ_SECONDS=0 it replays the committed corpora instead.
 #   2. build-tsan: ThreadSanitizer build of the checker's concurrency suite alone; runs it.
 # The long randomized sweeps of test_geometry (see SANITIZE_DEEP_SKIP) run in the normal build only:
 # under ASan they alone would take longer than the rest of CI.
@@ -99,12 +99,14 @@ if (( failed )); then
   echo "sanitize: a sanitized suite failed; its output is above" >&2
   exit 1
 fi
-step "ASan+UBSan corpus replay"
-ctest --test-dir build-asan -R '^fuzz_replay_' --output-on-failure
-
+# A fuzzing run first executes every input of its committed corpus, whatever its time limit, so the
+# corpus replay (ctest's fuzz_replay_* tests) runs only when the fuzzing is skipped.
 fuzz_seconds="${FUZZ_SECONDS:-10}"
-if (( fuzz_seconds > 0 )); then
-  step "fuzzing: each harness ${fuzz_seconds} s from its committed corpus, two at a time"
+if (( fuzz_seconds == 0 )); then
+  step "ASan+UBSan corpus replay"
+  ctest --test-dir build-asan -R '^fuzz_replay_' --output-on-failure
+else
+  step "fuzzing: each harness ${fuzz_seconds} s from its committed corpus (every input run first), two at a time"
   # fuzz_one <harness>: one bounded run, its summary printed when it ends; non-zero on a finding.
   fuzz_one() {
     local work="build-asan/fuzz-ci/$1" status=0
