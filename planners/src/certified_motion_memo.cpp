@@ -63,10 +63,8 @@ bool CertifiedMotionMemo::lookup(const Eigen::Ref<const Eigen::VectorXd>& point,
   const auto n = static_cast<Eigen::Index>(n_);
   std::lock_guard<std::mutex> guard(lock(bucket));
   for (std::size_t e = bucket * kWays; e < (bucket + 1) * kWays; ++e) {
-    if (entries_[e].key != key || entries_[e].version != version) continue;
-    // The hash only chooses the bucket: the point itself must match, exactly.
+    if (!keeps(e, key, version, point.data())) continue;
     const double* v = values(e);
-    if (!std::equal(v, v + n_, point.data())) continue;
     const Eigen::Map<const Eigen::VectorXd> at(v + n_, n);
     const Eigen::Map<const Eigen::VectorXd> along(v + 2 * n_, n);
     const double tube =
@@ -76,6 +74,17 @@ bool CertifiedMotionMemo::lookup(const Eigen::Ref<const Eigen::VectorXd>& point,
       motion = along;
       return true;
     }
+  }
+  return false;
+}
+
+bool CertifiedMotionMemo::holds(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version) const {
+  if (point.size() != n_) return false;
+  const std::uint64_t key = hash(point, version);
+  const std::size_t bucket = bucketOf(key);
+  std::lock_guard<std::mutex> guard(lock(bucket));
+  for (std::size_t e = bucket * kWays; e < (bucket + 1) * kWays; ++e) {
+    if (keeps(e, key, version, point.data())) return true;
   }
   return false;
 }

@@ -14,6 +14,7 @@ namespace deepcheck::planners {
 /// One motion being checked: the calling thread's scratch, reused from motion to motion.
 struct CertifiedMotionValidator::Motion {
   std::shared_ptr<const LinkSpeedBound> bound;
+  const ompl::base::State* s2 = nullptr;
   Eigen::VectorXd q1, q2, dq;
   checker::ClearanceDemand demand;  ///< the bounds over the whole motion
   bool bounded = false;             ///< demand holds this motion's bounds (bind)
@@ -65,6 +66,7 @@ std::shared_ptr<const LinkSpeedBound> CertifiedMotionValidator::bound() const {
 void CertifiedMotionValidator::prepare(const ompl::base::State* s1, const ompl::base::State* s2, Motion& m) const {
   const StateMapping& mapping = checker_->mapping();
   m.bound = bound();
+  m.s2 = s2;
   m.q1 = mapping.configuration(s1);
   m.q2 = mapping.configuration(s2);
   m.dq = mapping.displacement(m.q1, m.q2);
@@ -104,8 +106,11 @@ bool CertifiedMotionValidator::accepted(Motion& m) const {
   const std::uint64_t version = checker_->world().version();
   if (memo.contains(m.q1, m.q2, m.dq, version)) return true;
   // s2 first: OMPL's contract (its joint limits too), and the cheapest rejection; the bounds only
-  // when a certification needs them.
-  if (!checker_->isValid(m.q2)) return false;
+  // when a certification needs them. An s2 the memo holds is a point of a certified motion, valid
+  // in this world (a node of the planner's tree, a vertex of a planned path): only its limits are
+  // checked.
+  const bool known = si_->satisfiesBounds(m.s2) && memo.holds(m.q2, version);
+  if (!known && !checker_->isValid(m.q2)) return false;
   bind(m);
   if (!certify(m, 1.0).certified()) return false;
   memo.insert(m.q1, m.q2, m.dq, version);

@@ -330,6 +330,25 @@ BOOST_AUTO_TEST_CASE(the_memo_answers_a_motion_again_only_in_the_same_world) {
   BOOST_TEST(m.certified(a, b));
 }
 
+// A motion's end the memo holds is taken as valid without a validity check, but only within the
+// joint limits: a motion's start is the caller's to check (OMPL's contract), so a start outside
+// them is held all the same, and a motion ending there must still be refused.
+BOOST_AUTO_TEST_CASE(a_held_point_outside_the_limits_is_refused_as_an_end) {
+  auto world = dp::loadWorld(dp::test::armUrdf(), {}, dp::test::bundledOptions());
+  Motions m(world);
+  const Eigen::VectorXd a = dp::test::suggestedStart();
+  Eigen::VectorXd outside = a;
+  outside[0] = world->robot().upperLimits()[0] + 0.05;
+  BOOST_TEST_REQUIRE(!m.checker->isValid(outside));
+  BOOST_TEST_REQUIRE(m.certified(outside, a));
+  BOOST_TEST_REQUIRE(m.checker->certifiedMotions().holds(outside, world->version()));
+  Eigen::VectorXd b = a;
+  b[0] -= 0.3;
+  BOOST_TEST_REQUIRE(m.certified(b, a));
+  BOOST_TEST(!m.certified(b, outside));
+  BOOST_TEST(m.certified(a, b));  // a held point within the limits
+}
+
 // A path from solve and simplifySolutionChecked is certified again by certifyPath from the memo:
 // no configuration is tested; so is the same path subdivided and interpolated (pieces of its
 // certified motions).

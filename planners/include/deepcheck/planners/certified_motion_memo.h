@@ -33,6 +33,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -54,6 +55,9 @@ class CertifiedMotionMemo {
   /// `version`.
   void insert(const Eigen::Ref<const Eigen::VectorXd>& from, const Eigen::Ref<const Eigen::VectorXd>& to,
               const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version);
+  /// True when `point` is, exactly, a kept point of a motion certified in world version `version`:
+  /// a configuration proven clear at the checker's threshold.
+  bool holds(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version) const;
   /// Forgets every entry.
   void clear();
 
@@ -73,6 +77,11 @@ class CertifiedMotionMemo {
   /// The entry's point, offset and motion (3 n values).
   double* values(std::size_t entry) { return values_.data() + entry * 3 * static_cast<std::size_t>(n_); }
   const double* values(std::size_t entry) const { return values_.data() + entry * 3 * static_cast<std::size_t>(n_); }
+  /// Entry `e` keeps exactly `point` (hashed to `key`) in world version `version`: the hash only
+  /// chooses the bucket, the point itself must match.
+  bool keeps(std::size_t e, std::uint64_t key, std::uint64_t version, const double* point) const {
+    return entries_[e].key == key && entries_[e].version == version && std::equal(values(e), values(e) + n_, point);
+  }
   std::uint64_t hash(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version) const;
   std::size_t bucketOf(std::uint64_t key) const { return key % (entries_.size() / kWays); }
   std::mutex& lock(std::size_t bucket) const { return locks_[bucket % kLocks]; }

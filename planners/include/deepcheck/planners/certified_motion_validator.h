@@ -27,7 +27,9 @@
 // lastValid.second is its fraction of the motion; that configuration is proven valid).
 //
 // An accepted motion is remembered in the checker's memo (certified_motion_memo.h) and answered
-// from it when asked again in the same world.
+// from it when asked again in the same world. An s2 the memo holds (a point of a certified motion:
+// a node of the planner's tree, a vertex of a planned path) is valid without a validity check;
+// only its joint limits are checked.
 //
 // The bound is made from the world's pieces (LinkSpeedBound::forWorld) and made again when the
 // world changes in a way that moves them (an object attached or detached: World::version and
