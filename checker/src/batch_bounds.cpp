@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -322,29 +321,40 @@ inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, 
   return near;
 }
 
+/// The lanes set in `bits`, as a mask.
+template <class L>
+inline typename L::Mask maskOf(std::uint32_t bits) {
+  typename L::Mask m;
+  for (int l = 0; l < kLanes; ++l) m.h[l / L::kWidth][l % L::kWidth] = (bits >> l & 1u) != 0 ? -1 : 0;
+  return m;
+}
+
+/// The smallest of a's lanes (`largest` false) or the largest: part against part, then within
+/// the remaining part (no lane may be NaN).
+template <class L>
+inline double extremeLane(const L& a, bool largest) {
+  auto m = a.h[0];
+  for (int i = 1; i < L::kParts; ++i) m = (largest ? a.h[i] > m : a.h[i] < m) ? a.h[i] : m;
+  double v = m[0];
+  for (int j = 1; j < L::kWidth; ++j) v = largest ? std::max(v, m[j]) : std::min(v, m[j]);
+  return v;
+}
+
 /// The box around the spheres (c, radius) of the lanes in `open`, each grown by
 /// tol::kBatchBoundRelative of its scale (in doubles): a world box the broad phase does not find
-/// near it lies beyond every one of those spheres by that much.
+/// near it lies beyond every one of those spheres by that much. The lanes in `open` have finite
+/// poses; the others count as empty (infinite bounds), so they never widen it.
 template <class L>
 Aabb unionBox(const LanePointT<L>& c, double radius, const L& chain, std::uint32_t open) {
   const L r =
       radius + (laneMax(laneMax(laneAbs(c.x), laneAbs(c.y)), laneAbs(c.z)) + radius + chain) * tol::kBatchBoundRelative;
+  const typename L::Mask in = maskOf<L>(open);
+  const double inf = std::numeric_limits<double>::infinity();
   const L* centre[3] = {&c.x, &c.y, &c.z};
   Aabb box;
   for (int k = 0; k < 3; ++k) {
-    const L loLanes = *centre[k] - r;
-    const L hiLanes = *centre[k] + r;
-    double lo[kLanes], hi[kLanes];  // read as doubles (lanes taken out one by one go through memory)
-    std::memcpy(lo, &loLanes, sizeof lo);
-    std::memcpy(hi, &hiLanes, sizeof hi);
-    double low = box.lo[k], high = box.hi[k];
-    for (int l = 0; l < kLanes; ++l) {
-      const bool in = (open >> l & 1u) != 0;
-      low = std::min(low, in ? lo[l] : low);
-      high = std::max(high, in ? hi[l] : high);
-    }
-    box.lo[k] = low;
-    box.hi[k] = high;
+    box.lo[k] = extremeLane(select(in, *centre[k] - r, L::all(inf)), false);
+    box.hi[k] = extremeLane(select(in, *centre[k] + r, L::all(-inf)), true);
   }
   return box;
 }
