@@ -258,10 +258,12 @@ LaneBoxT<L> worldBox(const Obb& box) {
 /// Lanes where robot pieces i and j (boxes a and b) are apart along one of the 15 axes of the
 /// separating-axis test (obb.h), by `clear` and tol::kBatchBoundRelative of their scales (doubles). An
 /// edge-product axis is not normalized: its gap is shrunk by its length (at most 1), so the
-/// margin asks for more there, and nearly parallel edges never separate.
+/// margin asks for more there, and nearly parallel edges never separate. Only the lanes in `need`
+/// are asked about: when the six face normals separate all of them, the edge products are skipped
+/// (the other lanes' bits may then miss an edge-product separation).
 template <class L>
 inline std::uint32_t obbsApart(const Eigen::Vector3d& ha, const LaneBoxT<L>& a, const Eigen::Vector3d& hb,
-                               const LaneBoxT<L>& b, double clear) {
+                               const LaneBoxT<L>& b, double clear, std::uint32_t need) {
   const L margin = (a.scale + b.scale) * tol::kBatchBoundRelative + clear;
   const L t[3] = {b.c[0] - a.c[0], b.c[1] - a.c[1], b.c[2] - a.c[2]};
   L C[9], absC[9];  // a_i . b_j
@@ -283,6 +285,7 @@ inline std::uint32_t obbsApart(const Eigen::Vector3d& ha, const LaneBoxT<L>& a, 
     const L reach = hb[j] + absC[j] * ha[0] + absC[3 + j] * ha[1] + absC[6 + j] * ha[2];
     apart = apart | (d - reach > margin);
   }
+  if ((apart.bits() & need) == need) return apart.bits();
   for (int i = 0; i < 3; ++i) {  // a_i x b_j
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
@@ -312,7 +315,7 @@ inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, 
           open;
       if (pairNear != 0) {
         pairNear &= ~obbsApart(robot.pieces[i].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, i, sc),
-                               robot.pieces[j].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, j, sc), clear);
+                               robot.pieces[j].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, j, sc), clear, pairNear);
       }
       near |= pairNear;
       if (near == open) return near;
@@ -377,8 +380,8 @@ inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece&
     if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.box, b.mag, clear);
     if (pieceNear != 0) {
       if (!wb) wb = worldBox<LanesOf<kAvx2>>(w.obb_W);
-      pieceNear &=
-          ~obbsApart(robot.pieces[i].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.obb_W.half, *wb, clear);
+      pieceNear &= ~obbsApart(robot.pieces[i].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.obb_W.half, *wb,
+                              clear, pieceNear);
     }
     near |= pieceNear;
     if (near == open) break;
