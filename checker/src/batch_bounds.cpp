@@ -38,6 +38,29 @@ FloatBox floatBox(const Aabb& box) {
   return b;
 }
 
+/// A world piece's oriented box in floats: its centre, its axes (axis[j][k]: world component k of
+/// box axis j), its half extents, and its part of the test scale (|centre| max norm + its extents
+/// along the world axes, as worldBox's).
+struct FloatObb {
+  float c[3], axis[3][3], half[3];
+  float mag;
+};
+
+FloatObb floatObb(const Obb& box) {
+  FloatObb f;
+  double extents = 0.0;
+  for (int j = 0; j < 3; ++j) {
+    f.c[j] = static_cast<float>(box.center[j]);
+    f.half[j] = static_cast<float>(box.half[j]);
+    for (int k = 0; k < 3; ++k) {
+      f.axis[j][k] = static_cast<float>(box.R(k, j));
+      extents += std::abs(box.R(j, k)) * box.half[k];
+    }
+  }
+  f.mag = static_cast<float>(box.center.cwiseAbs().maxCoeff() + extents);
+  return f;
+}
+
 /// A point in every lane with its scale (a world piece's sphere centre).
 void broadcast(const Eigen::Vector3d& p, double radius, LaneFloats& f) {
   f.x = LaneFloatV{} + static_cast<float>(p.x());
@@ -86,6 +109,28 @@ inline std::uint32_t pointFarBaseline(const LaneFloats& p, const LaneFloats& q, 
   return far;
 }
 
+/// Lanes whose sphere (p, r) lies beyond the oriented box: the point's excess over the half
+/// extents along each box axis.
+inline std::uint32_t obbFarBaseline(const LaneFloats& p, float r, const FloatObb& b, float k) {
+  std::uint32_t far = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    const float dx = p.x[l] - b.c[0];
+    const float dy = p.y[l] - b.c[1];
+    const float dz = p.z[l] - b.c[2];
+    float e[3];
+    for (int j = 0; j < 3; ++j) {
+      const float t = (dx * b.axis[j][0] + dy * b.axis[j][1]) + dz * b.axis[j][2];
+      const float minus = 0.0f - t;
+      const float a = (t > minus ? t : minus) - b.half[j];
+      e[j] = a > 0.0f ? a : 0.0f;
+    }
+    const float d2 = (e[0] * e[0] + e[1] * e[1]) + e[2] * e[2];
+    const float rho = r + k * (p.scale[l] + b.mag);
+    far |= static_cast<std::uint32_t>(d2 > rho * rho) << l;
+  }
+  return far;
+}
+
 // The AVX2 versions, inlined into certifyAvx2.
 #define DC_AVX2 __attribute__((target("avx2"))) inline
 
@@ -120,6 +165,23 @@ DC_AVX2 std::uint32_t pointFarAvx2(const LaneFloats& p, const LaneFloats& q, flo
   return farMask(squaredNorm(dx, dy, dz), rho);
 }
 
+DC_AVX2 std::uint32_t obbFarAvx2(const LaneFloats& p, float r, const FloatObb& b, float k) {
+  const __m256 dx = _mm256_sub_ps(p.x, _mm256_set1_ps(b.c[0]));
+  const __m256 dy = _mm256_sub_ps(p.y, _mm256_set1_ps(b.c[1]));
+  const __m256 dz = _mm256_sub_ps(p.z, _mm256_set1_ps(b.c[2]));
+  __m256 e[3];
+  for (int j = 0; j < 3; ++j) {
+    const __m256 t = _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(dx, _mm256_set1_ps(b.axis[j][0])), _mm256_mul_ps(dy, _mm256_set1_ps(b.axis[j][1]))),
+        _mm256_mul_ps(dz, _mm256_set1_ps(b.axis[j][2])));
+    const __m256 a = _mm256_sub_ps(_mm256_max_ps(t, _mm256_sub_ps(_mm256_setzero_ps(), t)), _mm256_set1_ps(b.half[j]));
+    e[j] = _mm256_max_ps(a, _mm256_setzero_ps());
+  }
+  const __m256 scale = _mm256_add_ps(p.scale, _mm256_set1_ps(b.mag));
+  const __m256 rho = _mm256_add_ps(_mm256_set1_ps(r), _mm256_mul_ps(_mm256_set1_ps(k), scale));
+  return farMask(squaredNorm(e[0], e[1], e[2]), rho);
+}
+
 template <bool kAvx2>
 inline std::uint32_t boxFar(const LaneFloats& p, double r, const FloatBox& b) {
   const float k = static_cast<float>(tol::kBatchBoundRelative);
@@ -137,6 +199,16 @@ inline std::uint32_t pointFar(const LaneFloats& p, const LaneFloats& q, double r
     return pointFarAvx2(p, q, static_cast<float>(r), k);
   } else {
     return pointFarBaseline(p, q, static_cast<float>(r), k);
+  }
+}
+
+template <bool kAvx2>
+inline std::uint32_t obbFar(const LaneFloats& p, double r, const FloatObb& b) {
+  const float k = static_cast<float>(tol::kBatchBoundRelative);
+  if constexpr (kAvx2) {
+    return obbFarAvx2(p, static_cast<float>(r), b, k);
+  } else {
+    return obbFarBaseline(p, static_cast<float>(r), b, k);
   }
 }
 
@@ -372,11 +444,16 @@ inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece&
   LaneFloats wc;
   broadcast(w.center_W, w.sphereRadius, wc);
   std::uint32_t near = 0;
-  std::optional<LaneBoxT<LanesOf<kAvx2>>> wb;  // w's oriented box in every lane, made once when needed
+  std::optional<FloatObb> wf;                  // w's oriented box in floats, made once when needed
+  std::optional<LaneBoxT<LanesOf<kAvx2>>> wb;  // ... and in doubles in every lane
   for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
     const double r = robot.pieces[i].sphereRadius + clear;
     const LaneFloats& p = pieceFloats<LanesOf<kAvx2>>(robot, i, sc);
     std::uint32_t pieceNear = ~(boxFar<kAvx2>(p, r, b) | pointFar<kAvx2>(p, wc, r + w.sphereRadius)) & open;
+    if (pieceNear != 0) {
+      if (!wf) wf = floatObb(w.obb_W);
+      pieceNear &= ~obbFar<kAvx2>(p, r, *wf);
+    }
     if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.box, b.mag, clear);
     if (pieceNear != 0) {
       if (!wb) wb = worldBox<LanesOf<kAvx2>>(w.obb_W);

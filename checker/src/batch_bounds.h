@@ -5,9 +5,9 @@
 // A lane is certified free when
 //   - for every robot link geometry, every world piece whose box the broad phase finds near the
 //     union of the lanes' link spheres is allowed to touch it, or lies beyond the link's sphere,
-//     or beyond each of its pieces (the piece's sphere beyond the world piece's box or sphere, or
-//     the piece's oriented box beyond the world box along a world axis, or apart from the world
-//     piece's oriented box along one of the separating-axis test's 15 axes);
+//     or beyond each of its pieces (the piece's sphere beyond the world piece's box, sphere or
+//     oriented box, or the piece's oriented box beyond the world box along a world axis, or apart
+//     from the world piece's oriented box along one of the separating-axis test's 15 axes);
 //   - every self pair is certified by its grid at the lane's q (as isFree does), or has link
 //     spheres apart, or each of its piece pairs has spheres apart or oriented boxes apart (the
 //     separating-axis test's 15 axes).
@@ -20,10 +20,11 @@
 // for the pair's margin more: a certified lane keeps each pair farther apart than its margin, so
 // World::certifyMotion may take the whole sub-motion as certified (world_motion.cpp).
 //
-// The sphere tests run in floats, eight lanes in one AVX2 register (intrinsics) or as plain
-// loops in the baseline build: the same float operations in the same order, no fused
-// multiply-adds, so both certify the same lanes bit for bit. The oriented-box tests run in
-// doubles (LaneDoublesW, four-wide parts in the AVX2 build, two-wide in the baseline one).
+// The sphere tests (against spheres, world boxes and world oriented boxes) run in floats, eight
+// lanes in one AVX2 register (intrinsics) or as plain loops in the baseline build: the same float
+// operations in the same order, no fused multiply-adds, so both certify the same lanes bit for
+// bit. The tests of oriented boxes against each other run in doubles (LaneDoublesW, four-wide
+// parts in the AVX2 build, two-wide in the baseline one).
 
 #include "batch_kinematics.h"
 

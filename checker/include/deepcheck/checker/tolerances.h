@@ -13,20 +13,21 @@ namespace deepcheck::checker::tol {
 constexpr double kBoundingRelative = 1e-9;
 
 /// World::isFreeBatch's bound stage (checker/src/batch_bounds.h) tests bounding spheres against
-/// world boxes and against each other in floats, and oriented boxes in doubles, and may only
-/// conclude "apart". It does so when the computed gap exceeds this fraction (dimensionless) of
-/// the test's scale S, metres: the largest |coordinate| of the centres and box corners involved,
-/// plus the radii or box extents, plus the length of the kinematic chains that posed the centres
-/// (batch_kinematics.h: base offset, joint offsets, prismatic travel).
+/// world boxes, world oriented boxes and each other in floats, and oriented boxes against each
+/// other in doubles, and may only conclude "apart". It does so when the computed gap exceeds this
+/// fraction (dimensionless) of the test's scale S, metres: the largest |coordinate| of the centres
+/// and box corners involved, plus the radii or box extents, plus the length of the kinematic chains
+/// that posed the centres (batch_kinematics.h: base offset, joint offsets, prismatic travel).
 /// Why it covers the rounding: every float input (a centre coordinate, a box face, a radius) is
-/// within u S of its double value (u = 2^-24, about 6e-8); the coordinate differences, the clamp
-/// to the box and the sum of three squares then add at most a few u S to the distance, and the
-/// squared threshold a few u of itself: below 16 u S = 1e-6 S in all. The doubles (the poses,
-/// the oriented boxes) are off by a few hundred ulps (1e-16) of S at most. So a gap certified
-/// this way is a true gap of at least 9e-6 S: far beyond the round-off of the scalar isFree's
-/// double bounding tests and the contact tolerance of its narrow phase
-/// (geometry::tol::kContactRelative, 1e-12 of the pair's length scale), so isFree finds no
-/// overlap there either.
+/// within u S of its double value (u = 2^-24, about 6e-8), every float box axis within u of its
+/// unit vector per component; the coordinate differences (at most 2 S), their projections on a
+/// box's axes (about 16 u S with the axes' own error), the clamp to the box and the sum of three
+/// squares then add at most about 24 u S to the distance, and the squared threshold a few u of
+/// itself: below 32 u S = 2e-6 S in all. The doubles (the poses, the oriented boxes) are off by a
+/// few hundred ulps (1e-16) of S at most. So a gap certified this way is a true gap of at least
+/// 8e-6 S: far beyond the round-off of the scalar isFree's double bounding tests and the contact
+/// tolerance of its narrow phase (geometry::tol::kContactRelative, 1e-12 of the pair's length
+/// scale), so isFree finds no overlap there either.
 constexpr double kBatchBoundRelative = 1e-5;
 
 /// Added to every |cosine| between box axes in the oriented-box separating-axis test (obb.h), so
