@@ -69,10 +69,10 @@ void broadcast(const Eigen::Vector3d& p, double radius, LaneFloats& f) {
   f.scale = LaneFloatV{} + static_cast<float>(p.cwiseAbs().maxCoeff() + radius);
 }
 
-// --- the two tests, baseline and AVX2 -------------------------------------------------------
-// Each is: far when d2 > rho^2, rho = radius + k (scale terms), d2 the squared distance, every
-// operation rounded to float in the same order in both versions (max(a, b) is a > b ? a : b, as
-// _mm256_max_ps).
+// --- the sphere tests, baseline and AVX2 ----------------------------------------------------
+// A sphere against a world box, a world oriented box or other spheres. Each is: far when
+// d2 > rho^2, rho = radius + k (scale terms), d2 the squared distance, every operation rounded to
+// float in the same order in both versions (max(a, b) is a > b ? a : b, as _mm256_max_ps).
 
 inline float outside(float lo, float hi, float x) {
   const float a = lo - x;
@@ -82,7 +82,7 @@ inline float outside(float lo, float hi, float x) {
 }
 
 /// Lanes whose sphere (p, r) lies beyond the box.
-inline std::uint32_t boxFarBaseline(const LaneFloats& p, float r, const FloatBox& b, float k) {
+inline std::uint32_t farBaseline(const LaneFloats& p, float r, const FloatBox& b, float k) {
   std::uint32_t far = 0;
   for (int l = 0; l < kLanes; ++l) {
     const float ex = outside(b.lo[0], b.hi[0], p.x[l]);
@@ -96,7 +96,7 @@ inline std::uint32_t boxFarBaseline(const LaneFloats& p, float r, const FloatBox
 }
 
 /// Lanes whose spheres (p, .) and (q, .) with radii summing to r are apart.
-inline std::uint32_t pointFarBaseline(const LaneFloats& p, const LaneFloats& q, float r, float k) {
+inline std::uint32_t farBaseline(const LaneFloats& p, float r, const LaneFloats& q, float k) {
   std::uint32_t far = 0;
   for (int l = 0; l < kLanes; ++l) {
     const float dx = p.x[l] - q.x[l];
@@ -111,7 +111,7 @@ inline std::uint32_t pointFarBaseline(const LaneFloats& p, const LaneFloats& q, 
 
 /// Lanes whose sphere (p, r) lies beyond the oriented box: the point's excess over the half
 /// extents along each box axis.
-inline std::uint32_t obbFarBaseline(const LaneFloats& p, float r, const FloatObb& b, float k) {
+inline std::uint32_t farBaseline(const LaneFloats& p, float r, const FloatObb& b, float k) {
   std::uint32_t far = 0;
   for (int l = 0; l < kLanes; ++l) {
     const float dx = p.x[l] - b.c[0];
@@ -147,7 +147,7 @@ DC_AVX2 __m256 squaredNorm(__m256 x, __m256 y, __m256 z) {
   return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(x, x), _mm256_mul_ps(y, y)), _mm256_mul_ps(z, z));
 }
 
-DC_AVX2 std::uint32_t boxFarAvx2(const LaneFloats& p, float r, const FloatBox& b, float k) {
+DC_AVX2 std::uint32_t farAvx2(const LaneFloats& p, float r, const FloatBox& b, float k) {
   const __m256 ex = outsideAvx2(b.lo[0], b.hi[0], p.x);
   const __m256 ey = outsideAvx2(b.lo[1], b.hi[1], p.y);
   const __m256 ez = outsideAvx2(b.lo[2], b.hi[2], p.z);
@@ -156,7 +156,7 @@ DC_AVX2 std::uint32_t boxFarAvx2(const LaneFloats& p, float r, const FloatBox& b
   return farMask(squaredNorm(ex, ey, ez), rho);
 }
 
-DC_AVX2 std::uint32_t pointFarAvx2(const LaneFloats& p, const LaneFloats& q, float r, float k) {
+DC_AVX2 std::uint32_t farAvx2(const LaneFloats& p, float r, const LaneFloats& q, float k) {
   const __m256 dx = _mm256_sub_ps(p.x, q.x);
   const __m256 dy = _mm256_sub_ps(p.y, q.y);
   const __m256 dz = _mm256_sub_ps(p.z, q.z);
@@ -165,7 +165,7 @@ DC_AVX2 std::uint32_t pointFarAvx2(const LaneFloats& p, const LaneFloats& q, flo
   return farMask(squaredNorm(dx, dy, dz), rho);
 }
 
-DC_AVX2 std::uint32_t obbFarAvx2(const LaneFloats& p, float r, const FloatObb& b, float k) {
+DC_AVX2 std::uint32_t farAvx2(const LaneFloats& p, float r, const FloatObb& b, float k) {
   const __m256 dx = _mm256_sub_ps(p.x, _mm256_set1_ps(b.c[0]));
   const __m256 dy = _mm256_sub_ps(p.y, _mm256_set1_ps(b.c[1]));
   const __m256 dz = _mm256_sub_ps(p.z, _mm256_set1_ps(b.c[2]));
@@ -182,33 +182,15 @@ DC_AVX2 std::uint32_t obbFarAvx2(const LaneFloats& p, float r, const FloatObb& b
   return farMask(squaredNorm(e[0], e[1], e[2]), rho);
 }
 
-template <bool kAvx2>
-inline std::uint32_t boxFar(const LaneFloats& p, double r, const FloatBox& b) {
+/// Lanes whose sphere (p, r) lies beyond `other` (a FloatBox, a FloatObb, or spheres whose radii
+/// r already sums), by the test of the build that runs.
+template <bool kAvx2, class Other>
+inline std::uint32_t beyond(const LaneFloats& p, double r, const Other& other) {
   const float k = static_cast<float>(tol::kBatchBoundRelative);
   if constexpr (kAvx2) {
-    return boxFarAvx2(p, static_cast<float>(r), b, k);
+    return farAvx2(p, static_cast<float>(r), other, k);
   } else {
-    return boxFarBaseline(p, static_cast<float>(r), b, k);
-  }
-}
-
-template <bool kAvx2>
-inline std::uint32_t pointFar(const LaneFloats& p, const LaneFloats& q, double r) {
-  const float k = static_cast<float>(tol::kBatchBoundRelative);
-  if constexpr (kAvx2) {
-    return pointFarAvx2(p, q, static_cast<float>(r), k);
-  } else {
-    return pointFarBaseline(p, q, static_cast<float>(r), k);
-  }
-}
-
-template <bool kAvx2>
-inline std::uint32_t obbFar(const LaneFloats& p, double r, const FloatObb& b) {
-  const float k = static_cast<float>(tol::kBatchBoundRelative);
-  if constexpr (kAvx2) {
-    return obbFarAvx2(p, static_cast<float>(r), b, k);
-  } else {
-    return obbFarBaseline(p, static_cast<float>(r), b, k);
+    return farBaseline(p, static_cast<float>(r), other, k);
   }
 }
 
@@ -383,7 +365,7 @@ inline std::uint32_t selfPiecesNear(const RobotData& robot, const SelfPair& sp, 
     for (int j = lb.firstPiece; j < lb.firstPiece + lb.numPieces; ++j) {
       const double r = robot.pieces[i].sphereRadius + robot.pieces[j].sphereRadius + clear;
       std::uint32_t pairNear =
-          ~pointFar<kAvx2>(pieceFloats<LanesOf<kAvx2>>(robot, i, sc), pieceFloats<LanesOf<kAvx2>>(robot, j, sc), r) &
+          ~beyond<kAvx2>(pieceFloats<LanesOf<kAvx2>>(robot, i, sc), r, pieceFloats<LanesOf<kAvx2>>(robot, j, sc)) &
           open;
       if (pairNear != 0) {
         pairNear &= ~obbsApart(robot.pieces[i].obb_L.half, pieceBox<LanesOf<kAvx2>>(robot, i, sc),
@@ -449,10 +431,10 @@ inline std::uint32_t piecesNear(const RobotData& robot, int g, const WorldPiece&
   for (int i = lg.firstPiece; i < lg.firstPiece + lg.numPieces; ++i) {
     const double r = robot.pieces[i].sphereRadius + clear;
     const LaneFloats& p = pieceFloats<LanesOf<kAvx2>>(robot, i, sc);
-    std::uint32_t pieceNear = ~(boxFar<kAvx2>(p, r, b) | pointFar<kAvx2>(p, wc, r + w.sphereRadius)) & open;
+    std::uint32_t pieceNear = ~(beyond<kAvx2>(p, r, b) | beyond<kAvx2>(p, r + w.sphereRadius, wc)) & open;
     if (pieceNear != 0) {
       if (!wf) wf = floatObb(w.obb_W);
-      pieceNear &= ~obbFar<kAvx2>(p, r, *wf);
+      pieceNear &= ~beyond<kAvx2>(p, r, *wf);
     }
     if (pieceNear != 0) pieceNear &= ~obbApart(pieceBox<LanesOf<kAvx2>>(robot, i, sc), w.box, b.mag, clear);
     if (pieceNear != 0) {
@@ -485,7 +467,7 @@ inline std::uint32_t worldBlocked(const Snapshot& s, PairKey::Kind kind, int g, 
   for (int wp : sc.candidates) {
     const WorldPiece& w = set.pieces[wp];
     const FloatBox b = floatBox(w.box);
-    std::uint32_t near = ~boxFar<kAvx2>(sc.linkF[g], radius, b) & open & ~blocked;
+    std::uint32_t near = ~beyond<kAvx2>(sc.linkF[g], radius, b) & open & ~blocked;
     if (near != 0) near = piecesNear<kAvx2>(robot, g, w, b, clear, sc, near);
     blocked |= near;
     if ((open & ~blocked) == 0) break;
@@ -508,7 +490,7 @@ template <bool kAvx2>
 inline std::uint32_t selfBlocked(const RobotData& robot, const SelfPair& sp, double clear, const BatchMargins& margins,
                                  const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchScratch& sc, std::uint32_t open) {
   const double r = robot.links[sp.a].radius + robot.links[sp.b].radius + clear;
-  std::uint32_t near = ~pointFar<kAvx2>(sc.linkF[sp.a], sc.linkF[sp.b], r) & open;
+  std::uint32_t near = ~beyond<kAvx2>(sc.linkF[sp.a], r, sc.linkF[sp.b]) & open;
   if (near != 0 && sp.grid != nullptr) {
     for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
       if (!(near >> l & 1u)) continue;
