@@ -56,6 +56,7 @@ struct LaneBoxT {
 struct BatchScratch {
   BatchPosesT<Avx2Lanes> avx2Poses;
   BatchPosesT<BaselineLanes> baselinePoses;
+  bool posedAvx2 = false;          ///< the build whose poses the last batch computed
   std::vector<LaneFloats> linkF;   ///< per LinkGeometry
   std::vector<LaneFloats> pieceF;  ///< per RobotPiece, valid when pieceStamp == stamp
   std::vector<std::uint32_t> pieceStamp;

@@ -45,6 +45,7 @@ std::uint32_t batchFreeLanes(const WorldState& state, Impl& c, const Eigen::Ref<
   const Snapshot& s = prepareBatch(state, c, qs, margins.demand != nullptr ? "isClearBatch" : "isFreeBatch");
   if (margins.demand != nullptr) Margins::validate(*margins.demand, *s.robot, margins.scale);
   const bool avx2 = batchAvx2Available() && !state.batchBaseline.load(std::memory_order_relaxed);
+  c.batch->posedAvx2 = avx2;
   if (avx2) {
     batchForwardKinematics(*s.robot, qs, c.batch->avx2Poses);
   } else {

@@ -115,11 +115,11 @@ const Snapshot& current(const WorldState& state, Impl& c) {
   return *c.snap;
 }
 
-/// Refresh, check q, forward kinematics, link sphere centres; a new stamp for piece poses.
-const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q) {
-  const Snapshot& s = current(state, c);
-  const RobotData& robot = *s.robot;
-  robots::forwardKinematics(robot.model, q, c.X_WL);  // checks q (size, finite), naming the variable
+namespace {
+
+/// What prepare does once the link poses c.X_WL are those of q: coherence, link sphere centres, a
+/// new stamp for piece poses.
+void posed(const RobotData& robot, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q) {
   c.coherent = c.lastQ.size() == q.size() && (q - c.lastQ).cwiseAbs().maxCoeff() <= tol::kWarmStartMaxStep;
   c.lastQ = q;
   for (std::size_t g = 0; g < robot.links.size(); ++g) {
@@ -131,6 +131,41 @@ const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const
     c.stamp = 1;
   }
   ++c.stats.queries;
+}
+
+/// Lane l of the batch poses into X_WL.
+template <class L>
+void lanePoses(const BatchPosesT<L>& poses, int l, std::vector<Eigen::Isometry3d>& X_WL) {
+  X_WL.resize(poses.links.size());
+  for (std::size_t k = 0; k < poses.links.size(); ++k) {
+    const LanePoseT<L>& X = poses.links[k];
+    Eigen::Isometry3d& out = X_WL[k];
+    for (int i = 0; i < 9; ++i) out.linear()(i / 3, i % 3) = X.R[i][l];
+    for (int i = 0; i < 3; ++i) out.translation()[i] = X.t[i][l];
+    out.makeAffine();
+  }
+}
+
+}  // namespace
+
+const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  const Snapshot& s = current(state, c);
+  robots::forwardKinematics(s.robot->model, q, c.X_WL);  // checks q (size, finite), naming the variable
+  posed(*s.robot, c, q);
+  return s;
+}
+
+const Snapshot& prepareLane(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q, int lane) {
+  const BatchScratch& b = *c.batch;
+  const bool finite = b.posedAvx2 ? b.avx2Poses.finite[lane] : b.baselinePoses.finite[lane];
+  if (!finite) return prepare(state, c, q);
+  const Snapshot& s = current(state, c);
+  if (b.posedAvx2) {
+    lanePoses(b.avx2Poses, lane, c.X_WL);
+  } else {
+    lanePoses(b.baselinePoses, lane, c.X_WL);
+  }
+  posed(*s.robot, c, q);
   return s;
 }
 

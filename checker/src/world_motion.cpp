@@ -26,7 +26,8 @@
 // The first level's sub-motions go kRakeWidth at a time through isFreeBatch's bound stage with
 // their margins (batch_bounds.h, BatchMargins: the configuration-free bound, a little looser than
 // the posed one): a sub-motion it certifies clear is certified, every other is tested as above.
-// Most are certified there, at a fraction of a clearance test's cost.
+// Most are certified there, at a fraction of a clearance test's cost. The configurations a batch
+// posed are tested with its link poses (prepareLane), without a forward kinematics of their own.
 //
 // A sub-motion over which every point moves less than tol::kCertifiedResolution that is still
 // neither certified nor colliding leaves the motion Unproven, as do more than
@@ -188,14 +189,15 @@ double largestMove(const ClearanceDemand& motion) {
 enum class Outcome { Certified, Split, Collides, Unproven };
 
 /// Tests the configurations (columns of qs) not set in `known` for collision at the motion's base
-/// clearance, one after the other: `clear` false at the first that collides. Returns false when
-/// the world changed since `held` (set when null) was taken.
+/// clearance, one after the other: `clear` false at the first that collides. With `batched`, qs
+/// is the batch batchFreeLanes posed last, whose poses are used. Returns false when the world
+/// changed since `held` (set when null) was taken.
 bool rakeOneByOne(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs, std::uint32_t known,
-                  const ClearanceDemand& motion, bool& clear, std::shared_ptr<const Snapshot>& held) {
+                  bool batched, const ClearanceDemand& motion, bool& clear, std::shared_ptr<const Snapshot>& held) {
   clear = true;
   for (Eigen::Index i = 0; i < qs.cols() && clear; ++i) {
     if ((known >> i & 1u) != 0) continue;
-    const Snapshot& s = prepare(state, c, qs.col(i));
+    const Snapshot& s = batched ? prepareLane(state, c, qs.col(i), static_cast<int>(i)) : prepare(state, c, qs.col(i));
     if (!held) held = c.snap;
     if (c.snap != held) return false;
     clear = clearOfAll(c, s, Margins(motion, *s.robot, 0.0));
@@ -209,12 +211,13 @@ bool rakeOneByOne(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen
 bool rakeGroup(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::MatrixXd>& qs,
                const ClearanceDemand& motion, bool& clear, std::shared_ptr<const Snapshot>& held) {
   std::uint32_t free = 0;
-  if (motion.base == 0.0 && qs.cols() >= kRakeBatchMin) {
+  const bool batched = motion.base == 0.0 && qs.cols() >= kRakeBatchMin;
+  if (batched) {
     free = batchFreeLanes(state, c, qs);
     if (!held) held = c.snap;
     if (c.snap != held) return false;
   }
-  return rakeOneByOne(state, c, qs, free, motion, clear, held);
+  return rakeOneByOne(state, c, qs, free, batched, motion, clear, held);
 }
 
 /// Examines one sub-motion (middle q(tm), half length h) for clearance at the context's current
@@ -360,7 +363,9 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
       }
       w.q = q1 + middleOf(k, sub.index) * w.dq;
       ++out.configurations;
-      const Snapshot& s = prepare(state, c, w.q);
+      // A first-level sub-motion's middle is a lane of the batch just posed.
+      const Snapshot& s =
+          sub.first < 0 ? prepareLane(state, c, w.q, static_cast<int>(at % kRakeWidth)) : prepare(state, c, w.q);
       if (!held) held = c.snap;
       if (c.snap != held) return false;
       // A first-level sub-motion examines only what the bound stage could not clear.

@@ -103,6 +103,13 @@ const Snapshot& current(const WorldState& state, Impl& c);
 /// Refresh, check q, forward kinematics, link sphere centres; a new stamp for piece poses.
 const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q);
 
+/// prepare() for column `lane` of the configurations batchFreeLanes posed last in c (q is that
+/// column), with the batch's link poses instead of a forward kinematics of its own: they agree
+/// with it to a few ulps of the chain's length (batch_kinematics.h), the round-off forward
+/// kinematics itself carries. A lane whose poses are not finite goes through prepare(), which
+/// throws as isFree does.
+const Snapshot& prepareLane(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q, int lane);
+
 /// isFreeBatch's bound stage (world_batch.cpp): refreshes the context to the world's snapshot,
 /// poses the configurations (columns of qs, 1 to kLanes) and returns the mask of those it
 /// certifies free, or clear by `margins` (bit l: column l); the others are undecided. Counts the
