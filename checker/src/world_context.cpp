@@ -157,9 +157,10 @@ const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const
 
 const Snapshot& prepareLane(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q, int lane) {
   const BatchScratch& b = *c.batch;
-  const bool finite = b.posedAvx2 ? b.avx2Poses.finite[lane] : b.baselinePoses.finite[lane];
-  if (!finite) return prepare(state, c, q);
+  const Snapshot* posedIn = c.snap.get();  // the batch's poses are of this snapshot's robot
   const Snapshot& s = current(state, c);
+  const bool finite = b.posedAvx2 ? b.avx2Poses.finite[lane] : b.baselinePoses.finite[lane];
+  if (!finite || &s != posedIn) return prepare(state, c, q);
   if (b.posedAvx2) {
     lanePoses(b.avx2Poses, lane, c.X_WL);
   } else {

@@ -107,7 +107,7 @@ const Snapshot& prepare(const WorldState& state, Impl& c, const Eigen::Ref<const
 /// column), with the batch's link poses instead of a forward kinematics of its own: they agree
 /// with it to a few ulps of the chain's length (batch_kinematics.h), the round-off forward
 /// kinematics itself carries. A lane whose poses are not finite goes through prepare(), which
-/// throws as isFree does.
+/// throws as isFree does, and so does every lane once the world has changed since the batch.
 const Snapshot& prepareLane(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q, int lane);
 
 /// isFreeBatch's bound stage (world_batch.cpp): refreshes the context to the world's snapshot,
