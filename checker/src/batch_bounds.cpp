@@ -39,25 +39,33 @@ FloatBox floatBox(const Aabb& box) {
 }
 
 /// A world piece's oriented box in floats: its centre, its axes (axis[j][k]: world component k of
-/// box axis j), its half extents, and its part of the test scale (|centre| max norm + its extents
-/// along the world axes, as worldBox's).
+/// box axis j), its half extents, and its part of the test scale (obbScale).
 struct FloatObb {
   float c[3], axis[3][3], half[3];
   float mag;
 };
 
+/// A world oriented box's half extent along world axis k.
+double worldExtent(const Obb& box, int k) {
+  double e = 0.0;
+  for (int j = 0; j < 3; ++j) e += std::abs(box.R(k, j)) * box.half[j];
+  return e;
+}
+
+/// A world oriented box's part of a test's scale: |centre| max norm + its extents along the world
+/// axes.
+double obbScale(const Obb& box) {
+  return box.center.cwiseAbs().maxCoeff() + (worldExtent(box, 0) + worldExtent(box, 1) + worldExtent(box, 2));
+}
+
 FloatObb floatObb(const Obb& box) {
   FloatObb f;
-  double extents = 0.0;
   for (int j = 0; j < 3; ++j) {
     f.c[j] = static_cast<float>(box.center[j]);
     f.half[j] = static_cast<float>(box.half[j]);
-    for (int k = 0; k < 3; ++k) {
-      f.axis[j][k] = static_cast<float>(box.R(k, j));
-      extents += std::abs(box.R(j, k)) * box.half[k];
-    }
+    for (int k = 0; k < 3; ++k) f.axis[j][k] = static_cast<float>(box.R(k, j));
   }
-  f.mag = static_cast<float>(box.center.cwiseAbs().maxCoeff() + extents);
+  f.mag = static_cast<float>(obbScale(box));
   return f;
 }
 
@@ -289,23 +297,16 @@ inline std::uint32_t obbApart(const LaneBoxT<L>& b, const Aabb& box, double boxM
   return apart.bits();
 }
 
-/// A world piece's oriented box in every lane, with its scale (|centre| max norm + its extents
-/// along the world axes).
+/// A world piece's oriented box in every lane, with its scale (obbScale).
 template <class L>
 LaneBoxT<L> worldBox(const Obb& box) {
   LaneBoxT<L> b;
-  double extents = 0.0;
   for (int k = 0; k < 3; ++k) {
     b.c[k] = L::all(box.center[k]);
-    double e = 0.0;
-    for (int j = 0; j < 3; ++j) {
-      b.R[3 * k + j] = L::all(box.R(k, j));
-      e += std::abs(box.R(k, j)) * box.half[j];
-    }
-    b.e[k] = L::all(e);
-    extents += e;
+    for (int j = 0; j < 3; ++j) b.R[3 * k + j] = L::all(box.R(k, j));
+    b.e[k] = L::all(worldExtent(box, k));
   }
-  b.scale = L::all(box.center.cwiseAbs().maxCoeff() + extents);
+  b.scale = L::all(obbScale(box));
   return b;
 }
 
@@ -339,7 +340,7 @@ inline std::uint32_t obbsApart(const Eigen::Vector3d& ha, const LaneBoxT<L>& a, 
     const L reach = hb[j] + absC[j] * ha[0] + absC[3 + j] * ha[1] + absC[6 + j] * ha[2];
     apart = apart | (d - reach > margin);
   }
-  if ((apart.bits() & need) == need) return apart.bits();
+  if (const std::uint32_t faces = apart.bits(); (faces & need) == need) return faces;
   for (int i = 0; i < 3; ++i) {  // a_i x b_j
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
