@@ -168,16 +168,26 @@ struct NearFilter {
   bool self(std::size_t i) const { return link(links + i); }
 };
 
-/// Every pair within its margin at the context's configuration, listed in `near` when none is
-/// within the base clearance (Near; Clear when none is within its margin); Collides at the first
-/// pair within the base clearance (the list is then incomplete). With a filter, only its link
-/// geometries and self pairs are examined (margins no larger than the batch's).
-Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near,
-                      const NearFilter* only = nullptr);
+/// pairCover's answers beside a fraction in (0, 1]: the pair is clear over the whole sub-motion, or
+/// within the base clearance at its middle.
+constexpr double kCoverClear = std::numeric_limits<double>::infinity();
+constexpr double kCoverCollides = -1.0;
 
-/// Pair k (as collectNear lists it) within its margin at the context's configuration; a self pair
-/// its grid certifies over the sub-motion (Margins::gridCertifies) is not.
-bool pairNear(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins);
+/// Pair k (as collectNear lists it) at the context's configuration, the middle of a sub-motion of
+/// half length h whose margins are `margins`: kCoverClear when it is farther apart than its margin
+/// (or a self pair its grid certifies over the sub-motion, Margins::gridCertifies), kCoverCollides
+/// when within the base clearance, else the fraction f of h over which it stays clear of the base
+/// clearance around the middle: its distance's lower bound above the base clearance over its
+/// margin's, as the margin is the base clearance plus h times the pair's speed bound.
+double pairCover(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins);
+
+/// Every pair within its margin at the context's configuration, the middle of a sub-motion,
+/// listed in `near` when none is within the base clearance (Near; Clear when none is within its
+/// margin), with `cover` the smallest of their fractions (pairCover); Collides at the first pair
+/// within the base clearance (the list is then incomplete). With a filter, only its link
+/// geometries and self pairs are examined (margins no larger than the batch's).
+Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near, double& cover,
+                      const NearFilter* only = nullptr);
 
 /// isFree (no margins) or isClear at the context's configuration (`s` from prepare): false at the
 /// first pair within its margin (remembered in c.lastHit and tried first next time).

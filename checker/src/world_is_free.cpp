@@ -187,6 +187,48 @@ bool pairWithin(Impl& c, const Snapshot& s, const PairKey& k, const Margins& mar
   return worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other], axis, m) && narrowWithin(c, s, k, m);
 }
 
+/// True when k is a self pair whose grid certifies it over the sub-motion (Margins::gridCertifies).
+bool gridCertifiesPair(const Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins) {
+  if (k.kind != PairKey::Kind::Self) return false;
+  // The self pair whose block of caches holds k's.
+  const auto sp = std::upper_bound(s.selfPairs.begin(), s.selfPairs.end(), k.cache,
+                                   [](int cache, const SelfPair& p) { return cache < p.cacheOffset; }) -
+                  1;
+  const RobotData& robot = *s.robot;
+  return sp->grid != nullptr &&
+         margins.gridCertifies(*sp->grid, c.lastQ,
+                               margins.self(robot.pieces[k.robotPiece].group, robot.pieces[k.other].group));
+}
+
+/// pairCover's narrow phase, once the bounding volumes meet within margin m (poses made).
+double narrowCover(Impl& c, const Snapshot& s, const PairKey& k, double base, double m) {
+  const RobotData& robot = *s.robot;
+  const RobotPiece& p = robot.pieces[k.robotPiece];
+  ++c.stats.narrowPhase;
+  geometry::GjkBound bound;
+  if (k.kind == PairKey::Kind::Self) {
+    ++c.stats.selfNarrowPhase;
+    const RobotPiece& q = robot.pieces[k.other];
+    notify(c, p.link, robotBody(q.link));
+    bound = geometry::distanceBoundUnchecked(shapeOf(p), pieceTransform(c, robot, k.robotPiece), shapeOf(q),
+                                             pieceTransform(c, robot, k.other), base, m,
+                                             warm(c, c.selfCaches[k.cache], FarStep::KeepGjk));
+  } else {
+    const PieceSet& set = worldPieces(s, k.kind);
+    const WorldPiece& w = set.pieces[k.other];
+    notify(c, p.link, bodyOfWorldPiece(set, w));
+    bound = geometry::distanceBoundUnchecked(
+        shapeOf(p), pieceTransform(c, robot, k.robotPiece), shapeOf(w), w.X_WP, base, m,
+        warm(c, worldCaches(c, k.kind)[pairIndex(set, k.robotPiece, k.other)], FarStep::KeepGjk));
+  }
+  if (bound.within) {
+    c.lastHit = k;
+    return kCoverCollides;
+  }
+  if (!(bound.lower <= m) || !(m > base)) return kCoverClear;
+  return std::min((bound.lower - base) / (m - base), 1.0);
+}
+
 }  // namespace
 
 namespace detail {
@@ -203,10 +245,11 @@ bool clearOfAll(Impl& c, const Snapshot& s, const Margins& margins) {
   return !forEachPairNear(c, s, margins, narrow);
 }
 
-Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near,
+Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::vector<PairKey>& near, double& cover,
                       const NearFilter* only) {
   checkLinkTranslations(c);
   near.clear();
+  cover = kCoverClear;
   Margins base = margins;
   base.dropToBase();
   // The pair that collided last time first: motions test nearby configurations in a row.
@@ -215,8 +258,10 @@ Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::v
     c.lastHit = PairKey{};
   }
   auto test = [&](const PairKey& k, double m) {
-    if (!narrowWithin(c, s, k, m)) return false;
-    if (narrowWithin(c, s, k, margins.base())) return true;
+    const double f = narrowCover(c, s, k, margins.base(), m);
+    if (f == kCoverCollides) return true;
+    if (f == kCoverClear) return false;
+    cover = std::min(cover, f);
     near.push_back(k);
     return false;
   };
@@ -224,20 +269,22 @@ Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::v
   return near.empty() ? Clearance::Clear : Clearance::Near;
 }
 
-bool pairNear(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins) {
+double pairCover(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins) {
+  if (gridCertifiesPair(c, s, k, margins)) return kCoverClear;
+  const RobotData& robot = *s.robot;
+  posePiece(c, robot, k.robotPiece);
+  const int group = robot.pieces[k.robotPiece].group;
   if (k.kind == PairKey::Kind::Self) {
-    // The self pair whose block of caches holds k's.
-    const auto sp = std::upper_bound(s.selfPairs.begin(), s.selfPairs.end(), k.cache,
-                                     [](int cache, const SelfPair& p) { return cache < p.cacheOffset; }) -
-                    1;
-    const RobotData& robot = *s.robot;
-    if (sp->grid != nullptr &&
-        margins.gridCertifies(*sp->grid, c.lastQ,
-                              margins.self(robot.pieces[k.robotPiece].group, robot.pieces[k.other].group))) {
-      return false;
-    }
+    posePiece(c, robot, k.other);
+    const double m = margins.self(group, robot.pieces[k.other].group);
+    if (!selfBoundsMeet(c, robot, k.robotPiece, k.other, c.selfAxes[k.cache], m)) return kCoverClear;
+    return narrowCover(c, s, k, margins.base(), m);
   }
-  return pairWithin(c, s, k, margins);
+  const PieceSet& set = worldPieces(s, k.kind);
+  std::uint8_t& axis = worldAxes(c, k.kind)[pairIndex(set, k.robotPiece, k.other)];
+  const double m = margins.world(group);
+  if (!worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other], axis, m)) return kCoverClear;
+  return narrowCover(c, s, k, margins.base(), m);
 }
 
 }  // namespace detail

@@ -1,27 +1,29 @@
 // World::certifyMotion: adaptive dynamic collision checking of a straight motion (Schwarzer,
 // Saha, Latombe, IEEE T-RO 21(3), 2005) on the clearance test of isClear.
 //
-// The sub-motions are the dyadic intervals of [0, 1]: at level k the 2^k intervals of length
-// 2^-k, each tested at its middle q(tm) with its half length h = 2^-(k+1) as the scale of the
-// bounds. A pair is clear over a sub-motion when it is farther apart than base + h times its
-// bound at q(tm) (isClear's test: its robot piece grown; a self pair may instead be certified by
-// its grid over the whole sub-motion). A pair clear over a sub-motion is clear over its halves, so
-// only the pairs found within their margins are tested again on the halves, each also at the
-// base clearance: within that, the motion collides there. A sub-motion with no pair left is
-// certified. Levels are visited in order and each level in increasing t: the configurations
-// tested first are spread along the motion, so a collision is met early, as with a discrete
-// check in bisection order.
+// A sub-motion is a part [t0, t1] of [0, 1], tested at its middle q(tm) with its half length h
+// as the scale of the bounds. A pair is clear over a sub-motion when it is farther apart than
+// base + h times its bound at q(tm) (isClear's test: its robot piece grown; a self pair may instead
+// be certified by its grid over the whole sub-motion). A pair clear over a sub-motion is clear
+// over its parts, so only the pairs found within their margins are tested again. Such a pair at a
+// distance d (GJK's lower bound) is still clear of the base clearance within (d - base) / (margin
+// - base) of h around the middle: the sub-motion's parts left for the next level are the two ends
+// outside the smallest of these around its middle (a dyadic bisection would test the middles of
+// its halves, in a part already proven). Within the base clearance, the motion collides there. A
+// sub-motion with no pair left is certified. Levels are visited in order and each level in
+// increasing t: the configurations tested first are spread along the motion, so a collision is met
+// early, as with a discrete check in bisection order. Against the halves, on RRTConnect and the
+// path simplification on MotionBenchMaker problems (bench/mbm_bench): 15 % less time.
 //
 // Sub-motions over which some point moves more than tol::kCertifyBelowMove skip the clearance
 // test (such a clearance is rare in a robot's workspace, and the test would only fail). These are
-// the levels above the first whose sub-motions move less; the clearance tests start at that first
-// level with every pair. Before them, the middles of the levels above it but the last are tested
-// for collision alone, kRakeWidth configurations per call (the rake): a motion through an obstacle
-// is usually refused there, at a fraction of a clearance test's cost. The last level above is left
-// out: its middles are as many as half the first level's sub-motions, whose clearance tests find
-// the same collisions, and most motions a planner asks about are free (RRTConnect and the path
-// simplification on MotionBenchMaker problems: about 5 % less time with it left out,
-// bench/mbm_bench).
+// the dyadic levels above the first whose sub-motions move less (2^k sub-motions of length 2^-k at
+// level k); the clearance tests start at that first level with every pair. Before them, the middles of the levels above
+// it but the last are tested for collision alone, kRakeWidth configurations per call (the rake): a motion through an
+// obstacle is usually refused there, at a fraction of a clearance test's cost. The last level above is left out: its
+// middles are as many as half the first level's sub-motions, whose clearance tests find the same collisions, and most
+// motions a planner asks about are free (RRTConnect and the path simplification on MotionBenchMaker problems: about 5 %
+// less time with it left out, bench/mbm_bench).
 //
 // The first level's sub-motions go kRakeWidth at a time through isFreeBatch's bound stage with
 // their margins (batch_bounds.h, BatchMargins: the configuration-free bound, a little looser than
@@ -49,15 +51,18 @@ using namespace detail;  // NOLINT: the queries' own internals
 
 namespace {
 
-/// A sub-motion to examine: its index within its level, and the pairs to test there (those its
-/// parent found within their margins), or every pair (first < 0).
+/// A sub-motion to examine: the part [t0, t1] of the motion, and the pairs to test there (those
+/// its parent found within their margins), or every pair (first < 0).
 struct SubMotion {
-  std::int64_t index = 0;
+  double t0 = 0.0;
+  double t1 = 1.0;
   int first = -1;  ///< into the level's pair list
   int count = 0;
+  double middle() const { return 0.5 * (t0 + t1); }
+  double half() const { return 0.5 * (t1 - t0); }
 };
 
-/// Sub-motion indices are 64-bit: no level past this one.
+/// No level past this one: the first level's sub-motions are dyadic, with 64-bit indices.
 constexpr int kMaxLevel = 62;
 
 /// Configurations tested for collision together by the rake (rakeGroup).
@@ -79,6 +84,7 @@ struct MotionScratch {
   std::vector<SubMotion> level, next;     ///< the sub-motions of this level and of the next
   std::vector<PairKey> pairs, nextPairs;  ///< their pair lists
   std::vector<PairKey> near;              ///< the pairs one sub-motion found within their margins
+  double cover = 0.0;                     ///< ... and the fraction of its half length they stay clear
   std::uint32_t batchClear = 0;           ///< first-level sub-motions the bound stage certified
   PosedSpeeds speeds;                     ///< the posed bound at the current sub-motion
 };
@@ -230,16 +236,17 @@ Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, doubl
   Margins margins(motion, robot, h, &w.speeds);
   Clearance found = Clearance::Clear;
   if (sub.first < 0) {
-    found = collectNear(c, s, margins, w.near, only);
+    found = collectNear(c, s, margins, w.near, w.cover, only);
   } else {
     // The pairs the parent found near; the others are clear over the whole parent.
-    Margins base = margins;
-    base.dropToBase();
     w.near.clear();
+    w.cover = kCoverClear;
     for (int i = sub.first; i < sub.first + sub.count; ++i) {
       const PairKey& k = w.pairs[static_cast<std::size_t>(i)];
-      if (!pairNear(c, s, k, margins)) continue;
-      if (pairNear(c, s, k, base)) return Outcome::Collides;
+      const double f = pairCover(c, s, k, margins);
+      if (f == kCoverCollides) return Outcome::Collides;
+      if (f == kCoverClear) continue;
+      w.cover = std::min(w.cover, f);
       w.near.push_back(k);
     }
     found = w.near.empty() ? Clearance::Clear : Clearance::Near;
@@ -253,16 +260,21 @@ Outcome examine(Impl& c, const Snapshot& s, const ClearanceDemand& motion, doubl
 /// Where the middle of sub-motion `index` of level k lies along the motion: 2^-k (index + 1/2).
 double middleOf(int k, std::int64_t index) { return std::ldexp(static_cast<double>(index) + 0.5, -k); }
 
-/// Queues the halves of sub-motion j for the next level, with the pairs `examine` left.
+/// Queues for the next level the parts of `sub` that `examine` left uncovered, on either side of
+/// the part around its middle where its near pairs stay clear (w.cover of its half length), with
+/// those pairs.
 void split(const SubMotion& sub, MotionScratch& w) {
-  SubMotion half;
-  half.first = static_cast<int>(w.nextPairs.size());
-  half.count = static_cast<int>(w.near.size());
+  SubMotion part;
+  part.first = static_cast<int>(w.nextPairs.size());
+  part.count = static_cast<int>(w.near.size());
   w.nextPairs.insert(w.nextPairs.end(), w.near.begin(), w.near.end());
-  half.index = 2 * sub.index;
-  w.next.push_back(half);
-  half.index = 2 * sub.index + 1;
-  w.next.push_back(half);
+  const double covered = w.cover * sub.half();
+  part.t0 = sub.t0;
+  part.t1 = std::max(sub.t0, sub.middle() - covered);
+  w.next.push_back(part);
+  part.t0 = std::min(sub.t1, sub.middle() + covered);
+  part.t1 = sub.t1;
+  w.next.push_back(part);
 }
 
 /// The first level whose sub-motions are tested for clearance: above it every sub-motion moves
@@ -317,8 +329,7 @@ bool batchFirstLevel(const WorldState& state, Impl& c, const Eigen::Ref<const Ei
                      std::shared_ptr<const Snapshot>& held) {
   const auto lanes = static_cast<int>(std::min<std::size_t>(kRakeWidth, w.level.size() - at));
   w.rake.resize(q1.size(), kRakeWidth);
-  for (int l = 0; l < lanes; ++l)
-    w.rake.col(l) = q1 + middleOf(k, w.level[at + static_cast<std::size_t>(l)].index) * w.dq;
+  for (int l = 0; l < lanes; ++l) w.rake.col(l) = q1 + w.level[at + static_cast<std::size_t>(l)].middle() * w.dq;
   BatchMargins margins;
   margins.demand = &motion;
   margins.scale = std::ldexp(0.5, -k);
@@ -341,14 +352,16 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
   if (!rakeAbove(std::max(0, first - 1), state, c, q1, motion, w, out, held)) return false;
   if (out.verdict != MotionCertificate::Verdict::Certified) return true;
   w.level.clear();
-  for (std::int64_t i = 0; i < (std::int64_t{1} << first); ++i) w.level.push_back(SubMotion{i, -1, 0});
+  for (std::int64_t i = 0; i < (std::int64_t{1} << first); ++i) {
+    w.level.push_back(
+        SubMotion{std::ldexp(static_cast<double>(i), -first), std::ldexp(static_cast<double>(i + 1), -first)});
+  }
   w.pairs.clear();
   for (int k = first; !w.level.empty(); ++k) {
     if (k > kMaxLevel) {
       out.verdict = MotionCertificate::Verdict::Unproven;
       return true;
     }
-    const double h = std::ldexp(0.5, -k);
     w.next.clear();
     w.nextPairs.clear();
     for (std::size_t at = 0; at < w.level.size(); ++at) {
@@ -361,7 +374,7 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
         ++out.configurations;
         continue;
       }
-      w.q = q1 + middleOf(k, sub.index) * w.dq;
+      w.q = q1 + sub.middle() * w.dq;
       ++out.configurations;
       // A first-level sub-motion's middle is a lane of the batch just posed.
       const Snapshot& s =
@@ -372,7 +385,7 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
       NearFilter batched;
       if (sub.first < 0)
         batched = NearFilter{&c.batch->nearLanes, static_cast<int>(at % kRakeWidth), s.robot->links.size()};
-      const Outcome o = examine(c, s, motion, h, move, sub, w, sub.first < 0 ? &batched : nullptr);
+      const Outcome o = examine(c, s, motion, sub.half(), move, sub, w, sub.first < 0 ? &batched : nullptr);
       if (o == Outcome::Collides || o == Outcome::Unproven || out.configurations > tol::kCertifiedMaxTests) {
         out.verdict =
             o == Outcome::Collides ? MotionCertificate::Verdict::Collides : MotionCertificate::Verdict::Unproven;

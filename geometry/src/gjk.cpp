@@ -335,6 +335,7 @@ struct Run {
   double vv = 0.0;
   Vector3d lastDir = Vector3d::UnitX();  ///< the v whose -v gave the last support point
   int iterations = 0;
+  double lower = 0.0;  ///< the largest lower bound on the distance seen, d.w / |d| over directions d
 };
 
 /// Unit vector along v, the current closest point. v carries an absolute error of a few ulps of
@@ -396,8 +397,10 @@ Step addPoint(Run& r, const SupportPoint& p) {
 constexpr int kMaxStallRetries = 4;
 
 /// One GJK run on M - shift (the shift is inside `support`). With `earlyExit`, stops at the first
-/// direction proving the distance exceeds sepTol.
-Run runGjk(MinkowskiSupport& support, const Vector3d& dir0, bool earlyExit, double sepTol, double nearTol) {
+/// direction proving the distance exceeds sepTol. Converged when the bounds agree to kGjkRelative,
+/// or to `gap` (relative, of |v|^2) once the lower bound exceeds nearTol.
+Run runGjk(MinkowskiSupport& support, const Vector3d& dir0, bool earlyExit, double sepTol, double nearTol,
+           double gap = tol::kGjkRelative) {
   Run r;
   r.lastDir = dir0;
   const SupportPoint first = support(-dir0);
@@ -407,7 +410,9 @@ Run runGjk(MinkowskiSupport& support, const Vector3d& dir0, bool earlyExit, doub
   r.v = first.w;
   r.vv = r.v.squaredNorm();
   // dir0 is not a point of M, but dir0.w0 is still the smallest of dir0.x over M.
-  if (earlyExit && dir0.dot(first.w) > sepTol * dir0.norm()) {
+  const double dir0Norm = dir0.norm();
+  if (dir0Norm > 0.0) r.lower = std::max(0.0, dir0.dot(first.w) / dir0Norm);
+  if (earlyExit && dir0.dot(first.w) > sepTol * dir0Norm) {
     r.exit = Exit::SeparatingAxis;
     return r;
   }
@@ -424,11 +429,13 @@ Run runGjk(MinkowskiSupport& support, const Vector3d& dir0, bool earlyExit, doub
     const SupportPoint p = support(-dir);
     r.lastDir = dir;
     const double vw = dir.dot(p.w);
-    if (earlyExit && vw > sepTol * std::sqrt(r.vv)) {
+    const double v = std::sqrt(r.vv);
+    r.lower = std::max(r.lower, vw / v);
+    if (earlyExit && vw > sepTol * v) {
       r.exit = Exit::SeparatingAxis;
       return r;
     }
-    if (r.vv - vw <= tol::kGjkRelative * r.vv) {
+    if (r.vv - vw <= tol::kGjkRelative * r.vv || (r.vv - vw <= gap * r.vv && r.lower > nearTol)) {
       r.exit = Exit::Converged;
       return r;
     }
@@ -602,6 +609,22 @@ bool gjkWithin(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame
       return true;
   }
   return true;
+}
+
+GjkBound gjkBound(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, double near, double far,
+                  GjkCache* cache) {
+  const double contactTol = tol::kContactRelative * pairLengthScale(A, B, frame);
+  MinkowskiSupport support(A, B, frame, Vector3d::Zero(), cache ? cache->hintA : 0, cache ? cache->hintB : 0);
+  const double nearTol = std::max(near, contactTol);
+  const Run r = runGjk(support, initialDirection(frame, cache), /*earlyExit=*/true, std::max(far, nearTol), nearTol,
+                       tol::kGjkBoundGap);
+  updateCache(cache, r, support);
+  GjkBound b;
+  if (r.exit == Exit::SeparatingAxis || r.exit == Exit::Converged) {
+    b.lower = r.lower;
+    b.within = !(r.lower > nearTol);
+  }
+  return b;
 }
 
 }  // namespace deepcheck::geometry

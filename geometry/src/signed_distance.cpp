@@ -423,4 +423,13 @@ bool overlapsUnchecked(const ConvexShape& A, const Eigen::Isometry3d& X_WA, cons
   return gjkWithin(*A.core, *B.core, frame, A.radius + B.radius, cache ? &cache->gjk : nullptr);
 }
 
+GjkBound distanceBoundUnchecked(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
+                                const Eigen::Isometry3d& X_WB, double near, double far, PairCache* cache) {
+  const PairFrame frame = PairFrame::makeUnchecked(*A.core, X_WA, *B.core, X_WB);
+  const double radii = A.radius + B.radius;
+  GjkBound b = gjkBound(*A.core, *B.core, frame, near + radii, far + radii, cache ? &cache->gjk : nullptr);
+  b.lower -= radii;
+  return b;
+}
+
 }  // namespace deepcheck::geometry

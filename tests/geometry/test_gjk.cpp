@@ -8,6 +8,7 @@
 
 #include "deepcheck/geometry/gjk.h"
 #include "deepcheck/geometry/polytope.h"
+#include "deepcheck/geometry/tolerances.h"
 #include "shapes.h"
 
 #include <boost/test/unit_test.hpp>
@@ -705,6 +706,51 @@ BOOST_AUTO_TEST_CASE(overlap_agrees_with_distance) {
   }
   BOOST_TEST(overlaps > 0.3 * trials);
   BOOST_TEST(overlaps < 0.7 * trials);
+}
+
+// gjkBound against the distance, on random pairs from overlapping to apart, with thresholds
+// below, around and above the distance: `within` exactly when gjkWithin(near) says so; otherwise a
+// lower bound above `near`, at most the distance, and within tol::kGjkBoundGap of it unless it
+// already exceeds `far`; warm (a cache kept along the trials of a pair) or cold.
+BOOST_AUTO_TEST_CASE(bound_brackets_the_distance) {
+  std::mt19937 rng(2611);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int lowers = 0, withins = 0, beyondFar = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double scale = logUniform(rng, 1e-3, 1e3);
+    const ConvexPolytope A = randomHull(rng, 4 + trial % 50, scale, randomUnit(rng) * scale * u(rng));
+    const ConvexPolytope B = randomHull(rng, 4 + (trial * 7) % 50, scale, Vector3d::Zero());
+    PairFrame frame;
+    frame.R = randomRotationMatrix(rng);
+    frame.t = randomUnit(rng) * scale * 3.0 * u(rng);
+    const GjkResult r = gjkDistance(A, B, frame);
+    BOOST_REQUIRE(statusName(r.status) != "MaxIterations");
+    const double d = r.distance;
+    GjkCache cache;
+    for (int k = 0; k < 4; ++k) {
+      const double near = d * logUniform(rng, 1e-3, 2.0) * (k == 0 ? 0.0 : 1.0);
+      const double far = near + scale * logUniform(rng, 1e-3, 3.0);
+      const deepcheck::geometry::GjkBound b = gjkBound(A, B, frame, near, far, k % 2 == 0 ? &cache : nullptr);
+      BOOST_TEST_CONTEXT("trial " << trial << " distance " << d << " near " << near << " far " << far) {
+        BOOST_TEST(b.within == (near > 0.0 ? gjkWithin(A, B, frame, near) : gjkOverlap(A, B, frame)));
+        if (b.within) {
+          ++withins;
+          continue;
+        }
+        ++lowers;
+        BOOST_TEST(b.lower > near);
+        BOOST_TEST(b.lower <= d * (1.0 + kDistanceRelative));
+        if (b.lower > far) {
+          ++beyondFar;
+        } else {
+          BOOST_TEST(b.lower >= (1.0 - deepcheck::geometry::tol::kGjkBoundGap) * d * (1.0 - kDistanceRelative));
+        }
+      }
+    }
+  }
+  BOOST_TEST(withins > 100);
+  BOOST_TEST(lowers > 100);
+  BOOST_TEST(beyondFar > 20);
 }
 
 // The tetrahedron a run that enclosed the origin leaves in the cache: at the same pose it encloses

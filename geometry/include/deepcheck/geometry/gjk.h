@@ -97,4 +97,18 @@ bool gjkOverlap(const ConvexPolytope& A, const ConvexPolytope& B, const PairFram
 bool gjkWithin(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, double within,
                GjkCache* cache = nullptr);
 
+/// What gjkBound found: `within` (the distance is at most `near`, or cannot be shown larger, as
+/// gjkWithin says), else `lower`, a lower bound on the distance, above `near`.
+struct GjkBound {
+  bool within = true;
+  double lower = 0.0;
+};
+
+/// For a distance tested against two thresholds near <= far: within when gjkWithin(near) would be
+/// true; otherwise a lower bound above `near` (the largest v.w / |v| of the run), which stops
+/// improving once it exceeds `far` or lies within the fraction tol::kGjkBoundGap of the distance.
+/// Cores only, as gjkWithin.
+GjkBound gjkBound(const ConvexPolytope& A, const ConvexPolytope& B, const PairFrame& frame, double near, double far,
+                  GjkCache* cache = nullptr);
+
 }  // namespace deepcheck::geometry

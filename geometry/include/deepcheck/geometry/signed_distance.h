@@ -168,6 +168,14 @@ bool overlaps(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexS
 bool overlapsUnchecked(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
                        const Eigen::Isometry3d& X_WB, PairCache* cache = nullptr);
 
+/// For callers testing a pair's distance against two thresholds near <= far, unchecked as
+/// overlapsUnchecked: `within` when the shapes come within `near` of each other (or cannot be
+/// shown farther apart, as gjkWithin), else `lower`, a lower bound on their distance above `near`
+/// that stops improving once it exceeds `far` or lies within the fraction tol::kGjkBoundGap of
+/// the distance (gjk.h, gjkBound; the radii are taken off the cores' bound).
+GjkBound distanceBoundUnchecked(const ConvexShape& A, const Eigen::Isometry3d& X_WA, const ConvexShape& B,
+                                const Eigen::Isometry3d& X_WB, double near, double far, PairCache* cache = nullptr);
+
 /// True when the points of the cores' Minkowski difference named by t enclose its origin at these
 /// poses (gjk.h, enclosesOrigin): the shapes overlap. t is the GjkCache::enclosing of an earlier
 /// overlap of the same pair, so a pair that still overlaps at a nearby pose is confirmed without
