@@ -89,7 +89,7 @@ constexpr double kFixedPairReportDistance = 0.01;
 /// near matches in the error message (allowed collisions, attached objects).
 constexpr int kNearMatchEdits = 3;
 
-/// World::certifyMotion halves a sub-motion until no point moves more than this over it (metres,
+/// World::certifyMotion refines a sub-motion until no point moves more than this over it (metres,
 /// by the bounds); a sub-motion still not certified then leaves the motion Unproven. So a
 /// motion that passes within about this of the threshold without reaching it may be refused, and
 /// none is ever accepted unproven. Far below any planning tolerance, far above the distances'

@@ -434,7 +434,9 @@ class World {
   /// world; self(a, b): links a and b relatively; metres; its `scale` is not used) and `base` is
   /// the clearance every configuration must keep (0: collision free). A sub-motion with middle tm
   /// and half length h is certified when every pair is farther apart than base + h times its
-  /// bound at q(tm) (isClear), else q(tm) is tested and the sub-motion halved; sub-motions are
+  /// bound at q(tm) (isClear). Otherwise a pair within base at q(tm) is a collision, and each
+  /// nearer pair's distance d proves it clear within (d - base) / (its margin - base) of h around
+  /// tm: the two ends outside that are examined next, with those pairs only. Sub-motions are
   /// visited level by level, so the configurations tested first are spread along the motion.
   /// q1 is assumed valid. Throws like isClear, and for a q1 or dq of the wrong size.
   MotionCertificate certifyMotion(const Eigen::Ref<const Eigen::VectorXd>& q1,

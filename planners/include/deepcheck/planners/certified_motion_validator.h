@@ -9,9 +9,10 @@
 // length h around q(tm) by h D_i and h B_ab. World::certifyMotion (checker/world.h) takes these
 // bounds and proves the motion pair by pair: a pair farther apart at q(tm) than threshold + h
 // times its bound is clear over the sub-motion (one isClear test of that pair: isFree with the
-// piece grown, no distance computed), otherwise its sub-motion is halved. Pairs that stay apart
-// over the whole motion never reach a narrow phase; near pairs are refined only where they are
-// near. Sub-motions are visited level by level (all halves, then all quarters, ...), so the
+// piece grown), otherwise its distance d at q(tm) (a GJK lower bound) proves it clear over the
+// part around tm that it cannot cross, (d - threshold) over its bound, and the two ends left are
+// examined next. Pairs that stay apart over the whole motion never reach a narrow phase; near
+// pairs are refined only where they are near. Sub-motions are visited level by level, so the
 // configurations tested are spread along the motion first and a collision is met early.
 // checkMotion(s1, s2): s2 must be valid (OMPL's contract, and the cheapest rejection), then the
 // motion must be Certified. A motion neither certified nor found colliding down to
