@@ -3,31 +3,15 @@
 #include "deepcheck/planners/certified_motion_memo.h"
 
 #include "deepcheck/planners/tolerances.h"
+#include "memo_hash.h"
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
 namespace deepcheck::planners {
 
 namespace {
-
-/// One step of a 64-bit mix (splitmix64's finaliser) over the running hash and one word.
-std::uint64_t mix(std::uint64_t h, std::uint64_t word) {
-  h ^= word + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
-  h ^= h >> 30;
-  h *= 0xbf58476d1ce4e5b9ULL;
-  h ^= h >> 27;
-  h *= 0x94d049bb133111ebULL;
-  return h ^ (h >> 31);
-}
-
-std::uint64_t bitsOf(double x) {
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, &x, sizeof bits);
-  return bits;
-}
 
 /// True when x lies within `tube` (per value) of the segment from 0 to `motion`. A template, so
 /// that x may be an expression: no vector is made for it.
@@ -50,9 +34,7 @@ CertifiedMotionMemo::CertifiedMotionMemo(int dimension) : n_(dimension) {
 }
 
 std::uint64_t CertifiedMotionMemo::hash(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version) const {
-  std::uint64_t h = mix(0, version);
-  for (int i = 0; i < n_; ++i) h = mix(h, bitsOf(point[i]));
-  return h == 0 ? 1 : h;  // 0 marks an empty entry
+  return detail::hashOf(point, version);
 }
 
 bool CertifiedMotionMemo::lookup(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version,

@@ -38,7 +38,9 @@ std::shared_ptr<const StateValidityChecker> checkedChecker(std::shared_ptr<const
 
 CertifiedMotionValidator::CertifiedMotionValidator(ompl::base::SpaceInformation* si,
                                                    std::shared_ptr<const StateValidityChecker> checker)
-    : ompl::base::MotionValidator(si), checker_(checkedChecker(std::move(checker))) {
+    : ompl::base::MotionValidator(si),
+      checker_(checkedChecker(std::move(checker))),
+      refused_(checker_->world().robot().numVariables()) {
   if (si == nullptr) throw std::invalid_argument("CertifiedMotionValidator: the space information is null");
   boundVersion_ = checker_->world().version();
   bound_ = std::make_shared<const LinkSpeedBound>(LinkSpeedBound::forWorld(checker_->world()));
@@ -111,8 +113,15 @@ bool CertifiedMotionValidator::accepted(Motion& m) const {
   // checked.
   const bool known = si_->satisfiesBounds(m.s2) && memo.holds(m.q2, version);
   if (!known && !checker_->isValid(m.q2)) return false;
+  if (refused_.contains(m.q1, m.q2, m.dq, version)) {
+    refusedAgain_.fetch_add(1, std::memory_order_relaxed);
+    return false;
+  }
   bind(m);
-  if (!certify(m, 1.0).certified()) return false;
+  if (!certify(m, 1.0).certified()) {
+    refused_.insert(m.q1, m.q2, m.dq, version);
+    return false;
+  }
   memo.insert(m.q1, m.q2, m.dq, version);
   return true;
 }
@@ -159,6 +168,7 @@ CertifiedMotionStats CertifiedMotionValidator::stats() const {
   s.motions = motions_.load(std::memory_order_relaxed);
   s.configurations = configurations_.load(std::memory_order_relaxed);
   s.unproven = unproven_.load(std::memory_order_relaxed);
+  s.refusedAgain = refusedAgain_.load(std::memory_order_relaxed);
   return s;
 }
 
@@ -166,6 +176,7 @@ void CertifiedMotionValidator::resetStats() {
   motions_.store(0, std::memory_order_relaxed);
   configurations_.store(0, std::memory_order_relaxed);
   unproven_.store(0, std::memory_order_relaxed);
+  refusedAgain_.store(0, std::memory_order_relaxed);
   resetMotionCounter();
 }
 

@@ -70,6 +70,15 @@ struct Motions {
   ob::ScopedState<> s1, s2;
 };
 
+/// Adds a post of 1 cm radius where the bundled arm's flange passes half-way from a to b; its id.
+int addPostHalfWay(World& world, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const auto X = deepcheck::robots::forwardKinematics(world.robot(), a + 0.5 * (b - a));
+  Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
+  X_WP.translation() = X[static_cast<std::size_t>(world.robot().linkIndex("flange"))].translation();
+  world.setFixedPairReports(false);
+  return world.addObstacle(Obstacle::cylinder("post", 0.01, 2.0, X_WP));
+}
+
 /// The point of the robot's pieces farthest from the z axis at q (world frame).
 Eigen::Vector3d farthestFromZ(const World& world, const Eigen::VectorXd& q) {
   const auto X = deepcheck::robots::forwardKinematics(world.robot(), q);
@@ -316,18 +325,39 @@ BOOST_AUTO_TEST_CASE(the_memo_answers_a_motion_again_only_in_the_same_world) {
   nudged[1] += 1e-9;
   BOOST_TEST(m.certified(a, nudged));
   BOOST_TEST(m.checker->certifiedMotions().hits() == hits + 2);
-  // A post where the flange passes half-way.
-  const auto X = deepcheck::robots::forwardKinematics(world->robot(), a + 0.5 * (b - a));
-  Eigen::Isometry3d X_WP = Eigen::Isometry3d::Identity();
-  X_WP.translation() = X[static_cast<std::size_t>(world->robot().linkIndex("flange"))].translation();
-  world->setFixedPairReports(false);
-  const int post = world->addObstacle(Obstacle::cylinder("post", 0.01, 2.0, X_WP));
+  const int post = addPostHalfWay(*world, a, b);
   BOOST_TEST_REQUIRE(!denselyFree(*world, a, b - a));
   BOOST_TEST_REQUIRE(world->isFree(a));
   BOOST_TEST_REQUIRE(world->isFree(b));
   BOOST_TEST(!m.certified(a, b));
   world->removeObstacle(post);
   BOOST_TEST(m.certified(a, b));
+}
+
+// The memo of refused motions: a motion refused after its test is refused again without one, the
+// same motion reversed too, until the world changes.
+BOOST_AUTO_TEST_CASE(a_refused_motion_is_refused_again_only_in_the_same_world) {
+  auto world = dp::loadWorld(dp::test::armUrdf(), {}, dp::test::bundledOptions());
+  Motions m(world);
+  const Eigen::VectorXd a = dp::test::suggestedStart();
+  Eigen::VectorXd b = a;
+  b[0] += 1.2;
+  const int post = addPostHalfWay(*world, a, b);
+  BOOST_TEST_REQUIRE(world->isFree(a));
+  BOOST_TEST_REQUIRE(world->isFree(b));
+  BOOST_TEST(!m.certified(a, b));
+  const auto tested = m.validator.stats().configurations;
+  BOOST_TEST(tested > 0u);
+  BOOST_TEST(m.validator.stats().refusedAgain == 0u);
+  BOOST_TEST(!m.certified(a, b));
+  BOOST_TEST(!m.certified(b, a));
+  BOOST_TEST(m.validator.stats().configurations == tested);
+  BOOST_TEST(m.validator.stats().refusedAgain == 2u);
+  world->removeObstacle(post);
+  BOOST_TEST(m.certified(a, b));
+  BOOST_TEST(m.validator.stats().refusedAgain == 2u);
+  m.validator.resetStats();
+  BOOST_TEST(m.validator.stats().refusedAgain == 0u);
 }
 
 // A motion's end the memo holds is taken as valid without a validity check, but only within the

@@ -28,8 +28,9 @@
 // lastValid.second is its fraction of the motion; that configuration is proven valid).
 //
 // An accepted motion is remembered in the checker's memo (certified_motion_memo.h) and answered
-// from it when asked again in the same world. An s2 the memo holds (a point of a certified motion:
-// a node of the planner's tree, a vertex of a planned path) is valid without a validity check;
+// from it when asked again in the same world; a motion checkMotion(s1, s2) refused after testing
+// it is remembered by the validator (refused_motion_memo.h) and refused again likewise. An s2 the memo holds (a point
+// of a certified motion: a node of the planner's tree, a vertex of a planned path) is valid without a validity check;
 // only its joint limits are checked.
 //
 // The bound is made from the world's pieces (LinkSpeedBound::forWorld) and made again when the
@@ -41,6 +42,7 @@
 // ClearanceMotionValidator (motion_validator.h). Thread safe.
 
 #include "deepcheck/planners/motion_bound.h"
+#include "deepcheck/planners/refused_motion_memo.h"
 #include "deepcheck/planners/validity_checker.h"
 
 #include <ompl/base/MotionValidator.h>
@@ -58,6 +60,7 @@ struct CertifiedMotionStats {
   std::uint64_t motions = 0;         ///< checkMotion calls
   std::uint64_t configurations = 0;  ///< configurations the certifications tested
   std::uint64_t unproven = 0;        ///< certifications that ended neither certified nor colliding
+  std::uint64_t refusedAgain = 0;    ///< motions refused from the memo of refused motions, untested
 };
 
 class CertifiedMotionValidator;
@@ -102,6 +105,9 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   mutable std::atomic<std::uint64_t> motions_{0};
   mutable std::atomic<std::uint64_t> configurations_{0};
   mutable std::atomic<std::uint64_t> unproven_{0};
+  mutable std::atomic<std::uint64_t> refusedAgain_{0};
+  /// The motions checkMotion(s1, s2) refused by a certification (refused_motion_memo.h).
+  mutable RefusedMotionMemo refused_;
 };
 
 }  // namespace deepcheck::planners

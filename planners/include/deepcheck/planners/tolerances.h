@@ -145,6 +145,11 @@ constexpr double kCostlyObjectiveRangeFraction = 0.04;
 /// 690 KB, for a 7-joint arm). A multiple of the memo's two ways.
 constexpr int kCertifiedMotionMemoSlots = 4096;
 
+/// Slots of a certified motion validator's memo of refused motions (refused_motion_memo.h): the
+/// refusals a path simplification asks again come within a few dozen motions of the first (256 x
+/// 3 x 7 doubles, 43 KB, for a 7-joint arm).
+constexpr int kRefusedMotionMemoSlots = 256;
+
 /// The memo answers a motion whose ends lie within this distance of a certified motion, per
 /// joint value and relative to 1 + the largest magnitude of the point's values and of the
 /// motion's displacement (radians or metres): about 45 ulps, the round-off of computing a point of
