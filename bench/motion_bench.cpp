@@ -138,10 +138,11 @@ struct Replay {
 };
 
 /// Times every motion through `validator`, keeping each motion's fastest time over the rounds
-/// already in `replay`. `memo`, when given, is emptied before each motion (untimed): a certified
-/// validator would otherwise answer a motion of an earlier round from it.
+/// already in `replay`. A certified validator's memos, when given, are emptied before each motion
+/// (untimed): it would otherwise answer a motion of an earlier round from them.
 void replayOnce(const ob::MotionValidator& validator, const ob::SpaceInformationPtr& si,
-                const std::vector<Motion>& motions, Replay& replay, dp::CertifiedMotionMemo* memo = nullptr) {
+                const std::vector<Motion>& motions, Replay& replay, dp::CertifiedMotionMemo* memo = nullptr,
+                dp::CertifiedMotionValidator* certified = nullptr) {
   ob::ScopedState<> s1(si), s2(si);
   if (replay.micros.empty()) {
     replay.micros.assign(motions.size(), 1e300);
@@ -151,6 +152,7 @@ void replayOnce(const ob::MotionValidator& validator, const ob::SpaceInformation
     dp::copyToState(motions[k].first, s1.get());
     dp::copyToState(motions[k].second, s2.get());
     if (memo != nullptr) memo->clear();
+    if (certified != nullptr) certified->forgetRefusedMotions();
     const auto t0 = Clock::now();
     const bool valid = validator.checkMotion(s1.get(), s2.get());
     const double us = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
@@ -227,7 +229,7 @@ void replayProblem(const std::shared_ptr<deepcheck::checker::World>& world, cons
     replayOnce(ourValidator, si, motions, a);
     if (r == 0) result.tested += static_cast<long>(checker->validityQueries() - before);
     if (r == 0) certifiedValidator.resetStats();
-    replayOnce(certifiedValidator, si, motions, c, &checker->certifiedMotions());
+    replayOnce(certifiedValidator, si, motions, c, &checker->certifiedMotions(), &certifiedValidator);
     if (r == 0) result.configurations += static_cast<long>(certifiedValidator.stats().configurations);
     replayOnce(fclValidator, fclSi, motions, b);
   }

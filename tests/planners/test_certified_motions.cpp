@@ -335,7 +335,7 @@ BOOST_AUTO_TEST_CASE(the_memo_answers_a_motion_again_only_in_the_same_world) {
 }
 
 // The memo of refused motions: a motion refused after its test is refused again without one, the
-// same motion reversed too, until the world changes.
+// same motion reversed too, until the world changes or the memo is emptied.
 BOOST_AUTO_TEST_CASE(a_refused_motion_is_refused_again_only_in_the_same_world) {
   auto world = dp::loadWorld(dp::test::armUrdf(), {}, dp::test::bundledOptions());
   Motions m(world);
@@ -352,6 +352,10 @@ BOOST_AUTO_TEST_CASE(a_refused_motion_is_refused_again_only_in_the_same_world) {
   BOOST_TEST(!m.certified(a, b));
   BOOST_TEST(!m.certified(b, a));
   BOOST_TEST(m.validator.stats().configurations == tested);
+  BOOST_TEST(m.validator.stats().refusedAgain == 2u);
+  m.validator.forgetRefusedMotions();
+  BOOST_TEST(!m.certified(a, b));
+  BOOST_TEST(m.validator.stats().configurations > tested);
   BOOST_TEST(m.validator.stats().refusedAgain == 2u);
   world->removeObstacle(post);
   BOOST_TEST(m.certified(a, b));

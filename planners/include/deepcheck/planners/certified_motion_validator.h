@@ -81,6 +81,9 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
 
   CertifiedMotionStats stats() const;
   void resetStats();
+  /// Empties the memo of refused motions, so that each is tested again (a benchmark replaying
+  /// motions, say); the world's changes need no call, the memo answers in one world version only.
+  void forgetRefusedMotions() { refused_.clear(); }
 
   /// The bound in use (made again when the world's pieces change).
   std::shared_ptr<const LinkSpeedBound> bound() const;
