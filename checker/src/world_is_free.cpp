@@ -171,20 +171,26 @@ bool narrowWithin(Impl& c, const Snapshot& s, const PairKey& k, double margin) {
   return overlapWorld(c, robot, worldPieces(s, k.kind), k.kind, k.robotPiece, k.other, margin);
 }
 
-/// Bounding tests and narrow phase of pair k, with its margin.
-bool pairWithin(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins) {
+/// Poses pair k's pieces and sets m to its margin: true when its bounding volumes, grown by m, meet.
+bool pairBoundsMeet(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins, double& m) {
   const RobotData& robot = *s.robot;
   posePiece(c, robot, k.robotPiece);
   const int group = robot.pieces[k.robotPiece].group;
   if (k.kind == PairKey::Kind::Self) {
     posePiece(c, robot, k.other);
-    const double m = margins.self(group, robot.pieces[k.other].group);
-    return selfBoundsMeet(c, robot, k.robotPiece, k.other, c.selfAxes[k.cache], m) && narrowWithin(c, s, k, m);
+    m = margins.self(group, robot.pieces[k.other].group);
+    return selfBoundsMeet(c, robot, k.robotPiece, k.other, c.selfAxes[k.cache], m);
   }
   const PieceSet& set = worldPieces(s, k.kind);
   std::uint8_t& axis = worldAxes(c, k.kind)[pairIndex(set, k.robotPiece, k.other)];
-  const double m = margins.world(group);
-  return worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other], axis, m) && narrowWithin(c, s, k, m);
+  m = margins.world(group);
+  return worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other], axis, m);
+}
+
+/// Bounding tests and narrow phase of pair k, with its margin.
+bool pairWithin(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins) {
+  double m = 0.0;
+  return pairBoundsMeet(c, s, k, margins, m) && narrowWithin(c, s, k, m);
 }
 
 /// True when k is a self pair whose grid certifies it over the sub-motion (Margins::gridCertifies).
@@ -270,20 +276,8 @@ Clearance collectNear(Impl& c, const Snapshot& s, const Margins& margins, std::v
 }
 
 double pairCover(Impl& c, const Snapshot& s, const PairKey& k, const Margins& margins) {
-  if (gridCertifiesPair(c, s, k, margins)) return kCoverClear;
-  const RobotData& robot = *s.robot;
-  posePiece(c, robot, k.robotPiece);
-  const int group = robot.pieces[k.robotPiece].group;
-  if (k.kind == PairKey::Kind::Self) {
-    posePiece(c, robot, k.other);
-    const double m = margins.self(group, robot.pieces[k.other].group);
-    if (!selfBoundsMeet(c, robot, k.robotPiece, k.other, c.selfAxes[k.cache], m)) return kCoverClear;
-    return narrowCover(c, s, k, margins.base(), m);
-  }
-  const PieceSet& set = worldPieces(s, k.kind);
-  std::uint8_t& axis = worldAxes(c, k.kind)[pairIndex(set, k.robotPiece, k.other)];
-  const double m = margins.world(group);
-  if (!worldBoundsMeet(c, robot, k.robotPiece, set.pieces[k.other], axis, m)) return kCoverClear;
+  double m = 0.0;
+  if (gridCertifiesPair(c, s, k, margins) || !pairBoundsMeet(c, s, k, margins, m)) return kCoverClear;
   return narrowCover(c, s, k, margins.base(), m);
 }
 

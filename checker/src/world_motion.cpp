@@ -17,13 +17,14 @@
 //
 // Sub-motions over which some point moves more than tol::kCertifyBelowMove skip the clearance
 // test (such a clearance is rare in a robot's workspace, and the test would only fail). These are
-// the dyadic levels above the first whose sub-motions move less (2^k sub-motions of length 2^-k at
-// level k); the clearance tests start at that first level with every pair. Before them, the middles of the levels above
-// it but the last are tested for collision alone, kRakeWidth configurations per call (the rake): a motion through an
-// obstacle is usually refused there, at a fraction of a clearance test's cost. The last level above is left out: its
-// middles are as many as half the first level's sub-motions, whose clearance tests find the same collisions, and most
-// motions a planner asks about are free (RRTConnect and the path simplification on MotionBenchMaker problems: about 5 %
-// less time with it left out, bench/mbm_bench).
+// the dyadic levels above the first whose sub-motions move less (2^k sub-motions of length 2^-k
+// at level k); the clearance tests start at that first level with every pair. Before them, the
+// middles of the levels above it but the last are tested for collision alone, kRakeWidth
+// configurations per call (the rake): a motion through an obstacle is usually refused there, at a
+// fraction of a clearance test's cost. The last level above is left out: its middles are as many
+// as half the first level's sub-motions, whose clearance tests find the same collisions, and most
+// motions a planner asks about are free (RRTConnect and the path simplification on
+// MotionBenchMaker problems: about 5 % less time with it left out, bench/mbm_bench).
 //
 // The first level's sub-motions go kRakeWidth at a time through isFreeBatch's bound stage with
 // their margins (batch_bounds.h, BatchMargins: the configuration-free bound, a little looser than
