@@ -19,16 +19,17 @@
 // test (such a clearance is rare in a robot's workspace, and the test would only fail). These are
 // the dyadic levels above the first whose sub-motions move less (2^k sub-motions of length 2^-k
 // at level k); the clearance tests start at that first level with every pair. Before them, the
-// middles of the levels above it but the last are tested for collision alone, kRakeWidth
+// middles of the levels above it but the last two are tested for collision alone, kRakeWidth
 // configurations per call (the rake): a motion through an obstacle is usually refused there, at a
 // fraction of a clearance test's cost. The motion's middle goes first by itself when a batch
 // follows: two thirds of the motions the rake refuses collide there (RRTConnect's motions on
 // MotionBenchMaker problems, bench/motion_bench), and one configuration costs less than a batch
-// (certified motion checks 5 % faster on the mean). The last level above is left out: its middles
-// are as many as half the first level's sub-motions, whose clearance tests find the same
-// collisions, and most motions a planner asks about are free (RRTConnect and the path
-// simplification on MotionBenchMaker problems: about 5 % less time with it left out,
-// bench/mbm_bench).
+// (certified motion checks 5 % faster on the mean). The last two levels above are left out: their
+// middles are three quarters as many as the first level's sub-motions, whose bound stage and
+// clearance tests find the same collisions, and most motions a planner asks about are free.
+// Leaving out the last level saves about 5 % of the time (RRTConnect and the path simplification
+// on MotionBenchMaker problems, bench/mbm_bench), the second last 1 to 2 % more there and 4 to 9 %
+// of RRTConnect's motion checks (bench/motion_bench); leaving out a third costs 50 % there.
 //
 // The first level's sub-motions go kRakeWidth at a time through isFreeBatch's bound stage with
 // their margins (batch_bounds.h, BatchMargins: the configuration-free bound, a little looser than
@@ -293,16 +294,12 @@ int firstClearanceLevel(double move) {
 
 /// Tests the middles of the levels above `level` (level by level and in increasing t within a
 /// level) for collision at the base clearance, kRakeWidth at a time.
-/// Collides at the first group with a colliding configuration, Unproven past
-/// tol::kCertifiedMaxTests, else Certified (nothing found). False when the world changed under it.
+/// Collides at the first group with a colliding configuration, else Certified (nothing found).
+/// False when the world changed under it.
 bool rakeAbove(int level, const WorldState& state, Impl& c, const Eigen::Ref<const Eigen::VectorXd>& q1,
                const ClearanceDemand& motion, MotionScratch& w, MotionCertificate& out,
                std::shared_ptr<const Snapshot>& held) {
   const std::int64_t needed = (std::int64_t{1} << level) - 1;
-  if (needed > tol::kCertifiedMaxTests) {
-    out.verdict = MotionCertificate::Verdict::Unproven;
-    return true;
-  }
   w.rake.resize(q1.size(), kRakeWidth);
   int lanes = 0;
   int k = 0;
@@ -356,7 +353,13 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
   // Levels past kMaxLevel (a robot moving kilometres, halved to kCertifiedResolution) are left
   // Unproven: sub-motion indices are 64-bit.
   const int first = firstClearanceLevel(move);
-  if (!rakeAbove(std::max(0, first - 1), state, c, q1, motion, w, out, held)) return false;
+  // The first level alone would test more configurations than allowed (a robot moving hundreds of
+  // metres): nothing is tested.
+  if ((std::int64_t{1} << first) > tol::kCertifiedMaxTests) {
+    out.verdict = MotionCertificate::Verdict::Unproven;
+    return true;
+  }
+  if (!rakeAbove(std::max(0, first - 2), state, c, q1, motion, w, out, held)) return false;
   if (out.verdict != MotionCertificate::Verdict::Certified) return true;
   w.level.clear();
   for (std::int64_t i = 0; i < (std::int64_t{1} << first); ++i) {
@@ -378,8 +381,9 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
         return false;
       }
       if (sub.first < 0 && (w.batchClear >> (at % kRakeWidth) & 1u) != 0) {
-        ++out.configurations;
-        continue;
+        if (++out.configurations <= tol::kCertifiedMaxTests) continue;
+        out.verdict = MotionCertificate::Verdict::Unproven;
+        return true;
       }
       w.q = q1 + sub.middle() * w.dq;
       ++out.configurations;
