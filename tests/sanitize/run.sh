@@ -85,6 +85,16 @@ suite() {
 }
 
 step "ASan+UBSan unit tests"
+# test_checker keeps the convex pieces and self-pair grids of its robots in a cache folder of its
+# build. The normal build's tests have just filled theirs: its entries are copied (never over an
+# entry already here), so that the sanitized run does not decompose and grid every robot again
+# (several minutes under ASan). An entry is still checked when read, and the decomposition and
+# the grids are computed under the sanitizers by their own suites (test_decomposition, the grid
+# cache cases), in folders of their own.
+if [[ -d build/checker_test_cache ]]; then
+  mkdir -p build-asan/checker_test_cache
+  cp -rn build/checker_test_cache/. build-asan/checker_test_cache/
+fi
 # test_checker (the longest, about 4 minutes alone) runs beside test_geometry, test_decomposition and
 # test_robots (together about as long): on two cores or more the stage takes the time of the longer
 # side; on one, the two sides share it.
