@@ -68,7 +68,8 @@ struct SubMotion {
   double half() const { return 0.5 * (t1 - t0); }
 };
 
-/// No level past this one: the first level's sub-motions are dyadic, with 64-bit indices.
+/// firstClearanceLevel looks no further (its dyadic sub-motions have 64-bit indices); a motion
+/// that large is left Unproven by the test budget before anything is tested.
 constexpr int kMaxLevel = 62;
 
 /// Configurations tested for collision together by the rake (rakeGroup).
@@ -350,11 +351,10 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
   out = MotionCertificate{};
   out.verdict = MotionCertificate::Verdict::Certified;
   std::shared_ptr<const Snapshot> held;
-  // Levels past kMaxLevel (a robot moving kilometres, halved to kCertifiedResolution) are left
-  // Unproven: sub-motion indices are 64-bit.
   const int first = firstClearanceLevel(move);
   // The first level alone would test more configurations than allowed (a robot moving hundreds of
-  // metres): nothing is tested.
+  // metres): nothing is tested. Below it, every level at least halves its sub-motions, so the
+  // levels end (at kCertifiedResolution) long before the 64-bit indices would.
   if ((std::int64_t{1} << first) > tol::kCertifiedMaxTests) {
     out.verdict = MotionCertificate::Verdict::Unproven;
     return true;
@@ -368,10 +368,6 @@ bool certifyOnce(const WorldState& state, Impl& c, const Eigen::Ref<const Eigen:
   }
   w.pairs.clear();
   for (int k = first; !w.level.empty(); ++k) {
-    if (k > kMaxLevel) {
-      out.verdict = MotionCertificate::Verdict::Unproven;
-      return true;
-    }
     w.next.clear();
     w.nextPairs.clear();
     for (std::size_t at = 0; at < w.level.size(); ++at) {
