@@ -485,6 +485,29 @@ inline bool gridCertifies(const SelfPairGrid& grid, const Eigen::VectorXd& q, do
   return margins.dq != nullptr && margins.demand->base == 0.0 && grid.certifiedFreeAlong(q, *margins.dq, margins.scale);
 }
 
+/// The box around every lane of qs in which the grids are asked first (BatchScratch::boxCenter):
+/// the lanes' configurations, each grown by its sub-motion's reach, scale |dq|, when the batch
+/// has a motion (its grid tests at a margin of 0, of points only, then see a larger box than they
+/// need: still every point they test).
+void gridBox(const Eigen::Ref<const Eigen::MatrixXd>& qs, const BatchMargins& margins, BatchScratch& sc) {
+  const Eigen::VectorXd lo = qs.rowwise().minCoeff();
+  const Eigen::VectorXd hi = qs.rowwise().maxCoeff();
+  sc.boxCenter = 0.5 * (lo + hi);
+  sc.boxHalf = 0.5 * (hi - lo);
+  if (margins.dq != nullptr) sc.boxHalf += margins.scale * margins.dq->cwiseAbs();
+  sc.boxReady = true;
+}
+
+/// True when self pair sp's grid certifies every lane of qs at once, as gridCertifies would lane
+/// by lane: free over a box holding every lane's configuration and sub-motion. Lanes spread
+/// along a motion far from the pair's contacts pass with one lookup instead of one per lane.
+inline bool gridCertifiesAll(const SelfPairGrid& grid, const Eigen::Ref<const Eigen::MatrixXd>& qs, double clear,
+                             const BatchMargins& margins, BatchScratch& sc) {
+  if (clear != 0.0 && (margins.dq == nullptr || margins.demand->base != 0.0)) return false;
+  if (!sc.boxReady) gridBox(qs, margins, sc);
+  return grid.certifiedFreeAlong(sc.boxCenter, sc.boxHalf, 1.0);
+}
+
 /// Lanes of `open` where self pair sp may come within `clear`: link spheres not apart by it and
 /// no grid certificate.
 template <bool kAvx2>
@@ -492,6 +515,7 @@ inline std::uint32_t selfBlocked(const RobotData& robot, const SelfPair& sp, dou
                                  const Eigen::Ref<const Eigen::MatrixXd>& qs, BatchScratch& sc, std::uint32_t open) {
   const double r = robot.links[sp.a].radius + robot.links[sp.b].radius + clear;
   std::uint32_t near = ~beyond<kAvx2>(sc.linkF[sp.a], r, sc.linkF[sp.b]) & open;
+  if (near != 0 && sp.grid != nullptr && gridCertifiesAll(*sp.grid, qs, clear, margins, sc)) near = 0;
   if (near != 0 && sp.grid != nullptr) {
     for (int l = 0; l < static_cast<int>(qs.cols()); ++l) {
       if (!(near >> l & 1u)) continue;
@@ -538,6 +562,7 @@ inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eig
   }
   if (blocked == lanes) return 0;
   if (!lanesMargins(s, margins, sc.margins)) return 0;
+  sc.boxReady = false;
   const RobotData& robot = *s.robot;
   linksToFloats<LanesOf<kAvx2>>(robot, sc);
   const std::uint32_t unposed = blocked;  // lanes whose poses are not finite: near everything

@@ -64,7 +64,12 @@ struct BatchScratch {
   std::vector<LaneBoxT<BaselineLanes>> baselineBoxes;
   std::vector<std::uint32_t> boxStamp;
   std::uint32_t stamp = 0;
-  Eigen::VectorXd q;            ///< one lane's configuration (self-pair grids)
+  Eigen::VectorXd q;  ///< one lane's configuration (self-pair grids)
+  /// The box around every lane's configuration (and, with a demand, its sub-motion) in which the
+  /// self-pair grids are asked first, as a centre and half widths; made by the first grid test of
+  /// a batch (boxReady).
+  Eigen::VectorXd boxCenter, boxHalf;
+  bool boxReady = false;
   std::vector<int> candidates;  ///< world pieces from the broad phase
   std::vector<double> margins;  ///< per link geometry, then per self pair (BatchMargins)
   /// With margins: per link geometry, then per self pair, the lanes where it may be within its

@@ -119,9 +119,16 @@ LinkSpeedBound LinkSpeedBound::forWorld(const checker::World& world) {
 void LinkSpeedBound::displacements(const Eigen::Ref<const Eigen::VectorXd>& dq, Eigen::VectorXd& link,
                                    Eigen::MatrixXd& self) const {
   checkMotion(dq);
-  const Eigen::VectorXd magnitude = dq.cwiseAbs();
+  // Called for every motion a planner checks: the scratch is the thread's, made once.
+  thread_local Eigen::VectorXd magnitude;
+  magnitude = dq.cwiseAbs();
+  link.resize(speed_.rows());
   link.noalias() = speed_ * magnitude;
-  self = link.replicate(1, link.size()) + link.transpose().replicate(link.size(), 1);
+  const Eigen::Index n = link.size();
+  self.resize(n, n);
+  for (Eigen::Index b = 0; b < n; ++b) {
+    for (Eigen::Index a = 0; a < n; ++a) self(a, b) = link[a] + link[b];
+  }
   for (std::size_t p = 0; p < selfPairs_.size(); ++p) {
     const auto [a, b] = selfPairs_[p];
     self(a, b) = self(b, a) = selfSpeed_.row(static_cast<Eigen::Index>(p)).dot(magnitude);
