@@ -26,9 +26,18 @@ inline std::uint64_t bitsOf(double x) {
 }
 
 /// The hash of a configuration's exact bits after `seed` (never 0: it marks empty memo slots).
+/// Each value is scrambled by itself, with its position, and the sum of them mixed once: the
+/// values' multiplications do not wait for each other (every motion a planner checks hashes its
+/// ends several times).
 inline std::uint64_t hashOf(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t seed) {
-  std::uint64_t h = mix(0, seed);
-  for (Eigen::Index i = 0; i < point.size(); ++i) h = mix(h, bitsOf(point[i]));
+  std::uint64_t sum = 0;
+  for (Eigen::Index i = 0; i < point.size(); ++i) {
+    std::uint64_t w = bitsOf(point[i]) + static_cast<std::uint64_t>(i + 1) * 0x9e3779b97f4a7c15ULL;
+    w ^= w >> 32;
+    w *= 0xd6e8feb86659fd93ULL;
+    sum += w ^ (w >> 29);
+  }
+  const std::uint64_t h = mix(sum, seed);
   return h == 0 ? 1 : h;
 }
 
