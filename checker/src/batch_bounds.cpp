@@ -485,16 +485,17 @@ inline bool gridCertifies(const SelfPairGrid& grid, const Eigen::VectorXd& q, do
   return margins.dq != nullptr && margins.demand->base == 0.0 && grid.certifiedFreeAlong(q, *margins.dq, margins.scale);
 }
 
-/// The box around every lane of qs in which the grids are asked first (BatchScratch::boxCenter):
-/// the lanes' configurations, each grown by its sub-motion's reach, scale |dq|, when the batch
-/// has a motion (its grid tests at a margin of 0, of points only, then see a larger box than they
-/// need: still every point they test).
+/// The box around every lane of qs in which the grids are asked first (BatchScratch::boxLower):
+/// the lanes' smallest and largest values, less and plus the sub-motions' reach, scale |dq|, when
+/// the batch has a motion (its grid tests at a margin of 0, of points only, then see a larger box
+/// than they need: still every point they test).
 void gridBox(const Eigen::Ref<const Eigen::MatrixXd>& qs, const BatchMargins& margins, BatchScratch& sc) {
-  const Eigen::VectorXd lo = qs.rowwise().minCoeff();
-  const Eigen::VectorXd hi = qs.rowwise().maxCoeff();
-  sc.boxCenter = 0.5 * (lo + hi);
-  sc.boxHalf = 0.5 * (hi - lo);
-  if (margins.dq != nullptr) sc.boxHalf += margins.scale * margins.dq->cwiseAbs();
+  sc.boxLower = qs.rowwise().minCoeff();
+  sc.boxUpper = qs.rowwise().maxCoeff();
+  if (margins.dq != nullptr) {  // each reach rounded as certifiedFreeAlong rounds it
+    sc.boxLower -= margins.scale * margins.dq->cwiseAbs();
+    sc.boxUpper += margins.scale * margins.dq->cwiseAbs();
+  }
   sc.boxReady = true;
 }
 
@@ -505,7 +506,7 @@ inline bool gridCertifiesAll(const SelfPairGrid& grid, const Eigen::Ref<const Ei
                              const BatchMargins& margins, BatchScratch& sc) {
   if (clear != 0.0 && (margins.dq == nullptr || margins.demand->base != 0.0)) return false;
   if (!sc.boxReady) gridBox(qs, margins, sc);
-  return grid.certifiedFreeAlong(sc.boxCenter, sc.boxHalf, 1.0);
+  return grid.certifiedFreeWithin(sc.boxLower, sc.boxUpper);
 }
 
 /// Lanes of `open` where self pair sp may come within `clear`: link spheres not apart by it and

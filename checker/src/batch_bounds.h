@@ -66,9 +66,9 @@ struct BatchScratch {
   std::uint32_t stamp = 0;
   Eigen::VectorXd q;  ///< one lane's configuration (self-pair grids)
   /// The box around every lane's configuration (and, with a demand, its sub-motion) in which the
-  /// self-pair grids are asked first, as a centre and half widths; made by the first grid test of
-  /// a batch (boxReady).
-  Eigen::VectorXd boxCenter, boxHalf;
+  /// self-pair grids are asked first, per variable; made by the first grid test of a batch
+  /// (boxReady).
+  Eigen::VectorXd boxLower, boxUpper;
   bool boxReady = false;
   std::vector<int> candidates;  ///< world pieces from the broad phase
   std::vector<double> margins;  ///< per link geometry, then per self pair (BatchMargins)

@@ -86,18 +86,22 @@ class SelfPairGrid {
     int hi[2] = {0, 0};
     for (int d = 0; d < dims_; ++d) {
       const double reach = h * std::abs(dq[variable_[d]]);
-      const double a = (q[variable_[d]] - reach - lower_[d]) * inverseStep_[d];
-      const double b = (q[variable_[d]] + reach - lower_[d]) * inverseStep_[d];
-      if (!(a >= 0.0 && b < cells_[d])) return false;  // beyond the limits (or NaN)
-      lo[d] = static_cast<int>(a);
-      hi[d] = static_cast<int>(b);
+      if (!cellRange(d, q[variable_[d]] - reach, q[variable_[d]] + reach, lo[d], hi[d])) return false;
     }
-    for (int i = lo[0]; i <= hi[0]; ++i) {
-      for (int j = lo[1]; j <= hi[1]; ++j) {
-        if (free_[i * (dims_ == 2 ? cells_[1] : 1) + j] == 0) return false;
-      }
+    return cellsFree(lo, hi);
+  }
+
+  /// True when every configuration whose values lie within [lower, upper] (per variable; both of
+  /// the robot's size) lies in a cell certified free. Its cells hold those of every q + s dq,
+  /// |s| <= h, that certifiedFreeAlong would test for q in the range when lower and upper are the
+  /// range's ends less and plus h |dq|, computed as it computes them: rounding keeps their order.
+  bool certifiedFreeWithin(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const {
+    int lo[2] = {0, 0};
+    int hi[2] = {0, 0};
+    for (int d = 0; d < dims_; ++d) {
+      if (!cellRange(d, lower[variable_[d]], upper[variable_[d]], lo[d], hi[d])) return false;
     }
-    return true;
+    return cellsFree(lo, hi);
   }
 
   int numCells() const { return static_cast<int>(free_.size()); }
@@ -108,6 +112,24 @@ class SelfPairGrid {
   double motionBound() const { return delta_; }
 
  private:
+  /// The cells of grid variable d from value x0 to x1: false beyond the limits (or NaN).
+  bool cellRange(int d, double x0, double x1, int& first, int& last) const {
+    const double a = (x0 - lower_[d]) * inverseStep_[d];
+    const double b = (x1 - lower_[d]) * inverseStep_[d];
+    if (!(a >= 0.0 && b < cells_[d])) return false;
+    first = static_cast<int>(a);
+    last = static_cast<int>(b);
+    return true;
+  }
+  /// Every cell from lo to hi (per grid variable) is certified free.
+  bool cellsFree(const int lo[2], const int hi[2]) const {
+    for (int i = lo[0]; i <= hi[0]; ++i) {
+      for (int j = lo[1]; j <= hi[1]; ++j) {
+        if (free_[i * (dims_ == 2 ? cells_[1] : 1) + j] == 0) return false;
+      }
+    }
+    return true;
+  }
   /// The grid's variables, cells and delta for the motion radii `rho` (variable -> rho) within
   /// the cell budget for `piecePairs` piece pairs; the cell widths in `step`. False when the
   /// limits are degenerate or the budget too small.

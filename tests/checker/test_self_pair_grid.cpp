@@ -1,6 +1,7 @@
 // Certified-free self-pair grids (checker/src/self_pair_grid.h): isFree gives the same answer with
 // and without them, on random configurations and on configurations packed around the cells of
 // the grids' variables (cell boundaries, the limits, beyond the limits), and the grids are used.
+// A box of several sub-motions is certified only when each of them is.
 
 #include "checker_test_util.h"
 #include "world_test_access.h"
@@ -10,6 +11,7 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -85,6 +87,48 @@ BOOST_AUTO_TEST_CASE(bundled_arm_same_answers_with_and_without_grids) {
   const int colliding = compareIsFree(with, without, qs, "the grids", &stats);
   BOOST_TEST(stats.certifiedSelf > 0u);
   BOOST_TEST(colliding > 0);
+}
+
+// certifiedFreeWithin over the box of eight sub-motions q_l + s dq, |s| <= h (lanes along a
+// motion, as the bound stage asks it) is true only when certifiedFreeAlong is true for every one,
+// and it is true for some: on the bundled arm's grids, motions of random lengths from random
+// configurations, some of them ending on cell boundaries.
+BOOST_AUTO_TEST_CASE(a_box_of_sub_motions_is_certified_only_when_each_is) {
+  WorldOptions options = testWorldOptions();
+  options.disabledPairs = robots::readSrdfDisabledPairs(bundledDataDir() + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
+  const World world(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
+                                                     bundledLoadOptions()),
+                    options);
+  const robots::RobotModel& m = world.robot();
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int boxes = 0;
+  int certified = 0;
+  for (const detail::SelfPair& sp : selfPairsOf(world)) {
+    if (sp.grid == nullptr) continue;
+    for (int trial = 0; trial < 2000; ++trial) {
+      const Eigen::VectorXd q1 = randomConfiguration(m, rng);
+      const Eigen::VectorXd dq = (randomConfiguration(m, rng) - q1) * std::pow(u(rng), 3);
+      const double h = 1.0 / 16.0;
+      Eigen::VectorXd lower = Eigen::VectorXd::Constant(m.numVariables(), 1e300);
+      Eigen::VectorXd upper = -lower;
+      bool each = true;
+      for (int l = 0; l < 8; ++l) {
+        const Eigen::VectorXd q = q1 + (l + 0.5) / 8.0 * dq;
+        each = each && sp.grid->certifiedFreeAlong(q, dq, h);
+        lower = lower.cwiseMin(q);
+        upper = upper.cwiseMax(q);
+      }
+      lower -= h * dq.cwiseAbs();
+      upper += h * dq.cwiseAbs();
+      const bool box = sp.grid->certifiedFreeWithin(lower, upper);
+      BOOST_TEST((!box || each), "q1 = " << q1.transpose() << ", dq = " << dq.transpose());
+      ++boxes;
+      certified += box;
+    }
+  }
+  BOOST_TEST(boxes > 0);
+  BOOST_TEST(certified > boxes / 10);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
