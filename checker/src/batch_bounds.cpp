@@ -476,13 +476,19 @@ inline std::uint32_t worldBlocked(const Snapshot& s, PairKey::Kind kind, int g, 
   return blocked;
 }
 
+/// True when the batch's grids may certify a pair along the lanes' sub-motions (at a margin
+/// above 0): the batch has a motion and asks for no base clearance.
+inline bool gridsCertifyAlong(const BatchMargins& margins) {
+  return margins.dq != nullptr && margins.demand->base == 0.0;
+}
+
 /// True when self pair sp's grid certifies it for lane q, as Margins::gridCertifies does: free at
 /// q when its margin is 0, free all along the lane's sub-motion when the motion asks for no base
 /// clearance; otherwise only the pieces' distance can.
 inline bool gridCertifies(const SelfPairGrid& grid, const Eigen::VectorXd& q, double clear,
                           const BatchMargins& margins) {
   if (clear == 0.0) return grid.certifiedFree(q);
-  return margins.dq != nullptr && margins.demand->base == 0.0 && grid.certifiedFreeAlong(q, *margins.dq, margins.scale);
+  return gridsCertifyAlong(margins) && grid.certifiedFreeAlong(q, *margins.dq, margins.scale);
 }
 
 /// The box around every lane of qs in which the grids are asked first (BatchScratch::boxLower):
@@ -504,7 +510,7 @@ void gridBox(const Eigen::Ref<const Eigen::MatrixXd>& qs, const BatchMargins& ma
 /// along a motion far from the pair's contacts pass with one lookup instead of one per lane.
 inline bool gridCertifiesAll(const SelfPairGrid& grid, const Eigen::Ref<const Eigen::MatrixXd>& qs, double clear,
                              const BatchMargins& margins, BatchScratch& sc) {
-  if (clear != 0.0 && (margins.dq == nullptr || margins.demand->base != 0.0)) return false;
+  if (clear != 0.0 && !gridsCertifyAlong(margins)) return false;
   if (!sc.boxReady) gridBox(qs, margins, sc);
   return grid.certifiedFreeWithin(sc.boxLower, sc.boxUpper);
 }

@@ -122,7 +122,6 @@ void LinkSpeedBound::displacements(const Eigen::Ref<const Eigen::VectorXd>& dq, 
   // Called for every motion a planner checks: the scratch is the thread's, made once.
   thread_local Eigen::VectorXd magnitude;
   magnitude = dq.cwiseAbs();
-  link.resize(speed_.rows());
   link.noalias() = speed_ * magnitude;
   const Eigen::Index n = link.size();
   self.resize(n, n);

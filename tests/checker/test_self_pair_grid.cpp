@@ -92,7 +92,7 @@ BOOST_AUTO_TEST_CASE(bundled_arm_same_answers_with_and_without_grids) {
 // certifiedFreeWithin over the box of eight sub-motions q_l + s dq, |s| <= h (lanes along a
 // motion, as the bound stage asks it) is true only when certifiedFreeAlong is true for every one,
 // and it is true for some: on the bundled arm's grids, motions of random lengths from random
-// configurations, some of them ending on cell boundaries.
+// configurations.
 BOOST_AUTO_TEST_CASE(a_box_of_sub_motions_is_certified_only_when_each_is) {
   WorldOptions options = testWorldOptions();
   options.disabledPairs = robots::readSrdfDisabledPairs(bundledDataDir() + "/deepcheck_arm/srdf/deepcheck_arm.srdf");

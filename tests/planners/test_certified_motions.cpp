@@ -414,8 +414,6 @@ BOOST_AUTO_TEST_CASE(certify_path_after_simplification_tests_nothing_new) {
   BOOST_TEST(checker->certifiedMotions().hits() - hitsBefore == path.getStateCount() - 1);
 }
 
-// The bounds handed to World::certifyMotion: the self matrix holds each checked pair's own
-// bound and the others' sum of link bounds.
 // A motion that starts in a self-collision is never certified: b collides with the Panda itself,
 // a is free, 0.05 to 0.3 rad from b along a random direction of the last two arm joints (so that
 // the pairs across them, whose grids decide them, are the ones that move), and the motion b -> a
@@ -446,6 +444,8 @@ BOOST_AUTO_TEST_CASE(a_motion_from_a_self_collision_is_never_certified) {
   }
 }
 
+// The bounds handed to World::certifyMotion: the self matrix holds each checked pair's own
+// bound and the others' sum of link bounds.
 BOOST_AUTO_TEST_CASE(displacements_hold_every_pair_bound) {
   const auto world = dp::test::bundledWorld("");
   const dp::LinkSpeedBound bound = dp::LinkSpeedBound::forWorld(*world);
