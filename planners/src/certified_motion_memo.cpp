@@ -60,17 +60,6 @@ bool CertifiedMotionMemo::lookup(const Eigen::Ref<const Eigen::VectorXd>& point,
   return false;
 }
 
-bool CertifiedMotionMemo::holds(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version) const {
-  if (point.size() != n_) return false;
-  const std::uint64_t key = hash(point, version);
-  const std::size_t bucket = bucketOf(key);
-  std::lock_guard<std::mutex> guard(lock(bucket));
-  for (std::size_t e = bucket * kWays; e < (bucket + 1) * kWays; ++e) {
-    if (keeps(e, key, version, point.data())) return true;
-  }
-  return false;
-}
-
 void CertifiedMotionMemo::keep(const Eigen::Ref<const Eigen::VectorXd>& point,
                                const Eigen::Ref<const Eigen::VectorXd>& offset,
                                const Eigen::Ref<const Eigen::VectorXd>& motion, std::uint64_t version) {

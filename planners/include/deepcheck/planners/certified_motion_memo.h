@@ -55,9 +55,6 @@ class CertifiedMotionMemo {
   /// `version`.
   void insert(const Eigen::Ref<const Eigen::VectorXd>& from, const Eigen::Ref<const Eigen::VectorXd>& to,
               const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version);
-  /// True when `point` is, exactly, a kept point of a motion certified in world version `version`:
-  /// a configuration proven clear at the checker's threshold.
-  bool holds(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version) const;
   /// Forgets every entry.
   void clear();
 

@@ -14,11 +14,11 @@
 // examined next. Pairs that stay apart over the whole motion never reach a narrow phase; near
 // pairs are refined only where they are near. Sub-motions are visited level by level, so the
 // configurations tested are spread along the motion first and a collision is met early.
-// checkMotion(s1, s2): s2 must be valid (OMPL's contract, and the cheapest rejection), then the
-// motion must be Certified. A motion neither certified nor found colliding down to
-// checker::tol::kCertifiedResolution (it passes within about 10 micrometres of the threshold
-// without reaching it) is refused and counted (stats().unproven): a motion is accepted only when
-// proven.
+// checkMotion(s1, s2): s2 must lie within the joint limits, then the motion must be Certified
+// (the certification covers s2's collisions: OMPL's contract, s2 valid, holds). A motion neither
+// certified nor found colliding down to checker::tol::kCertifiedResolution (it passes within
+// about 10 micrometres of the threshold without reaching it) is refused and counted
+// (stats().unproven): a motion is accepted only when proven.
 // The resolution is the robot's geometry moving (metres), not a fraction of the state space's
 // extent: continuous joints and wide joint ranges are no special case, and far from obstacles a
 // long motion is certified by a few tests.
@@ -29,9 +29,7 @@
 //
 // An accepted motion is remembered in the checker's memo (certified_motion_memo.h) and answered
 // from it when asked again in the same world; a motion checkMotion(s1, s2) refused after testing
-// it is remembered by the validator (refused_motion_memo.h) and refused again likewise. An s2 the memo holds (a point
-// of a certified motion: a node of the planner's tree, a vertex of a planned path) is valid without a validity check;
-// only its joint limits are checked.
+// it is remembered by the validator (refused_motion_memo.h) and refused again likewise.
 //
 // The bound is made from the world's pieces (LinkSpeedBound::forWorld) and made again when the
 // world changes in a way that moves them (an object attached or detached: World::version and
@@ -97,8 +95,8 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   /// Certifies the first `fraction` of the motion, counting.
   checker::MotionCertificate certify(const Motion& m, double fraction) const;
   checker::MotionCertificate prefix(const Motion& m, double fraction) const;
-  /// The whole motion is valid: in the checker's memo of certified motions, or s2 valid and the
-  /// motion certified now (then remembered).
+  /// The whole motion is valid: in the checker's memo of certified motions, or s2 within the
+  /// limits and the motion certified now (then remembered).
   bool accepted(Motion& m) const;
 
   std::shared_ptr<const StateValidityChecker> checker_;

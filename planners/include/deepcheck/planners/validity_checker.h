@@ -108,12 +108,15 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
   /// (certified_motion_memo.h), shared by all of them.
   CertifiedMotionMemo& certifiedMotions() const { return *certifiedMotions_; }
 
+  /// True when q lies within the joint limits isValid checks (false when a value is NaN; q of the
+  /// wrong size throws, naming the sizes).
+  bool withinBounds(const Eigen::Ref<const Eigen::VectorXd>& q) const;
+
   std::uint64_t validityQueries() const { return validityQueries_.load(std::memory_order_relaxed); }
   std::uint64_t distanceQueries() const { return distanceQueries_.load(std::memory_order_relaxed); }
   void resetCounters();
 
  private:
-  bool withinBounds(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   /// False when a value of q is NaN or infinite (q of the wrong size throws, naming the sizes).
   bool finite(const Eigen::Ref<const Eigen::VectorXd>& q) const;
 
