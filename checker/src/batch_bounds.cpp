@@ -498,11 +498,13 @@ inline bool gridCertifies(const SelfPairGrid& grid, const Eigen::VectorXd& q, do
 void gridBox(const Eigen::Ref<const Eigen::MatrixXd>& qs, const BatchMargins& margins, BatchScratch& sc) {
   sc.boxLower = qs.rowwise().minCoeff();
   sc.boxUpper = qs.rowwise().maxCoeff();
-  if (margins.dq != nullptr) {  // each reach rounded as certifiedFreeAlong rounds it
-    sc.boxLower -= margins.scale * margins.dq->cwiseAbs();
-    sc.boxUpper += margins.scale * margins.dq->cwiseAbs();
-  }
   sc.boxReady = true;
+  if (margins.dq == nullptr) return;
+  for (Eigen::Index v = 0; v < qs.rows(); ++v) {  // each reach rounded as certifiedFreeAlong rounds it
+    const double reach = margins.scale * std::abs((*margins.dq)[v]);
+    sc.boxLower[v] -= reach;
+    sc.boxUpper[v] += reach;
+  }
 }
 
 /// True when self pair sp's grid certifies every lane of qs at once, as gridCertifies would lane
