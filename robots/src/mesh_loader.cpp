@@ -4,6 +4,7 @@
 
 #include "collada_check.h"
 #include "in_quotes.h"
+#include "obj_check.h"
 
 #include <deepcheck/geometry/input_range.h>
 
@@ -218,6 +219,7 @@ TriangleMesh loadMesh(const std::string& path, const Eigen::Vector3d& scale, con
   checkScale(path, scale);
   checkFile(path, options);
   checkXmlMeshFile(path);
+  checkObjMeshFile(path);
   Assimp::Importer importer;
   // Use COLLADA coordinates as written (see the header comment); keep its unit.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);

@@ -370,6 +370,24 @@ BOOST_AUTO_TEST_CASE(error_empty_mesh) {
   checkThrows([&] { loadMesh(zero); }, {zero, "assimp"});
 }
 
+BOOST_AUTO_TEST_CASE(error_one_line_obj) {
+  TempDir dir;
+  // assimp 5.2's OBJ reader hands atoi an unterminated string on these; the loader stops first.
+  const std::string fuzzed = dir.write("fuzzed.obj",
+                                       "l\xff\xff\xff\xff\xff"
+                                       "2n><accessor \xff\xff\xff\xff\xff\xff\xff D/a>LL\n");
+  checkThrows([&] { loadMesh(fuzzed); }, {"mesh file '" + fuzzed + "'", "one line", "OBJ 'l' statement"});
+  const std::string face = dir.write("face.obj", "f 1 2 3 4 5 6 7 8 9");
+  checkThrows([&] { loadMesh(face); }, {face, "OBJ 'f' statement"});
+  const std::string led = dir.write("led.input", "\n\xEF\xBB\xBFp 1 2 3 4 5 6 7 8 9");
+  checkThrows([&] { loadMesh(led); }, {led, "OBJ 'p' statement"});
+  // Two line ends, or another first statement: assimp's to read or to report.
+  const std::string two = dir.write("two.obj", "f 1 2 3 4 5 6 7 8 9\n\n");
+  checkThrows([&] { loadMesh(two); }, {two, "assimp"});
+  const std::string vertex = dir.write("vertex.obj", "v 0 0 0 1 2 3 4 5 6 7 8 9");
+  checkThrows([&] { loadMesh(vertex); }, {vertex, "no triangles"});
+}
+
 std::string daeWithIndices(const std::string& indices) {
   std::string s = daeWithUpAxis("Z_UP");
   const std::string list = "<p>0 1 2</p>";
