@@ -223,7 +223,22 @@ std::shared_ptr<const SelfPairGrid> SelfPairGrid::build(const RobotData& robot, 
   } else {
     grid->certifyCells(robot, chain.up, chain.down, U, D, step);
   }
+  grid->countBlocked();
   return grid;
+}
+
+void SelfPairGrid::countBlocked() {
+  const int rows = cells_[0];
+  const int cols = columns();
+  const auto stride = static_cast<std::size_t>(cols) + 1;
+  blockedBefore_.assign((static_cast<std::size_t>(rows) + 1) * stride, 0);
+  for (int i = 0; i < rows; ++i) {
+    int inRow = 0;  // blocked cells of row i before column j + 1
+    for (int j = 0; j < cols; ++j) {
+      inRow += free_[static_cast<std::size_t>(i) * cols + j] == 0 ? 1 : 0;
+      blockedBefore_[(i + 1) * stride + j + 1] = blockedBefore_[i * stride + j + 1] + inRow;
+    }
+  }
 }
 
 void SelfPairGrid::certifyThroughCache(const RobotData& robot, int up, int down, const LinkGeometry& U,

@@ -121,15 +121,17 @@ class SelfPairGrid {
     last = static_cast<int>(b);
     return true;
   }
-  /// Every cell from lo to hi (per grid variable) is certified free.
+  /// Every cell from lo to hi (per grid variable) is certified free: no cell of that block is
+  /// counted in blockedBefore_.
   bool cellsFree(const int lo[2], const int hi[2]) const {
-    for (int i = lo[0]; i <= hi[0]; ++i) {
-      for (int j = lo[1]; j <= hi[1]; ++j) {
-        if (free_[i * (dims_ == 2 ? cells_[1] : 1) + j] == 0) return false;
-      }
-    }
-    return true;
+    const int stride = columns() + 1;
+    const auto at = [&](int i, int j) { return blockedBefore_[static_cast<std::size_t>(i) * stride + j]; };
+    return at(hi[0] + 1, hi[1] + 1) - at(lo[0], hi[1] + 1) - at(hi[0] + 1, lo[1]) + at(lo[0], lo[1]) == 0;
   }
+  /// Cells along the second grid variable (1 for a grid of one variable).
+  int columns() const { return dims_ == 2 ? cells_[1] : 1; }
+  /// Fills blockedBefore_ from free_.
+  void countBlocked();
   /// The grid's variables, cells and delta for the motion radii `rho` (variable -> rho) within
   /// the cell budget for `piecePairs` piece pairs; the cell widths in `step`. False when the
   /// limits are degenerate or the budget too small.
@@ -159,6 +161,9 @@ class SelfPairGrid {
   int cells_[2] = {1, 1};
   double delta_ = 0.0;
   std::vector<std::uint8_t> free_;  // row-major, first variable slowest
+  /// The cells not certified free among those before (i, j) along both variables, at
+  /// i (columns() + 1) + j: a block's count in four lookups, however many cells it spans.
+  std::vector<int> blockedBefore_;
 };
 
 }  // namespace deepcheck::checker::detail

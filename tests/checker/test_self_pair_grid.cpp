@@ -40,6 +40,15 @@ std::vector<Eigen::VectorXd> configurations(const robots::RobotModel& m, int v0,
   return qs;
 }
 
+/// The bundled arm with its SRDF's disabled pairs, grids built.
+World bundledArm() {
+  WorldOptions options = testWorldOptions();
+  options.disabledPairs = robots::readSrdfDisabledPairs(bundledDataDir() + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
+  return World(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
+                                                bundledLoadOptions()),
+               options);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(checker_self_pair_grid)
@@ -73,11 +82,8 @@ BOOST_AUTO_TEST_CASE(panda_same_answers_with_and_without_grids) {
 }
 
 BOOST_AUTO_TEST_CASE(bundled_arm_same_answers_with_and_without_grids) {
-  WorldOptions options = testWorldOptions();
-  options.disabledPairs = robots::readSrdfDisabledPairs(bundledDataDir() + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
-  const std::string urdf = bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf";
-  World with(robots::RobotModel::fromUrdfFile(urdf, bundledLoadOptions()), options);
-  World without(robots::RobotModel::fromUrdfFile(urdf, bundledLoadOptions()), options);
+  World with = bundledArm();
+  World without = bundledArm();
   disableSelfPairGrids(without);
   BOOST_TEST(with.summary().find("certified-free grid") != std::string::npos);
   const robots::RobotModel& m = with.robot();
@@ -94,11 +100,7 @@ BOOST_AUTO_TEST_CASE(bundled_arm_same_answers_with_and_without_grids) {
 // and it is true for some: on the bundled arm's grids, motions of random lengths from random
 // configurations.
 BOOST_AUTO_TEST_CASE(a_box_of_sub_motions_is_certified_only_when_each_is) {
-  WorldOptions options = testWorldOptions();
-  options.disabledPairs = robots::readSrdfDisabledPairs(bundledDataDir() + "/deepcheck_arm/srdf/deepcheck_arm.srdf");
-  const World world(robots::RobotModel::fromUrdfFile(bundledDataDir() + "/deepcheck_arm/urdf/deepcheck_arm.urdf",
-                                                     bundledLoadOptions()),
-                    options);
+  const World world = bundledArm();
   const robots::RobotModel& m = world.robot();
   std::mt19937 rng(31);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -129,6 +131,44 @@ BOOST_AUTO_TEST_CASE(a_box_of_sub_motions_is_certified_only_when_each_is) {
   }
   BOOST_TEST(boxes > 0);
   BOOST_TEST(certified > boxes / 10);
+}
+
+// The block counts behind certifiedFreeWithin agree with the cells one by one: a box of one
+// point answers as certifiedFree there, a box over the whole limits is free only when every cell
+// is, and every point of a box found free lies in a free cell (the bundled arm's grids, random
+// boxes).
+BOOST_AUTO_TEST_CASE(a_box_is_free_only_when_its_cells_are) {
+  const World world = bundledArm();
+  const robots::RobotModel& m = world.robot();
+  const Eigen::VectorXd span = m.upperLimits() - m.lowerLimits();
+  std::mt19937 rng(37);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int free = 0;
+  int blocked = 0;
+  for (const detail::SelfPair& sp : selfPairsOf(world)) {
+    if (sp.grid == nullptr) continue;
+    const detail::SelfPairGrid& grid = *sp.grid;
+    const Eigen::VectorXd whole = m.lowerLimits() + (1.0 - 1e-9) * span;
+    BOOST_TEST(grid.certifiedFreeWithin(m.lowerLimits(), whole) == (grid.numFreeCells() == grid.numCells()));
+    for (int trial = 0; trial < 2000; ++trial) {
+      const Eigen::VectorXd q = randomConfiguration(m, rng);
+      BOOST_TEST(grid.certifiedFreeWithin(q, q) == grid.certifiedFree(q));
+      const Eigen::VectorXd lower = (q - 0.3 * std::pow(u(rng), 2) * span).cwiseMax(m.lowerLimits());
+      const Eigen::VectorXd upper = (q + 0.3 * std::pow(u(rng), 2) * span).cwiseMin(whole);
+      if (!grid.certifiedFreeWithin(lower, upper)) {
+        ++blocked;
+        continue;
+      }
+      ++free;
+      for (int k = 0; k < 20; ++k) {
+        Eigen::VectorXd p = q;
+        for (Eigen::Index v = 0; v < p.size(); ++v) p[v] = lower[v] + u(rng) * (upper[v] - lower[v]);
+        BOOST_TEST(grid.certifiedFree(p), "p = " << p.transpose());
+      }
+    }
+  }
+  BOOST_TEST(free > 0);
+  BOOST_TEST(blocked > 0);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
