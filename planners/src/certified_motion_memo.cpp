@@ -38,8 +38,7 @@ std::uint64_t CertifiedMotionMemo::hash(const Eigen::Ref<const Eigen::VectorXd>&
 }
 
 bool CertifiedMotionMemo::lookup(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version,
-                                 const Eigen::Ref<const Eigen::VectorXd>& dq, double side, Eigen::VectorXd& offset,
-                                 Eigen::VectorXd& motion) const {
+                                 const Eigen::Ref<const Eigen::VectorXd>& dq, double side, Place& place) const {
   const std::uint64_t key = hash(point, version);
   const std::size_t bucket = bucketOf(key);
   const auto n = static_cast<Eigen::Index>(n_);
@@ -52,25 +51,58 @@ bool CertifiedMotionMemo::lookup(const Eigen::Ref<const Eigen::VectorXd>& point,
     const double tube =
         tol::kCertifiedMotionMemoTube * (1.0 + point.lpNorm<Eigen::Infinity>() + along.lpNorm<Eigen::Infinity>());
     if (onSegment(at, along, tube) && onSegment(at + side * dq, along, tube)) {
-      offset = at;
-      motion = along;
+      place.offset = at;
+      place.motion = along;
+      place.joins = entries_[e].joins;
       return true;
     }
   }
   return false;
 }
 
-void CertifiedMotionMemo::keep(const Eigen::Ref<const Eigen::VectorXd>& point,
-                               const Eigen::Ref<const Eigen::VectorXd>& offset,
-                               const Eigen::Ref<const Eigen::VectorXd>& motion, std::uint64_t version) {
+bool CertifiedMotionMemo::joinable(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version,
+                                   const Eigen::Ref<const Eigen::VectorXd>& dq, double side, Place& joined) const {
+  const std::uint64_t key = hash(point, version);
+  const std::size_t bucket = bucketOf(key);
+  const auto n = static_cast<Eigen::Index>(n_);
+  std::lock_guard<std::mutex> guard(lock(bucket));
+  for (std::size_t e = bucket * kWays; e < (bucket + 1) * kWays; ++e) {
+    if (!keeps(e, key, version, point.data()) || entries_[e].joins >= tol::kCertifiedMotionMemoJoins) continue;
+    const double* v = values(e);
+    const Eigen::Map<const Eigen::VectorXd> at(v + n_, n);
+    const Eigen::Map<const Eigen::VectorXd> along(v + 2 * n_, n);
+    // The recorded piece kept: before the point (side +1) or after it (-1). None: nothing to join.
+    const double kept = side > 0.0 ? at.lpNorm<Eigen::Infinity>() : (along - at).lpNorm<Eigen::Infinity>();
+    if (!(kept > 0.0)) continue;
+    // In the joined motion's coordinates, from its start: the new motion's start and the joint.
+    if (side > 0.0) {
+      joined.motion = at + dq;
+      joined.offset = at;
+    } else {
+      joined.motion = dq + (along - at);
+      joined.offset.setZero(n);
+    }
+    const double tube = tol::kCertifiedMotionMemoTube / tol::kCertifiedMotionMemoJoins *
+                        (1.0 + point.lpNorm<Eigen::Infinity>() + joined.motion.lpNorm<Eigen::Infinity>());
+    const Eigen::Map<const Eigen::VectorXd> motion(joined.motion.data(), n);
+    if (side > 0.0 ? onSegment(joined.offset, motion, tube) : onSegment(dq, motion, tube)) {
+      joined.joins = entries_[e].joins + 1;
+      return true;
+    }
+  }
+  return false;
+}
+
+void CertifiedMotionMemo::keep(const Eigen::Ref<const Eigen::VectorXd>& point, const Place& place,
+                               std::uint64_t version) {
   const std::uint64_t key = hash(point, version);
   const std::size_t bucket = bucketOf(key);
   const std::size_t first = bucket * kWays;
   std::lock_guard<std::mutex> guard(lock(bucket));
   if (entries_[first].key == key && entries_[first].version == version) {
     const double* v = values(first);
-    if (std::equal(v, v + n_, point.data()) && std::equal(v + n_, v + 2 * n_, offset.data()) &&
-        std::equal(v + 2 * n_, v + 3 * n_, motion.data())) {
+    if (std::equal(v, v + n_, point.data()) && std::equal(v + n_, v + 2 * n_, place.offset.data()) &&
+        std::equal(v + 2 * n_, v + 3 * n_, place.motion.data())) {
       return;  // already the newest
     }
   }
@@ -79,24 +111,24 @@ void CertifiedMotionMemo::keep(const Eigen::Ref<const Eigen::VectorXd>& point,
     entries_[e] = entries_[e - 1];
     std::copy(values(e - 1), values(e - 1) + 3 * n_, values(e));
   }
-  entries_[first] = Entry{key, version};
+  entries_[first] = Entry{key, version, place.joins};
   double* v = values(first);
   std::copy(point.data(), point.data() + n_, v);
-  std::copy(offset.data(), offset.data() + n_, v + n_);
-  std::copy(motion.data(), motion.data() + n_, v + 2 * n_);
+  std::copy(place.offset.data(), place.offset.data() + n_, v + n_);
+  std::copy(place.motion.data(), place.motion.data() + n_, v + 2 * n_);
 }
 
 bool CertifiedMotionMemo::contains(const Eigen::Ref<const Eigen::VectorXd>& from,
                                    const Eigen::Ref<const Eigen::VectorXd>& to,
                                    const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version) {
   if (from.size() != n_ || to.size() != n_ || dq.size() != n_) return false;
-  thread_local Eigen::VectorXd offset, motion;
-  if (lookup(from, version, dq, 1.0, offset, motion)) {
-    offset += dq;
-    keep(to, offset, motion, version);
-  } else if (lookup(to, version, dq, -1.0, offset, motion)) {
-    offset -= dq;
-    keep(from, offset, motion, version);
+  thread_local Place place;
+  if (lookup(from, version, dq, 1.0, place)) {
+    place.offset += dq;
+    keep(to, place, version);
+  } else if (lookup(to, version, dq, -1.0, place)) {
+    place.offset -= dq;
+    keep(from, place, version);
   } else {
     return false;
   }
@@ -108,10 +140,15 @@ void CertifiedMotionMemo::insert(const Eigen::Ref<const Eigen::VectorXd>& from,
                                  const Eigen::Ref<const Eigen::VectorXd>& to,
                                  const Eigen::Ref<const Eigen::VectorXd>& dq, std::uint64_t version) {
   if (from.size() != n_ || to.size() != n_ || dq.size() != n_) return;
-  thread_local Eigen::VectorXd zero;
-  zero.setZero(n_);
-  keep(from, zero, dq, version);
-  keep(to, dq, dq, version);
+  thread_local Place place;
+  if (!joinable(from, version, dq, 1.0, place) && !joinable(to, version, dq, -1.0, place)) {
+    place.offset.setZero(n_);
+    place.motion = dq;
+    place.joins = 0;
+  }
+  keep(from, place, version);
+  place.offset += dq;
+  keep(to, place, version);
 }
 
 void CertifiedMotionMemo::clear() {

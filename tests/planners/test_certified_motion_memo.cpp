@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace dp = deepcheck::planners;
 
@@ -101,6 +102,72 @@ BOOST_AUTO_TEST_CASE(pieces_of_random_motions_are_answered_and_nothing_else) {
     BOOST_TEST(memo.contains(m.from, inside, s0 * m.dq, version));
     BOOST_TEST(!memo.contains(inside, m.to + side, m.dq - s0 * m.dq + side, version));
   }
+}
+
+namespace {
+
+/// The steps of an RRTConnect connection from `from` toward `target`: each a fixed length from
+/// the last one's end (OMPL's interpolation), the last one reaching the target.
+std::vector<Eigen::VectorXd> connection(const Eigen::VectorXd& from, const Eigen::VectorXd& target, double range) {
+  std::vector<Eigen::VectorXd> points{from};
+  while ((target - points.back()).norm() > range) {
+    const Eigen::VectorXd& at = points.back();
+    points.push_back(at + (range / (target - at).norm()) * (target - at));
+  }
+  points.push_back(target);
+  return points;
+}
+
+}  // namespace
+
+// The steps of a connection recorded one by one join into one motion: any two of its points are
+// answered, whichever way the steps were recorded (forward as a start tree grows, backward as a
+// goal tree's motions run toward its root). A step bent off the line by a millionth of a radian
+// does not join, and no more than tol::kCertifiedMotionMemoJoins steps join into one motion. A
+// few pairs are not answered: an entry is dropped when two newer ones of other points share its
+// bucket (the memo's fixed size; none with a memo of a million entries).
+BOOST_AUTO_TEST_CASE(the_steps_of_a_straight_connection_join) {
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<int> any(0, 1 << 20);
+  int asked = 0;
+  int answered = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const RandomMotion m = randomMotion(rng);
+    const Eigen::VectorXd target = m.from + m.dq;
+    const std::vector<Eigen::VectorXd> p = connection(m.from, target, m.dq.norm() / (2.0 + trial % 20));
+    const int n = static_cast<int>(p.size());
+    dp::CertifiedMotionMemo forward(kDimension);
+    dp::CertifiedMotionMemo backward(kDimension);
+    for (int k = 0; k + 1 < n; ++k) {
+      forward.insert(p[k], p[k + 1], p[k + 1] - p[k], 1);
+      backward.insert(p[n - 1 - k], p[n - 2 - k], p[n - 2 - k] - p[n - 1 - k], 1);
+    }
+    for (int pick = 0; pick < 10; ++pick) {
+      const int i = any(rng) % n;
+      const int j = any(rng) % n;
+      answered += forward.contains(p[i], p[j], p[j] - p[i], 1) ? 1 : 0;
+      answered += backward.contains(p[i], p[j], p[j] - p[i], 1) ? 1 : 0;
+      asked += 2;
+    }
+    // The middle point off the line: its two steps stay apart.
+    dp::CertifiedMotionMemo bent(kDimension);
+    const Eigen::VectorXd middle = p[1] + 1e-6 * across(m.dq, rng);
+    bent.insert(p[0], middle, middle - p[0], 1);
+    bent.insert(middle, p[2], p[2] - middle, 1);
+    BOOST_TEST(!bent.contains(p[0], p[2], p[2] - p[0], 1), "trial " << trial);
+  }
+  BOOST_TEST(asked == 200 * 20);
+  BOOST_TEST(answered >= asked - asked / 100);
+  // 40 steps: the first 33 join, the rest start a motion of their own.
+  const Eigen::VectorXd from = Eigen::VectorXd::Constant(kDimension, -1.0);
+  const std::vector<Eigen::VectorXd> p = connection(from, -from, 2.0 * from.norm() / 40.5);
+  BOOST_TEST(p.size() == 42u);
+  dp::CertifiedMotionMemo memo(kDimension);
+  for (std::size_t k = 0; k + 1 < p.size(); ++k) memo.insert(p[k], p[k + 1], p[k + 1] - p[k], 1);
+  const int joined = dp::tol::kCertifiedMotionMemoJoins + 1;
+  BOOST_TEST(memo.contains(p[0], p[joined], p[joined] - p[0], 1));
+  BOOST_TEST(!memo.contains(p[0], p[joined + 1], p[joined + 1] - p[0], 1));
+  BOOST_TEST(memo.contains(p[joined], p[41], p[41] - p[joined], 1));
 }
 
 BOOST_AUTO_TEST_CASE(a_point_motion_and_empty_configurations) {

@@ -22,6 +22,14 @@
 // never drift from it. The same motion reversed is answered too (the same configurations); one the
 // other way round a wrapping joint is not.
 //
+// A motion inserted that continues a recorded one in a straight line, from its end or into its
+// start (the steps of an RRTConnect connection, each from the last one's end toward one target),
+// is recorded joined to it: the one segment from the first step's start to the last one's end.
+// A shortcut between two points of such a line is then answered without a new certification. The
+// joint between the two pieces must lie on the joined segment to tol::kCertifiedMotionMemoTube
+// divided by tol::kCertifiedMotionMemoJoins, and a recorded motion joins at most that many pieces,
+// so the joined segment stays within the tube of the certified pieces.
+//
 // Any change of the world (an obstacle added, moved or removed, an object attached) changes the
 // version, and no entry of an older one answers. The checker's validity options are fixed at its
 // construction, so they need no key. Only acceptances are kept: a rejected motion is asked again
@@ -70,6 +78,13 @@ class CertifiedMotionMemo {
   struct Entry {
     std::uint64_t key = 0;      ///< the hash of the point and version (0: empty)
     std::uint64_t version = 0;  ///< the world version the motion was certified in
+    int joins = 0;              ///< the motion's pieces joined after the first (insert)
+  };
+  /// Where a point lies on a recorded motion: c + offset of the motion c + s motion, s in [0, 1],
+  /// made of joins + 1 certified pieces.
+  struct Place {
+    Eigen::VectorXd offset, motion;
+    int joins = 0;
   };
   /// The entry's point, offset and motion (3 n values).
   double* values(std::size_t entry) { return values_.data() + entry * 3 * static_cast<std::size_t>(n_); }
@@ -86,11 +101,15 @@ class CertifiedMotionMemo {
   /// point + side dq (side +1: point is the motion asked's start; -1: its end); the entry's offset
   /// and motion are then copied out.
   bool lookup(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version,
-              const Eigen::Ref<const Eigen::VectorXd>& dq, double side, Eigen::VectorXd& offset,
-              Eigen::VectorXd& motion) const;
-  /// Keeps `point` as c + offset of the motion c + s motion, s in [0, 1].
-  void keep(const Eigen::Ref<const Eigen::VectorXd>& point, const Eigen::Ref<const Eigen::VectorXd>& offset,
-            const Eigen::Ref<const Eigen::VectorXd>& motion, std::uint64_t version);
+              const Eigen::Ref<const Eigen::VectorXd>& dq, double side, Place& place) const;
+  /// True when an entry of `point` has a certified motion that the motion from point to
+  /// point + side dq continues in a straight line (side +1: point is the new motion's start, on
+  /// the recorded one; -1: its end), with joins to spare; `joined` is then the new motion's start
+  /// (side +1: point itself; -1: point - dq) on the joined motion.
+  bool joinable(const Eigen::Ref<const Eigen::VectorXd>& point, std::uint64_t version,
+                const Eigen::Ref<const Eigen::VectorXd>& dq, double side, Place& joined) const;
+  /// Keeps `point` as `place` of the world version `version`.
+  void keep(const Eigen::Ref<const Eigen::VectorXd>& point, const Place& place, std::uint64_t version);
 
   int n_;
   std::vector<Entry> entries_;  ///< buckets of kWays, the newest first

@@ -159,6 +159,12 @@ constexpr int kRefusedMotionMemoSlots = 256;
 /// contact tolerance of a pair (geometry::tol::kContactRelative times its size).
 constexpr double kCertifiedMotionMemoTube = 1e-14;
 
+/// The most pieces after the first that the memo of certified motions joins into one straight
+/// motion (certified_motion_memo.h); each joint lies within kCertifiedMotionMemoTube divided by
+/// this of the joined motion, so the joined motion stays within the tube of its pieces. A longer
+/// line is recorded as several joined motions.
+constexpr int kCertifiedMotionMemoJoins = 32;
+
 /// Attempts of simplifySolutionChecked (setup.h) before it keeps the path as planned.
 constexpr int kSimplifyAttempts = 3;
 
