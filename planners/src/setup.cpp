@@ -16,7 +16,6 @@
 #include <ompl/geometric/PathSimplifier.h>
 
 #include <limits>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -263,22 +262,18 @@ bool simplifySolutionChecked(ompl::geometric::SimpleSetup& ss, double seconds) {
   const ompl::base::Cost plannedCost = objective ? planned.cost(objective) : ompl::base::Cost(0.0);
   // Another objective than length: shortcuts only, by a simplifier that knows the objective (the
   // vertex reduction and B-spline smoothing of simplifyMax ignore it and pull a clearance path
-  // onto the obstacles). Each simplifier is made only when used: it seeds a random number generator.
-  std::optional<ompl::geometric::PathSimplifier> costAware, simplifier;
-  if (lengthOnly && seconds == 0.0) {
-    simplifier.emplace(ss.getSpaceInformation(), pdef->getGoal());
-  } else if (!lengthOnly) {
-    costAware.emplace(ss.getSpaceInformation(), pdef->getGoal(), objective);
-  }
+  // onto the obstacles).
+  ompl::geometric::PathSimplifier costAware(ss.getSpaceInformation(), pdef->getGoal(), objective);
+  ompl::geometric::PathSimplifier simplifier(ss.getSpaceInformation(), pdef->getGoal());
   // The simplifier is randomized: a failed attempt may succeed the next time.
   for (int attempt = 0; attempt < tol::kSimplifyAttempts; ++attempt) {
     ompl::geometric::PathGeometric& path = ss.getSolutionPath();
     if (lengthOnly && seconds == 0.0) {
-      shortenPath(*simplifier, path);
+      shortenPath(simplifier, path);
     } else if (lengthOnly) {
       ss.simplifySolution(seconds);
     } else {
-      costAware->shortcutPath(path);
+      costAware.shortcutPath(path);
     }
     if (checkPathWithPlanner(path).valid && costNotWorse(path, objective, plannedCost)) return true;
     path = planned;
