@@ -6,6 +6,7 @@
 
 #include "batch_bounds.h"
 
+#include "batch_speeds.h"
 #include "world_queries_internal.h"
 
 #include <immintrin.h>
@@ -387,17 +388,6 @@ inline typename L::Mask maskOf(std::uint32_t bits) {
   return m;
 }
 
-/// The smallest of a's lanes (`largest` false) or the largest: part against part, then within
-/// the remaining part (no lane may be NaN).
-template <class L>
-inline double extremeLane(const L& a, bool largest) {
-  auto m = a.h[0];
-  for (int i = 1; i < L::kParts; ++i) m = (largest ? a.h[i] > m : a.h[i] < m) ? a.h[i] : m;
-  double v = m[0];
-  for (int j = 1; j < L::kWidth; ++j) v = largest ? std::max(v, m[j]) : std::min(v, m[j]);
-  return v;
-}
-
 /// The box around the spheres (c, radius) of the lanes in `open`, each grown by
 /// tol::kBatchBoundRelative of its scale (in doubles): a world box the broad phase does not find
 /// near it lies beyond every one of those spheres by that much. The lanes in `open` have finite
@@ -535,10 +525,16 @@ inline std::uint32_t selfBlocked(const RobotData& robot, const SelfPair& sp, dou
   return near == 0 ? 0 : selfPiecesNear<kAvx2>(robot, sp, clear, sc, near);
 }
 
+/// A margin grown by tol::kBatchBoundRelative of itself: its rounding to float is then covered,
+/// as the coordinates' is by their scales. NaN when it is negative or not finite.
+double grown(double m) {
+  if (!(m >= 0.0 && m < std::numeric_limits<double>::infinity())) return std::numeric_limits<double>::quiet_NaN();
+  return m * (1.0 + tol::kBatchBoundRelative);
+}
+
 /// Each link geometry's margin against the world, then each self pair's (Margins::worldUpper and
-/// selfUpper), grown by tol::kBatchBoundRelative of itself: its rounding to float is then covered,
-/// as the coordinates' is by their scales. False when one is negative or not finite (the bound
-/// stage then certifies nothing, and the queries name the demand).
+/// selfUpper), grown. False when one is negative or not finite (the bound stage then certifies
+/// nothing, and the queries name the demand).
 bool lanesMargins(const Snapshot& s, const BatchMargins& margins, std::vector<double>& out) {
   const RobotData& robot = *s.robot;
   out.assign(robot.links.size() + s.selfPairs.size(), 0.0);
@@ -550,11 +546,43 @@ bool lanesMargins(const Snapshot& s, const BatchMargins& margins, std::vector<do
     out[robot.links.size() + i] = d.base + margins.scale * d.self(robot.links[sp.a].link, robot.links[sp.b].link);
   }
   for (double& m : out) {
-    if (!(m >= 0.0 && m < std::numeric_limits<double>::infinity())) return false;
-    m *= 1.0 + tol::kBatchBoundRelative;
+    m = grown(m);
+    if (std::isnan(m)) return false;
   }
   return true;
 }
+
+/// The margins of a motion's lanes from the posed bound over them (batch_speeds.h), grown: at most
+/// the configuration-free ones, and costlier, so made only for the link geometries that those
+/// leave near some lane, once per batch. Available when every lane is posed.
+template <class L>
+class PosedLaneMargins {
+ public:
+  PosedLaneMargins(const Snapshot& s, const BatchMargins& margins, bool allPosed, BatchScratch& sc)
+      : s_(s), margins_(margins), sc_(sc), available_(allPosed && margins.demand != nullptr && margins.dq != nullptr) {
+    if (available_) sc.speeds.assign(s.robot->links.size(), std::numeric_limits<double>::quiet_NaN());
+  }
+  bool available() const { return available_; }
+  double world(std::size_t g) { return grown(margins_.demand->base + margins_.scale * speed(g)); }
+  double self(const SelfPair& sp) {
+    return grown(margins_.demand->base +
+                 margins_.scale * (speed(static_cast<std::size_t>(sp.a)) + speed(static_cast<std::size_t>(sp.b))));
+  }
+
+ private:
+  double speed(std::size_t g) {
+    double& v = sc_.speeds[g];
+    if (std::isnan(v)) {
+      thread_local std::vector<SpeedTerm> terms;
+      v = lanesPosedSpeed(*s_.robot, sc_.poses<L>(), *margins_.demand, *margins_.dq, margins_.scale, g, terms);
+    }
+    return v;
+  }
+  const Snapshot& s_;
+  const BatchMargins& margins_;
+  BatchScratch& sc_;
+  bool available_;
+};
 
 template <bool kAvx2>
 inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eigen::Ref<const Eigen::MatrixXd>& qs,
@@ -571,6 +599,7 @@ inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eig
   }
   if (blocked == lanes) return 0;
   if (!lanesMargins(s, margins, sc.margins)) return 0;
+  PosedLaneMargins<LanesOf<kAvx2>> posed(s, margins, blocked == 0, sc);
   sc.boxReady = false;
   const RobotData& robot = *s.robot;
   linksToFloats<LanesOf<kAvx2>>(robot, sc);
@@ -580,7 +609,12 @@ inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eig
     const double clear = sc.margins[static_cast<std::size_t>(g)];
     for (PairKey::Kind kind : {PairKey::Kind::Scene, PairKey::Kind::Obstacle}) {
       const std::uint32_t open = lanes & ~(record ? unposed : blocked);
-      const std::uint32_t near = worldBlocked<kAvx2>(s, kind, g, clear, broadPhase, sc, open);
+      std::uint32_t near = worldBlocked<kAvx2>(s, kind, g, clear, broadPhase, sc, open);
+      // The lanes still near are tested again with the tighter margin, when it is.
+      if (near != 0 && posed.available()) {
+        const double tight = posed.world(static_cast<std::size_t>(g));
+        if (tight < clear) near = worldBlocked<kAvx2>(s, kind, g, tight, broadPhase, sc, near);
+      }
       blocked |= near;
       if (record) sc.nearLanes[static_cast<std::size_t>(g)] |= near;
       if (blocked == lanes && !record) return 0;
@@ -589,7 +623,11 @@ inline std::uint32_t certify(const Snapshot& s, BroadPhase broadPhase, const Eig
   for (std::size_t i = 0; i < s.selfPairs.size(); ++i) {
     const double clear = sc.margins[robot.links.size() + i];
     const std::uint32_t open = lanes & ~(record ? unposed : blocked);
-    const std::uint32_t near = selfBlocked<kAvx2>(robot, s.selfPairs[i], clear, margins, qs, sc, open);
+    std::uint32_t near = selfBlocked<kAvx2>(robot, s.selfPairs[i], clear, margins, qs, sc, open);
+    if (near != 0 && posed.available()) {
+      const double tight = posed.self(s.selfPairs[i]);
+      if (tight < clear) near = selfBlocked<kAvx2>(robot, s.selfPairs[i], tight, margins, qs, sc, near);
+    }
     blocked |= near;
     if (record) sc.nearLanes[robot.links.size() + i] |= near;
     if (blocked == lanes && !record) return 0;

@@ -72,6 +72,7 @@ struct BatchScratch {
   bool boxReady = false;
   std::vector<int> candidates;  ///< world pieces from the broad phase
   std::vector<double> margins;  ///< per link geometry, then per self pair (BatchMargins)
+  std::vector<double> speeds;   ///< per link geometry: its posed bound over the lanes (NaN: not made)
   /// With margins: per link geometry, then per self pair, the lanes where it may be within its
   /// margin (every lane tested against every one; the others are clear by the bounds).
   std::vector<std::uint32_t> nearLanes;
@@ -97,7 +98,9 @@ struct BatchScratch {
 /// What each lane must keep clear: nothing more than apart (isFree), or, for a certified motion's
 /// sub-motions q_l + s dq, |s| <= scale, around the lanes, each pair farther apart than
 /// demand.base + scale times the demand's configuration-free bound for the pair (Margins::
-/// worldUpper and selfUpper); a self pair's grid may then certify it along the sub-motion.
+/// worldUpper and selfUpper). A link geometry or self pair that this leaves near some lane is
+/// tested again with the posed bound over the lanes (batch_speeds.h) where that is smaller (with
+/// dq, and every lane posed); a self pair's grid may also certify it along the sub-motion.
 struct BatchMargins {
   const ClearanceDemand* demand = nullptr;  ///< null: no margins
   double scale = 0.0;

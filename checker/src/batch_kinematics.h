@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cstdint>
 
 #include <vector>
@@ -151,6 +152,17 @@ DC_LANES LD<W> laneAbs(const LD<W>& a) {
 template <int W>
 DC_LANES LD<W> laneMax(const LD<W>& a, const LD<W>& b) {
   return select(a > b, a, b);
+}
+
+/// The smallest of a's lanes (`largest` false) or the largest: part against part, then within
+/// the remaining part (no lane may be NaN).
+template <class L>
+DC_LANES double extremeLane(const L& a, bool largest) {
+  auto m = a.h[0];
+  for (int i = 1; i < L::kParts; ++i) m = (largest ? a.h[i] > m : a.h[i] < m) ? a.h[i] : m;
+  double v = m[0];
+  for (int j = 1; j < L::kWidth; ++j) v = largest ? std::max(v, m[j]) : std::min(v, m[j]);
+  return v;
 }
 
 /// A point per lane.

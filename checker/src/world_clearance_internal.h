@@ -18,6 +18,19 @@
 
 namespace deepcheck::checker::detail {
 
+/// One joint of a link geometry's chain in the posed bound (world_motion.cpp): its rate |sigma_k|
+/// and, for a revolute joint, the reach d_k + h D_g (0 when prismatic).
+struct SpeedTerm {
+  double rate = 0.0;
+  double reach = 0.0;
+  bool prismatic = false;
+};
+
+/// The posed bound's drift of the rigid form over a sub-motion, per unit of h: the sum over the
+/// chain's joints (from the geometry up to the root) of |sigma_k| (Wbar_k reach_k + P_k)
+/// (world_motion.cpp), `turning` the sum of the revolute |sigma_k|. It grows with every reach.
+double rigidDrift(const std::vector<SpeedTerm>& terms, double turning);
+
 /// How far each geometry of the robot may move over a sub-motion of a straight motion q + s dq,
 /// |s| <= h, around the posed configuration, per unit of h (metres): World::certifyMotion's bound
 /// from the pose (world_motion.cpp), tighter than the configuration-free one. Computed for a link
@@ -50,7 +63,6 @@ class PosedSpeeds {
 
  private:
   double compute(int g);
-  double rigidDrift(double turning) const;
   /// Joint k's axis in the world at the pose.
   const Eigen::Vector3d& axis(int k);
 
@@ -61,13 +73,7 @@ class PosedSpeeds {
   const Eigen::VectorXd* dq_ = nullptr;
   std::vector<char> known_, axisKnown_;
   std::vector<double> value_;
-  /// compute's scratch, per joint of the chain: |sigma_k|, d_k + h D_g (0 when prismatic).
-  struct JointTerm {
-    double rate = 0.0;
-    double reach = 0.0;
-    bool prismatic = false;
-  };
-  std::vector<JointTerm> terms_;
+  std::vector<SpeedTerm> terms_;  ///< compute's scratch, per joint of the chain
   std::vector<Eigen::Vector3d> axis_;
 };
 

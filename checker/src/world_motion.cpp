@@ -32,8 +32,9 @@
 // of RRTConnect's motion checks (bench/motion_bench); leaving out a third costs 50 % there.
 //
 // The first level's sub-motions go kRakeWidth at a time through isFreeBatch's bound stage with
-// their margins (batch_bounds.h, BatchMargins: the configuration-free bound, a little looser than
-// the posed one): a sub-motion it certifies clear is certified, every other is tested as above.
+// their margins (batch_bounds.h, BatchMargins: the configuration-free bound, then, where that
+// leaves a pair near, the posed one over the eight sub-motions, batch_speeds.h): a sub-motion it
+// certifies clear is certified, every other is tested as above.
 // Most are certified there, at a fraction of a clearance test's cost. The configurations a batch
 // posed are tested with its link poses (prepareLane), without a forward kinematics of their own.
 //
@@ -131,7 +132,7 @@ double PosedSpeeds::compute(int g) {
     const robots::Joint& joint = robot.model.joint(chain[i]);
     const double sigma = (*dq_)[joint.variable] * joint.multiplier;
     const bool prismatic = joint.type == robots::JointType::Prismatic;
-    terms_[i] = JointTerm{std::abs(sigma), 0.0, prismatic};
+    terms_[i] = SpeedTerm{std::abs(sigma), 0.0, prismatic};
     if (sigma == 0.0) continue;
     const Eigen::Vector3d& a = axis(chain[i]);
     if (prismatic) {
@@ -146,18 +147,15 @@ double PosedSpeeds::compute(int g) {
     angular += sigma * a;
     turning += std::abs(sigma);
   }
-  const double rigid = centerVelocity.norm() + angular.norm() * lg.radius + h_ * rigidDrift(turning);
+  const double rigid = centerVelocity.norm() + angular.norm() * lg.radius + h_ * rigidDrift(terms_, turning);
   return std::min(perJoint, rigid);
 }
 
-/// The sum over the joints compute() just walked of |sigma_k| (Wbar_k (d_k + h D_g) + P_k), from
-/// terms_ and `turning`, the sum of the revolute |sigma_k|. The chain runs from the geometry up to
-/// the root: the joints above k come after it.
-double PosedSpeeds::rigidDrift(double turning) const {
+double rigidDrift(const std::vector<SpeedTerm>& terms, double turning) {
   double from = 0.0;    // P_k: the per-joint bound of the joints from k down
   double turned = 0.0;  // the revolute |sigma_j| from k down; Wbar_k = turning - turned
   double sum = 0.0;
-  for (const JointTerm& t : terms_) {
+  for (const SpeedTerm& t : terms) {
     if (t.rate == 0.0) continue;
     if (t.prismatic) {
       from += t.rate;
